@@ -1,0 +1,69 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/** @file ap_mesh.h
+ *  @brief Triangle connectivity and vertex normals of a terrain mesh whose vertices are the
+ *         nodes of a regular grid.
+ *
+ *  Node (i, j) (column i west to east, row j south to north) is vertex j * nx + i. A node is
+ *  valid when its elevation (for ap_mesh_triangulate) or its position (for ap_mesh_normals) is
+ *  not NaN. Triangles are counter-clockwise seen from above (+z of a frame whose x points east
+ *  and y north), so their geometric normals point up.
+ */
+#ifndef AP_MESH_H
+#define AP_MESH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "ap_grid.h"
+#include "ap_status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Upper bound on the triangles of an nx x ny grid, 2 (nx - 1)(ny - 1), in *out;
+ *  AP_ERR_SIZE_OVERFLOW if it (or 3 ids per triangle) does not fit in size_t. */
+ap_status ap_mesh_max_triangles(size_t nx, size_t ny, size_t *out);
+
+/** Triangulate the grid cells (each the quad of four neighbouring nodes).
+ *
+ *  A quad with four valid nodes is split along its south-west/north-east diagonal into
+ *  (SW, SE, NE) and (SW, NE, NW). A quad with one nodata node keeps the one triangle of its
+ *  three valid nodes (splitting along the diagonal that avoids the nodata node); quads with two
+ *  or more nodata nodes are dropped. So nodata leaves holes exactly where the data are missing.
+ *
+ *  @param g        grid of elevations (only NaN-ness is used), at least 2 x 2
+ *  @param tri      output, 3 vertex ids per triangle (caller-allocated, capacity max_tri)
+ *  @param max_tri  capacity of `tri` in triangles; ap_mesh_max_triangles() is always enough
+ *  @param ntri     output, number of triangles written; row-major order of quads
+ *  @return AP_OK, or AP_ERR_NULL_POINTER / AP_ERR_GRID_TOO_SMALL / AP_ERR_BAD_STRIDE /
+ *          AP_ERR_SIZE_OVERFLOW / AP_ERR_BUFFER_TOO_SMALL (nothing useful is written then).
+ */
+ap_status ap_mesh_triangulate(const ap_grid_view *g, int64_t *tri, size_t max_tri, size_t *ntri);
+
+/** Check the arguments of ap_mesh_normals_rows once: non-NULL, at least 2 x 2, sizes addressable. */
+ap_status ap_mesh_normals_validate(const double *xyz, size_t nx, size_t ny, const float *normals);
+
+/** Unit vertex normals for rows [j0, j1) of a grid of vertex positions.
+ *
+ *  xyz holds 3 doubles per node (node order as above, positions in any Cartesian frame whose
+ *  x, y follow the grid's east and north directions); a node whose x is NaN is invalid.
+ *  The normal of a node is the normalised sum, over its four quadrants (NE, NW, SW, SE), of
+ *  the cross product of the two edges to its neighbours in that quadrant:
+ *  (E - P) x (N - P) for NE, and so on counter-clockwise. With all four neighbours valid this
+ *  equals the central-difference normal (E - W) x (N - S). Where an axis neighbour is missing,
+ *  the quadrant uses the diagonal neighbour instead, so every triangle that
+ *  ap_mesh_triangulate can emit contributes to each of its vertices. Nodes with no
+ *  contribution (nodata, isolated) get NaN normals.
+ *
+ *  Call only after ap_mesh_normals_validate() succeeded. Reentrant; disjoint row ranges may run
+ *  on different threads and the result does not depend on the split. Never allocates.
+ */
+void ap_mesh_normals_rows(const double *xyz, size_t nx, size_t ny, size_t j0, size_t j1,
+                          float *normals);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* AP_MESH_H */

@@ -1,0 +1,18 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+#include "ap_status.h"
+
+const char *ap_status_string(ap_status status)
+{
+  switch (status) {
+  case AP_OK: return "success";
+  case AP_ERR_NULL_POINTER: return "a required pointer argument is NULL";
+  case AP_ERR_INVALID_ARGUMENT: return "a parameter is outside its valid range";
+  case AP_ERR_GRID_TOO_SMALL: return "the grid is too small for this operation";
+  case AP_ERR_BAD_STRIDE: return "the row stride is smaller than the row length";
+  case AP_ERR_SIZE_OVERFLOW: return "the grid size overflows the address space";
+  case AP_ERR_ALL_NODATA: return "every cell of the grid is nodata";
+  case AP_ERR_BUFFER_TOO_SMALL: return "an output buffer is too small";
+  case AP_ERR_OVERLAP: return "an output buffer overlaps an input buffer";
+  }
+  return "unknown status";
+}

@@ -1,0 +1,234 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Unit tests of ap_mesh: triangulation with nodata holes and vertex normals, against
+ * hand-counted topologies and the exact normal of a plane. */
+#include "ap_mesh.h"
+#include "aptest.h"
+
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* z component of (b - a) x (c - a) for grid nodes laid out at unit spacing. */
+static double tri_up(size_t nx, const int64_t *t)
+{
+  const double ax = (double)(t[0] % (int64_t)nx), ay = (double)(t[0] / (int64_t)nx);
+  const double bx = (double)(t[1] % (int64_t)nx), by = (double)(t[1] / (int64_t)nx);
+  const double cx = (double)(t[2] % (int64_t)nx), cy = (double)(t[2] / (int64_t)nx);
+  return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+}
+
+/* A full grid gives 2 (nx-1)(ny-1) counter-clockwise triangles covering each quad. */
+static void test_full_grid(void)
+{
+  float z[5 * 4] = { 0 };
+  int64_t tri[3 * 2 * 4 * 3];
+  size_t n = 0, k, maxt;
+  ap_grid_view g = ap_grid_view_make(z, 5, 4);
+  for (k = 0; k < 20; ++k) {
+    z[k] = (float)k;
+  }
+  AP_CHECK_EQ_INT(ap_mesh_max_triangles(5, 4, &maxt), AP_OK);
+  AP_CHECK_EQ_INT(maxt, 24);
+  AP_CHECK_EQ_INT(ap_mesh_triangulate(&g, tri, maxt, &n), AP_OK);
+  AP_CHECK_EQ_INT(n, 24);
+  for (k = 0; k < n; ++k) {
+    AP_CHECK_NEAR(tri_up(5, tri + 3 * k), 1.0, 0.0); /* area 1/2, CCW */
+  }
+  /* The first quad: (SW, SE, NE) = (0, 1, 6) and (SW, NE, NW) = (0, 6, 5). */
+  AP_CHECK_EQ_INT(tri[0], 0);
+  AP_CHECK_EQ_INT(tri[1], 1);
+  AP_CHECK_EQ_INT(tri[2], 6);
+  AP_CHECK_EQ_INT(tri[3], 0);
+  AP_CHECK_EQ_INT(tri[4], 6);
+  AP_CHECK_EQ_INT(tri[5], 5);
+  /* Too small a buffer is an error, not an overflow. */
+  AP_CHECK_EQ_INT(ap_mesh_triangulate(&g, tri, 23, &n), AP_ERR_BUFFER_TOO_SMALL);
+  AP_CHECK_EQ_INT(n, 0);
+}
+
+static int uses(const int64_t *tri, size_t n, int64_t v)
+{
+  size_t k;
+  for (k = 0; k < 3 * n; ++k) {
+    if (tri[k] == v) {
+      return 1;
+    }
+  }
+  return 0;
+}
+
+/* One nodata node in a 2 x 2 grid (a single quad), in each of the four corners: the triangle
+ * of the three valid nodes survives and never uses the nodata node. */
+static void test_one_nodata_corner(void)
+{
+  int corner;
+  for (corner = 0; corner < 4; ++corner) {
+    float z[4] = { 1, 2, 3, 4 };
+    int64_t tri[6];
+    size_t n = 0;
+    ap_grid_view g = ap_grid_view_make(z, 2, 2);
+    z[corner] = NAN;
+    AP_CHECK_EQ_INT(ap_mesh_triangulate(&g, tri, 2, &n), AP_OK);
+    AP_CHECK_EQ_INT(n, 1);
+    AP_CHECK(!uses(tri, n, corner));
+    AP_CHECK_NEAR(tri_up(2, tri), 1.0, 0.0);
+  }
+}
+
+/* Holes: a nodata node in the interior of a 5 x 5 grid removes exactly the triangles that
+ * touch it. Its four quads each keep one triangle: 32 - 4 = 28. Two nodata nodes side by
+ * side drop the two quads they share entirely. */
+static void test_holes(void)
+{
+  float z[25] = { 0 };
+  int64_t tri[3 * 32];
+  size_t n = 0, k;
+  ap_grid_view g = ap_grid_view_make(z, 5, 5);
+  for (k = 0; k < 25; ++k) {
+    z[k] = 0.0f;
+  }
+  z[12] = NAN; /* centre */
+  AP_CHECK_EQ_INT(ap_mesh_triangulate(&g, tri, 32, &n), AP_OK);
+  AP_CHECK_EQ_INT(n, 28);
+  AP_CHECK(!uses(tri, n, 12));
+  z[13] = NAN; /* and its east neighbour: quads (2,1),(2,2) lose both triangles,
+                  (1,1),(1,2),(3,1),(3,2) keep one each -> 32 - 2*2 - 4 = 24 */
+  AP_CHECK_EQ_INT(ap_mesh_triangulate(&g, tri, 32, &n), AP_OK);
+  AP_CHECK_EQ_INT(n, 24);
+  AP_CHECK(!uses(tri, n, 12) && !uses(tri, n, 13));
+  for (k = 0; k < 25; ++k) {
+    z[k] = NAN;
+  }
+  AP_CHECK_EQ_INT(ap_mesh_triangulate(&g, tri, 32, &n), AP_OK);
+  AP_CHECK_EQ_INT(n, 0);
+}
+
+static void test_triangulate_errors(void)
+{
+  float z[4] = { 0, 0, 0, 0 };
+  int64_t tri[6];
+  size_t n = 99, m;
+  ap_grid_view g = ap_grid_view_make(z, 1, 4);
+  AP_CHECK_EQ_INT(ap_mesh_triangulate(&g, tri, 2, &n), AP_ERR_GRID_TOO_SMALL);
+  AP_CHECK_EQ_INT(n, 0);
+  g = ap_grid_view_make(z, 2, 2);
+  AP_CHECK_EQ_INT(ap_mesh_triangulate(&g, NULL, 2, &n), AP_ERR_NULL_POINTER);
+  AP_CHECK_EQ_INT(ap_mesh_triangulate(&g, tri, 2, NULL), AP_ERR_NULL_POINTER);
+  AP_CHECK_EQ_INT(ap_mesh_max_triangles(SIZE_MAX / 2, 4, &m), AP_ERR_SIZE_OVERFLOW);
+  AP_CHECK_EQ_INT(ap_mesh_max_triangles(1, 9, &m), AP_OK);
+  AP_CHECK_EQ_INT(m, 0);
+}
+
+/* Positions of a plane z = a x + b y on a grid with cell sizes dx, dy. */
+static double *plane(size_t nx, size_t ny, double dx, double dy, double a, double b)
+{
+  double *xyz = (double *)malloc(3 * nx * ny * sizeof(double));
+  size_t i, j;
+  for (j = 0; j < ny; ++j) {
+    for (i = 0; i < nx; ++i) {
+      double *p = xyz + 3 * (j * nx + i);
+      p[0] = (double)i * dx;
+      p[1] = (double)j * dy;
+      p[2] = a * p[0] + b * p[1];
+    }
+  }
+  return xyz;
+}
+
+/* On a plane every node, edges and corners included, gets the exact normal
+ * (-a, -b, 1) / sqrt(1 + a^2 + b^2); next to holes too. */
+static void test_normals_plane(void)
+{
+  const size_t nx = 7, ny = 5;
+  const double a = 0.3, b = -1.2, len = sqrt(1.0 + a * a + b * b);
+  double *xyz = plane(nx, ny, 30.0, 20.0, a, b);
+  float *nrm = (float *)malloc(3 * nx * ny * sizeof(float));
+  size_t k;
+  AP_CHECK_EQ_INT(ap_mesh_normals_validate(xyz, nx, ny, nrm), AP_OK);
+  ap_mesh_normals_rows(xyz, nx, ny, 0, ny, nrm);
+  for (k = 0; k < nx * ny; ++k) {
+    AP_CHECK_NEAR(nrm[3 * k + 0], -a / len, 1e-6);
+    AP_CHECK_NEAR(nrm[3 * k + 1], -b / len, 1e-6);
+    AP_CHECK_NEAR(nrm[3 * k + 2], 1.0 / len, 1e-6);
+  }
+  /* Punch holes: node (3,2) and the whole column 5 of row 1. */
+  xyz[3 * (2 * nx + 3)] = NAN;
+  xyz[3 * (1 * nx + 5)] = NAN;
+  ap_mesh_normals_rows(xyz, nx, ny, 0, ny, nrm);
+  for (k = 0; k < nx * ny; ++k) {
+    if (k == 2 * nx + 3 || k == 1 * nx + 5) {
+      AP_CHECK_NAN(nrm[3 * k]);
+      continue;
+    }
+    AP_CHECK_NEAR(nrm[3 * k + 2], 1.0 / len, 1e-6);
+  }
+  free(nrm);
+  free(xyz);
+}
+
+/* A node whose neighbours are all nodata has no normal; a node with only an east and a
+ * north-east neighbour (the one triangle it can be in) gets that triangle's normal. */
+static void test_normals_sparse(void)
+{
+  double *xyz = plane(3, 3, 1.0, 1.0, 0.0, 0.0);
+  float nrm[27];
+  size_t k;
+  for (k = 0; k < 9; ++k) {
+    if (k != 4) {
+      xyz[3 * k] = NAN; /* only the centre is valid */
+    }
+  }
+  ap_mesh_normals_rows(xyz, 3, 3, 0, 3, nrm);
+  AP_CHECK_NAN(nrm[3 * 4]);
+  /* Valid: centre (4), east (5), north-east (8), tilted so the triangle normal is known:
+   * points (1,1,0), (2,1,1), (2,2,1) -> edges (1,0,1), (1,1,1) -> cross (-1, 0, 1)/sqrt 2 */
+  xyz[3 * 5] = 2.0;
+  xyz[3 * 5 + 2] = 1.0;
+  xyz[3 * 8] = 2.0;
+  xyz[3 * 8 + 2] = 1.0;
+  ap_mesh_normals_rows(xyz, 3, 3, 0, 3, nrm);
+  AP_CHECK_NEAR(nrm[3 * 4 + 0], -1.0 / sqrt(2.0), 1e-6);
+  AP_CHECK_NEAR(nrm[3 * 4 + 1], 0.0, 1e-6);
+  AP_CHECK_NEAR(nrm[3 * 4 + 2], 1.0 / sqrt(2.0), 1e-6);
+  free(xyz);
+}
+
+/* Normals of a rough surface are bitwise the same whether rows run in one call or one at a
+ * time (how vtkSMPTools splits them must not matter). */
+static void test_normals_split_invariance(void)
+{
+  const size_t nx = 9, ny = 8;
+  double *xyz = plane(nx, ny, 1.0, 1.0, 0.0, 0.0);
+  float *once = (float *)malloc(3 * nx * ny * sizeof(float));
+  float *rows = (float *)malloc(3 * nx * ny * sizeof(float));
+  size_t k, j;
+  unsigned s = 12345u;
+  for (k = 0; k < nx * ny; ++k) {
+    s = s * 1103515245u + 12345u;
+    xyz[3 * k + 2] = (double)(s >> 16) / 65536.0;
+  }
+  xyz[3 * 20] = NAN;
+  ap_mesh_normals_rows(xyz, nx, ny, 0, ny, once);
+  for (j = 0; j < ny; ++j) {
+    ap_mesh_normals_rows(xyz, nx, ny, j, j + 1, rows);
+  }
+  AP_CHECK(memcmp(once, rows, 3 * nx * ny * sizeof(float)) == 0);
+  AP_CHECK_EQ_INT(ap_mesh_normals_validate(xyz, 1, ny, once), AP_ERR_GRID_TOO_SMALL);
+  AP_CHECK_EQ_INT(ap_mesh_normals_validate(NULL, nx, ny, once), AP_ERR_NULL_POINTER);
+  AP_CHECK_EQ_INT(ap_mesh_normals_validate(xyz, SIZE_MAX / 4, 8, once), AP_ERR_SIZE_OVERFLOW);
+  free(once);
+  free(rows);
+  free(xyz);
+}
+
+int main(void)
+{
+  test_full_grid();
+  test_one_nodata_corner();
+  test_holes();
+  test_triangulate_errors();
+  test_normals_plane();
+  test_normals_sparse();
+  test_normals_split_invariance();
+  AP_TEST_MAIN_END();
+}
