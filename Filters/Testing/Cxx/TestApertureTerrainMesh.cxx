@@ -1,0 +1,361 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkApertureTerrainMesh: geometry against the textbook geodetic -> ECEF -> ENU formulas
+// (written here independently of GeographicLib), cell sizes of lat/lon and UTM DEMs against
+// closed forms, nodata holes, carried arrays, exaggeration, and every documented error.
+#include "vtkApertureGeoreference.h"
+#include "vtkApertureTerrainMesh.h"
+
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkTestErrorObserver.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace
+{
+int failures = 0;
+
+#define CHECK(cond)                                                                              \
+  do                                                                                             \
+  {                                                                                              \
+    if (!(cond))                                                                                 \
+    {                                                                                            \
+      std::fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);              \
+      ++failures;                                                                                \
+    }                                                                                            \
+  } while (0)
+
+#define CHECK_NEAR(a, b, tol)                                                                    \
+  do                                                                                             \
+  {                                                                                              \
+    const double va = (a), vb = (b);                                                             \
+    if (!(std::fabs(va - vb) <= (tol)))                                                          \
+    {                                                                                            \
+      std::fprintf(stderr, "%s:%d: |%s - %s| <= %g failed: %.12g vs %.12g\n", __FILE__,          \
+        __LINE__, #a, #b, static_cast<double>(tol), va, vb);                                     \
+      ++failures;                                                                                \
+    }                                                                                            \
+  } while (0)
+
+const double kPi = 3.14159265358979323846;
+const double kDeg = kPi / 180.0;
+// WGS 84
+const double kA = 6378137.0;
+const double kF = 1.0 / 298.257223563;
+
+// Textbook geodetic -> Earth-centred Earth-fixed (e.g. Hofmann-Wellenhof et al., GNSS, 5.6).
+void Ecef(double latDeg, double lonDeg, double h, double p[3])
+{
+  const double e2 = kF * (2.0 - kF);
+  const double sl = std::sin(latDeg * kDeg), cl = std::cos(latDeg * kDeg);
+  const double n = kA / std::sqrt(1.0 - e2 * sl * sl);
+  p[0] = (n + h) * cl * std::cos(lonDeg * kDeg);
+  p[1] = (n + h) * cl * std::sin(lonDeg * kDeg);
+  p[2] = (n * (1.0 - e2) + h) * sl;
+}
+
+// ECEF difference rotated into East-North-Up at (lat0, lon0, 0).
+void Enu(double lat0, double lon0, double lat, double lon, double h, double out[3])
+{
+  double p0[3], p[3];
+  Ecef(lat0, lon0, 0.0, p0);
+  Ecef(lat, lon, h, p);
+  const double d[3] = { p[0] - p0[0], p[1] - p0[1], p[2] - p0[2] };
+  const double sp = std::sin(lat0 * kDeg), cp = std::cos(lat0 * kDeg);
+  const double sl = std::sin(lon0 * kDeg), cl = std::cos(lon0 * kDeg);
+  out[0] = -sl * d[0] + cl * d[1];
+  out[1] = -sp * cl * d[0] - sp * sl * d[1] + cp * d[2];
+  out[2] = cp * cl * d[0] + cp * sl * d[1] + sp * d[2];
+}
+
+double Distance(const double a[3], const double b[3])
+{
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+    (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+// A DEM image: nx x ny points, CRS, origin/spacing in CRS units, elevation f(i, j).
+template <typename F>
+vtkSmartPointer<vtkImageData> MakeDEM(const char* crs, double x0, double y0, double dx, double dy,
+  int nx, int ny, F elevation)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(nx, ny, 1);
+  image->SetOrigin(x0, y0, 0.0);
+  image->SetSpacing(dx, dy, 1.0);
+  vtkNew<vtkFloatArray> z;
+  z->SetName("Elevation");
+  z->SetNumberOfTuples(static_cast<vtkIdType>(nx) * ny);
+  for (int j = 0; j < ny; ++j)
+  {
+    for (int i = 0; i < nx; ++i)
+    {
+      z->SetValue(static_cast<vtkIdType>(j) * nx + i, elevation(i, j));
+    }
+  }
+  image->GetPointData()->SetScalars(z);
+  if (crs)
+  {
+    vtkNew<vtkApertureGeoreference> geo;
+    if (!geo->SetCRS(crs) || !geo->AttachToImage(image))
+    {
+      std::fprintf(stderr, "cannot attach CRS %s: %s\n", crs, geo->GetErrorMessage());
+      ++failures;
+    }
+  }
+  return image;
+}
+
+vtkSmartPointer<vtkPolyData> Mesh(vtkImageData* dem, double exaggeration = 1.0)
+{
+  vtkNew<vtkApertureTerrainMesh> mesher;
+  mesher->SetInputData(dem);
+  mesher->SetVerticalExaggeration(exaggeration);
+  mesher->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  mesher->Update();
+  return mesher->GetOutput();
+}
+
+// Check fix for "degrees treated as metres": the east-west extent of a 0.1 degree cell is the
+// chord 2 N cos(lat) sin(dlon / 2) (about 8.9 km at 36.6 N, 5.6 km at 60 N), and every vertex
+// sits where the textbook ENU formulas put it.
+void TestLatLonGeometry(double latitude, double expectedKm)
+{
+  const double lon0 = -84.3, dl = 0.1;
+  auto dem = MakeDEM("EPSG:4326", lon0, latitude - dl, dl, dl, 3, 3,
+    [](int i, int j) { return static_cast<float>(100.0 * i + 10.0 * j); });
+  auto mesh = Mesh(dem);
+  CHECK(mesh->GetNumberOfPoints() == 9);
+  CHECK(mesh->GetNumberOfCells() == 8);
+
+  // Frame origin: the DEM centre = node (1, 1).
+  auto* origin = vtkDoubleArray::SafeDownCast(mesh->GetFieldData()->GetArray("FrameOrigin"));
+  CHECK(origin && origin->GetNumberOfValues() == 3);
+  if (!origin)
+  {
+    return;
+  }
+  CHECK_NEAR(origin->GetValue(0), latitude, 1e-12);
+  CHECK_NEAR(origin->GetValue(1), lon0 + dl, 1e-12);
+  CHECK_NEAR(origin->GetValue(2), 0.0, 0.0);
+
+  // Every vertex where the independent ENU formulas put it (1 mm over ~10 km).
+  for (int j = 0; j < 3; ++j)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      double expected[3], got[3];
+      Enu(latitude, lon0 + dl, latitude - dl + j * dl, lon0 + i * dl, 100.0 * i + 10.0 * j,
+        expected);
+      mesh->GetPoint(j * 3 + i, got);
+      CHECK_NEAR(got[0], expected[0], 1e-3);
+      CHECK_NEAR(got[1], expected[1], 1e-3);
+      CHECK_NEAR(got[2], expected[2], 1e-3);
+    }
+  }
+
+  // East-west extent of one cell on the central row at height 0 ... (flatten to compare
+  // chords on the ellipsoid).
+  auto flat = MakeDEM(
+    "EPSG:4326", lon0, latitude - dl, dl, dl, 3, 3, [](int, int) { return 0.0f; });
+  auto flatMesh = Mesh(flat);
+  double w[3], e[3], s[3], n[3];
+  flatMesh->GetPoint(3, w);
+  flatMesh->GetPoint(4, e);
+  flatMesh->GetPoint(1, s);
+  flatMesh->GetPoint(4, n);
+  const double e2 = kF * (2.0 - kF), sl = std::sin(latitude * kDeg);
+  const double primeVertical = kA / std::sqrt(1.0 - e2 * sl * sl);
+  const double chord = 2.0 * primeVertical * std::cos(latitude * kDeg) * std::sin(0.5 * dl * kDeg);
+  CHECK_NEAR(Distance(w, e), chord, 1e-3);
+  CHECK_NEAR(Distance(w, e) / 1000.0, expectedKm, 0.05);
+  // ... and the north-south extent: the chord between two points of one meridian.
+  double ps[3], pn[3];
+  Ecef(latitude - dl, 0.0, 0.0, ps);
+  Ecef(latitude, 0.0, 0.0, pn);
+  CHECK_NEAR(Distance(s, n), Distance(ps, pn), 1e-3);
+  CHECK(Distance(s, n) > 11000.0 && Distance(s, n) < 11200.0); // ~111 km per degree
+  // Earth curvature is in the geometry: the western node at height 0 is below the plane.
+  CHECK(w[2] < -1.0);
+}
+
+// A projected DEM (UTM 11N, 30 m cells) on the central meridian: neighbouring nodes are
+// 30 m / k0 apart on the ground (k0 = 0.9996, the UTM scale on the central meridian), and
+// the frame origin is on the central meridian, longitude -117.
+void TestUTMGeometry()
+{
+  auto dem = MakeDEM("EPSG:32611", 500000.0 - 30.0, 4000000.0 - 30.0, 30.0, 30.0, 3, 3,
+    [](int, int) { return 0.0f; });
+  auto mesh = Mesh(dem);
+  double c[3], e[3], n[3];
+  mesh->GetPoint(4, c);
+  mesh->GetPoint(5, e);
+  mesh->GetPoint(7, n);
+  CHECK_NEAR(Distance(c, e), 30.0 / 0.9996, 1e-4);
+  CHECK_NEAR(Distance(c, n), 30.0 / 0.9996, 1e-4);
+  // Grid north is true north on the central meridian: the north neighbour is due north.
+  CHECK_NEAR(n[0] - c[0], 0.0, 1e-6);
+  CHECK_NEAR(e[1] - c[1], 0.0, 1e-6);
+  CHECK_NEAR(c[0], 0.0, 1e-6);
+  CHECK_NEAR(c[1], 0.0, 1e-6);
+  auto* origin = vtkDoubleArray::SafeDownCast(mesh->GetFieldData()->GetArray("FrameOrigin"));
+  CHECK(origin != nullptr);
+  if (origin)
+  {
+    CHECK_NEAR(origin->GetValue(1), -117.0, 1e-9);
+  }
+  auto* ellipsoid =
+    vtkDoubleArray::SafeDownCast(mesh->GetFieldData()->GetArray("FrameEllipsoid"));
+  CHECK(ellipsoid && std::fabs(ellipsoid->GetValue(0) - kA) < 1e-6 &&
+    std::fabs(ellipsoid->GetValue(1) - kF) < 1e-15);
+}
+
+// Nodata leaves holes; arrays are carried vertex for vertex; normals and texture coordinates.
+void TestHolesAndArrays()
+{
+  const int nx = 5, ny = 4;
+  auto dem = MakeDEM("EPSG:32633", 400000.0, 5000000.0, 10.0, 10.0, nx, ny,
+    [](int i, int j) { return (i == 2 && j == 1) ? NAN : static_cast<float>(i + j); });
+  vtkNew<vtkDoubleArray> extra;
+  extra->SetName("Extra");
+  extra->SetNumberOfComponents(2);
+  extra->SetNumberOfTuples(nx * ny);
+  for (vtkIdType k = 0; k < nx * ny; ++k)
+  {
+    extra->SetTuple2(k, static_cast<double>(k), -static_cast<double>(k));
+  }
+  dem->GetPointData()->AddArray(extra);
+  auto mesh = Mesh(dem);
+  // 2 * 4 * 3 = 24 triangles; the nodata node touches 4 quads, each keeps one: 20.
+  CHECK(mesh->GetNumberOfCells() == 20);
+  vtkIdType npts;
+  const vtkIdType* pts;
+  auto* polys = mesh->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(npts, pts);)
+  {
+    CHECK(npts == 3);
+    for (vtkIdType k = 0; k < npts; ++k)
+    {
+      CHECK(pts[k] != 1 * nx + 2);
+    }
+  }
+  vtkDataArray* z = mesh->GetPointData()->GetArray("Elevation");
+  vtkDataArray* carried = mesh->GetPointData()->GetArray("Extra");
+  CHECK(z && carried && carried->GetNumberOfComponents() == 2);
+  if (z && carried)
+  {
+    CHECK(std::isnan(z->GetTuple1(1 * nx + 2)));
+    CHECK_NEAR(z->GetTuple1(3 * nx + 4), 7.0, 0.0);
+    CHECK_NEAR(carried->GetComponent(13, 1), -13.0, 0.0);
+  }
+  vtkDataArray* normals = mesh->GetPointData()->GetNormals();
+  CHECK(normals && normals->GetNumberOfComponents() == 3);
+  if (normals)
+  {
+    CHECK(std::isnan(normals->GetComponent(1 * nx + 2, 0)));
+    // Plane z = x/10 + y/10 on 10 m cells: normal ~ (-0.1, -0.1, 1) / |.|, to within the
+    // convergence of UTM grid north (a fraction of a degree) and Earth curvature.
+    const double len = std::sqrt(1.02);
+    CHECK_NEAR(normals->GetComponent(0, 2), 1.0 / len, 1e-3);
+    CHECK_NEAR(normals->GetComponent(0, 0), -0.1 / len, 5e-3);
+  }
+  vtkDataArray* tc = mesh->GetPointData()->GetTCoords();
+  CHECK(tc && tc->GetNumberOfComponents() == 2);
+  if (tc)
+  {
+    CHECK_NEAR(tc->GetComponent(0, 0), 0.5 / nx, 1e-7);
+    CHECK_NEAR(tc->GetComponent(0, 1), 0.5 / ny, 1e-7);
+    CHECK_NEAR(tc->GetComponent(nx * ny - 1, 0), 1.0 - 0.5 / nx, 1e-7);
+    CHECK_NEAR(tc->GetComponent(nx * ny - 1, 1), 1.0 - 0.5 / ny, 1e-7);
+  }
+  CHECK(mesh->GetFieldData()->GetAbstractArray("CRS") != nullptr);
+}
+
+// Exaggeration scales heights above the ellipsoid, not the curvature drop.
+void TestExaggeration()
+{
+  auto dem = MakeDEM("EPSG:4326", 10.0, 45.0, 0.01, 0.01, 3, 3,
+    [](int i, int j) { return static_cast<float>(1000.0 + 50.0 * i - 20.0 * j); });
+  auto mesh = Mesh(dem, 3.0);
+  for (int k = 0; k < 9; ++k)
+  {
+    const int i = k % 3, j = k / 3;
+    double expected[3], got[3];
+    Enu(45.01, 10.01, 45.0 + 0.01 * j, 10.0 + 0.01 * i, 3.0 * (1000.0 + 50.0 * i - 20.0 * j),
+      expected);
+    mesh->GetPoint(k, got);
+    CHECK_NEAR(got[2], expected[2], 1e-3);
+  }
+}
+
+// Each documented error: a clear message and a failed update, nothing printed.
+void ExpectError(vtkImageData* dem, const std::string& expected, const char* arrayName = nullptr)
+{
+  vtkNew<vtkApertureTerrainMesh> mesher;
+  if (arrayName)
+  {
+    mesher->SetElevationArrayName(arrayName);
+  }
+  vtkNew<vtkTest::ErrorObserver> errors, executiveErrors;
+  mesher->AddObserver(vtkCommand::ErrorEvent, errors);
+  mesher->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+  mesher->SetInputData(dem);
+  const int ok = mesher->GetExecutive()->Update();
+  CHECK(ok == 0);
+  CHECK(errors->GetError());
+  if (errors->GetErrorMessage().find(expected) == std::string::npos)
+  {
+    std::fprintf(stderr, "expected an error containing '%s', got '%s'\n", expected.c_str(),
+      errors->GetErrorMessage().c_str());
+    ++failures;
+  }
+}
+
+void TestErrors()
+{
+  auto ok = [](int, int) { return 1.0f; };
+  ExpectError(MakeDEM("EPSG:4326", 0, 0, 1, 1, 3, 3, ok), "no point array named 'Height'",
+    "Height");
+  ExpectError(MakeDEM(nullptr, 0, 0, 1, 1, 3, 3, ok), "has no CRS");
+  ExpectError(MakeDEM("EPSG:4326", 0, 0, 1, 1, 1, 5, ok), "at least 2 x 2");
+  ExpectError(MakeDEM("EPSG:4326", 0, 0, 1, 1, 3, 3, [](int, int) { return NAN; }),
+    "every point of the DEM is nodata");
+  ExpectError(MakeDEM("LOCAL_CS[\"site grid\",UNIT[\"metre\",1]]", 0, 0, 1, 1, 3, 3, ok),
+    "no geographic coordinates");
+  auto vec = MakeDEM("EPSG:4326", 0, 0, 1, 1, 3, 3, ok);
+  vtkNew<vtkFloatArray> v3;
+  v3->SetName("Elevation");
+  v3->SetNumberOfComponents(3);
+  v3->SetNumberOfTuples(9);
+  v3->Fill(0.0);
+  vec->GetPointData()->RemoveArray("Elevation");
+  vec->GetPointData()->AddArray(v3);
+  ExpectError(vec, "must have one float or double component");
+}
+} // namespace
+
+int TestApertureTerrainMesh(int, char*[])
+{
+  TestLatLonGeometry(36.6, 8.95);
+  TestLatLonGeometry(60.0, 5.58);
+  TestUTMGeometry();
+  TestHolesAndArrays();
+  TestExaggeration();
+  TestErrors();
+  if (failures)
+  {
+    std::fprintf(stderr, "%d check(s) failed\n", failures);
+  }
+  return failures ? 1 : 0;
+}

@@ -1,0 +1,542 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkApertureGeoreference.h"
+
+#include "vtkApertureGDALErrorTrap.h"
+
+#include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkMatrix3x3.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkStringArray.h"
+
+#include <GeographicLib/Geodesic.hpp>
+#include <cpl_conv.h>
+#include <ogr_srs_api.h>
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+
+vtkStandardNewMacro(vtkApertureGeoreference);
+
+struct vtkApertureGeoreference::Internals
+{
+  OGRSpatialReferenceH CRS = nullptr;
+  OGRSpatialReferenceH Geographic = nullptr;
+  OGRCoordinateTransformationH ToGeographic = nullptr;
+  OGRCoordinateTransformationH FromGeographic = nullptr;
+  bool GeographicTried = false;
+  // Geographic output of the CRS's own geographic CRS -> degrees east of Greenwich.
+  double UnitToDegrees = 1.0;
+  double PrimeMeridianDegrees = 0.0;
+  std::string WKT;
+  std::string Name;
+  std::string UnitName;
+  std::string Error;
+
+  void ResetTransforms()
+  {
+    if (this->ToGeographic)
+    {
+      OCTDestroyCoordinateTransformation(this->ToGeographic);
+      this->ToGeographic = nullptr;
+    }
+    if (this->FromGeographic)
+    {
+      OCTDestroyCoordinateTransformation(this->FromGeographic);
+      this->FromGeographic = nullptr;
+    }
+    if (this->Geographic)
+    {
+      OSRRelease(this->Geographic);
+      this->Geographic = nullptr;
+    }
+    this->GeographicTried = false;
+  }
+
+  void Reset()
+  {
+    this->ResetTransforms();
+    if (this->CRS)
+    {
+      OSRRelease(this->CRS);
+      this->CRS = nullptr;
+    }
+    this->WKT.clear();
+    this->Name.clear();
+    this->UnitName.clear();
+  }
+
+  // Build the transformations to and from the CRS's own geographic CRS once.
+  bool EnsureGeographic()
+  {
+    if (!this->CRS)
+    {
+      this->Error = "no coordinate reference system is set";
+      return false;
+    }
+    if (this->ToGeographic && this->FromGeographic)
+    {
+      return true;
+    }
+    if (this->GeographicTried)
+    {
+      return false; // Error still holds the first failure's reason
+    }
+    this->GeographicTried = true;
+    vtkApertureGDALErrorTrap trap;
+    if (OSRIsLocal(this->CRS))
+    {
+      this->Error = "the CRS '" + this->Name +
+        "' is a local (engineering) CRS with no geographic coordinates; reproject the DEM "
+        "to a geographic or projected CRS";
+      return false;
+    }
+    this->Geographic = OSRCloneGeogCS(this->CRS);
+    if (!this->Geographic)
+    {
+      this->Error = "the CRS '" + this->Name + "' cannot be converted to geographic coordinates" +
+        (trap.Message().empty() ? std::string() : ": " + trap.Message());
+      return false;
+    }
+    OSRSetAxisMappingStrategy(this->Geographic, OAMS_TRADITIONAL_GIS_ORDER);
+    this->ToGeographic = OCTNewCoordinateTransformation(this->CRS, this->Geographic);
+    this->FromGeographic = OCTNewCoordinateTransformation(this->Geographic, this->CRS);
+    if (!this->ToGeographic || !this->FromGeographic)
+    {
+      this->Error = "no transformation between the CRS '" + this->Name +
+        "' and its geographic coordinates: " + trap.Message("PROJ gave no reason");
+      this->ResetTransforms();
+      this->GeographicTried = true;
+      return false;
+    }
+    // The CRS's geographic CRS may count in grads or from Paris; report degrees from Greenwich.
+    const double radiansPerUnit = OSRGetAngularUnits(this->Geographic, nullptr);
+    this->UnitToDegrees = radiansPerUnit > 0 ? radiansPerUnit * 180.0 / M_PI : 1.0;
+    this->PrimeMeridianDegrees = OSRGetPrimeMeridian(this->Geographic, nullptr);
+    return true;
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkApertureGeoreference::vtkApertureGeoreference()
+  : Impl(new Internals)
+{
+  this->GridOrigin[0] = this->GridOrigin[1] = 0.0;
+  this->GridSpacing[0] = this->GridSpacing[1] = 1.0;
+  this->GridSize[0] = this->GridSize[1] = 0;
+}
+
+//------------------------------------------------------------------------------
+vtkApertureGeoreference::~vtkApertureGeoreference()
+{
+  this->Impl->Reset();
+  delete this->Impl;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkApertureGeoreference::GetCRSArrayName()
+{
+  return "CRS";
+}
+
+//------------------------------------------------------------------------------
+const char* vtkApertureGeoreference::GetGeoTransformArrayName()
+{
+  return "GeoTransform";
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::SetCRS(const char* definition)
+{
+  Internals& d = *this->Impl;
+  if (!definition || !*definition)
+  {
+    if (d.CRS)
+    {
+      d.Reset();
+      this->Modified();
+    }
+    d.Error.clear();
+    return true;
+  }
+  vtkApertureGDALErrorTrap trap;
+  OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
+  if (OSRSetFromUserInput(srs, definition) != OGRERR_NONE)
+  {
+    std::string shown(definition);
+    if (shown.size() > 60)
+    {
+      shown = shown.substr(0, 57) + "...";
+    }
+    d.Error = "GDAL cannot parse the CRS '" + shown + "'" +
+      (trap.Message().empty() ? std::string() : ": " + trap.Message());
+    OSRRelease(srs);
+    return false;
+  }
+  OSRSetAxisMappingStrategy(srs, OAMS_TRADITIONAL_GIS_ORDER);
+  char* wkt = nullptr;
+  const char* options[] = { "FORMAT=WKT2_2019", "MULTILINE=NO", nullptr };
+  if (OSRExportToWktEx(srs, &wkt, options) != OGRERR_NONE || !wkt)
+  {
+    // Some CRSs (e.g. with unusual PROJ-only parameters) have no WKT2 form; keep WKT1.
+    CPLFree(wkt);
+    wkt = nullptr;
+    OSRExportToWkt(srs, &wkt);
+  }
+  d.Reset();
+  d.CRS = srs;
+  d.WKT = wkt ? wkt : "";
+  CPLFree(wkt);
+  const char* name = OSRGetName(srs);
+  d.Name = name ? name : "";
+  char* unit = nullptr;
+  if (OSRIsGeographic(srs))
+  {
+    OSRGetAngularUnits(srs, &unit);
+  }
+  else
+  {
+    OSRGetLinearUnits(srs, &unit);
+  }
+  d.UnitName = unit ? unit : "";
+  d.Error.clear();
+  this->Modified();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkApertureGeoreference::GetCRS()
+{
+  return this->Impl->WKT.c_str();
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::HasCRS()
+{
+  return this->Impl->CRS != nullptr;
+}
+
+//------------------------------------------------------------------------------
+void vtkApertureGeoreference::SetGrid(double x0, double y0, double dx, double dy, int nx, int ny)
+{
+  this->GridOrigin[0] = x0;
+  this->GridOrigin[1] = y0;
+  this->GridSpacing[0] = dx;
+  this->GridSpacing[1] = dy;
+  this->GridSize[0] = nx;
+  this->GridSize[1] = ny;
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkApertureGeoreference::GetGeoTransform(double gt[6])
+{
+  gt[0] = this->GridOrigin[0] - 0.5 * this->GridSpacing[0];
+  gt[1] = this->GridSpacing[0];
+  gt[2] = 0.0;
+  gt[3] = this->GridOrigin[1] + (this->GridSize[1] - 0.5) * this->GridSpacing[1];
+  gt[4] = 0.0;
+  gt[5] = -this->GridSpacing[1];
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::SetFromImage(vtkImageData* image)
+{
+  Internals& d = *this->Impl;
+  if (!image)
+  {
+    d.Error = "no image";
+    return false;
+  }
+  vtkMatrix3x3* dir = image->GetDirectionMatrix();
+  if (dir && !dir->IsIdentity())
+  {
+    d.Error = "the image has a rotated direction matrix; DEM grids must be north-up";
+    return false;
+  }
+  double spacing[3], origin[3];
+  image->GetSpacing(spacing);
+  image->GetOrigin(origin);
+  if (!(spacing[0] > 0) || !(spacing[1] > 0) || !std::isfinite(spacing[0]) ||
+    !std::isfinite(spacing[1]) || !std::isfinite(origin[0]) || !std::isfinite(origin[1]))
+  {
+    d.Error = "the image spacing must be positive and finite and its origin finite";
+    return false;
+  }
+  int extent[6];
+  image->GetExtent(extent);
+  vtkStringArray* crs =
+    vtkStringArray::SafeDownCast(image->GetFieldData()->GetAbstractArray(GetCRSArrayName()));
+  if (!crs || crs->GetNumberOfValues() < 1 || crs->GetValue(0).empty())
+  {
+    d.Error = "the image has no CRS (field data array 'CRS'); read DEMs with "
+              "vtkApertureDEMReader or attach one with vtkApertureGeoreference";
+    return false;
+  }
+  if (!this->SetCRS(crs->GetValue(0).c_str()))
+  {
+    return false;
+  }
+  this->SetGrid(origin[0] + extent[0] * spacing[0], origin[1] + extent[2] * spacing[1],
+    spacing[0], spacing[1], extent[1] - extent[0] + 1, extent[3] - extent[2] + 1);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::AttachToImage(vtkImageData* image)
+{
+  Internals& d = *this->Impl;
+  if (!image || !d.CRS)
+  {
+    d.Error = image ? "no coordinate reference system is set" : "no image";
+    return false;
+  }
+  vtkNew<vtkStringArray> crs;
+  crs->SetName(GetCRSArrayName());
+  crs->InsertNextValue(d.WKT);
+  double origin[3], spacing[3];
+  int extent[6];
+  image->GetOrigin(origin);
+  image->GetSpacing(spacing);
+  image->GetExtent(extent);
+  // GeoTransform of the extent the image holds: north-west corner of its north-west cell.
+  vtkNew<vtkDoubleArray> gt;
+  gt->SetName(GetGeoTransformArrayName());
+  gt->SetNumberOfValues(6);
+  gt->SetValue(0, origin[0] + (extent[0] - 0.5) * spacing[0]);
+  gt->SetValue(1, spacing[0]);
+  gt->SetValue(2, 0.0);
+  gt->SetValue(3, origin[1] + (extent[3] + 0.5) * spacing[1]);
+  gt->SetValue(4, 0.0);
+  gt->SetValue(5, -spacing[1]);
+  vtkFieldData* fd = image->GetFieldData();
+  fd->RemoveArray(GetCRSArrayName());
+  fd->RemoveArray(GetGeoTransformArrayName());
+  fd->AddArray(crs);
+  fd->AddArray(gt);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::IsGeographic()
+{
+  if (!this->Impl->CRS)
+  {
+    this->Impl->Error = "no coordinate reference system is set";
+    return false;
+  }
+  return OSRIsGeographic(this->Impl->CRS) != 0;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkApertureGeoreference::GetCRSName()
+{
+  return this->Impl->Name.c_str();
+}
+
+//------------------------------------------------------------------------------
+const char* vtkApertureGeoreference::GetCRSUnitName()
+{
+  return this->Impl->UnitName.c_str();
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::GetEllipsoid(double ellipsoid[2])
+{
+  Internals& d = *this->Impl;
+  if (!d.EnsureGeographic())
+  {
+    return false;
+  }
+  OGRErr err = OGRERR_NONE;
+  const double a = OSRGetSemiMajor(d.Geographic, &err);
+  const double invf = OSRGetInvFlattening(d.Geographic, &err);
+  if (err != OGRERR_NONE || !(a > 0))
+  {
+    d.Error = "the CRS '" + d.Name + "' has no usable ellipsoid";
+    return false;
+  }
+  ellipsoid[0] = a;
+  ellipsoid[1] = invf > 0 ? 1.0 / invf : 0.0; // invf = 0 means a sphere
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::CRSToLonLat(double x, double y, double lonlat[2])
+{
+  const double xy[2] = { x, y };
+  if (!this->CRSToLonLatPoints(1, xy, lonlat))
+  {
+    return false;
+  }
+  if (std::isnan(lonlat[0]))
+  {
+    std::ostringstream msg;
+    msg.precision(17);
+    msg << "the point (" << x << ", " << y << ") of the CRS '" << this->Impl->Name
+        << "' has no geographic coordinates";
+    this->Impl->Error = msg.str();
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::CRSToLonLatPoints(vtkIdType n, const double* xy, double* lonlat)
+{
+  Internals& d = *this->Impl;
+  if (!d.EnsureGeographic())
+  {
+    return false;
+  }
+  vtkApertureGDALErrorTrap trap;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // OCTTransformEx works on separate x and y arrays; do it in blocks to bound the scratch.
+  const vtkIdType block = 4096;
+  double xs[4096], ys[4096];
+  int ok[4096];
+  for (vtkIdType start = 0; start < n; start += block)
+  {
+    const vtkIdType m = (n - start < block) ? n - start : block;
+    for (vtkIdType k = 0; k < m; ++k)
+    {
+      xs[k] = xy[2 * (start + k)];
+      ys[k] = xy[2 * (start + k) + 1];
+    }
+    OCTTransformEx(d.ToGeographic, static_cast<int>(m), xs, ys, nullptr, ok);
+    for (vtkIdType k = 0; k < m; ++k)
+    {
+      const bool good = ok[k] && std::isfinite(xs[k]) && std::isfinite(ys[k]);
+      lonlat[2 * (start + k)] = good ? xs[k] * d.UnitToDegrees + d.PrimeMeridianDegrees : nan;
+      lonlat[2 * (start + k) + 1] = good ? ys[k] * d.UnitToDegrees : nan;
+    }
+  }
+  d.Error.clear();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::LonLatToCRS(double lon, double lat, double xy[2])
+{
+  Internals& d = *this->Impl;
+  if (!d.EnsureGeographic())
+  {
+    return false;
+  }
+  vtkApertureGDALErrorTrap trap;
+  double x = (lon - d.PrimeMeridianDegrees) / d.UnitToDegrees;
+  double y = lat / d.UnitToDegrees;
+  int ok = 0;
+  if (!OCTTransformEx(d.FromGeographic, 1, &x, &y, nullptr, &ok) || !ok || !std::isfinite(x) ||
+    !std::isfinite(y))
+  {
+    std::ostringstream msg;
+    msg << "the geographic point (" << lon << ", " << lat << ") has no coordinates in the CRS '"
+        << d.Name << "'";
+    d.Error = msg.str();
+    return false;
+  }
+  xy[0] = x;
+  xy[1] = y;
+  d.Error.clear();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::GetCentreLonLat(double lonlat[2])
+{
+  const double xc = this->GridOrigin[0] + 0.5 * (this->GridSize[0] - 1) * this->GridSpacing[0];
+  const double yc = this->GridOrigin[1] + 0.5 * (this->GridSize[1] - 1) * this->GridSpacing[1];
+  return this->CRSToLonLat(xc, yc, lonlat);
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::GetBoundsLonLat(double bounds[4])
+{
+  Internals& d = *this->Impl;
+  if (!d.EnsureGeographic())
+  {
+    return false;
+  }
+  double gt[6];
+  this->GetGeoTransform(gt);
+  const double xmin = gt[0];
+  const double xmax = gt[0] + this->GridSize[0] * gt[1];
+  const double ymax = gt[3];
+  const double ymin = gt[3] + this->GridSize[1] * gt[5];
+  vtkApertureGDALErrorTrap trap;
+  double w, s, e, n;
+  if (!OCTTransformBounds(d.ToGeographic, xmin, ymin, xmax, ymax, &w, &s, &e, &n, 21))
+  {
+    d.Error = "the grid's bounds have no geographic coordinates in the CRS '" + d.Name +
+      "': " + trap.Message("PROJ gave no reason");
+    return false;
+  }
+  bounds[0] = w * d.UnitToDegrees + d.PrimeMeridianDegrees;
+  bounds[1] = s * d.UnitToDegrees;
+  bounds[2] = e * d.UnitToDegrees + d.PrimeMeridianDegrees;
+  bounds[3] = n * d.UnitToDegrees;
+  d.Error.clear();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::GetCellSizeMetres(double size[2])
+{
+  double ell[2];
+  if (!this->GetEllipsoid(ell))
+  {
+    return false;
+  }
+  const double xc = this->GridOrigin[0] + 0.5 * (this->GridSize[0] - 1) * this->GridSpacing[0];
+  const double yc = this->GridOrigin[1] + 0.5 * (this->GridSize[1] - 1) * this->GridSpacing[1];
+  const double hx = 0.5 * this->GridSpacing[0], hy = 0.5 * this->GridSpacing[1];
+  const double xy[8] = { xc - hx, yc, xc + hx, yc, xc, yc - hy, xc, yc + hy };
+  double ll[8];
+  if (!this->CRSToLonLatPoints(4, xy, ll))
+  {
+    return false;
+  }
+  for (double v : ll)
+  {
+    if (std::isnan(v))
+    {
+      this->Impl->Error = "the grid centre has no geographic coordinates";
+      return false;
+    }
+  }
+  try
+  {
+    const GeographicLib::Geodesic geod(ell[0], ell[1]);
+    geod.Inverse(ll[1], ll[0], ll[3], ll[2], size[0]);
+    geod.Inverse(ll[5], ll[4], ll[7], ll[6], size[1]);
+  }
+  catch (const std::exception& e)
+  {
+    this->Impl->Error = std::string("GeographicLib: ") + e.what();
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkApertureGeoreference::GetErrorMessage()
+{
+  return this->Impl->Error.c_str();
+}
+
+//------------------------------------------------------------------------------
+void vtkApertureGeoreference::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "CRS: " << (this->Impl->Name.empty() ? "(none)" : this->Impl->Name) << "\n";
+  os << indent << "GridOrigin: " << this->GridOrigin[0] << ", " << this->GridOrigin[1] << "\n";
+  os << indent << "GridSpacing: " << this->GridSpacing[0] << ", " << this->GridSpacing[1] << "\n";
+  os << indent << "GridSize: " << this->GridSize[0] << ", " << this->GridSize[1] << "\n";
+  os << indent << "ErrorMessage: " << this->Impl->Error << "\n";
+}

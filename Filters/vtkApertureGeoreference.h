@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkApertureGeoreference
+ * @brief   Georeference of a north-up DEM grid: its CRS, its cells, and the way to geographic
+ *          coordinates and metres.
+ *
+ * A DEM in Aperture is a 2-D vtkImageData whose origin and spacing are in the units of its
+ * coordinate reference system (CRS): the origin is the centre of the south-west cell, spacing
+ * is the (positive) cell size east and north, point (i, j) is the centre of the cell in column i
+ * (west to east) and row j (south to north), and the direction matrix is the identity.
+ *
+ * The georeference travels with the image in one documented place, its field data:
+ * - `CRS`: a vtkStringArray with one value, the CRS as WKT (WKT2:2019).
+ * - `GeoTransform`: a vtkDoubleArray with 6 values, GDAL's geotransform of the grid the image
+ *   holds (x of the west edge, cell width, 0, y of the north edge, 0, minus the cell height).
+ *   It mirrors the image geometry; when the two disagree (a filter resampled the image), the
+ *   image's origin and spacing win.
+ *
+ * This class reads and writes those arrays and answers geodetic questions about the grid:
+ * geographic coordinates of any CRS point (on the CRS's own datum and ellipsoid, in degrees,
+ * longitude east of Greenwich), lat/lon bounds, the grid centre, the cell size in metres
+ * (geodesic distances on the CRS's ellipsoid), and the ellipsoid itself. Lat/lon (geographic)
+ * and projected CRSs are both handled; a CRS with no geographic equivalent (a local or
+ * engineering CRS) is an error.
+ *
+ * Queries return false on failure and leave the reason in GetErrorMessage(); they never call
+ * vtkErrorMacro, so callers decide how to report.
+ *
+ * @warning Not thread-safe: one instance per thread.
+ * @sa vtkApertureDEMReader vtkApertureTerrainMesh
+ */
+#ifndef vtkApertureGeoreference_h
+#define vtkApertureGeoreference_h
+
+#include "ApertureFiltersModule.h" // for export macro
+#include "vtkObject.h"
+#include "vtkWrappingHints.h" // for VTK_WRAPEXCLUDE
+
+class vtkDataObject;
+class vtkImageData;
+
+class APERTUREFILTERS_EXPORT vtkApertureGeoreference : public vtkObject
+{
+public:
+  static vtkApertureGeoreference* New();
+  vtkTypeMacro(vtkApertureGeoreference, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** Names of the field-data arrays that carry the georeference ("CRS", "GeoTransform"). */
+  static const char* GetCRSArrayName();
+  static const char* GetGeoTransformArrayName();
+  ///@}
+
+  /**
+   * Set the CRS from anything GDAL's OSRSetFromUserInput accepts: WKT, "EPSG:32611", a PROJ
+   * string. Stored as WKT2:2019. Returns false (and keeps the previous CRS) if GDAL cannot
+   * parse it. An empty string or nullptr clears the CRS.
+   */
+  bool SetCRS(const char* definition);
+
+  /** The CRS as WKT2:2019, or an empty string when none is set. */
+  const char* GetCRS();
+
+  /** True when a CRS is set. */
+  bool HasCRS();
+
+  /**
+   * Describe the grid: x0, y0 = CRS coordinates of the centre of the south-west cell,
+   * dx, dy = cell size east and north (> 0, CRS units), nx, ny = columns and rows.
+   */
+  void SetGrid(double x0, double y0, double dx, double dy, int nx, int ny);
+
+  ///@{
+  /** The grid as set by SetGrid or SetFromImage. */
+  vtkGetVector2Macro(GridOrigin, double);
+  vtkGetVector2Macro(GridSpacing, double);
+  vtkGetVector2Macro(GridSize, int);
+  ///@}
+
+  /** GDAL geotransform of the grid (north-up; gt[5] = -dy). */
+  void GetGeoTransform(double gt[6]);
+
+  /**
+   * Take the CRS from the image's field data (`CRS`) and the grid from the image's origin,
+   * spacing and extent (the extent it holds). False, with a message, if the image has no CRS,
+   * a non-identity direction matrix, or non-positive spacing.
+   */
+  bool SetFromImage(vtkImageData* image);
+
+  /**
+   * Store the CRS and the GeoTransform of the image's current extent in the image's field
+   * data, replacing earlier values. False if no CRS is set.
+   */
+  bool AttachToImage(vtkImageData* image);
+
+  /** True when the CRS is geographic (lat/lon). Requires a CRS. */
+  bool IsGeographic();
+
+  /** Name of the CRS ("WGS 84", "WGS 84 / UTM zone 11N"), or "" when none. */
+  const char* GetCRSName();
+
+  /** Name of the horizontal unit of the CRS ("degree", "metre", "US survey foot"). */
+  const char* GetCRSUnitName();
+
+  /** Semi-major axis (m) and flattening of the CRS's ellipsoid. */
+  bool GetEllipsoid(double ellipsoid[2]);
+
+  /** Geographic coordinates (longitude, latitude; degrees, Greenwich) of a CRS point. */
+  bool CRSToLonLat(double x, double y, double lonlat[2]);
+
+  /** CRS coordinates of a geographic point (degrees). */
+  bool LonLatToCRS(double lon, double lat, double xy[2]);
+
+  /**
+   * Batch form of CRSToLonLat: n points, xy interleaved (x0, y0, x1, y1, ...), lonlat likewise.
+   * A point that is NaN or cannot be transformed gives NaN. False only if the CRS has no
+   * geographic equivalent.
+   */
+  VTK_WRAPEXCLUDE bool CRSToLonLatPoints(vtkIdType n, const double* xy, double* lonlat);
+
+  /** Longitude and latitude (degrees) of the grid centre (the centre of its outer bounds). */
+  bool GetCentreLonLat(double lonlat[2]);
+
+  /**
+   * Geographic bounds of the grid's outer edges (cell edges, not centres): west, south, east,
+   * north, degrees. For a projected CRS the edges are densified (21 points each), so curved
+   * edges are bounded correctly.
+   */
+  bool GetBoundsLonLat(double bounds[4]);
+
+  /**
+   * Ground size of one cell at the grid centre, metres: east-west and south-north, measured as
+   * geodesic distances on the ellipsoid between the centres of the cell's opposite edges.
+   */
+  bool GetCellSizeMetres(double size[2]);
+
+  /** Why the last failing call failed ("" after a success). */
+  const char* GetErrorMessage();
+
+protected:
+  vtkApertureGeoreference();
+  ~vtkApertureGeoreference() override;
+
+  double GridOrigin[2];
+  double GridSpacing[2];
+  int GridSize[2];
+
+private:
+  vtkApertureGeoreference(const vtkApertureGeoreference&) = delete;
+  void operator=(const vtkApertureGeoreference&) = delete;
+
+  struct Internals;
+  Internals* Impl;
+};
+
+#endif

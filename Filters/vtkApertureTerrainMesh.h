@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkApertureTerrainMesh
+ * @brief   Triangle mesh of a DEM in a local East-North-Up frame, in metres.
+ *
+ * Input: a DEM image as vtkApertureDEMReader produces it (point array `Elevation` in metres,
+ * NaN = nodata, `CRS` in the field data; see vtkApertureGeoreference for the conventions).
+ * Lat/lon and projected DEMs are both handled: every cell centre is converted to geographic
+ * coordinates on the CRS's own ellipsoid, then with GeographicLib's LocalCartesian to a local
+ * East-North-Up frame (x east, y north, z up, metres) whose origin is the centre of the DEM's
+ * whole extent at height 0 on that ellipsoid. Earth curvature is therefore in the geometry:
+ * far from the origin the surface drops below z = elevation by about d^2 / (2 R).
+ *
+ * Output: one vertex per input point, vertex id = input point id (i + j * columns), so every
+ * input point array (Elevation and later products) is carried over unchanged. Triangles follow
+ * ap_mesh_triangulate(): two per cell, and nodata cells leave holes (a quad with one nodata
+ * corner keeps the triangle of its three valid corners). Vertices of nodata points are kept
+ * (with NaN normals, at the lowest valid elevation) so ids stay aligned with the grid; no
+ * triangle uses them.
+ *
+ * Point arrays added: `Normals` (unit, ENU, of the output geometry including the vertical
+ * exaggeration; active normals) and `TextureCoordinates` (u east, v north, spanning the outer
+ * edges of the whole extent, so an image covering the DEM's bounds drapes exactly).
+ * Field data added: `FrameOrigin` (latitude, longitude in degrees, height in metres of the ENU
+ * origin), `FrameEllipsoid` (semi-major axis in metres, flattening) and
+ * `VerticalExaggeration`; the input's `CRS` and `GeoTransform` are passed through.
+ *
+ * Errors (vtkErrorMacro and a failed update): no elevation array or one that is not a
+ * one-component float/double array, a grid smaller than 2 x 2, no CRS or one without
+ * geographic coordinates, or every point nodata.
+ *
+ * @warning Heights are used as given (usually orthometric, above the geoid) as heights above
+ * the ellipsoid; over one DEM the geoid separation is nearly constant and shifts the whole mesh
+ * rather than deforming it.
+ * @sa vtkApertureDEMReader vtkApertureGeoreference
+ */
+#ifndef vtkApertureTerrainMesh_h
+#define vtkApertureTerrainMesh_h
+
+#include "ApertureFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class APERTUREFILTERS_EXPORT vtkApertureTerrainMesh : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkApertureTerrainMesh* New();
+  vtkTypeMacro(vtkApertureTerrainMesh, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** Name of the input point array holding elevations in metres. Default "Elevation". */
+  vtkSetStringMacro(ElevationArrayName);
+  vtkGetStringMacro(ElevationArrayName);
+  ///@}
+
+  ///@{
+  /**
+   * Vertical exaggeration: vertices are placed at height VerticalExaggeration * elevation
+   * above the ellipsoid. Default 1; range [0, 1000]. Normals follow the exaggerated surface.
+   */
+  vtkSetClampMacro(VerticalExaggeration, double, 0.0, 1000.0);
+  vtkGetMacro(VerticalExaggeration, double);
+  ///@}
+
+  ///@{
+  /**
+   * Precision of the output points: vtkAlgorithm::SINGLE_PRECISION (default; ENU coordinates
+   * within 200 km of the origin are then exact to about 1 cm) or DOUBLE_PRECISION.
+   */
+  vtkSetClampMacro(OutputPointsPrecision, int, SINGLE_PRECISION, DOUBLE_PRECISION);
+  vtkGetMacro(OutputPointsPrecision, int);
+  ///@}
+
+  ///@{
+  /** Whether to add the `Normals` and `TextureCoordinates` arrays. Default on. */
+  vtkSetMacro(ComputeNormals, bool);
+  vtkGetMacro(ComputeNormals, bool);
+  vtkBooleanMacro(ComputeNormals, bool);
+  vtkSetMacro(GenerateTextureCoordinates, bool);
+  vtkGetMacro(GenerateTextureCoordinates, bool);
+  vtkBooleanMacro(GenerateTextureCoordinates, bool);
+  ///@}
+
+protected:
+  vtkApertureTerrainMesh();
+  ~vtkApertureTerrainMesh() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  char* ElevationArrayName;
+  double VerticalExaggeration;
+  int OutputPointsPrecision;
+  bool ComputeNormals;
+  bool GenerateTextureCoordinates;
+
+private:
+  vtkApertureTerrainMesh(const vtkApertureTerrainMesh&) = delete;
+  void operator=(const vtkApertureTerrainMesh&) = delete;
+};
+
+#endif
