@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Test helpers: write small rasters with GDAL's C API (independently of the reader under test),
+// and check results with failure counting.
+#ifndef ApertureTestRasters_h
+#define ApertureTestRasters_h
+
+#include <cpl_string.h>
+#include <gdal.h>
+#include <ogr_srs_api.h>
+
+#include <cmath>
+#include <cstdio>
+#include <algorithm>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace aptest
+{
+inline int& Failures()
+{
+  static int failures = 0;
+  return failures;
+}
+
+#define AP_CHECK(cond)                                                                           \
+  do                                                                                             \
+  {                                                                                              \
+    if (!(cond))                                                                                 \
+    {                                                                                            \
+      std::fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);              \
+      ++aptest::Failures();                                                                      \
+    }                                                                                            \
+  } while (0)
+
+#define AP_CHECK_NEAR(a, b, tol)                                                                 \
+  do                                                                                             \
+  {                                                                                              \
+    const double va = (a), vb = (b);                                                             \
+    if (!(std::fabs(va - vb) <= (tol)))                                                          \
+    {                                                                                            \
+      std::fprintf(stderr, "%s:%d: |%s - %s| <= %g failed: %.12g vs %.12g\n", __FILE__,          \
+        __LINE__, #a, #b, static_cast<double>(tol), va, vb);                                     \
+      ++aptest::Failures();                                                                      \
+    }                                                                                            \
+  } while (0)
+
+#define AP_CHECK_CONTAINS(text, part)                                                            \
+  do                                                                                             \
+  {                                                                                              \
+    const std::string t_(text), p_(part);                                                        \
+    if (t_.find(p_) == std::string::npos)                                                        \
+    {                                                                                            \
+      std::fprintf(stderr, "%s:%d: expected '%s' in '%s'\n", __FILE__, __LINE__, p_.c_str(),     \
+        t_.c_str());                                                                             \
+      ++aptest::Failures();                                                                      \
+    }                                                                                            \
+  } while (0)
+
+/** What to put in a test raster. */
+struct RasterSpec
+{
+  int nx = 4, ny = 3, bands = 1;
+  GDALDataType type = GDT_Float32;
+  bool hasGeoTransform = true;
+  double gt[6] = { 500000.0, 30.0, 0.0, 4000000.0, 0.0, -30.0 };
+  std::string crs = "EPSG:32611"; // empty: none
+  bool hasNoData = false;
+  double noData = -32768.0;
+  double scale = 1.0, offset = 0.0;
+  std::string unit;
+  int gcps = 0; // > 0: add this many ground control points (and no geotransform)
+  // raw(band, column, row) with row 0 the file's first row
+  std::function<double(int, int, int)> raw = [](int, int c, int r) { return 10.0 * r + c; };
+};
+
+/** Write a GeoTIFF following spec; returns false on any GDAL failure. */
+inline bool WriteRaster(const std::string& path, const RasterSpec& s)
+{
+  GDALAllRegister();
+  GDALDriverH drv = GDALGetDriverByName("GTiff");
+  GDALDatasetH ds = GDALCreate(drv, path.c_str(), s.nx, s.ny, s.bands, s.type, nullptr);
+  if (!ds)
+  {
+    return false;
+  }
+  bool ok = true;
+  if (s.hasGeoTransform)
+  {
+    double gt[6];
+    std::copy(s.gt, s.gt + 6, gt);
+    ok = ok && GDALSetGeoTransform(ds, gt) == CE_None;
+  }
+  OGRSpatialReferenceH srs = nullptr;
+  if (!s.crs.empty())
+  {
+    srs = OSRNewSpatialReference(nullptr);
+    ok = ok && OSRSetFromUserInput(srs, s.crs.c_str()) == OGRERR_NONE;
+    ok = ok && GDALSetSpatialRef(ds, srs) == CE_None;
+  }
+  if (s.gcps > 0)
+  {
+    GDAL_GCP gcps[4];
+    GDALInitGCPs(4, gcps);
+    const double px[4] = { 0, double(s.nx), 0, double(s.nx) };
+    const double py[4] = { 0, 0, double(s.ny), double(s.ny) };
+    for (int k = 0; k < 4 && k < s.gcps; ++k)
+    {
+      gcps[k].dfGCPPixel = px[k];
+      gcps[k].dfGCPLine = py[k];
+      gcps[k].dfGCPX = 10.0 + 0.01 * px[k] + 0.001 * py[k];
+      gcps[k].dfGCPY = 45.0 - 0.01 * py[k];
+    }
+    ok = ok && GDALSetGCPs2(ds, s.gcps < 4 ? s.gcps : 4, gcps, srs) == CE_None;
+    GDALDeinitGCPs(4, gcps);
+  }
+  if (srs)
+  {
+    OSRRelease(srs);
+  }
+  std::vector<double> row(static_cast<size_t>(s.nx));
+  for (int b = 1; ok && b <= s.bands; ++b)
+  {
+    GDALRasterBandH band = GDALGetRasterBand(ds, b);
+    if (s.hasNoData)
+    {
+      ok = ok && GDALSetRasterNoDataValue(band, s.noData) == CE_None;
+    }
+    if (s.scale != 1.0 || s.offset != 0.0)
+    {
+      ok = ok && GDALSetRasterScale(band, s.scale) == CE_None &&
+        GDALSetRasterOffset(band, s.offset) == CE_None;
+    }
+    if (!s.unit.empty())
+    {
+      ok = ok && GDALSetRasterUnitType(band, s.unit.c_str()) == CE_None;
+    }
+    for (int r = 0; ok && r < s.ny; ++r)
+    {
+      for (int c = 0; c < s.nx; ++c)
+      {
+        row[static_cast<size_t>(c)] = s.raw(b, c, r);
+      }
+      ok = GDALRasterIO(band, GF_Write, 0, r, s.nx, 1, row.data(), s.nx, 1, GDT_Float64, 0, 0) ==
+        CE_None;
+    }
+  }
+  GDALClose(ds);
+  return ok;
+}
+
+/** The folder after "-T" on the test's command line (VTK's test output directory). */
+inline std::string TempDir(int argc, char* argv[])
+{
+  for (int k = 1; k + 1 < argc; ++k)
+  {
+    if (std::string(argv[k]) == "-T")
+    {
+      return argv[k + 1];
+    }
+  }
+  return ".";
+}
+
+/** Write text to a file. */
+inline bool WriteText(const std::string& path, const std::string& text)
+{
+  FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f)
+  {
+    return false;
+  }
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  return std::fclose(f) == 0 && ok;
+}
+} // namespace aptest
+
+#endif

@@ -1,0 +1,382 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkApertureDEMReader on rasters written here with GDAL's C API: orientation (north-up and
+// south-up), georeference, nodata, scale/offset and units, subwindow, decimation, overviews,
+// update extents, band choice, and every documented bad input.
+#include "ApertureTestRasters.h"
+
+#include "vtkApertureDEMReader.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
+#include "vtkTestErrorObserver.h"
+
+#include <cmath>
+#include <string>
+
+namespace
+{
+std::string tmp;
+
+struct Read
+{
+  vtkNew<vtkApertureDEMReader> Reader;
+  vtkNew<vtkTest::ErrorObserver> Errors, ExecutiveErrors, Warnings;
+  int Ok = 0;
+  explicit Read(const std::string& path)
+  {
+    this->Reader->SetFileName(path.c_str());
+    this->Reader->AddObserver(vtkCommand::ErrorEvent, this->Errors);
+    this->Reader->AddObserver(vtkCommand::WarningEvent, this->Warnings);
+    this->Reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->ExecutiveErrors);
+  }
+  vtkImageData* Update()
+  {
+    this->Ok = this->Reader->GetExecutive()->Update();
+    return this->Reader->GetOutput();
+  }
+  double Z(int i, int j) { return this->Reader->GetOutput()->GetPointData()->GetScalars()->GetTuple1(this->Index(i, j)); }
+  vtkIdType Index(int i, int j)
+  {
+    int ext[6];
+    this->Reader->GetOutput()->GetExtent(ext);
+    return static_cast<vtkIdType>(j - ext[2]) * (ext[1] - ext[0] + 1) + (i - ext[0]);
+  }
+};
+
+// Check fix for flipped rows: a north-up Int16 raster with nodata, scale/offset. VTK row j is
+// file row ny-1-j; elevation = raw * scale + offset; the nodata cell is NaN; geometry and
+// georeference follow the geotransform.
+void TestNorthUp()
+{
+  aptest::RasterSpec s;
+  s.nx = 5;
+  s.ny = 4;
+  s.type = GDT_Int16;
+  s.hasNoData = true;
+  s.noData = -32768;
+  s.scale = 0.5;
+  s.offset = 100.0;
+  s.raw = [](int, int c, int r) { return (c == 2 && r == 1) ? -32768.0 : 10.0 * r + c; };
+  const std::string path = tmp + "/northup.tif";
+  AP_CHECK(aptest::WriteRaster(path, s));
+  Read rd(path);
+  vtkImageData* img = rd.Update();
+  AP_CHECK(rd.Ok == 1 && !rd.Errors->GetError());
+  int dims[3];
+  img->GetDimensions(dims);
+  AP_CHECK(dims[0] == 5 && dims[1] == 4 && dims[2] == 1);
+  double spacing[3], origin[3];
+  img->GetSpacing(spacing);
+  img->GetOrigin(origin);
+  AP_CHECK_NEAR(spacing[0], 30.0, 0.0);
+  AP_CHECK_NEAR(spacing[1], 30.0, 0.0);
+  AP_CHECK_NEAR(origin[0], 500015.0, 1e-9);            // west edge + half a cell
+  AP_CHECK_NEAR(origin[1], 4000000.0 - 120.0 + 15.0, 1e-9); // south edge + half a cell
+  for (int j = 0; j < 4; ++j)
+  {
+    for (int i = 0; i < 5; ++i)
+    {
+      const int fileRow = 3 - j;
+      if (i == 2 && fileRow == 1)
+      {
+        AP_CHECK(std::isnan(rd.Z(i, j)));
+      }
+      else
+      {
+        AP_CHECK_NEAR(rd.Z(i, j), (10.0 * fileRow + i) * 0.5 + 100.0, 0.0);
+      }
+    }
+  }
+  AP_CHECK(std::string(img->GetPointData()->GetScalars()->GetName()) == "Elevation");
+  AP_CHECK(img->GetPointData()->GetScalars()->GetDataType() == VTK_FLOAT);
+  auto* crs = vtkStringArray::SafeDownCast(img->GetFieldData()->GetAbstractArray("CRS"));
+  AP_CHECK(crs && crs->GetValue(0).find("UTM zone 11N") != std::string::npos);
+  auto* gt = vtkDoubleArray::SafeDownCast(img->GetFieldData()->GetArray("GeoTransform"));
+  AP_CHECK(gt && gt->GetNumberOfValues() == 6);
+  if (gt)
+  {
+    const double expected[6] = { 500000.0, 30.0, 0.0, 4000000.0, 0.0, -30.0 };
+    for (int k = 0; k < 6; ++k)
+    {
+      AP_CHECK_NEAR(gt->GetValue(k), expected[k], 1e-9);
+    }
+  }
+  AP_CHECK(rd.Reader->GetHasNoDataValue() && rd.Reader->GetNoDataValue() == -32768.0);
+  AP_CHECK(std::string(rd.Reader->GetDriverName()) == "GTiff");
+}
+
+// A south-up raster (positive pixel height): file row r is VTK row r, and the grid comes out
+// north-up with the same ground positions.
+void TestSouthUp()
+{
+  aptest::RasterSpec s;
+  s.gt[3] = 3999880.0; // south edge
+  s.gt[5] = 30.0;
+  const std::string path = tmp + "/southup.tif";
+  AP_CHECK(aptest::WriteRaster(path, s));
+  Read rd(path);
+  vtkImageData* img = rd.Update();
+  AP_CHECK(rd.Ok == 1);
+  double origin[3];
+  img->GetOrigin(origin);
+  AP_CHECK_NEAR(origin[1], 3999880.0 + 15.0, 1e-9);
+  for (int j = 0; j < 3; ++j)
+  {
+    for (int i = 0; i < 4; ++i)
+    {
+      AP_CHECK_NEAR(rd.Z(i, j), 10.0 * j + i, 0.0);
+    }
+  }
+  auto* gt = vtkDoubleArray::SafeDownCast(img->GetFieldData()->GetArray("GeoTransform"));
+  AP_CHECK(gt && std::fabs(gt->GetValue(3) - (3999880.0 + 90.0)) < 1e-9 && gt->GetValue(5) < 0);
+}
+
+// Feet become metres; an unknown unit warns and is taken as metres.
+void TestUnits()
+{
+  aptest::RasterSpec s;
+  s.unit = "ft";
+  s.raw = [](int, int, int) { return 1000.0; };
+  AP_CHECK(aptest::WriteRaster(tmp + "/feet.tif", s));
+  Read rd(tmp + "/feet.tif");
+  rd.Update();
+  AP_CHECK_NEAR(rd.Z(0, 0), 304.8, 1e-4);
+  s.unit = "US survey foot";
+  AP_CHECK(aptest::WriteRaster(tmp + "/usfeet.tif", s));
+  Read us(tmp + "/usfeet.tif");
+  us.Update();
+  AP_CHECK_NEAR(us.Z(0, 0), 1000.0 * 1200.0 / 3937.0, 1e-4);
+  s.unit = "cubits";
+  AP_CHECK(aptest::WriteRaster(tmp + "/cubits.tif", s));
+  Read cu(tmp + "/cubits.tif");
+  cu.Update();
+  AP_CHECK(cu.Ok == 1 && cu.Warnings->GetWarning());
+  AP_CHECK_CONTAINS(cu.Warnings->GetWarningMessage(), "unknown unit 'cubits'");
+  AP_CHECK_NEAR(cu.Z(0, 0), 1000.0, 0.0);
+}
+
+// Subwindow, decimation (block means ignoring nodata), overviews and update extents.
+void TestWindowsAndLevels()
+{
+  aptest::RasterSpec s;
+  s.nx = 7;
+  s.ny = 5;
+  s.hasNoData = true;
+  s.noData = -9999.0;
+  s.raw = [](int, int c, int r) { return (c == 0 && r == 0) ? -9999.0 : 10.0 * r + c; };
+  const std::string path = tmp + "/windows.tif";
+  AP_CHECK(aptest::WriteRaster(path, s));
+
+  // Subwindow x 1..3, y 1..2 (file rows 1, 2): VTK row 0 = file row 2.
+  Read sub(path);
+  sub.Reader->SetSubWindow(1, 1, 3, 2);
+  vtkImageData* img = sub.Update();
+  int dims[3];
+  img->GetDimensions(dims);
+  AP_CHECK(dims[0] == 3 && dims[1] == 2);
+  AP_CHECK_NEAR(sub.Z(0, 0), 21.0, 0.0);
+  AP_CHECK_NEAR(sub.Z(2, 1), 13.0, 0.0);
+  double origin[3];
+  img->GetOrigin(origin);
+  AP_CHECK_NEAR(origin[0], 500000.0 + 30.0 + 15.0, 1e-9);
+  AP_CHECK_NEAR(origin[1], 4000000.0 - 3 * 30.0 + 15.0, 1e-9);
+
+  // Decimation 2: 7 x 5 -> 3 x 2 blocks over file rows 0-3, columns 0-5.
+  // Block (0,0) = {NaN, 1, 10, 11} -> 22/3; block (2,1) = {24, 25, 34, 35} -> 29.5.
+  Read dec(path);
+  dec.Reader->SetDecimation(2);
+  img = dec.Update();
+  img->GetDimensions(dims);
+  AP_CHECK(dims[0] == 3 && dims[1] == 2);
+  double spacing[3];
+  img->GetSpacing(spacing);
+  AP_CHECK_NEAR(spacing[0], 60.0, 0.0);
+  img->GetOrigin(origin);
+  AP_CHECK_NEAR(origin[0], 500030.0, 1e-9);
+  AP_CHECK_NEAR(origin[1], 4000000.0 - 120.0 + 30.0, 1e-9);
+  AP_CHECK_NEAR(dec.Z(0, 1), 22.0 / 3.0, 1e-5); // VTK row 1 = first block row (north)
+  AP_CHECK_NEAR(dec.Z(2, 0), 29.5, 1e-5);
+
+  // Overviews built by GDAL (2x average): level 0 is 4 x 3, cells 60 m.
+  {
+    GDALDatasetH ds = GDALOpen(path.c_str(), GA_Update);
+    int levels[1] = { 2 };
+    AP_CHECK(ds && GDALBuildOverviews(ds, "NEAREST", 1, levels, 0, nullptr, nullptr, nullptr) ==
+        CE_None);
+    GDALClose(ds);
+  }
+  Read ov(path);
+  ov.Reader->SetOverviewLevel(0);
+  img = ov.Update();
+  img->GetDimensions(dims);
+  AP_CHECK(ov.Ok == 1 && dims[0] == 4 && dims[1] == 3);
+  img->GetSpacing(spacing);
+  AP_CHECK_NEAR(spacing[0], 30.0 * 7.0 / 4.0, 1e-9);
+  Read noLevel(path);
+  noLevel.Reader->SetOverviewLevel(3);
+  noLevel.Update();
+  AP_CHECK(noLevel.Ok == 0);
+  AP_CHECK_CONTAINS(noLevel.Errors->GetErrorMessage(), "level 3 does not exist");
+
+  // An update extent reads only that piece, with the same values as a full read.
+  Read piece(path);
+  piece.Reader->UpdateInformation();
+  int ext[6] = { 2, 4, 1, 3, 0, 0 };
+  piece.Reader->UpdateExtent(ext);
+  img = piece.Reader->GetOutput();
+  int got[6];
+  img->GetExtent(got);
+  AP_CHECK(got[0] == 2 && got[1] == 4 && got[2] == 1 && got[3] == 3);
+  for (int j = 1; j <= 3; ++j)
+  {
+    for (int i = 2; i <= 4; ++i)
+    {
+      AP_CHECK_NEAR(piece.Z(i, j), 10.0 * (4 - j) + i, 0.0);
+    }
+  }
+}
+
+// A multi-band raster reads band 1 and says so; BandIndex picks another quietly.
+void TestBands()
+{
+  aptest::RasterSpec s;
+  s.bands = 3;
+  s.raw = [](int b, int c, int r) { return 1000.0 * b + 10.0 * r + c; };
+  const std::string path = tmp + "/bands.tif";
+  AP_CHECK(aptest::WriteRaster(path, s));
+  Read first(path);
+  first.Update();
+  AP_CHECK(first.Ok == 1 && first.Warnings->GetWarning());
+  AP_CHECK_CONTAINS(first.Warnings->GetWarningMessage(), "has 3 bands; reading band 1");
+  AP_CHECK_NEAR(first.Z(0, 2), 1000.0, 0.0);
+  Read second(path);
+  second.Reader->SetBandIndex(2);
+  second.Update();
+  AP_CHECK(second.Ok == 1 && !second.Warnings->GetWarning());
+  AP_CHECK_NEAR(second.Z(0, 2), 2000.0, 0.0);
+  AP_CHECK(second.Reader->GetBandRead() == 2 && second.Reader->GetNumberOfBands() == 3);
+  Read missing(path);
+  missing.Reader->SetBandIndex(4);
+  missing.Update();
+  AP_CHECK(missing.Ok == 0);
+  AP_CHECK_CONTAINS(missing.Errors->GetErrorMessage(), "has 3 bands; band 4 does not exist");
+}
+
+// Each bad input gives a clear error and a failed update.
+void ExpectError(const std::string& path, const std::string& expected,
+  const std::function<void(vtkApertureDEMReader*)>& setup = nullptr)
+{
+  Read rd(path);
+  if (setup)
+  {
+    setup(rd.Reader);
+  }
+  vtkImageData* img = rd.Update();
+  AP_CHECK(rd.Ok == 0);
+  AP_CHECK(rd.Errors->GetError());
+  AP_CHECK_CONTAINS(rd.Errors->GetErrorMessage(), expected);
+  AP_CHECK(img->GetNumberOfPoints() == 0);
+}
+
+void TestBadInput()
+{
+  ExpectError(tmp + "/no-such-file.tif", "does not exist");
+  AP_CHECK(aptest::WriteText(tmp + "/notes.tif", "this is not a raster\n"));
+  ExpectError(tmp + "/notes.tif", "GDAL cannot open");
+
+  aptest::RasterSpec tiny;
+  tiny.nx = 1;
+  tiny.ny = 1;
+  AP_CHECK(aptest::WriteRaster(tmp + "/tiny.tif", tiny));
+  ExpectError(tmp + "/tiny.tif", "gives a 1 x 1 grid");
+
+  aptest::RasterSpec rotated;
+  rotated.gt[2] = 0.5;
+  AP_CHECK(aptest::WriteRaster(tmp + "/rotated.tif", rotated));
+  ExpectError(tmp + "/rotated.tif", "rotated geotransform");
+
+  aptest::RasterSpec bare;
+  bare.hasGeoTransform = false;
+  bare.crs = "";
+  AP_CHECK(aptest::WriteRaster(tmp + "/bare.tif", bare));
+  ExpectError(tmp + "/bare.tif", "has no georeference");
+
+  aptest::RasterSpec gcps;
+  gcps.hasGeoTransform = false;
+  gcps.crs = "EPSG:4326";
+  gcps.gcps = 4;
+  AP_CHECK(aptest::WriteRaster(tmp + "/gcps.tif", gcps));
+  ExpectError(tmp + "/gcps.tif", "only by 4 ground control points");
+
+  aptest::RasterSpec nocrs;
+  nocrs.crs = "";
+  AP_CHECK(aptest::WriteRaster(tmp + "/nocrs.tif", nocrs));
+  ExpectError(tmp + "/nocrs.tif", "has no coordinate reference system");
+  {
+    // ... which OverrideCRS fixes.
+    Read fixed(tmp + "/nocrs.tif");
+    fixed.Reader->SetOverrideCRS("EPSG:32611");
+    fixed.Update();
+    AP_CHECK(fixed.Ok == 1);
+  }
+  ExpectError(tmp + "/nocrs.tif", "GDAL cannot parse the CRS",
+    [](vtkApertureDEMReader* r) { r->SetOverrideCRS("EPSG:999999999"); });
+
+  aptest::RasterSpec empty;
+  empty.hasNoData = true;
+  empty.noData = -1.0;
+  empty.raw = [](int, int, int) { return -1.0; };
+  AP_CHECK(aptest::WriteRaster(tmp + "/allnodata.tif", empty));
+  ExpectError(tmp + "/allnodata.tif", "is nodata");
+  {
+    // A piece of an all-nodata raster is not an error by itself (streaming).
+    Read piece(tmp + "/allnodata.tif");
+    piece.Reader->UpdateInformation();
+    int ext[6] = { 0, 1, 0, 1, 0, 0 };
+    piece.Reader->UpdateExtent(ext);
+    AP_CHECK(!piece.Errors->GetError());
+  }
+
+  // A VRT declaring 10^6 x 10^6 cells: refused before anything is allocated.
+  AP_CHECK(aptest::WriteRaster(tmp + "/small.tif", aptest::RasterSpec()));
+  AP_CHECK(aptest::WriteText(tmp + "/huge.vrt",
+    "<VRTDataset rasterXSize=\"1000000\" rasterYSize=\"1000000\">\n"
+    "  <SRS>EPSG:32611</SRS>\n"
+    "  <GeoTransform>500000, 1, 0, 4000000, 0, -1</GeoTransform>\n"
+    "  <VRTRasterBand dataType=\"Float32\" band=\"1\">\n"
+    "    <SimpleSource><SourceFilename relativeToVRT=\"1\">small.tif</SourceFilename>\n"
+    "      <SourceBand>1</SourceBand></SimpleSource>\n"
+    "  </VRTRasterBand>\n"
+    "</VRTDataset>\n"));
+  ExpectError(tmp + "/huge.vrt", "1000000 x 1000000 cells");
+  ExpectError(tmp + "/huge.vrt", "3.638 TiB");
+  ExpectError(tmp + "/small.tif", "more than the 16 bytes MemoryLimit",
+    [](vtkApertureDEMReader* r) { r->SetMemoryLimit(16); });
+  ExpectError(tmp + "/small.tif", "is not inside the 4 x 3 raster",
+    [](vtkApertureDEMReader* r) { r->SetSubWindow(3, 0, 2, 1); });
+  ExpectError("", "no file name was set");
+}
+} // namespace
+
+int TestApertureDEMReader(int argc, char* argv[])
+{
+  tmp = aptest::TempDir(argc, argv);
+  TestNorthUp();
+  TestSouthUp();
+  TestUnits();
+  TestWindowsAndLevels();
+  TestBands();
+  TestBadInput();
+  if (aptest::Failures())
+  {
+    std::fprintf(stderr, "%d check(s) failed\n", aptest::Failures());
+  }
+  return aptest::Failures() ? 1 : 0;
+}

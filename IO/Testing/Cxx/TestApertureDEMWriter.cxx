@@ -1,0 +1,241 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkApertureDEMWriter: what GDAL reads back (bands, descriptions, values and orientation,
+// geotransform, CRS, nodata, compression, metadata), the round trip through the reader, and
+// the documented errors.
+#include "ApertureTestRasters.h"
+
+#include "vtkApertureDEMReader.h"
+#include "vtkApertureDEMWriter.h"
+#include "vtkApertureGeoreference.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+#include "vtkTestErrorObserver.h"
+
+#include <cpl_conv.h>
+#include <sys/stat.h>
+
+#include <cmath>
+#include <string>
+
+namespace
+{
+std::string tmp;
+const int NX = 6, NY = 4;
+
+// Elevation(i, j) = 100 j + i, NaN at (1, 2); Vector (3 components E, N, U); Count (int).
+vtkSmartPointer<vtkImageData> MakeImage(bool withCRS)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(NX, NY, 1);
+  image->SetOrigin(300015.0, 5000015.0, 0.0);
+  image->SetSpacing(30.0, 30.0, 1.0);
+  vtkNew<vtkFloatArray> z;
+  z->SetName("Elevation");
+  vtkNew<vtkFloatArray> v;
+  v->SetName("Vector");
+  v->SetNumberOfComponents(3);
+  v->SetComponentName(0, "E");
+  v->SetComponentName(1, "N");
+  v->SetComponentName(2, "U");
+  vtkNew<vtkIntArray> count;
+  count->SetName("Count");
+  for (int j = 0; j < NY; ++j)
+  {
+    for (int i = 0; i < NX; ++i)
+    {
+      z->InsertNextValue((i == 1 && j == 2) ? NAN : static_cast<float>(100 * j + i));
+      v->InsertNextTuple3(i, j, -1.0);
+      count->InsertNextValue(i * j);
+    }
+  }
+  image->GetPointData()->SetScalars(z);
+  image->GetPointData()->AddArray(v);
+  image->GetPointData()->AddArray(count);
+  if (withCRS)
+  {
+    vtkNew<vtkApertureGeoreference> geo;
+    geo->SetCRS("EPSG:32633");
+    geo->AttachToImage(image);
+  }
+  return image;
+}
+
+double Value(GDALDatasetH ds, int band, int col, int row)
+{
+  double v = 0.0;
+  if (GDALRasterIO(GDALGetRasterBand(ds, band), GF_Read, col, row, 1, 1, &v, 1, 1, GDT_Float64, 0,
+        0) != CE_None)
+  {
+    return -12345.0;
+  }
+  return v;
+}
+
+void TestWriteAndReadBack()
+{
+  const std::string path = tmp + "/written.tif";
+  vtkNew<vtkApertureDEMWriter> writer;
+  writer->SetInputData(MakeImage(true));
+  writer->SetFileName(path.c_str());
+  writer->AddMetadata("PRODUCT", "test");
+  writer->AddBandMetadata("Vector", "UNITS", "metre");
+  writer->Write();
+
+  GDALAllRegister();
+  GDALDatasetH ds = GDALOpen(path.c_str(), GA_ReadOnly);
+  AP_CHECK(ds != nullptr);
+  if (!ds)
+  {
+    return;
+  }
+  AP_CHECK(GDALGetRasterXSize(ds) == NX && GDALGetRasterYSize(ds) == NY);
+  AP_CHECK(GDALGetRasterCount(ds) == 5);
+  const char* names[5] = { "Elevation", "Vector_E", "Vector_N", "Vector_U", "Count" };
+  for (int b = 1; b <= 5; ++b)
+  {
+    GDALRasterBandH band = GDALGetRasterBand(ds, b);
+    AP_CHECK(std::string(GDALGetDescription(band)) == names[b - 1]);
+    AP_CHECK(GDALGetRasterDataType(band) == GDT_Float32);
+    int has = 0;
+    AP_CHECK(std::isnan(GDALGetRasterNoDataValue(band, &has)) && has);
+  }
+  // File row 0 is the northern row (VTK row NY-1).
+  AP_CHECK_NEAR(Value(ds, 1, 0, 0), 100.0 * (NY - 1), 0.0);
+  AP_CHECK_NEAR(Value(ds, 1, 5, NY - 1), 5.0, 0.0);
+  AP_CHECK(std::isnan(Value(ds, 1, 1, NY - 1 - 2)));
+  AP_CHECK_NEAR(Value(ds, 2, 4, 0), 4.0, 0.0);            // Vector_E = i
+  AP_CHECK_NEAR(Value(ds, 3, 4, 0), NY - 1.0, 0.0);       // Vector_N = j
+  AP_CHECK_NEAR(Value(ds, 4, 4, 0), -1.0, 0.0);           // Vector_U
+  AP_CHECK_NEAR(Value(ds, 5, 3, 0), 3.0 * (NY - 1), 0.0); // Count = i * j
+  double gt[6];
+  AP_CHECK(GDALGetGeoTransform(ds, gt) == CE_None);
+  const double expected[6] = { 300000.0, 30.0, 0.0, 5000000.0 + NY * 30.0, 0.0, -30.0 };
+  for (int k = 0; k < 6; ++k)
+  {
+    AP_CHECK_NEAR(gt[k], expected[k], 1e-9);
+  }
+  OGRSpatialReferenceH want = OSRNewSpatialReference(nullptr);
+  OSRSetFromUserInput(want, "EPSG:32633");
+  OGRSpatialReferenceH got = GDALGetSpatialRef(ds);
+  AP_CHECK(got && OSRIsSame(want, got));
+  OSRRelease(want);
+  const char* compression = GDALGetMetadataItem(ds, "COMPRESSION", "IMAGE_STRUCTURE");
+  AP_CHECK(compression && std::string(compression) == "DEFLATE");
+  const char* product = GDALGetMetadataItem(ds, "PRODUCT", nullptr);
+  AP_CHECK(product && std::string(product) == "test");
+  const char* units = GDALGetMetadataItem(GDALGetRasterBand(ds, 3), "UNITS", nullptr);
+  AP_CHECK(units && std::string(units) == "metre");
+  AP_CHECK(GDALGetMetadataItem(GDALGetRasterBand(ds, 1), "UNITS", nullptr) == nullptr);
+  GDALClose(ds);
+
+  // Round trip through our reader: same grid, same values, NaN where NaN was.
+  vtkNew<vtkApertureDEMReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->SetBandIndex(1);
+  reader->Update();
+  vtkImageData* back = reader->GetOutput();
+  auto original = MakeImage(true);
+  double o1[3], o2[3];
+  back->GetOrigin(o1);
+  original->GetOrigin(o2);
+  AP_CHECK_NEAR(o1[0], o2[0], 1e-9);
+  AP_CHECK_NEAR(o1[1], o2[1], 1e-9);
+  vtkDataArray* a = back->GetPointData()->GetScalars();
+  vtkDataArray* b = original->GetPointData()->GetScalars();
+  AP_CHECK(a && a->GetNumberOfTuples() == NX * NY);
+  for (vtkIdType k = 0; a && k < NX * NY; ++k)
+  {
+    const double va = a->GetTuple1(k), vb = b->GetTuple1(k);
+    AP_CHECK((std::isnan(va) && std::isnan(vb)) || va == vb);
+  }
+}
+
+// Selected arrays only, in the given order; a double array makes Float64 bands; no CRS warns.
+void TestSelectionAndTypes()
+{
+  auto image = MakeImage(false);
+  vtkNew<vtkDoubleArray> d;
+  d->SetName("Precise");
+  d->SetNumberOfTuples(NX * NY);
+  d->Fill(0.1);
+  image->GetPointData()->AddArray(d);
+  const std::string path = tmp + "/selected.tif";
+  vtkNew<vtkApertureDEMWriter> writer;
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  writer->AddObserver(vtkCommand::WarningEvent, warnings);
+  writer->SetInputData(image);
+  writer->SetFileName(path.c_str());
+  writer->AddArrayName("Precise");
+  writer->AddArrayName("Elevation");
+  writer->SetCompression("LZW");
+  writer->Write();
+  AP_CHECK(warnings->GetWarning());
+  AP_CHECK_CONTAINS(warnings->GetWarningMessage(), "without a CRS");
+  GDALDatasetH ds = GDALOpen(path.c_str(), GA_ReadOnly);
+  AP_CHECK(ds && GDALGetRasterCount(ds) == 2);
+  if (ds)
+  {
+    AP_CHECK(std::string(GDALGetDescription(GDALGetRasterBand(ds, 1))) == "Precise");
+    AP_CHECK(GDALGetRasterDataType(GDALGetRasterBand(ds, 1)) == GDT_Float64);
+    AP_CHECK_NEAR(Value(ds, 1, 0, 0), 0.1, 0.0); // exact in Float64
+    const char* compression = GDALGetMetadataItem(ds, "COMPRESSION", "IMAGE_STRUCTURE");
+    AP_CHECK(compression && std::string(compression) == "LZW");
+    GDALClose(ds);
+  }
+}
+
+void ExpectError(vtkApertureDEMWriter* writer, const std::string& expected)
+{
+  vtkNew<vtkTest::ErrorObserver> errors, executiveErrors;
+  writer->AddObserver(vtkCommand::ErrorEvent, errors);
+  writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+  writer->Write();
+  AP_CHECK(errors->GetError());
+  AP_CHECK_CONTAINS(errors->GetErrorMessage(), expected);
+}
+
+void TestErrors()
+{
+  {
+    vtkNew<vtkApertureDEMWriter> w;
+    w->SetInputData(MakeImage(true));
+    ExpectError(w, "no file name was set");
+  }
+  {
+    vtkNew<vtkApertureDEMWriter> w;
+    w->SetInputData(MakeImage(true));
+    w->SetFileName((tmp + "/missing.tif").c_str());
+    w->AddArrayName("Slope");
+    ExpectError(w, "no point array named 'Slope'");
+    struct stat sb;
+    AP_CHECK(stat((tmp + "/missing.tif").c_str(), &sb) != 0); // nothing left behind
+  }
+  {
+    vtkNew<vtkApertureDEMWriter> w;
+    w->SetInputData(MakeImage(true));
+    w->SetFileName("/nonexistent-folder/x.tif");
+    ExpectError(w, "GDAL cannot create '/nonexistent-folder/x.tif'");
+  }
+}
+} // namespace
+
+int TestApertureDEMWriter(int argc, char* argv[])
+{
+  tmp = aptest::TempDir(argc, argv);
+  TestWriteAndReadBack();
+  TestSelectionAndTypes();
+  TestErrors();
+  if (aptest::Failures())
+  {
+    std::fprintf(stderr, "%d check(s) failed\n", aptest::Failures());
+  }
+  return aptest::Failures() ? 1 : 0;
+}

@@ -1,0 +1,569 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkApertureDEMReader.h"
+
+#include "vtkApertureGDALErrorTrap.h"
+#include "vtkApertureGeoreference.h"
+
+#include "vtkDataObject.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include "ap_grid.h"
+
+#include <cpl_conv.h>
+#include <gdal.h>
+#include <ogr_srs_api.h>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkApertureDEMReader);
+
+namespace
+{
+// Owns a GDAL dataset handle.
+struct DatasetHandle
+{
+  GDALDatasetH H = nullptr;
+  DatasetHandle() = default;
+  DatasetHandle(const DatasetHandle&) = delete;
+  DatasetHandle& operator=(const DatasetHandle&) = delete;
+  ~DatasetHandle()
+  {
+    if (this->H)
+    {
+      GDALClose(this->H);
+    }
+  }
+};
+
+std::string HumanBytes(double bytes)
+{
+  const char* units[] = { "bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB" };
+  int u = 0;
+  while (bytes >= 1024.0 && u < 6)
+  {
+    bytes /= 1024.0;
+    ++u;
+  }
+  std::ostringstream s;
+  s.precision(u == 0 ? 0 : 3);
+  s << std::fixed << bytes << " " << units[u];
+  return s.str();
+}
+
+// Metres per unit of a band's vertical unit string; 0 when unknown.
+double MetresPerUnit(const char* unitType)
+{
+  std::string u(unitType ? unitType : "");
+  std::transform(u.begin(), u.end(), u.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (u.empty() || u == "m" || u == "metre" || u == "meter" || u == "metres" || u == "meters")
+  {
+    return 1.0;
+  }
+  if (u == "ft" || u == "foot" || u == "feet" || u == "international foot" ||
+    u == "ft (international)")
+  {
+    return 0.3048;
+  }
+  if (u == "us survey foot" || u == "us-ft" || u == "ftus" || u == "us_survey_foot" ||
+    u == "foot_us" || u == "us survey feet")
+  {
+    return 1200.0 / 3937.0;
+  }
+  return 0.0;
+}
+
+vtkTypeInt64 PhysicalMemory()
+{
+  const long pages = sysconf(_SC_PHYS_PAGES);
+  const long pageSize = sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || pageSize <= 0)
+  {
+    return VTK_TYPE_INT64_MAX;
+  }
+  return static_cast<vtkTypeInt64>(pages) * static_cast<vtkTypeInt64>(pageSize);
+}
+} // namespace
+
+// What RequestInformation resolved from the file and the options; RequestData reuses it.
+struct vtkApertureDEMReader::Internals
+{
+  std::string Driver;
+  int Band = 1;
+  int Level = -1;               // -1: full resolution, else overview index
+  int Window[4] = { 0, 0, 0, 0 }; // x0, y0, columns, rows in pixels of the level
+  int Factor = 1;               // decimation
+  int Out[2] = { 0, 0 };        // output columns, rows
+  bool SouthUp = false;         // the file's first row is its southern row
+  double Origin[2] = { 0, 0 };  // CRS coordinates of the south-west output cell centre
+  double Spacing[2] = { 1, 1 }; // output cell size, CRS units
+  std::string CRS;              // WKT
+  bool HasNoData = false;
+  double NoData = 0.0;
+  double Scale = 1.0, Offset = 0.0; // includes the unit conversion to metres
+  bool UseMask = false;
+  bool Valid = false;
+
+  // Open the file with a clear message on failure.
+  static bool Open(const char* fileName, DatasetHandle& ds, std::string& error)
+  {
+    if (!fileName || !*fileName)
+    {
+      error = "no file name was set";
+      return false;
+    }
+    const std::string name(fileName);
+    struct stat sb;
+    if (name.compare(0, 5, "/vsi") != 0 && stat(fileName, &sb) != 0)
+    {
+      error = "file '" + name + "' does not exist";
+      return false;
+    }
+    GDALAllRegister();
+    vtkApertureGDALErrorTrap trap;
+    ds.H = GDALOpenEx(fileName, GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+    if (!ds.H)
+    {
+      error = "GDAL cannot open '" + name + "' as a raster: " +
+        trap.Message("not a raster format GDAL recognises");
+      return false;
+    }
+    return true;
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkApertureDEMReader::vtkApertureDEMReader()
+  : FileName(nullptr)
+  , BandIndex(0)
+  , OverviewLevel(-1)
+  , Decimation(1)
+  , OverrideCRS(nullptr)
+  , MemoryLimit(0)
+  , NumberOfBands(0)
+  , BandRead(0)
+  , HasNoDataValue(false)
+  , NoDataValue(0.0)
+  , Impl(new Internals)
+{
+  this->SetNumberOfInputPorts(0);
+  this->SubWindow[0] = this->SubWindow[1] = this->SubWindow[2] = this->SubWindow[3] = 0;
+  this->RasterSize[0] = this->RasterSize[1] = 0;
+}
+
+//------------------------------------------------------------------------------
+vtkApertureDEMReader::~vtkApertureDEMReader()
+{
+  this->SetFileName(nullptr);
+  this->SetOverrideCRS(nullptr);
+  delete this->Impl;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkApertureDEMReader::GetDriverName()
+{
+  return this->Impl->Driver.c_str();
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureDEMReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  Internals& d = *this->Impl;
+  d.Valid = false;
+  std::string error;
+  DatasetHandle ds;
+  if (!Internals::Open(this->FileName, ds, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  const std::string name(this->FileName);
+  d.Driver = GDALGetDriverShortName(GDALGetDatasetDriver(ds.H));
+  this->RasterSize[0] = GDALGetRasterXSize(ds.H);
+  this->RasterSize[1] = GDALGetRasterYSize(ds.H);
+  this->NumberOfBands = GDALGetRasterCount(ds.H);
+
+  // Band.
+  if (this->NumberOfBands < 1)
+  {
+    vtkErrorMacro(<< "'" << name << "' has no raster bands");
+    return 0;
+  }
+  d.Band = this->BandIndex == 0 ? 1 : this->BandIndex;
+  if (d.Band > this->NumberOfBands)
+  {
+    vtkErrorMacro(<< "'" << name << "' has " << this->NumberOfBands << " band"
+                  << (this->NumberOfBands == 1 ? "" : "s") << "; band " << d.Band
+                  << " does not exist");
+    return 0;
+  }
+  if (this->BandIndex == 0 && this->NumberOfBands > 1)
+  {
+    vtkWarningMacro(<< "'" << name << "' has " << this->NumberOfBands
+                    << " bands; reading band 1 as elevation (set BandIndex to choose)");
+  }
+  this->BandRead = d.Band;
+  GDALRasterBandH base = GDALGetRasterBand(ds.H, d.Band);
+
+  // Georeference: a north-up or south-up geotransform and a CRS.
+  double gt[6];
+  if (GDALGetGeoTransform(ds.H, gt) != CE_None)
+  {
+    if (GDALGetGCPCount(ds.H) > 0)
+    {
+      vtkErrorMacro(<< "'" << name << "' is georeferenced only by " << GDALGetGCPCount(ds.H)
+                    << " ground control points; warp it to a grid first (gdalwarp)");
+    }
+    else
+    {
+      vtkErrorMacro(<< "'" << name << "' has no georeference (no geotransform)");
+    }
+    return 0;
+  }
+  if (std::fabs(gt[2]) > 1e-12 * std::fabs(gt[1]) || std::fabs(gt[4]) > 1e-12 * std::fabs(gt[5]))
+  {
+    vtkErrorMacro(<< "'" << name << "' has a rotated geotransform (rotation terms " << gt[2]
+                  << ", " << gt[4] << "); warp it north-up first (gdalwarp)");
+    return 0;
+  }
+  if (!(gt[1] > 0) || gt[5] == 0 || !std::isfinite(gt[0]) || !std::isfinite(gt[3]) ||
+    !std::isfinite(gt[5]))
+  {
+    vtkErrorMacro(<< "'" << name << "' has an unsupported geotransform (pixel width " << gt[1]
+                  << ", pixel height " << gt[5] << "); warp it north-up first (gdalwarp)");
+    return 0;
+  }
+  d.SouthUp = gt[5] > 0;
+
+  vtkNew<vtkApertureGeoreference> geo;
+  if (this->OverrideCRS && *this->OverrideCRS)
+  {
+    if (!geo->SetCRS(this->OverrideCRS))
+    {
+      vtkErrorMacro(<< "OverrideCRS: " << geo->GetErrorMessage());
+      return 0;
+    }
+  }
+  else
+  {
+    OGRSpatialReferenceH srs = GDALGetSpatialRef(ds.H);
+    char* wkt = nullptr;
+    const char* options[] = { "FORMAT=WKT2_2019", "MULTILINE=NO", nullptr };
+    if (!srs || OSRExportToWktEx(srs, &wkt, options) != OGRERR_NONE || !wkt || !*wkt)
+    {
+      CPLFree(wkt);
+      vtkErrorMacro(<< "'" << name
+                    << "' has no coordinate reference system; set OverrideCRS "
+                       "(aperture: --srs EPSG:xxxx)");
+      return 0;
+    }
+    const bool ok = geo->SetCRS(wkt);
+    CPLFree(wkt);
+    if (!ok)
+    {
+      vtkErrorMacro(<< "'" << name << "': " << geo->GetErrorMessage());
+      return 0;
+    }
+  }
+  d.CRS = geo->GetCRS();
+
+  // Resolution level and window.
+  GDALRasterBandH level = base;
+  d.Level = this->OverviewLevel;
+  if (d.Level >= 0)
+  {
+    const int count = GDALGetOverviewCount(base);
+    if (d.Level >= count)
+    {
+      vtkErrorMacro(<< "'" << name << "' band " << d.Band << " has " << count
+                    << " overview levels; level " << d.Level << " does not exist");
+      return 0;
+    }
+    level = GDALGetOverview(base, d.Level);
+  }
+  const int levelX = GDALGetRasterBandXSize(level), levelY = GDALGetRasterBandYSize(level);
+  const double sx = static_cast<double>(this->RasterSize[0]) / levelX;
+  const double sy = static_cast<double>(this->RasterSize[1]) / levelY;
+  const int* w = this->SubWindow;
+  if (w[0] < 0 || w[1] < 0 || w[2] < 0 || w[3] < 0 || w[0] >= this->RasterSize[0] ||
+    w[1] >= this->RasterSize[1] || w[0] + static_cast<vtkTypeInt64>(w[2]) > this->RasterSize[0] ||
+    w[1] + static_cast<vtkTypeInt64>(w[3]) > this->RasterSize[1])
+  {
+    vtkErrorMacro(<< "SubWindow (" << w[0] << ", " << w[1] << ", " << w[2] << ", " << w[3]
+                  << ") is not inside the " << this->RasterSize[0] << " x "
+                  << this->RasterSize[1] << " raster");
+    return 0;
+  }
+  const int wx = w[2] ? w[2] : this->RasterSize[0] - w[0];
+  const int wy = w[3] ? w[3] : this->RasterSize[1] - w[1];
+  // Window in level pixels: the level pixels that cover the full-resolution window.
+  d.Window[0] = static_cast<int>(std::floor(w[0] / sx));
+  d.Window[1] = static_cast<int>(std::floor(w[1] / sy));
+  d.Window[2] =
+    std::min(levelX, static_cast<int>(std::ceil((w[0] + wx) / sx))) - d.Window[0];
+  d.Window[3] =
+    std::min(levelY, static_cast<int>(std::ceil((w[1] + wy) / sy))) - d.Window[1];
+  d.Factor = this->Decimation;
+  d.Out[0] = d.Window[2] / d.Factor;
+  d.Out[1] = d.Window[3] / d.Factor;
+  if (d.Out[0] < 2 || d.Out[1] < 2)
+  {
+    vtkErrorMacro(<< "'" << name << "' gives a " << d.Out[0] << " x " << d.Out[1]
+                  << " grid (after subwindow, overview and decimation); at least 2 x 2 "
+                     "cells are needed");
+    return 0;
+  }
+
+  // Output grid geometry (pixel-is-area: geotransforms give cell edges).
+  const double levelDx = gt[1] * sx, levelDy = gt[5] * sy; // levelDy < 0 for north-up
+  d.Spacing[0] = d.Factor * levelDx;
+  d.Spacing[1] = d.Factor * std::fabs(levelDy);
+  const double west = gt[0] + d.Window[0] * levelDx;
+  const double firstRowEdge = gt[3] + d.Window[1] * levelDy;
+  const double south =
+    d.SouthUp ? firstRowEdge : firstRowEdge + static_cast<double>(d.Out[1]) * d.Factor * levelDy;
+  d.Origin[0] = west + 0.5 * d.Spacing[0];
+  d.Origin[1] = south + 0.5 * d.Spacing[1];
+
+  // Sample conversion: nodata, scale/offset and vertical unit, from the base band.
+  int has = 0;
+  const double scale = GDALGetRasterScale(base, &has);
+  d.Scale = has && scale != 0 ? scale : 1.0;
+  const double offset = GDALGetRasterOffset(base, &has);
+  d.Offset = has ? offset : 0.0;
+  const char* unit = GDALGetRasterUnitType(base);
+  double metres = MetresPerUnit(unit);
+  if (metres == 0.0)
+  {
+    vtkWarningMacro(<< "'" << name << "' band " << d.Band << " has the unknown unit '" << unit
+                    << "'; treating elevations as metres");
+    metres = 1.0;
+  }
+  d.Scale *= metres;
+  d.Offset *= metres;
+  const double nodata = GDALGetRasterNoDataValue(level, &has);
+  d.HasNoData = has != 0;
+  d.NoData = nodata;
+  this->HasNoDataValue = d.HasNoData;
+  this->NoDataValue = nodata;
+  const int flags = GDALGetMaskFlags(level);
+  d.UseMask = !(flags & (GMF_ALL_VALID | GMF_NODATA));
+
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  int whole[6] = { 0, d.Out[0] - 1, 0, d.Out[1] - 1, 0, 0 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+  outInfo->Set(vtkDataObject::SPACING(), d.Spacing[0], d.Spacing[1], 1.0);
+  outInfo->Set(vtkDataObject::ORIGIN(), d.Origin[0], d.Origin[1], 0.0);
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  d.Valid = true;
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureDEMReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  Internals& d = *this->Impl;
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = vtkImageData::GetData(outInfo);
+  if (!d.Valid)
+  {
+    vtkErrorMacro(<< "no valid raster information (see the previous error)");
+    return 0;
+  }
+  int ext[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+  ext[0] = std::max(ext[0], 0);
+  ext[2] = std::max(ext[2], 0);
+  ext[1] = std::min(ext[1], d.Out[0] - 1);
+  ext[3] = std::min(ext[3], d.Out[1] - 1);
+  ext[4] = ext[5] = 0;
+  if (ext[1] < ext[0] || ext[3] < ext[2])
+  {
+    return 1; // empty request
+  }
+  const size_t ncols = static_cast<size_t>(ext[1] - ext[0] + 1);
+  const size_t nrows = static_cast<size_t>(ext[3] - ext[2] + 1);
+  const size_t f = static_cast<size_t>(d.Factor);
+
+  // Memory: refuse before allocating anything large.
+  size_t cells = 0, bytes = 0;
+  const vtkTypeInt64 limit = this->MemoryLimit > 0 ? this->MemoryLimit : PhysicalMemory();
+  if (ap_size_mul(ncols, nrows, &cells) != AP_OK ||
+    ap_size_mul(cells, sizeof(float), &bytes) != AP_OK ||
+    bytes > static_cast<size_t>(limit))
+  {
+    vtkErrorMacro(<< "reading " << ncols << " x " << nrows << " cells of '" << this->FileName
+                  << "' needs " << HumanBytes(static_cast<double>(ncols) * nrows * 4.0)
+                  << " as float32, more than the " << HumanBytes(static_cast<double>(limit))
+                  << (this->MemoryLimit > 0 ? " MemoryLimit" : " of memory on this machine")
+                  << "; read a SubWindow, or use Decimation or an OverviewLevel");
+    return 0;
+  }
+
+  std::string error;
+  DatasetHandle ds;
+  if (!Internals::Open(this->FileName, ds, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  if (GDALGetRasterCount(ds.H) < d.Band)
+  {
+    vtkErrorMacro(<< "'" << this->FileName << "' changed since its information was read");
+    return 0;
+  }
+  GDALRasterBandH band = GDALGetRasterBand(ds.H, d.Band);
+  if (d.Level >= 0)
+  {
+    band = GDALGetOverview(band, d.Level);
+  }
+  GDALRasterBandH mask = d.UseMask ? GDALGetMaskBand(band) : nullptr;
+
+  vtkNew<vtkFloatArray> elevation;
+  elevation->SetName("Elevation");
+  elevation->SetNumberOfTuples(static_cast<vtkIdType>(cells));
+  float* out = elevation->GetPointer(0);
+
+  // Read strips of whole output rows, top (file order) to bottom, each at most ~32 MiB of
+  // double samples; convert, mask, block-average, and place each output row.
+  const size_t srcCols = ncols * f;
+  const size_t rowsPerStrip =
+    std::max<size_t>(1, (32u << 20) / std::max<size_t>(1, srcCols * f * sizeof(double)));
+  std::vector<double> raw;
+  std::vector<float> conv;
+  std::vector<unsigned char> valid;
+  ap_sample_params sp;
+  ap_sample_params_init(&sp);
+  sp.has_nodata = d.HasNoData;
+  sp.nodata = d.NoData;
+  sp.scale = d.Scale;
+  sp.offset = d.Offset;
+  // Output rows from the file's first row: r = 0 .. nrows-1 of the request, in file order.
+  // North-up: request row r (file order) is output row ext[3] - r; south-up: ext[2] + r.
+  const int firstFileRow = d.SouthUp ? ext[2] : (d.Out[1] - 1 - ext[3]);
+  vtkApertureGDALErrorTrap trap;
+  for (size_t r0 = 0; r0 < nrows; r0 += rowsPerStrip)
+  {
+    const size_t k = std::min(rowsPerStrip, nrows - r0);
+    const size_t srcRows = k * f;
+    raw.resize(srcRows * srcCols);
+    conv.resize(srcRows * srcCols);
+    const int xoff = d.Window[0] + ext[0] * d.Factor;
+    const int yoff = d.Window[1] + (firstFileRow + static_cast<int>(r0)) * d.Factor;
+    if (GDALRasterIO(band, GF_Read, xoff, yoff, static_cast<int>(srcCols),
+          static_cast<int>(srcRows), raw.data(), static_cast<int>(srcCols),
+          static_cast<int>(srcRows), GDT_Float64, 0, 0) != CE_None)
+    {
+      vtkErrorMacro(<< "GDAL failed reading '" << this->FileName
+                    << "': " << trap.Message("unknown error"));
+      return 0;
+    }
+    const ap_status st = ap_samples_to_elevation(raw.data(), raw.size(), &sp, conv.data());
+    if (st != AP_OK)
+    {
+      vtkErrorMacro(<< "converting samples: " << ap_status_string(st));
+      return 0;
+    }
+    if (mask)
+    {
+      valid.resize(srcRows * srcCols);
+      if (GDALRasterIO(mask, GF_Read, xoff, yoff, static_cast<int>(srcCols),
+            static_cast<int>(srcRows), valid.data(), static_cast<int>(srcCols),
+            static_cast<int>(srcRows), GDT_Byte, 0, 0) != CE_None)
+      {
+        vtkErrorMacro(<< "GDAL failed reading the mask of '" << this->FileName
+                      << "': " << trap.Message("unknown error"));
+        return 0;
+      }
+      for (size_t q = 0; q < valid.size(); ++q)
+      {
+        if (!valid[q])
+        {
+          conv[q] = NAN;
+        }
+      }
+    }
+    for (size_t r = 0; r < k; ++r)
+    {
+      const size_t fileRow = r0 + r;
+      const size_t outRow =
+        d.SouthUp ? fileRow : (nrows - 1 - fileRow); // relative to ext[2]
+      float* dst = out + outRow * ncols;
+      const float* src = conv.data() + r * f * srcCols;
+      if (f == 1)
+      {
+        std::copy(src, src + ncols, dst);
+      }
+      else
+      {
+        ap_block_mean(src, srcCols, static_cast<ptrdiff_t>(srcCols), f, dst);
+      }
+    }
+    this->UpdateProgress(static_cast<double>(r0 + k) / static_cast<double>(nrows));
+    if (this->GetAbortExecute())
+    {
+      return 0;
+    }
+  }
+
+  // A whole raster of nodata is an error; a piece of one may legitimately be empty.
+  const bool whole =
+    ext[0] == 0 && ext[2] == 0 && ext[1] == d.Out[0] - 1 && ext[3] == d.Out[1] - 1;
+  if (whole)
+  {
+    const ap_grid_view g = ap_grid_view_make(out, ncols, nrows);
+    ap_grid_stats stats;
+    if (ap_grid_stats_compute(&g, &stats) == AP_OK && stats.valid == 0)
+    {
+      vtkErrorMacro(<< "every cell of '" << this->FileName << "' band " << d.Band
+                    << " is nodata");
+      return 0;
+    }
+  }
+
+  output->SetExtent(ext);
+  output->SetOrigin(d.Origin[0], d.Origin[1], 0.0);
+  output->SetSpacing(d.Spacing[0], d.Spacing[1], 1.0);
+  output->GetPointData()->SetScalars(elevation);
+  vtkNew<vtkApertureGeoreference> geo;
+  geo->SetCRS(d.CRS.c_str());
+  geo->AttachToImage(output);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkApertureDEMReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "BandIndex: " << this->BandIndex << "\n";
+  os << indent << "SubWindow: " << this->SubWindow[0] << ", " << this->SubWindow[1] << ", "
+     << this->SubWindow[2] << ", " << this->SubWindow[3] << "\n";
+  os << indent << "OverviewLevel: " << this->OverviewLevel << "\n";
+  os << indent << "Decimation: " << this->Decimation << "\n";
+  os << indent << "OverrideCRS: " << (this->OverrideCRS ? this->OverrideCRS : "(none)") << "\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
+  os << indent << "RasterSize: " << this->RasterSize[0] << ", " << this->RasterSize[1] << "\n";
+  os << indent << "NumberOfBands: " << this->NumberOfBands << "\n";
+  os << indent << "BandRead: " << this->BandRead << "\n";
+  os << indent << "HasNoDataValue: " << this->HasNoDataValue << "\n";
+  os << indent << "NoDataValue: " << this->NoDataValue << "\n";
+}

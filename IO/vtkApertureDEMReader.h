@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkApertureDEMReader
+ * @brief   Read a single-band elevation raster (any format GDAL opens) as a 2-D DEM image.
+ *
+ * Output: a vtkImageData with one float32 point array `Elevation` in metres: the band's scale
+ * and offset are applied, and a band unit of feet or US survey feet is converted. Nodata
+ * (the band's nodata value, a GDAL mask, NaN, or a value that does not fit a float) becomes
+ * NaN. The grid follows vtkApertureGeoreference's conventions: origin and spacing in CRS
+ * units, origin at the centre of the south-west cell, row 0 south, identity direction. North-up
+ * and south-up rasters both come out north-up (rows are flipped once, here). The CRS (WKT) and
+ * the GeoTransform of the output grid are in the output's field data.
+ *
+ * Options:
+ * - BandIndex: 1-based band; 0 (default) reads band 1 and warns when the raster has several.
+ * - SubWindow: (x offset, y offset, columns, rows) in full-resolution pixels of the file,
+ *   GDAL's convention (offsets from the top-left corner, like `gdal_translate -srcwin`);
+ *   columns or rows of 0 extend to the raster edge.
+ * - OverviewLevel: read GDAL overview k (0 = the first, coarsest-but-one) instead of the full
+ *   resolution; -1 (default) reads full resolution.
+ * - Decimation: an integer factor f >= 1; each output cell is the mean of the valid cells of an
+ *   f x f block (nodata ignored; all-nodata blocks stay nodata); a partial block at the east or
+ *   south edge is dropped. Applied after the overview and subwindow.
+ * - OverrideCRS: a CRS (WKT, "EPSG:xxxx", PROJ string) used instead of the file's.
+ * - MemoryLimit: the most bytes one update may allocate for the output; 0 (default) means the
+ *   machine's physical memory.
+ *
+ * The reader honours the pipeline's update extent: a sub-extent request reads only those rows
+ * and columns from the file.
+ *
+ * Errors (vtkErrorMacro, failed update, empty output): a missing file, a file GDAL cannot
+ * open, a band that does not exist, no georeference (no geotransform, or ground control points
+ * only), a rotated or mirrored geotransform, no CRS (without OverrideCRS), fewer than 2 x 2
+ * output cells, a whole raster of nodata, and an output larger than MemoryLimit.
+ *
+ * @sa vtkApertureDEMWriter vtkApertureGeoreference vtkApertureTerrainMesh
+ */
+#ifndef vtkApertureDEMReader_h
+#define vtkApertureDEMReader_h
+
+#include "ApertureIOModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+
+class APERTUREIO_EXPORT vtkApertureDEMReader : public vtkImageAlgorithm
+{
+public:
+  static vtkApertureDEMReader* New();
+  vtkTypeMacro(vtkApertureDEMReader, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** The raster to read (a path, or any GDAL dataset name such as /vsizip/...). */
+  vtkSetFilePathMacro(FileName);
+  vtkGetFilePathMacro(FileName);
+  ///@}
+
+  ///@{
+  /** 1-based band index; 0 (default) = band 1, with a warning if the raster has several. */
+  vtkSetClampMacro(BandIndex, int, 0, VTK_INT_MAX);
+  vtkGetMacro(BandIndex, int);
+  ///@}
+
+  ///@{
+  /** Subwindow (x offset, y offset, columns, rows) in full-resolution file pixels from the
+   *  top-left corner; columns/rows 0 extend to the edge. Default (0, 0, 0, 0) = everything. */
+  vtkSetVector4Macro(SubWindow, int);
+  vtkGetVector4Macro(SubWindow, int);
+  ///@}
+
+  ///@{
+  /** GDAL overview level to read (0-based); -1 (default) = full resolution. */
+  vtkSetClampMacro(OverviewLevel, int, -1, VTK_INT_MAX);
+  vtkGetMacro(OverviewLevel, int);
+  ///@}
+
+  ///@{
+  /** Block-mean decimation factor, >= 1 (default 1 = none). */
+  vtkSetClampMacro(Decimation, int, 1, VTK_INT_MAX);
+  vtkGetMacro(Decimation, int);
+  ///@}
+
+  ///@{
+  /** CRS to use instead of the file's (WKT, "EPSG:xxxx", PROJ string); empty = the file's. */
+  vtkSetStringMacro(OverrideCRS);
+  vtkGetStringMacro(OverrideCRS);
+  ///@}
+
+  ///@{
+  /** Largest output one update may allocate, bytes; 0 (default) = physical memory. */
+  vtkSetClampMacro(MemoryLimit, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
+  vtkGetMacro(MemoryLimit, vtkTypeInt64);
+  ///@}
+
+  ///@{
+  /** Facts about the file, valid after UpdateInformation(): GDAL driver short name, raster
+   *  size in full-resolution pixels, band count, the band read, and its nodata value. */
+  const char* GetDriverName();
+  vtkGetVector2Macro(RasterSize, int);
+  vtkGetMacro(NumberOfBands, int);
+  vtkGetMacro(BandRead, int);
+  vtkGetMacro(HasNoDataValue, bool);
+  vtkGetMacro(NoDataValue, double);
+  ///@}
+
+protected:
+  vtkApertureDEMReader();
+  ~vtkApertureDEMReader() override;
+
+  int RequestInformation(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  char* FileName;
+  int BandIndex;
+  int SubWindow[4];
+  int OverviewLevel;
+  int Decimation;
+  char* OverrideCRS;
+  vtkTypeInt64 MemoryLimit;
+
+  int RasterSize[2];
+  int NumberOfBands;
+  int BandRead;
+  bool HasNoDataValue;
+  double NoDataValue;
+
+private:
+  vtkApertureDEMReader(const vtkApertureDEMReader&) = delete;
+  void operator=(const vtkApertureDEMReader&) = delete;
+
+  struct Internals;
+  Internals* Impl;
+};
+
+#endif

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkApertureDEMWriter
+ * @brief   Write point arrays of a DEM image to a georeferenced GeoTIFF, one band per component.
+ *
+ * Input: a 2-D vtkImageData following vtkApertureGeoreference's conventions (origin and
+ * spacing in CRS units, `CRS` in the field data). The GeoTIFF gets the same georeference
+ * (geotransform from the image geometry, north-up; the CRS from the field data; without a CRS
+ * the file is written without one and a warning says so).
+ *
+ * Bands: every point array named in ArrayNames, in that order (all point arrays, in the image's
+ * order, when the list is empty). A one-component array is one band described by its name; an
+ * array of c > 1 components gives c bands described `<name>_<component name>`, or
+ * `<name>_<k>` where the component has no name. Band metadata added with AddBandMetadata
+ * is attached to the bands whose description starts with the given array name.
+ *
+ * Samples: Float32 bands, or Float64 when any written array is double. NaN is the nodata value
+ * and is declared as such. Compression: DEFLATE with the floating-point predictor, tiled
+ * 256 x 256, BigTIFF when needed; Compression may name another GeoTIFF codec (LZW, ZSTD,
+ * NONE, ...).
+ *
+ * Errors (vtkErrorMacro, nothing left behind): no file name, an input that is not 2-D, a named
+ * array that does not exist, an array that is not numeric, or GDAL failing to create or write.
+ * @sa vtkApertureDEMReader vtkApertureGeoreference
+ */
+#ifndef vtkApertureDEMWriter_h
+#define vtkApertureDEMWriter_h
+
+#include "ApertureIOModule.h" // for export macro
+#include "vtkWriter.h"
+
+class vtkImageData;
+
+class APERTUREIO_EXPORT vtkApertureDEMWriter : public vtkWriter
+{
+public:
+  static vtkApertureDEMWriter* New();
+  vtkTypeMacro(vtkApertureDEMWriter, vtkWriter);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** The GeoTIFF to write (replaced if it exists). */
+  vtkSetFilePathMacro(FileName);
+  vtkGetFilePathMacro(FileName);
+  ///@}
+
+  ///@{
+  /** Point arrays to write, in order; empty (default) = all point arrays. */
+  void AddArrayName(const char* name);
+  void ClearArrayNames();
+  int GetNumberOfArrayNames();
+  const char* GetArrayName(int i);
+  ///@}
+
+  ///@{
+  /** GeoTIFF COMPRESS option. Default "DEFLATE". */
+  vtkSetStringMacro(Compression);
+  vtkGetStringMacro(Compression);
+  ///@}
+
+  ///@{
+  /** Dataset metadata (key = value, the GeoTIFF's GDAL metadata domain), written with the file. */
+  void AddMetadata(const char* key, const char* value);
+  /** Metadata for the bands of one array (all its components). */
+  void AddBandMetadata(const char* arrayName, const char* key, const char* value);
+  void ClearMetadata();
+  ///@}
+
+  vtkImageData* GetInput();
+
+protected:
+  vtkApertureDEMWriter();
+  ~vtkApertureDEMWriter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  void WriteData() override;
+
+  char* FileName;
+  char* Compression;
+
+private:
+  vtkApertureDEMWriter(const vtkApertureDEMWriter&) = delete;
+  void operator=(const vtkApertureDEMWriter&) = delete;
+
+  struct Internals;
+  Internals* Impl;
+};
+
+#endif
