@@ -394,8 +394,22 @@ bool vtkApertureGeoreference::CRSToLonLatPoints(vtkIdType n, const double* xy, d
   {
     return false;
   }
-  vtkApertureGDALErrorTrap trap;
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (OSRIsGeographic(d.CRS))
+  {
+    // A geographic CRS to its own geographic form is the identity up to units and prime
+    // meridian: no need to go through PROJ for every point.
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      const double x = xy[2 * k], y = xy[2 * k + 1];
+      const bool good = std::isfinite(x) && std::isfinite(y);
+      lonlat[2 * k] = good ? x * d.UnitToDegrees + d.PrimeMeridianDegrees : nan;
+      lonlat[2 * k + 1] = good ? y * d.UnitToDegrees : nan;
+    }
+    d.Error.clear();
+    return true;
+  }
+  vtkApertureGDALErrorTrap trap;
   // OCTTransformEx works on separate x and y arrays; do it in blocks to bound the scratch.
   const vtkIdType block = 4096;
   double xs[4096], ys[4096];

@@ -8,7 +8,8 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
-#include "vtkIdTypeArray.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -17,6 +18,8 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPThreadLocalObject.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
@@ -26,13 +29,18 @@
 #include <GeographicLib/Geocentric.hpp>
 #include <GeographicLib/LocalCartesian.hpp>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 vtkStandardNewMacro(vtkApertureTerrainMesh);
 
-static_assert(sizeof(vtkIdType) == sizeof(int64_t), "the C core writes 64-bit vertex ids");
+static_assert(sizeof(vtkTypeInt64) == sizeof(int64_t), "the C core writes 64-bit vertex ids");
 
 //------------------------------------------------------------------------------
 vtkApertureTerrainMesh::vtkApertureTerrainMesh()
@@ -129,13 +137,23 @@ int vtkApertureTerrainMesh::RequestData(
     return 0;
   }
 
-  // 3. Elevations as float with NaN for nodata (copy: the input may be double or SOA).
-  std::vector<float> z(static_cast<size_t>(n));
-  for (vtkIdType k = 0; k < n; ++k)
-  {
-    z[static_cast<size_t>(k)] = static_cast<float>(elevation->GetComponent(k, 0));
-  }
-  const ap_grid_view grid = ap_grid_view_make(z.data(), nx, ny);
+  // 3. Elevations as contiguous float with NaN for nodata (a copy: the input may be double or
+  //    not array-of-structs, and points outside the CRS's domain become nodata below).
+  std::unique_ptr<float[]> zBuffer(new float[static_cast<size_t>(n)]);
+  float* z = zBuffer.get();
+  vtkFloatArray* floatElevation = vtkFloatArray::SafeDownCast(elevation);
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    if (floatElevation)
+    {
+      std::copy(floatElevation->GetPointer(begin), floatElevation->GetPointer(end), z + begin);
+      return;
+    }
+    for (vtkIdType k = begin; k < end; ++k)
+    {
+      z[k] = static_cast<float>(elevation->GetComponent(k, 0));
+    }
+  });
+  const ap_grid_view grid = ap_grid_view_make(z, nx, ny);
   ap_grid_stats stats;
   ap_status st = ap_grid_stats_compute(&grid, &stats);
   if (st != AP_OK)
@@ -150,124 +168,175 @@ int vtkApertureTerrainMesh::RequestData(
   }
   this->UpdateProgress(0.1);
 
-  // 4. Geographic coordinates of every point.
-  std::vector<double> xy(2 * static_cast<size_t>(n)), ll(2 * static_cast<size_t>(n));
-  for (size_t j = 0; j < ny; ++j)
-  {
-    for (size_t i = 0; i < nx; ++i)
-    {
-      const size_t k = j * nx + i;
-      xy[2 * k] = origin[0] + (ext[0] + static_cast<double>(i)) * spacing[0];
-      xy[2 * k + 1] = origin[1] + (ext[2] + static_cast<double>(j)) * spacing[1];
-    }
-  }
-  if (!geo->CRSToLonLatPoints(n, xy.data(), ll.data()))
-  {
-    vtkErrorMacro(<< geo->GetErrorMessage());
-    return 0;
-  }
-  xy.clear();
-  xy.shrink_to_fit();
-  vtkIdType unprojectable = 0;
-  for (vtkIdType k = 0; k < n; ++k)
-  {
-    if (std::isnan(ll[2 * k]) && !std::isnan(z[static_cast<size_t>(k)]))
-    {
-      z[static_cast<size_t>(k)] = std::numeric_limits<float>::quiet_NaN();
-      ++unprojectable;
-    }
-  }
-  if (unprojectable)
-  {
-    vtkWarningMacro(<< unprojectable << " points lie outside the domain of the CRS '"
-                    << geo->GetCRSName() << "' and are treated as nodata");
-  }
-  if (this->GetAbortExecute())
-  {
-    return 0;
-  }
-  this->UpdateProgress(0.4);
-
-  // 5. East-North-Up positions (GeographicLib LocalCartesian; Forward is const, so threads
-  //    can share it). Nodata points get NaN here, which the normals kernel skips.
+  // 4. Vertex positions, in parallel blocks of rows: CRS -> geographic (one transformer per
+  //    thread; OGR transformations are not thread-safe) -> East-North-Up with GeographicLib's
+  //    LocalCartesian (Forward is const). Each point is computed alone, so the result does not
+  //    depend on the threads. `enu` keeps NaN for nodata, which the normals kernel skips;
+  //    the output points put nodata vertices at finite places (on the grid, at the lowest
+  //    valid height) so bounds and pickers stay sane; no triangle uses them.
+  const std::string crs = geo->GetCRS();
   const double exaggeration = this->VerticalExaggeration;
   const double parkHeight = exaggeration * stats.min;
-  std::vector<double> enu(3 * static_cast<size_t>(n));
+  std::unique_ptr<double[]> enuBuffer(new double[3 * static_cast<size_t>(n)]);
+  double* enu = enuBuffer.get();
+  vtkNew<vtkPoints> points;
+  points->SetDataType(this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT);
+  points->SetNumberOfPoints(n);
+  vtkDataArray* pointData = points->GetData();
+  float* outFloat = this->OutputPointsPrecision == DOUBLE_PRECISION
+    ? nullptr
+    : static_cast<vtkFloatArray*>(pointData)->GetPointer(0);
+  double* outDouble = outFloat ? nullptr : static_cast<vtkDoubleArray*>(pointData)->GetPointer(0);
+  vtkSMPThreadLocalObject<vtkApertureGeoreference> transformers;
+  vtkSMPThreadLocal<vtkIdType> unprojectable(0);
+  std::atomic<bool> failed(false);
   try
   {
     const GeographicLib::Geocentric earth(ellipsoid[0], ellipsoid[1]);
     const GeographicLib::LocalCartesian frame(lonlat0[1], lonlat0[0], 0.0, earth);
-    vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType k = begin; k < end; ++k)
+    const vtkIdType grain = std::max<vtkIdType>(1, 65536 / static_cast<vtkIdType>(nx));
+    vtkSMPTools::For(0, static_cast<vtkIdType>(ny), grain, [&](vtkIdType j0, vtkIdType j1) {
+      vtkApertureGeoreference* local = transformers.Local();
+      if (!local->HasCRS() && !local->SetCRS(crs.c_str()))
       {
-        double* p = &enu[3 * static_cast<size_t>(k)];
-        const float h = z[static_cast<size_t>(k)];
-        if (std::isnan(h))
+        failed = true;
+        return;
+      }
+      const size_t first = static_cast<size_t>(j0) * nx;
+      const size_t count = static_cast<size_t>(j1 - j0) * nx;
+      std::vector<double> xy(2 * count), ll(2 * count);
+      for (size_t q = 0; q < count; ++q)
+      {
+        const size_t i = q % nx, j = static_cast<size_t>(j0) + q / nx;
+        xy[2 * q] = origin[0] + (ext[0] + static_cast<double>(i)) * spacing[0];
+        xy[2 * q + 1] = origin[1] + (ext[2] + static_cast<double>(j)) * spacing[1];
+      }
+      if (!local->CRSToLonLatPoints(static_cast<vtkIdType>(count), xy.data(), ll.data()))
+      {
+        failed = true;
+        return;
+      }
+      for (size_t q = 0; q < count; ++q)
+      {
+        const size_t k = first + q;
+        double* p = &enu[3 * k];
+        const double lat = ll[2 * q + 1], lon = ll[2 * q];
+        double stored[3] = { 0.0, 0.0, parkHeight };
+        if (std::isnan(lon) && !std::isnan(z[k]))
+        {
+          z[k] = std::numeric_limits<float>::quiet_NaN(); // outside the CRS's domain
+          ++unprojectable.Local();
+        }
+        if (std::isnan(z[k]))
         {
           p[0] = p[1] = p[2] = std::numeric_limits<double>::quiet_NaN();
-          continue;
+          if (!std::isnan(lon))
+          {
+            frame.Forward(lat, lon, parkHeight, stored[0], stored[1], stored[2]);
+          }
         }
-        frame.Forward(ll[2 * k + 1], ll[2 * k], exaggeration * h, p[0], p[1], p[2]);
+        else
+        {
+          frame.Forward(lat, lon, exaggeration * z[k], p[0], p[1], p[2]);
+          std::copy(p, p + 3, stored);
+        }
+        if (outFloat)
+        {
+          for (int c = 0; c < 3; ++c)
+          {
+            outFloat[3 * k + c] = static_cast<float>(stored[c]);
+          }
+        }
+        else
+        {
+          std::copy(stored, stored + 3, outDouble + 3 * k);
+        }
       }
     });
-    // Keep nodata vertices at finite places (on the grid, at the lowest valid height) so
-    // bounds and pickers stay sane; no triangle uses them.
-    vtkNew<vtkPoints> points;
-    points->SetDataType(
-      this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT);
-    points->SetNumberOfPoints(n);
-    for (vtkIdType k = 0; k < n; ++k)
-    {
-      const double* p = &enu[3 * static_cast<size_t>(k)];
-      if (!std::isnan(p[0]))
-      {
-        points->SetPoint(k, p);
-        continue;
-      }
-      double q[3] = { 0.0, 0.0, parkHeight };
-      if (!std::isnan(ll[2 * k]))
-      {
-        frame.Forward(ll[2 * k + 1], ll[2 * k], parkHeight, q[0], q[1], q[2]);
-      }
-      points->SetPoint(k, q);
-    }
-    output->SetPoints(points);
   }
   catch (const std::exception& e)
   {
     vtkErrorMacro(<< "GeographicLib: " << e.what());
     return 0;
   }
-  this->UpdateProgress(0.7);
-
-  // 6. Triangles, with holes at nodata.
-  size_t maxTri = 0;
-  st = ap_mesh_max_triangles(nx, ny, &maxTri);
-  if (st != AP_OK)
+  if (failed)
   {
-    vtkErrorMacro(<< "triangle count: " << ap_status_string(st));
+    vtkErrorMacro(<< "converting the DEM's coordinates to geographic failed: "
+                  << geo->GetErrorMessage());
     return 0;
   }
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(static_cast<vtkIdType>(3 * maxTri));
-  size_t ntri = 0;
-  st = ap_mesh_triangulate(&grid, reinterpret_cast<int64_t*>(connectivity->GetPointer(0)),
-    maxTri, &ntri);
+  vtkIdType outside = 0;
+  for (vtkIdType c : unprojectable)
+  {
+    outside += c;
+  }
+  if (outside)
+  {
+    vtkWarningMacro(<< outside << " points lie outside the domain of the CRS '"
+                    << geo->GetCRSName() << "' and are treated as nodata");
+  }
+  pointData->Modified();
+  output->SetPoints(points);
+  if (this->GetAbortExecute())
+  {
+    return 0;
+  }
+  this->UpdateProgress(0.7);
+
+  // 6. Triangles, with holes at nodata: count per quad row, place rows by a prefix sum, fill
+  //    in parallel (same order as a serial run). 32-bit ids whenever they fit.
+  int fit32 = 0;
+  st = ap_mesh_triangulate_validate(&grid, &fit32);
   if (st != AP_OK)
   {
     vtkErrorMacro(<< "triangulation: " << ap_status_string(st));
     return 0;
   }
-  connectivity->Resize(static_cast<vtkIdType>(3 * ntri));
-  connectivity->SetNumberOfValues(static_cast<vtkIdType>(3 * ntri));
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(static_cast<vtkIdType>(ntri + 1));
-  for (size_t t = 0; t <= ntri; ++t)
+  const vtkIdType quadRows = static_cast<vtkIdType>(ny - 1);
+  std::vector<size_t> rowStart(static_cast<size_t>(quadRows) + 1, 0);
+  vtkSMPTools::For(0, quadRows, [&](vtkIdType j0, vtkIdType j1) {
+    for (vtkIdType j = j0; j < j1; ++j)
+    {
+      rowStart[static_cast<size_t>(j) + 1] =
+        ap_mesh_count_rows(&grid, static_cast<size_t>(j), static_cast<size_t>(j) + 1);
+    }
+  });
+  for (size_t j = 1; j < rowStart.size(); ++j)
   {
-    offsets->SetValue(static_cast<vtkIdType>(t), static_cast<vtkIdType>(3 * t));
+    rowStart[j] += rowStart[j - 1];
   }
+  const vtkIdType ntri = static_cast<vtkIdType>(rowStart.back());
   vtkNew<vtkCellArray> polys;
-  polys->SetData(offsets, connectivity);
+  auto fill = [&](auto* offsets, auto* connectivity, auto writeRows) {
+    offsets->SetNumberOfValues(ntri + 1);
+    connectivity->SetNumberOfValues(3 * ntri);
+    auto* ids = connectivity->GetPointer(0);
+    auto* offs = offsets->GetPointer(0);
+    vtkSMPTools::For(0, quadRows, [&](vtkIdType j0, vtkIdType j1) {
+      writeRows(static_cast<size_t>(j0), static_cast<size_t>(j1), ids + 3 * rowStart[j0]);
+    });
+    vtkSMPTools::For(0, ntri + 1, [&](vtkIdType t0, vtkIdType t1) {
+      for (vtkIdType t = t0; t < t1; ++t)
+      {
+        offs[t] = static_cast<typename std::remove_pointer<decltype(offs)>::type>(3 * t);
+      }
+    });
+    polys->SetData(offsets, connectivity);
+  };
+  if (fit32)
+  {
+    vtkNew<vtkTypeInt32Array> offsets, connectivity;
+    fill(offsets.GetPointer(), connectivity.GetPointer(), [&](size_t j0, size_t j1, vtkTypeInt32* out) {
+      ap_mesh_triangulate_rows_i32(&grid, j0, j1, out);
+    });
+  }
+  else
+  {
+    vtkNew<vtkTypeInt64Array> offsets, connectivity;
+    fill(offsets.GetPointer(), connectivity.GetPointer(), [&](size_t j0, size_t j1, vtkTypeInt64* out) {
+      ap_mesh_triangulate_rows(&grid, j0, j1, reinterpret_cast<int64_t*>(out));
+    });
+  }
   output->SetPolys(polys);
 
   // 7. Point data: the DEM's arrays unchanged (vertex id = point id), then ours.
@@ -280,15 +349,14 @@ int vtkApertureTerrainMesh::RequestData(
     normals->SetNumberOfComponents(3);
     normals->SetNumberOfTuples(n);
     float* nptr = normals->GetPointer(0);
-    st = ap_mesh_normals_validate(enu.data(), nx, ny, nptr);
+    st = ap_mesh_normals_validate(enu, nx, ny, nptr);
     if (st != AP_OK)
     {
       vtkErrorMacro(<< "normals: " << ap_status_string(st));
       return 0;
     }
     vtkSMPTools::For(0, static_cast<vtkIdType>(ny), [&](vtkIdType j0, vtkIdType j1) {
-      ap_mesh_normals_rows(
-        enu.data(), nx, ny, static_cast<size_t>(j0), static_cast<size_t>(j1), nptr);
+      ap_mesh_normals_rows(enu, nx, ny, static_cast<size_t>(j0), static_cast<size_t>(j1), nptr);
     });
     outPD->SetNormals(normals);
   }
@@ -299,15 +367,15 @@ int vtkApertureTerrainMesh::RequestData(
     tcoords->SetNumberOfComponents(2);
     tcoords->SetNumberOfTuples(n);
     const double wnx = whole[1] - whole[0] + 1, wny = whole[3] - whole[2] + 1;
+    float* t = tcoords->GetPointer(0);
     for (size_t j = 0; j < ny; ++j)
     {
-      const double v = (ext[2] + static_cast<double>(j) - whole[2] + 0.5) / wny;
+      const float v = static_cast<float>((ext[2] + static_cast<double>(j) - whole[2] + 0.5) / wny);
       for (size_t i = 0; i < nx; ++i)
       {
-        const double u = (ext[0] + static_cast<double>(i) - whole[0] + 0.5) / wnx;
-        const vtkIdType k = static_cast<vtkIdType>(j * nx + i);
-        tcoords->SetTypedComponent(k, 0, static_cast<float>(u));
-        tcoords->SetTypedComponent(k, 1, static_cast<float>(v));
+        const size_t k = j * nx + i;
+        t[2 * k] = static_cast<float>((ext[0] + static_cast<double>(i) - whole[0] + 0.5) / wnx);
+        t[2 * k + 1] = v;
       }
     }
     outPD->SetTCoords(tcoords);

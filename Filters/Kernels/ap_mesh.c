@@ -21,16 +21,41 @@ ap_status ap_mesh_max_triangles(size_t nx, size_t ny, size_t *out)
   return AP_OK;
 }
 
-ap_status ap_mesh_triangulate(const ap_grid_view *g, int64_t *restrict tri, size_t max_tri,
-                              size_t *restrict ntri)
+/* The triangles of quad (i, j) as vertex ids, counter-clockwise; returns how many (0, 1, 2).
+ * Nodes: a = SW, b = SE, c = NE, d = NW. */
+static int quad_triangles(const ap_grid_view *g, size_t i, size_t j, int64_t t[6])
 {
-  size_t i, j, n = 0, cap;
-  ap_status st;
-  if (!tri || !ntri) {
-    return AP_ERR_NULL_POINTER;
+  const float *s = g->z + (ptrdiff_t)j * g->row_stride;
+  const float *nrow = s + g->row_stride;
+  const int64_t a = (int64_t)(j * g->nx + i);
+  const int64_t b = a + 1;
+  const int64_t d = a + (int64_t)g->nx;
+  const int64_t c = d + 1;
+  const int va = !isnan(s[i]), vb = !isnan(s[i + 1]);
+  const int vd = !isnan(nrow[i]), vc = !isnan(nrow[i + 1]);
+  int k = 0;
+  if (va && vb && vc) { /* (SW, SE, NE) */
+    t[k++] = a; t[k++] = b; t[k++] = c;
   }
-  *ntri = 0;
-  st = ap_grid_validate(g, 2, 2);
+  if (va && vc && vd) { /* (SW, NE, NW) */
+    t[k++] = a; t[k++] = c; t[k++] = d;
+  }
+  if (k == 0) {
+    /* The SW-NE diagonal has a nodata end: try the other diagonal, which keeps the
+     * triangle of the three valid nodes when exactly one of SW, NE is missing. */
+    if (va && vb && vd) { /* (SW, SE, NW) */
+      t[k++] = a; t[k++] = b; t[k++] = d;
+    } else if (vb && vc && vd) { /* (SE, NE, NW) */
+      t[k++] = b; t[k++] = c; t[k++] = d;
+    }
+  }
+  return k / 3;
+}
+
+ap_status ap_mesh_triangulate_validate(const ap_grid_view *g, int *ids_fit_i32)
+{
+  size_t cap, nodes;
+  ap_status st = ap_grid_validate(g, 2, 2);
   if (st != AP_OK) {
     return st;
   }
@@ -38,46 +63,75 @@ ap_status ap_mesh_triangulate(const ap_grid_view *g, int64_t *restrict tri, size
   if (st != AP_OK) {
     return st;
   }
-  if ((size_t)INT64_MAX / g->ny < g->nx) {
+  if (ap_size_mul(g->nx, g->ny, &nodes) != AP_OK || nodes > (size_t)INT64_MAX) {
     return AP_ERR_SIZE_OVERFLOW; /* vertex ids must fit in int64 */
   }
-  for (j = 0; j + 1 < g->ny; ++j) {
-    const float *s = g->z + (ptrdiff_t)j * g->row_stride;
-    const float *nrow = s + g->row_stride;
+  if (ids_fit_i32) {
+    *ids_fit_i32 = nodes <= (size_t)INT32_MAX;
+  }
+  return AP_OK;
+}
+
+size_t ap_mesh_count_rows(const ap_grid_view *g, size_t j0, size_t j1)
+{
+  size_t i, j, n = 0;
+  int64_t t[6];
+  for (j = j0; j < j1 && j + 1 < g->ny; ++j) {
     for (i = 0; i + 1 < g->nx; ++i) {
-      const int64_t a = (int64_t)(j * g->nx + i); /* SW */
-      const int64_t b = a + 1;                     /* SE */
-      const int64_t d = a + (int64_t)g->nx;        /* NW */
-      const int64_t c = d + 1;                     /* NE */
-      const int va = !isnan(s[i]), vb = !isnan(s[i + 1]);
-      const int vd = !isnan(nrow[i]), vc = !isnan(nrow[i + 1]);
-      int64_t t[6];
-      size_t k = 0, m;
-      if (va && vb && vc) { /* (SW, SE, NE) */
-        t[k++] = a; t[k++] = b; t[k++] = c;
-      }
-      if (va && vc && vd) { /* (SW, NE, NW) */
-        t[k++] = a; t[k++] = c; t[k++] = d;
-      }
-      if (k == 0) {
-        /* The SW-NE diagonal has a nodata end: try the other diagonal, which keeps the
-         * triangle of the three valid nodes when exactly one of SW, NE is missing. */
-        if (va && vb && vd) { /* (SW, SE, NW) */
-          t[k++] = a; t[k++] = b; t[k++] = d;
-        } else if (vb && vc && vd) { /* (SE, NE, NW) */
-          t[k++] = b; t[k++] = c; t[k++] = d;
-        }
-      }
-      if (n + k / 3 > max_tri) {
-        *ntri = 0;
-        return AP_ERR_BUFFER_TOO_SMALL;
-      }
-      for (m = 0; m < k; ++m) {
-        tri[3 * n + m] = t[m];
-      }
-      n += k / 3;
+      n += (size_t)quad_triangles(g, i, j, t);
     }
   }
+  return n;
+}
+
+/* Write the triangles of quad rows [j0, j1) as 64-bit (wide) or 32-bit ids. */
+static void emit_rows(const ap_grid_view *g, size_t j0, size_t j1, int64_t *wide, int32_t *narrow)
+{
+  size_t i, j;
+  int64_t t[6];
+  int k, m;
+  for (j = j0; j < j1 && j + 1 < g->ny; ++j) {
+    for (i = 0; i + 1 < g->nx; ++i) {
+      m = 3 * quad_triangles(g, i, j, t);
+      for (k = 0; k < m; ++k) {
+        if (wide) {
+          *wide++ = t[k];
+        } else {
+          *narrow++ = (int32_t)t[k];
+        }
+      }
+    }
+  }
+}
+
+void ap_mesh_triangulate_rows(const ap_grid_view *g, size_t j0, size_t j1, int64_t *tri)
+{
+  emit_rows(g, j0, j1, tri, NULL);
+}
+
+void ap_mesh_triangulate_rows_i32(const ap_grid_view *g, size_t j0, size_t j1, int32_t *tri)
+{
+  emit_rows(g, j0, j1, NULL, tri);
+}
+
+ap_status ap_mesh_triangulate(const ap_grid_view *g, int64_t *restrict tri, size_t max_tri,
+                              size_t *restrict ntri)
+{
+  size_t n;
+  ap_status st;
+  if (!tri || !ntri) {
+    return AP_ERR_NULL_POINTER;
+  }
+  *ntri = 0;
+  st = ap_mesh_triangulate_validate(g, NULL);
+  if (st != AP_OK) {
+    return st;
+  }
+  n = ap_mesh_count_rows(g, 0, g->ny - 1);
+  if (n > max_tri) {
+    return AP_ERR_BUFFER_TOO_SMALL;
+  }
+  ap_mesh_triangulate_rows(g, 0, g->ny - 1, tri);
   *ntri = n;
   return AP_OK;
 }

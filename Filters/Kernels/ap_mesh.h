@@ -41,6 +41,22 @@ ap_status ap_mesh_max_triangles(size_t nx, size_t ny, size_t *out);
  */
 ap_status ap_mesh_triangulate(const ap_grid_view *g, int64_t *tri, size_t max_tri, size_t *ntri);
 
+/** Row-range form of ap_mesh_triangulate, for callers that split the work across threads:
+ *  count each range's triangles, place the ranges by a prefix sum, then fill them; the result
+ *  is identical to ap_mesh_triangulate for any split.
+ *
+ *  ap_mesh_triangulate_validate() checks the grid once (as ap_mesh_triangulate does) and
+ *  reports whether vertex ids fit in int32 (*ids_fit_i32, may be NULL). Quad row j spans node
+ *  rows j and j + 1, so quad rows run over [0, ny - 1). The other functions must only be
+ *  called after a successful validate; they are reentrant and never allocate. */
+ap_status ap_mesh_triangulate_validate(const ap_grid_view *g, int *ids_fit_i32);
+/** Number of triangles of quad rows [j0, j1). */
+size_t ap_mesh_count_rows(const ap_grid_view *g, size_t j0, size_t j1);
+/** Write the triangles of quad rows [j0, j1) to tri (exactly ap_mesh_count_rows of them). */
+void ap_mesh_triangulate_rows(const ap_grid_view *g, size_t j0, size_t j1, int64_t *tri);
+/** The same with 32-bit ids; only when validate reported that ids fit in int32. */
+void ap_mesh_triangulate_rows_i32(const ap_grid_view *g, size_t j0, size_t j1, int32_t *tri);
+
 /** Check the arguments of ap_mesh_normals_rows once: non-NULL, at least 2 x 2, sizes addressable. */
 ap_status ap_mesh_normals_validate(const double *xyz, size_t nx, size_t ny, const float *normals);
 

@@ -103,6 +103,45 @@ static void test_holes(void)
   AP_CHECK_EQ_INT(n, 0);
 }
 
+/* Row ranges: counts add up, fills concatenate to the whole-grid result for any split, and
+ * the 32-bit form writes the same ids. */
+static void test_row_ranges(void)
+{
+  enum { NX = 9, NY = 7 };
+  float z[NX * NY] = { 0 };
+  int64_t whole[3 * 2 * (NX - 1) * (NY - 1)], parts[3 * 2 * (NX - 1) * (NY - 1)];
+  int32_t narrow[3 * 2 * (NX - 1) * (NY - 1)];
+  size_t k, n = 0, total = 0, j;
+  int fits = 0;
+  ap_grid_view g = ap_grid_view_make(z, NX, NY);
+  for (k = 0; k < NX * NY; ++k) {
+    z[k] = (k % 7 == 3 || k % 11 == 5) ? NAN : (float)k;
+  }
+  AP_CHECK_EQ_INT(ap_mesh_triangulate_validate(&g, &fits), AP_OK);
+  AP_CHECK(fits);
+  AP_CHECK_EQ_INT(ap_mesh_triangulate(&g, whole, 2 * (NX - 1) * (NY - 1), &n), AP_OK);
+  AP_CHECK(n > 0 && n < 2 * (NX - 1) * (NY - 1));
+  for (j = 0; j + 1 < NY; j += 2) { /* ranges of two quad rows, the last one partial */
+    const size_t j1 = j + 2 < NY - 1 ? j + 2 : NY - 1;
+    const size_t c = ap_mesh_count_rows(&g, j, j1);
+    ap_mesh_triangulate_rows(&g, j, j1, parts + 3 * total);
+    ap_mesh_triangulate_rows_i32(&g, j, j1, narrow + 3 * total);
+    total += c;
+  }
+  AP_CHECK_EQ_INT(total, n);
+  AP_CHECK(memcmp(whole, parts, 3 * n * sizeof(int64_t)) == 0);
+  for (k = 0; k < 3 * n; ++k) {
+    AP_CHECK_EQ_INT(narrow[k], whole[k]);
+  }
+  AP_CHECK_EQ_INT(ap_mesh_count_rows(&g, NY - 1, NY + 5), 0); /* past the last quad row */
+  {
+    /* 50000 x 50000 nodes do not fit 32-bit ids (the view is never read by validate). */
+    ap_grid_view big = ap_grid_view_make(z, 50000, 50000);
+    AP_CHECK_EQ_INT(ap_mesh_triangulate_validate(&big, &fits), AP_OK);
+    AP_CHECK(!fits);
+  }
+}
+
 static void test_triangulate_errors(void)
 {
   float z[4] = { 0, 0, 0, 0 };
@@ -226,6 +265,7 @@ int main(void)
   test_full_grid();
   test_one_nodata_corner();
   test_holes();
+  test_row_ranges();
   test_triangulate_errors();
   test_normals_plane();
   test_normals_sparse();

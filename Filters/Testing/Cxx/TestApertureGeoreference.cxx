@@ -2,6 +2,8 @@
 // vtkApertureGeoreference: CRS parsing, geographic coordinates (projected, geographic, grads
 // from Paris), bounds, metric cell size against closed forms, ellipsoids, field-data round
 // trip and errors.
+#include "aptest.hxx"
+
 #include "vtkApertureGeoreference.h"
 
 #include "vtkDoubleArray.h"
@@ -18,100 +20,78 @@
 
 namespace
 {
-int failures = 0;
-#define CHECK(cond)                                                                              \
-  do                                                                                             \
-  {                                                                                              \
-    if (!(cond))                                                                                 \
-    {                                                                                            \
-      std::fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);              \
-      ++failures;                                                                                \
-    }                                                                                            \
-  } while (0)
-#define CHECK_NEAR(a, b, tol)                                                                    \
-  do                                                                                             \
-  {                                                                                              \
-    const double va = (a), vb = (b);                                                             \
-    if (!(std::fabs(va - vb) <= (tol)))                                                          \
-    {                                                                                            \
-      std::fprintf(stderr, "%s:%d: |%s - %s| <= %g failed: %.15g vs %.15g\n", __FILE__,          \
-        __LINE__, #a, #b, static_cast<double>(tol), va, vb);                                     \
-      ++failures;                                                                                \
-    }                                                                                            \
-  } while (0)
-
 const double kDeg = 3.14159265358979323846 / 180.0;
 
 void TestProjected()
 {
   vtkNew<vtkApertureGeoreference> geo;
-  CHECK(geo->SetCRS("EPSG:32611"));
-  CHECK(geo->HasCRS() && !geo->IsGeographic());
-  CHECK(std::string(geo->GetCRSName()) == "WGS 84 / UTM zone 11N");
-  CHECK(std::string(geo->GetCRSUnitName()) == "metre");
+  AP_CHECK(geo->SetCRS("EPSG:32611"));
+  AP_CHECK(geo->HasCRS() && !geo->IsGeographic());
+  AP_CHECK(std::string(geo->GetCRSName()) == "WGS 84 / UTM zone 11N");
+  AP_CHECK(std::string(geo->GetCRSUnitName()) == "metre");
   // The false origin of UTM zone 11N: the equator on the central meridian, 117 W.
   double ll[2];
-  CHECK(geo->CRSToLonLat(500000.0, 0.0, ll));
-  CHECK_NEAR(ll[0], -117.0, 1e-12);
-  CHECK_NEAR(ll[1], 0.0, 1e-12);
+  AP_CHECK(geo->CRSToLonLat(500000.0, 0.0, ll));
+  AP_CHECK_NEAR(ll[0], -117.0, 1e-12);
+  AP_CHECK_NEAR(ll[1], 0.0, 1e-12);
   double xy[2];
-  CHECK(geo->LonLatToCRS(-118.25, 34.05, xy));
-  CHECK(geo->CRSToLonLat(xy[0], xy[1], ll));
-  CHECK_NEAR(ll[0], -118.25, 1e-9);
-  CHECK_NEAR(ll[1], 34.05, 1e-9);
+  AP_CHECK(geo->LonLatToCRS(-118.25, 34.05, xy));
+  AP_CHECK(geo->CRSToLonLat(xy[0], xy[1], ll));
+  AP_CHECK_NEAR(ll[0], -118.25, 1e-9);
+  AP_CHECK_NEAR(ll[1], 34.05, 1e-9);
   // A 101 x 101 grid of 30 m cells centred on the central meridian: ground cell size 30 / k0.
   geo->SetGrid(500000.0 - 50 * 30.0, 4000000.0, 30.0, 30.0, 101, 101);
   double size[2];
-  CHECK(geo->GetCellSizeMetres(size));
-  CHECK_NEAR(size[0], 30.0 / 0.9996, 1e-6);
-  CHECK_NEAR(size[1], 30.0 / 0.9996, 1e-6);
+  AP_CHECK(geo->GetCellSizeMetres(size));
+  AP_CHECK_NEAR(size[0], 30.0 / 0.9996, 1e-6);
+  AP_CHECK_NEAR(size[1], 30.0 / 0.9996, 1e-6);
   // Bounds: symmetric about 117 W; they enclose the transformed corners.
   double b[4], centre[2];
-  CHECK(geo->GetBoundsLonLat(b));
-  CHECK(geo->GetCentreLonLat(centre));
-  CHECK_NEAR(centre[0], -117.0, 1e-9);
-  CHECK_NEAR(-117.0 - b[0], b[2] + 117.0, 1e-9);
+  AP_CHECK(geo->GetBoundsLonLat(b));
+  AP_CHECK(geo->GetCentreLonLat(centre));
+  AP_CHECK_NEAR(centre[0], -117.0, 1e-9);
+  AP_CHECK_NEAR(-117.0 - b[0], b[2] + 117.0, 1e-9);
   double gt[6];
   geo->GetGeoTransform(gt);
-  CHECK_NEAR(gt[0], 500000.0 - 50 * 30.0 - 15.0, 1e-9);
-  CHECK_NEAR(gt[3], 4000000.0 + 100 * 30.0 + 15.0, 1e-9);
-  CHECK_NEAR(gt[5], -30.0, 0.0);
+  AP_CHECK_NEAR(gt[0], 500000.0 - 50 * 30.0 - 15.0, 1e-9);
+  AP_CHECK_NEAR(gt[3], 4000000.0 + 100 * 30.0 + 15.0, 1e-9);
+  AP_CHECK_NEAR(gt[5], -30.0, 0.0);
   const double corners[4][2] = { { gt[0], gt[3] }, { gt[0] + 101 * 30.0, gt[3] },
     { gt[0], gt[3] - 101 * 30.0 }, { gt[0] + 101 * 30.0, gt[3] - 101 * 30.0 } };
   for (const auto& c : corners)
   {
-    CHECK(geo->CRSToLonLat(c[0], c[1], ll));
-    CHECK(ll[0] >= b[0] - 1e-12 && ll[0] <= b[2] + 1e-12);
-    CHECK(ll[1] >= b[1] - 1e-12 && ll[1] <= b[3] + 1e-12);
+    AP_CHECK(geo->CRSToLonLat(c[0], c[1], ll));
+    AP_CHECK(ll[0] >= b[0] - 1e-12 && ll[0] <= b[2] + 1e-12);
+    AP_CHECK(ll[1] >= b[1] - 1e-12 && ll[1] <= b[3] + 1e-12);
   }
   double ellipsoid[2];
-  CHECK(geo->GetEllipsoid(ellipsoid));
-  CHECK_NEAR(ellipsoid[0], 6378137.0, 0.0);
-  CHECK_NEAR(1.0 / ellipsoid[1], 298.257223563, 1e-9);
+  AP_CHECK(geo->GetEllipsoid(ellipsoid));
+  AP_CHECK_NEAR(ellipsoid[0], 6378137.0, 0.0);
+  AP_CHECK_NEAR(1.0 / ellipsoid[1], 298.257223563, 1e-9);
 }
 
 void TestGeographic()
 {
   vtkNew<vtkApertureGeoreference> geo;
-  CHECK(geo->SetCRS("EPSG:4326"));
-  CHECK(geo->IsGeographic());
-  CHECK(std::string(geo->GetCRSUnitName()) == "degree");
+  AP_CHECK(geo->SetCRS("EPSG:4326"));
+  AP_CHECK(geo->IsGeographic());
+  AP_CHECK(std::string(geo->GetCRSUnitName()) == "degree");
   // 3 arc-second cells at 36.3 N: east-west N cos(lat) dlon, north-south M dlat (closed forms
   // of the prime vertical and meridian radii; the geodesic over 90 m differs by < 1e-9).
   const double cell = 1.0 / 1200.0, lat = 36.3;
   geo->SetGrid(-84.4, lat - 100 * cell, cell, cell, 201, 201);
   double size[2];
-  CHECK(geo->GetCellSizeMetres(size));
+  AP_CHECK(geo->GetCellSizeMetres(size));
   const double a = 6378137.0, f = 1.0 / 298.257223563, e2 = f * (2 - f);
   const double s = std::sin(lat * kDeg), w = std::sqrt(1 - e2 * s * s);
-  CHECK_NEAR(size[0], a / w * std::cos(lat * kDeg) * cell * kDeg, 1e-6);
-  CHECK_NEAR(size[1], a * (1 - e2) / (w * w * w) * cell * kDeg, 1e-6);
+  AP_CHECK_NEAR(size[0], a / w * std::cos(lat * kDeg) * cell * kDeg, 1e-6);
+  AP_CHECK_NEAR(size[1], a * (1 - e2) / (w * w * w) * cell * kDeg, 1e-6);
   double b[4];
-  CHECK(geo->GetBoundsLonLat(b));
-  CHECK_NEAR(b[0], -84.4 - 0.5 * cell, 1e-12);
-  CHECK_NEAR(b[1], lat - 100.5 * cell, 1e-12);
-  CHECK_NEAR(b[2], -84.4 + 200.5 * cell, 1e-12);
-  CHECK_NEAR(b[3], lat + 100.5 * cell, 1e-12);
+  AP_CHECK(geo->GetBoundsLonLat(b));
+  AP_CHECK_NEAR(b[0], -84.4 - 0.5 * cell, 1e-12);
+  AP_CHECK_NEAR(b[1], lat - 100.5 * cell, 1e-12);
+  AP_CHECK_NEAR(b[2], -84.4 + 200.5 * cell, 1e-12);
+  AP_CHECK_NEAR(b[3], lat + 100.5 * cell, 1e-12);
 }
 
 // A geographic CRS in grads counted from Paris (NTF (Paris), EPSG:4807) reports degrees from
@@ -119,41 +99,41 @@ void TestGeographic()
 void TestGradsFromParis()
 {
   vtkNew<vtkApertureGeoreference> geo;
-  CHECK(geo->SetCRS("EPSG:4807"));
+  AP_CHECK(geo->SetCRS("EPSG:4807"));
   double ll[2];
-  CHECK(geo->CRSToLonLat(0.0, 50.0, ll));
-  CHECK_NEAR(ll[0], 2.33722917, 1e-8);
-  CHECK_NEAR(ll[1], 45.0, 1e-9);
+  AP_CHECK(geo->CRSToLonLat(0.0, 50.0, ll));
+  AP_CHECK_NEAR(ll[0], 2.33722917, 1e-8);
+  AP_CHECK_NEAR(ll[1], 45.0, 1e-9);
   double ellipsoid[2];
-  CHECK(geo->GetEllipsoid(ellipsoid));
-  CHECK_NEAR(ellipsoid[0], 6378249.2, 1e-6); // Clarke 1880 (IGN)
+  AP_CHECK(geo->GetEllipsoid(ellipsoid));
+  AP_CHECK_NEAR(ellipsoid[0], 6378249.2, 1e-6); // Clarke 1880 (IGN)
 }
 
 void TestErrors()
 {
   vtkNew<vtkApertureGeoreference> geo;
-  CHECK(!geo->SetCRS("not a CRS at all"));
-  CHECK(std::string(geo->GetErrorMessage()).find("cannot parse") != std::string::npos);
-  CHECK(!geo->HasCRS());
+  AP_CHECK(!geo->SetCRS("not a CRS at all"));
+  AP_CHECK(std::string(geo->GetErrorMessage()).find("cannot parse") != std::string::npos);
+  AP_CHECK(!geo->HasCRS());
   double ll[2];
-  CHECK(!geo->CRSToLonLat(0, 0, ll));
-  CHECK(std::string(geo->GetErrorMessage()).find("no coordinate reference system") !=
+  AP_CHECK(!geo->CRSToLonLat(0, 0, ll));
+  AP_CHECK(std::string(geo->GetErrorMessage()).find("no coordinate reference system") !=
     std::string::npos);
-  CHECK(geo->SetCRS("LOCAL_CS[\"mine site\",UNIT[\"metre\",1]]"));
-  CHECK(!geo->CRSToLonLat(0, 0, ll));
-  CHECK(std::string(geo->GetErrorMessage()).find("no geographic coordinates") !=
+  AP_CHECK(geo->SetCRS("LOCAL_CS[\"mine site\",UNIT[\"metre\",1]]"));
+  AP_CHECK(!geo->CRSToLonLat(0, 0, ll));
+  AP_CHECK(std::string(geo->GetErrorMessage()).find("no geographic coordinates") !=
     std::string::npos);
-  CHECK(geo->SetCRS(nullptr) && !geo->HasCRS());
+  AP_CHECK(geo->SetCRS(nullptr) && !geo->HasCRS());
 
   vtkNew<vtkImageData> image;
   image->SetDimensions(3, 3, 1);
-  CHECK(!geo->SetFromImage(image));
-  CHECK(std::string(geo->GetErrorMessage()).find("has no CRS") != std::string::npos);
-  CHECK(!geo->AttachToImage(image));
-  CHECK(geo->SetCRS("EPSG:4326") && geo->AttachToImage(image));
-  CHECK(geo->SetFromImage(image));
+  AP_CHECK(!geo->SetFromImage(image));
+  AP_CHECK(std::string(geo->GetErrorMessage()).find("has no CRS") != std::string::npos);
+  AP_CHECK(!geo->AttachToImage(image));
+  AP_CHECK(geo->SetCRS("EPSG:4326") && geo->AttachToImage(image));
+  AP_CHECK(geo->SetFromImage(image));
   image->SetSpacing(0.0, 1.0, 1.0);
-  CHECK(!geo->SetFromImage(image));
+  AP_CHECK(!geo->SetFromImage(image));
   image->SetSpacing(1.0, 1.0, 1.0);
   vtkNew<vtkMatrix3x3> rotation;
   rotation->SetElement(0, 0, 0.0);
@@ -161,8 +141,8 @@ void TestErrors()
   rotation->SetElement(1, 0, 1.0);
   rotation->SetElement(1, 1, 0.0);
   image->SetDirectionMatrix(rotation);
-  CHECK(!geo->SetFromImage(image));
-  CHECK(std::string(geo->GetErrorMessage()).find("north-up") != std::string::npos);
+  AP_CHECK(!geo->SetFromImage(image));
+  AP_CHECK(std::string(geo->GetErrorMessage()).find("north-up") != std::string::npos);
 }
 
 // Field data written by AttachToImage is what SetFromImage and the GeoTransform report.
@@ -173,27 +153,27 @@ void TestFieldData()
   image->SetOrigin(10.0, 20.0, 0.0);
   image->SetSpacing(0.5, 0.25, 1.0);
   vtkNew<vtkApertureGeoreference> geo;
-  CHECK(geo->SetCRS("EPSG:3857") && geo->AttachToImage(image));
+  AP_CHECK(geo->SetCRS("EPSG:3857") && geo->AttachToImage(image));
   auto* gt = vtkDoubleArray::SafeDownCast(image->GetFieldData()->GetArray("GeoTransform"));
-  CHECK(gt != nullptr);
+  AP_CHECK(gt != nullptr);
   if (gt)
   {
-    CHECK_NEAR(gt->GetValue(0), 10.0 + 2 * 0.5 - 0.25, 1e-12);
-    CHECK_NEAR(gt->GetValue(3), 20.0 + 3 * 0.25 + 0.125, 1e-12);
-    CHECK_NEAR(gt->GetValue(5), -0.25, 0.0);
+    AP_CHECK_NEAR(gt->GetValue(0), 10.0 + 2 * 0.5 - 0.25, 1e-12);
+    AP_CHECK_NEAR(gt->GetValue(3), 20.0 + 3 * 0.25 + 0.125, 1e-12);
+    AP_CHECK_NEAR(gt->GetValue(5), -0.25, 0.0);
   }
   vtkNew<vtkApertureGeoreference> back;
-  CHECK(back->SetFromImage(image));
+  AP_CHECK(back->SetFromImage(image));
   int size[2];
   back->GetGridSize(size);
-  CHECK(size[0] == 4 && size[1] == 3);
+  AP_CHECK(size[0] == 4 && size[1] == 3);
   double g2[6];
   back->GetGeoTransform(g2);
   for (int k = 0; gt && k < 6; ++k)
   {
-    CHECK_NEAR(g2[k], gt->GetValue(k), 1e-12);
+    AP_CHECK_NEAR(g2[k], gt->GetValue(k), 1e-12);
   }
-  CHECK(std::string(back->GetCRSName()) == "WGS 84 / Pseudo-Mercator");
+  AP_CHECK(std::string(back->GetCRSName()) == "WGS 84 / Pseudo-Mercator");
 }
 } // namespace
 
@@ -204,9 +184,5 @@ int TestApertureGeoreference(int, char*[])
   TestGradsFromParis();
   TestErrors();
   TestFieldData();
-  if (failures)
-  {
-    std::fprintf(stderr, "%d check(s) failed\n", failures);
-  }
-  return failures ? 1 : 0;
+  return aptest::Result();
 }

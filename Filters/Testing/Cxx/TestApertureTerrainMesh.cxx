@@ -2,6 +2,8 @@
 // vtkApertureTerrainMesh: geometry against the textbook geodetic -> ECEF -> ENU formulas
 // (written here independently of GeographicLib), cell sizes of lat/lon and UTM DEMs against
 // closed forms, nodata holes, carried arrays, exaggeration, and every documented error.
+#include "aptest.hxx"
+
 #include "vtkApertureGeoreference.h"
 #include "vtkApertureTerrainMesh.h"
 
@@ -24,30 +26,6 @@
 
 namespace
 {
-int failures = 0;
-
-#define CHECK(cond)                                                                              \
-  do                                                                                             \
-  {                                                                                              \
-    if (!(cond))                                                                                 \
-    {                                                                                            \
-      std::fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);              \
-      ++failures;                                                                                \
-    }                                                                                            \
-  } while (0)
-
-#define CHECK_NEAR(a, b, tol)                                                                    \
-  do                                                                                             \
-  {                                                                                              \
-    const double va = (a), vb = (b);                                                             \
-    if (!(std::fabs(va - vb) <= (tol)))                                                          \
-    {                                                                                            \
-      std::fprintf(stderr, "%s:%d: |%s - %s| <= %g failed: %.12g vs %.12g\n", __FILE__,          \
-        __LINE__, #a, #b, static_cast<double>(tol), va, vb);                                     \
-      ++failures;                                                                                \
-    }                                                                                            \
-  } while (0)
-
 const double kPi = 3.14159265358979323846;
 const double kDeg = kPi / 180.0;
 // WGS 84
@@ -111,7 +89,7 @@ vtkSmartPointer<vtkImageData> MakeDEM(const char* crs, double x0, double y0, dou
     if (!geo->SetCRS(crs) || !geo->AttachToImage(image))
     {
       std::fprintf(stderr, "cannot attach CRS %s: %s\n", crs, geo->GetErrorMessage());
-      ++failures;
+      ++aptest::Failures();
     }
   }
   return image;
@@ -136,19 +114,19 @@ void TestLatLonGeometry(double latitude, double expectedKm)
   auto dem = MakeDEM("EPSG:4326", lon0, latitude - dl, dl, dl, 3, 3,
     [](int i, int j) { return static_cast<float>(100.0 * i + 10.0 * j); });
   auto mesh = Mesh(dem);
-  CHECK(mesh->GetNumberOfPoints() == 9);
-  CHECK(mesh->GetNumberOfCells() == 8);
+  AP_CHECK(mesh->GetNumberOfPoints() == 9);
+  AP_CHECK(mesh->GetNumberOfCells() == 8);
 
   // Frame origin: the DEM centre = node (1, 1).
   auto* origin = vtkDoubleArray::SafeDownCast(mesh->GetFieldData()->GetArray("FrameOrigin"));
-  CHECK(origin && origin->GetNumberOfValues() == 3);
+  AP_CHECK(origin && origin->GetNumberOfValues() == 3);
   if (!origin)
   {
     return;
   }
-  CHECK_NEAR(origin->GetValue(0), latitude, 1e-12);
-  CHECK_NEAR(origin->GetValue(1), lon0 + dl, 1e-12);
-  CHECK_NEAR(origin->GetValue(2), 0.0, 0.0);
+  AP_CHECK_NEAR(origin->GetValue(0), latitude, 1e-12);
+  AP_CHECK_NEAR(origin->GetValue(1), lon0 + dl, 1e-12);
+  AP_CHECK_NEAR(origin->GetValue(2), 0.0, 0.0);
 
   // Every vertex where the independent ENU formulas put it (1 mm over ~10 km).
   for (int j = 0; j < 3; ++j)
@@ -159,9 +137,9 @@ void TestLatLonGeometry(double latitude, double expectedKm)
       Enu(latitude, lon0 + dl, latitude - dl + j * dl, lon0 + i * dl, 100.0 * i + 10.0 * j,
         expected);
       mesh->GetPoint(j * 3 + i, got);
-      CHECK_NEAR(got[0], expected[0], 1e-3);
-      CHECK_NEAR(got[1], expected[1], 1e-3);
-      CHECK_NEAR(got[2], expected[2], 1e-3);
+      AP_CHECK_NEAR(got[0], expected[0], 1e-3);
+      AP_CHECK_NEAR(got[1], expected[1], 1e-3);
+      AP_CHECK_NEAR(got[2], expected[2], 1e-3);
     }
   }
 
@@ -178,16 +156,16 @@ void TestLatLonGeometry(double latitude, double expectedKm)
   const double e2 = kF * (2.0 - kF), sl = std::sin(latitude * kDeg);
   const double primeVertical = kA / std::sqrt(1.0 - e2 * sl * sl);
   const double chord = 2.0 * primeVertical * std::cos(latitude * kDeg) * std::sin(0.5 * dl * kDeg);
-  CHECK_NEAR(Distance(w, e), chord, 1e-3);
-  CHECK_NEAR(Distance(w, e) / 1000.0, expectedKm, 0.05);
+  AP_CHECK_NEAR(Distance(w, e), chord, 1e-3);
+  AP_CHECK_NEAR(Distance(w, e) / 1000.0, expectedKm, 0.05);
   // ... and the north-south extent: the chord between two points of one meridian.
   double ps[3], pn[3];
   Ecef(latitude - dl, 0.0, 0.0, ps);
   Ecef(latitude, 0.0, 0.0, pn);
-  CHECK_NEAR(Distance(s, n), Distance(ps, pn), 1e-3);
-  CHECK(Distance(s, n) > 11000.0 && Distance(s, n) < 11200.0); // ~111 km per degree
+  AP_CHECK_NEAR(Distance(s, n), Distance(ps, pn), 1e-3);
+  AP_CHECK(Distance(s, n) > 11000.0 && Distance(s, n) < 11200.0); // ~111 km per degree
   // Earth curvature is in the geometry: the western node at height 0 is below the plane.
-  CHECK(w[2] < -1.0);
+  AP_CHECK(w[2] < -1.0);
 }
 
 // A projected DEM (UTM 11N, 30 m cells) on the central meridian: neighbouring nodes are
@@ -202,22 +180,22 @@ void TestUTMGeometry()
   mesh->GetPoint(4, c);
   mesh->GetPoint(5, e);
   mesh->GetPoint(7, n);
-  CHECK_NEAR(Distance(c, e), 30.0 / 0.9996, 1e-4);
-  CHECK_NEAR(Distance(c, n), 30.0 / 0.9996, 1e-4);
+  AP_CHECK_NEAR(Distance(c, e), 30.0 / 0.9996, 1e-4);
+  AP_CHECK_NEAR(Distance(c, n), 30.0 / 0.9996, 1e-4);
   // Grid north is true north on the central meridian: the north neighbour is due north.
-  CHECK_NEAR(n[0] - c[0], 0.0, 1e-6);
-  CHECK_NEAR(e[1] - c[1], 0.0, 1e-6);
-  CHECK_NEAR(c[0], 0.0, 1e-6);
-  CHECK_NEAR(c[1], 0.0, 1e-6);
+  AP_CHECK_NEAR(n[0] - c[0], 0.0, 1e-6);
+  AP_CHECK_NEAR(e[1] - c[1], 0.0, 1e-6);
+  AP_CHECK_NEAR(c[0], 0.0, 1e-6);
+  AP_CHECK_NEAR(c[1], 0.0, 1e-6);
   auto* origin = vtkDoubleArray::SafeDownCast(mesh->GetFieldData()->GetArray("FrameOrigin"));
-  CHECK(origin != nullptr);
+  AP_CHECK(origin != nullptr);
   if (origin)
   {
-    CHECK_NEAR(origin->GetValue(1), -117.0, 1e-9);
+    AP_CHECK_NEAR(origin->GetValue(1), -117.0, 1e-9);
   }
   auto* ellipsoid =
     vtkDoubleArray::SafeDownCast(mesh->GetFieldData()->GetArray("FrameEllipsoid"));
-  CHECK(ellipsoid && std::fabs(ellipsoid->GetValue(0) - kA) < 1e-6 &&
+  AP_CHECK(ellipsoid && std::fabs(ellipsoid->GetValue(0) - kA) < 1e-6 &&
     std::fabs(ellipsoid->GetValue(1) - kF) < 1e-15);
 }
 
@@ -238,48 +216,48 @@ void TestHolesAndArrays()
   dem->GetPointData()->AddArray(extra);
   auto mesh = Mesh(dem);
   // 2 * 4 * 3 = 24 triangles; the nodata node touches 4 quads, each keeps one: 20.
-  CHECK(mesh->GetNumberOfCells() == 20);
+  AP_CHECK(mesh->GetNumberOfCells() == 20);
   vtkIdType npts;
   const vtkIdType* pts;
   auto* polys = mesh->GetPolys();
   for (polys->InitTraversal(); polys->GetNextCell(npts, pts);)
   {
-    CHECK(npts == 3);
+    AP_CHECK(npts == 3);
     for (vtkIdType k = 0; k < npts; ++k)
     {
-      CHECK(pts[k] != 1 * nx + 2);
+      AP_CHECK(pts[k] != 1 * nx + 2);
     }
   }
   vtkDataArray* z = mesh->GetPointData()->GetArray("Elevation");
   vtkDataArray* carried = mesh->GetPointData()->GetArray("Extra");
-  CHECK(z && carried && carried->GetNumberOfComponents() == 2);
+  AP_CHECK(z && carried && carried->GetNumberOfComponents() == 2);
   if (z && carried)
   {
-    CHECK(std::isnan(z->GetTuple1(1 * nx + 2)));
-    CHECK_NEAR(z->GetTuple1(3 * nx + 4), 7.0, 0.0);
-    CHECK_NEAR(carried->GetComponent(13, 1), -13.0, 0.0);
+    AP_CHECK(std::isnan(z->GetTuple1(1 * nx + 2)));
+    AP_CHECK_NEAR(z->GetTuple1(3 * nx + 4), 7.0, 0.0);
+    AP_CHECK_NEAR(carried->GetComponent(13, 1), -13.0, 0.0);
   }
   vtkDataArray* normals = mesh->GetPointData()->GetNormals();
-  CHECK(normals && normals->GetNumberOfComponents() == 3);
+  AP_CHECK(normals && normals->GetNumberOfComponents() == 3);
   if (normals)
   {
-    CHECK(std::isnan(normals->GetComponent(1 * nx + 2, 0)));
+    AP_CHECK(std::isnan(normals->GetComponent(1 * nx + 2, 0)));
     // Plane z = x/10 + y/10 on 10 m cells: normal ~ (-0.1, -0.1, 1) / |.|, to within the
     // convergence of UTM grid north (a fraction of a degree) and Earth curvature.
     const double len = std::sqrt(1.02);
-    CHECK_NEAR(normals->GetComponent(0, 2), 1.0 / len, 1e-3);
-    CHECK_NEAR(normals->GetComponent(0, 0), -0.1 / len, 5e-3);
+    AP_CHECK_NEAR(normals->GetComponent(0, 2), 1.0 / len, 1e-3);
+    AP_CHECK_NEAR(normals->GetComponent(0, 0), -0.1 / len, 5e-3);
   }
   vtkDataArray* tc = mesh->GetPointData()->GetTCoords();
-  CHECK(tc && tc->GetNumberOfComponents() == 2);
+  AP_CHECK(tc && tc->GetNumberOfComponents() == 2);
   if (tc)
   {
-    CHECK_NEAR(tc->GetComponent(0, 0), 0.5 / nx, 1e-7);
-    CHECK_NEAR(tc->GetComponent(0, 1), 0.5 / ny, 1e-7);
-    CHECK_NEAR(tc->GetComponent(nx * ny - 1, 0), 1.0 - 0.5 / nx, 1e-7);
-    CHECK_NEAR(tc->GetComponent(nx * ny - 1, 1), 1.0 - 0.5 / ny, 1e-7);
+    AP_CHECK_NEAR(tc->GetComponent(0, 0), 0.5 / nx, 1e-7);
+    AP_CHECK_NEAR(tc->GetComponent(0, 1), 0.5 / ny, 1e-7);
+    AP_CHECK_NEAR(tc->GetComponent(nx * ny - 1, 0), 1.0 - 0.5 / nx, 1e-7);
+    AP_CHECK_NEAR(tc->GetComponent(nx * ny - 1, 1), 1.0 - 0.5 / ny, 1e-7);
   }
-  CHECK(mesh->GetFieldData()->GetAbstractArray("CRS") != nullptr);
+  AP_CHECK(mesh->GetFieldData()->GetAbstractArray("CRS") != nullptr);
 }
 
 // Exaggeration scales heights above the ellipsoid, not the curvature drop.
@@ -295,7 +273,7 @@ void TestExaggeration()
     Enu(45.01, 10.01, 45.0 + 0.01 * j, 10.0 + 0.01 * i, 3.0 * (1000.0 + 50.0 * i - 20.0 * j),
       expected);
     mesh->GetPoint(k, got);
-    CHECK_NEAR(got[2], expected[2], 1e-3);
+    AP_CHECK_NEAR(got[2], expected[2], 1e-3);
   }
 }
 
@@ -312,13 +290,13 @@ void ExpectError(vtkImageData* dem, const std::string& expected, const char* arr
   mesher->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
   mesher->SetInputData(dem);
   const int ok = mesher->GetExecutive()->Update();
-  CHECK(ok == 0);
-  CHECK(errors->GetError());
+  AP_CHECK(ok == 0);
+  AP_CHECK(errors->GetError());
   if (errors->GetErrorMessage().find(expected) == std::string::npos)
   {
     std::fprintf(stderr, "expected an error containing '%s', got '%s'\n", expected.c_str(),
       errors->GetErrorMessage().c_str());
-    ++failures;
+    ++aptest::Failures();
   }
 }
 
@@ -353,9 +331,5 @@ int TestApertureTerrainMesh(int, char*[])
   TestHolesAndArrays();
   TestExaggeration();
   TestErrors();
-  if (failures)
-  {
-    std::fprintf(stderr, "%d check(s) failed\n", failures);
-  }
-  return failures ? 1 : 0;
+  return aptest::Result();
 }

@@ -4,6 +4,8 @@
 #ifndef ApertureTestRasters_h
 #define ApertureTestRasters_h
 
+#include "aptest.hxx"
+
 #include <cpl_string.h>
 #include <gdal.h>
 #include <ogr_srs_api.h>
@@ -17,46 +19,6 @@
 
 namespace aptest
 {
-inline int& Failures()
-{
-  static int failures = 0;
-  return failures;
-}
-
-#define AP_CHECK(cond)                                                                           \
-  do                                                                                             \
-  {                                                                                              \
-    if (!(cond))                                                                                 \
-    {                                                                                            \
-      std::fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);              \
-      ++aptest::Failures();                                                                      \
-    }                                                                                            \
-  } while (0)
-
-#define AP_CHECK_NEAR(a, b, tol)                                                                 \
-  do                                                                                             \
-  {                                                                                              \
-    const double va = (a), vb = (b);                                                             \
-    if (!(std::fabs(va - vb) <= (tol)))                                                          \
-    {                                                                                            \
-      std::fprintf(stderr, "%s:%d: |%s - %s| <= %g failed: %.12g vs %.12g\n", __FILE__,          \
-        __LINE__, #a, #b, static_cast<double>(tol), va, vb);                                     \
-      ++aptest::Failures();                                                                      \
-    }                                                                                            \
-  } while (0)
-
-#define AP_CHECK_CONTAINS(text, part)                                                            \
-  do                                                                                             \
-  {                                                                                              \
-    const std::string t_(text), p_(part);                                                        \
-    if (t_.find(p_) == std::string::npos)                                                        \
-    {                                                                                            \
-      std::fprintf(stderr, "%s:%d: expected '%s' in '%s'\n", __FILE__, __LINE__, p_.c_str(),     \
-        t_.c_str());                                                                             \
-      ++aptest::Failures();                                                                      \
-    }                                                                                            \
-  } while (0)
-
 /** What to put in a test raster. */
 struct RasterSpec
 {

@@ -374,9 +374,5 @@ int TestApertureDEMReader(int argc, char* argv[])
   TestWindowsAndLevels();
   TestBands();
   TestBadInput();
-  if (aptest::Failures())
-  {
-    std::fprintf(stderr, "%d check(s) failed\n", aptest::Failures());
-  }
-  return aptest::Failures() ? 1 : 0;
+  return aptest::Result();
 }

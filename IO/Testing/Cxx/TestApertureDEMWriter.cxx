@@ -233,9 +233,5 @@ int TestApertureDEMWriter(int argc, char* argv[])
   TestWriteAndReadBack();
   TestSelectionAndTypes();
   TestErrors();
-  if (aptest::Failures())
-  {
-    std::fprintf(stderr, "%d check(s) failed\n", aptest::Failures());
-  }
-  return aptest::Failures() ? 1 : 0;
+  return aptest::Result();
 }

@@ -1,0 +1,78 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""vtkApertureLightingMapper's exposure is applied in its fragment shader: on a flat,
+uniformly lit square, +1 EV doubles and -1 EV halves the pixel values of exposure 0 (up to
+8-bit rounding), and exposure 0 matches VTK's own mapper exactly."""
+import sys
+
+from vtkmodules.test import Testing
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkFiltersSources import vtkPlaneSource
+from vtkmodules.vtkRenderingCore import (
+    vtkActor,
+    vtkLight,
+    vtkPolyDataMapper,
+    vtkRenderer,
+    vtkRenderWindow,
+    vtkWindowToImageFilter,
+)
+import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (OpenGL factory overrides)
+
+import aperture
+
+
+def render(mapper, size=64):
+    plane = vtkPlaneSource()
+    mapper.SetInputConnection(plane.GetOutputPort())
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    actor.GetProperty().SetColor(0.5, 0.5, 0.5)
+    actor.GetProperty().SetAmbient(0.0)
+    actor.GetProperty().SetDiffuse(0.5)
+    actor.GetProperty().SetSpecular(0.0)
+    renderer = vtkRenderer()
+    renderer.AddActor(actor)
+    renderer.AutomaticLightCreationOff()
+    light = vtkLight()
+    light.SetLightTypeToSceneLight()
+    light.SetPositional(False)
+    light.SetPosition(0, 0, 1)
+    light.SetFocalPoint(0, 0, 0)
+    renderer.AddLight(light)
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetMultiSamples(0)
+    window.SetSize(size, size)
+    window.AddRenderer(renderer)
+    renderer.ResetCamera()
+    renderer.GetActiveCamera().Zoom(3.0)  # the plane fills the window
+    window.Render()
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(window)
+    grab.ReadFrontBufferOff()
+    grab.Update()
+    rgb = vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars())
+    return rgb[:, :3].astype(float).mean(axis=0)
+
+
+class TestLightingMapperExposure(Testing.vtkTest):
+    def testExposure(self):
+        base = render(vtkPolyDataMapper())
+        self.assertTrue(60 < base[0] < 70, base)  # 0.5 * 0.5 * 255 = 63.75
+        values = {}
+        for ev in (-1.0, 0.0, 1.0):
+            mapper = aperture.vtkApertureLightingMapper()
+            mapper.SetExposure(ev)
+            values[ev] = render(mapper)
+        for c in range(3):
+            self.assertEqual(values[0.0][c], base[c])
+            self.assertLessEqual(abs(values[1.0][c] - 2 * base[c]), 1.0)
+            self.assertLessEqual(abs(values[-1.0][c] - 0.5 * base[c]), 1.0)
+
+    def testRange(self):
+        mapper = aperture.vtkApertureLightingMapper()
+        mapper.SetExposure(100.0)
+        self.assertEqual(mapper.GetExposure(), 20.0)
+
+
+if __name__ == "__main__":
+    Testing.main([(TestLightingMapperExposure, "test")])

@@ -1,0 +1,29 @@
+# SPDX-License-Identifier: BSD-3-Clause
+# Driver of the Install-Downstream test (cmake -P): install the build into a scratch prefix,
+# build the downstream project against it, run it, and check the installed Python package and
+# command line.
+file(REMOVE_RECURSE "${WORK_DIR}")
+set(prefix "${WORK_DIR}/prefix")
+
+function(run what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if (NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${rc}):\n${out}\n${err}")
+  endif ()
+  message(STATUS "${what}: ok\n${out}")
+endfunction()
+
+run("install" "${CMAKE_COMMAND}" --install "${APERTURE_BUILD_DIR}" --prefix "${prefix}")
+run("configure downstream" "${CMAKE_COMMAND}" -S "${APERTURE_SOURCE_DIR}/Testing/Downstream/project"
+  -B "${WORK_DIR}/build" "-DCMAKE_PREFIX_PATH=${prefix}" -DCMAKE_BUILD_TYPE=Release)
+run("build downstream" "${CMAKE_COMMAND}" --build "${WORK_DIR}/build")
+run("run downstream" "${WORK_DIR}/build/downstream")
+
+if (WRAP_PYTHON)
+  # The installed package imports with only PYTHONPATH pointing at the prefix (nothing from the
+  # build tree), and the installed launcher needs no environment at all.
+  run("import from the install prefix" "${CMAKE_COMMAND}" -E env
+    "PYTHONPATH=${prefix}/${PYTHON_DESTINATION}"
+    "${PYTHON}" -c "import aperture, os; p = aperture.__file__; assert p.startswith('${prefix}'), p; r = aperture.vtkApertureDEMReader(); r.SetFileName(aperture.default_dem()); r.Update(); assert r.GetOutput().GetNumberOfPoints() == 403 * 344; print('import ok', p)")
+  run("installed command line" "${prefix}/bin/aperture" info --json)
+endif ()

@@ -1,0 +1,291 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The `aperture` command line as a user runs it (the build tree's bin/aperture launcher):
+help, `info` (text and --json) on the embedded DEM, on projected and lat/lon rasters in several
+GDAL formats made here with GDAL's Python bindings, and one clear line on stderr with exit
+status 1 for every bad input."""
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+from osgeo import gdal, osr
+
+gdal.UseExceptions()
+
+BUILD = os.environ.get("APERTURE_BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+APERTURE = os.path.join(BUILD, "bin", "aperture")
+CELL3 = 1.0 / 1200.0
+
+
+def run(*args, env=None):
+    """Run the command line; returns (status, stdout, stderr)."""
+    p = subprocess.run([APERTURE] + [str(a) for a in args], capture_output=True, text=True,
+                       env=env, timeout=120)
+    return p.returncode, p.stdout, p.stderr
+
+
+def make_raster(path, rows, gt, srs="EPSG:32611", nodata=None, driver="GTiff", bands=1,
+                gcps=None):
+    """Write `rows` (a 2-D array, first row = first file row) with GDAL."""
+    rows = np.asarray(rows, dtype=np.float64)
+    ny, nx = rows.shape
+    mem = gdal.GetDriverByName("MEM").Create("", nx, ny, bands, gdal.GDT_Float32)
+    if gt is not None:
+        mem.SetGeoTransform(gt)
+    if srs:
+        ref = osr.SpatialReference()
+        ref.SetFromUserInput(srs)
+        if gcps:
+            mem.SetGCPs(gcps, ref)
+        else:
+            mem.SetSpatialRef(ref)
+    for b in range(1, bands + 1):
+        band = mem.GetRasterBand(b)
+        if nodata is not None:
+            band.SetNoDataValue(nodata)
+        band.WriteArray(rows + 1000.0 * (b - 1))
+    out = gdal.GetDriverByName(driver).CreateCopy(path, mem)
+    out.FlushCache()
+    out = None
+    mem = None
+    return path
+
+
+class CommandLineTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="aperture-cli-")
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def path(self, name):
+        return os.path.join(self.tmp, name)
+
+    def info(self, *args):
+        status, out, err = run("info", "--json", *args)
+        self.assertEqual(status, 0, err)
+        return json.loads(out), err
+
+    def assert_error(self, expected, *args, env=None):
+        """Exit status 1, exactly one line on stderr naming the problem, nothing on stdout."""
+        status, out, err = run(*args, env=env)
+        self.assertEqual(status, 1, "stdout: %s\nstderr: %s" % (out, err))
+        lines = err.strip().splitlines()
+        self.assertEqual(len(lines), 1, err)
+        self.assertTrue(lines[0].startswith("aperture: error: "), lines[0])
+        self.assertIn(expected, lines[0])
+        self.assertEqual(out, "")
+
+
+class TestHelp(CommandLineTest):
+    def test_no_arguments_explains_subcommands(self):
+        for args in ((), ("--help",)):
+            status, out, _ = run(*args)
+            self.assertEqual(status, 0)
+            self.assertIn("info", out)
+            self.assertIn("render", out)
+            self.assertIn("usage: aperture", out)
+
+    def test_subcommand_help(self):
+        status, out, _ = run("info", "--help")
+        self.assertEqual(status, 0)
+        self.assertIn("--json", out)
+        self.assertIn("--srcwin", out)
+
+    def test_usage_error(self):
+        status, _, err = run("info", "--band")
+        self.assertEqual(status, 2)
+        self.assertIn("expected one argument", err)
+
+
+class TestInfo(CommandLineTest):
+    def test_default_dem_json(self):
+        d, err = self.info()
+        self.assertEqual(err, "")
+        self.assertEqual(d["size"], [403, 344])
+        self.assertEqual(d["crs"], "WGS 84")
+        self.assertTrue(d["geographic"])
+        for got, want in zip(d["bounds_lonlat"], [-84.41375, 36.1595833333, -84.0779166667,
+                                                  36.44625]):
+            self.assertAlmostEqual(got, want, places=8)
+        self.assertAlmostEqual(d["centre_lonlat"][0], -84.2458333333, places=8)
+        self.assertAlmostEqual(d["centre_lonlat"][1], 36.3029166667, places=8)
+        self.assertEqual(d["elevation_range"], [236.0, 1076.0])
+        self.assertEqual(d["nodata_count"], 0)
+        # 3 arc-seconds at 36.30 N on WGS 84: N cos(lat) dlon and M dlat (closed forms).
+        a, f = 6378137.0, 1 / 298.257223563
+        e2 = f * (2 - f)
+        phi = math.radians(d["centre_lonlat"][1])
+        w = math.sqrt(1 - e2 * math.sin(phi) ** 2)
+        self.assertAlmostEqual(d["cell_size_m"][0], a / w * math.cos(phi) * math.radians(CELL3),
+                               places=4)
+        self.assertAlmostEqual(d["cell_size_m"][1], a * (1 - e2) / w ** 3 * math.radians(CELL3),
+                               places=4)
+
+    def test_default_dem_text(self):
+        status, out, _ = run("info")
+        self.assertEqual(status, 0)
+        self.assertIn("403 x 344 cells", out)
+        self.assertIn("WGS 84 (geographic)", out)
+        self.assertIn("74.85 m east x 92.47 m north", out)
+        self.assertIn("west -84.413750, south 36.159583, east -84.077917, north 36.446250", out)
+        self.assertIn("236.00 .. 1076.00 m", out)
+
+    def test_projected_dem(self):
+        # 30 m UTM 11N cells centred on the central meridian (117 W): ground cells are 30 / k0.
+        rows = np.arange(20 * 21, dtype=float).reshape(20, 21)
+        rows[3, 4] = -9999
+        rows[0, 0] = -9999
+        p = make_raster(self.path("utm.tif"), rows,
+                        (500000 - 10.5 * 30, 30, 0, 4000000, 0, -30), nodata=-9999)
+        d, _ = self.info(p)
+        self.assertEqual(d["size"], [21, 20])
+        self.assertEqual(d["crs"], "WGS 84 / UTM zone 11N")
+        self.assertFalse(d["geographic"])
+        self.assertEqual(d["cell_size"], [30.0, 30.0])
+        self.assertAlmostEqual(d["cell_size_m"][0], 30 / 0.9996, places=4)
+        self.assertAlmostEqual(d["cell_size_m"][1], 30 / 0.9996, places=4)
+        self.assertAlmostEqual(d["centre_lonlat"][0], -117.0, places=9)
+        west, south, east, north = d["bounds_lonlat"]
+        self.assertAlmostEqual(-117.0 - west, east + 117.0, places=9)
+        self.assertEqual(d["nodata_count"], 2)
+        self.assertEqual(d["nodata_value"], -9999)
+        self.assertEqual(d["elevation_range"], [1.0, 419.0])
+
+    def test_formats(self):
+        # The same terrain as Arc/Info ASCII grid (+ .prj), SRTM .hgt and DTED level 0.
+        hgt = np.fromfunction(lambda r, c: 100 + r + 2 * c, (1201, 1201))
+        p = make_raster(self.path("N36W085.hgt"), hgt,
+                        (-85 - CELL3 / 2, CELL3, 0, 37 + CELL3 / 2, 0, -CELL3),
+                        srs="EPSG:4326", driver="SRTMHGT")
+        d, _ = self.info(p)
+        self.assertEqual(d["driver"], "SRTMHGT")
+        self.assertEqual(d["size"], [1201, 1201])
+        self.assertAlmostEqual(d["bounds_lonlat"][0], -85 - CELL3 / 2, places=9)
+        self.assertAlmostEqual(d["bounds_lonlat"][3], 37 + CELL3 / 2, places=9)
+        # North-up: the top-left sample (first row, first column) is 100, the bottom-left 1300.
+        self.assertEqual(d["elevation_range"], [100.0, 100.0 + 1200 + 2400])
+
+        dt = 30.0 / 3600.0
+        dted = np.fromfunction(lambda r, c: 50 + r + c, (121, 121))
+        p = make_raster(self.path("w085_n36.dt0"), dted,
+                        (-85 - dt / 2, dt, 0, 37 + dt / 2, 0, -dt), srs="EPSG:4326",
+                        driver="DTED")
+        d, _ = self.info(p)
+        self.assertEqual(d["driver"], "DTED")
+        self.assertEqual(d["size"], [121, 121])
+        self.assertEqual(d["elevation_range"], [50.0, 290.0])
+
+        asc = np.arange(12, dtype=float).reshape(3, 4)
+        p = make_raster(self.path("grid.asc"), asc, (600000, 100, 0, 5200000, 0, -100),
+                        srs="EPSG:32632", driver="AAIGrid")
+        d, _ = self.info(p)
+        self.assertEqual(d["driver"], "AAIGrid")
+        self.assertEqual(d["crs"], "WGS 84 / UTM zone 32N")
+        self.assertEqual(d["elevation_range"], [0.0, 11.0])
+
+    def test_bands_windows_decimation(self):
+        rows = np.arange(6 * 8, dtype=float).reshape(6, 8)
+        p = make_raster(self.path("bands.tif"), rows, (500000, 30, 0, 4000000, 0, -30), bands=3)
+        d, err = self.info(p)
+        self.assertIn("has 3 bands; reading band 1", err)
+        self.assertEqual(len(err.strip().splitlines()), 1)
+        self.assertEqual(d["elevation_range"], [0.0, 47.0])
+        d, err = self.info(p, "--band", 3)
+        self.assertEqual(err, "")
+        self.assertEqual(d["elevation_range"], [2000.0, 2047.0])
+        d, _ = self.info(p, "--band", 1, "--srcwin", 2, 1, 3, 4)
+        self.assertEqual(d["size"], [3, 4])
+        self.assertEqual(d["elevation_range"], [10.0, 36.0])
+        d, _ = self.info(p, "--band", 1, "--decimate", 2)
+        self.assertEqual(d["size"], [4, 3])
+        self.assertEqual(d["cell_size"], [60.0, 60.0])
+        # Block (0,0) = {0, 1, 8, 9} -> 4.5; block (3,2) = {38, 39, 46, 47} -> 42.5.
+        self.assertEqual(d["elevation_range"], [4.5, 42.5])
+
+    def test_srs_override(self):
+        rows = np.ones((4, 4))
+        p = make_raster(self.path("nocrs.tif"), rows, (500000, 30, 0, 4000000, 0, -30), srs=None)
+        self.assert_error("has no coordinate reference system", "info", p)
+        d, _ = self.info(p, "--srs", "EPSG:32611")
+        self.assertEqual(d["crs"], "WGS 84 / UTM zone 11N")
+
+
+class TestBadInput(CommandLineTest):
+    def test_missing_file(self):
+        self.assert_error("does not exist", "info", self.path("nowhere.tif"))
+
+    def test_not_a_raster(self):
+        p = self.path("readme.tif")
+        with open(p, "w") as f:
+            f.write("not a raster\n")
+        self.assert_error("GDAL cannot open", "info", p)
+
+    def test_missing_band(self):
+        p = make_raster(self.path("one.tif"), np.ones((3, 3)), (500000, 30, 0, 4000000, 0, -30))
+        self.assert_error("band 5 does not exist", "info", p, "--band", "5")
+
+    def test_too_small(self):
+        p = make_raster(self.path("tiny.tif"), np.ones((1, 1)), (500000, 30, 0, 4000000, 0, -30))
+        self.assert_error("at least 2 x 2", "info", p)
+
+    def test_rotated(self):
+        p = make_raster(self.path("rot.tif"), np.ones((3, 3)), (500000, 30, 5, 4000000, 5, -30))
+        self.assert_error("rotated geotransform", "info", p)
+
+    def test_no_georeference(self):
+        p = make_raster(self.path("plain.tif"), np.ones((3, 3)), None, srs=None)
+        self.assert_error("has no georeference", "info", p)
+
+    def test_gcps_only(self):
+        gcps = [gdal.GCP(10.0 + 0.01 * x, 45.0 - 0.01 * y, 0.0, x, y)
+                for x, y in ((0, 0), (3, 0), (0, 3), (3, 3))]
+        p = make_raster(self.path("gcps.tif"), np.ones((3, 3)), None, srs="EPSG:4326", gcps=gcps)
+        self.assert_error("ground control points", "info", p)
+
+    def test_local_crs(self):
+        p = make_raster(self.path("local.tif"), np.ones((3, 3)), (0, 1, 0, 3, 0, -1),
+                        srs='LOCAL_CS["mine grid",UNIT["metre",1]]')
+        self.assert_error("no geographic coordinates", "info", p)
+
+    def test_all_nodata(self):
+        p = make_raster(self.path("empty.tif"), np.full((3, 3), -1.0),
+                        (500000, 30, 0, 4000000, 0, -30), nodata=-1)
+        self.assert_error("is nodata", "info", p)
+
+    def test_too_large_for_memory(self):
+        small = make_raster(self.path("small.tif"), np.ones((3, 3)),
+                            (500000, 1, 0, 4000000, 0, -1))
+        vrt = self.path("huge.vrt")
+        with open(vrt, "w") as f:
+            f.write('<VRTDataset rasterXSize="1000000" rasterYSize="1000000">\n'
+                    '  <SRS>EPSG:32611</SRS>\n'
+                    '  <GeoTransform>500000, 1, 0, 4000000, 0, -1</GeoTransform>\n'
+                    '  <VRTRasterBand dataType="Float32" band="1"><SimpleSource>\n'
+                    '    <SourceFilename relativeToVRT="0">%s</SourceFilename>\n'
+                    '    <SourceBand>1</SourceBand></SimpleSource></VRTRasterBand>\n'
+                    '</VRTDataset>\n' % small)
+        self.assert_error("1000000 x 1000000 cells", "info", vrt)
+
+    def test_bad_options(self):
+        self.assert_error("--decimate must be 1 or more", "info", "--decimate", "0")
+        self.assert_error("cannot parse the CRS", "info", "--srs", "EPSG:999999999")
+
+    def test_render_without_display(self):
+        env = dict(os.environ)
+        env.pop("DISPLAY", None)
+        self.assert_error("needs an X display", "render", "-o", self.path("x.png"), env=env)
+
+
+if __name__ == "__main__":
+    if not os.path.exists(APERTURE):
+        print("skipped: %s not built" % APERTURE)
+        sys.exit(125)
+    sys.exit(0 if unittest.main(exit=False).result.wasSuccessful() else 1)

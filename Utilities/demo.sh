@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
+# README command 1: set up, build, and run the main job on the embedded default DEM (the USGS
+# Jacksboro fault DEM): describe it, then render it to a PNG and say where the picture is.
+set -euo pipefail
+source_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build_dir=${APERTURE_BUILD_DIR:-$source_dir/build}
+bash "$source_dir/Utilities/setup.sh"
+
+echo "== aperture info (embedded default DEM)"
+"$build_dir/bin/aperture" info
+picture="$build_dir/aperture-default.png"
+echo "== aperture render"
+bash "$source_dir/Utilities/with-xvfb.sh" \
+  "$build_dir/bin/aperture" render -o "$picture" --size 1600x1000 --exaggeration 2
+echo "The picture is at $picture"

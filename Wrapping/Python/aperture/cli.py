@@ -1,0 +1,264 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The `aperture` command line.
+
+    aperture info [DEM] [--json]          what a DEM is: size, cell size, CRS, bounds, elevations
+    aperture render [DEM] -o OUT.png      a picture of the DEM (VTK lighting, for now)
+
+DEM is any single-band raster GDAL reads (GeoTIFF, .hgt, .asc, .dt0, VRT, ...); without it, the
+embedded default DEM is used. Errors print one line on stderr and exit with status 1; usage
+errors exit with status 2.
+"""
+import argparse
+import json
+import math
+import os
+import sys
+
+from aperture.errors import ApertureError, Watcher, quiet_vtk_output
+
+PROG = "aperture"
+
+
+def _warn(message):
+    print("%s: warning: %s" % (PROG, message), file=sys.stderr)
+
+
+# ---------------------------------------------------------------------------------------------
+# Reading
+
+
+def _add_read_options(parser):
+    g = parser.add_argument_group("reading the DEM")
+    g.add_argument("dem", nargs="?", metavar="DEM",
+                   help="elevation raster (default: the embedded Jacksboro DEM)")
+    g.add_argument("--band", "-b", type=int, default=0, metavar="N",
+                   help="1-based band to read (default: band 1, with a note if there are more)")
+    g.add_argument("--srcwin", type=int, nargs=4, metavar=("XOFF", "YOFF", "XSIZE", "YSIZE"),
+                   help="read only this window, in pixels from the top-left corner "
+                        "(as gdal_translate -srcwin)")
+    g.add_argument("--overview", type=int, default=-1, metavar="K",
+                   help="read GDAL overview level K (0-based) instead of full resolution")
+    g.add_argument("--decimate", type=int, default=1, metavar="F",
+                   help="average F x F blocks of cells (nodata ignored)")
+    g.add_argument("--srs", metavar="CRS",
+                   help="use this CRS instead of the file's (EPSG:xxxx, WKT or PROJ string)")
+
+
+def _dem_path(args):
+    if args.dem:
+        return args.dem
+    from aperture import default_dem
+    try:
+        return default_dem()
+    except FileNotFoundError as e:
+        raise ApertureError(str(e))
+
+
+def read_dem(args, watcher):
+    """Read the DEM the arguments name; returns (reader, image)."""
+    from aperture import vtkApertureDEMReader
+    if args.band < 0:
+        raise ApertureError("--band must be 1 or more")
+    if args.decimate < 1:
+        raise ApertureError("--decimate must be 1 or more")
+    if args.overview < -1:
+        raise ApertureError("--overview must be 0 or more")
+    reader = watcher.watch(vtkApertureDEMReader())
+    reader.SetFileName(_dem_path(args))
+    reader.SetBandIndex(args.band)
+    if args.srcwin:
+        if min(args.srcwin) < 0:
+            raise ApertureError("--srcwin values must not be negative")
+        reader.SetSubWindow(*args.srcwin)
+    reader.SetOverviewLevel(args.overview)
+    reader.SetDecimation(args.decimate)
+    if args.srs:
+        reader.SetOverrideCRS(args.srs)
+    image = watcher.update(reader)
+    return reader, image
+
+
+# ---------------------------------------------------------------------------------------------
+# info
+
+
+def describe(reader, image):
+    """The facts `aperture info` prints, as a dict (the --json object)."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from aperture import vtkApertureGeoreference
+
+    geo = vtkApertureGeoreference()
+    if not geo.SetFromImage(image):
+        raise ApertureError(geo.GetErrorMessage())
+    z = vtk_to_numpy(image.GetPointData().GetArray("Elevation"))
+    valid = ~np.isnan(z)
+    nx, ny = geo.GetGridSize()
+    cell_m = [0.0, 0.0]
+    bounds = [0.0] * 4
+    centre = [0.0, 0.0]
+    if not (geo.GetCellSizeMetres(cell_m) and geo.GetBoundsLonLat(bounds)
+            and geo.GetCentreLonLat(centre)):
+        raise ApertureError(geo.GetErrorMessage())
+    return {
+        "file": os.path.abspath(reader.GetFileName()),
+        "driver": reader.GetDriverName(),
+        "bands": reader.GetNumberOfBands(),
+        "band": reader.GetBandRead(),
+        "size": [nx, ny],
+        "crs": geo.GetCRSName(),
+        "geographic": bool(geo.IsGeographic()),
+        "crs_unit": geo.GetCRSUnitName(),
+        "cell_size": list(geo.GetGridSpacing()),
+        "cell_size_m": cell_m,
+        "bounds_lonlat": bounds,
+        "centre_lonlat": centre,
+        "elevation_range": [float(z[valid].min()), float(z[valid].max())],
+        "nodata_count": int(z.size - np.count_nonzero(valid)),
+        # JSON has no NaN: a NaN nodata value is reported as the string "nan".
+        "nodata_value": (None if not reader.GetHasNoDataValue()
+                         else "nan" if math.isnan(reader.GetNoDataValue())
+                         else reader.GetNoDataValue()),
+    }
+
+
+def _format_info(d):
+    def deg(v):
+        return "%.6f" % v
+    unit = d["crs_unit"] or "unit"
+    lines = [
+        "File:       %s (%s, band %d of %d)" % (d["file"], d["driver"], d["band"], d["bands"]),
+        "Size:       %d x %d cells (columns x rows)" % tuple(d["size"]),
+        "CRS:        %s (%s)" % (d["crs"], "geographic" if d["geographic"] else "projected"),
+        "Cell size:  %.9g x %.9g %s (%.2f m east x %.2f m north at the centre)"
+        % (d["cell_size"][0], d["cell_size"][1], unit, d["cell_size_m"][0], d["cell_size_m"][1]),
+        "Bounds:     west %s, south %s, east %s, north %s (degrees)"
+        % tuple(deg(v) for v in d["bounds_lonlat"]),
+        "Centre:     longitude %s, latitude %s" % tuple(deg(v) for v in d["centre_lonlat"]),
+        "Elevation:  %.2f .. %.2f m" % tuple(d["elevation_range"]),
+        "Nodata:     %d cells%s" % (d["nodata_count"], "" if d["nodata_value"] is None
+                                    else " (nodata value %s)" % d["nodata_value"]),
+    ]
+    return "\n".join(lines)
+
+
+def cmd_info(args):
+    watcher = Watcher(on_warning=_warn)
+    reader, image = read_dem(args, watcher)
+    facts = describe(reader, image)
+    if args.json:
+        print(json.dumps(facts, indent=2, allow_nan=False))
+    else:
+        print(_format_info(facts))
+    return 0
+
+
+# ---------------------------------------------------------------------------------------------
+# render
+
+
+def _parse_size(text):
+    try:
+        w, h = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        raise argparse.ArgumentTypeError("size must look like 1200x900, not %r" % text)
+    if not (16 <= w <= 16384 and 16 <= h <= 16384):
+        raise argparse.ArgumentTypeError("width and height must be within 16..16384")
+    return w, h
+
+
+def cmd_render(args):
+    from aperture import vtkApertureTerrainMesh
+    from aperture import scene
+
+    if not os.environ.get("DISPLAY"):
+        raise ApertureError("rendering needs an X display (VTK on Debian renders through GLX); "
+                            "run under xvfb-run -a")
+    if not (0.0 <= args.exaggeration <= 1000.0):
+        raise ApertureError("--exaggeration must be within [0, 1000]")
+    if not (-90.0 <= args.light_el <= 90.0) or not math.isfinite(args.light_az):
+        raise ApertureError("--light-el must be within [-90, 90] degrees")
+    out_dir = os.path.dirname(os.path.abspath(args.output))
+    if not os.path.isdir(out_dir):
+        raise ApertureError("the output folder %s does not exist" % out_dir)
+    watcher = Watcher(on_warning=_warn)
+    reader, image = read_dem(args, watcher)
+    mesher = watcher.watch(vtkApertureTerrainMesh())
+    mesher.SetInputData(image)
+    mesher.SetVerticalExaggeration(args.exaggeration)
+    mesh = watcher.update(mesher, "meshing")
+    window, _ = scene.build(mesh, size=args.size, view=args.view, light_azimuth=args.light_az,
+                            light_elevation=args.light_el)
+    try:
+        path = scene.write_png(window, args.output)
+    except OSError as e:
+        raise ApertureError(str(e))
+    print("wrote %s (%d x %d, %s view)" % (path, args.size[0], args.size[1], args.view))
+    return 0
+
+
+# ---------------------------------------------------------------------------------------------
+
+
+def build_parser():
+    from aperture import __version__
+    parser = argparse.ArgumentParser(
+        prog=PROG,
+        description="Aperture: sun-and-sky lighting and visibility analysis for DEMs.",
+        epilog="Run '%s COMMAND --help' for the options of a command. Angles are in degrees "
+               "and lengths in metres at this interface." % PROG)
+    parser.add_argument("--version", action="version", version="%(prog)s " + __version__)
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+
+    p = sub.add_parser("info", help="describe a DEM: size, cell size, CRS, bounds, elevations",
+                       description="Describe a DEM: size, cell size (CRS units and metres), CRS, "
+                                   "lat/lon bounds, elevation range and nodata count.")
+    _add_read_options(p)
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object (keys size, cell_size_m, crs, bounds_lonlat, "
+                        "elevation_range, nodata_count, centre_lonlat, ...)")
+    p.set_defaults(func=cmd_info)
+
+    p = sub.add_parser("render", help="render the DEM to a PNG (VTK lighting for now)",
+                       description="Render the DEM as a terrain mesh coloured by elevation and "
+                                   "lit by a directional light, to a PNG. Needs an X display "
+                                   "(xvfb-run -a aperture render ...).")
+    _add_read_options(p)
+    p.add_argument("-o", "--output", default="aperture.png", metavar="OUT.png",
+                   help="PNG to write (default: aperture.png)")
+    p.add_argument("--size", type=_parse_size, default=(1200, 900), metavar="WxH",
+                   help="image size in pixels (default 1200x900)")
+    p.add_argument("--view", choices=("oblique", "top"), default="oblique",
+                   help="oblique from the south (default) or top-down with north up")
+    p.add_argument("--exaggeration", type=float, default=1.0, metavar="X",
+                   help="vertical exaggeration (default 1)")
+    p.add_argument("--light-az", type=float, default=315.0, metavar="DEG",
+                   help="light azimuth, clockwise from north (default 315)")
+    p.add_argument("--light-el", type=float, default=45.0, metavar="DEG",
+                   help="light elevation above the horizon (default 45)")
+    p.set_defaults(func=cmd_render)
+    return parser
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    parser = build_parser()
+    if not argv:
+        parser.print_help()
+        return 0
+    args = parser.parse_args(argv)
+    if not getattr(args, "func", None):
+        parser.print_help()
+        return 0
+    quiet_vtk_output()
+    try:
+        return args.func(args)
+    except ApertureError as e:
+        print("%s: error: %s" % (PROG, e), file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

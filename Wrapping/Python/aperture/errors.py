@@ -1,0 +1,87 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Turn VTK error and warning events into Python exceptions and plain messages.
+
+vtkErrorMacro text looks like "ERROR: In file.cxx, line N\\nvtkClass (0x...): message"; the
+command line and scripts want just "message".
+"""
+import re
+
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.vtkCommonCore import (
+    VTK_STRING,
+    vtkLogger,
+    vtkOutputWindow,
+    vtkStringOutputWindow,
+)
+
+
+class ApertureError(RuntimeError):
+    """A pipeline step failed; the message is the first VTK error it reported."""
+
+
+_HEADER = re.compile(r"^(?:ERROR|Warning): In .*?, line \d+\s*\n[^\n]*?\(0x[0-9a-fA-F]+\): ",
+                     re.S)
+
+
+def clean_message(text):
+    """The message part of a vtkErrorMacro / vtkWarningMacro text."""
+    text = _HEADER.sub("", text or "")
+    return " ".join(text.split())
+
+
+class Watcher:
+    """Collects the errors and warnings of the VTK objects it watches.
+
+        w = Watcher()
+        reader = w.watch(vtkApertureDEMReader())
+        w.update(reader)          # raises ApertureError with the reader's message on failure
+    """
+
+    def __init__(self, on_warning=None):
+        self.errors = []
+        self.warnings = []
+        self._on_warning = on_warning
+
+    def watch(self, obj):
+        obj.AddObserver("ErrorEvent", self._error)
+        obj.AddObserver("WarningEvent", self._warning)
+        return obj
+
+    @calldata_type(VTK_STRING)
+    def _error(self, obj, event, text):
+        self.errors.append(clean_message(text))
+
+    @calldata_type(VTK_STRING)
+    def _warning(self, obj, event, text):
+        message = clean_message(text)
+        self.warnings.append(message)
+        if self._on_warning:
+            self._on_warning(message)
+
+    def check(self, what=None):
+        """Raise ApertureError if any watched object reported an error."""
+        if self.errors:
+            message = self.errors[0]
+            self.errors = []
+            raise ApertureError(message if not what else "%s: %s" % (what, message))
+
+    def update(self, algorithm, what=None):
+        """algorithm.Update(), then raise on any reported error."""
+        algorithm.Update()
+        self.check(what)
+        return algorithm.GetOutputDataObject(0)
+
+    def write(self, writer, what=None):
+        """writer.Write(), then raise on any reported error."""
+        writer.Write()
+        self.check(what)
+
+
+def quiet_vtk_output():
+    """Keep VTK's own console output (its logger, and the executive's follow-up messages) off
+    the terminal, so only our one-line messages reach it; returns the string window that
+    collects what VTK would have printed."""
+    vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_OFF)
+    window = vtkStringOutputWindow()
+    vtkOutputWindow.SetInstance(window)
+    return window

@@ -1,0 +1,161 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Terrain scenes for pictures: a DEM mesh coloured by elevation, lit by one directional
+"sun" light with VTK's standard lighting, framed top-down (north up) or obliquely from the
+south. Used by `aperture render` and the rendering regression test.
+
+Frames: the mesh is in the local East-North-Up frame of vtkApertureTerrainMesh (x east,
+y north, z up, metres). Light azimuth is clockwise from north in that frame, elevation above
+the horizontal, both in degrees (gdaldem's hillshade default is azimuth 315, elevation 45).
+"""
+import math
+import os
+
+from vtkmodules.vtkIOImage import vtkPNGWriter
+from vtkmodules.vtkRenderingCore import (
+    vtkActor,
+    vtkColorTransferFunction,
+    vtkLight,
+    vtkRenderer,
+    vtkRenderWindow,
+    vtkWindowToImageFilter,
+)
+# Registers the OpenGL implementations behind vtkRenderWindow and friends.
+import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+
+from aperture import vtkApertureLightingMapper
+
+VIEWS = ("top", "oblique")
+
+
+def direction_enu(azimuth_deg, elevation_deg):
+    """Unit vector (east, north, up) towards azimuth (clockwise from north) and elevation."""
+    az, el = math.radians(azimuth_deg), math.radians(elevation_deg)
+    return (math.cos(el) * math.sin(az), math.cos(el) * math.cos(az), math.sin(el))
+
+
+def hypsometric_colors(zmin, zmax):
+    """Elevation colours: lowland greens, upland tans and browns, light grey summits."""
+    ctf = vtkColorTransferFunction()
+    span = max(zmax - zmin, 1e-6)
+    stops = [(0.00, (0.20, 0.42, 0.25)), (0.25, (0.45, 0.60, 0.32)), (0.50, (0.78, 0.74, 0.50)),
+             (0.75, (0.62, 0.48, 0.33)), (1.00, (0.93, 0.92, 0.90))]
+    for t, rgb in stops:
+        ctf.AddRGBPoint(zmin + t * span, *rgb)
+    ctf.SetNanColor(0.0, 0.0, 0.0)
+    return ctf
+
+
+def elevation_range(mesh, name="Elevation"):
+    array = mesh.GetPointData().GetArray(name)
+    if array is None:
+        raise ValueError("the mesh has no point array '%s'" % name)
+    lo, hi = array.GetRange()
+    return lo, hi
+
+
+def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_elevation=45.0,
+          exposure=0.0, multisamples=8, background=(1.0, 1.0, 1.0)):
+    """A render window showing the mesh; returns (render_window, renderer). The window renders
+    off screen (an X display, e.g. Xvfb, is still needed by Debian's VTK)."""
+    if view not in VIEWS:
+        raise ValueError("view must be one of %s, not %r" % (", ".join(VIEWS), view))
+    if not -90.0 <= light_elevation <= 90.0:
+        raise ValueError("light elevation must be within [-90, 90] degrees")
+    zmin, zmax = elevation_range(mesh)
+
+    mapper = vtkApertureLightingMapper()
+    mapper.SetInputData(mesh)
+    mapper.SetLookupTable(hypsometric_colors(zmin, zmax))
+    mapper.SetScalarModeToUsePointFieldData()
+    mapper.SelectColorArray("Elevation")
+    mapper.SetScalarRange(zmin, zmax)
+    mapper.SetExposure(exposure)
+    mapper.ScalarVisibilityOn()
+
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    prop = actor.GetProperty()
+    prop.SetAmbient(0.25)
+    prop.SetDiffuse(0.85)
+    prop.SetSpecular(0.0)
+
+    renderer = vtkRenderer()
+    renderer.AddActor(actor)
+    renderer.SetBackground(*background)
+    renderer.AutomaticLightCreationOff()
+    light = vtkLight()
+    light.SetLightTypeToSceneLight()
+    light.SetPositional(False)
+    d = direction_enu(light_azimuth, light_elevation)
+    light.SetFocalPoint(0.0, 0.0, 0.0)
+    light.SetPosition(*d)
+    light.SetIntensity(1.0)
+    renderer.AddLight(light)
+
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetSize(int(size[0]), int(size[1]))
+    window.SetMultiSamples(int(multisamples))
+    window.AddRenderer(renderer)
+    frame(renderer, mesh, view, size)
+    return window, renderer
+
+
+def frame(renderer, mesh, view, size):
+    """Place the camera: "top" looks straight down with north up (orthographic); "oblique"
+    looks north from the south at 35 degrees, perspective."""
+    b = mesh.GetBounds()
+    cx, cy, cz = (b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2
+    width, height, depth = b[1] - b[0], b[3] - b[2], b[5] - b[4]
+    camera = renderer.GetActiveCamera()
+    aspect = size[0] / float(size[1])
+    if view == "top":
+        camera.ParallelProjectionOn()
+        camera.SetFocalPoint(cx, cy, cz)
+        camera.SetPosition(cx, cy, b[5] + 10.0 * max(width, height, 1.0))
+        camera.SetViewUp(0.0, 1.0, 0.0)
+        camera.SetParallelScale(0.5 * max(height, width / aspect) * 1.02)
+        renderer.ResetCameraClippingRange()
+        return
+    camera.ParallelProjectionOff()
+    view_angle = 30.0
+    camera.SetViewAngle(view_angle)
+    # Look north, down at 35 degrees, from the distance at which all eight corners of the
+    # bounding box fit: a corner at q (relative to the focal point) is at depth D + q.d and must
+    # satisfy |q.up| <= depth tan(angle/2) and |q.right| <= depth aspect tan(angle/2).
+    elevation = math.radians(35.0)
+    d = (0.0, math.cos(elevation), -math.sin(elevation))
+    up = (0.0, math.sin(elevation), math.cos(elevation))
+    right = (1.0, 0.0, 0.0)
+    t = math.tan(math.radians(view_angle) / 2.0)
+    distance = 0.0
+    for x in (b[0], b[1]):
+        for y in (b[2], b[3]):
+            for z in (b[4], b[5]):
+                q = (x - cx, y - cy, z - cz)
+                along = sum(a * c for a, c in zip(q, d))
+                need_up = abs(sum(a * c for a, c in zip(q, up))) / t - along
+                need_right = abs(sum(a * c for a, c in zip(q, right))) / (aspect * t) - along
+                distance = max(distance, need_up, need_right)
+    distance *= 1.03
+    camera.SetFocalPoint(cx, cy, cz)
+    camera.SetPosition(cx - distance * d[0], cy - distance * d[1], cz - distance * d[2])
+    camera.SetViewUp(*up)
+    renderer.ResetCameraClippingRange()
+
+
+def write_png(window, path):
+    """Render and write the window's pixels to a PNG; returns the absolute path."""
+    window.Render()
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(window)
+    grab.SetInputBufferTypeToRGB()
+    grab.ReadFrontBufferOff()
+    grab.Update()
+    writer = vtkPNGWriter()
+    writer.SetFileName(path)
+    writer.SetInputConnection(grab.GetOutputPort())
+    writer.Write()
+    if writer.GetErrorCode():
+        raise OSError("cannot write the PNG %s" % path)
+    return os.path.abspath(path)
