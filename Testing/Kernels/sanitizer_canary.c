@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Built only with APERTURE_SANITIZE: a deliberate heap overflow through the C core. The test
- * that runs it is marked WILL_FAIL, so the sanitizer build proves AddressSanitizer is really
- * active (a build that silently lost -fsanitize would make this test fail). */
+ * that runs it passes only when AddressSanitizer reports the overflow, so the sanitizer build
+ * proves AddressSanitizer is really active (a build that silently lost -fsanitize fails it). */
 #include "ap_grid.h"
 
 #include <stdlib.h>
