@@ -6,6 +6,7 @@
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkExtentTranslator.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkTypeInt32Array.h"
@@ -67,6 +68,30 @@ int vtkApertureTerrainMesh::FillInputPortInformation(int, vtkInformation* info)
 }
 
 //------------------------------------------------------------------------------
+int vtkApertureTerrainMesh::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // Turn the requested piece of the mesh into the extent of the DEM it needs; splitting by
+  // cells makes neighbouring pieces share their boundary points, so their meshes join.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  const int piece = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER());
+  const int pieces = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES());
+  int whole[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  int ext[6];
+  std::copy(whole, whole + 6, ext);
+  if (pieces > 1)
+  {
+    vtkNew<vtkExtentTranslator> translator;
+    translator->PieceToExtentThreadSafe(
+      piece, pieces, 0, whole, ext, vtkExtentTranslator::BLOCK_MODE, 0);
+  }
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext, 6);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
 int vtkApertureTerrainMesh::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -89,8 +114,20 @@ int vtkApertureTerrainMesh::RequestData(
   }
   const size_t nx = static_cast<size_t>(ext[1] - ext[0] + 1);
   const size_t ny = static_cast<size_t>(ext[3] - ext[2] + 1);
+  int whole[6];
+  std::copy(ext, ext + 6, whole);
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  }
   if (nx < 2 || ny < 2)
   {
+    const bool piece = ext[0] > whole[0] || ext[1] < whole[1] || ext[2] > whole[2] ||
+      ext[3] < whole[3];
+    if (piece)
+    {
+      return 1; // a streamed piece one point thin has no triangles
+    }
     vtkErrorMacro(<< "the DEM has " << nx << " x " << ny
                   << " points; a mesh needs at least 2 x 2");
     return 0;
@@ -119,12 +156,6 @@ int vtkApertureTerrainMesh::RequestData(
   }
 
   // 2. Frame origin: the centre of the whole extent (shared by every piece of a streamed DEM).
-  int whole[6];
-  std::copy(ext, ext + 6, whole);
-  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-  {
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  }
   double origin[3], spacing[3];
   input->GetOrigin(origin);
   input->GetSpacing(spacing);

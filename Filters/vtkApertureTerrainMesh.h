@@ -18,6 +18,11 @@
  * (with NaN normals, at the lowest valid elevation) so ids stay aligned with the grid; no
  * triangle uses them.
  *
+ * Streaming: a request for piece p of n is translated into the input extent of that piece
+ * (vtkExtentTranslator, pieces sharing their boundary rows or columns), so the reader reads and
+ * the mesh holds only that part, and the pieces' meshes join without gaps. Every piece uses the
+ * frame of the whole extent, so their vertices coincide with those of the whole mesh.
+ *
  * Point arrays added: `Normals` (unit, ENU, of the output geometry including the vertical
  * exaggeration; active normals) and `TextureCoordinates` (u east, v north, spanning the outer
  * edges of the whole extent, so an image covering the DEM's bounds drapes exactly).
@@ -26,8 +31,9 @@
  * `VerticalExaggeration`; the input's `CRS` and `GeoTransform` are passed through.
  *
  * Errors (vtkErrorMacro and a failed update): no elevation array or one that is not a
- * one-component float/double array, a grid smaller than 2 x 2, no CRS or one without
- * geographic coordinates, or every point nodata.
+ * one-component float/double array, a whole DEM smaller than 2 x 2 (a streamed piece that thin
+ * just gives an empty mesh), no CRS or one without geographic coordinates, or every point
+ * nodata.
  *
  * @warning Heights are used as given (usually orthometric, above the geoid) as heights above
  * the ellipsoid; over one DEM the geoid separation is nearly constant and shifts the whole mesh
@@ -86,6 +92,8 @@ protected:
   ~vtkApertureTerrainMesh() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 

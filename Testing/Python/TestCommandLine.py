@@ -228,6 +228,14 @@ class TestBadInput(CommandLineTest):
             f.write("not a raster\n")
         self.assert_error("GDAL cannot open", "info", p)
 
+    def test_truncated_file(self):
+        # A GeoTIFF cut in half (its header survives, its pixels do not).
+        rows = np.random.default_rng(1).random((400, 400)) * 1000
+        p = make_raster(self.path("cut.tif"), rows, (500000, 30, 0, 4000000, 0, -30))
+        with open(p, "r+b") as f:
+            f.truncate(os.path.getsize(p) // 2)
+        self.assert_error("GDAL failed reading", "info", p)
+
     def test_missing_band(self):
         p = make_raster(self.path("one.tif"), np.ones((3, 3)), (500000, 30, 0, 4000000, 0, -30))
         self.assert_error("band 5 does not exist", "info", p, "--band", "5")

@@ -138,6 +138,19 @@ void TestSouthUp()
   AP_CHECK(gt && std::fabs(gt->GetValue(3) - (3999880.0 + 90.0)) < 1e-9 && gt->GetValue(5) < 0);
 }
 
+// NaN samples are nodata even without a declared nodata value.
+void TestNaNSamples()
+{
+  aptest::RasterSpec s;
+  s.raw = [](int, int c, int r) { return (c == 1 && r == 0) ? NAN : 5.0; };
+  AP_CHECK(aptest::WriteRaster(tmp + "/nan.tif", s));
+  Read rd(tmp + "/nan.tif");
+  rd.Update();
+  AP_CHECK(rd.Ok == 1 && !rd.Reader->GetHasNoDataValue());
+  AP_CHECK(std::isnan(rd.Z(1, 2))); // file row 0 is the northern row, VTK row 2
+  AP_CHECK_NEAR(rd.Z(0, 2), 5.0, 0.0);
+}
+
 // Feet become metres; an unknown unit warns and is taken as metres.
 void TestUnits()
 {
@@ -370,6 +383,7 @@ int TestApertureDEMReader(int argc, char* argv[])
   tmp = aptest::TempDir(argc, argv);
   TestNorthUp();
   TestSouthUp();
+  TestNaNSamples();
   TestUnits();
   TestWindowsAndLevels();
   TestBands();

@@ -1,0 +1,89 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Aperture's filters behave like VTK's own in a pipeline: progress events, re-execution when
+a property changes (and only then), and streaming: a DEM meshed piece by piece (the reader
+reading only each piece's rows) gives exactly the vertices of the whole mesh, in the same
+frame."""
+import sys
+
+import numpy as np
+from vtkmodules.test import Testing
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+import aperture
+
+
+class TestPipelineBehaviour(Testing.vtkTest):
+    def setUp(self):
+        try:
+            self.path = aperture.default_dem()
+        except FileNotFoundError:
+            Testing.skip()
+
+    def testProgressEvents(self):
+        reader = aperture.vtkApertureDEMReader()
+        reader.SetFileName(self.path)
+        mesher = aperture.vtkApertureTerrainMesh()
+        mesher.SetInputConnection(reader.GetOutputPort())
+        seen = {"reader": [], "mesher": []}
+        reader.AddObserver("ProgressEvent", lambda o, e: seen["reader"].append(o.GetProgress()))
+        mesher.AddObserver("ProgressEvent", lambda o, e: seen["mesher"].append(o.GetProgress()))
+        mesher.Update()
+        for name, values in seen.items():
+            self.assertTrue(values, name)
+            self.assertEqual(values[-1], 1.0, name)
+            self.assertEqual(values, sorted(values), name)
+
+    def testReexecution(self):
+        reader = aperture.vtkApertureDEMReader()
+        reader.SetFileName(self.path)
+        mesher = aperture.vtkApertureTerrainMesh()
+        mesher.SetInputConnection(reader.GetOutputPort())
+        runs = []
+        mesher.AddObserver("StartEvent", lambda o, e: runs.append(1))
+        mesher.Update()
+        mesher.Update()
+        self.assertEqual(len(runs), 1)
+        z1 = mesher.GetOutput().GetBounds()[5]
+        mesher.SetVerticalExaggeration(3.0)
+        mesher.Update()
+        self.assertEqual(len(runs), 2)
+        # Heights scale about the ellipsoid: the top of the mesh triples (within the curvature
+        # drop, which exaggeration does not scale: < 100 m over 16 km).
+        self.assertLess(abs(mesher.GetOutput().GetBounds()[5] - 3.0 * z1), 2.0 * 100.0)
+        reader.SetDecimation(2)
+        mesher.Update()
+        self.assertEqual(len(runs), 3)
+        self.assertEqual(mesher.GetOutput().GetNumberOfPoints(), 201 * 172)
+
+    def testStreamingPieces(self):
+        reader = aperture.vtkApertureDEMReader()
+        reader.SetFileName(self.path)
+        whole = aperture.vtkApertureTerrainMesh()
+        whole.SetInputConnection(reader.GetOutputPort())
+        whole.Update()
+        full = vtk_to_numpy(whole.GetOutput().GetPoints().GetData()).reshape(344, 403, 3)
+        full_origin = whole.GetOutput().GetFieldData().GetArray("FrameOrigin").GetTuple(0)
+
+        pieces = 3
+        rows_seen = set()
+        for piece in range(pieces):
+            r = aperture.vtkApertureDEMReader()
+            r.SetFileName(self.path)
+            m = aperture.vtkApertureTerrainMesh()
+            m.SetInputConnection(r.GetOutputPort())
+            m.UpdatePiece(piece, pieces, 0)
+            image = r.GetOutput()
+            ext = image.GetExtent()
+            self.assertLess(ext[3] - ext[2] + 1, 344)  # the reader read only a piece
+            out = m.GetOutput()
+            origin = out.GetFieldData().GetArray("FrameOrigin").GetTuple(0)
+            self.assertEqual(origin, full_origin)  # one frame for every piece
+            pts = vtk_to_numpy(out.GetPoints().GetData()).reshape(ext[3] - ext[2] + 1,
+                                                                  ext[1] - ext[0] + 1, 3)
+            np.testing.assert_array_equal(pts, full[ext[2]:ext[3] + 1, ext[0]:ext[1] + 1])
+            rows_seen.update(range(ext[2], ext[3] + 1))
+        self.assertEqual(rows_seen, set(range(344)))
+
+
+if __name__ == "__main__":
+    Testing.main([(TestPipelineBehaviour, "test")])
