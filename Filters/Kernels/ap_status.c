@@ -13,6 +13,7 @@ const char *ap_status_string(ap_status status)
   case AP_ERR_ALL_NODATA: return "every cell of the grid is nodata";
   case AP_ERR_BUFFER_TOO_SMALL: return "an output buffer is too small";
   case AP_ERR_OVERLAP: return "an output buffer overlaps an input buffer";
+  case AP_ERR_OUT_OF_MEMORY: return "out of memory";
   }
   return "unknown status";
 }

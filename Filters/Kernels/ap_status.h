@@ -23,7 +23,8 @@ typedef enum ap_status {
   AP_ERR_SIZE_OVERFLOW,        /**< a size computation overflows size_t */
   AP_ERR_ALL_NODATA,           /**< every cell of the grid is nodata (NaN) */
   AP_ERR_BUFFER_TOO_SMALL,     /**< a caller-provided output buffer is too small */
-  AP_ERR_OVERLAP               /**< an output buffer overlaps an input buffer */
+  AP_ERR_OVERLAP,              /**< an output buffer overlaps an input buffer */
+  AP_ERR_OUT_OF_MEMORY         /**< the core could not allocate its working memory */
 } ap_status;
 
 /** Static English text for a status; never NULL (unknown codes give "unknown status"). */

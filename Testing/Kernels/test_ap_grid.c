@@ -167,9 +167,9 @@ static void test_block_mean(void)
 static void test_status_strings(void)
 {
   int a, b;
-  for (a = AP_OK; a <= AP_ERR_OVERLAP; ++a) {
+  for (a = AP_OK; a <= AP_ERR_OUT_OF_MEMORY; ++a) {
     AP_CHECK(ap_status_string((ap_status)a) != NULL);
-    for (b = a + 1; b <= AP_ERR_OVERLAP; ++b) {
+    for (b = a + 1; b <= AP_ERR_OUT_OF_MEMORY; ++b) {
       AP_CHECK(strcmp(ap_status_string((ap_status)a), ap_status_string((ap_status)b)) != 0);
     }
   }

@@ -1,0 +1,1288 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* Horizon sweep and sky-visibility products; the contract and formulas are in ap_horizon.h.
+ *
+ * Vocabulary. For one sector the grid is seen through a "view": a primary axis p along which
+ * the sweep lines advance (towards the occluders as p grows) and a secondary axis s across
+ * them. A sector whose ground direction crosses columns faster than rows (in index units) is
+ * "x-major": p runs along columns (east or west) and s is the row; otherwise p runs along rows
+ * and s is the column. x-major views read a transposed copy of the elevations so that every
+ * view column is contiguous in memory.
+ *
+ * Line k starts at s = k on the last column (p = np - 1) and moves by m rows/columns per
+ * primary step, m = the lateral index shift of a constant-ground-azimuth line. With constant
+ * cell sizes m is constant (straight parallel lines, the classic Dozier–Frew "skew"); with cell
+ * sizes varying by row (lat/lon DEMs) m depends on the row: for row-major views the same for
+ * every line at a given p, for column-major views on each line's own row, so lines bend
+ * slightly and their spacing drifts by the relative change of the cell size (a few percent
+ * over a whole DEM), which the bracketing below handles.
+ */
+#include "ap_horizon.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define AP_PI 3.14159265358979323846
+#define AP_HALF_PI 1.57079632679489661923
+
+/* ---------------------------------------------------------------------------------------- */
+/* Upper convex hulls of the samples along one line, queried from a point on the near side
+ * (smaller x than every sample). A sample remembers where it was taken (view column and the
+ * line's lateral position there), so a query can return the column of the tangent point. */
+
+typedef struct sample {
+  double x;  /* distance along the line (m) */
+  double u;  /* height minus the curvature drop: z - c x^2 */
+  double s;  /* the line's lateral position (view index) on that column */
+  long col;  /* view column */
+} sample;
+
+typedef struct hull {
+  sample *v;
+  int n, cap;
+} hull;
+
+static int reserve(sample **v, int *cap, int need)
+{
+  int c;
+  sample *nv;
+  if (need <= *cap) {
+    return 1;
+  }
+  c = *cap ? *cap : 16;
+  while (c < need) {
+    c *= 2;
+  }
+  nv = (sample *)realloc(*v, (size_t)c * sizeof(sample));
+  if (!nv) {
+    return 0;
+  }
+  *v = nv;
+  *cap = c;
+  return 1;
+}
+
+static void hull_free(hull *h)
+{
+  free(h->v);
+  h->v = NULL;
+  h->n = h->cap = 0;
+}
+
+/* Push a sample nearer than every sample in the hull (Timonen & Westerholm, Algorithm 1;
+ * Andrew's monotone chain): the top is dropped while the second is at least as steep from
+ * the new sample, because it can then never be the tangent point again. */
+static int hull_push_near(hull *h, const sample *q)
+{
+  while (h->n >= 2) {
+    const sample *top = &h->v[h->n - 1], *second = &h->v[h->n - 2];
+    const double d1 = top->x - q->x, h1 = top->u - q->u;
+    const double d2 = second->x - q->x, h2 = second->u - q->u;
+    if (h2 * d1 >= h1 * d2) {
+      --h->n;
+    } else {
+      break;
+    }
+  }
+  if (!reserve(&h->v, &h->cap, h->n + 1)) {
+    return 0;
+  }
+  h->v[h->n++] = *q;
+  return 1;
+}
+
+/* The vertex with the largest slope (u_i - uq) / (x_i - xq), for xq below every x_i, or NULL
+ * when empty. Along an upper hull these slopes are unimodal, so a binary search finds the
+ * tangent vertex; the comparison is division-free (all differences in x are positive). */
+static const sample *hull_tangent(const hull *h, double xq, double uq, double *slope)
+{
+  int lo = 0, hi;
+  if (h->n == 0) {
+    return NULL;
+  }
+  hi = h->n - 1;
+  while (lo < hi) {
+    const int mid = (lo + hi) >> 1;
+    const double da = h->v[mid].x - xq, ua = h->v[mid].u - uq;
+    const double db = h->v[mid + 1].x - xq, ub = h->v[mid + 1].u - uq;
+    if (ua * db < ub * da) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+  *slope = (h->v[lo].u - uq) / (h->v[lo].x - xq);
+  return &h->v[lo];
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* A line's samples within a sliding window (x_q, x_q + L], for a maximum search distance.
+ * The window only ever gains samples on the near side and loses them on the far side, so it is
+ * a queue, kept as two stacks (the classic two-stack queue): "in" receives new samples (raw
+ * list + the near-pushed hull above); "out" holds older samples and gives them up farthest
+ * first. When "out" runs dry, all of "in" moves over and "out"'s hull is rebuilt by adding the
+ * samples from nearest to farthest (Andrew's chain in increasing x), logging what each
+ * addition popped so that removing the farthest sample undoes exactly that addition. Every
+ * sample is added, popped and restored at most once: O(1) amortised. The tangent to the whole
+ * window is the better of the two hulls' tangents. */
+
+typedef struct window {
+  sample *in;       /* raw samples of "in", in arrival order (decreasing x) */
+  int in_n, in_cap;
+  hull in_hull;
+  sample *out;      /* raw samples of "out", increasing x (last = farthest) */
+  int out_n, out_cap;
+  hull out_hull;    /* upper hull of "out", increasing x */
+  int *out_popped;  /* per out sample: how many hull vertices its addition popped */
+  int popped_cap;
+  sample *undo;     /* the popped vertices, a stack */
+  int undo_n, undo_cap;
+} window;
+
+static void window_free(window *w)
+{
+  free(w->in);
+  free(w->out);
+  free(w->out_popped);
+  free(w->undo);
+  hull_free(&w->in_hull);
+  hull_free(&w->out_hull);
+  memset(w, 0, sizeof(*w));
+}
+
+static int window_push(window *w, const sample *q)
+{
+  if (!reserve(&w->in, &w->in_cap, w->in_n + 1)) {
+    return 0;
+  }
+  w->in[w->in_n++] = *q;
+  return hull_push_near(&w->in_hull, q);
+}
+
+/* Add a sample farther than every sample of "out"'s hull, logging the popped vertices. */
+static int out_add_far(window *w, const sample *q)
+{
+  hull *h = &w->out_hull;
+  int popped = 0;
+  while (h->n >= 2) {
+    const sample *a = &h->v[h->n - 2], *b = &h->v[h->n - 1];
+    /* b is on or below the chord a-q: it can never be a tangent point from the near side. */
+    if ((q->u - a->u) * (b->x - a->x) >= (b->u - a->u) * (q->x - a->x)) {
+      if (!reserve(&w->undo, &w->undo_cap, w->undo_n + 1)) {
+        return 0;
+      }
+      w->undo[w->undo_n++] = *b;
+      --h->n;
+      ++popped;
+    } else {
+      break;
+    }
+  }
+  if (!reserve(&h->v, &h->cap, h->n + 1) || !reserve(&w->out, &w->out_cap, w->out_n + 1)) {
+    return 0;
+  }
+  h->v[h->n++] = *q;
+  if (w->out_n + 1 > w->popped_cap) {
+    int c = w->popped_cap ? 2 * w->popped_cap : 16;
+    int *np;
+    while (c < w->out_n + 1) {
+      c *= 2;
+    }
+    np = (int *)realloc(w->out_popped, (size_t)c * sizeof(int));
+    if (!np) {
+      return 0;
+    }
+    w->out_popped = np;
+    w->popped_cap = c;
+  }
+  w->out[w->out_n] = *q;
+  w->out_popped[w->out_n] = popped;
+  ++w->out_n;
+  return 1;
+}
+
+/* Remove the farthest sample of "out" (the last one added) and restore what it popped. */
+static void out_remove_far(window *w)
+{
+  hull *h = &w->out_hull;
+  int k = w->out_popped[--w->out_n];
+  --h->n; /* the farthest sample is always the hull's last vertex */
+  while (k-- > 0) {
+    h->v[h->n++] = w->undo[--w->undo_n];
+  }
+}
+
+/* Drop every sample farther than xlimit. */
+static int window_evict(window *w, double xlimit)
+{
+  for (;;) {
+    if (w->out_n > 0) {
+      if (w->out[w->out_n - 1].x > xlimit) {
+        out_remove_far(w);
+        continue;
+      }
+      return 1;
+    }
+    if (w->in_n > 0 && w->in[0].x > xlimit) {
+      /* Move all of "in" to "out", nearest first; "in" starts afresh. */
+      int i;
+      for (i = w->in_n - 1; i >= 0; --i) {
+        if (!out_add_far(w, &w->in[i])) {
+          return 0;
+        }
+      }
+      w->in_n = 0;
+      w->in_hull.n = 0;
+      continue;
+    }
+    return 1;
+  }
+}
+
+/* The tangent vertex of the whole window (the better of the two hulls'), or NULL. */
+static const sample *window_tangent(const window *w, double xq, double uq)
+{
+  double sa = -INFINITY, sb = -INFINITY;
+  const sample *a = hull_tangent(&w->in_hull, xq, uq, &sa);
+  const sample *b = hull_tangent(&w->out_hull, xq, uq, &sb);
+  if (!a) {
+    return b;
+  }
+  if (!b) {
+    return a;
+  }
+  return sa >= sb ? a : b;
+}
+
+typedef struct patch_rec {
+  long dp, ds;       /* the patch's lower corner relative to the ray's start node (view) */
+  float t1, t2;      /* the ray's segment on the patch (m); t1 = 0 on the first patch */
+  float dt, inv_t1, inv_t2, first; /* t2 - t1; 1/t1 (0 on the first patch); 1/t2; 1 or 0 */
+  float wa[4], wb[4], wg[4]; /* weights of corners z(dp,ds), z(dp+1,ds), z(dp,ds+1),
+                                z(dp+1,ds+1) in A1, B1 and C (see build_pattern) */
+} patch_rec;
+
+typedef struct pattern {
+  double m, len;     /* the ray: lateral shift per column, ground length per column (m) */
+  size_t first, n;   /* its records in the pool */
+} pattern;
+
+/* ---------------------------------------------------------------------------------------- */
+/* State */
+
+static int build_pattern(ap_horizon *hz, double m, double len, double tmax);
+
+
+struct ap_horizon {
+  ap_horizon_grid g;
+  ap_horizon_params p;
+  ap_sky_products out;
+  size_t nx, ny;
+  double *dxr, *dyr;    /* per-row cell sizes (m) */
+  float *zt;            /* transposed elevations: zt[i * ny + j] = z(i, j) */
+  float *grad;          /* Horn gradient (dz/dx east, dz/dy north) per cell */
+  float *slope;         /* prepared sector: tangent of the terrain horizon per cell */
+  unsigned char *edge;  /* prepared sector: 1 where the search reached the DEM edge */
+  float *bsum;          /* bent-normal sums when out.bent_normal is NULL */
+  float zmax;
+
+  /* the prepared sector */
+  int d;
+  double phi;             /* grid azimuth (rad) */
+  int xmajor, flip;       /* view: p along columns (xmajor) or rows; p reversed (flip) */
+  size_t np, ns;          /* view sizes */
+  double c;               /* curvature coefficient (1/m) */
+  double *m_row, *len_row; /* per grid row: lateral shift per p step, ground length per step */
+  double *cum_m, *cum_len; /* row-major views: prefix sums over p of the step shift / length */
+  int parallel;           /* all lines shift alike at each p (no per-row bending) */
+  long kmin;              /* line k = kmin + index starts at s = k on p = np - 1 */
+  size_t nlines;
+  /* near-field patch patterns (see build_pattern): a pool of records, the patterns, and which
+   * pattern serves each view position (indexed by p for row-major views, s for x-major) */
+  patch_rec *recs;
+  size_t nrecs, caprecs;
+  pattern *pats;
+  size_t npats, cappats;
+  int *pat_of;
+  double tmax_near;       /* near-field length (m) for the current sector */
+};
+
+/* Cell sizes of row j. */
+static double row_dx(const ap_horizon_grid *g, size_t j)
+{
+  return g->dx ? g->dx[j] : g->dx0;
+}
+
+static double row_dy(const ap_horizon_grid *g, size_t j)
+{
+  return g->dy ? g->dy[j] : g->dy0;
+}
+
+static int positive_finite(double v)
+{
+  return isfinite(v) && v > 0.0;
+}
+
+void ap_horizon_params_init(ap_horizon_params *p)
+{
+  if (!p) {
+    return;
+  }
+  p->directions = 32;
+  p->azimuth_offset = 0.0;
+  p->max_distance = INFINITY;
+  p->curvature = 1;
+  p->refraction = 0.13;
+  p->radius_meridian = 6371000.0;
+  p->radius_normal = 6371000.0;
+  p->near_field = 8;
+}
+
+ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params *p)
+{
+  ap_status st;
+  size_t j, cells;
+  ap_grid_stats stats;
+  if (!g || !p) {
+    return AP_ERR_NULL_POINTER;
+  }
+  st = ap_grid_validate(&g->z, 2, 2);
+  if (st != AP_OK) {
+    return st;
+  }
+  if (ap_size_mul(g->z.nx, g->z.ny, &cells) != AP_OK || cells > SIZE_MAX / 32) {
+    return AP_ERR_SIZE_OVERFLOW;
+  }
+  if (p->directions < 4 || p->directions > 360 || !(p->max_distance > 0.0) ||
+      !(p->refraction >= 0.0 && p->refraction < 1.0) || !positive_finite(p->radius_meridian) ||
+      !positive_finite(p->radius_normal) || p->near_field < 1 || p->near_field > 64 ||
+      !isfinite(p->azimuth_offset)) {
+    return AP_ERR_INVALID_ARGUMENT;
+  }
+  if ((!g->dx && !positive_finite(g->dx0)) || (!g->dy && !positive_finite(g->dy0))) {
+    return AP_ERR_INVALID_ARGUMENT;
+  }
+  for (j = 0; j < g->z.ny; ++j) {
+    if (!positive_finite(row_dx(g, j)) || !positive_finite(row_dy(g, j))) {
+      return AP_ERR_INVALID_ARGUMENT;
+    }
+  }
+  st = ap_grid_stats_compute(&g->z, &stats);
+  if (st != AP_OK) {
+    return st;
+  }
+  return stats.valid == 0 ? AP_ERR_ALL_NODATA : AP_OK;
+}
+
+static float zat(const ap_horizon *hz, size_t i, size_t j)
+{
+  return hz->g.z.z[(ptrdiff_t)j * hz->g.z.row_stride + (ptrdiff_t)i];
+}
+
+/* One difference along a row or column of the 3 x 3 window: (after - before) / (2 h) with both
+ * neighbours, one-sided with the middle and one neighbour, none otherwise. Returns 1 if any. */
+static int difference(double before, double middle, double after, double h, double *out)
+{
+  if (!isnan(before) && !isnan(after)) {
+    *out = (after - before) / (2.0 * h);
+  } else if (!isnan(after) && !isnan(middle)) {
+    *out = (after - middle) / h;
+  } else if (!isnan(before) && !isnan(middle)) {
+    *out = (middle - before) / h;
+  } else {
+    return 0;
+  }
+  return 1;
+}
+
+/* Elevation gradient (dz/dx east, dz/dy north) of cell (i, j) by Horn's (1981) weighted
+ * differences, the method of gdaldem slope:
+ *   dz/dx = ((c + 2f + i) - (a + 2d + g)) / (8 dx),  dz/dy = ((a + 2b + c) - (g + 2h + i)) / (8 dy)
+ * (a b c / d e f / g h i, north row first), written as the 1-2-1 weighted mean of the three
+ * rows' (columns') central differences. Where the window is cut by the DEM edge or nodata, the
+ * mean runs over the differences that exist, one-sided where needed — exact on a plane, and
+ * Horn's formula when all nine cells exist. No difference at all gives 0. */
+static void horn_gradient(const ap_horizon *hz, size_t i, size_t j, float out[2])
+{
+  double v[3][3]; /* v[dj + 1][di + 1], NaN outside or nodata */
+  double sx = 0.0, wx = 0.0, sy = 0.0, wy = 0.0, g;
+  int di, dj, k;
+  static const double weight[3] = { 1.0, 2.0, 1.0 };
+  for (dj = -1; dj <= 1; ++dj) {
+    for (di = -1; di <= 1; ++di) {
+      const ptrdiff_t ii = (ptrdiff_t)i + di, jj = (ptrdiff_t)j + dj;
+      v[dj + 1][di + 1] = (ii >= 0 && jj >= 0 && (size_t)ii < hz->nx && (size_t)jj < hz->ny)
+                            ? (double)zat(hz, (size_t)ii, (size_t)jj)
+                            : NAN;
+    }
+  }
+  for (k = 0; k < 3; ++k) {
+    if (difference(v[k][0], v[k][1], v[k][2], hz->dxr[j], &g)) {
+      sx += weight[k] * g;
+      wx += weight[k];
+    }
+    if (difference(v[0][k], v[1][k], v[2][k], hz->dyr[j], &g)) {
+      sy += weight[k] * g;
+      wy += weight[k];
+    }
+  }
+  out[0] = wx > 0.0 ? (float)(sx / wx) : 0.0f;
+  out[1] = wy > 0.0 ? (float)(sy / wy) : 0.0f;
+}
+
+static void free_sector(ap_horizon *hz)
+{
+  free(hz->m_row);
+  free(hz->len_row);
+  free(hz->cum_m);
+  free(hz->cum_len);
+  free(hz->recs);
+  free(hz->pats);
+  free(hz->pat_of);
+  hz->m_row = hz->len_row = hz->cum_m = hz->cum_len = NULL;
+  hz->recs = NULL;
+  hz->pats = NULL;
+  hz->pat_of = NULL;
+  hz->nrecs = hz->caprecs = hz->npats = hz->cappats = 0;
+}
+
+void ap_horizon_destroy(ap_horizon *hz)
+{
+  if (!hz) {
+    return;
+  }
+  free_sector(hz);
+  free(hz->dxr);
+  free(hz->dyr);
+  free(hz->zt);
+  free(hz->grad);
+  free(hz->slope);
+  free(hz->edge);
+  free(hz->bsum);
+  free(hz);
+}
+
+ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p,
+                            const ap_sky_products *out, ap_horizon **result)
+{
+  ap_horizon *hz;
+  size_t i, j, n;
+  ap_status st;
+  if (!result || !out) {
+    return AP_ERR_NULL_POINTER;
+  }
+  *result = NULL;
+  st = ap_horizon_validate(g, p);
+  if (st != AP_OK) {
+    return st;
+  }
+  hz = (ap_horizon *)calloc(1, sizeof(*hz));
+  if (!hz) {
+    return AP_ERR_OUT_OF_MEMORY;
+  }
+  hz->g = *g;
+  hz->p = *p;
+  hz->out = *out;
+  hz->nx = g->z.nx;
+  hz->ny = g->z.ny;
+  hz->d = -1;
+  n = hz->nx * hz->ny;
+  hz->dxr = (double *)malloc(hz->ny * sizeof(double));
+  hz->dyr = (double *)malloc(hz->ny * sizeof(double));
+  hz->zt = (float *)malloc(n * sizeof(float));
+  hz->grad = (float *)malloc(2 * n * sizeof(float));
+  hz->slope = (float *)malloc(n * sizeof(float));
+  hz->edge = (unsigned char *)malloc(n);
+  if (out->diffuse_sky_factor && !out->bent_normal) {
+    hz->bsum = (float *)malloc(3 * n * sizeof(float));
+  }
+  if (!hz->dxr || !hz->dyr || !hz->zt || !hz->grad || !hz->slope || !hz->edge ||
+      (out->diffuse_sky_factor && !out->bent_normal && !hz->bsum)) {
+    ap_horizon_destroy(hz);
+    return AP_ERR_OUT_OF_MEMORY;
+  }
+  hz->zmax = -INFINITY;
+  for (j = 0; j < hz->ny; ++j) {
+    hz->dxr[j] = row_dx(g, j);
+    hz->dyr[j] = row_dy(g, j);
+    for (i = 0; i < hz->nx; ++i) {
+      const float z = zat(hz, i, j);
+      hz->zt[i * hz->ny + j] = z;
+      if (z > hz->zmax) {
+        hz->zmax = z;
+      }
+    }
+  }
+  for (j = 0; j < hz->ny; ++j) {
+    for (i = 0; i < hz->nx; ++i) {
+      horn_gradient(hz, i, j, hz->grad + 2 * (j * hz->nx + i));
+    }
+  }
+  /* The outputs are the accumulators until ap_horizon_finish. */
+  if (out->visible_solid_angle) memset(out->visible_solid_angle, 0, n * sizeof(float));
+  if (out->aperture_radius) memset(out->aperture_radius, 0, n * sizeof(float));
+  if (out->bent_normal) memset(out->bent_normal, 0, 3 * n * sizeof(float));
+  if (hz->bsum) memset(hz->bsum, 0, 3 * n * sizeof(float));
+  if (out->sky_view_factor) memset(out->sky_view_factor, 0, n * sizeof(float));
+  if (out->diffuse_sky_factor) memset(out->diffuse_sky_factor, 0, n * sizeof(float));
+  if (out->positive_openness) memset(out->positive_openness, 0, n * sizeof(float));
+  if (out->edge_truncated) memset(out->edge_truncated, 0, n);
+  *result = hz;
+  return AP_OK;
+}
+
+int ap_horizon_directions(const ap_horizon *hz)
+{
+  return hz ? hz->p.directions : 0;
+}
+
+double ap_horizon_azimuth(const ap_horizon *hz, int d)
+{
+  return hz ? 2.0 * AP_PI * (double)d / (double)hz->p.directions : 0.0;
+}
+
+/* Grid index along the primary axis of view position p. */
+static size_t prim_index(const ap_horizon *hz, size_t p)
+{
+  return hz->flip ? hz->np - 1 - p : p;
+}
+
+/* A per-row quantity at fractional row r, linearly interpolated, clamped to the grid. */
+static double row_value(const double *table, size_t ny, double r)
+{
+  size_t r0;
+  double t;
+  if (!(r > 0.0)) {
+    return table[0];
+  }
+  if (r >= (double)(ny - 1)) {
+    return table[ny - 1];
+  }
+  r0 = (size_t)r;
+  t = r - (double)r0;
+  return table[r0] + t * (table[r0 + 1] - table[r0]);
+}
+
+ap_status ap_horizon_prepare(ap_horizon *hz, int d)
+{
+  double sphi, cphi, m_lo = INFINITY, m_hi = -INFINITY, R;
+  size_t j, p;
+  if (!hz) {
+    return AP_ERR_NULL_POINTER;
+  }
+  if (d < 0 || d >= hz->p.directions) {
+    return AP_ERR_INVALID_ARGUMENT;
+  }
+  free_sector(hz);
+  hz->d = d;
+  hz->phi = ap_horizon_azimuth(hz, d) - hz->p.azimuth_offset;
+  sphi = sin(hz->phi);
+  cphi = cos(hz->phi);
+  /* Index-space speed of the ground direction at the centre row decides the view. */
+  {
+    const size_t jc = hz->ny / 2;
+    hz->xmajor = fabs(sphi) / hz->dxr[jc] >= fabs(cphi) / hz->dyr[jc];
+  }
+  hz->flip = hz->xmajor ? (sphi < 0.0) : (cphi < 0.0);
+  /* Lines bend only in column-major views of grids whose cell size varies by row. */
+  hz->parallel = 1;
+  if (hz->xmajor) {
+    for (j = 1; j < hz->ny; ++j) {
+      if (hz->dxr[j] != hz->dxr[0] || hz->dyr[j] != hz->dyr[0]) {
+        hz->parallel = 0;
+        break;
+      }
+    }
+  }
+  hz->np = hz->xmajor ? hz->nx : hz->ny;
+  hz->ns = hz->xmajor ? hz->ny : hz->nx;
+  R = 1.0 / (cphi * cphi / hz->p.radius_meridian + sphi * sphi / hz->p.radius_normal);
+  hz->c = hz->p.curvature ? (1.0 - hz->p.refraction) / (2.0 * R) : 0.0;
+
+  hz->m_row = (double *)malloc(hz->ny * sizeof(double));
+  hz->len_row = (double *)malloc(hz->ny * sizeof(double));
+  if (!hz->m_row || !hz->len_row) {
+    free_sector(hz);
+    return AP_ERR_OUT_OF_MEMORY;
+  }
+  for (j = 0; j < hz->ny; ++j) {
+    const double dx = hz->dxr[j], dy = hz->dyr[j];
+    if (hz->xmajor) {
+      /* one column (dx metres east or west) per step; rows move by dx cot(phi) / dy */
+      hz->m_row[j] = dx * cphi / (dy * fabs(sphi));
+      hz->len_row[j] = dx / fabs(sphi);
+    } else {
+      hz->m_row[j] = dy * sphi / (dx * fabs(cphi));
+      hz->len_row[j] = dy / fabs(cphi);
+    }
+    if (hz->m_row[j] < m_lo) m_lo = hz->m_row[j];
+    if (hz->m_row[j] > m_hi) m_hi = hz->m_row[j];
+  }
+  if (!hz->xmajor) {
+    /* Row-major view: the step from p to p + 1 shifts every line by the same amount, the mean
+     * of the two rows' shifts; prefix sums give any span in O(1). */
+    hz->cum_m = (double *)malloc(hz->np * sizeof(double));
+    hz->cum_len = (double *)malloc(hz->np * sizeof(double));
+    if (!hz->cum_m || !hz->cum_len) {
+      free_sector(hz);
+      return AP_ERR_OUT_OF_MEMORY;
+    }
+    hz->cum_m[0] = hz->cum_len[0] = 0.0;
+    for (p = 0; p + 1 < hz->np; ++p) {
+      const size_t a = prim_index(hz, p), b = prim_index(hz, p + 1);
+      hz->cum_m[p + 1] = hz->cum_m[p] + 0.5 * (hz->m_row[a] + hz->m_row[b]);
+      hz->cum_len[p + 1] = hz->cum_len[p] + 0.5 * (hz->len_row[a] + hz->len_row[b]);
+    }
+  }
+  /* Near-field patterns. */
+  {
+    const double tol = 1e-3 / (double)hz->p.near_field; /* rows of drift over the near field */
+    const size_t npos = hz->xmajor ? hz->ns : hz->np;
+    size_t q;
+    hz->tmax_near = 0.0;
+    hz->pat_of = (int *)malloc(npos * sizeof(int));
+    if (!hz->pat_of) {
+      free_sector(hz);
+      return AP_ERR_OUT_OF_MEMORY;
+    }
+    for (q = 0; q < npos; ++q) {
+      double m, len, tmax;
+      if (hz->xmajor) {
+        m = hz->m_row[q];
+        len = hz->len_row[q];
+      } else {
+        const size_t pa = q + 1 < hz->np ? q : q - 1;
+        m = hz->cum_m[pa + 1] - hz->cum_m[pa];
+        len = hz->cum_len[pa + 1] - hz->cum_len[pa];
+      }
+      tmax = fmin(hz->p.max_distance, (double)hz->p.near_field * len);
+      if (q == 0 || fabs(m - hz->pats[hz->npats - 1].m) > tol ||
+          fabs(len - hz->pats[hz->npats - 1].len) > 1e-4 * len) {
+        if (!build_pattern(hz, m, len, tmax)) {
+          free_sector(hz);
+          return AP_ERR_OUT_OF_MEMORY;
+        }
+      }
+      hz->pat_of[q] = (int)(hz->npats - 1);
+    }
+  }
+  /* Lines k in [kmin, kmax] cover s in [0, ns - 1] at every p: line k is at s = k on the last
+   * column and drifts by at most m_lo..m_hi per step on the way back. Two extra lines on each
+   * side keep every cell strictly bracketed. */
+  {
+    const double span = (double)(hz->np - 1);
+    const double lo = fmin(0.0, m_lo * span), hi = fmax(0.0, m_hi * span);
+    const long kmin = (long)floor(lo) - 2;
+    const long kmax = (long)ceil((double)(hz->ns - 1) + hi) + 2;
+    hz->kmin = kmin;
+    hz->nlines = (size_t)(kmax - kmin + 1);
+  }
+  return AP_OK;
+}
+
+size_t ap_horizon_bracket_count(const ap_horizon *hz)
+{
+  return (hz && hz->d >= 0 && hz->nlines > 1) ? hz->nlines - 1 : 0;
+}
+
+/* View column p as a contiguous array of ns elevations. */
+static const float *view_column(const ap_horizon *hz, size_t p)
+{
+  const size_t q = prim_index(hz, p);
+  if (hz->xmajor) {
+    return hz->zt + q * hz->ny;
+  }
+  return hz->g.z.z + (ptrdiff_t)q * hz->g.z.row_stride;
+}
+
+/* Elevation at fractional s of a view column, linear between the two nearest cells; NaN when
+ * outside or when a cell with non-zero weight is nodata. */
+static double interp(const float *col, size_t ns, double s)
+{
+  size_t s0;
+  double t;
+  if (!(s >= 0.0) || s > (double)(ns - 1)) {
+    return NAN;
+  }
+  s0 = (size_t)s;
+  t = s - (double)s0;
+  if (t == 0.0 || s0 + 1 >= ns) {
+    return col[s0];
+  }
+  return (double)col[s0] + t * ((double)col[s0 + 1] - (double)col[s0]);
+}
+
+/* Where the result of view cell (p, s) goes in the sector scratch: x-major sectors are stored
+ * transposed (grid column-major), so the sweep writes contiguously. */
+static size_t scratch_index(const ap_horizon *hz, size_t p, size_t s)
+{
+  const size_t q = prim_index(hz, p);
+  return hz->xmajor ? q * hz->ny + s : s + q * hz->nx;
+}
+
+/* Bilinear height at fractional view position (p, s); NaN outside the grid or on nodata. */
+static double view_bilinear(const ap_horizon *hz, double p, double s)
+{
+  size_t p0;
+  double t;
+  if (!(p >= 0.0) || p > (double)(hz->np - 1)) {
+    return NAN;
+  }
+  p0 = (size_t)p;
+  t = p - (double)p0;
+  if (t == 0.0 || p0 + 1 >= hz->np) {
+    return interp(view_column(hz, p0), hz->ns, s);
+  }
+  return (1.0 - t) * interp(view_column(hz, p0), hz->ns, s) +
+         t * interp(view_column(hz, p0 + 1), hz->ns, s);
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* Near field on the bilinear surface.
+ *
+ * For the first K columns of its ray a cell takes the largest slope (z(t) - zq)/t - c t over
+ * the DEM's bilinear surface exactly. On one patch the surface along a straight ray is a
+ * quadratic, z(t) = A + B t + C t^2, so the slope is f(t) = alpha/t + B + gamma t
+ * (alpha = A - zq, gamma = C - c), whose maximum over a segment [t1, t2] lies at an end or at
+ * t* = sqrt(alpha/gamma). The first patch starts at the cell's own node (alpha = 0), where f
+ * tends to B, the surface's slope along the ray.
+ *
+ * A ray from any node with the same direction crosses the same sequence of patches at the same
+ * distances, so the crossings and the corner weights of A, B, C are computed once per sector
+ * ("pattern") and applied to whole view columns at a time, a loop over contiguous cells that
+ * compilers vectorise. Where the cell size varies by row (lat/lon DEMs), rows (x-major) or
+ * columns (row-major) whose rays differ by less than a thousandth of a row over the near field
+ * share a pattern. */
+
+static int push_rec(ap_horizon *hz, const patch_rec *r)
+{
+  if (hz->nrecs == hz->caprecs) {
+    const size_t c = hz->caprecs ? 2 * hz->caprecs : 64;
+    patch_rec *nr = (patch_rec *)realloc(hz->recs, c * sizeof(patch_rec));
+    if (!nr) {
+      return 0;
+    }
+    hz->recs = nr;
+    hz->caprecs = c;
+  }
+  hz->recs[hz->nrecs++] = *r;
+  return 1;
+}
+
+/* Walk a ray from node (0, 0) of the view, a = 1/len columns and b = m/len rows per metre,
+ * recording every patch it crosses up to distance tmax. */
+static int build_pattern(ap_horizon *hz, double m, double len, double tmax)
+{
+  const double a = 1.0 / len, b = m / len;
+  long P = 0, S = b >= 0.0 ? 0 : -1;
+  double t1 = 0.0;
+  pattern pt;
+  pt.m = m;
+  pt.len = len;
+  pt.first = hz->nrecs;
+  while (t1 < tmax) {
+    const double tp = (double)(P + 1) / a;
+    const double ts = b > 0.0 ? (double)(S + 1) / b : (b < 0.0 ? (double)S / b : INFINITY);
+    const double t2 = fmin(fmin(tp, ts), tmax);
+    /* Where the ray enters the patch, in the patch's own coordinates (u along p, v along s,
+     * both in [0, 1]), so that every weight below stays bounded. */
+    const double u1 = a * t1 - (double)P, v1 = b * t1 - (double)S, k = u1 * b + v1 * a;
+    patch_rec r;
+    r.dp = P;
+    r.ds = S;
+    r.t1 = (float)t1;
+    r.t2 = (float)t2;
+    r.dt = (float)(t2 - t1);
+    r.inv_t1 = t1 > 0.0 ? (float)(1.0 / t1) : 0.0f;
+    r.inv_t2 = (float)(1.0 / t2);
+    r.first = t1 > 0.0 ? 0.0f : 1.0f;
+    /* z(u, v) = z00 (1-u)(1-v) + z10 u (1-v) + z01 (1-u) v + z11 u v along the segment, with
+     * tau = t - t1: z = A1 + B1 tau + C tau^2, A1 = z(u1, v1),
+     * B1 = e a + f b + g (u1 b + v1 a), C = g a b, where e = z10 - z00, f = z01 - z00,
+     * g = z11 - z10 - z01 + z00. */
+    r.wa[0] = (float)((1 - u1) * (1 - v1));
+    r.wa[1] = (float)(u1 * (1 - v1));
+    r.wa[2] = (float)((1 - u1) * v1);
+    r.wa[3] = (float)(u1 * v1);
+    r.wb[0] = (float)(-a - b + k);
+    r.wb[1] = (float)(a - k);
+    r.wb[2] = (float)(b - k);
+    r.wb[3] = (float)k;
+    r.wg[0] = (float)(a * b);
+    r.wg[1] = (float)(-a * b);
+    r.wg[2] = (float)(-a * b);
+    r.wg[3] = (float)(a * b);
+    if (!push_rec(hz, &r)) {
+      return 0;
+    }
+    if (tp <= t2) ++P;
+    if (ts <= t2) S += b > 0.0 ? 1 : -1;
+    if (t2 >= tmax) {
+      break;
+    }
+    t1 = t2;
+  }
+  pt.n = hz->nrecs - pt.first;
+  if (hz->npats == hz->cappats) {
+    const size_t c = hz->cappats ? 2 * hz->cappats : 16;
+    pattern *np = (pattern *)realloc(hz->pats, c * sizeof(pattern));
+    if (!np) {
+      return 0;
+    }
+    hz->pats = np;
+    hz->cappats = c;
+  }
+  hz->pats[hz->npats++] = pt;
+  return 1;
+}
+
+/* Largest near-field slope of cells [sa, sb) of view column p into best[] (max-merged).
+ * Compiled twice where the compiler supports it (GCC function multi-versioning): with AVX2
+ * (eight cells per instruction) and for the baseline; the CPU picks at run time. Both make the
+ * same IEEE operations in the same order (ISO C mode: no fused multiply-add contraction), so
+ * the results are identical on every machine. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define AP_MULTIVERSION __attribute__((target_clones("avx2", "default")))
+#else
+#define AP_MULTIVERSION
+#endif
+AP_MULTIVERSION
+static void near_column(const ap_horizon *hz, const pattern *pt, size_t p, long sa, long sb,
+                        const float *col, double c, float *best)
+{
+  const long ns = (long)hz->ns;
+  const float cf = (float)c;
+  size_t r;
+  for (r = 0; r < pt->n; ++r) {
+    const patch_rec *rec = &hz->recs[pt->first + r];
+    const float *c0, *c1;
+    long s, lo, hi;
+    if (p + (size_t)rec->dp + 1 >= hz->np) {
+      break; /* records run forward in p: the rest is off the grid too */
+    }
+    c0 = view_column(hz, p + (size_t)rec->dp) + rec->ds;
+    c1 = view_column(hz, p + (size_t)rec->dp + 1) + rec->ds;
+    lo = sa > -rec->ds ? sa : -rec->ds;
+    hi = sb < ns - 1 - rec->ds ? sb : ns - 1 - rec->ds;
+    /* Branch-free single precision so that it vectorises four cells at a time. It works on
+     * height differences from the cell (exact for nearby heights, Sterbenz) and on each patch
+     * from where the ray enters it, so the weights stay bounded and float rounding stays near
+     * 1e-7 of a slope. The weights of A1 sum to 1 and those of B1 and C to 0, so the same sums
+     * of the differences give A1 - zq, B1 and C. On the first patch the ray starts at the
+     * cell's own node (A1 = zq) and f1 is the limit B1 (first = 1, inv_t1 = 0). */
+    for (s = lo; s < hi; ++s) {
+      const float zq = col[s];
+      const float d00 = c0[s] - zq, d01 = c0[s + 1] - zq, d10 = c1[s] - zq, d11 = c1[s + 1] - zq;
+      const float a1 = rec->wa[0] * d00 + rec->wa[1] * d10 + rec->wa[2] * d01 + rec->wa[3] * d11;
+      const float B1 = rec->wb[0] * d00 + rec->wb[1] * d10 + rec->wb[2] * d01 + rec->wb[3] * d11;
+      const float C = rec->wg[0] * d00 + rec->wg[1] * d10 + rec->wg[2] * d01 + rec->wg[3] * d11;
+      const float f1 = rec->first * B1 + a1 * rec->inv_t1 - cf * rec->t1;
+      const float f2 = (a1 + (B1 + C * rec->dt) * rec->dt) * rec->inv_t2 - cf * rec->t2;
+      /* In absolute distance t the slope is f(t) = alpha/t + B + gamma t with
+       * alpha = A1 - zq - B1 t1 + C t1^2, B = B1 - 2 C t1, gamma = C - c. An interior maximum
+       * needs alpha < 0 and gamma < 0 (f'' = 2 alpha / t^3 < 0); it lies in the segment iff
+       * t1^2 <= alpha/gamma <= t2^2, i.e. gamma t2^2 <= alpha <= gamma t1^2, and there
+       * f(t*) = B - 2 sqrt(alpha gamma): no division. */
+      const float alpha = a1 - (B1 - C * rec->t1) * rec->t1;
+      const float gamma = C - cf;
+      const int inside = (alpha < 0.0f) & (gamma < 0.0f) &
+                         (alpha >= gamma * rec->t2 * rec->t2) & (alpha <= gamma * rec->t1 * rec->t1);
+      const float fi = inside ? (B1 - 2.0f * C * rec->t1) - 2.0f * sqrtf(alpha * gamma) : f1;
+      float v = f1 > f2 ? f1 : f2;
+      v = fi > v ? fi : v;
+      best[s] = v > best[s] ? v : best[s]; /* NaN (nodata corner) never wins */
+    }
+  }
+}
+
+typedef struct line_state {
+  double s, x;   /* position on the current column; distance along the line (m) */
+  double xend;   /* distance of the farthest sample position inside the grid; NAN: none yet */
+  window w;      /* hull(s) of the samples at least K columns away */
+} line_state;
+
+ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
+{
+  int K, limited;
+  double L, c;
+  size_t np, ns, nl, l, pp;
+  line_state *lines = NULL;
+  sample *ring = NULL; /* per line, K pending samples (u NaN: none) */
+  float *best = NULL;   /* near-field slope of each cell of the current column */
+  double shift, xc, k0;
+  ap_status st = AP_OK;
+  if (!hz) {
+    return AP_ERR_NULL_POINTER;
+  }
+  if (hz->d < 0) {
+    return AP_ERR_INVALID_ARGUMENT;
+  }
+  K = hz->p.near_field;
+  limited = isfinite(hz->p.max_distance);
+  L = hz->p.max_distance;
+  c = hz->c;
+  np = hz->np;
+  ns = hz->ns;
+  if (b1 > ap_horizon_bracket_count(hz)) {
+    b1 = ap_horizon_bracket_count(hz);
+  }
+  if (b0 >= b1) {
+    return AP_OK;
+  }
+  nl = b1 - b0 + 1; /* brackets b0..b1-1 need lines b0..b1 */
+  lines = (line_state *)calloc(nl, sizeof(line_state));
+  ring = (sample *)malloc(nl * (size_t)K * sizeof(sample));
+  best = (float *)malloc(ns * sizeof(float));
+  if (!lines || !ring || !best) {
+    st = AP_ERR_OUT_OF_MEMORY;
+    goto done;
+  }
+  for (l = 0; l < nl; ++l) {
+    int r;
+    lines[l].s = (double)(hz->kmin + (long)(b0 + l));
+    /* Distances are measured from the middle of the line so that c x^2 stays modest. */
+    lines[l].x = 0.5 * (double)(np - 1) * hz->len_row[hz->ny / 2];
+    lines[l].xend = NAN;
+    for (r = 0; r < K; ++r) {
+      ring[l * (size_t)K + (size_t)r].u = NAN;
+      ring[l * (size_t)K + (size_t)r].col = -1;
+    }
+  }
+
+  /* Parallel lines: line l sits at s = k0 + l - shift with shift and distance xc shared. */
+  shift = 0.0;
+  xc = lines[0].x;
+  k0 = (double)(hz->kmin + (long)b0);
+#define LINE_S(i) (hz->parallel ? k0 + (double)(i) - shift : lines[(i)].s)
+
+  for (pp = np; pp-- > 0;) {
+    const size_t p = pp;
+    const float *col = view_column(hz, p);
+    const int slot = (int)(p % (size_t)K);
+    size_t cell;
+    /* 1. Move the lines to column p and take the samples of those inside the grid (delayed
+     *    into the hulls by K - 1 columns through the ring; a slot remembers its column). With
+     *    parallel lines every line has the same shift and distance, so only those inside are
+     *    touched; bending lines all advance. */
+    if (hz->parallel) {
+      if (p + 1 < np) {
+        if (hz->xmajor) {
+          shift += hz->m_row[0];
+          xc -= hz->len_row[0];
+        } else {
+          shift += hz->cum_m[p + 1] - hz->cum_m[p];
+          xc -= hz->cum_len[p + 1] - hz->cum_len[p];
+        }
+      }
+      /* line l is at s = k0 + l - shift, inside for 0 <= s <= ns - 1 */
+      {
+        const double lo = ceil(shift - k0), hi = floor((double)(ns - 1) + shift - k0);
+        const size_t la = lo > 0.0 ? (size_t)lo : 0;
+        const size_t lb = hi < 0.0 ? 0 : (hi + 1.0 < (double)nl ? (size_t)hi + 1 : nl);
+        for (l = la; l < lb; ++l) {
+          line_state *ln = &lines[l];
+          sample *q = &ring[l * (size_t)K + (size_t)slot];
+          ln->s = k0 + (double)l - shift;
+          ln->x = xc;
+          if (isnan(ln->xend)) {
+            ln->xend = xc;
+          }
+          q->x = xc;
+          q->u = interp(col, ns, ln->s) - c * xc * xc; /* NaN on nodata */
+          q->s = ln->s;
+          q->col = (long)p;
+        }
+      }
+    } else {
+      for (l = 0; l < nl; ++l) {
+        line_state *ln = &lines[l];
+        if (p + 1 < np) {
+          const double r = ln->s; /* column-major view: the grid row is s itself */
+          ln->x -= row_value(hz->len_row, hz->ny, r);
+          ln->s -= row_value(hz->m_row, hz->ny, r);
+        }
+        if (ln->s >= 0.0 && ln->s <= (double)(ns - 1)) {
+          sample *q = &ring[l * (size_t)K + (size_t)slot];
+          if (isnan(ln->xend)) {
+            ln->xend = ln->x;
+          }
+          q->x = ln->x;
+          q->u = interp(col, ns, ln->s) - c * ln->x * ln->x;
+          q->s = ln->s;
+          q->col = (long)p;
+        }
+      }
+    }
+
+    /* 2. Every cell of column p bracketed by this band's lines: the near field for all of
+     *    them at once (per pattern run), then each cell's far field. */
+    l = 0;
+    {
+      const double first = LINE_S(0), last = LINE_S(nl - 1);
+      const long s_begin = first <= 0.0 ? 0 : (long)ceil(first);
+      const long s_end = last > (double)ns ? (long)ns : (long)ceil(last);
+      long run;
+      for (run = s_begin; run < s_end; ++run) {
+        best[run] = -INFINITY;
+      }
+      for (run = s_begin; run < s_end;) {
+        long run_end = s_end;
+        int pat;
+        if (hz->xmajor) {
+          pat = hz->pat_of[run];
+          run_end = run + 1;
+          while (run_end < s_end && hz->pat_of[run_end] == pat) {
+            ++run_end;
+          }
+        } else {
+          pat = hz->pat_of[p];
+        }
+        near_column(hz, &hz->pats[pat], p, run, run_end, col, c, best);
+        run = run_end;
+      }
+      for (cell = (size_t)s_begin; (long)cell < s_end; ++cell) {
+        const double sq = (double)cell;
+        const double zq = col[cell];
+        const size_t out_index = scratch_index(hz, p, cell);
+        double near = best[cell], far = -INFINITY, limit, avail;
+        while (l + 2 < nl && LINE_S(l + 1) <= sq) {
+          ++l;
+        }
+        if (isnan(zq)) {
+          hz->slope[out_index] = NAN;
+          hz->edge[out_index] = 0;
+          continue;
+        }
+        if (limited && L > (double)K * (hz->xmajor ? hz->len_row[cell] : (hz->cum_len[p + 1 < np ? p + 1 : p] - hz->cum_len[p + 1 < np ? p : p - 1]))) {
+          /* The point exactly at the search distance: rising terrain peaks there, between the
+           * column samples the hulls hold. */
+          const pattern *pt = &hz->pats[hz->xmajor ? hz->pat_of[cell] : hz->pat_of[p]];
+          const double zl = view_bilinear(hz, (double)p + L / pt->len, sq + pt->m * L / pt->len);
+          if (!isnan(zl)) {
+            const double sl = (zl - zq) / L - c * L;
+            if (sl > near) near = sl;
+          }
+        }
+        /* Far field: the hulls of the two bracketing lines, each queried with the cell's own
+         * height for the column of its tangent point; the cell's own ray is then evaluated on
+         * those columns (the cell keeps its lateral offset from the line). Blending the two
+         * lines' slopes instead is off by a degree where the horizon is reached everywhere
+         * along the ray (planes, V-valleys): the two tangent points then lie at very different
+         * distances. u = z - c x^2 makes the curvature exact (ALGORITHMS.md 3.5). */
+        {
+          line_state *bl[2];
+          int e;
+          bl[0] = &lines[l];
+          bl[1] = &lines[l + 1];
+          for (e = 0; e < 2; ++e) {
+            line_state *ln = bl[e];
+            const sample *v;
+            if (hz->parallel) {
+              ln->s = LINE_S(l + (size_t)e);
+              ln->x = xc;
+            }
+            if (limited && !window_evict(&ln->w, ln->x + L)) {
+              st = AP_ERR_OUT_OF_MEMORY;
+              goto done;
+            }
+            v = window_tangent(&ln->w, ln->x, zq - c * ln->x * ln->x);
+            double sn, zn, dn, slope;
+            if (!v) {
+              continue;
+            }
+            sn = sq + (v->s - ln->s);
+            zn = interp(view_column(hz, (size_t)v->col), ns, sn);
+            dn = v->x - ln->x;
+            if (isnan(zn) || !(dn > 0.0)) {
+              continue;
+            }
+            slope = (zn - zq) / dn - c * dn;
+            if (slope > far) {
+              far = slope;
+            }
+          }
+          avail = fmin(isnan(bl[0]->xend) ? 0.0 : bl[0]->xend - bl[0]->x,
+                       isnan(bl[1]->xend) ? 0.0 : bl[1]->xend - bl[1]->x);
+        }
+        hz->slope[out_index] = (float)(near > far ? near : far);
+        /* Truncated when the DEM ends before the search limit: L, and with curvature
+         * sqrt((zmax - z)/c) (compared squared: avail^2 c < zmax - z). */
+        limit = L;
+        hz->edge[out_index] =
+          avail < limit && (c <= 0.0 || avail * avail * c < (double)hz->zmax - zq);
+      }
+    }
+
+    /* 3. Feed the hulls with the samples of column p + K - 1, so that for column p - 1 they
+     *    hold exactly the samples at least K columns away. */
+    if (p + (size_t)K - 1 < np) {
+      const int fslot = (int)((p + (size_t)K - 1) % (size_t)K);
+      for (l = 0; l < nl; ++l) {
+        const sample *q = &ring[l * (size_t)K + (size_t)fslot];
+        int ok;
+        if (q->col != (long)(p + (size_t)K - 1) || isnan(q->u)) {
+          continue; /* no sample there: the line was outside the grid, or on nodata */
+        }
+        ok = limited ? window_push(&lines[l].w, q) : hull_push_near(&lines[l].w.in_hull, q);
+        if (!ok) {
+          st = AP_ERR_OUT_OF_MEMORY;
+          goto done;
+        }
+      }
+    }
+  }
+
+#undef LINE_S
+done:
+  if (lines) {
+    for (l = 0; l < nl; ++l) {
+      window_free(&lines[l].w);
+    }
+  }
+  free(lines);
+  free(ring);
+  free(best);
+  return st;
+}
+
+void ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
+{
+  const double delta = 2.0 * AP_PI / (double)hz->p.directions;
+  const double w = 2.0 * sin(0.5 * delta);
+  const double sphi = sin(hz->phi), cphi = cos(hz->phi);
+  const int D = hz->p.directions, d = hz->d;
+  const ap_sky_products *o = &hz->out;
+  float *A = o->visible_solid_angle ? o->visible_solid_angle : o->aperture_radius;
+  float *B = o->bent_normal ? o->bent_normal : hz->bsum;
+  size_t i, j;
+  for (j = j0; j < j1 && j < hz->ny; ++j) {
+    for (i = 0; i < hz->nx; ++i) {
+      const size_t cellid = j * hz->nx + i;
+      const size_t si = hz->xmajor ? i * hz->ny + j : cellid;
+      const double tt = hz->slope[si];
+      double ts, te, ce, se, he, ht = 0.0;
+      if (isnan(tt)) {
+        continue;
+      }
+      /* The sky a cell sees lies above the horizontal, the terrain and its own tangent plane. */
+      ts = hz->grad[2 * cellid] * sphi + hz->grad[2 * cellid + 1] * cphi;
+      te = tt > ts ? tt : ts;
+      if (!(te > 0.0)) {
+        te = 0.0;
+      }
+      ce = 1.0 / sqrt(1.0 + te * te);
+      se = te * ce;
+      if (o->positive_openness || o->horizon_angles) {
+        ht = atan(tt); /* -pi/2 for an empty direction (tt = -inf) */
+      }
+      /* one arctangent where the terrain horizon is the effective one */
+      he = te == 0.0 ? 0.0 : ((te == tt && (o->positive_openness || o->horizon_angles)) ? ht : atan(te));
+      if (A) {
+        A[cellid] += (float)(delta * (1.0 - se));
+      }
+      if (B) {
+        const double Q = 0.5 * ((AP_HALF_PI - he) - se * ce);
+        B[3 * cellid] += (float)(w * sphi * Q);
+        B[3 * cellid + 1] += (float)(w * cphi * Q);
+        B[3 * cellid + 2] += (float)(0.5 * delta * ce * ce);
+      }
+      if (o->sky_view_factor && tt > 0.0) {
+        o->sky_view_factor[cellid] += (float)(tt / sqrt(1.0 + tt * tt));
+      }
+      if (o->positive_openness) {
+        o->positive_openness[cellid] += (float)(AP_HALF_PI - ht);
+      }
+      if (o->edge_truncated && hz->edge[si]) {
+        o->edge_truncated[cellid] = 1;
+      }
+      if (o->horizon_angles) {
+        o->horizon_angles[cellid * (size_t)D + (size_t)d] = (float)ht;
+      }
+    }
+  }
+}
+
+void ap_horizon_finish(const ap_horizon *hz, size_t j0, size_t j1)
+{
+  const ap_sky_products *o = &hz->out;
+  const double D = (double)hz->p.directions;
+  float *B = o->bent_normal ? o->bent_normal : hz->bsum;
+  size_t i, j;
+  for (j = j0; j < j1 && j < hz->ny; ++j) {
+    for (i = 0; i < hz->nx; ++i) {
+      const size_t k = j * hz->nx + i;
+      if (isnan(zat(hz, i, j))) {
+        if (o->visible_solid_angle) o->visible_solid_angle[k] = NAN;
+        if (o->aperture_radius) o->aperture_radius[k] = NAN;
+        if (o->bent_normal) o->bent_normal[3 * k] = o->bent_normal[3 * k + 1] = o->bent_normal[3 * k + 2] = NAN;
+        if (o->sky_view_factor) o->sky_view_factor[k] = NAN;
+        if (o->diffuse_sky_factor) o->diffuse_sky_factor[k] = NAN;
+        if (o->positive_openness) o->positive_openness[k] = NAN;
+        if (o->horizon_angles) {
+          size_t d;
+          for (d = 0; d < (size_t)hz->p.directions; ++d) {
+            o->horizon_angles[k * (size_t)hz->p.directions + d] = NAN;
+          }
+        }
+        continue;
+      }
+      if (o->aperture_radius) {
+        /* rp = acos(1 - A/2pi) in the half-angle form: 1 - cos r = 2 sin^2(r/2). */
+        const double A = o->visible_solid_angle ? o->visible_solid_angle[k] : o->aperture_radius[k];
+        const double s = sqrt(fmin(1.0, fmax(0.0, A / (4.0 * AP_PI))));
+        o->aperture_radius[k] = (float)(2.0 * asin(s));
+      }
+      if (B) {
+        const double bx = B[3 * k], by = B[3 * k + 1], bz = B[3 * k + 2];
+        if (o->diffuse_sky_factor) {
+          const double gx = hz->grad[2 * k], gy = hz->grad[2 * k + 1];
+          const double inv = 1.0 / sqrt(1.0 + gx * gx + gy * gy);
+          o->diffuse_sky_factor[k] = (float)((-gx * bx - gy * by + bz) * inv / AP_PI);
+        }
+        if (o->bent_normal) {
+          const double len = sqrt(bx * bx + by * by + bz * bz);
+          if (len > 0.0) {
+            o->bent_normal[3 * k] = (float)(bx / len);
+            o->bent_normal[3 * k + 1] = (float)(by / len);
+            o->bent_normal[3 * k + 2] = (float)(bz / len);
+          } else {
+            o->bent_normal[3 * k] = o->bent_normal[3 * k + 1] = 0.0f;
+            o->bent_normal[3 * k + 2] = 1.0f;
+          }
+        }
+      }
+      if (o->sky_view_factor) {
+        o->sky_view_factor[k] = (float)(1.0 - o->sky_view_factor[k] / D);
+      }
+      if (o->positive_openness) {
+        o->positive_openness[k] = (float)(o->positive_openness[k] / D);
+      }
+    }
+  }
+}
+
+ap_status ap_horizon_run(const ap_horizon_grid *g, const ap_horizon_params *p,
+                         const ap_sky_products *out)
+{
+  ap_horizon *hz = NULL;
+  ap_status st = ap_horizon_create(g, p, out, &hz);
+  int d;
+  if (st != AP_OK) {
+    return st;
+  }
+  for (d = 0; d < p->directions && st == AP_OK; ++d) {
+    st = ap_horizon_prepare(hz, d);
+    if (st == AP_OK) {
+      st = ap_horizon_sweep(hz, 0, ap_horizon_bracket_count(hz));
+    }
+    if (st == AP_OK) {
+      ap_horizon_accumulate(hz, 0, g->z.ny);
+    }
+  }
+  if (st == AP_OK) {
+    ap_horizon_finish(hz, 0, g->z.ny);
+  }
+  ap_horizon_destroy(hz);
+  return st;
+}

@@ -1,0 +1,175 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/** @file ap_horizon.h
+ *  @brief Horizon angles of every cell of a DEM in D azimuth sectors, and the sky-visibility
+ *         products derived from them in the same pass: visible solid angle, aperture radius,
+ *         bent normal, sky-view factor (Zakšek), diffuse sky factor (Dozier & Frew),
+ *         positive openness, edge truncation.
+ *
+ *  ## Horizons
+ *  For cell q and azimuth φ the terrain horizon is
+ *      h(q, φ) = max over terrain points P along the ray from q in azimuth φ of
+ *                atan((z_P − z_q − c·t²) / t),   t = ground distance from q to P,
+ *  with c = (1 − k) / (2 R(φ)) the Earth-curvature drop with refraction coefficient k (c = 0
+ *  without curvature) and R(φ) = 1 / (cos²φ / M + sin²φ / N) the ellipsoid's radius of
+ *  curvature in that azimuth (Euler), from the meridional and prime-vertical radii M, N given
+ *  for the DEM centre. It is computed with the convex-hull line sweep of Timonen & Westerholm
+ *  (2010; Stewart 1998): per azimuth, lines of constant ground azimuth cross the grid; each
+ *  keeps the upper convex hull of the terrain it has passed in u = z − c·x² (x = distance along
+ *  the line, which makes curvature exact, ALGORITHMS.md §3.5), so the cost is amortised O(1)
+ *  per cell and direction and does not grow with the search distance. Each cell queries the
+ *  hulls of the two lines that bracket it *with its own height* (binary search for the tangent,
+ *  blended by lateral position) and marches its own ray exactly for the first K − 1 samples
+ *  (the near field); querying with interpolated line samples instead is wrong by tens of
+ *  degrees at peaks and ridges (ALGORITHMS.md §3.4). Terrain is sampled by linear
+ *  interpolation across the grid lines the rays cross.
+ *
+ *  Geometry: cell sizes are given per row in metres, so lat/lon DEMs are exact (the lines
+ *  follow constant ground azimuth — rhumb lines — and bend in index space as the east-west
+ *  cell size changes with latitude). Sector d is centred on true azimuth φ_d = 2π d / D
+ *  (clockwise from north, d = 0 north); with a projected DEM, pass the meridian convergence γ
+ *  at the DEM centre as azimuth_offset and the sweep runs at grid azimuth φ_d − γ.
+ *
+ *  Terrain beyond the DEM edge is invisible (it does not exist for the sweep). Nodata (NaN)
+ *  never occludes; nodata cells get NaN products. A direction with no terrain sample at all
+ *  (the ray leaves the DEM at once) has horizon −π/2.
+ *
+ *  ## Products, from the sector horizons in one pass (ALGORITHMS.md §2.2)
+ *  Per sector d (width Δ = 2π/D, grid azimuth φ) with terrain horizon h_t, the cell's own
+ *  tangent-plane elevation h_s = atan(g·(sin φ, cos φ)) (g = elevation gradient, Horn 1981) and
+ *  h = max(h_t, h_s, 0) (the visible sky is above the horizontal, the terrain and the tangent
+ *  plane), with the horizon taken constant within the sector:
+ *      VisibleSolidAngle  A  = Σ Δ (1 − sin h)                               [sr]
+ *      ApertureRadius     rp = acos(1 − A / 2π) = 2 asin(sqrt(A / 4π))       [rad]
+ *      B = Σ ( 2 sin(Δ/2) sin φ · Q(h),  2 sin(Δ/2) cos φ · Q(h),  (Δ/2) cos² h ),
+ *          Q(h) = ½ [(π/2 − h) − sin h cos h]        (B = ∫ V ω dω over the visible sky)
+ *      BentNormal         B / |B|   (unit; grid frame: x grid east, y grid north, z up)
+ *      DiffuseSkyFactor   n·B / π   (Dozier & Frew 1990 eq. 7b with Dozier 2022's self-shadow
+ *                         correction: isotropic sky irradiance on the tilted cell relative to
+ *                         an unobstructed horizontal surface; n = unit normal from g)
+ *      SkyViewFactor      1 − (1/D) Σ sin max(h_t, 0)   (Zakšek et al. 2011: the unweighted
+ *                         visible fraction of the upper hemisphere above the horizontal plane;
+ *                         it ignores the cell's own slope — not the same as DiffuseSkyFactor)
+ *      PositiveOpenness   (1/D) Σ (π/2 − h_t)    (Yokoyama et al. 2002, radians)
+ *      EdgeTruncated      1 where, in some sector, the DEM ends closer than the search limit:
+ *                         max_distance, and with curvature on at most sqrt((z_max − z)/c),
+ *                         beyond which terrain no higher than the DEM's highest cell stays
+ *                         below the cell's horizontal.
+ *  The sums converge as O(1/D²) to the continuous integrals.
+ *
+ *  ## Use and threads
+ *      ap_horizon_params_init(&p);  ...set fields...
+ *      ap_horizon_create(&grid, &p, &products, &hz);          (validates once, allocates)
+ *      for d in 0..D-1:
+ *          ap_horizon_prepare(hz, d);
+ *          split [0, ap_horizon_bracket_count(hz)) into ranges; ap_horizon_sweep() each
+ *          split [0, ny) into row ranges;                      ap_horizon_accumulate() each
+ *      split [0, ny) into row ranges;                          ap_horizon_finish() each
+ *      ap_horizon_destroy(hz);
+ *  The range functions are reentrant for disjoint ranges (run them from any threads; they
+ *  never create threads), and the results are bit-identical for any split, because every cell
+ *  is computed by exactly one call and accumulates its sectors in order. ap_horizon_run() does
+ *  all of it on the calling thread.
+ */
+#ifndef AP_HORIZON_H
+#define AP_HORIZON_H
+
+#include <stddef.h>
+
+#include "ap_grid.h"
+#include "ap_status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** A DEM with metric cell sizes. Rows run south to north (row 0 south). */
+typedef struct ap_horizon_grid {
+  ap_grid_view z;   /**< elevations (m), NaN = nodata; at least 2 x 2 */
+  const double *dx; /**< ny east-west cell sizes (m) per row, > 0; NULL: all rows dx0 */
+  const double *dy; /**< ny south-north cell sizes (m) per row, > 0; NULL: all rows dy0 */
+  double dx0, dy0;  /**< cell sizes (m) used when dx / dy are NULL */
+} ap_horizon_grid;
+
+/** Options; always start from ap_horizon_params_init(). */
+typedef struct ap_horizon_params {
+  int directions;         /**< D azimuth sectors, 4..360 (default 32) */
+  double azimuth_offset;  /**< radians; sweep at grid azimuth = true azimuth − offset: the
+                               meridian convergence γ at the DEM centre (default 0) */
+  double max_distance;    /**< search distance (m), > 0; INFINITY = unlimited (default) */
+  int curvature;          /**< nonzero: Earth curvature with refraction (default 1) */
+  double refraction;      /**< refraction coefficient k in [0, 1) (default 0.13) */
+  double radius_meridian; /**< M: meridional radius of curvature (m) at the DEM centre
+                               (default 6371000) */
+  double radius_normal;   /**< N: prime-vertical radius of curvature (m) (default 6371000) */
+  int near_field;         /**< K: samples 1..K-1 along each cell's own ray are marched
+                               exactly before the hulls take over; 1..64 (default 8) */
+} ap_horizon_params;
+
+/** Output arrays, caller-owned, nx * ny cells in grid order (cell (i, j) at j * nx + i);
+ *  each may be NULL when not wanted. Angles in radians. */
+typedef struct ap_sky_products {
+  float *visible_solid_angle;   /**< A (sr), [0, 2π] */
+  float *aperture_radius;       /**< rp (rad), [0, π/2] */
+  float *bent_normal;           /**< 3 per cell, unit vector in the grid frame */
+  float *sky_view_factor;       /**< Zakšek SVF, [0, 1] */
+  float *diffuse_sky_factor;    /**< Dozier–Frew V_d, [0, 1] */
+  float *positive_openness;     /**< radians */
+  unsigned char *edge_truncated; /**< 0 or 1 */
+  float *horizon_angles;        /**< D per cell, sector d at [cell * D + d] (rad) */
+} ap_sky_products;
+
+/** Opaque state of one horizon computation. */
+typedef struct ap_horizon ap_horizon;
+
+/** Set the defaults documented on each field. */
+void ap_horizon_params_init(ap_horizon_params *p);
+
+/** Check a grid and options without allocating: AP_OK or the first problem
+ *  (AP_ERR_INVALID_ARGUMENT for an option out of range or a cell size that is not positive
+ *  and finite, AP_ERR_GRID_TOO_SMALL, AP_ERR_ALL_NODATA, ...). */
+ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params *p);
+
+/** Validate, then allocate the state: a transposed copy of the elevations (4 bytes per
+ *  cell), the gradients (8), one direction's horizons and edge flags (5), and accumulators
+ *  for the bent-normal sums when bent_normal is NULL but the diffuse sky factor is wanted
+ *  (12). Zeroes the requested outputs, which serve as accumulators until ap_horizon_finish.
+ *  The grid's and the outputs' memory must stay valid until ap_horizon_destroy. */
+ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p,
+                            const ap_sky_products *out, ap_horizon **hz);
+
+/** Free everything ap_horizon_create allocated (NULL is fine). */
+void ap_horizon_destroy(ap_horizon *hz);
+
+/** Number of sectors D. */
+int ap_horizon_directions(const ap_horizon *hz);
+
+/** True azimuth (radians, clockwise from north) of sector d's centre. */
+double ap_horizon_azimuth(const ap_horizon *hz, int d);
+
+/** Set up sector d (0 <= d < D) for ap_horizon_sweep; not thread-safe (call between
+ *  parallel phases). */
+ap_status ap_horizon_prepare(ap_horizon *hz, int d);
+
+/** Number of brackets (gaps between neighbouring sweep lines) of the prepared sector. */
+size_t ap_horizon_bracket_count(const ap_horizon *hz);
+
+/** Sweep brackets [b0, b1) of the prepared sector: computes the horizon and edge flag of every
+ *  cell between those lines. Allocates and frees its own hull stacks; returns
+ *  AP_ERR_OUT_OF_MEMORY if that fails (the products are then incomplete). */
+ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1);
+
+/** Add the prepared sector's horizons of rows [j0, j1) to the products. */
+void ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1);
+
+/** After the last sector: turn the sums of rows [j0, j1) into the products. */
+void ap_horizon_finish(const ap_horizon *hz, size_t j0, size_t j1);
+
+/** Everything on the calling thread: create, every sector, finish, destroy. */
+ap_status ap_horizon_run(const ap_horizon_grid *g, const ap_horizon_params *p,
+                         const ap_sky_products *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* AP_HORIZON_H */
