@@ -1,0 +1,1037 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkApertureEXRWriter and vtkApertureEXRReader: what OpenEXR's own C API reads back from the
+// writer's files (channel names and types, orientation, NaN, compression, windows, string
+// attributes), the round trip through the reader (FLOAT exact, HALF within half precision,
+// RGB(A), metadata, georeference), the reader on files written here with the C API, the
+// documented errors of both classes, and `exrheader` on a written file when it is installed.
+#include "ApertureTestRasters.h"
+
+#include "vtkApertureEXRReader.h"
+#include "vtkApertureEXRWriter.h"
+#include "vtkApertureGeoreference.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkMatrix3x3.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
+#include "vtkTestErrorObserver.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <openexr.h>
+
+#include <dirent.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace
+{
+std::string tmp;
+const int NX = 6, NY = 4;
+
+bool Exists(const std::string& path)
+{
+  struct stat sb;
+  return stat(path.c_str(), &sb) == 0;
+}
+
+// OpenEXR's default error handler prints; the raw helpers below stay silent.
+void Quiet(exr_const_context_t, exr_result_t, const char*) {}
+
+exr_context_initializer_t QuietInit()
+{
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = &Quiet;
+  return init;
+}
+
+//------------------------------------------------------------------------------
+// An EXR file as OpenEXR's C API sees it, every channel decoded to float, scanline order
+// (row 0 = scanline 0 = the top of the picture).
+struct RawImage
+{
+  bool Ok = false;
+  int Parts = 0;
+  exr_storage_t Storage = EXR_STORAGE_LAST_TYPE;
+  exr_compression_t Compression = EXR_COMPRESSION_LAST_TYPE;
+  exr_attr_box2i_t DataWindow = {};
+  exr_attr_box2i_t DisplayWindow = {};
+  int Width = 0, Height = 0;
+  std::vector<std::string> Channels; // header order
+  std::map<std::string, exr_pixel_type_t> Types;
+  std::map<std::string, std::vector<float>> Pixels;
+  std::map<std::string, std::string> Strings; // string attributes
+
+  float At(const std::string& channel, int x, int scanline) const
+  {
+    auto it = this->Pixels.find(channel);
+    if (it == this->Pixels.end())
+    {
+      return -12345.0f;
+    }
+    return it->second[static_cast<size_t>(scanline) * static_cast<size_t>(this->Width) +
+      static_cast<size_t>(x)];
+  }
+};
+
+RawImage ReadRaw(const std::string& path)
+{
+  RawImage img;
+  exr_context_t ctx = nullptr;
+  const exr_context_initializer_t init = QuietInit();
+  if (exr_start_read(&ctx, path.c_str(), &init) != EXR_ERR_SUCCESS)
+  {
+    return img;
+  }
+  bool ok = exr_get_count(ctx, &img.Parts) == EXR_ERR_SUCCESS &&
+    exr_get_storage(ctx, 0, &img.Storage) == EXR_ERR_SUCCESS &&
+    exr_get_compression(ctx, 0, &img.Compression) == EXR_ERR_SUCCESS &&
+    exr_get_data_window(ctx, 0, &img.DataWindow) == EXR_ERR_SUCCESS &&
+    exr_get_display_window(ctx, 0, &img.DisplayWindow) == EXR_ERR_SUCCESS;
+  const exr_attr_chlist_t* channels = nullptr;
+  ok = ok && exr_get_channels(ctx, 0, &channels) == EXR_ERR_SUCCESS && channels;
+  if (ok)
+  {
+    img.Width = img.DataWindow.max.x - img.DataWindow.min.x + 1;
+    img.Height = img.DataWindow.max.y - img.DataWindow.min.y + 1;
+    for (int c = 0; c < channels->num_channels; ++c)
+    {
+      const std::string name = channels->entries[c].name.str;
+      img.Channels.push_back(name);
+      img.Types[name] = channels->entries[c].pixel_type;
+      img.Pixels[name].assign(static_cast<size_t>(img.Width) * img.Height, -999.0f);
+    }
+    int32_t count = 0;
+    ok = exr_get_attribute_count(ctx, 0, &count) == EXR_ERR_SUCCESS;
+    for (int32_t a = 0; ok && a < count; ++a)
+    {
+      const exr_attribute_t* attr = nullptr;
+      ok =
+        exr_get_attribute_by_index(ctx, 0, EXR_ATTR_LIST_FILE_ORDER, a, &attr) == EXR_ERR_SUCCESS;
+      if (ok && attr->type == EXR_ATTR_STRING)
+      {
+        img.Strings[attr->name] = attr->string->str;
+      }
+    }
+  }
+  int lines = 1;
+  ok = ok && img.Storage == EXR_STORAGE_SCANLINE &&
+    exr_get_scanlines_per_chunk(ctx, 0, &lines) == EXR_ERR_SUCCESS;
+  for (int y = img.DataWindow.min.y; ok && y <= img.DataWindow.max.y; y += lines)
+  {
+    exr_chunk_info_t chunk;
+    exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
+    ok = exr_read_scanline_chunk_info(ctx, 0, y, &chunk) == EXR_ERR_SUCCESS &&
+      exr_decoding_initialize(ctx, 0, &chunk, &dec) == EXR_ERR_SUCCESS;
+    for (int c = 0; ok && c < dec.channel_count; ++c)
+    {
+      exr_coding_channel_info_t& ch = dec.channels[c];
+      float* dst = img.Pixels[ch.channel_name].data() +
+        static_cast<size_t>(chunk.start_y - img.DataWindow.min.y) * img.Width;
+      ch.decode_to_ptr = reinterpret_cast<uint8_t*>(dst);
+      ch.user_pixel_stride = 4;
+      ch.user_line_stride = 4 * img.Width;
+      ch.user_bytes_per_element = 4;
+      ch.user_data_type = EXR_PIXEL_FLOAT;
+    }
+    ok = ok && exr_decoding_choose_default_routines(ctx, 0, &dec) == EXR_ERR_SUCCESS &&
+      exr_decoding_run(ctx, 0, &dec) == EXR_ERR_SUCCESS;
+    exr_decoding_destroy(ctx, &dec);
+  }
+  exr_finish(&ctx);
+  img.Ok = ok;
+  return img;
+}
+
+//------------------------------------------------------------------------------
+// Files of kinds the writer never makes, written with OpenEXR's C API.
+enum class RawKind
+{
+  Tiled,      // one 4 x 4 tile
+  Deep,       // deep scanline, no samples
+  MultiPart,  // two scanline parts
+  Subsampled, // channel C sampled every 2 x 2 pixels
+  Channels,   // R G B A, Z (HALF), N (UINT), layer.x layer.y, lone.dot, V V.x V.y
+  BadGeo,     // aperture:geotransform "1,2,3"
+  BadCRS      // aperture:crs "not a CRS"
+};
+
+// Value of channel k (its index in WriteRaw's list) at pixel (x, scanline y) of a raw file.
+float RawValue(int k, int x, int y)
+{
+  return static_cast<float>(1000 * k + 10 * y + x);
+}
+
+bool WriteRaw(const std::string& path, RawKind kind)
+{
+  const int W = 4, H = 4;
+  exr_context_t ctx = nullptr;
+  const exr_context_initializer_t init = QuietInit();
+  if (exr_start_write(&ctx, path.c_str(), EXR_WRITE_FILE_DIRECTLY, &init) != EXR_ERR_SUCCESS)
+  {
+    return false;
+  }
+  const exr_storage_t storage = kind == RawKind::Tiled ? EXR_STORAGE_TILED
+    : kind == RawKind::Deep                            ? EXR_STORAGE_DEEP_SCANLINE
+                                                       : EXR_STORAGE_SCANLINE;
+  const int parts = kind == RawKind::MultiPart ? 2 : 1;
+  struct Spec
+  {
+    const char* Name;
+    exr_pixel_type_t Type;
+    int Sampling;
+  };
+  std::vector<Spec> specs = { { "Z", EXR_PIXEL_FLOAT, 1 } };
+  if (kind == RawKind::Subsampled)
+  {
+    specs.push_back({ "C", EXR_PIXEL_FLOAT, 2 });
+  }
+  if (kind == RawKind::Channels)
+  {
+    specs = { { "A", EXR_PIXEL_FLOAT, 1 }, { "B", EXR_PIXEL_FLOAT, 1 }, { "G", EXR_PIXEL_FLOAT, 1 },
+      { "N", EXR_PIXEL_UINT, 1 }, { "R", EXR_PIXEL_FLOAT, 1 }, { "Z", EXR_PIXEL_HALF, 1 },
+      { "layer.x", EXR_PIXEL_FLOAT, 1 }, { "layer.y", EXR_PIXEL_FLOAT, 1 },
+      { "lone.dot", EXR_PIXEL_FLOAT, 1 }, { "V", EXR_PIXEL_FLOAT, 1 },
+      { "V.x", EXR_PIXEL_FLOAT, 1 }, { "V.y", EXR_PIXEL_FLOAT, 1 } };
+  }
+  bool ok = true;
+  for (int p = 0; ok && p < parts; ++p)
+  {
+    int part = 0;
+    ok = exr_add_part(ctx, parts > 1 ? (p ? "b" : "a") : "", storage, &part) == EXR_ERR_SUCCESS &&
+      exr_initialize_required_attr_simple(ctx, part, W, H, EXR_COMPRESSION_NONE) == EXR_ERR_SUCCESS;
+    if (ok && kind == RawKind::Tiled)
+    {
+      ok = exr_set_tile_descriptor(ctx, part, 4, 4, EXR_TILE_ONE_LEVEL, EXR_TILE_ROUND_DOWN) ==
+        EXR_ERR_SUCCESS;
+    }
+    for (const Spec& s : specs)
+    {
+      ok = ok &&
+        exr_add_channel(ctx, part, s.Name, s.Type, EXR_PERCEPTUALLY_LINEAR, s.Sampling,
+          s.Sampling) == EXR_ERR_SUCCESS;
+    }
+    if (ok && kind == RawKind::BadGeo)
+    {
+      ok = exr_attr_set_string(ctx, part, "aperture:geotransform", "1,2,3") == EXR_ERR_SUCCESS;
+    }
+    if (ok && kind == RawKind::BadCRS)
+    {
+      ok = exr_attr_set_string(ctx, part, "aperture:crs", "not a CRS") == EXR_ERR_SUCCESS;
+    }
+  }
+  ok = ok && exr_write_header(ctx) == EXR_ERR_SUCCESS;
+
+  // Pixels: float and uint buffers for every channel, W x H, scanline order.
+  std::map<std::string, std::vector<float>> fbuf;
+  std::map<std::string, std::vector<uint32_t>> ubuf;
+  for (size_t k = 0; k < specs.size(); ++k)
+  {
+    std::vector<float>& f = fbuf[specs[k].Name];
+    std::vector<uint32_t>& u = ubuf[specs[k].Name];
+    for (int y = 0; y < H; ++y)
+    {
+      for (int x = 0; x < W; ++x)
+      {
+        f.push_back(RawValue(static_cast<int>(k), x, y));
+        u.push_back(static_cast<uint32_t>(RawValue(static_cast<int>(k), x, y)));
+      }
+    }
+  }
+  auto encode = [&](int part, exr_chunk_info_t& chunk) {
+    exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
+    bool good = exr_encoding_initialize(ctx, part, &chunk, &enc) == EXR_ERR_SUCCESS;
+    for (int c = 0; good && c < enc.channel_count; ++c)
+    {
+      exr_coding_channel_info_t& ch = enc.channels[c];
+      const bool isUint = ch.data_type == EXR_PIXEL_UINT;
+      const uint8_t* base = isUint ? reinterpret_cast<const uint8_t*>(ubuf[ch.channel_name].data())
+                                   : reinterpret_cast<const uint8_t*>(fbuf[ch.channel_name].data());
+      ch.encode_from_ptr = base + static_cast<size_t>(chunk.start_y) * W * 4;
+      ch.user_pixel_stride = 4;
+      ch.user_line_stride = 4 * W;
+      ch.user_bytes_per_element = 4;
+      ch.user_data_type = isUint ? EXR_PIXEL_UINT : EXR_PIXEL_FLOAT;
+    }
+    good = good && exr_encoding_choose_default_routines(ctx, part, &enc) == EXR_ERR_SUCCESS &&
+      exr_encoding_run(ctx, part, &enc) == EXR_ERR_SUCCESS;
+    exr_encoding_destroy(ctx, &enc);
+    return good;
+  };
+  for (int p = 0; ok && p < parts; ++p)
+  {
+    if (kind == RawKind::Tiled)
+    {
+      exr_chunk_info_t chunk;
+      ok = exr_write_tile_chunk_info(ctx, p, 0, 0, 0, 0, &chunk) == EXR_ERR_SUCCESS &&
+        encode(p, chunk);
+    }
+    else if (kind == RawKind::Deep)
+    {
+      int32_t counts[W] = { 0, 0, 0, 0 }; // no samples: only the sample-count table
+      for (int y = 0; ok && y < H; ++y)
+      {
+        ok = exr_write_deep_scanline_chunk(ctx, p, y, nullptr, 0, 0, counts, sizeof(counts)) ==
+          EXR_ERR_SUCCESS;
+      }
+    }
+    else
+    {
+      for (int y = 0; ok && y < H; ++y)
+      {
+        exr_chunk_info_t chunk;
+        ok =
+          exr_write_scanline_chunk_info(ctx, p, y, &chunk) == EXR_ERR_SUCCESS && encode(p, chunk);
+      }
+    }
+  }
+  return exr_finish(&ctx) == EXR_ERR_SUCCESS && ok && Exists(path);
+}
+
+//------------------------------------------------------------------------------
+// Elevation(i, j) = 100 j + i + 0.25 with NaN at (1, 2); Vector (E, N, U) = (i, j, -1);
+// Count (int) = i j; Weights (double, 2 unnamed components) = (i / 2, j / 8); Label (strings).
+vtkSmartPointer<vtkImageData> MakeImage(bool withCRS)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(NX, NY, 1);
+  image->SetOrigin(300015.0, 5000015.0, 0.0);
+  image->SetSpacing(30.0, 30.0, 1.0);
+  vtkNew<vtkFloatArray> z;
+  z->SetName("Elevation");
+  vtkNew<vtkFloatArray> v;
+  v->SetName("Vector");
+  v->SetNumberOfComponents(3);
+  v->SetComponentName(0, "E");
+  v->SetComponentName(1, "N");
+  v->SetComponentName(2, "U");
+  vtkNew<vtkIntArray> count;
+  count->SetName("Count");
+  vtkNew<vtkDoubleArray> w;
+  w->SetName("Weights");
+  w->SetNumberOfComponents(2);
+  vtkNew<vtkStringArray> label;
+  label->SetName("Label");
+  for (int j = 0; j < NY; ++j)
+  {
+    for (int i = 0; i < NX; ++i)
+    {
+      z->InsertNextValue((i == 1 && j == 2) ? NAN : static_cast<float>(100 * j + i) + 0.25f);
+      v->InsertNextTuple3(i, j, -1.0);
+      count->InsertNextValue(i * j);
+      w->InsertNextTuple2(0.5 * i, 0.125 * j);
+      label->InsertNextValue("x");
+    }
+  }
+  image->GetPointData()->SetScalars(z);
+  image->GetPointData()->AddArray(v);
+  image->GetPointData()->AddArray(count);
+  image->GetPointData()->AddArray(w);
+  image->GetPointData()->AddArray(label);
+  if (withCRS)
+  {
+    vtkNew<vtkApertureGeoreference> geo;
+    geo->SetCRS("EPSG:32633");
+    geo->AttachToImage(image);
+  }
+  return image;
+}
+
+// Expected value of a channel of MakeImage at VTK point (i, j).
+double Expected(const std::string& channel, int i, int j)
+{
+  if (channel == "Elevation")
+  {
+    return (i == 1 && j == 2) ? std::numeric_limits<double>::quiet_NaN() : 100 * j + i + 0.25;
+  }
+  if (channel == "Vector.E")
+  {
+    return i;
+  }
+  if (channel == "Vector.N")
+  {
+    return j;
+  }
+  if (channel == "Vector.U")
+  {
+    return -1.0;
+  }
+  if (channel == "Count")
+  {
+    return i * j;
+  }
+  if (channel == "Weights.0")
+  {
+    return 0.5 * i;
+  }
+  return 0.125 * j; // Weights.1
+}
+
+bool SameValue(double a, double b)
+{
+  return (std::isnan(a) && std::isnan(b)) || a == b;
+}
+
+// Run a reader with observers on it and its executive, so errors never print.
+struct Read
+{
+  vtkNew<vtkApertureEXRReader> Reader;
+  vtkNew<vtkTest::ErrorObserver> Errors, ExecutiveErrors;
+  int Ok = 0;
+  explicit Read(const std::string& path)
+  {
+    this->Reader->SetFileName(path.c_str());
+    this->Reader->AddObserver(vtkCommand::ErrorEvent, this->Errors);
+    this->Reader->AddObserver(vtkCommand::WarningEvent, this->Errors);
+    this->Reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->ExecutiveErrors);
+  }
+  vtkImageData* Update()
+  {
+    this->Ok = this->Reader->GetExecutive()->Update();
+    return this->Reader->GetOutput();
+  }
+};
+
+void ExpectWriterError(vtkApertureEXRWriter* writer, const std::string& expected)
+{
+  vtkNew<vtkTest::ErrorObserver> errors, executiveErrors;
+  writer->AddObserver(vtkCommand::ErrorEvent, errors);
+  writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+  writer->Write();
+  AP_CHECK(errors->GetError());
+  AP_CHECK_CONTAINS(errors->GetErrorMessage(), expected);
+}
+
+void ExpectReaderError(const std::string& path, const std::string& expected)
+{
+  Read rd(path);
+  vtkImageData* out = rd.Update();
+  AP_CHECK(rd.Ok == 0);
+  AP_CHECK(rd.Errors->GetError());
+  AP_CHECK_CONTAINS(rd.Errors->GetErrorMessage(), expected);
+  AP_CHECK(out->GetNumberOfPoints() == 0);
+}
+
+//------------------------------------------------------------------------------
+// Check fix for flipped rows: EXR scanline 0 must hold VTK's northern row (row NY-1), as
+// OpenEXR's C API reads it; FLOAT channels are exact, NaN stays NaN; the reader restores
+// arrays, components, geometry and georeference.
+void TestRoundTrip()
+{
+  const std::string path = tmp + "/roundtrip.exr";
+  auto original = MakeImage(true);
+  vtkNew<vtkApertureEXRWriter> writer;
+  writer->SetInputData(original);
+  writer->SetFileName(path.c_str());
+  writer->Write();
+
+  const RawImage raw = ReadRaw(path);
+  AP_CHECK(raw.Ok);
+  AP_CHECK(raw.Parts == 1 && raw.Storage == EXR_STORAGE_SCANLINE);
+  AP_CHECK(raw.Compression == EXR_COMPRESSION_ZIP); // the default
+  AP_CHECK(raw.DataWindow.min.x == 0 && raw.DataWindow.min.y == 0);
+  AP_CHECK(raw.DataWindow.max.x == NX - 1 && raw.DataWindow.max.y == NY - 1);
+  AP_CHECK(raw.DisplayWindow.min.x == 0 && raw.DisplayWindow.min.y == 0);
+  AP_CHECK(raw.DisplayWindow.max.x == NX - 1 && raw.DisplayWindow.max.y == NY - 1);
+  const std::vector<std::string> names = { "Count", "Elevation", "Vector.E", "Vector.N", "Vector.U",
+    "Weights.0", "Weights.1" }; // sorted; Label (strings) skipped
+  AP_CHECK(raw.Channels == names);
+  for (const std::string& n : names)
+  {
+    AP_CHECK(raw.Types.count(n) && raw.Types.at(n) == EXR_PIXEL_FLOAT);
+  }
+  AP_CHECK_NEAR(raw.At("Elevation", 0, 0), 100.0 * (NY - 1) + 0.25, 0.0); // north-west
+  AP_CHECK_NEAR(raw.At("Elevation", NX - 1, NY - 1), NX - 1 + 0.25, 0.0); // south-east
+  AP_CHECK(std::isnan(raw.At("Elevation", 1, NY - 1 - 2)));
+  for (const std::string& n : names)
+  {
+    for (int y = 0; y < NY; ++y)
+    {
+      for (int x = 0; x < NX; ++x)
+      {
+        AP_CHECK(SameValue(raw.At(n, x, y), Expected(n, x, NY - 1 - y)));
+      }
+    }
+  }
+  const std::string crs =
+    vtkStringArray::SafeDownCast(original->GetFieldData()->GetAbstractArray("CRS"))->GetValue(0);
+  AP_CHECK(raw.Strings.count("aperture:crs") && raw.Strings.at("aperture:crs") == crs);
+  AP_CHECK(raw.Strings.count("aperture:geotransform") &&
+    raw.Strings.at("aperture:geotransform") == "300000,30,0,5000120,0,-30");
+
+  Read rd(path);
+  vtkImageData* back = rd.Update();
+  AP_CHECK(rd.Ok == 1 && !rd.Errors->GetError());
+  int ext[6];
+  back->GetExtent(ext);
+  AP_CHECK(ext[0] == 0 && ext[1] == NX - 1 && ext[2] == 0 && ext[3] == NY - 1);
+  AP_CHECK(ext[4] == 0 && ext[5] == 0);
+  double origin[3], spacing[3];
+  back->GetOrigin(origin);
+  back->GetSpacing(spacing);
+  AP_CHECK_NEAR(origin[0], 300015.0, 1e-9);
+  AP_CHECK_NEAR(origin[1], 5000015.0, 1e-9);
+  AP_CHECK_NEAR(spacing[0], 30.0, 0.0);
+  AP_CHECK_NEAR(spacing[1], 30.0, 0.0);
+  vtkPointData* pd = back->GetPointData();
+  AP_CHECK(pd->GetNumberOfArrays() == 4);
+  AP_CHECK(pd->GetScalars() && std::string(pd->GetScalars()->GetName()) == "Count");
+  struct Want
+  {
+    const char* Array;
+    std::vector<std::string> Channels, Components;
+  };
+  const Want wants[] = { { "Elevation", { "Elevation" }, {} }, { "Count", { "Count" }, {} },
+    { "Vector", { "Vector.E", "Vector.N", "Vector.U" }, { "E", "N", "U" } },
+    { "Weights", { "Weights.0", "Weights.1" }, { "0", "1" } } };
+  for (const Want& w : wants)
+  {
+    vtkFloatArray* a = vtkFloatArray::SafeDownCast(pd->GetArray(w.Array));
+    AP_CHECK(a != nullptr);
+    if (!a)
+    {
+      continue;
+    }
+    AP_CHECK(a->GetNumberOfComponents() == static_cast<int>(w.Channels.size()));
+    AP_CHECK(a->GetNumberOfTuples() == NX * NY);
+    for (size_t c = 0; c < w.Components.size(); ++c)
+    {
+      const char* cname = a->GetComponentName(static_cast<vtkIdType>(c));
+      AP_CHECK(cname && w.Components[c] == cname);
+    }
+    for (int j = 0; j < NY; ++j)
+    {
+      for (int i = 0; i < NX; ++i)
+      {
+        for (size_t c = 0; c < w.Channels.size(); ++c)
+        {
+          AP_CHECK(SameValue(
+            a->GetComponent(j * NX + i, static_cast<int>(c)), Expected(w.Channels[c], i, j)));
+        }
+      }
+    }
+  }
+  vtkStringArray* backCRS =
+    vtkStringArray::SafeDownCast(back->GetFieldData()->GetAbstractArray("CRS"));
+  AP_CHECK(backCRS && backCRS->GetNumberOfValues() == 1 && backCRS->GetValue(0) == crs);
+  vtkDataArray* gt = back->GetFieldData()->GetArray("GeoTransform");
+  vtkDataArray* gtWant = original->GetFieldData()->GetArray("GeoTransform");
+  AP_CHECK(gt && gt->GetNumberOfTuples() == 6);
+  for (int k = 0; gt && k < 6; ++k)
+  {
+    AP_CHECK_NEAR(gt->GetTuple1(k), gtWant->GetTuple1(k), 1e-9);
+  }
+  AP_CHECK(rd.Reader->GetMetadataValue("aperture:geotransform") != nullptr);
+}
+
+//------------------------------------------------------------------------------
+// HALF: every channel 16-bit in the file; values back within half precision (11 significant
+// bits: |error| <= 2^-11 |value| for normal halves, round to nearest), NaN stays NaN, and a
+// magnitude above the largest half (65504) becomes infinity as documented.
+void TestHalf()
+{
+  const std::string path = tmp + "/half.exr";
+  auto image = MakeImage(false);
+  vtkFloatArray* z = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Elevation"));
+  for (vtkIdType k = 0; k < z->GetNumberOfTuples(); ++k)
+  {
+    if (!std::isnan(z->GetValue(k)))
+    {
+      z->SetValue(k, z->GetValue(k) + 0.1234f);
+    }
+  }
+  z->SetValue(NX - 1, 70000.0f); // (NX-1, 0)
+  vtkNew<vtkApertureEXRWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(path.c_str());
+  writer->AddArrayName("Elevation");
+  writer->AddArrayName("Vector");
+  writer->SetPixelTypeToHalf();
+  AP_CHECK(writer->GetPixelType() == vtkApertureEXRWriter::HALF);
+  AP_CHECK(std::string(writer->GetPixelTypeAsString()) == "HALF");
+  writer->Write();
+
+  const RawImage raw = ReadRaw(path);
+  AP_CHECK(raw.Ok && raw.Channels.size() == 4);
+  for (const auto& t : raw.Types)
+  {
+    AP_CHECK(t.second == EXR_PIXEL_HALF);
+  }
+  Read rd(path);
+  vtkImageData* back = rd.Update();
+  AP_CHECK(rd.Ok == 1);
+  vtkDataArray* a = back->GetPointData()->GetArray("Elevation");
+  AP_CHECK(vtkFloatArray::SafeDownCast(a) != nullptr);
+  for (vtkIdType k = 0; a && k < NX * NY; ++k)
+  {
+    const double want = z->GetValue(k), got = a->GetTuple1(k);
+    if (std::isnan(want))
+    {
+      AP_CHECK(std::isnan(got));
+    }
+    else if (k == NX - 1)
+    {
+      AP_CHECK(std::isinf(got) && got > 0);
+    }
+    else
+    {
+      AP_CHECK_NEAR(got, want, std::ldexp(std::fabs(want), -11));
+    }
+  }
+  vtkDataArray* v = back->GetPointData()->GetArray("Vector");
+  AP_CHECK(v && v->GetNumberOfComponents() == 3);
+  AP_CHECK(v && v->GetComponent(2 * NX + 3, 0) == 3.0); // small integers are exact in half
+}
+
+//------------------------------------------------------------------------------
+// Color arrays become the standard channels R, G, B (, A), and come back as `RGB` / `RGBA`,
+// the active scalars; a color array also named with AddArrayName is not written twice.
+void TestColor()
+{
+  auto image = MakeImage(false);
+  vtkNew<vtkFloatArray> rgb;
+  rgb->SetName("Radiance");
+  rgb->SetNumberOfComponents(3);
+  vtkNew<vtkUnsignedCharArray> rgba;
+  rgba->SetName("Picture");
+  rgba->SetNumberOfComponents(4);
+  for (int j = 0; j < NY; ++j)
+  {
+    for (int i = 0; i < NX; ++i)
+    {
+      rgb->InsertNextTuple3(i / 8.0, j / 8.0, 0.5);
+      rgba->InsertNextTuple4(i, j, 200, 255);
+    }
+  }
+  image->GetPointData()->AddArray(rgb);
+  image->GetPointData()->AddArray(rgba);
+
+  const std::string path3 = tmp + "/rgb.exr";
+  vtkNew<vtkApertureEXRWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(path3.c_str());
+  writer->SetColorArrayName("Radiance");
+  writer->AddArrayName("Elevation");
+  writer->Write();
+  RawImage raw = ReadRaw(path3);
+  AP_CHECK(raw.Ok);
+  AP_CHECK((raw.Channels == std::vector<std::string>{ "B", "Elevation", "G", "R" }));
+  AP_CHECK_NEAR(raw.At("R", 5, 0), 5 / 8.0, 0.0);
+  AP_CHECK_NEAR(raw.At("G", 5, 0), (NY - 1) / 8.0, 0.0);
+  AP_CHECK_NEAR(raw.At("B", 5, 0), 0.5, 0.0);
+  Read rd3(path3);
+  vtkImageData* back = rd3.Update();
+  vtkDataArray* color = back->GetPointData()->GetScalars();
+  AP_CHECK(color && std::string(color->GetName()) == "RGB");
+  AP_CHECK(color && color->GetNumberOfComponents() == 3);
+  AP_CHECK(color && std::string(color->GetComponentName(0)) == "R");
+  AP_CHECK(color && std::string(color->GetComponentName(2)) == "B");
+  AP_CHECK(color && color->GetComponent(2 * NX + 5, 0) == 5 / 8.0);
+  AP_CHECK(color && color->GetComponent(2 * NX + 5, 1) == 2 / 8.0);
+  AP_CHECK(back->GetPointData()->GetNumberOfArrays() == 2);
+
+  const std::string path4 = tmp + "/rgba.exr";
+  writer->SetFileName(path4.c_str());
+  writer->SetColorArrayName("Picture");
+  writer->ClearArrayNames();
+  writer->AddArrayName("Picture");
+  writer->Write();
+  raw = ReadRaw(path4);
+  AP_CHECK(raw.Ok);
+  AP_CHECK((raw.Channels == std::vector<std::string>{ "A", "B", "G", "R" }));
+  AP_CHECK_NEAR(raw.At("A", 0, 0), 255.0, 0.0);
+  AP_CHECK_NEAR(raw.At("G", 0, 0), NY - 1.0, 0.0);
+  Read rd4(path4);
+  back = rd4.Update();
+  color = back->GetPointData()->GetScalars();
+  AP_CHECK(color && std::string(color->GetName()) == "RGBA");
+  AP_CHECK(color && color->GetNumberOfComponents() == 4);
+  AP_CHECK(color && std::string(color->GetComponentName(3)) == "A");
+  AP_CHECK(color && color->GetComponent(NX + 4, 0) == 4.0);
+  AP_CHECK(color && color->GetComponent(NX + 4, 3) == 255.0);
+}
+
+//------------------------------------------------------------------------------
+// Metadata round trip (a later value replaces an earlier one), long names, and a plain picture:
+// no CRS -> no georeference attributes, origin 0, spacing 1, no CRS field data.
+void TestMetadataAndPlainPicture()
+{
+  const std::string path = tmp + "/metadata.exr";
+  auto image = MakeImage(false);
+  const std::string longName = "AnArrayNameLongerThanThirtyOneCharacters";
+  vtkNew<vtkFloatArray> longArray;
+  longArray->SetName(longName.c_str());
+  longArray->SetNumberOfTuples(NX * NY);
+  longArray->Fill(2.5);
+  image->GetPointData()->AddArray(longArray);
+  vtkNew<vtkApertureEXRWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(path.c_str());
+  writer->AddArrayName("Elevation");
+  writer->AddArrayName(longName.c_str());
+  writer->AddMetadata("aperture:software", "aperture 0.1");
+  writer->AddMetadata("Provenance", "first");
+  writer->AddMetadata("Provenance", "slope of dem.tif (Horn 1981)");
+  writer->Write();
+
+  const RawImage raw = ReadRaw(path);
+  AP_CHECK(raw.Ok);
+  AP_CHECK(raw.Strings.count("Provenance") &&
+    raw.Strings.at("Provenance") == "slope of dem.tif (Horn 1981)");
+  AP_CHECK(raw.Strings.count("aperture:software") &&
+    raw.Strings.at("aperture:software") == "aperture 0.1");
+  AP_CHECK(raw.Strings.count("aperture:crs") == 0);
+  AP_CHECK(raw.Strings.count("aperture:geotransform") == 0);
+  AP_CHECK(raw.Types.count(longName) == 1);
+
+  Read rd(path);
+  // Metadata is valid from UpdateInformation() on; OpenEXR's `type` attribute is left out.
+  rd.Reader->UpdateInformation();
+  AP_CHECK(rd.Reader->GetNumberOfMetadata() == 2);
+  AP_CHECK(
+    rd.Reader->GetMetadataKey(0) && std::string(rd.Reader->GetMetadataKey(0)) == "Provenance");
+  AP_CHECK(rd.Reader->GetMetadataKey(1) &&
+    std::string(rd.Reader->GetMetadataKey(1)) == "aperture:software");
+  AP_CHECK(rd.Reader->GetMetadataKey(2) == nullptr);
+  AP_CHECK(rd.Reader->GetMetadataValue("Provenance") &&
+    std::string(rd.Reader->GetMetadataValue("Provenance")) == "slope of dem.tif (Horn 1981)");
+  AP_CHECK(rd.Reader->GetMetadataValue("type") == nullptr);
+  AP_CHECK(rd.Reader->GetMetadataValue("missing") == nullptr);
+  vtkImageData* back = rd.Update();
+  AP_CHECK(rd.Ok == 1);
+  double origin[3], spacing[3];
+  back->GetOrigin(origin);
+  back->GetSpacing(spacing);
+  AP_CHECK(origin[0] == 0.0 && origin[1] == 0.0 && spacing[0] == 1.0 && spacing[1] == 1.0);
+  AP_CHECK(back->GetFieldData()->GetAbstractArray("CRS") == nullptr);
+  AP_CHECK(back->GetFieldData()->GetAbstractArray("GeoTransform") == nullptr);
+  vtkDataArray* a = back->GetPointData()->GetArray(longName.c_str());
+  AP_CHECK(a && a->GetTuple1(7) == 2.5);
+}
+
+//------------------------------------------------------------------------------
+// Every compression by name (any case) reaches the file and keeps the values exact; an unknown
+// name is an error that keeps the previous setting.
+void TestCompressions()
+{
+  const char* names[] = { "none", "RLE", "zips", "Zip", "PIZ" };
+  const exr_compression_t want[] = { EXR_COMPRESSION_NONE, EXR_COMPRESSION_RLE,
+    EXR_COMPRESSION_ZIPS, EXR_COMPRESSION_ZIP, EXR_COMPRESSION_PIZ };
+  auto image = MakeImage(false);
+  for (int k = 0; k < 5; ++k)
+  {
+    const std::string path = tmp + "/compression" + std::to_string(k) + ".exr";
+    vtkNew<vtkApertureEXRWriter> writer;
+    writer->SetInputData(image);
+    writer->SetFileName(path.c_str());
+    writer->AddArrayName("Elevation");
+    writer->SetCompression(names[k]);
+    AP_CHECK(writer->GetCompression() == static_cast<int>(want[k]));
+    writer->Write();
+    const RawImage raw = ReadRaw(path);
+    AP_CHECK(raw.Ok && raw.Compression == want[k]);
+    for (int y = 0; raw.Ok && y < NY; ++y)
+    {
+      for (int x = 0; x < NX; ++x)
+      {
+        AP_CHECK(SameValue(raw.At("Elevation", x, y), Expected("Elevation", x, NY - 1 - y)));
+      }
+    }
+  }
+  vtkNew<vtkApertureEXRWriter> writer;
+  writer->SetCompressionToPIZ();
+  vtkNew<vtkTest::ErrorObserver> errors;
+  writer->AddObserver(vtkCommand::ErrorEvent, errors);
+  writer->SetCompression("DWAA");
+  AP_CHECK(errors->GetError());
+  AP_CHECK_CONTAINS(errors->GetErrorMessage(), "unknown OpenEXR compression 'DWAA'");
+  AP_CHECK(writer->GetCompression() == vtkApertureEXRWriter::PIZ);
+  AP_CHECK(std::string(writer->GetCompressionAsString()) == "PIZ");
+}
+
+//------------------------------------------------------------------------------
+// The reader on a file written with the C API: RGBA grouped in R, G, B, A order, a layer
+// grouped with its suffixes as component names, a lone dotted channel kept whole, a group
+// whose prefix is also a channel name (V, V.x, V.y) kept as separate arrays, HALF and UINT
+// converted to float.
+void TestReaderGrouping()
+{
+  const std::string path = tmp + "/channels.exr";
+  AP_CHECK(WriteRaw(path, RawKind::Channels));
+  Read rd(path);
+  vtkImageData* img = rd.Update();
+  AP_CHECK(rd.Ok == 1 && !rd.Errors->GetError());
+  vtkPointData* pd = img->GetPointData();
+  AP_CHECK(pd->GetNumberOfArrays() == 8); // RGBA, N, V, V.x, V.y, Z, layer, lone.dot
+  // Channel k of WriteRaw's list: A0 B1 G2 N3 R4 Z5 layer.x6 layer.y7 lone.dot8 V9 V.x10 V.y11.
+  // VTK point (x, j) is scanline 3 - j.
+  vtkDataArray* color = pd->GetScalars();
+  AP_CHECK(color && std::string(color->GetName()) == "RGBA" && color->GetNumberOfComponents() == 4);
+  const int rgbaChannel[4] = { 4, 2, 1, 0 };
+  for (int c = 0; color && c < 4; ++c)
+  {
+    AP_CHECK(color->GetComponent(1 * 4 + 2, c) == RawValue(rgbaChannel[c], 2, 3 - 1));
+  }
+  vtkDataArray* layer = pd->GetArray("layer");
+  AP_CHECK(layer && layer->GetNumberOfComponents() == 2);
+  AP_CHECK(layer && std::string(layer->GetComponentName(1)) == "y");
+  AP_CHECK(layer && layer->GetComponent(3, 1) == RawValue(7, 3, 3));
+  vtkDataArray* lone = pd->GetArray("lone.dot");
+  AP_CHECK(lone && lone->GetNumberOfComponents() == 1 && lone->GetTuple1(0) == RawValue(8, 0, 3));
+  vtkDataArray* half = pd->GetArray("Z"); // 5003 is between halves 5000 and 5004
+  AP_CHECK(vtkFloatArray::SafeDownCast(half) != nullptr);
+  AP_CHECK(half && std::fabs(half->GetTuple1(15) - RawValue(5, 3, 0)) <= 2.0);
+  vtkDataArray* uint = pd->GetArray("N");
+  AP_CHECK(vtkFloatArray::SafeDownCast(uint) && uint->GetTuple1(4) == RawValue(3, 0, 2));
+  const char* apart[3] = { "V", "V.x", "V.y" };
+  for (int k = 0; k < 3; ++k)
+  {
+    vtkDataArray* a = pd->GetArray(apart[k]);
+    AP_CHECK(a && a->GetNumberOfComponents() == 1 && a->GetTuple1(5) == RawValue(9 + k, 1, 2));
+  }
+}
+
+//------------------------------------------------------------------------------
+bool LeftoverTemporaryFiles(const std::string& base)
+{
+  DIR* dir = opendir(tmp.c_str());
+  bool found = false;
+  for (struct dirent* e = dir ? readdir(dir) : nullptr; e; e = readdir(dir))
+  {
+    const std::string name = e->d_name;
+    found = found || (name.compare(0, 4, "tmp.") == 0 && name.find(base) != std::string::npos);
+  }
+  if (dir)
+  {
+    closedir(dir);
+  }
+  return found;
+}
+
+void TestWriterErrors()
+{
+  auto image = MakeImage(true);
+  {
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputData(image);
+    ExpectWriterError(w, "no file name was set");
+  }
+  {
+    auto volume = vtkSmartPointer<vtkImageData>::New();
+    volume->SetDimensions(3, 3, 2);
+    volume->AllocateScalars(VTK_FLOAT, 1);
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputData(volume);
+    w->SetFileName((tmp + "/volume.exr").c_str());
+    ExpectWriterError(w, "only 2-D images can be written to '" + tmp + "/volume.exr'");
+    AP_CHECK(!Exists(tmp + "/volume.exr"));
+  }
+  {
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputData(image);
+    w->SetFileName((tmp + "/missing.exr").c_str());
+    w->AddArrayName("Slope");
+    ExpectWriterError(w, "no point array named 'Slope'");
+    AP_CHECK(!Exists(tmp + "/missing.exr")); // nothing left behind
+  }
+  {
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputData(image);
+    w->SetFileName((tmp + "/label.exr").c_str());
+    w->AddArrayName("Label");
+    ExpectWriterError(w, "the point array 'Label' is not numeric");
+  }
+  {
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputData(image);
+    w->SetFileName((tmp + "/nocolor.exr").c_str());
+    w->SetColorArrayName("Picture");
+    ExpectWriterError(w, "no point array named 'Picture' (ColorArrayName)");
+  }
+  {
+    auto two = MakeImage(false);
+    vtkNew<vtkFloatArray> uv;
+    uv->SetName("UV");
+    uv->SetNumberOfComponents(2);
+    uv->SetNumberOfTuples(NX * NY);
+    uv->Fill(0.0);
+    two->GetPointData()->AddArray(uv);
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputData(two);
+    w->SetFileName((tmp + "/uv.exr").c_str());
+    w->SetColorArrayName("UV");
+    ExpectWriterError(w, "the color array 'UV' has 2 components; it needs 3 (RGB) or 4 (RGBA)");
+    AP_CHECK(!Exists(tmp + "/uv.exr"));
+  }
+  {
+    auto clash = MakeImage(false);
+    vtkNew<vtkFloatArray> r;
+    r->SetName("R");
+    r->SetNumberOfTuples(NX * NY);
+    r->Fill(0.0);
+    clash->GetPointData()->AddArray(r);
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputData(clash);
+    w->SetFileName((tmp + "/clash.exr").c_str());
+    w->SetColorArrayName("Vector");
+    ExpectWriterError(w, "two arrays give the channel name 'R'");
+  }
+  {
+    auto strings = vtkSmartPointer<vtkImageData>::New();
+    strings->SetDimensions(2, 2, 1);
+    vtkNew<vtkStringArray> s;
+    s->SetName("Text");
+    s->SetNumberOfValues(4);
+    strings->GetPointData()->AddArray(s);
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputData(strings);
+    w->SetFileName((tmp + "/strings.exr").c_str());
+    ExpectWriterError(w, "the image has no numeric point arrays to write");
+  }
+  {
+    auto rotated = MakeImage(true);
+    const double m[9] = { 0, -1, 0, 1, 0, 0, 0, 0, 1 };
+    rotated->SetDirectionMatrix(m);
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputData(rotated);
+    w->SetFileName((tmp + "/rotated.exr").c_str());
+    ExpectWriterError(w, "the image has a CRS but its georeference cannot be written");
+  }
+  {
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputData(image);
+    w->SetFileName("/nonexistent-folder/x.exr");
+    ExpectWriterError(w, "OpenEXR cannot create '/nonexistent-folder/x.exr': ");
+  }
+  {
+    // OpenEXR refuses a string attribute over its own `compression` attribute after the file
+    // was created: the earlier file at that path survives and no temporary file is left.
+    const std::string path = tmp + "/keep.exr";
+    vtkNew<vtkApertureEXRWriter> good;
+    good->SetInputData(image);
+    good->SetFileName(path.c_str());
+    good->AddArrayName("Elevation");
+    good->Write();
+    AP_CHECK(ReadRaw(path).Ok);
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputData(image);
+    w->SetFileName(path.c_str());
+    w->AddArrayName("Vector");
+    w->AddMetadata("compression", "none");
+    ExpectWriterError(w, "OpenEXR failed writing the header of '" + path + "': ");
+    const RawImage kept = ReadRaw(path);
+    AP_CHECK(kept.Ok && kept.Channels == std::vector<std::string>{ "Elevation" });
+    AP_CHECK(!LeftoverTemporaryFiles("keep.exr"));
+  }
+}
+
+//------------------------------------------------------------------------------
+void TestReaderErrors()
+{
+  ExpectReaderError("", "no file name was set");
+  ExpectReaderError(
+    tmp + "/nothing-here.exr", "file '" + tmp + "/nothing-here.exr' does not exist");
+  const std::string text = tmp + "/text.exr";
+  AP_CHECK(aptest::WriteText(text, "not an image\n"));
+  ExpectReaderError(text, "'" + text + "' is not an OpenEXR file");
+  const std::string damaged = tmp + "/damaged.exr";
+  AP_CHECK(aptest::WriteText(damaged, std::string("\x76\x2f\x31\x01\x02\0\0\0garbage", 15)));
+  ExpectReaderError(damaged, "OpenEXR cannot read the header of '" + damaged + "': ");
+  const struct
+  {
+    RawKind Kind;
+    const char* File;
+    const char* Message;
+  } cases[] = {
+    { RawKind::Tiled, "tiled.exr", "is a tiled OpenEXR image; only scanline images" },
+    { RawKind::Deep, "deep.exr", "is a deep scanline OpenEXR image" },
+    { RawKind::MultiPart, "multipart.exr", "is a multi-part OpenEXR file (2 parts)" },
+    { RawKind::Subsampled, "subsampled.exr",
+      "channel 'C' is sampled every 2 x 2 pixels; only channels sampled at every pixel" },
+    { RawKind::BadGeo, "badgeo.exr",
+      "aperture:geotransform attribute '1,2,3' that is not six comma-separated numbers" },
+    { RawKind::BadCRS, "badcrs.exr", "aperture:crs attribute that is not a CRS" },
+  };
+  for (const auto& c : cases)
+  {
+    const std::string path = tmp + "/" + c.File;
+    AP_CHECK(WriteRaw(path, c.Kind));
+    ExpectReaderError(path, "'" + path + "' ");
+    ExpectReaderError(path, c.Message);
+  }
+}
+
+//------------------------------------------------------------------------------
+// OpenEXR's own exrheader (Debian package openexr) accepts a written file and lists its
+// channels and attributes; skipped when the tool is not installed.
+void TestExrHeader()
+{
+  if (std::system("command -v exrheader > /dev/null 2>&1") != 0)
+  {
+    std::printf("exrheader not found: skipping its check\n");
+    return;
+  }
+  const std::string path = tmp + "/exrheader.exr";
+  vtkNew<vtkApertureEXRWriter> writer;
+  writer->SetInputData(MakeImage(true));
+  writer->SetFileName(path.c_str());
+  writer->SetPixelTypeToHalf();
+  writer->AddMetadata("aperture:software", "aperture test");
+  writer->Write();
+  FILE* pipe = popen(("exrheader '" + path + "' 2>&1").c_str(), "r");
+  AP_CHECK(pipe != nullptr);
+  if (!pipe)
+  {
+    return;
+  }
+  std::string output;
+  char buffer[4096];
+  size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0)
+  {
+    output.append(buffer, n);
+  }
+  const int status = pclose(pipe);
+  AP_CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  for (const char* channel :
+    { "Count,", "Elevation,", "Vector.E,", "Vector.N,", "Vector.U,", "Weights.0,", "Weights.1," })
+  {
+    AP_CHECK_CONTAINS(output, channel);
+  }
+  AP_CHECK_CONTAINS(output, "16-bit floating-point");
+  AP_CHECK_CONTAINS(output, "aperture:geotransform (type string): \"300000,30,0,5000120,0,-30\"");
+  AP_CHECK_CONTAINS(output, "aperture:software (type string): \"aperture test\"");
+}
+} // namespace
+
+int TestApertureEXR(int argc, char* argv[])
+{
+  tmp = aptest::TempDir(argc, argv);
+  TestRoundTrip();
+  TestHalf();
+  TestColor();
+  TestMetadataAndPlainPicture();
+  TestCompressions();
+  TestReaderGrouping();
+  TestWriterErrors();
+  TestReaderErrors();
+  TestExrHeader();
+  return aptest::Result();
+}

@@ -1,0 +1,179 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkApertureEXRWriter
+ * @brief   Write point arrays of a 2-D image to a single-part scanline OpenEXR file, one channel
+ *          per component.
+ *
+ * Input: a 2-D vtkImageData (one slice). Output: a single-part scanline OpenEXR image of the
+ * image's columns x rows, data window and display window both (0, 0) - (columns-1, rows-1),
+ * pixel aspect ratio 1.
+ *
+ * Orientation: VTK row 0 is the southern row of a DEM (STYLE.md, vtkApertureGeoreference);
+ * EXR scanline 0 is the top row of the picture. Rows are flipped once, here: scanline y holds
+ * VTK row rows-1-y, so the picture is north-up. vtkApertureEXRReader flips them back.
+ *
+ * Channels:
+ * - The point arrays named with AddArrayName, in any order (all numeric point arrays when none
+ *   is named; arrays that are not numeric are then skipped). A one-component array gives one
+ *   channel named like the array; an array of c > 1 components gives c channels
+ *   `<name>.<component name>`, or `<name>.<k>` (k = 0 .. c-1) where the component has no name.
+ *   OpenEXR stores channels sorted by name, whatever the order here.
+ * - ColorArrayName: a 3- or 4-component array written as the standard channels R, G, B (and A),
+ *   so image tools and renderers see an RGB(A) picture. It is not written again under its own
+ *   name, even when it is also named with AddArrayName.
+ * Samples are converted to 32-bit float (PixelType FLOAT, the default) or 16-bit half (HALF) in
+ * every channel: doubles and integers above 2^24 lose precision in FLOAT; HALF keeps 11
+ * significant bits (relative error <= 2^-11) and turns magnitudes above 65504 into infinities.
+ * NaN (Aperture's nodata) is written as NaN in both.
+ *
+ * Compression: lossless only, ZIP (default; 16 scanlines per block), ZIPS (1), RLE (1),
+ * PIZ (32) or NONE; set it with the enum or its name.
+ *
+ * Header attributes (all of OpenEXR type string):
+ * - AddMetadata(key, value): provenance and other free text, written as given (a later value
+ *   for the same key replaces an earlier one).
+ * - Georeference: when the image has a non-empty field-data array `CRS` (a vtkStringArray, as
+ *   vtkApertureDEMReader and vtkApertureGeoreference::AttachToImage leave it), the writer takes
+ *   the georeference with vtkApertureGeoreference::SetFromImage and writes
+ *   `aperture:crs` (the CRS as WKT) and `aperture:geotransform` (GDAL's geotransform of the
+ *   written grid: west edge, cell width, 0, north edge, 0, minus the cell height; six numbers
+ *   printed with %.17g and separated by commas, e.g. "300000,30,0,5000120,0,-30").
+ *   These two are written after the metadata and replace metadata with the same keys.
+ *   vtkApertureEXRReader restores the grid and the CRS from them. Without a `CRS` array
+ *   neither is written and the file is a plain picture.
+ * Names longer than 31 characters (channels or keys) switch on OpenEXR's long-name support,
+ * which readers older than OpenEXR 2.0 reject.
+ *
+ * The file is written through a temporary file in the same folder that replaces FileName only
+ * when everything was written, so a failed write leaves neither a partial file nor a damaged
+ * earlier version behind.
+ *
+ * Errors (vtkErrorMacro naming the file and the problem; nothing written): no file name, no
+ * input or an input that is not 2-D, a named array that does not exist, is not numeric or does
+ * not have one tuple per point, a color array that does not exist or has neither 3 nor 4
+ * components, two arrays giving the same channel name, nothing to write, a `CRS` array with an
+ * unusable georeference (rotated direction matrix, non-positive spacing, CRS GDAL cannot parse),
+ * and OpenEXR failing to create or write the file (its own message is included). An unknown
+ * compression name is an error of SetCompression(const char*), which then keeps the previous
+ * setting.
+ *
+ * Example:
+ * @code
+ * vtkNew<vtkApertureEXRWriter> writer;
+ * writer->SetInputConnection(slope->GetOutputPort());
+ * writer->SetFileName("slope.exr");
+ * writer->AddArrayName("Slope");
+ * writer->AddMetadata("aperture:software", "aperture 0.1");
+ * writer->Write();
+ * @endcode
+ *
+ * @warning Uses only the OpenEXR C library (OpenEXRCore); one writer per thread.
+ * @sa vtkApertureEXRReader vtkApertureDEMWriter vtkApertureGeoreference
+ */
+#ifndef vtkApertureEXRWriter_h
+#define vtkApertureEXRWriter_h
+
+#include "ApertureIOModule.h" // for export macro
+#include "vtkWriter.h"
+
+class vtkImageData;
+
+class APERTUREIO_EXPORT vtkApertureEXRWriter : public vtkWriter
+{
+public:
+  static vtkApertureEXRWriter* New();
+  vtkTypeMacro(vtkApertureEXRWriter, vtkWriter);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /** Sample types of the channels. */
+  enum PixelTypes
+  {
+    FLOAT = 0, ///< 32-bit IEEE float
+    HALF = 1   ///< 16-bit IEEE half
+  };
+
+  /** Lossless OpenEXR compressions (same values as OpenEXR's exr_compression_t). */
+  enum CompressionTypes
+  {
+    NONE = 0,
+    RLE = 1,
+    ZIPS = 2,
+    ZIP = 3,
+    PIZ = 4
+  };
+
+  ///@{
+  /** The OpenEXR file to write (replaced if it exists). */
+  vtkSetFilePathMacro(FileName);
+  vtkGetFilePathMacro(FileName);
+  ///@}
+
+  ///@{
+  /** Point arrays to write as channels, in any order; empty (default) = every numeric point
+   *  array. */
+  void AddArrayName(const char* name);
+  void ClearArrayNames();
+  int GetNumberOfArrayNames();
+  const char* GetArrayName(int i);
+  ///@}
+
+  ///@{
+  /** A 3- or 4-component point array written as the channels R, G, B (, A); empty or nullptr
+   *  (default) = none. */
+  vtkSetStringMacro(ColorArrayName);
+  vtkGetStringMacro(ColorArrayName);
+  ///@}
+
+  ///@{
+  /** Sample type of every channel: FLOAT (default, 32 bit) or HALF (16 bit). */
+  vtkSetClampMacro(PixelType, int, FLOAT, HALF);
+  vtkGetMacro(PixelType, int);
+  void SetPixelTypeToFloat() { this->SetPixelType(FLOAT); }
+  void SetPixelTypeToHalf() { this->SetPixelType(HALF); }
+  const char* GetPixelTypeAsString();
+  ///@}
+
+  ///@{
+  /** Compression: NONE, RLE, ZIPS, ZIP (default) or PIZ, by enum or by name (any case). */
+  vtkSetClampMacro(Compression, int, NONE, PIZ);
+  vtkGetMacro(Compression, int);
+  void SetCompression(const char* name);
+  void SetCompressionToNone() { this->SetCompression(NONE); }
+  void SetCompressionToRLE() { this->SetCompression(RLE); }
+  void SetCompressionToZIPS() { this->SetCompression(ZIPS); }
+  void SetCompressionToZIP() { this->SetCompression(ZIP); }
+  void SetCompressionToPIZ() { this->SetCompression(PIZ); }
+  const char* GetCompressionAsString();
+  ///@}
+
+  ///@{
+  /** String attributes of the header (key = value), written with the file. Keys are non-empty,
+   *  at most 255 characters, and must not name one of OpenEXR's own attributes (channels,
+   *  compression, dataWindow, ...). */
+  void AddMetadata(const char* key, const char* value);
+  void ClearMetadata();
+  ///@}
+
+  vtkImageData* GetInput();
+
+protected:
+  vtkApertureEXRWriter();
+  ~vtkApertureEXRWriter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  void WriteData() override;
+
+  char* FileName;
+  char* ColorArrayName;
+  int PixelType;
+  int Compression;
+
+private:
+  vtkApertureEXRWriter(const vtkApertureEXRWriter&) = delete;
+  void operator=(const vtkApertureEXRWriter&) = delete;
+
+  struct Internals;
+  Internals* Impl;
+};
+
+#endif
