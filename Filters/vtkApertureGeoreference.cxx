@@ -7,6 +7,8 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationStringKey.h"
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -20,8 +22,10 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkApertureGeoreference);
+vtkInformationKeyMacro(vtkApertureGeoreference, CRS_KEY, String);
 
 struct vtkApertureGeoreference::Internals
 {
@@ -529,6 +533,84 @@ bool vtkApertureGeoreference::GetCellSizeMetres(double size[2])
     const GeographicLib::Geodesic geod(ell[0], ell[1]);
     geod.Inverse(ll[1], ll[0], ll[3], ll[2], size[0]);
     geod.Inverse(ll[5], ll[4], ll[7], ll[6], size[1]);
+  }
+  catch (const std::exception& e)
+  {
+    this->Impl->Error = std::string("GeographicLib: ") + e.what();
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+double vtkApertureGeoreference::ComputeMeridianConvergence(double lon, double lat)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (!this->Impl->EnsureGeographic())
+  {
+    return nan;
+  }
+  if (OSRIsGeographic(this->Impl->CRS))
+  {
+    return 0.0;
+  }
+  // The grid bearing of a short step north from (lon, lat) is -gamma (ALGORITHMS.md 5).
+  const double step = lat < 89.0 ? 1e-5 : -1e-5;
+  double a[2], b[2];
+  if (!this->LonLatToCRS(lon, lat, a) || !this->LonLatToCRS(lon, lat + step, b))
+  {
+    return nan;
+  }
+  double dx = b[0] - a[0], dy = b[1] - a[1];
+  if (step < 0)
+  {
+    dx = -dx;
+    dy = -dy;
+  }
+  return -std::atan2(dx, dy) * 180.0 / M_PI;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::GetRowCellSizesMetres(double* dx, double* dy)
+{
+  double ell[2];
+  if (!this->GetEllipsoid(ell))
+  {
+    return false;
+  }
+  const int nx = this->GridSize[0], ny = this->GridSize[1];
+  const double xc = this->GridOrigin[0] + 0.5 * (nx - 1) * this->GridSpacing[0];
+  const double hx = 0.5 * this->GridSpacing[0], hy = 0.5 * this->GridSpacing[1];
+  std::vector<double> xy(8 * static_cast<size_t>(ny)), ll(8 * static_cast<size_t>(ny));
+  for (int j = 0; j < ny; ++j)
+  {
+    const double y = this->GridOrigin[1] + j * this->GridSpacing[1];
+    const double pts[8] = { xc - hx, y, xc + hx, y, xc, y - hy, xc, y + hy };
+    std::copy(pts, pts + 8, xy.begin() + 8 * j);
+  }
+  if (!this->CRSToLonLatPoints(4 * static_cast<vtkIdType>(ny), xy.data(), ll.data()))
+  {
+    return false;
+  }
+  try
+  {
+    const GeographicLib::Geodesic geod(ell[0], ell[1]);
+    for (int j = 0; j < ny; ++j)
+    {
+      const double* q = &ll[8 * static_cast<size_t>(j)];
+      for (int k = 0; k < 8; ++k)
+      {
+        if (std::isnan(q[k]))
+        {
+          std::ostringstream msg;
+          msg << "row " << j << " of the grid has no geographic coordinates";
+          this->Impl->Error = msg.str();
+          return false;
+        }
+      }
+      geod.Inverse(q[1], q[0], q[3], q[2], dx[j]);
+      geod.Inverse(q[5], q[4], q[7], q[6], dy[j]);
+    }
   }
   catch (const std::exception& e)
   {

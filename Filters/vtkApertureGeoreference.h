@@ -38,6 +38,7 @@
 
 class vtkDataObject;
 class vtkImageData;
+class vtkInformationStringKey;
 
 class APERTUREFILTERS_EXPORT vtkApertureGeoreference : public vtkObject
 {
@@ -45,6 +46,13 @@ public:
   static vtkApertureGeoreference* New();
   vtkTypeMacro(vtkApertureGeoreference, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Pipeline information key under which vtkApertureDEMReader also publishes the CRS (WKT)
+   * of its output during RequestInformation, so that downstream filters can plan update
+   * extents in metres before any data flows. The field data stays the place of record.
+   */
+  static vtkInformationStringKey* CRS_KEY();
 
   ///@{
   /** Names of the field-data arrays that carry the georeference ("CRS", "GeoTransform"). */
@@ -134,6 +142,23 @@ public:
    * geodesic distances on the ellipsoid between the centres of the cell's opposite edges.
    */
   bool GetCellSizeMetres(double size[2]);
+
+  /**
+   * Meridian convergence γ at a geographic point (degrees): the angle from grid north to true
+   * north, positive when true north lies east of grid north (east of the central meridian of
+   * a transverse Mercator zone in the northern hemisphere). A true azimuth A has grid azimuth
+   * A − γ. Computed from the CRS itself by finite differences (the grid bearing of a short
+   * step north is −γ), so it holds for any projection; 0 for a geographic CRS. NaN on failure.
+   */
+  double ComputeMeridianConvergence(double lon, double lat);
+
+  /**
+   * Ground size of the cells of every row, metres: dx[j] east-west and dy[j] south-north for
+   * row j (0 = south), geodesic distances between the centres of opposite cell edges at the
+   * grid's central column. For a lat/lon grid they change with latitude; for a projected grid
+   * they change little (scale factor). dx and dy hold GridSize[1] values each.
+   */
+  VTK_WRAPEXCLUDE bool GetRowCellSizesMetres(double* dx, double* dy);
 
   /** Why the last failing call failed ("" after a success). */
   const char* GetErrorMessage();

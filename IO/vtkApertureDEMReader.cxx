@@ -372,6 +372,7 @@ int vtkApertureDEMReader::RequestInformation(
   outInfo->Set(vtkDataObject::ORIGIN(), d.Origin[0], d.Origin[1], 0.0);
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 1);
+  outInfo->Set(vtkApertureGeoreference::CRS_KEY(), d.CRS.c_str());
   d.Valid = true;
   return 1;
 }

@@ -175,6 +175,42 @@ void TestFieldData()
   }
   AP_CHECK(std::string(back->GetCRSName()) == "WGS 84 / Pseudo-Mercator");
 }
+// Meridian convergence against GeographicLib's exact transverse Mercator (ALGORITHMS.md 5):
+// on a UTM zone edge (3 degrees from the central meridian) at 45 N: 2.1223 deg; Zurich in
+// zone 32: -0.3372; Sydney in zone 56 (south): +0.9982; zero on the central meridian and for
+// geographic CRSs. The grid bearing of true north is then -gamma.
+void TestConvergence()
+{
+  vtkNew<vtkApertureGeoreference> geo;
+  AP_CHECK(geo->SetCRS("EPSG:32632"));
+  AP_CHECK_NEAR(geo->ComputeMeridianConvergence(12.0, 45.0), 2.1223, 1e-4);
+  AP_CHECK_NEAR(geo->ComputeMeridianConvergence(6.0, 45.0), -2.1223, 1e-4);
+  AP_CHECK_NEAR(geo->ComputeMeridianConvergence(9.0, 45.0), 0.0, 1e-9);
+  AP_CHECK_NEAR(geo->ComputeMeridianConvergence(8.5417, 47.3769), -0.3372, 1e-4);
+  AP_CHECK(geo->SetCRS("EPSG:32756"));
+  AP_CHECK_NEAR(geo->ComputeMeridianConvergence(151.2093, -33.8688), 0.9982, 1e-4);
+  AP_CHECK(geo->SetCRS("EPSG:4326"));
+  AP_CHECK_NEAR(geo->ComputeMeridianConvergence(151.2093, -33.8688), 0.0, 0.0);
+}
+
+// Per-row cell sizes of a lat/lon grid follow the parallel radius N cos(lat) (closed form).
+void TestRowSizes()
+{
+  vtkNew<vtkApertureGeoreference> geo;
+  AP_CHECK(geo->SetCRS("EPSG:4326"));
+  const double cell = 0.01;
+  geo->SetGrid(10.0, 40.0, cell, cell, 5, 101); // rows from 40 N to 41 N
+  double dx[101], dy[101];
+  AP_CHECK(geo->GetRowCellSizesMetres(dx, dy));
+  const double a = 6378137.0, f = 1.0 / 298.257223563, e2 = f * (2 - f);
+  for (int j = 0; j < 101; j += 25)
+  {
+    const double lat = (40.0 + j * cell) * kDeg, s = std::sin(lat), w = std::sqrt(1 - e2 * s * s);
+    AP_CHECK_NEAR(dx[j], a / w * std::cos(lat) * cell * kDeg, 1e-5);
+    AP_CHECK_NEAR(dy[j], a * (1 - e2) / (w * w * w) * cell * kDeg, 1e-5);
+  }
+  AP_CHECK(dx[100] < dx[0]);
+}
 } // namespace
 
 int TestApertureGeoreference(int, char*[])
@@ -184,5 +220,7 @@ int TestApertureGeoreference(int, char*[])
   TestGradsFromParis();
   TestErrors();
   TestFieldData();
+  TestConvergence();
+  TestRowSizes();
   return aptest::Result();
 }

@@ -2,6 +2,7 @@
 """The `aperture` command line.
 
     aperture info [DEM] [--json]          what a DEM is: size, cell size, CRS, bounds, elevations
+    aperture bake DEM OUT.tif             what every cell sees of the sky (horizons, SVF, ...)
     aperture render [DEM] -o OUT.png      a picture of the DEM (VTK lighting, for now)
 
 DEM is any single-band raster GDAL reads (GeoTIFF, .hgt, .asc, .dt0, VRT, ...); without it, the
@@ -27,10 +28,13 @@ def _warn(message):
 # Reading
 
 
-def _add_read_options(parser):
+def _add_read_options(parser, dem_required=False):
     g = parser.add_argument_group("reading the DEM")
-    g.add_argument("dem", nargs="?", metavar="DEM",
-                   help="elevation raster (default: the embedded Jacksboro DEM)")
+    if dem_required:
+        g.add_argument("dem", metavar="DEM", help="elevation raster")
+    else:
+        g.add_argument("dem", nargs="?", metavar="DEM",
+                       help="elevation raster (default: the embedded Jacksboro DEM)")
     g.add_argument("--band", "-b", type=int, default=0, metavar="N",
                    help="1-based band to read (default: band 1, with a note if there are more)")
     g.add_argument("--srcwin", type=int, nargs=4, metavar=("XOFF", "YOFF", "XSIZE", "YSIZE"),
@@ -197,6 +201,174 @@ def cmd_render(args):
     return 0
 
 
+
+# ---------------------------------------------------------------------------------------------
+# bake
+
+# Products of vtkApertureSkyVisibility, in band order: (name, unit in the files, degrees?,
+# definition written into each band's metadata).
+PRODUCTS = [
+    ("VisibleSolidAngle", "sr", False,
+     "solid angle of the sky visible above the horizontal, the terrain horizon and the cell's "
+     "own tangent plane"),
+    ("ApertureRadius", "degree", True,
+     "angular radius of the spherical cap with the visible solid angle's area, "
+     "acos(1 - A / 2 pi) (Oat & Sander 2007)"),
+    ("BentNormal", "1", False,
+     "unit mean direction of the visible sky, East-North-Up at the cell (bands _E, _N, _U)"),
+    ("SkyViewFactor", "1", False,
+     "Zaksek et al. 2011: 1 - mean sin(max(horizon, 0)); share of the upper hemisphere visible "
+     "over a horizontal plane, ignoring the cell's slope"),
+    ("DiffuseSkyFactor", "1", False,
+     "Dozier & Frew 1990 (with Dozier 2022 self-shadowing): isotropic sky irradiance on the "
+     "tilted cell relative to an unobstructed horizontal surface, cosine-weighted"),
+    ("PositiveOpenness", "degree", True,
+     "Yokoyama et al. 2002: mean zenith angle of the terrain horizon"),
+    ("EdgeTruncated", "1", False,
+     "1 where in some sector the DEM ends closer than the search limit"),
+    ("HorizonAngles", "degree", True,
+     "terrain horizon elevation per azimuth sector (band name: true azimuth of the sector "
+     "centre, clockwise from north)"),
+]
+DERIVED = [name for name, *_ in PRODUCTS if name != "HorizonAngles"]
+
+
+def _parse_products(text):
+    if text is None:
+        return list(DERIVED)
+    names = {name.lower(): name for name, *_ in PRODUCTS}
+    chosen = []
+    for item in (t.strip() for t in text.split(",")):
+        if not item:
+            continue
+        if item.lower() == "all":
+            chosen.extend(name for name, *_ in PRODUCTS)
+            continue
+        if item.lower() not in names:
+            raise ApertureError("unknown product %r; choose from %s, or all"
+                                % (item, ", ".join(n for n, *_ in PRODUCTS)))
+        chosen.append(names[item.lower()])
+    if not chosen:
+        raise ApertureError("--products names no product")
+    return [name for name, *_ in PRODUCTS if name in chosen]  # band order, no duplicates
+
+
+def _provenance(args, products):
+    from aperture import __version__
+    return {
+        "APERTURE_VERSION": __version__,
+        "APERTURE_COMMAND": "aperture bake",
+        "SOURCE_DEM": os.path.abspath(args.dem),
+        "ALGORITHM": "convex-hull line sweep (Timonen & Westerholm 2010) of the terrain horizon "
+                     "in every azimuth sector, each cell's own ray exact on the bilinear surface "
+                     "for the first %d columns; sector sums of ALGORITHMS.md 2.2" % args.near_field,
+        "DIRECTIONS": str(args.directions),
+        "SECTORS": "sector d centred on true azimuth 360 d / %d degrees, clockwise from north"
+                   % args.directions,
+        "MAX_DISTANCE_M": "unlimited" if not args.radius else repr(args.radius),
+        "EARTH_CURVATURE": "off" if args.no_curvature else "on",
+        "REFRACTION_COEFFICIENT": "n/a" if args.no_curvature else repr(args.refraction),
+        "ANGLE_UNIT": "degree",
+        "EDGES": "terrain beyond the DEM edge is treated as invisible; see EdgeTruncated",
+        "PRODUCTS": ",".join(products),
+    }
+
+
+def _product_image(sky, products):
+    """A copy of the filter's output holding only the chosen products, with angles in degrees,
+    EdgeTruncated as float (NaN on nodata), and HorizonAngles bands named by azimuth."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+
+    image = vtkImageData()
+    image.CopyStructure(sky)
+    image.GetFieldData().PassData(sky.GetFieldData())
+    elevation = vtk_to_numpy(sky.GetPointData().GetArray("Elevation"))
+    nodata = np.isnan(elevation)
+    units = {name: (unit, degrees) for name, unit, degrees, _ in PRODUCTS}
+    for name in products:
+        src = sky.GetPointData().GetArray(name)
+        values = vtk_to_numpy(src).astype(np.float32)
+        if units[name][1]:
+            values = np.degrees(values).astype(np.float32)
+        if name == "EdgeTruncated":
+            values = np.where(nodata, np.float32(np.nan), values).astype(np.float32)
+        array = numpy_to_vtk(np.ascontiguousarray(values), deep=1)
+        array.SetName(name)
+        for c in range(src.GetNumberOfComponents()):
+            if src.GetComponentName(c):
+                array.SetComponentName(c, src.GetComponentName(c))
+        image.GetPointData().AddArray(array)
+    return image
+
+
+def cmd_bake(args):
+    import time
+    from aperture import vtkApertureDEMWriter, vtkApertureEXRWriter, vtkApertureSkyVisibility
+
+    products = _parse_products(args.products)
+    if not 4 <= args.directions <= 360:
+        raise ApertureError("--directions must be within 4..360")
+    if args.radius is not None and not (args.radius > 0 and math.isfinite(args.radius)):
+        raise ApertureError("--radius must be a positive distance in metres")
+    if not (0 <= args.refraction < 1):
+        raise ApertureError("--refraction must be within [0, 1)")
+    if args.threads < 0:
+        raise ApertureError("--threads must be 0 (all cores) or more")
+    if not 1 <= args.near_field <= 64:
+        raise ApertureError("--near-field must be within 1..64")
+    for path in [args.output] + ([args.exr] if args.exr else []):
+        folder = os.path.dirname(os.path.abspath(path))
+        if not os.path.isdir(folder):
+            raise ApertureError("the output folder %s does not exist" % folder)
+
+    start = time.perf_counter()
+    watcher = Watcher(on_warning=_warn)
+    reader, _ = read_dem(args, watcher)
+    sky = watcher.watch(vtkApertureSkyVisibility())
+    sky.SetInputConnection(reader.GetOutputPort())
+    sky.SetNumberOfDirections(args.directions)
+    sky.SetMaximumDistance(args.radius or 0.0)
+    sky.SetEarthCurvature(not args.no_curvature)
+    sky.SetRefractionCoefficient(args.refraction)
+    sky.SetNumberOfThreads(args.threads)
+    sky.SetNearField(args.near_field)
+    for name in DERIVED + ["HorizonAngles"]:
+        getattr(sky, "SetCompute" + name)(name in products)
+    result = watcher.update(sky, "bake")
+    image = _product_image(result, products)
+    provenance = _provenance(args, products)
+    definitions = {name: (unit, text) for name, unit, _, text in PRODUCTS}
+
+    writer = watcher.watch(vtkApertureDEMWriter())
+    writer.SetInputData(image)
+    writer.SetFileName(args.output)
+    writer.SetCompression(args.compress)
+    for key, value in provenance.items():
+        writer.AddMetadata(key, value)
+    for name in products:
+        writer.AddBandMetadata(name, "UNITS", definitions[name][0])
+        writer.AddBandMetadata(name, "DEFINITION", definitions[name][1])
+    watcher.write(writer, "writing %s" % args.output)
+    written = [os.path.abspath(args.output)]
+    if args.exr:
+        exr = watcher.watch(vtkApertureEXRWriter())
+        exr.SetInputData(image)
+        exr.SetFileName(args.exr)
+        for key, value in provenance.items():
+            exr.AddMetadata("aperture:" + key.lower(), value)
+        for name in products:
+            exr.AddMetadata("aperture:unit:" + name, definitions[name][0])
+        watcher.write(exr, "writing %s" % args.exr)
+        written.append(os.path.abspath(args.exr))
+    nx, ny, _ = image.GetDimensions()
+    print("wrote %s: %s for %d x %d cells, %d directions, in %.1f s"
+          % (" and ".join(written), ", ".join(products), nx, ny, args.directions,
+             time.perf_counter() - start))
+    return 0
+
+
 # ---------------------------------------------------------------------------------------------
 
 
@@ -218,6 +390,33 @@ def build_parser():
                    help="print one JSON object (keys size, cell_size_m, crs, bounds_lonlat, "
                         "elevation_range, nodata_count, centre_lonlat, ...)")
     p.set_defaults(func=cmd_info)
+
+    p = sub.add_parser("bake", help="horizons, sky-view factors, bent normals -> GeoTIFF/EXR",
+                       description="Compute what every cell sees of the sky (one horizon sweep "
+                                   "in D azimuth sectors) and write the products as GeoTIFF "
+                                   "bands named after them (angles in degrees), optionally also "
+                                   "as one multi-channel float EXR.")
+    _add_read_options(p, dem_required=True)
+    p.add_argument("output", metavar="OUT.tif", help="GeoTIFF to write")
+    p.add_argument("--directions", "-d", type=int, default=32, metavar="D",
+                   help="azimuth sectors, 4..360 (default 32)")
+    p.add_argument("--radius", type=float, metavar="METRES",
+                   help="search distance in metres (default: unlimited)")
+    p.add_argument("--no-curvature", action="store_true",
+                   help="flat Earth (default: curvature with refraction)")
+    p.add_argument("--refraction", type=float, default=0.13, metavar="K",
+                   help="refraction coefficient (default 0.13)")
+    p.add_argument("--threads", type=int, default=0, metavar="N",
+                   help="threads (default 0: all cores); results do not depend on it")
+    p.add_argument("--products", metavar="LIST",
+                   help="comma-separated products: %s; 'all' adds HorizonAngles (default: all "
+                        "but HorizonAngles)" % ", ".join(n for n, *_ in PRODUCTS))
+    p.add_argument("--exr", metavar="OUT.exr", help="also write the products to this EXR")
+    p.add_argument("--compress", default="DEFLATE", metavar="CODEC",
+                   help="GeoTIFF compression: DEFLATE (default), ZSTD, LZW, NONE")
+    p.add_argument("--near-field", type=int, default=8, metavar="K",
+                   help="columns of each cell's ray evaluated exactly (default 8)")
+    p.set_defaults(func=cmd_bake)
 
     p = sub.add_parser("render", help="render the DEM to a PNG (VTK lighting for now)",
                        description="Render the DEM as a terrain mesh coloured by elevation and "

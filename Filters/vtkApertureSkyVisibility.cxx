@@ -1,0 +1,498 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkApertureSkyVisibility.h"
+
+#include "vtkApertureGeoreference.h"
+
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "ap_horizon.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkApertureSkyVisibility);
+
+namespace
+{
+// Copy the block `sub` of an array laid out on extent `ext` (nc components) into `out`.
+template <typename T>
+void CopyBlock(const T* in, const int ext[6], const int sub[6], int nc, T* out)
+{
+  const vtkIdType nx = ext[1] - ext[0] + 1;
+  const vtkIdType w = (sub[1] - sub[0] + 1) * nc;
+  vtkIdType o = 0;
+  for (int j = sub[2]; j <= sub[3]; ++j)
+  {
+    const T* row = in + ((j - ext[2]) * nx + (sub[0] - ext[0])) * nc;
+    std::copy(row, row + w, out + o);
+    o += w;
+  }
+}
+
+// Halo (in cells along i and j) that a search distance needs, from the smallest metric
+// cell sizes of the grid; -1 when it cannot be known.
+bool HaloCells(vtkApertureGeoreference* geo, double distance, int halo[2])
+{
+  int size[2];
+  geo->GetGridSize(size);
+  std::vector<double> dx(static_cast<size_t>(size[1])), dy(static_cast<size_t>(size[1]));
+  if (!geo->GetRowCellSizesMetres(dx.data(), dy.data()))
+  {
+    return false;
+  }
+  const double mx = *std::min_element(dx.begin(), dx.end());
+  const double my = *std::min_element(dy.begin(), dy.end());
+  if (!(mx > 0) || !(my > 0))
+  {
+    return false;
+  }
+  halo[0] = static_cast<int>(std::min(1e9, std::ceil(distance / mx))) + 2;
+  halo[1] = static_cast<int>(std::min(1e9, std::ceil(distance / my))) + 2;
+  return true;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkApertureSkyVisibility::vtkApertureSkyVisibility()
+  : NumberOfDirections(32)
+  , MaximumDistance(0.0)
+  , EarthCurvature(true)
+  , RefractionCoefficient(0.13)
+  , NearField(8)
+  , NumberOfThreads(0)
+  , ComputeVisibleSolidAngle(true)
+  , ComputeApertureRadius(true)
+  , ComputeBentNormal(true)
+  , ComputeSkyViewFactor(true)
+  , ComputeDiffuseSkyFactor(true)
+  , ComputePositiveOpenness(true)
+  , ComputeEdgeTruncated(true)
+  , ComputeHorizonAngles(false)
+  , ElevationArrayName(nullptr)
+{
+  this->SetElevationArrayName("Elevation");
+}
+
+//------------------------------------------------------------------------------
+vtkApertureSkyVisibility::~vtkApertureSkyVisibility()
+{
+  this->SetElevationArrayName(nullptr);
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureSkyVisibility::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  int whole[6], ext[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+  // A region sees terrain up to the search distance away: grow it by that much. Unlimited
+  // distance, or no way to know metres (the CRS is published by vtkApertureDEMReader as
+  // pipeline information), needs the whole extent.
+  int in[6];
+  std::copy(whole, whole + 6, in);
+  const char* crs = inInfo->Get(vtkApertureGeoreference::CRS_KEY());
+  if (this->MaximumDistance > 0 && crs && inInfo->Has(vtkDataObject::SPACING()) &&
+    inInfo->Has(vtkDataObject::ORIGIN()))
+  {
+    vtkNew<vtkApertureGeoreference> geo;
+    double spacing[3], origin[3];
+    inInfo->Get(vtkDataObject::SPACING(), spacing);
+    inInfo->Get(vtkDataObject::ORIGIN(), origin);
+    int halo[2];
+    if (geo->SetCRS(crs))
+    {
+      geo->SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],
+        spacing[0], spacing[1], whole[1] - whole[0] + 1, whole[3] - whole[2] + 1);
+      if (HaloCells(geo, this->MaximumDistance, halo))
+      {
+        in[0] = std::max(whole[0], ext[0] - halo[0]);
+        in[1] = std::min(whole[1], ext[1] + halo[0]);
+        in[2] = std::max(whole[2], ext[2] - halo[1]);
+        in[3] = std::min(whole[3], ext[3] + halo[1]);
+      }
+    }
+  }
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), in, 6);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureSkyVisibility::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  if (!input || input->GetNumberOfPoints() == 0)
+  {
+    return 1;
+  }
+
+  // 1. Parameters.
+  if (this->NumberOfDirections < 4 || this->NumberOfDirections > 360)
+  {
+    vtkErrorMacro(<< "NumberOfDirections must be within 4..360, not "
+                  << this->NumberOfDirections);
+    return 0;
+  }
+  if (!(this->MaximumDistance >= 0) || std::isinf(this->MaximumDistance))
+  {
+    vtkErrorMacro(<< "MaximumDistance must be a distance in metres >= 0 (0 = unlimited), not "
+                  << this->MaximumDistance);
+    return 0;
+  }
+  if (!(this->RefractionCoefficient >= 0 && this->RefractionCoefficient < 1))
+  {
+    vtkErrorMacro(<< "RefractionCoefficient must be within [0, 1), not "
+                  << this->RefractionCoefficient);
+    return 0;
+  }
+
+  // 2. The grid.
+  int inExt[6], outExt[6];
+  input->GetExtent(inExt);
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), outExt);
+  for (int k = 0; k < 3; ++k)
+  {
+    outExt[2 * k] = std::max(outExt[2 * k], inExt[2 * k]);
+    outExt[2 * k + 1] = std::min(outExt[2 * k + 1], inExt[2 * k + 1]);
+  }
+  if (inExt[4] != inExt[5])
+  {
+    vtkErrorMacro(<< "the DEM must be a 2-D image (one slice)");
+    return 0;
+  }
+  const int nx = inExt[1] - inExt[0] + 1, ny = inExt[3] - inExt[2] + 1;
+  const char* name = this->ElevationArrayName ? this->ElevationArrayName : "";
+  vtkDataArray* elevation = input->GetPointData()->GetArray(name);
+  if (!elevation || elevation->GetNumberOfComponents() != 1)
+  {
+    vtkErrorMacro(<< "the input has no one-component point array named '" << name << "'");
+    return 0;
+  }
+  if (nx < 2 || ny < 2)
+  {
+    vtkErrorMacro(<< "the DEM has " << nx << " x " << ny << " cells; at least 2 x 2 are needed");
+    return 0;
+  }
+  vtkNew<vtkApertureGeoreference> geo;
+  if (!geo->SetFromImage(input))
+  {
+    vtkErrorMacro(<< "no metric cell size: " << geo->GetErrorMessage());
+    return 0;
+  }
+  const size_t n = static_cast<size_t>(nx) * static_cast<size_t>(ny);
+  std::vector<float> z(n);
+  for (size_t k = 0; k < n; ++k)
+  {
+    z[k] = static_cast<float>(elevation->GetComponent(static_cast<vtkIdType>(k), 0));
+  }
+  std::vector<double> dx(static_cast<size_t>(ny)), dy(static_cast<size_t>(ny));
+  double centre[2], ellipsoid[2];
+  if (!geo->GetRowCellSizesMetres(dx.data(), dy.data()) || !geo->GetCentreLonLat(centre) ||
+    !geo->GetEllipsoid(ellipsoid))
+  {
+    vtkErrorMacro(<< "no metric cell size: " << geo->GetErrorMessage());
+    return 0;
+  }
+  const bool geographic = geo->IsGeographic();
+  ap_horizon_grid grid;
+  grid.z = ap_grid_view_make(z.data(), static_cast<size_t>(nx), static_cast<size_t>(ny));
+  // Lat/lon grids get their cell size row by row; projected grids are metric to within the
+  // projection's scale factor, taken at the centre.
+  grid.dx = geographic ? dx.data() : nullptr;
+  grid.dy = geographic ? dy.data() : nullptr;
+  grid.dx0 = dx[static_cast<size_t>(ny) / 2];
+  grid.dy0 = dy[static_cast<size_t>(ny) / 2];
+
+  ap_horizon_params params;
+  ap_horizon_params_init(&params);
+  params.directions = this->NumberOfDirections;
+  params.max_distance =
+    this->MaximumDistance > 0 ? this->MaximumDistance : std::numeric_limits<double>::infinity();
+  params.curvature = this->EarthCurvature ? 1 : 0;
+  params.refraction = this->RefractionCoefficient;
+  params.near_field = this->NearField;
+  {
+    // Radii of curvature of the ellipsoid at the DEM centre.
+    const double a = ellipsoid[0], f = ellipsoid[1], e2 = f * (2 - f);
+    const double s = std::sin(centre[1] * M_PI / 180.0), w2 = 1 - e2 * s * s;
+    params.radius_normal = a / std::sqrt(w2);
+    params.radius_meridian = a * (1 - e2) / (w2 * std::sqrt(w2));
+  }
+  const double gammaCentre = geographic ? 0.0 : geo->ComputeMeridianConvergence(centre[0], centre[1]);
+  if (std::isnan(gammaCentre))
+  {
+    vtkErrorMacro(<< "meridian convergence: " << geo->GetErrorMessage());
+    return 0;
+  }
+  params.azimuth_offset = gammaCentre * M_PI / 180.0;
+  ap_status st = ap_horizon_validate(&grid, &params);
+  if (st == AP_ERR_ALL_NODATA)
+  {
+    vtkErrorMacro(<< "every cell of the DEM is nodata");
+    return 0;
+  }
+  if (st != AP_OK)
+  {
+    vtkErrorMacro(<< "horizon parameters: " << ap_status_string(st));
+    return 0;
+  }
+
+  // 3. Outputs: straight into the output arrays when the output is the input's extent,
+  //    else into full-size buffers that are cropped below.
+  const bool whole = std::equal(inExt, inExt + 6, outExt);
+  const int D = this->NumberOfDirections;
+  struct Product
+  {
+    const char* Name;
+    bool Wanted;
+    int Components;
+    vtkSmartPointer<vtkDataArray> Full;
+  };
+  Product products[8] = { { "VisibleSolidAngle", this->ComputeVisibleSolidAngle, 1, nullptr },
+    { "ApertureRadius", this->ComputeApertureRadius, 1, nullptr },
+    { "BentNormal", this->ComputeBentNormal, 3, nullptr },
+    { "SkyViewFactor", this->ComputeSkyViewFactor, 1, nullptr },
+    { "DiffuseSkyFactor", this->ComputeDiffuseSkyFactor, 1, nullptr },
+    { "PositiveOpenness", this->ComputePositiveOpenness, 1, nullptr },
+    { "EdgeTruncated", this->ComputeEdgeTruncated, 1, nullptr },
+    { "HorizonAngles", this->ComputeHorizonAngles, D, nullptr } };
+  for (Product& pr : products)
+  {
+    if (!pr.Wanted)
+    {
+      continue;
+    }
+    if (std::string(pr.Name) == "EdgeTruncated")
+    {
+      pr.Full = vtkSmartPointer<vtkUnsignedCharArray>::New();
+    }
+    else
+    {
+      pr.Full = vtkSmartPointer<vtkFloatArray>::New();
+    }
+    pr.Full->SetName(pr.Name);
+    pr.Full->SetNumberOfComponents(pr.Components);
+    pr.Full->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  }
+  auto fptr = [&](int k) {
+    return products[k].Full ? static_cast<vtkFloatArray*>(products[k].Full.Get())->GetPointer(0)
+                            : nullptr;
+  };
+  ap_sky_products out;
+  out.visible_solid_angle = fptr(0);
+  out.aperture_radius = fptr(1);
+  out.bent_normal = fptr(2);
+  out.sky_view_factor = fptr(3);
+  out.diffuse_sky_factor = fptr(4);
+  out.positive_openness = fptr(5);
+  out.edge_truncated = products[6].Full
+    ? static_cast<vtkUnsignedCharArray*>(products[6].Full.Get())->GetPointer(0)
+    : nullptr;
+  out.horizon_angles = fptr(7);
+
+  // 4. The sweep, sector by sector; each sector's lines and rows in parallel.
+  ap_horizon* hz = nullptr;
+  st = ap_horizon_create(&grid, &params, &out, &hz);
+  if (st != AP_OK)
+  {
+    vtkErrorMacro(<< "horizon computation: " << ap_status_string(st));
+    return 0;
+  }
+  std::atomic<int> failure(AP_OK);
+  bool aborted = false;
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ this->NumberOfThreads }, [&]() {
+    for (int d = 0; d < D && failure == AP_OK; ++d)
+    {
+      ap_status ps = ap_horizon_prepare(hz, d);
+      if (ps != AP_OK)
+      {
+        failure = ps;
+        break;
+      }
+      const vtkIdType brackets = static_cast<vtkIdType>(ap_horizon_bracket_count(hz));
+      vtkSMPTools::For(0, brackets, 256, [&](vtkIdType b0, vtkIdType b1) {
+        const ap_status s = ap_horizon_sweep(hz, static_cast<size_t>(b0), static_cast<size_t>(b1));
+        if (s != AP_OK)
+        {
+          failure = s;
+        }
+      });
+      vtkSMPTools::For(0, ny, 64, [&](vtkIdType j0, vtkIdType j1) {
+        ap_horizon_accumulate(hz, static_cast<size_t>(j0), static_cast<size_t>(j1));
+      });
+      this->UpdateProgress(static_cast<double>(d + 1) / D);
+      if (this->GetAbortExecute())
+      {
+        aborted = true;
+        break;
+      }
+    }
+    if (failure == AP_OK && !aborted)
+    {
+      vtkSMPTools::For(0, ny, 64, [&](vtkIdType j0, vtkIdType j1) {
+        ap_horizon_finish(hz, static_cast<size_t>(j0), static_cast<size_t>(j1));
+      });
+    }
+  });
+  ap_horizon_destroy(hz);
+  if (failure != AP_OK)
+  {
+    vtkErrorMacro(<< "horizon computation: " << ap_status_string(static_cast<ap_status>(failure.load())));
+    return 0;
+  }
+  if (aborted)
+  {
+    return 0;
+  }
+
+  // 5. Bent normals into each cell's true East-North-Up: the sweep ran in the grid frame;
+  //    the meridian convergence γ (from a coarse lattice, bilinear between) rotates them.
+  if (out.bent_normal && !geographic)
+  {
+    const int lx = std::min(nx, 33), ly = std::min(ny, 33);
+    std::vector<double> gamma(static_cast<size_t>(lx * ly));
+    double origin[3], spacing[3];
+    input->GetOrigin(origin);
+    input->GetSpacing(spacing);
+    for (int b = 0; b < ly; ++b)
+    {
+      for (int a = 0; a < lx; ++a)
+      {
+        const double i = inExt[0] + (nx - 1) * (lx > 1 ? a / (lx - 1.0) : 0.0);
+        const double j = inExt[2] + (ny - 1) * (ly > 1 ? b / (ly - 1.0) : 0.0);
+        double ll[2];
+        double g = gammaCentre;
+        if (geo->CRSToLonLat(origin[0] + i * spacing[0], origin[1] + j * spacing[1], ll))
+        {
+          const double v = geo->ComputeMeridianConvergence(ll[0], ll[1]);
+          g = std::isnan(v) ? gammaCentre : v;
+        }
+        gamma[static_cast<size_t>(b * lx + a)] = g * M_PI / 180.0;
+      }
+    }
+    vtkSMPTools::For(0, ny, 64, [&](vtkIdType j0, vtkIdType j1) {
+      for (vtkIdType j = j0; j < j1; ++j)
+      {
+        const double fb = ly > 1 ? j * (ly - 1.0) / (ny - 1.0) : 0.0;
+        const int b0 = std::min(static_cast<int>(fb), ly - 1), b1 = std::min(b0 + 1, ly - 1);
+        const double tb = fb - b0;
+        for (int i = 0; i < nx; ++i)
+        {
+          const double fa = lx > 1 ? i * (lx - 1.0) / (nx - 1.0) : 0.0;
+          const int a0 = std::min(static_cast<int>(fa), lx - 1), a1 = std::min(a0 + 1, lx - 1);
+          const double ta = fa - a0;
+          const double g = (1 - tb) * ((1 - ta) * gamma[b0 * lx + a0] + ta * gamma[b0 * lx + a1]) +
+            tb * ((1 - ta) * gamma[b1 * lx + a0] + ta * gamma[b1 * lx + a1]);
+          float* v = out.bent_normal + 3 * (static_cast<size_t>(j) * nx + i);
+          const double e = v[0], nn = v[1];
+          v[0] = static_cast<float>(e * std::cos(g) + nn * std::sin(g));
+          v[1] = static_cast<float>(-e * std::sin(g) + nn * std::cos(g));
+        }
+      }
+    });
+  }
+
+  // 6. The output: the input's arrays and geometry over the requested extent, plus ours.
+  output->SetExtent(outExt);
+  output->SetOrigin(input->GetOrigin());
+  output->SetSpacing(input->GetSpacing());
+  if (whole)
+  {
+    output->GetPointData()->PassData(input->GetPointData());
+  }
+  else
+  {
+    output->GetPointData()->CopyAllocate(input->GetPointData(),
+      static_cast<vtkIdType>(outExt[1] - outExt[0] + 1) * (outExt[3] - outExt[2] + 1));
+    output->GetPointData()->CopyStructuredData(input->GetPointData(), inExt, outExt);
+  }
+  output->GetFieldData()->PassData(input->GetFieldData());
+  geo->AttachToImage(output); // the GeoTransform of the output's extent
+  for (Product& pr : products)
+  {
+    if (!pr.Full)
+    {
+      continue;
+    }
+    vtkSmartPointer<vtkDataArray> arr = pr.Full;
+    if (!whole)
+    {
+      arr.TakeReference(pr.Full->NewInstance());
+      arr->SetName(pr.Name);
+      arr->SetNumberOfComponents(pr.Components);
+      arr->SetNumberOfTuples(
+        static_cast<vtkIdType>(outExt[1] - outExt[0] + 1) * (outExt[3] - outExt[2] + 1));
+      if (auto* f = vtkFloatArray::SafeDownCast(arr))
+      {
+        CopyBlock(static_cast<vtkFloatArray*>(pr.Full.Get())->GetPointer(0), inExt, outExt,
+          pr.Components, f->GetPointer(0));
+      }
+      else
+      {
+        CopyBlock(static_cast<vtkUnsignedCharArray*>(pr.Full.Get())->GetPointer(0), inExt,
+          outExt, pr.Components, static_cast<vtkUnsignedCharArray*>(arr.Get())->GetPointer(0));
+      }
+    }
+    if (std::string(pr.Name) == "BentNormal")
+    {
+      arr->SetComponentName(0, "E");
+      arr->SetComponentName(1, "N");
+      arr->SetComponentName(2, "U");
+    }
+    if (std::string(pr.Name) == "HorizonAngles")
+    {
+      for (int d = 0; d < D; ++d)
+      {
+        char label[32];
+        std::snprintf(label, sizeof(label), "az%06.2f", 360.0 * d / D);
+        arr->SetComponentName(d, label);
+      }
+    }
+    output->GetPointData()->AddArray(arr);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkApertureSkyVisibility::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "NumberOfDirections: " << this->NumberOfDirections << "\n";
+  os << indent << "MaximumDistance: " << this->MaximumDistance << "\n";
+  os << indent << "EarthCurvature: " << this->EarthCurvature << "\n";
+  os << indent << "RefractionCoefficient: " << this->RefractionCoefficient << "\n";
+  os << indent << "NearField: " << this->NearField << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "ComputeVisibleSolidAngle: " << this->ComputeVisibleSolidAngle << "\n";
+  os << indent << "ComputeApertureRadius: " << this->ComputeApertureRadius << "\n";
+  os << indent << "ComputeBentNormal: " << this->ComputeBentNormal << "\n";
+  os << indent << "ComputeSkyViewFactor: " << this->ComputeSkyViewFactor << "\n";
+  os << indent << "ComputeDiffuseSkyFactor: " << this->ComputeDiffuseSkyFactor << "\n";
+  os << indent << "ComputePositiveOpenness: " << this->ComputePositiveOpenness << "\n";
+  os << indent << "ComputeEdgeTruncated: " << this->ComputeEdgeTruncated << "\n";
+  os << indent << "ComputeHorizonAngles: " << this->ComputeHorizonAngles << "\n";
+  os << indent << "ElevationArrayName: "
+     << (this->ElevationArrayName ? this->ElevationArrayName : "(none)") << "\n";
+}

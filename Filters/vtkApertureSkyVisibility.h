@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkApertureSkyVisibility
+ * @brief   What every cell of a DEM sees of the sky: horizon angles in D azimuth sectors and,
+ *          from the same pass, visible solid angle, aperture radius, bent normal, sky-view
+ *          factor, diffuse sky factor, positive openness and edge truncation.
+ *
+ * Input: a DEM image as vtkApertureDEMReader produces it (`Elevation` in metres, NaN = nodata,
+ * `CRS` in the field data; lat/lon or projected). Output: the same image with these point
+ * arrays added (float32; angles in radians):
+ *
+ * | array | meaning |
+ * |---|---|
+ * | `VisibleSolidAngle` | A (sr): solid angle of the sky visible above the horizontal, the terrain and the cell's own tangent plane |
+ * | `ApertureRadius` | rp = acos(1 − A/2π) (rad): radius of the spherical cap of the same area (Oat & Sander 2007) |
+ * | `BentNormal` | unit mean direction of that visible sky, East-North-Up at the cell (components E, N, U) |
+ * | `SkyViewFactor` | Zakšek et al. (2011): 1 − mean sin of the terrain horizon clamped at 0; the visible share of the upper hemisphere over a *horizontal* plane, ignoring the cell's slope |
+ * | `DiffuseSkyFactor` | Dozier & Frew (1990), with Dozier's (2022) self-shadowing: isotropic sky irradiance on the *tilted* cell relative to an unobstructed horizontal surface (cosine-weighted) |
+ * | `PositiveOpenness` | Yokoyama et al. (2002): mean zenith angle of the terrain horizon (rad) |
+ * | `EdgeTruncated` | 1 where in some sector the DEM ends closer than the search limit (unsigned char) |
+ * | `HorizonAngles` | optional: D components, the terrain horizon elevation per sector (rad), components named by azimuth ("az011.25") |
+ *
+ * The formulas, the algorithm (convex-hull line sweep, amortised O(1) per cell and direction,
+ * independent of the search distance) and its accuracy are documented in ap_horizon.h.
+ * Sector d is centred on true azimuth 360 d / D degrees, clockwise from north. For projected
+ * DEMs the sweep runs at grid azimuths using the meridian convergence at the DEM centre;
+ * BentNormal is rotated into each cell's true East-North-Up with the convergence there, so
+ * A, rp, SkyViewFactor, DiffuseSkyFactor and BentNormal are exact everywhere, while sector d
+ * of HorizonAngles is centred on true azimuth φ_d + γ(cell) − γ(centre) (a fraction of a
+ * degree across a UTM DEM). Cell sizes are metric per row (GeographicLib geodesics on the
+ * CRS's ellipsoid), so lat/lon DEMs are exact. Earth curvature uses the ellipsoid's radius of
+ * curvature in each azimuth at the DEM centre.
+ *
+ * Terrain beyond the DEM edge is invisible; EdgeTruncated marks the cells where that may
+ * matter. Nodata never occludes and gives NaN products.
+ *
+ * Streaming: a request for a sub-extent computes only what that region needs, reading the
+ * input extent grown by the search distance on every side (the whole extent when the
+ * distance is unlimited, or when the CRS is not known before data flows: directly behind
+ * vtkApertureDEMReader it is). Inside the region the results match a whole-DEM run to within
+ * the sweep's sampling: each cell's own ray is exact near the cell either way, but farther
+ * out the sweep lines start from the piece's edge and sample the terrain at other lateral
+ * offsets (typically 1e-4 in SkyViewFactor, single cells up to a few thousandths).
+ *
+ * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, no CRS
+ * or no metric cell size, every cell nodata, NumberOfDirections outside 4..360, a negative
+ * MaximumDistance, a refraction coefficient outside [0, 1).
+ *
+ * @warning Threads: NumberOfThreads (default all cores, through vtkSMPTools); the results are
+ * bit-identical for any thread count.
+ * @sa vtkApertureDEMReader vtkApertureTerrainMesh
+ */
+#ifndef vtkApertureSkyVisibility_h
+#define vtkApertureSkyVisibility_h
+
+#include "ApertureFiltersModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+
+class APERTUREFILTERS_EXPORT vtkApertureSkyVisibility : public vtkImageAlgorithm
+{
+public:
+  static vtkApertureSkyVisibility* New();
+  vtkTypeMacro(vtkApertureSkyVisibility, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** Azimuth sectors D, 4..360. Default 32. */
+  vtkSetMacro(NumberOfDirections, int);
+  vtkGetMacro(NumberOfDirections, int);
+  ///@}
+
+  ///@{
+  /** Search distance in metres; 0 (default) = unlimited. Negative values are an error. */
+  vtkSetMacro(MaximumDistance, double);
+  vtkGetMacro(MaximumDistance, double);
+  ///@}
+
+  ///@{
+  /** Earth curvature with refraction (default on) and the refraction coefficient k
+   *  (default 0.13, the usual value for visible light; [0, 1)). */
+  vtkSetMacro(EarthCurvature, bool);
+  vtkGetMacro(EarthCurvature, bool);
+  vtkBooleanMacro(EarthCurvature, bool);
+  vtkSetMacro(RefractionCoefficient, double);
+  vtkGetMacro(RefractionCoefficient, double);
+  ///@}
+
+  ///@{
+  /** Columns of each cell's own ray evaluated exactly on the bilinear surface before the
+   *  hulls take over (1..64; default 8; see ap_horizon.h for the accuracy it buys). */
+  vtkSetClampMacro(NearField, int, 1, 64);
+  vtkGetMacro(NearField, int);
+  ///@}
+
+  ///@{
+  /** Threads; 0 (default) = as many as vtkSMPTools offers. Results do not depend on it. */
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
+  /** Which products to add. All derived products default on; HorizonAngles off. */
+  vtkSetMacro(ComputeVisibleSolidAngle, bool);
+  vtkGetMacro(ComputeVisibleSolidAngle, bool);
+  vtkBooleanMacro(ComputeVisibleSolidAngle, bool);
+  vtkSetMacro(ComputeApertureRadius, bool);
+  vtkGetMacro(ComputeApertureRadius, bool);
+  vtkBooleanMacro(ComputeApertureRadius, bool);
+  vtkSetMacro(ComputeBentNormal, bool);
+  vtkGetMacro(ComputeBentNormal, bool);
+  vtkBooleanMacro(ComputeBentNormal, bool);
+  vtkSetMacro(ComputeSkyViewFactor, bool);
+  vtkGetMacro(ComputeSkyViewFactor, bool);
+  vtkBooleanMacro(ComputeSkyViewFactor, bool);
+  vtkSetMacro(ComputeDiffuseSkyFactor, bool);
+  vtkGetMacro(ComputeDiffuseSkyFactor, bool);
+  vtkBooleanMacro(ComputeDiffuseSkyFactor, bool);
+  vtkSetMacro(ComputePositiveOpenness, bool);
+  vtkGetMacro(ComputePositiveOpenness, bool);
+  vtkBooleanMacro(ComputePositiveOpenness, bool);
+  vtkSetMacro(ComputeEdgeTruncated, bool);
+  vtkGetMacro(ComputeEdgeTruncated, bool);
+  vtkBooleanMacro(ComputeEdgeTruncated, bool);
+  vtkSetMacro(ComputeHorizonAngles, bool);
+  vtkGetMacro(ComputeHorizonAngles, bool);
+  vtkBooleanMacro(ComputeHorizonAngles, bool);
+  ///@}
+
+  ///@{
+  /** Name of the input elevation array (metres). Default "Elevation". */
+  vtkSetStringMacro(ElevationArrayName);
+  vtkGetStringMacro(ElevationArrayName);
+  ///@}
+
+protected:
+  vtkApertureSkyVisibility();
+  ~vtkApertureSkyVisibility() override;
+
+  int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  int NumberOfDirections;
+  double MaximumDistance;
+  bool EarthCurvature;
+  double RefractionCoefficient;
+  int NearField;
+  int NumberOfThreads;
+  bool ComputeVisibleSolidAngle;
+  bool ComputeApertureRadius;
+  bool ComputeBentNormal;
+  bool ComputeSkyViewFactor;
+  bool ComputeDiffuseSkyFactor;
+  bool ComputePositiveOpenness;
+  bool ComputeEdgeTruncated;
+  bool ComputeHorizonAngles;
+  char* ElevationArrayName;
+
+private:
+  vtkApertureSkyVisibility(const vtkApertureSkyVisibility&) = delete;
+  void operator=(const vtkApertureSkyVisibility&) = delete;
+};
+
+#endif

@@ -1,0 +1,193 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""`aperture bake` as a user runs it: GeoTIFF bands named after the products (angles in
+degrees, BentNormal_E/N/U, HorizonAngles per azimuth), the DEM's georeference, units,
+definitions and provenance in the metadata, the EXR with the same products, results that do
+not depend on --threads, the products carried onto the terrain mesh, and one-line errors."""
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+from osgeo import gdal, osr
+
+gdal.UseExceptions()
+BUILD = os.environ.get("APERTURE_BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+APERTURE = os.path.join(BUILD, "bin", "aperture")
+
+
+def run(*args):
+    p = subprocess.run([APERTURE] + [str(a) for a in args], capture_output=True, text=True,
+                       timeout=300)
+    return p.returncode, p.stdout, p.stderr
+
+
+def bands(path):
+    """{description: array (north row first)} and the dataset's metadata."""
+    ds = gdal.Open(path)
+    out = {}
+    for b in range(1, ds.RasterCount + 1):
+        band = ds.GetRasterBand(b)
+        out[band.GetDescription()] = (band.ReadAsArray().astype(np.float64), band.GetMetadata())
+    meta = ds.GetMetadata()
+    gt = ds.GetGeoTransform()
+    srs = ds.GetSpatialRef().ExportToWkt() if ds.GetSpatialRef() else None
+    ds = None
+    return out, meta, gt, srs
+
+
+def make_dem(path, z, gt, epsg):
+    ds = gdal.GetDriverByName("GTiff").Create(path, z.shape[1], z.shape[0], 1, gdal.GDT_Float32)
+    ds.SetGeoTransform(gt)
+    srs = osr.SpatialReference()
+    srs.ImportFromEPSG(epsg)
+    ds.SetSpatialRef(srs)
+    ds.GetRasterBand(1).WriteArray(z)
+    ds.GetRasterBand(1).SetNoDataValue(-9999)
+    ds = None
+
+
+class TestBake(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="aperture-bake-")
+        # A V-valley (floor north-south) in UTM, 30 m cells, sides at 30 degrees: the floor's
+        # SkyViewFactor is 1 - 2 alpha / pi and DiffuseSkyFactor cos(alpha) (ALGORITHMS.md 2.4).
+        x = (np.arange(81) - 40) * 30.0
+        z = np.tile(np.tan(math.radians(30)) * np.abs(x), (60, 1)).astype(np.float32)
+        z[5, 5] = -9999
+        cls.dem = os.path.join(cls.tmp, "valley.tif")
+        make_dem(cls.dem, z, (500000 - 40 * 30 - 15, 30, 0, 4000000, 0, -30), 32611)
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def path(self, name):
+        return os.path.join(self.tmp, name)
+
+    def test_bands_units_metadata(self):
+        out, exr = self.path("all.tif"), self.path("all.exr")
+        status, stdout, err = run("bake", self.dem, out, "--products", "all", "--directions",
+                                  "360", "--exr", exr, "--no-curvature")
+        self.assertEqual(status, 0, err)
+        self.assertIn("wrote", stdout)
+        b, meta, gt, srs = bands(out)
+        names = list(b)
+        self.assertEqual(names[:8], ["VisibleSolidAngle", "ApertureRadius", "BentNormal_E",
+                                     "BentNormal_N", "BentNormal_U", "SkyViewFactor",
+                                     "DiffuseSkyFactor", "PositiveOpenness"])
+        self.assertEqual(names[8], "EdgeTruncated")
+        self.assertEqual(names[9], "HorizonAngles_az000.00")
+        self.assertEqual(names[9 + 90], "HorizonAngles_az090.00")
+        self.assertEqual(len(names), 9 + 360)
+        # the valley floor, mid-way: closed forms (360 sectors; the two along-axis sectors end
+        # at the DEM's north and south edges)
+        svf = b["SkyViewFactor"][0][30, 40]
+        self.assertAlmostEqual(svf, 1 - 2 * math.radians(30) / math.pi, delta=3e-3)
+        self.assertAlmostEqual(b["DiffuseSkyFactor"][0][30, 40], math.cos(math.radians(30)),
+                               delta=1e-4)
+        # angles in degrees: the floor's horizon east (90 deg) is the side's slope. The DEM is
+        # drawn in UTM grid metres, but ground distances are 1/k0 = 1/0.9996 longer near the
+        # central meridian, so the side rises at atan(0.9996 tan 30) = 29.990 deg on the ground.
+        self.assertAlmostEqual(b["HorizonAngles_az090.00"][0][30, 40],
+                               math.degrees(math.atan(0.9996 * math.tan(math.radians(30)))),
+                               delta=1e-3)
+        self.assertAlmostEqual(b["ApertureRadius"][0][30, 40],
+                               math.degrees(math.acos(2 * math.radians(30) / math.pi)), delta=0.1)
+        self.assertEqual(b["ApertureRadius"][1]["UNITS"], "degree")
+        self.assertEqual(b["VisibleSolidAngle"][1]["UNITS"], "sr")
+        self.assertIn("Zaksek", b["SkyViewFactor"][1]["DEFINITION"])
+        self.assertIn("Dozier", b["DiffuseSkyFactor"][1]["DEFINITION"])
+        self.assertTrue(np.isnan(b["SkyViewFactor"][0][5, 5]))  # nodata stays nodata
+        self.assertTrue(np.isnan(b["EdgeTruncated"][0][5, 5]))
+        for key, value in (("DIRECTIONS", "360"), ("MAX_DISTANCE_M", "unlimited"),
+                           ("EARTH_CURVATURE", "off"), ("ANGLE_UNIT", "degree")):
+            self.assertEqual(meta[key], value)
+        self.assertIn("Timonen", meta["ALGORITHM"])
+        self.assertTrue(meta["APERTURE_VERSION"])
+        # same georeference as the DEM
+        _, _, gt_dem, srs_dem = bands(self.dem)
+        self.assertEqual(gt, gt_dem)
+        a, b_ = osr.SpatialReference(), osr.SpatialReference()
+        a.ImportFromWkt(srs)
+        b_.ImportFromWkt(srs_dem)
+        self.assertTrue(a.IsSame(b_))
+        # the EXR: the same products, read back with Aperture's own reader
+        import aperture
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        r = aperture.vtkApertureEXRReader()
+        r.SetFileName(exr)
+        r.Update()
+        pd = r.GetOutput().GetPointData()
+        svf_exr = vtk_to_numpy(pd.GetArray("SkyViewFactor")).reshape(60, 81)
+        np.testing.assert_array_equal(np.flipud(svf_exr), b["SkyViewFactor"][0].astype(np.float32))
+        self.assertEqual(pd.GetArray("BentNormal").GetNumberOfComponents(), 3)
+        self.assertEqual(r.GetMetadataValue("aperture:directions"), "360")
+
+    def test_threads_do_not_matter(self):
+        outs = []
+        for t in (1, 2):
+            out = self.path("t%d.tif" % t)
+            status, _, err = run("bake", self.dem, out, "--threads", t, "--radius", "900")
+            self.assertEqual(status, 0, err)
+            outs.append(bands(out)[0])
+        for name in outs[0]:
+            np.testing.assert_array_equal(outs[0][name][0], outs[1][name][0])
+
+    def test_products_option(self):
+        out = self.path("two.tif")
+        status, _, err = run("bake", self.dem, out, "--products", "skyviewfactor,BentNormal")
+        self.assertEqual(status, 0, err)
+        self.assertEqual(list(bands(out)[0]), ["BentNormal_E", "BentNormal_N", "BentNormal_U",
+                                               "SkyViewFactor"])
+
+    def test_errors(self):
+        out = self.path("x.tif")
+        for args, expected in (
+                (("--directions", "3"), "--directions must be within 4..360"),
+                (("--directions", "361"), "--directions must be within 4..360"),
+                (("--radius", "-5"), "--radius must be a positive distance"),
+                (("--refraction", "1"), "--refraction must be within [0, 1)"),
+                (("--products", "Slope"), "unknown product 'Slope'")):
+            status, stdout, err = run("bake", self.dem, out, *args)
+            self.assertEqual(status, 1, err)
+            self.assertEqual(len(err.strip().splitlines()), 1, err)
+            self.assertIn(expected, err)
+            self.assertFalse(os.path.exists(out))
+        # a raster without any CRS: no metric cell size can be derived
+        nocrs = self.path("nocrs.tif")
+        ds = gdal.GetDriverByName("GTiff").Create(nocrs, 5, 5, 1, gdal.GDT_Float32)
+        ds.SetGeoTransform((0, 1, 0, 5, 0, -1))
+        ds = None
+        status, _, err = run("bake", nocrs, out)
+        self.assertEqual(status, 1)
+        self.assertIn("no coordinate reference system", err)
+        status, _, err = run("bake", self.dem)
+        self.assertEqual(status, 2)
+
+    def test_mesh_carries_products(self):
+        import aperture
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        reader = aperture.vtkApertureDEMReader()
+        reader.SetFileName(self.dem)
+        skyv = aperture.vtkApertureSkyVisibility()
+        skyv.SetInputConnection(reader.GetOutputPort())
+        mesh = aperture.vtkApertureTerrainMesh()
+        mesh.SetInputConnection(skyv.GetOutputPort())
+        mesh.Update()
+        for name in ("SkyViewFactor", "BentNormal", "ApertureRadius"):
+            np.testing.assert_array_equal(
+                vtk_to_numpy(mesh.GetOutput().GetPointData().GetArray(name)),
+                vtk_to_numpy(skyv.GetOutput().GetPointData().GetArray(name)))
+
+
+if __name__ == "__main__":
+    if not os.path.exists(APERTURE):
+        print("skipped: %s not built" % APERTURE)
+        sys.exit(125)
+    sys.exit(0 if unittest.main(exit=False).result.wasSuccessful() else 1)
