@@ -43,10 +43,13 @@ typedef struct hull {
   int n, cap;
 } hull;
 
-static int reserve(sample **v, int *cap, int need)
+/* Make the array *pa (elements of size bytes, capacity *cap) hold at least need elements,
+ * doubling; 0 when out of memory (the array is then unchanged). pa points to the array's
+ * pointer, of any object type. */
+static int grow(void *pa, int *cap, int need, size_t size)
 {
   int c;
-  sample *nv;
+  void *old, *nv;
   if (need <= *cap) {
     return 1;
   }
@@ -54,14 +57,16 @@ static int reserve(sample **v, int *cap, int need)
   while (c < need) {
     c *= 2;
   }
-  nv = (sample *)realloc(*v, (size_t)c * sizeof(sample));
+  memcpy(&old, pa, sizeof(old));
+  nv = realloc(old, (size_t)c * size);
   if (!nv) {
     return 0;
   }
-  *v = nv;
+  memcpy(pa, &nv, sizeof(nv));
   *cap = c;
   return 1;
 }
+#define GROW(arr, cap, need) grow(&(arr), &(cap), (need), sizeof(*(arr)))
 
 static void hull_free(hull *h)
 {
@@ -85,7 +90,7 @@ static int hull_push_near(hull *h, const sample *q)
       break;
     }
   }
-  if (!reserve(&h->v, &h->cap, h->n + 1)) {
+  if (!GROW(h->v, h->cap, h->n + 1)) {
     return 0;
   }
   h->v[h->n++] = *q;
@@ -97,155 +102,233 @@ static int hull_push_near(hull *h, const sample *q)
  * tangent vertex; the comparison is division-free (all differences in x are positive). */
 static const sample *hull_tangent(const hull *h, double xq, double uq, double *slope)
 {
-  int lo = 0, hi;
+  const sample *v = h->v;
+  int lo = 0, n = h->n - 1; /* search the first i in [0, n) whose slope is not below i + 1's */
   if (h->n == 0) {
     return NULL;
   }
-  hi = h->n - 1;
-  while (lo < hi) {
-    const int mid = (lo + hi) >> 1;
-    const double da = h->v[mid].x - xq, ua = h->v[mid].u - uq;
-    const double db = h->v[mid + 1].x - xq, ub = h->v[mid + 1].u - uq;
-    if (ua * db < ub * da) {
-      lo = mid + 1;
-    } else {
-      hi = mid;
-    }
+  /* Branch-free lower bound (the comparison decides a conditional move, not a jump): each step
+   * is a coin toss for a branch predictor. */
+  while (n > 0) {
+    const int half = n >> 1, mid = lo + half;
+    const double da = v[mid].x - xq, ua = v[mid].u - uq;
+    const double db = v[mid + 1].x - xq, ub = v[mid + 1].u - uq;
+    const int rising = ua * db < ub * da;
+    lo = rising ? mid + 1 : lo;
+    n = rising ? n - half - 1 : half;
   }
-  *slope = (h->v[lo].u - uq) / (h->v[lo].x - xq);
-  return &h->v[lo];
+  *slope = (v[lo].u - uq) / (v[lo].x - xq);
+  return &v[lo];
 }
 
 /* ---------------------------------------------------------------------------------------- */
 /* A line's samples within a sliding window (x_q, x_q + L], for a maximum search distance.
  * The window only ever gains samples on the near side and loses them on the far side, so it is
- * a queue, kept as two stacks (the classic two-stack queue): "in" receives new samples (raw
- * list + the near-pushed hull above); "out" holds older samples and gives them up farthest
- * first. When "out" runs dry, all of "in" moves over and "out"'s hull is rebuilt by adding the
- * samples from nearest to farthest (Andrew's chain in increasing x), logging what each
- * addition popped so that removing the farthest sample undoes exactly that addition. Every
- * sample is added, popped and restored at most once: O(1) amortised. The tangent to the whole
- * window is the better of the two hulls' tangents. */
+ * a queue, kept as two stacks (the classic two-stack queue): "in" receives new samples (with
+ * the near-pushed hull above); "out" holds older samples and gives them up farthest first.
+ * When "out" runs dry, all of "in" moves over and "out"'s hull is rebuilt by adding the samples
+ * from nearest to farthest (Andrew's chain in increasing x), logging what each addition popped
+ * so that removing the farthest sample undoes exactly that addition. Every sample is added,
+ * popped and restored at most once: O(1) amortised. The tangent to the whole window is the
+ * better of the two hulls' tangents.
+ *
+ * A line takes at most one sample per column, so the window's samples live in a ring indexed
+ * by column (longer than any window), and the stacks, hulls and undo log move 4-byte column
+ * numbers instead of samples. */
 
 typedef struct window {
-  sample *in;       /* raw samples of "in", in arrival order (decreasing x) */
+  sample *ring;      /* the sample of column col is ring[col & mask] while in the window */
+  int mask;          /* ring length - 1, the length a power of two */
+  int *in_raw;       /* columns of "in", in arrival order (decreasing) */
   int in_n, in_cap;
-  hull in_hull;
-  sample *out;      /* raw samples of "out", increasing x (last = farthest) */
-  int out_n, out_cap;
-  hull out_hull;    /* upper hull of "out", increasing x */
-  int *out_popped;  /* per out sample: how many hull vertices its addition popped */
-  int popped_cap;
-  sample *undo;     /* the popped vertices, a stack */
+  int *in_hull;      /* "in"'s upper hull: columns, farthest first */
+  int in_hn, in_hcap;
+  int *out_raw;      /* columns of "out", increasing (last = farthest) */
+  int *out_popped;   /* per out_raw entry: how many hull vertices its addition popped */
+  double *out_umax;  /* per out_raw entry: the largest u from out_raw[0] to it */
+  double *out_x;     /* per out_raw entry: its x (read on eviction without touching the ring) */
+  int umax_cap, x_cap;
+  int out_n, out_cap, popped_cap;
+  int *out_hull;     /* "out"'s upper hull: columns, increasing */
+  int out_hn, out_hcap;
+  int *undo;         /* the popped vertices, a stack */
   int undo_n, undo_cap;
+  double out_last_x; /* x of out_raw's last (farthest) sample, when out_n > 0 */
+  double in_first_x; /* x of in_raw's first (farthest) sample, when in_n > 0 */
 } window;
 
 static void window_free(window *w)
 {
-  free(w->in);
-  free(w->out);
+  free(w->ring);
+  free(w->in_raw);
+  free(w->in_hull);
+  free(w->out_raw);
   free(w->out_popped);
+  free(w->out_umax);
+  free(w->out_x);
+  free(w->out_hull);
   free(w->undo);
-  hull_free(&w->in_hull);
-  hull_free(&w->out_hull);
   memset(w, 0, sizeof(*w));
 }
 
-static int window_push(window *w, const sample *q)
+#define RING(w, col) (&(w)->ring[(col) & (w)->mask])
+
+static int window_push(window *w, const sample *q, int W)
 {
-  if (!reserve(&w->in, &w->in_cap, w->in_n + 1)) {
+  const int col = (int)q->col;
+  if (!w->ring) {
+    int len = 16;
+    while (len < W) {
+      len *= 2;
+    }
+    w->ring = (sample *)malloc((size_t)len * sizeof(sample));
+    if (!w->ring) {
+      return 0;
+    }
+    w->mask = len - 1;
+  }
+  *RING(w, col) = *q;
+  if (!GROW(w->in_raw, w->in_cap, w->in_n + 1) ||
+      !GROW(w->in_hull, w->in_hcap, w->in_hn + 1)) {
     return 0;
   }
-  w->in[w->in_n++] = *q;
-  return hull_push_near(&w->in_hull, q);
+  if (w->in_n == 0) {
+    w->in_first_x = q->x;
+  }
+  w->in_raw[w->in_n++] = col;
+  /* the near-pushed hull of "in": the pop rule of hull_push_near */
+  while (w->in_hn >= 2) {
+    const sample *top = RING(w, w->in_hull[w->in_hn - 1]);
+    const sample *second = RING(w, w->in_hull[w->in_hn - 2]);
+    const double d1 = top->x - q->x, h1 = top->u - q->u;
+    const double d2 = second->x - q->x, h2 = second->u - q->u;
+    if (h2 * d1 >= h1 * d2) {
+      --w->in_hn;
+    } else {
+      break;
+    }
+  }
+  w->in_hull[w->in_hn++] = col;
+  return 1;
 }
 
-/* Add a sample farther than every sample of "out"'s hull, logging the popped vertices. */
-static int out_add_far(window *w, const sample *q)
+/* Add column col, farther than every sample of "out"'s hull, logging the popped vertices. */
+static int out_add_far(window *w, int col)
 {
-  hull *h = &w->out_hull;
+  const sample *q = RING(w, col);
   int popped = 0;
-  while (h->n >= 2) {
-    const sample *a = &h->v[h->n - 2], *b = &h->v[h->n - 1];
+  while (w->out_hn >= 2) {
+    const sample *a = RING(w, w->out_hull[w->out_hn - 2]);
+    const sample *b = RING(w, w->out_hull[w->out_hn - 1]);
     /* b is on or below the chord a-q: it can never be a tangent point from the near side. */
     if ((q->u - a->u) * (b->x - a->x) >= (b->u - a->u) * (q->x - a->x)) {
-      if (!reserve(&w->undo, &w->undo_cap, w->undo_n + 1)) {
+      if (!GROW(w->undo, w->undo_cap, w->undo_n + 1)) {
         return 0;
       }
-      w->undo[w->undo_n++] = *b;
-      --h->n;
+      w->undo[w->undo_n++] = w->out_hull[--w->out_hn];
       ++popped;
     } else {
       break;
     }
   }
-  if (!reserve(&h->v, &h->cap, h->n + 1) || !reserve(&w->out, &w->out_cap, w->out_n + 1)) {
+  if (!GROW(w->out_hull, w->out_hcap, w->out_hn + 1) ||
+      !GROW(w->out_raw, w->out_cap, w->out_n + 1) ||
+      !GROW(w->out_popped, w->popped_cap, w->out_n + 1) ||
+      !GROW(w->out_umax, w->umax_cap, w->out_n + 1) ||
+      !GROW(w->out_x, w->x_cap, w->out_n + 1)) {
     return 0;
   }
-  h->v[h->n++] = *q;
-  if (w->out_n + 1 > w->popped_cap) {
-    int c = w->popped_cap ? 2 * w->popped_cap : 16;
-    int *np;
-    while (c < w->out_n + 1) {
-      c *= 2;
-    }
-    np = (int *)realloc(w->out_popped, (size_t)c * sizeof(int));
-    if (!np) {
-      return 0;
-    }
-    w->out_popped = np;
-    w->popped_cap = c;
-  }
-  w->out[w->out_n] = *q;
+  w->out_hull[w->out_hn++] = col;
+  w->out_raw[w->out_n] = col;
   w->out_popped[w->out_n] = popped;
+  w->out_umax[w->out_n] =
+    (w->out_n > 0 && w->out_umax[w->out_n - 1] > q->u) ? w->out_umax[w->out_n - 1] : q->u;
+  w->out_x[w->out_n] = q->x;
   ++w->out_n;
+  w->out_last_x = q->x;
   return 1;
 }
 
 /* Remove the farthest sample of "out" (the last one added) and restore what it popped. */
 static void out_remove_far(window *w)
 {
-  hull *h = &w->out_hull;
   int k = w->out_popped[--w->out_n];
-  --h->n; /* the farthest sample is always the hull's last vertex */
+  --w->out_hn; /* the farthest sample is always the hull's last vertex */
   while (k-- > 0) {
-    h->v[h->n++] = w->undo[--w->undo_n];
+    w->out_hull[w->out_hn++] = w->undo[--w->undo_n];
+  }
+  if (w->out_n > 0) {
+    w->out_last_x = w->out_x[w->out_n - 1];
   }
 }
 
-/* Drop every sample farther than xlimit. */
+/* Drop every sample farther than xlimit. The farthest distances are cached in the window, so
+ * that the common case (nothing to drop) reads no sample: the lines' rings together are far
+ * larger than the caches. */
 static int window_evict(window *w, double xlimit)
 {
   for (;;) {
     if (w->out_n > 0) {
-      if (w->out[w->out_n - 1].x > xlimit) {
+      if (w->out_last_x > xlimit) {
         out_remove_far(w);
         continue;
       }
       return 1;
     }
-    if (w->in_n > 0 && w->in[0].x > xlimit) {
+    if (w->in_n > 0 && w->in_first_x > xlimit) {
       /* Move all of "in" to "out", nearest first; "in" starts afresh. */
       int i;
       for (i = w->in_n - 1; i >= 0; --i) {
-        if (!out_add_far(w, &w->in[i])) {
+        if (!out_add_far(w, w->in_raw[i])) {
           return 0;
         }
       }
       w->in_n = 0;
-      w->in_hull.n = 0;
+      w->in_hn = 0;
       continue;
     }
     return 1;
   }
 }
 
-/* The tangent vertex of the whole window (the better of the two hulls'), or NULL. */
+/* The vertex of a hull of columns (any x-monotone order) with the largest slope from
+ * (xq, uq), by the binary search of hull_tangent; NULL when empty. */
+static const sample *ring_tangent(const window *w, const int *h, int n, double xq, double uq,
+                                  double *slope)
+{
+  int lo = 0, m = n - 1; /* as hull_tangent, branch-free */
+  const sample *v;
+  if (n == 0) {
+    return NULL;
+  }
+  while (m > 0) {
+    const int half = m >> 1, mid = lo + half;
+    const sample *a = RING(w, h[mid]), *b = RING(w, h[mid + 1]);
+    const int rising = (a->u - uq) * (b->x - xq) < (b->u - uq) * (a->x - xq);
+    lo = rising ? mid + 1 : lo;
+    m = rising ? m - half - 1 : half;
+  }
+  v = RING(w, h[lo]);
+  *slope = (v->u - uq) / (v->x - xq);
+  return v;
+}
+
+/* The tangent vertex of the whole window (the better of the two hulls'), or NULL. "out" is
+ * searched only if a bound on its slopes (its highest sample at its nearest distance, or at
+ * its farthest when below the query) can beat the tangent to "in". */
 static const sample *window_tangent(const window *w, double xq, double uq)
 {
   double sa = -INFINITY, sb = -INFINITY;
-  const sample *a = hull_tangent(&w->in_hull, xq, uq, &sa);
-  const sample *b = hull_tangent(&w->out_hull, xq, uq, &sb);
+  const sample *a = ring_tangent(w, w->in_hull, w->in_hn, xq, uq, &sa);
+  const sample *b = NULL;
+  if (w->out_hn > 0) {
+    const double rise = w->out_umax[w->out_n - 1] - uq;
+    const double d = rise >= 0.0 ? RING(w, w->out_raw[0])->x - xq
+                                 : RING(w, w->out_raw[w->out_n - 1])->x - xq;
+    if (!a || rise / d > sa) {
+      b = ring_tangent(w, w->out_hull, w->out_hn, xq, uq, &sb);
+    }
+  }
   if (!a) {
     return b;
   }
@@ -899,12 +982,13 @@ static void near_column(const ap_horizon *hz, const pattern *pt, size_t p, long 
 typedef struct line_state {
   double s, x;   /* position on the current column; distance along the line (m) */
   double xend;   /* distance of the farthest sample position inside the grid; NAN: none yet */
-  window w;      /* hull(s) of the samples at least K columns away */
+  hull h;        /* unlimited search: the hull of the samples at least K columns away */
+  window w;      /* limited search: the window of those samples within the distance */
 } line_state;
 
 ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
 {
-  int K, limited;
+  int K, limited, W;
   double L, c;
   size_t np, ns, nl, l, pp;
   line_state *lines = NULL;
@@ -924,6 +1008,16 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
   c = hz->c;
   np = hz->np;
   ns = hz->ns;
+  /* A window holds the samples of at most L / (shortest step) + 1 columns, plus the K - 1
+   * pending ones; a ring a little longer never overwrites a sample still in use. */
+  {
+    double shortest = INFINITY;
+    size_t j;
+    for (j = 0; j < hz->ny; ++j) {
+      shortest = fmin(shortest, hz->len_row[j]);
+    }
+    W = limited ? (int)fmin((double)np + 2.0, ceil(L / shortest) + (double)K + 4.0) : 0;
+  }
   if (b1 > ap_horizon_bracket_count(hz)) {
     b1 = ap_horizon_bracket_count(hz);
   }
@@ -1082,11 +1176,24 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
               ln->s = LINE_S(l + (size_t)e);
               ln->x = xc;
             }
-            if (limited && !window_evict(&ln->w, ln->x + L)) {
-              st = AP_ERR_OUT_OF_MEMORY;
-              goto done;
+            if (limited) {
+              if (!window_evict(&ln->w, ln->x + L)) {
+                st = AP_ERR_OUT_OF_MEMORY;
+                goto done;
+              }
+              /* The tangent to all samples behind is the window's too when it lies within
+               * the distance (the window is a subset holding it); only beyond it does the
+               * window's own search run. */
+              double unused;
+              const double uq = zq - c * ln->x * ln->x;
+              v = hull_tangent(&ln->h, ln->x, uq, &unused);
+              if (v && v->x > ln->x + L) {
+                v = window_tangent(&ln->w, ln->x, uq);
+              }
+            } else {
+              double unused;
+              v = hull_tangent(&ln->h, ln->x, zq - c * ln->x * ln->x, &unused);
             }
-            v = window_tangent(&ln->w, ln->x, zq - c * ln->x * ln->x);
             double sn, zn, dn, slope;
             if (!v) {
               continue;
@@ -1124,7 +1231,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
         if (q->col != (long)(p + (size_t)K - 1) || isnan(q->u)) {
           continue; /* no sample there: the line was outside the grid, or on nodata */
         }
-        ok = limited ? window_push(&lines[l].w, q) : hull_push_near(&lines[l].w.in_hull, q);
+        ok = hull_push_near(&lines[l].h, q) && (!limited || window_push(&lines[l].w, q, W));
         if (!ok) {
           st = AP_ERR_OUT_OF_MEMORY;
           goto done;
@@ -1138,6 +1245,7 @@ done:
   if (lines) {
     for (l = 0; l < nl; ++l) {
       window_free(&lines[l].w);
+      hull_free(&lines[l].h);
     }
   }
   free(lines);
