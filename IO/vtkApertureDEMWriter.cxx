@@ -328,6 +328,9 @@ void vtkApertureDEMWriter::WriteData()
       ok = GDALRasterIO(hb, GF_Write, 0, r0, nx, k, strip.data(), nx, k, GDT_Float64, 0, 0) ==
         CE_None;
     }
+    // Write the band's tiles out now: GDAL's block cache (5% of RAM by default) would
+    // otherwise hold every band until the file is closed.
+    ok = ok && GDALFlushRasterCache(hb) == CE_None;
     this->UpdateProgress(static_cast<double>(b + 1) / static_cast<double>(bands.size()));
   }
   GDALFlushCache(ds);

@@ -275,8 +275,9 @@ def _provenance(args, products):
 
 
 def _product_image(sky, products):
-    """A copy of the filter's output holding only the chosen products, with angles in degrees,
-    EdgeTruncated as float (NaN on nodata), and HorizonAngles bands named by azimuth."""
+    """An image sharing the filter's arrays of the chosen products (no copies: the filter's
+    output is converted in place, and not used again), with angles in degrees, EdgeTruncated
+    as float (NaN on nodata), and HorizonAngles bands named by azimuth."""
     import numpy as np
     from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
     from vtkmodules.vtkCommonDataModel import vtkImageData
@@ -284,22 +285,22 @@ def _product_image(sky, products):
     image = vtkImageData()
     image.CopyStructure(sky)
     image.GetFieldData().PassData(sky.GetFieldData())
-    elevation = vtk_to_numpy(sky.GetPointData().GetArray("Elevation"))
-    nodata = np.isnan(elevation)
     units = {name: (unit, degrees) for name, unit, degrees, _ in PRODUCTS}
     for name in products:
         src = sky.GetPointData().GetArray(name)
-        values = vtk_to_numpy(src).astype(np.float32)
-        if units[name][1]:
-            values = np.degrees(values).astype(np.float32)
+        values = vtk_to_numpy(src)
         if name == "EdgeTruncated":
+            nodata = np.isnan(vtk_to_numpy(sky.GetPointData().GetArray("Elevation")))
             values = np.where(nodata, np.float32(np.nan), values).astype(np.float32)
-        array = numpy_to_vtk(np.ascontiguousarray(values), deep=1)
-        array.SetName(name)
-        for c in range(src.GetNumberOfComponents()):
-            if src.GetComponentName(c):
-                array.SetComponentName(c, src.GetComponentName(c))
-        image.GetPointData().AddArray(array)
+            array = numpy_to_vtk(values, deep=1)
+            array.SetName(name)
+            image.GetPointData().AddArray(array)
+            continue
+        if values.dtype != np.float32:
+            raise ApertureError("internal: %s is %s, not float32" % (name, values.dtype))
+        if units[name][1]:
+            np.degrees(values, out=values)
+        image.GetPointData().AddArray(src)
     return image
 
 
