@@ -441,7 +441,7 @@ def report(rows, args, header):
             fmt(row["compute"], "%.2f"), fmt(row["rss"] if row["status"] == "ok" else None,
                                              "%.0f"),
             fmt(rate if row["status"] == "ok" else None, "%.1f"), speedup, row["status"]))
-    notes = scaling_notes(rows)
+    notes = scaling_notes(rows) + memory_notes(rows, args)
     if notes:
         lines.append("")
         lines.extend(notes)
@@ -465,6 +465,27 @@ def report(rows, args, header):
                  "wall on the same DEM (> 1: ours faster; n/a: no successful run of ours on it)."
                  % args.directions)
     return "\n".join(lines) + "\n"
+
+
+# the default products of `aperture bake` as float32 bands (BentNormal counts 3), + the input
+OUR_BANDS = 9
+
+
+def memory_notes(rows, args):
+    """Our peak memory above the process's own baseline, against the data it must hold."""
+    base = getattr(args, "baseline_rss", None)
+    ours = [r for r in rows if r["contender"] == "ours" and r["status"] == "ok" and r["rss"]]
+    if not base or not ours:
+        return []
+    parts = []
+    for r in ours:
+        data = r["nx"] * r["ny"] * 4.0 * (1 + OUR_BANDS) / 2 ** 20
+        parts.append("%s r=%s t=%s: %.0f MiB over %.0f MiB of data = %.2fx" % (
+            r["dem"], "%g" % r["radius"] if r["radius"] else "inf", r["threads"],
+            r["rss"] - base, data, (r["rss"] - base) / data))
+    return ["Ours, peak RSS above the baseline of the process (%.0f MiB: interpreter, VTK and "
+            "GDAL loaded, `aperture info` on the embedded DEM) against input + outputs as "
+            "float32 (1 + %d bands): " % (base, OUR_BANDS) + "; ".join(parts) + "."]
 
 
 def scaling_notes(rows):
@@ -613,6 +634,11 @@ def main():
         row = done[key]
         if series:
             row["series"].add(series)
+
+    if not args.no_ours and embedded:
+        r = run_timed([args.aperture, "info", embedded],
+                      os.path.join(args.workdir, "logs", "ours_baseline"), args.timeout)
+        args.baseline_rss = r["rss"] if r["rc"] == 0 else None
 
     print("comparison: %d directions, radius %g m" % (args.directions, args.radius), flush=True)
     for dem in [] if args.scaling_only else dems:

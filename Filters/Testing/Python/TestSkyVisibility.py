@@ -250,6 +250,22 @@ class TestSkyVisibility(Testing.vtkTest):
         self.assertLess(np.nanmax(np.abs(got - whole)), 5e-3)
         self.assertLess(np.nanmean(np.abs(got - whole)), 1e-4)
 
+    def testProgressEvents(self):
+        # VTK's contract: StartEvent, ProgressEvents rising from 0 to 1, EndEvent.
+        z = np.add.outer(np.arange(60.0), np.arange(70.0)).astype(np.float32)
+        f = aperture.vtkApertureSkyVisibility()
+        f.SetInputData(make_image(z, 400000, 5000000, 30, 30, "EPSG:32633"))
+        events = []
+        for name in ("StartEvent", "ProgressEvent", "EndEvent"):
+            f.AddObserver(name, lambda o, e: events.append((e, o.GetProgress())))
+        f.Update()
+        self.assertEqual(events[0][0], "StartEvent")
+        self.assertEqual(events[-1][0], "EndEvent")
+        progress = [p for e, p in events if e == "ProgressEvent"]
+        self.assertGreaterEqual(len(progress), 10)
+        self.assertEqual(progress, sorted(progress))
+        self.assertEqual(progress[-1], 1.0)
+
     def testErrors(self):
         image = make_image(np.ones((10, 10)), 0, 0, 30, 30, "EPSG:32633")
         cases = [(dict(NumberOfDirections=3), "NumberOfDirections must be within 4..360"),
