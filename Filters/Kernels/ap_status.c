@@ -14,6 +14,12 @@ const char *ap_status_string(ap_status status)
   case AP_ERR_BUFFER_TOO_SMALL: return "an output buffer is too small";
   case AP_ERR_OVERLAP: return "an output buffer overlaps an input buffer";
   case AP_ERR_OUT_OF_MEMORY: return "out of memory";
+  case AP_ERR_OUT_OF_RANGE: return "an input is outside its valid range";
+  case AP_ERR_PARSE: return "the text cannot be parsed";
+  case AP_ERR_NOT_FOUND: return "not found";
+  case AP_ERR_BAD_FILE: return "the file is corrupt or of an unknown format";
+  case AP_ERR_TIME_NONEXISTENT: return "the local time does not exist (skipped by a clock change)";
+  case AP_ERR_TIME_AMBIGUOUS: return "the local time is ambiguous (it occurs twice at a clock change)";
   }
   return "unknown status";
 }

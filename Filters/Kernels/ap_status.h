@@ -24,7 +24,13 @@ typedef enum ap_status {
   AP_ERR_ALL_NODATA,           /**< every cell of the grid is nodata (NaN) */
   AP_ERR_BUFFER_TOO_SMALL,     /**< a caller-provided output buffer is too small */
   AP_ERR_OVERLAP,              /**< an output buffer overlaps an input buffer */
-  AP_ERR_OUT_OF_MEMORY         /**< the core could not allocate its working memory */
+  AP_ERR_OUT_OF_MEMORY,        /**< the core could not allocate its working memory */
+  AP_ERR_OUT_OF_RANGE,         /**< an input (date, latitude, ...) is outside the valid range */
+  AP_ERR_PARSE,                /**< a text input (time, zone rule) cannot be parsed */
+  AP_ERR_NOT_FOUND,            /**< a named resource (time zone) does not exist */
+  AP_ERR_BAD_FILE,             /**< a file (TZif zone file) is corrupt or of an unknown format */
+  AP_ERR_TIME_NONEXISTENT,     /**< a local time skipped by a clock change (daylight saving) */
+  AP_ERR_TIME_AMBIGUOUS        /**< a local time that occurs twice (clock set back) */
 } ap_status;
 
 /** Static English text for a status; never NULL (unknown codes give "unknown status"). */
