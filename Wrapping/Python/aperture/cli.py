@@ -4,6 +4,7 @@
     aperture info [DEM] [--json]          what a DEM is: size, cell size, CRS, bounds, elevations
     aperture bake DEM OUT.tif             what every cell sees of the sky (horizons, SVF, ...)
     aperture render [DEM] -o OUT.png      a picture of the DEM (VTK lighting, for now)
+    aperture sun --at ISO (--lat --lon | --dem DEM)   where the sun is; sunrise, sunset
 
 DEM is any single-band raster GDAL reads (GeoTIFF, .hgt, .asc, .dt0, VRT, ...); without it, the
 embedded default DEM is used. Errors print one line on stderr and exit with status 1; usage
@@ -371,6 +372,184 @@ def cmd_bake(args):
 
 
 # ---------------------------------------------------------------------------------------------
+# sun
+
+DAY_KINDS = {0: "normal", 1: "polar_day", 2: "polar_night"}
+
+
+def _offset_text(seconds):
+    sign = "-" if seconds < 0 else "+"
+    seconds = abs(int(seconds))
+    return "%s%02d:%02d" % (sign, seconds // 3600, seconds // 60 % 60)
+
+
+def _local_text(sun, unix_seconds):
+    """ISO 8601 local time (to the second) at the sun's local-day offset, or None."""
+    import datetime
+    if unix_seconds is None or not math.isfinite(unix_seconds):
+        return None
+    offset = sun.GetLocalOffset()
+    tz = datetime.timezone(datetime.timedelta(seconds=offset))
+    try:
+        when = datetime.datetime.fromtimestamp(round(unix_seconds), tz)
+    except (OverflowError, OSError, ValueError):
+        return None  # outside Python's years 1..9999: the UTC string is still given
+    return when.isoformat()
+
+
+def _sun_record(sun, with_dem):
+    """One --json object: the keys the documentation lists."""
+    finite = lambda v: v if v is not None and math.isfinite(v) else None
+    record = {
+        "time_utc": sun.GetTimeString(),
+        "time_local": _local_text(sun, sun.GetUnixTime()),
+        "utc_offset": _offset_text(sun.GetLocalOffset()),
+        "time_zone": sun.GetTimeZone() or None,
+        "latitude_deg": sun.GetLatitude(),
+        "longitude_deg": sun.GetLongitude(),
+        "height_m": sun.GetHeight(),
+        "azimuth_deg": sun.GetAzimuth(),
+        "elevation_deg": sun.GetElevation(),
+        "zenith_deg": sun.GetZenith(),
+        "elevation_true_deg": sun.GetElevationTrue(),
+        "zenith_true_deg": sun.GetZenithTrue(),
+        "angular_radius_deg": sun.GetAngularRadius(),
+        "distance_au": sun.GetDistance(),
+        "equation_of_time_min": sun.GetEquationOfTime(),
+        "declination_deg": sun.GetDeclination(),
+        "hour_angle_deg": sun.GetHourAngle(),
+        "delta_t_s": sun.GetDeltaTUsed(),
+        "day_kind": DAY_KINDS.get(sun.GetDayKind(), "normal"),
+        "sunrise": sun.GetSunriseString() or None,
+        "transit": sun.GetTransitString() or None,
+        "sunset": sun.GetSunsetString() or None,
+        "sunrise_local": _local_text(sun, finite(sun.GetSunrise())),
+        "transit_local": _local_text(sun, finite(sun.GetTransit())),
+        "sunset_local": _local_text(sun, finite(sun.GetSunset())),
+    }
+    if with_dem:
+        direction = [0.0, 0.0, 0.0]
+        sun.GetDirection(direction)
+        record["meridian_convergence_deg"] = sun.GetGridConvergence()
+        record["grid_azimuth_deg"] = sun.GetGridAzimuth()
+        record["direction_enu"] = direction
+    return record
+
+
+def _print_sun(record, dem):
+    rows = [
+        ("Time", "%s (local %s)" % (record["time_utc"], record["time_local"] or "n/a")),
+        ("Place", "latitude %.6f, longitude %.6f, height %.1f m%s"
+         % (record["latitude_deg"], record["longitude_deg"], record["height_m"],
+            " (centre of %s)" % dem if dem else "")),
+        ("Azimuth", "%.4f deg from true north%s" % (
+            record["azimuth_deg"],
+            "; %.4f deg from grid north (convergence %.4f deg)"
+            % (record["grid_azimuth_deg"], record["meridian_convergence_deg"])
+            if "grid_azimuth_deg" in record else "")),
+        ("Elevation", "%.4f deg apparent (refracted), %.4f deg geometric"
+         % (record["elevation_deg"], record["elevation_true_deg"])),
+        ("Zenith", "%.4f deg apparent, %.4f deg geometric"
+         % (record["zenith_deg"], record["zenith_true_deg"])),
+    ]
+    if "direction_enu" in record:
+        rows.append(("Direction", "(%.6f, %.6f, %.6f) East-North-Up in the mesh frame"
+                     % tuple(record["direction_enu"])))
+    rows += [
+        ("Sun disc", "radius %.5f deg; distance %.6f AU" % (record["angular_radius_deg"],
+                                                           record["distance_au"])),
+        ("Eq. of time", "%+.2f min" % record["equation_of_time_min"]),
+    ]
+    if record["day_kind"] == "normal":
+        rows.append(("Day", "sunrise %s, transit %s, sunset %s (local %s)" % (
+            record["sunrise"], record["transit"], record["sunset"], record["utc_offset"])))
+        rows.append(("", "local: sunrise %s, transit %s, sunset %s" % tuple(
+            (record[k] or "n/a")[11:19] for k in ("sunrise_local", "transit_local",
+                                                  "sunset_local"))))
+    else:
+        rows.append(("Day", "%s: the sun does not %s; transit %s" % (
+            record["day_kind"].replace("_", " "),
+            "set" if record["day_kind"] == "polar_day" else "rise", record["transit"])))
+    for label, text in rows:
+        print("%-13s%s" % (label + (":" if label else ""), text))
+
+
+def cmd_sun(args):
+    from aperture import vtkApertureSolarPosition
+
+    if args.dem is None and (args.lat is None or args.lon is None):
+        raise ApertureError("give the place: --lat DEG --lon DEG, or --dem DEM")
+    if args.dem is not None and (args.lat is not None or args.lon is not None):
+        raise ApertureError("give either --lat/--lon or --dem, not both")
+    if args.days is not None and args.days < 1:
+        raise ApertureError("--days must be 1 or more")
+    if args.step is not None and not (args.step > 0 and math.isfinite(args.step)):
+        raise ApertureError("--step must be a positive number of minutes")
+    watcher = Watcher(on_warning=_warn)
+    sun = watcher.watch(vtkApertureSolarPosition())
+    if args.tz and not sun.SetTimeZone(args.tz):
+        raise ApertureError(sun.GetErrorMessage())
+    if not sun.SetTime(args.at):
+        raise ApertureError(sun.GetErrorMessage())
+    if args.dem is not None:
+        _, image = read_dem(args, watcher)
+        if not sun.SetPlaceFromImage(image):
+            raise ApertureError(sun.GetErrorMessage())
+        if args.height is not None:
+            sun.SetHeight(args.height)
+    else:
+        sun.SetLatitude(args.lat)
+        sun.SetLongitude(args.lon)
+        sun.SetHeight(args.height or 0.0)
+    sun.SetPressure(args.pressure)
+    sun.SetTemperature(args.temperature)
+    sun.SetRefraction(not args.no_refraction)
+    if args.delta_t is not None:
+        sun.SetDeltaT(args.delta_t)
+    watcher.errors.clear()
+
+    def compute():
+        if not sun.Compute():
+            raise ApertureError(sun.GetErrorMessage())
+        return _sun_record(sun, args.dem is not None)
+
+    if args.days is None and args.step is None:
+        record = compute()
+        if args.json:
+            print(json.dumps(record, indent=2))
+        else:
+            _print_sun(record, args.dem)
+        return 0
+
+    # A time series from --at: --days days in steps of --step minutes.
+    days = args.days or 1
+    step = args.step or 60.0
+    start = sun.GetUnixTime()
+    count = int(math.floor(days * 1440.0 / step + 1e-9))
+    records = []
+    if not args.json:
+        header = ["time_utc", "time_local", "azimuth", "elevation", "elev_true"]
+        if args.dem is not None:
+            header.append("grid_azimuth")
+        print("\t".join(header))
+    for k in range(count):
+        sun.SetUnixTime(start + k * step * 60.0)
+        record = compute()
+        if args.json:
+            records.append(record)
+            continue
+        row = [record["time_utc"], record["time_local"] or "n/a",
+               "%.4f" % record["azimuth_deg"], "%.4f" % record["elevation_deg"],
+               "%.4f" % record["elevation_true_deg"]]
+        if args.dem is not None:
+            row.append("%.4f" % record["grid_azimuth_deg"])
+        print("\t".join(row))
+    if args.json:
+        print(json.dumps(records, indent=1))
+    return 0
+
+
+# ---------------------------------------------------------------------------------------------
 
 
 def build_parser():
@@ -418,6 +597,44 @@ def build_parser():
     p.add_argument("--near-field", type=int, default=8, metavar="K",
                    help="columns of each cell's ray evaluated exactly (default 8)")
     p.set_defaults(func=cmd_bake)
+
+    p = sub.add_parser("sun", help="where the sun is for a time and place; sunrise and sunset",
+                       description="Sun position (NREL SPA: azimuth from true north, refracted "
+                                   "and geometric elevation), apparent disc radius, Earth-Sun "
+                                   "distance, equation of time, and the local day's sunrise, "
+                                   "transit and sunset (ISO 8601 UTC). With --dem, the place is "
+                                   "the DEM's centre, and the azimuth from the DEM's grid north "
+                                   "and the direction in its terrain-mesh frame are added.")
+    p.add_argument("--at", required=True, metavar="ISO",
+                   help="the time: ISO 8601 with an offset (2026-06-21T14:00+02:00, "
+                        "2026-06-21T12:00Z), or a local time with --tz")
+    p.add_argument("--tz", metavar="ZONE",
+                   help="IANA time zone (Europe/Zurich) for a local --at and the local day; "
+                        "clock changes are handled, and skipped or repeated times reported")
+    p.add_argument("--lat", type=float, metavar="DEG", help="latitude, degrees north (-90..90)")
+    p.add_argument("--lon", type=float, metavar="DEG", help="longitude, degrees east (-180..180)")
+    p.add_argument("--height", type=float, metavar="M",
+                   help="height above the ellipsoid, metres (default 0; with --dem: the DEM's "
+                        "height at its centre)")
+    p.add_argument("--dem", metavar="DEM", help="take the place (and frame) from this DEM")
+    p.add_argument("--pressure", type=float, default=1013.25, metavar="HPA",
+                   help="air pressure for refraction, hPa (default 1013.25)")
+    p.add_argument("--temperature", type=float, default=15.0, metavar="C",
+                   help="air temperature for refraction, degrees C (default 15)")
+    p.add_argument("--no-refraction", action="store_true",
+                   help="report geometric elevations as the apparent ones")
+    p.add_argument("--delta-t", type=float, metavar="S",
+                   help="TT - UT1 in seconds (default: estimated for the date)")
+    p.add_argument("--days", type=int, metavar="N",
+                   help="a time series from --at over N days (default 1 with --step)")
+    p.add_argument("--step", type=float, metavar="MIN",
+                   help="time-series step in minutes (default 60 with --days)")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object (a list for a time series) with keys "
+                        "azimuth_deg, elevation_deg, zenith_deg, elevation_true_deg, "
+                        "angular_radius_deg, distance_au, equation_of_time_min, sunrise, "
+                        "transit, sunset and, with --dem, grid_azimuth_deg, direction_enu")
+    p.set_defaults(func=cmd_sun, band=0, srcwin=None, overview=-1, decimate=1, srs=None)
 
     p = sub.add_parser("render", help="render the DEM to a PNG (VTK lighting for now)",
                        description="Render the DEM as a terrain mesh coloured by elevation and "

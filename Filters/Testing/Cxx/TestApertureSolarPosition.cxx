@@ -1,0 +1,247 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkApertureSolarPosition in a DEM's frames. A UTM DEM near a zone edge (zone 33N, 2.9 deg
+// east of the central meridian, 60 N), where grid north and true north differ by 2.5 deg:
+// - the grid azimuth is the true azimuth minus the meridian convergence that GeographicLib's
+//   exact transverse Mercator gives at the DEM centre (computed here, not by the class);
+// - the ENU direction is consistent with the terrain mesh: the grid direction of the grid
+//   azimuth, mapped through the mesh's own local Jacobian (finite differences of mesh vertices
+//   around the centre), points at the sun's true azimuth;
+// - the per-cell SunDirection array: the centre cell equals the direction in grid axes, and a
+//   far corner has its own convergence and sun position;
+// - the published SPA test case through the class (time with an offset, place, atmosphere),
+//   time zones and their errors, and every documented bad input.
+#include "aptest.hxx"
+
+#include "vtkApertureGeoreference.h"
+#include "vtkApertureSolarPosition.h"
+#include "vtkApertureTerrainMesh.h"
+
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkTestErrorObserver.h"
+
+#include <GeographicLib/TransverseMercator.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace
+{
+const double kDeg = 3.14159265358979323846 / 180.0;
+
+// A flat 201 x 201 UTM 33N DEM of 100 m cells centred at (easting x0, northing y0).
+vtkSmartPointer<vtkImageData> MakeUTM(double xc, double yc)
+{
+  const int n = 201;
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(n, n, 1);
+  image->SetOrigin(xc - 100.0 * (n - 1) / 2, yc - 100.0 * (n - 1) / 2, 0.0);
+  image->SetSpacing(100.0, 100.0, 1.0);
+  vtkNew<vtkFloatArray> z;
+  z->SetName("Elevation");
+  z->SetNumberOfTuples(static_cast<vtkIdType>(n) * n);
+  z->FillValue(250.0f);
+  image->GetPointData()->SetScalars(z);
+  vtkNew<vtkApertureGeoreference> geo;
+  AP_CHECK(geo->SetCRS("EPSG:32633") && geo->AttachToImage(image));
+  return image;
+}
+
+// True azimuth (deg, clockwise from north) of an ENU vector.
+double Azimuth(double e, double n)
+{
+  double a = std::atan2(e, n) / kDeg;
+  return a < 0 ? a + 360.0 : a;
+}
+
+void TestZoneEdge()
+{
+  // The DEM centre: 60 N, 17.9 E (zone 33, central meridian 15 E), by GeographicLib's UTM.
+  const GeographicLib::TransverseMercator& utm = GeographicLib::TransverseMercator::UTM();
+  const double lat0 = 60.0, lon0 = 17.9;
+  double x, y, gamma, k;
+  utm.Forward(15.0, lat0, lon0, x, y, gamma, k);
+  auto dem = MakeUTM(x + 500000.0, y);
+  AP_CHECK(gamma > 2.4 && gamma < 2.6); // about 2.9 sin 60 deg
+
+  vtkNew<vtkApertureSolarPosition> sun;
+  AP_CHECK(sun->SetTime("2026-06-21T15:30:00+02:00"));
+  AP_CHECK(sun->SetPlaceFromImage(dem));
+  AP_CHECK_NEAR(sun->GetLatitude(), lat0, 1e-7);
+  AP_CHECK_NEAR(sun->GetLongitude(), lon0, 1e-7);
+  AP_CHECK_NEAR(sun->GetHeight(), 250.0, 0.0);
+  AP_CHECK(sun->Compute());
+  AP_CHECK_NEAR(sun->GetGridConvergence(), gamma, 1e-5);
+  double expected = std::fmod(sun->GetAzimuth() - gamma + 360.0, 360.0);
+  AP_CHECK_NEAR(sun->GetGridAzimuth(), expected, 1e-5);
+  AP_CHECK(std::fabs(sun->GetGridAzimuth() - sun->GetAzimuth()) > 2.0);
+
+  // The ENU direction: unit, its azimuth and elevation the sun's.
+  double d[3];
+  sun->GetDirection(d);
+  AP_CHECK_NEAR(d[0] * d[0] + d[1] * d[1] + d[2] * d[2], 1.0, 1e-12);
+  AP_CHECK_NEAR(Azimuth(d[0], d[1]), sun->GetAzimuth(), 1e-9);
+  AP_CHECK_NEAR(std::asin(d[2]) / kDeg, sun->GetElevation(), 1e-9);
+
+  // Consistent with the mesh: the grid step along the grid azimuth is the ENU step along the
+  // true azimuth. Mesh vertices (ENU at the DEM centre) of the cells around the centre give
+  // the local Jacobian d(E, N)/d(i, j).
+  vtkNew<vtkApertureTerrainMesh> mesher;
+  mesher->SetInputData(dem);
+  mesher->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  mesher->Update();
+  vtkPolyData* mesh = mesher->GetOutput();
+  const int n = 201, c = 100;
+  auto point = [&](int i, int j, double p[3]) { mesh->GetPoint(static_cast<vtkIdType>(j) * n + i, p); };
+  double xp[3], xm[3], yp[3], ym[3];
+  point(c + 1, c, xp);
+  point(c - 1, c, xm);
+  point(c, c + 1, yp);
+  point(c, c - 1, ym);
+  const double g = sun->GetGridAzimuth() * kDeg;
+  const double si = std::sin(g), sj = std::cos(g); // grid step (i, j) toward the sun
+  const double e = si * (xp[0] - xm[0]) + sj * (yp[0] - ym[0]);
+  const double nn = si * (xp[1] - xm[1]) + sj * (yp[1] - ym[1]);
+  AP_CHECK_NEAR(Azimuth(e, nn), sun->GetAzimuth(), 2e-3);
+
+  // Per cell: the centre cell is the direction in grid axes; the far east corner has a larger
+  // convergence and its own sun.
+  AP_CHECK(sun->AddSunDirectionArray(dem));
+  vtkDataArray* dirs = dem->GetPointData()->GetArray("SunDirection");
+  AP_CHECK(dirs && dirs->GetNumberOfComponents() == 3);
+  if (dirs)
+  {
+    double v[3];
+    dirs->GetTuple(static_cast<vtkIdType>(c) * n + c, v);
+    const double ce = std::cos(sun->GetElevation() * kDeg);
+    AP_CHECK_NEAR(v[0], ce * std::sin(g), 2e-6);
+    AP_CHECK_NEAR(v[1], ce * std::cos(g), 2e-6);
+    AP_CHECK_NEAR(v[2], std::sin(sun->GetElevation() * kDeg), 2e-6);
+    // Corner (i, j) = (200, 200): the sun there, computed by the class at that place, rotated
+    // by GeographicLib's convergence there.
+    double lat1, lon1, gamma1, k1;
+    utm.Reverse(15.0, x + 10000.0, y + 10000.0, lat1, lon1, gamma1, k1);
+    vtkNew<vtkApertureSolarPosition> there;
+    there->SetUnixTime(sun->GetUnixTime());
+    there->SetLatitude(lat1);
+    there->SetLongitude(lon1);
+    there->SetHeight(sun->GetHeight());
+    AP_CHECK(there->Compute());
+    const double g1 = (there->GetAzimuth() - gamma1) * kDeg, e1 = there->GetElevation() * kDeg;
+    dirs->GetTuple(static_cast<vtkIdType>(n) * n - 1, v);
+    AP_CHECK_NEAR(v[0], std::cos(e1) * std::sin(g1), 2e-6);
+    AP_CHECK_NEAR(v[1], std::cos(e1) * std::cos(g1), 2e-6);
+    AP_CHECK_NEAR(v[2], std::sin(e1), 2e-6);
+    AP_CHECK(std::fabs(gamma1 - gamma) > 0.05);
+  }
+
+  vtkNew<vtkLight> light;
+  AP_CHECK(sun->ConfigureLight(light));
+  AP_CHECK(!light->GetPositional() && light->GetSwitch());
+  AP_CHECK_NEAR(light->GetPosition()[2], d[2], 1e-12);
+}
+
+// The report's test case (Reda & Andreas 2004, ALGORITHMS.md 4.1) through the class.
+void TestSPACase()
+{
+  vtkNew<vtkApertureSolarPosition> sun;
+  AP_CHECK(sun->SetTime("2003-10-17T12:30:30-07:00"));
+  AP_CHECK(std::string(sun->GetTimeString()) == "2003-10-17T19:30:30Z");
+  sun->SetLatitude(39.742476);
+  sun->SetLongitude(-105.1786);
+  sun->SetHeight(1830.14);
+  sun->SetPressure(820.0);
+  sun->SetTemperature(11.0);
+  sun->SetDeltaT(67.0);
+  AP_CHECK(sun->Compute());
+  AP_CHECK_NEAR(sun->GetZenith(), 50.111622, 5e-7);
+  AP_CHECK_NEAR(sun->GetAzimuth(), 194.340241, 5e-7);
+  AP_CHECK_NEAR(sun->GetIncidence(30.0, 170.0), 25.187000, 5e-7); // azm_rotation -10
+  // The local day (-07:00) of 2003-10-17: sunrise 06:12:43 local, as the report prints.
+  AP_CHECK(std::string(sun->GetSunriseString()) == "2003-10-17T13:12:43Z");
+  AP_CHECK(sun->GetDayKind() == 0);
+  AP_CHECK(sun->GetLocalOffset() == -7 * 3600);
+}
+
+void TestTimeZones()
+{
+  vtkNew<vtkApertureSolarPosition> sun;
+  vtkNew<vtkTest::ErrorObserver> errors; // expected errors: checked through GetErrorMessage
+  sun->AddObserver(vtkCommand::ErrorEvent, errors);
+  sun->SetLatitude(47.3769);
+  sun->SetLongitude(8.5417);
+  AP_CHECK(!sun->SetTime("2026-06-21T14:00")); // no offset, no zone
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "no UTC offset");
+  AP_CHECK(sun->SetTimeZone("Europe/Zurich"));
+  AP_CHECK(sun->SetTime("2026-06-21T14:00"));
+  AP_CHECK(std::string(sun->GetTimeString()) == "2026-06-21T12:00:00Z");
+  AP_CHECK(sun->GetLocalOffset() == 7200);
+  AP_CHECK(sun->SetTime("2026-01-15T14:00"));
+  AP_CHECK(std::string(sun->GetTimeString()) == "2026-01-15T13:00:00Z");
+  AP_CHECK(!sun->SetTime("2026-03-29T02:30"));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "does not exist in Europe/Zurich");
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "from 02:00 to 03:00");
+  AP_CHECK(!sun->SetTime("2026-10-25T02:30"));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "occurs twice");
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "2026-10-25T00:30:00Z");
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "2026-10-25T01:30:00Z");
+  AP_CHECK(std::string(sun->GetTimeString()) == "2026-01-15T13:00:00Z"); // kept
+  AP_CHECK(!sun->SetTimeZone("Europe/Atlantis"));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "unknown");
+  AP_CHECK(!sun->SetTimeZone("../../etc/passwd"));
+  AP_CHECK(std::string(sun->GetTimeZone()) == "Europe/Zurich"); // kept
+}
+
+void TestBadInput()
+{
+  vtkNew<vtkApertureSolarPosition> sun;
+  vtkNew<vtkTest::ErrorObserver> errors;
+  sun->AddObserver(vtkCommand::ErrorEvent, errors);
+  AP_CHECK(sun->SetTime("2026-06-21T12:00Z"));
+  sun->SetLatitude(91.0);
+  AP_CHECK(!sun->Compute());
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "latitude");
+  AP_CHECK(std::isnan(sun->GetAzimuth()));
+  sun->SetLatitude(45.0);
+  sun->SetLongitude(-181.0);
+  AP_CHECK(!sun->Compute());
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "longitude");
+  sun->SetLongitude(10.0);
+  sun->SetPressure(-5.0);
+  AP_CHECK(!sun->Compute());
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "pressure");
+  sun->SetPressure(1013.25);
+  AP_CHECK(sun->Compute());
+  AP_CHECK(!sun->SetTime("yesterday"));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "not a valid ISO 8601");
+  AP_CHECK(!sun->SetTime("2026-02-29T12:00Z"));
+  AP_CHECK(!sun->SetTime("7000-01-01T00:00Z"));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "-2000..6000");
+  sun->SetUnixTime(1e15); // far beyond the year 6000
+  AP_CHECK(!sun->Compute());
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "range");
+  vtkNew<vtkImageData> bare;
+  bare->SetDimensions(3, 3, 1);
+  AP_CHECK(!sun->SetPlaceFromImage(bare));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "georeference");
+  vtkNew<vtkLight> light;
+  AP_CHECK(!sun->ConfigureLight(light));
+}
+} // namespace
+
+int TestApertureSolarPosition(int, char*[])
+{
+  TestZoneEdge();
+  TestSPACase();
+  TestTimeZones();
+  TestBadInput();
+  return aptest::Result();
+}

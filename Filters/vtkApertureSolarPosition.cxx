@@ -1,0 +1,625 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkApertureSolarPosition.h"
+
+#include "vtkApertureGeoreference.h"
+
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+
+#include "ap_sun.h"
+#include "ap_time.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkApertureSolarPosition);
+
+namespace
+{
+const double kDeg = 3.14159265358979323846 / 180.0;
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+ap_instant ToInstant(double seconds)
+{
+  ap_instant t;
+  const double whole = std::floor(seconds);
+  t.unix_seconds = static_cast<int64_t>(whole);
+  t.fraction = seconds - whole;
+  return t;
+}
+
+double FromInstant(const ap_instant& t)
+{
+  return static_cast<double>(t.unix_seconds) + t.fraction;
+}
+
+/** ISO 8601 UTC to the second (rounded), or "" for NaN. */
+std::string FormatUTC(double seconds)
+{
+  char buf[64];
+  if (!std::isfinite(seconds) ||
+    ap_instant_format_iso8601(ToInstant(seconds), 0, buf, sizeof(buf)) != AP_OK)
+  {
+    return std::string();
+  }
+  return buf;
+}
+
+/** Local wall-clock text "2026-03-29T02:30" (minutes; seconds when not zero). */
+std::string FormatCivil(const ap_civil_time& c)
+{
+  char buf[64];
+  if (c.second != 0 || c.fraction != 0.0)
+  {
+    std::snprintf(buf, sizeof(buf), "%04d-%02d-%02dT%02d:%02d:%02d", c.year, c.month, c.day,
+      c.hour, c.minute, c.second);
+  }
+  else
+  {
+    std::snprintf(
+      buf, sizeof(buf), "%04d-%02d-%02dT%02d:%02d", c.year, c.month, c.day, c.hour, c.minute);
+  }
+  return buf;
+}
+
+/** Local time of day "HH:MM" at an offset. */
+std::string FormatClock(double seconds, int32_t offset)
+{
+  ap_civil_time c;
+  if (ap_instant_to_civil(ToInstant(seconds + offset), &c) != AP_OK)
+  {
+    return "?";
+  }
+  char buf[16];
+  std::snprintf(buf, sizeof(buf), "%02d:%02d", c.hour, c.minute);
+  return buf;
+}
+
+std::string FormatOffset(int32_t offset)
+{
+  char buf[32];
+  const int32_t a = offset < 0 ? -offset : offset;
+  std::snprintf(buf, sizeof(buf), "%c%02d:%02d", offset < 0 ? '-' : '+', a / 3600, (a / 60) % 60);
+  return buf;
+}
+
+struct ZoneDeleter
+{
+  void operator()(ap_tz* tz) const { ap_tz_free(tz); }
+};
+}
+
+struct vtkApertureSolarPosition::Internals
+{
+  std::unique_ptr<ap_tz, ZoneDeleter> Zone;
+  std::string ZoneName;
+  bool HasGivenOffset = false; // SetTime was given an explicit offset
+  int32_t GivenOffset = 0;
+  vtkSmartPointer<vtkApertureGeoreference> Geo; // the DEM of SetPlaceFromImage
+  std::string Error;
+  std::string TimeString, Sunrise, Transit, Sunset;
+  ap_sun_position_result Sun;
+
+  ap_sun_params Params(const vtkApertureSolarPosition* self) const
+  {
+    ap_sun_params p;
+    ap_sun_params_init(&p);
+    p.pressure = self->Pressure;
+    p.temperature = self->Temperature;
+    p.refraction = self->Refraction ? 1 : 0;
+    p.delta_t = self->DeltaT;
+    p.delta_ut1 = self->DeltaUT1;
+    return p;
+  }
+
+  /** UTC offset (s) that defines the local day of instant t. */
+  int32_t DayOffset(double t) const
+  {
+    if (this->HasGivenOffset)
+    {
+      return this->GivenOffset;
+    }
+    ap_tz_info info;
+    if (this->Zone && ap_tz_lookup(this->Zone.get(), ToInstant(t), &info) == AP_OK)
+    {
+      return info.utc_offset;
+    }
+    return 0;
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkApertureSolarPosition::vtkApertureSolarPosition()
+  : DeltaT(kNaN)
+  , Impl(new Internals)
+{
+  std::fill(std::begin(this->Result), std::end(this->Result), kNaN);
+  std::fill(std::begin(this->Events), std::end(this->Events), kNaN);
+}
+
+vtkApertureSolarPosition::~vtkApertureSolarPosition() = default;
+
+//------------------------------------------------------------------------------
+bool vtkApertureSolarPosition::SetTime(const char* iso8601)
+{
+  Internals& d = *this->Impl;
+  const std::string text = iso8601 ? iso8601 : "";
+  ap_parsed_time parsed;
+  ap_status st = ap_time_parse_iso8601(text.c_str(), &parsed);
+  if (st != AP_OK)
+  {
+    d.Error = "cannot read the time '" + text + "': " +
+      (st == AP_ERR_OUT_OF_RANGE ? std::string("the year is outside -2000..6000")
+                                 : std::string("not a valid ISO 8601 date and time (such as "
+                                               "2026-06-21T14:00+02:00 or 2026-06-21T12:00Z, "
+                                               "or a local time with a time zone)"));
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
+  if (!parsed.has_offset && !d.Zone)
+  {
+    d.Error = "the time '" + text +
+      "' has no UTC offset: add one (Z, +02:00) or set a time zone (e.g. Europe/Zurich)";
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
+  ap_instant instant;
+  ap_tz_local_result detail;
+  st = ap_parsed_time_to_instant(
+    &parsed, d.Zone.get(), AP_TZ_CHOOSE_ERROR, AP_TZ_CHOOSE_ERROR, &instant, &detail);
+  if (st == AP_ERR_TIME_NONEXISTENT)
+  {
+    const double change = FromInstant(detail.transition);
+    d.Error = "the local time " + FormatCivil(parsed.local) + " does not exist in " +
+      d.ZoneName + ": clocks jump from " + FormatClock(change, detail.before.utc_offset) +
+      " to " + FormatClock(change, detail.after.utc_offset) + " (" + FormatUTC(change) +
+      "); give an offset (" + FormatOffset(detail.before.utc_offset) + " or " +
+      FormatOffset(detail.after.utc_offset) + ") to choose";
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
+  if (st == AP_ERR_TIME_AMBIGUOUS)
+  {
+    d.Error = "the local time " + FormatCivil(parsed.local) + " occurs twice in " + d.ZoneName +
+      ": " + FormatUTC(FromInstant(detail.earlier)) + " (" +
+      FormatOffset(detail.before.utc_offset) + ", " + detail.before.abbreviation + ") and " +
+      FormatUTC(FromInstant(detail.later)) + " (" + FormatOffset(detail.after.utc_offset) + ", " +
+      detail.after.abbreviation + "); give the offset to choose";
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
+  if (st != AP_OK)
+  {
+    d.Error = "cannot convert the time '" + text + "': " + ap_status_string(st);
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
+  d.HasGivenOffset = parsed.has_offset != 0;
+  d.GivenOffset = parsed.utc_offset;
+  this->UnixTime = FromInstant(instant);
+  this->Computed = false;
+  d.Error.clear();
+  this->Modified();
+  return true;
+}
+
+void vtkApertureSolarPosition::SetUnixTime(double seconds)
+{
+  this->Impl->HasGivenOffset = false;
+  if (this->UnixTime != seconds)
+  {
+    this->UnixTime = seconds;
+    this->Computed = false;
+    this->Modified();
+  }
+}
+
+const char* vtkApertureSolarPosition::GetTimeString()
+{
+  this->Impl->TimeString = FormatUTC(this->UnixTime);
+  return this->Impl->TimeString.c_str();
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureSolarPosition::SetTimeZone(const char* name)
+{
+  Internals& d = *this->Impl;
+  if (!name || !*name)
+  {
+    d.Zone.reset();
+    d.ZoneName.clear();
+    this->Modified();
+    return true;
+  }
+  ap_tz* zone = nullptr;
+  const ap_status st = ap_tz_load(name, nullptr, &zone);
+  if (st != AP_OK)
+  {
+    d.Error = std::string("time zone '") + name + "': " +
+      (st == AP_ERR_NOT_FOUND
+          ? std::string("unknown (an IANA name such as Europe/Zurich, America/New_York or UTC; "
+                        "the zone files come from the tzdata package)")
+          : std::string(ap_status_string(st)));
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
+  d.Zone.reset(zone);
+  d.ZoneName = name;
+  d.Error.clear();
+  this->Modified();
+  return true;
+}
+
+const char* vtkApertureSolarPosition::GetTimeZone()
+{
+  return this->Impl->ZoneName.c_str();
+}
+
+const char* vtkApertureSolarPosition::GetErrorMessage()
+{
+  return this->Impl->Error.c_str();
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureSolarPosition::SetPlaceFromImage(vtkImageData* dem)
+{
+  Internals& d = *this->Impl;
+  this->Computed = false;
+  this->Modified();
+  if (!dem)
+  {
+    d.Geo = nullptr;
+    this->Convergence = 0.0;
+    return true;
+  }
+  vtkNew<vtkApertureGeoreference> geo;
+  double lonlat[2];
+  if (!geo->SetFromImage(dem) || !geo->GetCentreLonLat(lonlat))
+  {
+    d.Error = std::string("the DEM has no usable georeference: ") + geo->GetErrorMessage();
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
+  // Height: the DEM at its centre, else the nearest valid cell (by grid distance), else 0.
+  double height = 0.0;
+  int dims[3];
+  dem->GetDimensions(dims);
+  vtkDataArray* z = dem->GetPointData()->GetScalars();
+  if (!z)
+  {
+    z = dem->GetPointData()->GetArray("Elevation");
+  }
+  if (z && z->GetNumberOfTuples() == static_cast<vtkIdType>(dims[0]) * dims[1])
+  {
+    const double ic = 0.5 * (dims[0] - 1), jc = 0.5 * (dims[1] - 1);
+    double best = std::numeric_limits<double>::infinity();
+    for (int j = 0; j < dims[1]; ++j)
+    {
+      for (int i = 0; i < dims[0]; ++i)
+      {
+        const double r2 = (i - ic) * (i - ic) + (j - jc) * (j - jc);
+        if (r2 < best)
+        {
+          const double v = z->GetComponent(static_cast<vtkIdType>(j) * dims[0] + i, 0);
+          if (std::isfinite(v))
+          {
+            best = r2;
+            height = v;
+          }
+        }
+      }
+    }
+  }
+  d.Geo = geo;
+  this->Longitude = lonlat[0];
+  this->Latitude = lonlat[1];
+  this->Height = height;
+  d.Error.clear();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureSolarPosition::Compute()
+{
+  Internals& d = *this->Impl;
+  this->Computed = false;
+  std::fill(std::begin(this->Result), std::end(this->Result), kNaN);
+  std::fill(std::begin(this->Events), std::end(this->Events), kNaN);
+  d.Sunrise.clear();
+  d.Transit.clear();
+  d.Sunset.clear();
+
+  std::string problem;
+  if (!(std::fabs(this->Latitude) <= 90.0))
+  {
+    problem = "the latitude must be within -90..90 degrees";
+  }
+  else if (!(std::fabs(this->Longitude) <= 180.0))
+  {
+    problem = "the longitude must be within -180..180 degrees";
+  }
+  else if (!std::isfinite(this->UnixTime))
+  {
+    problem = "the time is not set to a finite instant";
+  }
+  const ap_sun_params p = d.Params(this);
+  if (problem.empty() && ap_sun_params_validate(&p) != AP_OK)
+  {
+    problem = "pressure (0..5000 hPa), temperature (-273..6000 C), delta T (|s| <= 100000) or "
+              "delta UT1 (|s| < 1) is out of range";
+  }
+  ap_sun_position_result& r = d.Sun;
+  if (problem.empty())
+  {
+    const ap_status st =
+      ap_sun_position(&p, this->UnixTime, this->Latitude, this->Longitude, this->Height, &r);
+    if (st != AP_OK)
+    {
+      const std::string when = this->GetTimeString();
+      problem = "the time " + (when.empty() ? std::to_string(this->UnixTime) + " s" : when) +
+        " or the height (" + std::to_string(this->Height) +
+        " m) is outside the algorithm's range (years -2000..6000, heights -6500..100000 km)";
+    }
+  }
+  if (!problem.empty())
+  {
+    d.Error = problem;
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
+  const double values[11] = { r.azimuth, r.elevation, r.zenith, r.elevation_true, r.zenith_true,
+    r.angular_radius, r.topo_declination, r.topo_hour_angle, r.distance, r.equation_of_time,
+    r.delta_t };
+  std::copy(values, values + 11, this->Result);
+
+  // The local day's events.
+  const int32_t offset = d.DayOffset(this->UnixTime);
+  ap_civil_time day;
+  ap_sun_rts_result rts;
+  if (ap_instant_to_civil(ToInstant(this->UnixTime + offset), &day) == AP_OK &&
+    ap_sun_rise_transit_set(&p, day.year, day.month, day.day, offset / 3600.0, this->Latitude,
+      this->Longitude, &rts) == AP_OK)
+  {
+    this->Events[0] = rts.sunrise;
+    this->Events[1] = rts.transit;
+    this->Events[2] = rts.sunset;
+    this->DayKind = rts.kind == AP_SUN_DAY_POLAR_DAY ? 1 : rts.kind == AP_SUN_DAY_POLAR_NIGHT ? 2 : 0;
+  }
+  d.Sunrise = FormatUTC(this->Events[0]);
+  d.Transit = FormatUTC(this->Events[1]);
+  d.Sunset = FormatUTC(this->Events[2]);
+
+  this->Convergence = 0.0;
+  if (d.Geo)
+  {
+    this->Convergence = d.Geo->ComputeMeridianConvergence(this->Longitude, this->Latitude);
+    if (!std::isfinite(this->Convergence))
+    {
+      d.Error = std::string("meridian convergence at the DEM centre: ") + d.Geo->GetErrorMessage();
+      vtkErrorMacro(<< d.Error);
+      return false;
+    }
+  }
+  d.Error.clear();
+  this->Computed = true;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+double vtkApertureSolarPosition::GetIncidence(double slope, double aspect)
+{
+  double incidence = kNaN;
+  if (this->Computed)
+  {
+    ap_sun_incidence(&this->Impl->Sun, slope, aspect, &incidence);
+  }
+  return incidence;
+}
+
+int vtkApertureSolarPosition::GetLocalOffset()
+{
+  return static_cast<int>(this->Impl->DayOffset(this->UnixTime));
+}
+
+const char* vtkApertureSolarPosition::GetSunriseString()
+{
+  return this->Impl->Sunrise.c_str();
+}
+
+const char* vtkApertureSolarPosition::GetTransitString()
+{
+  return this->Impl->Transit.c_str();
+}
+
+const char* vtkApertureSolarPosition::GetSunsetString()
+{
+  return this->Impl->Sunset.c_str();
+}
+
+void vtkApertureSolarPosition::GetDirection(double enu[3])
+{
+  if (!this->Computed)
+  {
+    enu[0] = enu[1] = enu[2] = 0.0;
+    return;
+  }
+  const double a = this->GetAzimuth() * kDeg, e = this->GetElevation() * kDeg;
+  enu[0] = std::cos(e) * std::sin(a);
+  enu[1] = std::cos(e) * std::cos(a);
+  enu[2] = std::sin(e);
+}
+
+double vtkApertureSolarPosition::GetGridAzimuth()
+{
+  if (!this->Computed)
+  {
+    return kNaN;
+  }
+  const double g = std::fmod(this->GetAzimuth() - this->Convergence, 360.0);
+  return g < 0.0 ? g + 360.0 : g;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureSolarPosition::AddSunDirectionArray(vtkImageData* dem, const char* name)
+{
+  Internals& d = *this->Impl;
+  if (!dem || !name || !*name)
+  {
+    d.Error = "AddSunDirectionArray needs a DEM image and an array name";
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
+  vtkNew<vtkApertureGeoreference> geo;
+  if (!geo->SetFromImage(dem))
+  {
+    d.Error = std::string("the DEM has no usable georeference: ") + geo->GetErrorMessage();
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
+  int dims[3];
+  dem->GetDimensions(dims);
+  const int nx = dims[0], ny = dims[1];
+  if (nx < 1 || ny < 1)
+  {
+    d.Error = "the DEM has no cells";
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
+  double origin[3], spacing[3];
+  dem->GetOrigin(origin);
+  dem->GetSpacing(spacing);
+  int extent[6];
+  dem->GetExtent(extent);
+
+  // Exact positions on a lattice of at most 17 x 17 cells (the corners included).
+  const int lx = std::min(nx, 17), ly = std::min(ny, 17);
+  auto latticeIndex = [](int k, int n, int cells) {
+    return n == 1 ? 0.0 : static_cast<double>(k) * (cells - 1) / (n - 1);
+  };
+  const ap_sun_params p = d.Params(this);
+  std::vector<double> node(3 * static_cast<size_t>(lx) * ly);
+  for (int b = 0; b < ly; ++b)
+  {
+    for (int a = 0; a < lx; ++a)
+    {
+      const double fi = latticeIndex(a, lx, nx), fj = latticeIndex(b, ly, ny);
+      const double x = origin[0] + (extent[0] + fi) * spacing[0];
+      const double y = origin[1] + (extent[2] + fj) * spacing[1];
+      double lonlat[2];
+      ap_sun_position_result r;
+      double gamma;
+      if (!geo->CRSToLonLat(x, y, lonlat) ||
+        !std::isfinite(gamma = geo->ComputeMeridianConvergence(lonlat[0], lonlat[1])))
+      {
+        d.Error = std::string("a DEM point has no geographic coordinates: ") +
+          geo->GetErrorMessage();
+        vtkErrorMacro(<< d.Error);
+        return false;
+      }
+      const ap_status st =
+        ap_sun_position(&p, this->UnixTime, lonlat[1], lonlat[0], this->Height, &r);
+      if (st != AP_OK)
+      {
+        d.Error = std::string("sun position at a DEM point: ") + ap_status_string(st);
+        vtkErrorMacro(<< d.Error);
+        return false;
+      }
+      const double g = (r.azimuth - gamma) * kDeg, e = r.elevation * kDeg;
+      double* v = &node[3 * (static_cast<size_t>(b) * lx + a)];
+      v[0] = std::cos(e) * std::sin(g);
+      v[1] = std::cos(e) * std::cos(g);
+      v[2] = std::sin(e);
+    }
+  }
+
+  vtkNew<vtkFloatArray> out;
+  out->SetName(name);
+  out->SetNumberOfComponents(3);
+  out->SetComponentName(0, "X");
+  out->SetComponentName(1, "Y");
+  out->SetComponentName(2, "Z");
+  out->SetNumberOfTuples(static_cast<vtkIdType>(nx) * ny);
+  float* o = out->GetPointer(0);
+  for (int j = 0; j < ny; ++j)
+  {
+    const double tj = ly == 1 ? 0.0 : static_cast<double>(j) * (ly - 1) / std::max(1, ny - 1);
+    const int b0 = std::min(static_cast<int>(tj), std::max(0, ly - 2));
+    const double wb = ly == 1 ? 0.0 : tj - b0;
+    for (int i = 0; i < nx; ++i)
+    {
+      const double ti = lx == 1 ? 0.0 : static_cast<double>(i) * (lx - 1) / std::max(1, nx - 1);
+      const int a0 = std::min(static_cast<int>(ti), std::max(0, lx - 2));
+      const double wa = lx == 1 ? 0.0 : ti - a0;
+      const int a1 = std::min(a0 + 1, lx - 1), b1 = std::min(b0 + 1, ly - 1);
+      double v[3], len = 0.0;
+      for (int c = 0; c < 3; ++c)
+      {
+        const double v00 = node[3 * (static_cast<size_t>(b0) * lx + a0) + c];
+        const double v10 = node[3 * (static_cast<size_t>(b0) * lx + a1) + c];
+        const double v01 = node[3 * (static_cast<size_t>(b1) * lx + a0) + c];
+        const double v11 = node[3 * (static_cast<size_t>(b1) * lx + a1) + c];
+        v[c] = (1 - wb) * ((1 - wa) * v00 + wa * v10) + wb * ((1 - wa) * v01 + wa * v11);
+        len += v[c] * v[c];
+      }
+      len = std::sqrt(len);
+      float* t = o + 3 * (static_cast<size_t>(j) * nx + i);
+      for (int c = 0; c < 3; ++c)
+      {
+        t[c] = static_cast<float>(v[c] / len);
+      }
+    }
+  }
+  dem->GetPointData()->AddArray(out);
+  d.Error.clear();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureSolarPosition::ConfigureLight(vtkLight* light)
+{
+  if (!light || !this->Computed)
+  {
+    this->Impl->Error = light ? "ConfigureLight before a successful Compute()" : "no light";
+    vtkErrorMacro(<< this->Impl->Error);
+    return false;
+  }
+  double dir[3];
+  this->GetDirection(dir);
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(false);
+  light->SetFocalPoint(0.0, 0.0, 0.0);
+  light->SetPosition(dir);
+  light->SetSwitch(this->GetElevation() > -this->GetAngularRadius());
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkApertureSolarPosition::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Time: " << this->GetTimeString() << "\n";
+  os << indent << "TimeZone: " << this->Impl->ZoneName << "\n";
+  os << indent << "Latitude: " << this->Latitude << "\n";
+  os << indent << "Longitude: " << this->Longitude << "\n";
+  os << indent << "Height: " << this->Height << "\n";
+  os << indent << "Pressure: " << this->Pressure << "\n";
+  os << indent << "Temperature: " << this->Temperature << "\n";
+  os << indent << "Refraction: " << this->Refraction << "\n";
+  os << indent << "DeltaT: " << this->DeltaT << "\n";
+  os << indent << "DeltaUT1: " << this->DeltaUT1 << "\n";
+  if (this->Computed)
+  {
+    os << indent << "Azimuth: " << this->GetAzimuth() << "\n";
+    os << indent << "Elevation: " << this->GetElevation() << "\n";
+  }
+}

@@ -1,0 +1,233 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkApertureSolarPosition
+ * @brief   Where the sun is for a time and place (NREL SPA), the day's sunrise, transit and
+ *          sunset, the sun's direction in a DEM's own frames, and the light it and the sky give.
+ *
+ * Set a time (SetTime with an ISO 8601 string, or SetUnixTime), a place (SetLatitude,
+ * SetLongitude, SetHeight, or SetPlaceFromImage with a DEM) and optionally the atmosphere, then
+ * call Compute(); the results are read with the getters. Compute() returns false on bad input
+ * (latitude outside ±90°, longitude outside ±180°, a year outside −2000..6000, pressure or
+ * temperature out of range), with the reason in GetErrorMessage() and a vtkErrorMacro.
+ *
+ * Position: the Solar Position Algorithm of Reda & Andreas (NREL/TP-560-34302, ±0.0003° for
+ * the years −2000..6000), implemented in the C core (ap_sun.h). Azimuths are clockwise from
+ * true north; elevations and zeniths are apparent (refracted with Pressure and Temperature,
+ * SPA's refraction model) unless named True. ΔT defaults to the Espenak & Meeus (2006)
+ * estimate for the date (DeltaT = NaN); give the IERS value for the last 0.00001°.
+ *
+ * Time: SetTime accepts ISO 8601 with an offset ("2026-06-21T14:00+02:00", "...Z") or a local
+ * time without one, which is read in the IANA zone of SetTimeZone ("Europe/Zurich") from the
+ * system's tzdata (daylight saving included). A local time skipped by a clock change, or one
+ * that occurs twice, is an error naming both readings, never a silent guess.
+ *
+ * Frames: with a DEM (SetPlaceFromImage), the place is the DEM's centre, where the terrain
+ * mesh of vtkApertureTerrainMesh has its East-North-Up frame; GetDirection gives the unit
+ * vector to the sun in that frame. For a projected DEM, GetGridAzimuth is the azimuth from the
+ * grid's north (its +y axis): azimuth − γ, with γ the meridian convergence at the centre
+ * (vtkApertureGeoreference::ComputeMeridianConvergence). Over a large DEM the sun's azimuth and
+ * elevation change from place to place: AddSunDirectionArray stores the per-cell direction.
+ *
+ * @sa vtkApertureGeoreference vtkApertureTerrainMesh vtkApertureSkyVisibility
+ */
+#ifndef vtkApertureSolarPosition_h
+#define vtkApertureSolarPosition_h
+
+#include "ApertureFiltersModule.h" // for export macro
+#include "vtkObject.h"
+
+#include <memory> // for std::unique_ptr
+
+class vtkImageData;
+class vtkLight;
+
+class APERTUREFILTERS_EXPORT vtkApertureSolarPosition : public vtkObject
+{
+public:
+  static vtkApertureSolarPosition* New();
+  vtkTypeMacro(vtkApertureSolarPosition, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The instant. SetTime parses ISO 8601: "YYYY-MM-DD[THH:MM[:SS[.fff]]]" followed by "Z",
+   * "±HH:MM", "±HHMM" or "±HH", or by nothing: a local time in TimeZone. False (and the
+   * previous time kept) for text that does not parse, an impossible date, a year outside
+   * −2000..6000, a local time without a TimeZone, or one that a clock change skips or repeats.
+   * SetUnixTime sets POSIX seconds (UTC, no leap seconds) directly. GetTimeString gives the
+   * instant as ISO 8601 UTC ("2026-06-21T12:00:00Z").
+   */
+  bool SetTime(const char* iso8601);
+  void SetUnixTime(double seconds);
+  double GetUnixTime() const { return this->UnixTime; }
+  const char* GetTimeString();
+  ///@}
+
+  ///@{
+  /**
+   * IANA time zone ("Europe/Zurich", "UTC") for local times in SetTime, and for the local day
+   * of sunrise and sunset. nullptr or "" clears it (local times are then rejected, and the day
+   * is the UTC day, or the day at the offset SetTime was given). False for an unknown zone or
+   * a corrupt zone file, keeping the previous zone. Zones are read from $TZDIR, else
+   * /usr/share/zoneinfo (Debian package tzdata).
+   */
+  bool SetTimeZone(const char* name);
+  const char* GetTimeZone();
+  ///@}
+
+  ///@{
+  /** Place: geodetic latitude and longitude (degrees, north and east positive) and height
+   *  above the ellipsoid (metres). Defaults 0, 0, 0. */
+  vtkSetMacro(Latitude, double);
+  vtkGetMacro(Latitude, double);
+  vtkSetMacro(Longitude, double);
+  vtkGetMacro(Longitude, double);
+  vtkSetMacro(Height, double);
+  vtkGetMacro(Height, double);
+  ///@}
+
+  /**
+   * Take the place from a DEM image (as vtkApertureDEMReader produces it): its centre, which is
+   * the origin of vtkApertureTerrainMesh's frame, at the height of the DEM there (the nearest
+   * valid cell; 0 if none). Also remembers the DEM's georeference for GetGridAzimuth and
+   * GetGridConvergence. False (with the reason) when the image has no CRS or no geographic
+   * equivalent. SetLatitude/SetLongitude afterwards do not forget the DEM: call with nullptr.
+   */
+  bool SetPlaceFromImage(vtkImageData* dem);
+
+  ///@{
+  /** Atmosphere for refraction: mean air pressure (hPa, default 1013.25) and temperature
+   *  (°C, default 15); Refraction off gives geometric elevations (default on). */
+  vtkSetMacro(Pressure, double);
+  vtkGetMacro(Pressure, double);
+  vtkSetMacro(Temperature, double);
+  vtkGetMacro(Temperature, double);
+  vtkSetMacro(Refraction, bool);
+  vtkGetMacro(Refraction, bool);
+  vtkBooleanMacro(Refraction, bool);
+  ///@}
+
+  ///@{
+  /** ΔT = TT − UT1 in seconds (default NaN: estimated for the date) and UT1 − UTC (s, default
+   *  0, |value| < 1). */
+  vtkSetMacro(DeltaT, double);
+  vtkGetMacro(DeltaT, double);
+  vtkSetMacro(DeltaUT1, double);
+  vtkGetMacro(DeltaUT1, double);
+  ///@}
+
+  /** Compute the position and the day's events. False on bad input (see the class notes). */
+  bool Compute();
+
+  /** Why the last failing call failed ("" after a success). */
+  const char* GetErrorMessage();
+
+  ///@{
+  /** Results of Compute(), degrees: azimuth clockwise from true north [0, 360), apparent
+   *  (refracted) elevation and zenith, geometric (true) elevation and zenith, the sun disc's
+   *  apparent angular radius, declination and local hour angle (topocentric). */
+  double GetAzimuth() const { return this->Result[0]; }
+  double GetElevation() const { return this->Result[1]; }
+  double GetZenith() const { return this->Result[2]; }
+  double GetElevationTrue() const { return this->Result[3]; }
+  double GetZenithTrue() const { return this->Result[4]; }
+  double GetAngularRadius() const { return this->Result[5]; }
+  double GetDeclination() const { return this->Result[6]; }
+  double GetHourAngle() const { return this->Result[7]; }
+  ///@}
+
+  /** Earth–Sun distance (AU), equation of time (minutes: apparent − mean solar time) and the
+   *  ΔT used (s). */
+  double GetDistance() const { return this->Result[8]; }
+  double GetEquationOfTime() const { return this->Result[9]; }
+  double GetDeltaTUsed() const { return this->Result[10]; }
+
+  /** Angle of incidence (degrees) of sunlight on a plane of slope `slope` (degrees from
+   *  horizontal) facing azimuth `aspect` (degrees clockwise from north). NaN before Compute. */
+  double GetIncidence(double slope, double aspect);
+
+  ///@{
+  /**
+   * Sunrise, transit and sunset of the local day of the instant (the day in TimeZone, else at
+   * the offset SetTime was given, else the UTC day), as POSIX seconds and as ISO 8601 UTC
+   * strings. Sunrise and sunset are NaN / "" when the sun does not rise or set that day:
+   * GetDayKind() is then 1 (polar day) or 2 (polar night); 0 on a normal day.
+   */
+  double GetSunrise() const { return this->Events[0]; }
+  double GetTransit() const { return this->Events[1]; }
+  double GetSunset() const { return this->Events[2]; }
+  const char* GetSunriseString();
+  const char* GetTransitString();
+  const char* GetSunsetString();
+  int GetDayKind() const { return this->DayKind; }
+  ///@}
+
+  /** UTC offset (seconds east) of the local day above: the offset SetTime was given, else
+   *  TimeZone's offset at the instant, else 0. */
+  int GetLocalOffset();
+
+  /**
+   * Unit vector to the sun (refracted) in the East-North-Up frame at the place: with a DEM,
+   * the frame of vtkApertureTerrainMesh's output. (0, 0, 0) before a successful Compute.
+   */
+  void GetDirection(double enu[3]);
+
+  /**
+   * Meridian convergence γ at the DEM centre (degrees; 0 for lat/lon DEMs and without a DEM):
+   * the angle from grid north to true north, positive when true north is east of grid north.
+   */
+  double GetGridConvergence() const { return this->Convergence; }
+
+  /** Azimuth from the DEM grid's north (+y axis), clockwise: GetAzimuth() − γ, in [0, 360). */
+  double GetGridAzimuth();
+
+  /**
+   * Sun direction at every cell of a DEM image, as a 3-component float point array `name`
+   * (default "SunDirection") added to `dem`: unit vectors in each cell's grid-aligned local
+   * frame (x = the grid's +x axis, y = its +y axis, both horizontal at the cell, z = up), so
+   * that sweeps and shading in grid coordinates need no rotation. The place changes across the
+   * DEM (azimuth, elevation and γ): the position is computed exactly on a lattice of at most
+   * 17 x 17 cells and interpolated bilinearly between them (the sun's direction changes by a
+   * fraction of its angular radius between lattice points, even across a continent). Cells
+   * below the horizon get their direction too (z < 0). False if Compute fails at a lattice
+   * point or the DEM has no georeference.
+   */
+  bool AddSunDirectionArray(vtkImageData* dem, const char* name = "SunDirection");
+
+  /**
+   * Point `light` at the sun: a directional (non-positional) scene light coming from
+   * GetDirection() in the mesh frame (focal point at the origin, position on the unit sphere),
+   * switched off when the sun is below the horizon. Colour and intensity are left as they are
+   * (use the radiometry of ap_sky for physically scaled values). False before Compute.
+   */
+  bool ConfigureLight(vtkLight* light);
+
+protected:
+  vtkApertureSolarPosition();
+  ~vtkApertureSolarPosition() override;
+
+  double UnixTime = 0.0;
+  double Latitude = 0.0;
+  double Longitude = 0.0;
+  double Height = 0.0;
+  double Pressure = 1013.25;
+  double Temperature = 15.0;
+  bool Refraction = true;
+  double DeltaT;
+  double DeltaUT1 = 0.0;
+
+  double Result[11];
+  double Events[3];
+  int DayKind = 0;
+  double Convergence = 0.0;
+  bool Computed = false;
+
+private:
+  vtkApertureSolarPosition(const vtkApertureSolarPosition&) = delete;
+  void operator=(const vtkApertureSolarPosition&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+};
+
+#endif

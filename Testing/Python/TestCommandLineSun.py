@@ -1,0 +1,183 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""`aperture sun` as a user runs it: the published SPA case through the command line, --json
+keys, local times in IANA zones (daylight saving, skipped and repeated times), a DEM's frame
+(UTM near a zone edge: grid azimuth = azimuth - the closed-form convergence of ALGORITHMS.md 5),
+time series, and one clear error line with status 1 for every bad input."""
+import json
+import math
+import os
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+from osgeo import gdal, osr
+
+gdal.UseExceptions()
+
+BUILD = os.environ.get("APERTURE_BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+APERTURE = os.path.join(BUILD, "bin", "aperture")
+KEYS = {"azimuth_deg", "elevation_deg", "zenith_deg", "elevation_true_deg", "angular_radius_deg",
+        "distance_au", "equation_of_time_min", "sunrise", "transit", "sunset"}
+
+
+def run(*args):
+    p = subprocess.run([APERTURE, "sun"] + [str(a) for a in args], capture_output=True,
+                       text=True, timeout=120)
+    return p.returncode, p.stdout, p.stderr
+
+
+def convergence_tm(lat, dlon):
+    """Meridian convergence of transverse Mercator on WGS 84 (degrees), the ellipsoidal series
+    of ALGORITHMS.md 5 (good to 2.4e-8 deg at a zone edge)."""
+    f = 1 / 298.257223563
+    e2 = f * (2 - f)
+    ep2 = e2 / (1 - e2)
+    p, l = math.radians(lat), math.radians(dlon)
+    eta2 = ep2 * math.cos(p) ** 2
+    c2 = l * l * math.cos(p) ** 2
+    g = l * math.sin(p) * (1 + c2 / 3 * (1 + 3 * eta2 + 2 * eta2 ** 2)
+                           + c2 * c2 / 15 * (2 - math.tan(p) ** 2))
+    return math.degrees(g)
+
+
+class CommandLineSunTest(unittest.TestCase):
+    def json_of(self, *args):
+        status, out, err = run(*args, "--json")
+        self.assertEqual(status, 0, err)
+        return json.loads(out)
+
+    def error_of(self, *args):
+        status, out, err = run(*args)
+        self.assertEqual(status, 1, out + err)
+        self.assertEqual(len(err.strip().splitlines()), 1, err)
+        self.assertTrue(err.startswith("aperture: error: "), err)
+        return err
+
+    def test_spa_case(self):
+        r = self.json_of("--at", "2003-10-17T12:30:30-07:00", "--lat", 39.742476,
+                         "--lon", -105.1786, "--height", 1830.14, "--pressure", 820,
+                         "--temperature", 11, "--delta-t", 67)
+        self.assertTrue(KEYS <= set(r), KEYS - set(r))
+        self.assertAlmostEqual(r["zenith_deg"], 50.111622, delta=5e-7)
+        self.assertAlmostEqual(r["azimuth_deg"], 194.340241, delta=5e-7)
+        self.assertAlmostEqual(r["elevation_deg"], 90 - 50.111622, delta=5e-7)
+        self.assertGreater(r["elevation_deg"], r["elevation_true_deg"])
+        self.assertEqual(r["sunrise"], "2003-10-17T13:12:43Z")  # 06:12:43 local (the report)
+        self.assertEqual(r["sunrise_local"], "2003-10-17T06:12:43-07:00")
+        self.assertEqual(r["time_utc"], "2003-10-17T19:30:30Z")
+        self.assertNotIn("grid_azimuth_deg", r)
+
+    def test_text_output(self):
+        status, out, err = run("--at", "2026-06-21T14:00", "--tz", "Europe/Zurich",
+                               "--lat", 47.3769, "--lon", 8.5417)
+        self.assertEqual(status, 0, err)
+        self.assertIn("2026-06-21T12:00:00Z (local 2026-06-21T14:00:00+02:00)", out)
+        self.assertIn("Azimuth:", out)
+        self.assertIn("sunrise", out)
+
+    def test_time_zones(self):
+        summer = self.json_of("--at", "2026-06-21T14:00", "--tz", "Europe/Zurich",
+                              "--lat", 47.3769, "--lon", 8.5417)
+        self.assertEqual(summer["time_utc"], "2026-06-21T12:00:00Z")
+        self.assertEqual(summer["utc_offset"], "+02:00")
+        winter = self.json_of("--at", "2026-01-15T14:00", "--tz", "Europe/Zurich",
+                              "--lat", 47.3769, "--lon", 8.5417)
+        self.assertEqual(winter["time_utc"], "2026-01-15T13:00:00Z")
+        # Southern-hemisphere daylight saving: Sydney is +11:00 in January.
+        sydney = self.json_of("--at", "2026-01-15T12:00", "--tz", "Australia/Sydney",
+                              "--lat", -33.8688, "--lon", 151.2093)
+        self.assertEqual(sydney["time_utc"], "2026-01-15T01:00:00Z")
+        err = self.error_of("--at", "2026-03-29T02:30", "--tz", "Europe/Zurich", "--lat", 47,
+                            "--lon", 8)
+        self.assertIn("does not exist in Europe/Zurich: clocks jump from 02:00 to 03:00", err)
+        err = self.error_of("--at", "2026-10-25T02:30", "--tz", "Europe/Zurich", "--lat", 47,
+                            "--lon", 8)
+        self.assertIn("occurs twice", err)
+        self.assertIn("2026-10-25T00:30:00Z", err)
+        # An explicit offset settles it.
+        r = self.json_of("--at", "2026-10-25T02:30+01:00", "--tz", "Europe/Zurich",
+                         "--lat", 47, "--lon", 8)
+        self.assertEqual(r["time_utc"], "2026-10-25T01:30:00Z")
+
+    def test_polar(self):
+        r = self.json_of("--at", "2025-06-21T22:30Z", "--lat", 69.6492, "--lon", 18.9553)
+        self.assertEqual(r["day_kind"], "polar_day")
+        self.assertIsNone(r["sunrise"])
+        self.assertIsNone(r["sunset"])
+        self.assertIsNotNone(r["transit"])
+        r = self.json_of("--at", "2025-12-21T11:00Z", "--lat", 69.6492, "--lon", 18.9553)
+        self.assertEqual(r["day_kind"], "polar_night")
+        self.assertLess(r["elevation_deg"], 0)
+
+    def test_dem_frame(self):
+        # A UTM 33N DEM centred 2.9 deg east of the central meridian at 60 N.
+        lat, lon = 60.0, 17.9
+        srs = osr.SpatialReference()
+        srs.ImportFromEPSG(32633)
+        wgs = osr.SpatialReference()
+        wgs.ImportFromEPSG(4326)
+        wgs.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+        x, y, _ = osr.CoordinateTransformation(wgs, srs).TransformPoint(lon, lat)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "utm.tif")
+            n = 101
+            ds = gdal.GetDriverByName("GTiff").Create(path, n, n, 1, gdal.GDT_Float32)
+            ds.SetGeoTransform((x - 50.5 * 100, 100, 0, y + 50.5 * 100, 0, -100))
+            ds.SetSpatialRef(srs)
+            ds.GetRasterBand(1).WriteArray(np.full((n, n), 300.0))
+            ds = None
+            r = self.json_of("--at", "2026-06-21T13:30Z", "--dem", path)
+        self.assertAlmostEqual(r["latitude_deg"], lat, delta=1e-6)
+        self.assertAlmostEqual(r["longitude_deg"], lon, delta=1e-6)
+        self.assertEqual(r["height_m"], 300.0)
+        gamma = convergence_tm(lat, lon - 15.0)
+        self.assertAlmostEqual(r["meridian_convergence_deg"], gamma, delta=1e-5)
+        self.assertAlmostEqual(r["grid_azimuth_deg"], (r["azimuth_deg"] - gamma) % 360, delta=1e-5)
+        e, nn, u = r["direction_enu"]
+        self.assertAlmostEqual(e * e + nn * nn + u * u, 1.0, delta=1e-12)
+        self.assertAlmostEqual(math.degrees(math.atan2(e, nn)) % 360, r["azimuth_deg"], delta=1e-9)
+        self.assertAlmostEqual(math.degrees(math.asin(u)), r["elevation_deg"], delta=1e-9)
+
+    def test_time_series(self):
+        status, out, err = run("--at", "2026-06-21T00:00", "--tz", "Europe/Zurich",
+                               "--lat", 47.3769, "--lon", 8.5417, "--days", 2, "--step", 30)
+        self.assertEqual(status, 0, err)
+        lines = out.strip().splitlines()
+        self.assertEqual(lines[0].split("\t")[:4], ["time_utc", "time_local", "azimuth",
+                                                    "elevation"])
+        self.assertEqual(len(lines), 1 + 2 * 48)
+        self.assertEqual(lines[1].split("\t")[0], "2026-06-20T22:00:00Z")
+        self.assertEqual(lines[-1].split("\t")[1], "2026-06-22T23:30:00+02:00")
+        elevations = [float(l.split("\t")[3]) for l in lines[1:]]
+        self.assertGreater(max(elevations), 65.0)   # noon near the solstice at 47 N
+        self.assertLess(min(elevations), -18.0)     # midnight
+        status, out, err = run("--at", "2026-06-21T00:00Z", "--lat", 0, "--lon", 0,
+                               "--step", 360, "--json")
+        self.assertEqual(status, 0, err)
+        self.assertEqual(len(json.loads(out)), 4)
+
+    def test_errors(self):
+        place = ["--lat", 47, "--lon", 8]
+        self.assertIn("latitude", self.error_of("--at", "2026-06-21T12:00Z", "--lat", 91,
+                                                "--lon", 8))
+        self.assertIn("longitude", self.error_of("--at", "2026-06-21T12:00Z", "--lat", 47,
+                                                 "--lon", 181))
+        self.assertIn("not a valid ISO 8601", self.error_of("--at", "noon", *place))
+        self.assertIn("not a valid ISO 8601", self.error_of("--at", "2026-02-30T12:00Z", *place))
+        self.assertIn("-2000..6000", self.error_of("--at", "9999-01-01T00:00Z", *place))
+        self.assertIn("unknown", self.error_of("--at", "2026-06-21T12:00", "--tz",
+                                               "Europe/Atlantis", *place))
+        self.assertIn("no UTC offset", self.error_of("--at", "2026-06-21T12:00", *place))
+        self.assertIn("--lat DEG --lon DEG", self.error_of("--at", "2026-06-21T12:00Z"))
+        self.assertIn("not both", self.error_of("--at", "2026-06-21T12:00Z", "--dem", "x.tif",
+                                                *place))
+        self.assertIn("pressure", self.error_of("--at", "2026-06-21T12:00Z", "--pressure", -1,
+                                                *place))
+        self.assertIn("--days", self.error_of("--at", "2026-06-21T12:00Z", "--days", 0, *place))
+        self.assertIn("does not exist", self.error_of("--at", "2026-06-21T12:00Z",
+                                                      "--dem", "/nonexistent/dem.tif"))
+
+
+if __name__ == "__main__":
+    unittest.main()
