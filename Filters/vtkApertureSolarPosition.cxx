@@ -12,6 +12,7 @@
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 
+#include "ap_sky.h"
 #include "ap_sun.h"
 #include "ap_time.h"
 
@@ -109,6 +110,8 @@ struct vtkApertureSolarPosition::Internals
   std::string Error;
   std::string TimeString, Sunrise, Transit, Sunset;
   ap_sun_position_result Sun;
+  ap_sky_sunlight Beam;
+  ap_sky_state Sky;
 
   ap_sun_params Params(const vtkApertureSolarPosition* self) const
   {
@@ -145,6 +148,7 @@ vtkApertureSolarPosition::vtkApertureSolarPosition()
 {
   std::fill(std::begin(this->Result), std::end(this->Result), kNaN);
   std::fill(std::begin(this->Events), std::end(this->Events), kNaN);
+  std::fill(std::begin(this->Light), std::end(this->Light), kNaN);
 }
 
 vtkApertureSolarPosition::~vtkApertureSolarPosition() = default;
@@ -335,6 +339,7 @@ bool vtkApertureSolarPosition::Compute()
   this->Computed = false;
   std::fill(std::begin(this->Result), std::end(this->Result), kNaN);
   std::fill(std::begin(this->Events), std::end(this->Events), kNaN);
+  std::fill(std::begin(this->Light), std::end(this->Light), kNaN);
   d.Sunrise.clear();
   d.Transit.clear();
   d.Sunset.clear();
@@ -410,8 +415,70 @@ bool vtkApertureSolarPosition::Compute()
       return false;
     }
   }
+  // The light: the beam for the apparent zenith, and the sky for the sun's direction.
+  ap_sky_params sp;
+  ap_sky_params_init(&sp);
+  sp.model = static_cast<ap_sky_model>(this->SkyModel);
+  sp.turbidity = this->Turbidity;
+  sp.linke_turbidity = this->LinkeTurbidity;
+  sp.earth_sun_distance = r.distance;
+  sp.site_height = this->Height;
+  sp.diffuse_horizontal = this->DiffuseHorizontalIrradiance;
+  double sunDir[3];
+  this->Computed = true; // GetDirection needs it
+  this->GetDirection(sunDir);
+  this->Computed = false;
+  if (ap_sky_params_validate(&sp) != AP_OK ||
+    ap_sky_sunlight_compute(&sp, r.zenith * kDeg, &d.Beam) != AP_OK ||
+    ap_sky_prepare(&sp, sunDir, &d.Sky) != AP_OK)
+  {
+    d.Error = "the light: Turbidity must be within 2..10, LinkeTurbidity within 1..8 and the "
+              "height within -1000..10000 m (it is " +
+      std::to_string(this->Height) + " m)";
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
+  this->Light[0] = d.Beam.air_mass;
+  this->Light[1] = d.Beam.dni;
+  this->Light[2] = d.Sky.horizontal_irradiance;
+
   d.Error.clear();
   this->Computed = true;
+  return true;
+}
+
+void vtkApertureSolarPosition::GetSunColor(double rgb[3])
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    rgb[c] = this->Computed ? this->Impl->Beam.rgb[c] : kNaN;
+  }
+}
+
+bool vtkApertureSolarPosition::GetSkyRadiance(const double enu[3], double rgb[3])
+{
+  if (!this->Computed || ap_sky_radiance(&this->Impl->Sky, enu, rgb) != AP_OK)
+  {
+    this->Impl->Error = this->Computed ? "GetSkyRadiance: the direction must be finite and not zero"
+                                       : "GetSkyRadiance before a successful Compute()";
+    vtkErrorMacro(<< this->Impl->Error);
+    return false;
+  }
+  return true;
+}
+
+bool vtkApertureSolarPosition::GetSkyCap(const double axis[3], double radius,
+  const double normal[3], double meanRGB[3], double irradianceRGB[3])
+{
+  if (!this->Computed ||
+    ap_sky_cap(&this->Impl->Sky, axis, radius * kDeg, normal, meanRGB, irradianceRGB) != AP_OK)
+  {
+    this->Impl->Error = this->Computed
+      ? "GetSkyCap: the axis and normal must be finite and not zero, the radius within 0..90"
+      : "GetSkyCap before a successful Compute()";
+    vtkErrorMacro(<< this->Impl->Error);
+    return false;
+  }
   return true;
 }
 
@@ -617,9 +684,14 @@ void vtkApertureSolarPosition::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Refraction: " << this->Refraction << "\n";
   os << indent << "DeltaT: " << this->DeltaT << "\n";
   os << indent << "DeltaUT1: " << this->DeltaUT1 << "\n";
+  os << indent << "SkyModel: " << this->SkyModel << "\n";
+  os << indent << "Turbidity: " << this->Turbidity << "\n";
+  os << indent << "LinkeTurbidity: " << this->LinkeTurbidity << "\n";
+  os << indent << "DiffuseHorizontalIrradiance: " << this->DiffuseHorizontalIrradiance << "\n";
   if (this->Computed)
   {
     os << indent << "Azimuth: " << this->GetAzimuth() << "\n";
     os << indent << "Elevation: " << this->GetElevation() << "\n";
+    os << indent << "DirectNormalIrradiance: " << this->GetDirectNormalIrradiance() << "\n";
   }
 }

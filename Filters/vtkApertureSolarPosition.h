@@ -28,6 +28,14 @@
  * (vtkApertureGeoreference::ComputeMeridianConvergence). Over a large DEM the sun's azimuth and
  * elevation change from place to place: AddSunDirectionArray stores the per-cell direction.
  *
+ * Light (ap_sky.h, every model and constant cited there): Compute() also evaluates the direct
+ * beam through a clear atmosphere (Kasten & Young air mass at the site's height, ESRA direct
+ * normal irradiance with a Linke turbidity, its colour from Preetham's spectral transmittance
+ * with the Preetham turbidity, as linear Rec.709 RGB in W/m² whose luminance is the DNI) and
+ * prepares a sky (Preetham, CIE clear, CIE overcast or uniform) whose radiance (W/m²/sr, linear
+ * Rec.709 RGB) is available in any direction and averaged over a spherical cap, e.g. the
+ * aperture of a terrain cell. Below the horizon the beam is zero; no model has twilight.
+ *
  * @sa vtkApertureGeoreference vtkApertureTerrainMesh vtkApertureSkyVisibility
  */
 #ifndef vtkApertureSolarPosition_h
@@ -116,7 +124,36 @@ public:
   vtkGetMacro(DeltaUT1, double);
   ///@}
 
-  /** Compute the position and the day's events. False on bad input (see the class notes). */
+  ///@{
+  /**
+   * Atmosphere for the light: sky model (SKY_PREETHAM, default; SKY_CIE_CLEAR; SKY_CIE_OVERCAST;
+   * SKY_UNIFORM), Preetham turbidity (2..10, default 3: clear), Linke turbidity for the beam's
+   * strength (1..8, default 3), and the sky's horizontal irradiance in W/m² (negative, the
+   * default: from the model; Preetham has its own scale, the others take ESRA's diffuse).
+   */
+  enum SkyModels
+  {
+    SKY_UNIFORM = 0,
+    SKY_CIE_OVERCAST = 1,
+    SKY_CIE_CLEAR = 2,
+    SKY_PREETHAM = 3
+  };
+  vtkSetClampMacro(SkyModel, int, SKY_UNIFORM, SKY_PREETHAM);
+  vtkGetMacro(SkyModel, int);
+  void SetSkyModelToPreetham() { this->SetSkyModel(SKY_PREETHAM); }
+  void SetSkyModelToCIEClear() { this->SetSkyModel(SKY_CIE_CLEAR); }
+  void SetSkyModelToCIEOvercast() { this->SetSkyModel(SKY_CIE_OVERCAST); }
+  void SetSkyModelToUniform() { this->SetSkyModel(SKY_UNIFORM); }
+  vtkSetMacro(Turbidity, double);
+  vtkGetMacro(Turbidity, double);
+  vtkSetMacro(LinkeTurbidity, double);
+  vtkGetMacro(LinkeTurbidity, double);
+  vtkSetMacro(DiffuseHorizontalIrradiance, double);
+  vtkGetMacro(DiffuseHorizontalIrradiance, double);
+  ///@}
+
+  /** Compute the position, the day's events and the light. False on bad input (see the class
+   *  notes; also turbidities out of range, or a height outside -1000..10000 m for the light). */
   bool Compute();
 
   /** Why the last failing call failed ("" after a success). */
@@ -194,6 +231,35 @@ public:
    */
   bool AddSunDirectionArray(vtkImageData* dem, const char* name = "SunDirection");
 
+  ///@{
+  /**
+   * The direct beam after Compute(): relative air mass (infinite below the horizon), direct
+   * normal irradiance (W/m², 0 below the horizon) and its colour as linear Rec.709 RGB
+   * irradiance normal to the beam (W/m² per channel; luminance = DNI).
+   */
+  double GetAirMass() const { return this->Light[0]; }
+  double GetDirectNormalIrradiance() const { return this->Light[1]; }
+  void GetSunColor(double rgb[3]);
+  ///@}
+
+  /** The sky's irradiance on an unobstructed horizontal surface (W/m², luminance-weighted). */
+  double GetSkyHorizontalIrradiance() const { return this->Light[2]; }
+
+  /**
+   * Sky radiance (W/m²/sr, linear Rec.709 RGB) seen in direction `enu` (any length > 0, in the
+   * frame of GetDirection); 0 below the horizon. False before Compute or for a zero vector.
+   */
+  bool GetSkyRadiance(const double enu[3], double rgb[3]);
+
+  /**
+   * The sky over the spherical cap of axis `axis` (ENU) and angular radius `radius` (degrees,
+   * 0..90): its mean radiance (W/m²/sr, RGB; directions below the horizon count as dark) and
+   * the irradiance it sends onto a surface of normal `normal` (W/m², RGB, cosine-weighted).
+   * Deterministic quadrature, relative error below 5e-4 (ap_sky.h). False on bad input.
+   */
+  bool GetSkyCap(const double axis[3], double radius, const double normal[3], double meanRGB[3],
+    double irradianceRGB[3]);
+
   /**
    * Point `light` at the sun: a directional (non-positional) scene light coming from
    * GetDirection() in the mesh frame (focal point at the origin, position on the unit sphere),
@@ -216,7 +282,13 @@ protected:
   double DeltaT;
   double DeltaUT1 = 0.0;
 
+  int SkyModel = SKY_PREETHAM;
+  double Turbidity = 3.0;
+  double LinkeTurbidity = 3.0;
+  double DiffuseHorizontalIrradiance = -1.0;
+
   double Result[11];
+  double Light[3];
   double Events[3];
   int DayKind = 0;
   double Convergence = 0.0;

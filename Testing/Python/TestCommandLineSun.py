@@ -67,6 +67,12 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertEqual(r["sunrise_local"], "2003-10-17T06:12:43-07:00")
         self.assertEqual(r["time_utc"], "2003-10-17T19:30:30Z")
         self.assertNotIn("grid_azimuth_deg", r)
+        # the light: 40 deg sun at 1830 m through a clear sky; RGB luminance = DNI
+        self.assertTrue(700 < r["direct_normal_irradiance_w_m2"] < 1000)
+        y = 0.2126390059 * r["sun_rgb_w_m2"][0] + 0.7151686788 * r["sun_rgb_w_m2"][1] \
+            + 0.0721923154 * r["sun_rgb_w_m2"][2]
+        self.assertAlmostEqual(y, r["direct_normal_irradiance_w_m2"], delta=1e-6 * y)
+        self.assertEqual(r["sky_model"], "preetham")
 
     def test_text_output(self):
         status, out, err = run("--at", "2026-06-21T14:00", "--tz", "Europe/Zurich",
@@ -174,6 +180,8 @@ class CommandLineSunTest(unittest.TestCase):
                                                 *place))
         self.assertIn("pressure", self.error_of("--at", "2026-06-21T12:00Z", "--pressure", -1,
                                                 *place))
+        self.assertIn("Turbidity", self.error_of("--at", "2026-06-21T12:00Z", "--turbidity", 50,
+                                                 *place))
         self.assertIn("--days", self.error_of("--at", "2026-06-21T12:00Z", "--days", 0, *place))
         self.assertIn("does not exist", self.error_of("--at", "2026-06-21T12:00Z",
                                                       "--dem", "/nonexistent/dem.tif"))

@@ -67,6 +67,10 @@ def separation(alt1, az1, alt2, az2):
 
 @unittest.skipIf(ephem is None, "python3-ephem is not installed")
 class TestSolarPosition(Testing.vtkTest):
+    def setUp(self):
+        from aperture.errors import quiet_vtk_output
+        quiet_vtk_output()  # the bad-input checks below expect errors
+
     def sun(self, lat, lon, height, when, delta_t=None):
         s = aperture.vtkApertureSolarPosition()
         s.SetLatitude(lat)
@@ -135,6 +139,62 @@ class TestSolarPosition(Testing.vtkTest):
             ref = ephem.Sun(observer(45.0, 0.0, 0.0, when))
             self.assertAlmostEqual(s.GetAngularRadius(), float(ref.radius) * DEG, delta=0.001)
             self.assertAlmostEqual(s.GetAngularRadius(), expected, delta=0.0001)
+
+    def testLight(self):
+        # Rec.709 luminance (the Y row of the sRGB-to-XYZ matrix, D65)
+        lum = lambda rgb: 0.2126390059 * rgb[0] + 0.7151686788 * rgb[1] + 0.0721923154 * rgb[2]
+        s = self.sun(47.3769, 8.5417, 408, "2024-06-20 11:30:00")  # high summer sun
+        self.assertLess(s.GetAirMass(), 1.2)
+        dni = s.GetDirectNormalIrradiance()
+        self.assertTrue(800 < dni < 1050, dni)  # clear sky, Linke turbidity 3
+        rgb = [0.0] * 3
+        s.GetSunColor(rgb)
+        self.assertAlmostEqual(lum(rgb), dni, delta=1e-6 * dni)
+        # The whole upper hemisphere seen by a horizontal surface is the sky's horizontal
+        # irradiance (two computations: the cap quadrature and the model's own scale).
+        mean, irr = [0.0] * 3, [0.0] * 3
+        self.assertTrue(s.GetSkyCap([0, 0, 1], 90.0, [0, 0, 1], mean, irr))
+        eh = s.GetSkyHorizontalIrradiance()
+        self.assertTrue(50 < eh < 300, eh)
+        self.assertAlmostEqual(lum(irr), eh, delta=5e-4 * eh)
+        # Near the sun the Preetham sky is brighter than opposite it; below the horizon dark.
+        d = [0.0] * 3
+        s.GetDirection(d)
+        near, far, below = [0.0] * 3, [0.0] * 3, [0.0] * 3
+        self.assertTrue(s.GetSkyRadiance([d[0], d[1], d[2] + 0.3], near))
+        self.assertTrue(s.GetSkyRadiance([-d[0], -d[1], d[2] + 0.3], far))
+        self.assertTrue(s.GetSkyRadiance([1, 0, -0.1], below))
+        self.assertGreater(lum(near), 2 * lum(far))
+        self.assertEqual(below, [0.0, 0.0, 0.0])
+        # A low sun is weaker and redder.
+        low = self.sun(47.3769, 8.5417, 408, "2024-06-20 19:00:00")
+        self.assertTrue(0 < low.GetElevation() < 10)
+        low_rgb = [0.0] * 3
+        low.GetSunColor(low_rgb)
+        self.assertLess(low.GetDirectNormalIrradiance(), 0.8 * dni)
+        self.assertGreater(low_rgb[0] / low_rgb[2], 1.2 * rgb[0] / rgb[2])
+        # Night: no beam.
+        night = self.sun(47.3769, 8.5417, 408, "2024-06-20 23:00:00")
+        self.assertEqual(night.GetDirectNormalIrradiance(), 0.0)
+        # Overcast with a given horizontal irradiance: zenith 3x the horizon (Moon & Spencer),
+        # and the hemisphere integral returns the given irradiance.
+        s.SetSkyModelToCIEOvercast()
+        s.SetDiffuseHorizontalIrradiance(100.0)
+        self.assertTrue(s.Compute())
+        zen, hor = [0.0] * 3, [0.0] * 3
+        s.GetSkyRadiance([0, 0, 1], zen)
+        s.GetSkyRadiance([1, 0, 1e-9], hor)
+        self.assertAlmostEqual(lum(zen) / lum(hor), 3.0, delta=1e-6)
+        s.GetSkyCap([0, 0, 1], 90.0, [0, 0, 1], mean, irr)
+        self.assertAlmostEqual(lum(irr), 100.0, delta=0.05)
+        # Bad input
+        s.SetTurbidity(1.0)
+        self.assertFalse(s.Compute())
+        self.assertIn("Turbidity", s.GetErrorMessage())
+        s.SetTurbidity(3.0)
+        self.assertTrue(s.Compute())
+        self.assertFalse(s.GetSkyCap([0, 0, 0], 10.0, [0, 0, 1], mean, irr))
+        self.assertFalse(s.GetSkyCap([0, 0, 1], 100.0, [0, 0, 1], mean, irr))
 
     def testRefraction(self):
         # Refraction lifts a low sun by about half a degree and a high one by almost nothing;

@@ -375,6 +375,14 @@ def cmd_bake(args):
 # sun
 
 DAY_KINDS = {0: "normal", 1: "polar_day", 2: "polar_night"}
+SKY_MODELS = {"preetham": 3, "cie-clear": 2, "cie-overcast": 1, "uniform": 0}
+SKY_MODELS_BY_ID = {v: k for k, v in SKY_MODELS.items()}
+
+
+def _rgb(getter):
+    rgb = [0.0, 0.0, 0.0]
+    getter(rgb)
+    return rgb
 
 
 def _offset_text(seconds):
@@ -426,6 +434,12 @@ def _sun_record(sun, with_dem):
         "sunrise_local": _local_text(sun, finite(sun.GetSunrise())),
         "transit_local": _local_text(sun, finite(sun.GetTransit())),
         "sunset_local": _local_text(sun, finite(sun.GetSunset())),
+        "sky_model": SKY_MODELS_BY_ID[sun.GetSkyModel()],
+        "air_mass": finite(sun.GetAirMass()),
+        "direct_normal_irradiance_w_m2": sun.GetDirectNormalIrradiance(),
+        "sun_rgb_w_m2": _rgb(sun.GetSunColor),
+        "sky_horizontal_irradiance_w_m2": sun.GetSkyHorizontalIrradiance(),
+        "sky_zenith_radiance_rgb_w_m2_sr": _rgb(lambda v: sun.GetSkyRadiance([0, 0, 1], v)),
     }
     if with_dem:
         direction = [0.0, 0.0, 0.0]
@@ -458,6 +472,12 @@ def _print_sun(record, dem):
     rows += [
         ("Sun disc", "radius %.5f deg; distance %.6f AU" % (record["angular_radius_deg"],
                                                            record["distance_au"])),
+        ("Sunlight", "%.1f W/m2 direct normal (air mass %s), RGB %.1f %.1f %.1f" % (
+            record["direct_normal_irradiance_w_m2"],
+            "%.3f" % record["air_mass"] if record["air_mass"] is not None else "inf",
+            *record["sun_rgb_w_m2"])),
+        ("Sky", "%s, %.1f W/m2 on a horizontal surface" % (
+            record["sky_model"], record["sky_horizontal_irradiance_w_m2"])),
         ("Eq. of time", "%+.2f min" % record["equation_of_time_min"]),
     ]
     if record["day_kind"] == "normal":
@@ -504,6 +524,9 @@ def cmd_sun(args):
     sun.SetPressure(args.pressure)
     sun.SetTemperature(args.temperature)
     sun.SetRefraction(not args.no_refraction)
+    sun.SetSkyModel(SKY_MODELS[args.sky])
+    sun.SetTurbidity(args.turbidity)
+    sun.SetLinkeTurbidity(args.linke_turbidity)
     if args.delta_t is not None:
         sun.SetDeltaT(args.delta_t)
     watcher.errors.clear()
@@ -623,6 +646,13 @@ def build_parser():
                    help="air temperature for refraction, degrees C (default 15)")
     p.add_argument("--no-refraction", action="store_true",
                    help="report geometric elevations as the apparent ones")
+    p.add_argument("--sky", choices=sorted(SKY_MODELS), default="preetham",
+                   help="sky radiance model (default preetham)")
+    p.add_argument("--turbidity", type=float, default=3.0, metavar="T",
+                   help="Preetham turbidity for the sun's colour and the Preetham sky, 2..10 "
+                        "(default 3)")
+    p.add_argument("--linke-turbidity", type=float, default=3.0, metavar="TL",
+                   help="Linke turbidity for the direct beam (ESRA), 1..8 (default 3)")
     p.add_argument("--delta-t", type=float, metavar="S",
                    help="TT - UT1 in seconds (default: estimated for the date)")
     p.add_argument("--days", type=int, metavar="N",
