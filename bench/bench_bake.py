@@ -354,7 +354,8 @@ def run_ours(dem, tag, args, radius, threads):
         res["status"] = "not available (%s)" % args.ours_unavailable
         return res
     r = run_timed(cmd, os.path.join(args.workdir, "logs", "ours_%s" % tag), args.timeout)
-    res.update(wall=r["wall"], rss=r["rss"], compute=r["wall"])
+    m = re.search(r"\(sky filter ([0-9.]+) s\)", r["log"])
+    res.update(wall=r["wall"], rss=r["rss"], compute=float(m.group(1)) if m else None)
     if r["timed_out"]:
         res["status"] = "timeout (%d s)" % args.timeout
     elif r["rc"] != 0:
@@ -423,8 +424,8 @@ def fmt(value, spec):
 def report(rows, args, header):
     lines = list(header)
     lines.append("| DEM | cells | contender | parameters | wall s | compute s | peak RSS MiB | "
-                 "M cell-dirs/s | our speed-up | status |")
-    lines.append("|---|---|---|---|---|---|---|---|---|---|")
+                 "M cell-dirs/s | M cell-dirs/s/core (compute) | our speed-up | status |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|---|")
     # our reference per DEM: the run at the common radius with the default thread count
     ours_ref = {row["dem"]: row for row in rows
                 if row["contender"] == "ours" and row.get("reference") and row["wall"]}
@@ -435,12 +436,17 @@ def report(rows, args, header):
         if row["contender"] != "ours" and row["wall"] and row["status"] == "ok":
             ref = ours_ref.get(row["dem"])
             speedup = "%.2f" % (row["wall"] / ref["wall"]) if ref else "n/a"
-        lines.append("| %s | %d x %d = %.2f M | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+        per_core = None
+        if row["contender"] == "ours" and row["status"] == "ok" and row["compute"]:
+            per_core = (cells * args.directions / row["compute"] / 1e6
+                        / (row.get("threads") or os.cpu_count() or 1))
+        lines.append("| %s | %d x %d = %.2f M | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
             row["dem"], row["nx"], row["ny"], cells / 1e6, row["label"], row["params"],
             fmt(row["wall"] if row["status"] == "ok" else None, "%.2f"),
             fmt(row["compute"], "%.2f"), fmt(row["rss"] if row["status"] == "ok" else None,
                                              "%.0f"),
-            fmt(rate if row["status"] == "ok" else None, "%.1f"), speedup, row["status"]))
+            fmt(rate if row["status"] == "ok" else None, "%.1f"), fmt(per_core, "%.1f"),
+            speedup, row["status"]))
     notes = scaling_notes(rows) + memory_notes(rows, args)
     if notes:
         lines.append("")
@@ -460,7 +466,9 @@ def report(rows, args, header):
     lines.append("wall s: whole command under /usr/bin/time -v (GRASS: location creation, "
                  "import and r.horizon; SAGA: read, compute, write GeoTIFF). compute s: GRASS "
                  "r.horizon alone (its own /usr/bin/time), SAGA's own report of the tool "
-                 "(1 s resolution), ours = wall. peak RSS: largest process of the command. "
+                 "(1 s resolution), ours: the sky filter alone (as `aperture bake` reports "
+                 "it: the sweep and the products, without start-up, reading and writing). "
+                 "M cell-dirs/s/core: cells x directions / compute s / threads (ours). peak RSS: largest process of the command. "
                  "M cell-dirs/s: cells x %d directions / wall. our speed-up: peer wall / our "
                  "wall on the same DEM (> 1: ours faster; n/a: no successful run of ours on it)."
                  % args.directions)
@@ -489,24 +497,27 @@ def memory_notes(rows, args):
 
 
 def scaling_notes(rows):
+    """Our scaling, on the sky filter's own seconds (compute) when reported, else wall."""
     ours = [r for r in rows if r["contender"] == "ours" and r["status"] == "ok"]
+    secs = lambda r: r["compute"] or r["wall"]
     notes = []
-    cells = sorted((r["nx"] * r["ny"], r["wall"]) for r in ours if "cells" in r["series"])
+    cells = sorted((r["nx"] * r["ny"], secs(r)) for r in ours if "cells" in r["series"])
     if len(cells) > 1:
-        notes.append("Ours, scaling with cells: seconds per M cells " + ", ".join(
+        notes.append("Ours, scaling with cells (sky filter seconds per M cells): " + ", ".join(
             "%.2f M: %.3f" % (c / 1e6, w / (c / 1e6)) for c, w in cells) + ".")
     radius = sorted((r for r in ours if "radius" in r["series"]),
                     key=lambda r: (r["radius"] is None, r["radius"] or 0))
     if len(radius) > 1:
-        notes.append("Ours, scaling with radius on %s: " % radius[0]["dem"] + ", ".join(
-            "%s: %.2f s" % ("%g m" % r["radius"] if r["radius"] else "unlimited", r["wall"])
-            for r in radius) + ".")
-    threads = {r["threads"]: r["wall"] for r in ours if "threads" in r["series"]}
+        notes.append("Ours, scaling with radius on %s (sky filter seconds): " % radius[0]["dem"]
+                     + ", ".join("%s: %.2f s" % ("%g m" % r["radius"] if r["radius"]
+                                                 else "unlimited", secs(r)) for r in radius)
+                     + ".")
+    threads = {r["threads"]: secs(r) for r in ours if "threads" in r["series"]}
     if 1 in threads and len(threads) > 1:
         best = max(threads)
-        notes.append("Ours, parallel speed-up of %d threads over 1: %.2f (efficiency %.0f%%)."
-                     % (best, threads[1] / threads[best],
-                        100 * threads[1] / threads[best] / best))
+        notes.append("Ours, parallel speed-up of the sky filter, %d threads over 1: %.2f "
+                     "(efficiency %.0f%%)." % (best, threads[1] / threads[best],
+                                               100 * threads[1] / threads[best] / best))
     return notes
 
 

@@ -10,7 +10,8 @@ series and the Earth model used for parallax (SPA: the report's 6378.14 km spher
 ellipsoid; up to 0.002 deg at most). Both are given the same Delta T (PyEphem's own), so Earth
 rotation does not enter; measured, they agree to better than 0.001 deg. Angular radius within
 0.001 deg at perihelion and aphelion; sunrise and sunset within 30 s (both use the sun's centre
-at -0.8333 deg; SPA's one-step interpolation is good to a few seconds there).
+at -0.8333 deg; SPA's one-step interpolation is good to a few seconds there); the equation of
+time within 0.02 min of the one PyEphem's meridian transit implies.
 """
 import calendar
 import math
@@ -131,6 +132,14 @@ class TestSolarPosition(Testing.vtkTest):
             self.assertAlmostEqual(s.GetSunrise(), to_unix(rise), delta=30, msg=day)
             self.assertAlmostEqual(s.GetSunset(), to_unix(setting), delta=30, msg=day)
             self.assertAlmostEqual(s.GetTransit(), to_unix(transit), delta=5, msg=day)
+            # Equation of time = apparent - mean solar time: at PyEphem's transit the sun is
+            # on the meridian (apparent noon), so EoT = 12:00 - (UTC of transit + lon / 15 h).
+            at_transit = self.sun(lat, lon, 0, "1970-01-01 00:00:00")
+            at_transit.SetUnixTime(to_unix(transit))
+            self.assertTrue(at_transit.Compute())
+            minutes = (to_unix(transit) % 86400) / 60.0 + 4.0 * lon
+            self.assertAlmostEqual(at_transit.GetEquationOfTime(), 720.0 - minutes, delta=0.02,
+                                   msg=day)
 
     def testAngularRadius(self):
         # 2025 perihelion (Jan 4) and aphelion (Jul 4): 0.27108 and 0.26220 deg (959.63"/r).
