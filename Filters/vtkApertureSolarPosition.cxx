@@ -333,16 +333,22 @@ bool vtkApertureSolarPosition::SetPlaceFromImage(vtkImageData* dem)
 }
 
 //------------------------------------------------------------------------------
-bool vtkApertureSolarPosition::Compute()
+void vtkApertureSolarPosition::ClearResults()
 {
-  Internals& d = *this->Impl;
   this->Computed = false;
   std::fill(std::begin(this->Result), std::end(this->Result), kNaN);
   std::fill(std::begin(this->Events), std::end(this->Events), kNaN);
   std::fill(std::begin(this->Light), std::end(this->Light), kNaN);
-  d.Sunrise.clear();
-  d.Transit.clear();
-  d.Sunset.clear();
+  this->Impl->Sunrise.clear();
+  this->Impl->Transit.clear();
+  this->Impl->Sunset.clear();
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureSolarPosition::Compute()
+{
+  Internals& d = *this->Impl;
+  this->ClearResults();
 
   std::string problem;
   if (!(std::fabs(this->Latitude) <= 90.0))
@@ -416,20 +422,34 @@ bool vtkApertureSolarPosition::Compute()
     }
   }
   // The light: the beam for the apparent zenith, and the sky for the sun's direction.
+  if (!this->ComputeLight(r.distance))
+  {
+    return false;
+  }
+  d.Error.clear();
+  this->Computed = true;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureSolarPosition::ComputeLight(double distance)
+{
+  Internals& d = *this->Impl;
   ap_sky_params sp;
   ap_sky_params_init(&sp);
   sp.model = static_cast<ap_sky_model>(this->SkyModel);
   sp.turbidity = this->Turbidity;
   sp.linke_turbidity = this->LinkeTurbidity;
-  sp.earth_sun_distance = r.distance;
+  sp.earth_sun_distance = distance;
   sp.site_height = this->Height;
   sp.diffuse_horizontal = this->DiffuseHorizontalIrradiance;
   double sunDir[3];
-  this->Computed = true; // GetDirection needs it
-  this->GetDirection(sunDir);
-  this->Computed = false;
+  const double a = this->GetAzimuth() * kDeg, e = this->GetElevation() * kDeg;
+  sunDir[0] = std::cos(e) * std::sin(a);
+  sunDir[1] = std::cos(e) * std::cos(a);
+  sunDir[2] = std::sin(e);
   if (ap_sky_params_validate(&sp) != AP_OK ||
-    ap_sky_sunlight_compute(&sp, r.zenith * kDeg, &d.Beam) != AP_OK ||
+    ap_sky_sunlight_compute(&sp, this->GetZenith() * kDeg, &d.Beam) != AP_OK ||
     ap_sky_prepare(&sp, sunDir, &d.Sky) != AP_OK)
   {
     d.Error = "the light: Turbidity must be within 2..10, LinkeTurbidity within 1..8 and the "
@@ -441,7 +461,40 @@ bool vtkApertureSolarPosition::Compute()
   this->Light[0] = d.Beam.air_mass;
   this->Light[1] = d.Beam.dni;
   this->Light[2] = d.Sky.horizontal_irradiance;
+  return true;
+}
 
+//------------------------------------------------------------------------------
+bool vtkApertureSolarPosition::ComputeForDirection(double azimuth, double elevation)
+{
+  Internals& d = *this->Impl;
+  this->ClearResults();
+  if (!std::isfinite(azimuth) || !(std::fabs(elevation) <= 90.0))
+  {
+    d.Error = "the sun's elevation must be within -90..90 degrees and its azimuth finite";
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
+  double az = std::fmod(azimuth, 360.0);
+  az = az < 0.0 ? az + 360.0 : az;
+  this->Result[0] = az;
+  this->Result[1] = this->Result[3] = elevation;
+  this->Result[2] = this->Result[4] = 90.0 - elevation;
+  this->Result[5] = 959.63 / 3600.0; // the disc at 1 AU
+  this->Result[8] = 1.0;
+  this->Convergence = 0.0;
+  if (d.Geo)
+  {
+    this->Convergence = d.Geo->ComputeMeridianConvergence(this->Longitude, this->Latitude);
+    if (!std::isfinite(this->Convergence))
+    {
+      this->Convergence = 0.0;
+    }
+  }
+  if (!this->ComputeLight(1.0))
+  {
+    return false;
+  }
   d.Error.clear();
   this->Computed = true;
   return true;

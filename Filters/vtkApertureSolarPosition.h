@@ -156,6 +156,14 @@ public:
    *  notes; also turbidities out of range, or a height outside -1000..10000 m for the light). */
   bool Compute();
 
+  /**
+   * No time or ephemeris: put the sun at this true azimuth and elevation (degrees, e.g. for a
+   * hillshade-like picture), at 1 AU with its mean disc (0.26656°), and compute the light for it
+   * as Compute() does. Time results (sunrise, equation of time, ...) are NaN. False for an
+   * elevation outside −90..90 or a non-finite azimuth.
+   */
+  bool ComputeForDirection(double azimuth, double elevation);
+
   /** Why the last failing call failed ("" after a success). */
   const char* GetErrorMessage();
 
@@ -297,6 +305,9 @@ protected:
 private:
   vtkApertureSolarPosition(const vtkApertureSolarPosition&) = delete;
   void operator=(const vtkApertureSolarPosition&) = delete;
+
+  bool ComputeLight(double distance);
+  void ClearResults();
 
   struct Internals;
   std::unique_ptr<Internals> Impl;

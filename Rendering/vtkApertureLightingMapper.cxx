@@ -3,37 +3,247 @@
 
 #include "vtkApertureExposureDecFS.h"
 #include "vtkApertureExposureImplFS.h"
+#include "vtkApertureLightingDecFS.h"
+#include "vtkApertureLightingDecVS.h"
+#include "vtkApertureLightingImplFS.h"
+#include "vtkApertureLightingImplVS.h"
+#include "vtkApertureToneMapFS.h"
 
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkDataObject.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLHelper.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkShader.h"
 #include "vtkShaderProgram.h"
 
+#include "ap_light.h"
+
+#include <algorithm>
+#include <vector>
 #include <cmath>
 #include <string>
 
 vtkStandardNewMacro(vtkApertureLightingMapper);
 
-//------------------------------------------------------------------------------
-vtkApertureLightingMapper::vtkApertureLightingMapper()
-  : Exposure(0.0)
+namespace
 {
+const double kDeg = 3.14159265358979323846 / 180.0;
+
+void Insert(std::string& source, const char* tag, const char* code)
+{
+  // Keep the tag (the superclass expands it afterwards) and add our code after it.
+  vtkShaderProgram::Substitute(source, tag, std::string(tag) + "\n" + code, false);
+}
 }
 
 //------------------------------------------------------------------------------
+vtkApertureLightingMapper::vtkApertureLightingMapper() = default;
 vtkApertureLightingMapper::~vtkApertureLightingMapper() = default;
+
+//------------------------------------------------------------------------------
+void vtkApertureLightingMapper::SetNormalArrayName(const char* name)
+{
+  this->NormalName = name ? name : "";
+  this->Modified();
+}
+
+void vtkApertureLightingMapper::SetBentNormalArrayName(const char* name)
+{
+  this->BentName = name ? name : "";
+  this->Modified();
+}
+
+void vtkApertureLightingMapper::SetApertureRadiusArrayName(const char* name)
+{
+  this->RadiusName = name ? name : "";
+  this->Modified();
+}
+
+// The lighting parameters below are uniforms: no Modified(), so nothing is rebuilt.
+void vtkApertureLightingMapper::SetSunDirection(double x, double y, double z)
+{
+  const double n = std::sqrt(x * x + y * y + z * z);
+  if (!(n > 0.0) || !std::isfinite(n))
+  {
+    vtkErrorMacro(<< "SetSunDirection: the direction (" << x << ", " << y << ", " << z
+                  << ") has no length; keeping (" << this->SunDirection[0] << ", "
+                  << this->SunDirection[1] << ", " << this->SunDirection[2] << ")");
+    return;
+  }
+  this->SunDirection[0] = x / n;
+  this->SunDirection[1] = y / n;
+  this->SunDirection[2] = z / n;
+}
+
+void vtkApertureLightingMapper::SetSunAngularRadius(double degrees)
+{
+  if (!(degrees > 0.0 && degrees <= 90.0))
+  {
+    vtkErrorMacro(<< "SetSunAngularRadius: " << degrees << " is not within (0, 90] degrees");
+    return;
+  }
+  this->SunAngularRadius = degrees;
+}
+
+void vtkApertureLightingMapper::SetSunScale(double scale)
+{
+  if (!(scale > 0.0) || !std::isfinite(scale))
+  {
+    vtkErrorMacro(<< "SetSunScale: " << scale << " is not a positive factor");
+    return;
+  }
+  this->SunScale = scale;
+}
+
+void vtkApertureLightingMapper::SetSunIrradiance(double r, double g, double b)
+{
+  if (!(r >= 0.0 && g >= 0.0 && b >= 0.0) || !std::isfinite(r + g + b))
+  {
+    vtkErrorMacro(<< "SetSunIrradiance: irradiances must be finite and not negative");
+    return;
+  }
+  this->SunIrradiance[0] = r;
+  this->SunIrradiance[1] = g;
+  this->SunIrradiance[2] = b;
+}
+
+void vtkApertureLightingMapper::SetSkyRadiance(double r, double g, double b)
+{
+  if (!(r >= 0.0 && g >= 0.0 && b >= 0.0) || !std::isfinite(r + g + b))
+  {
+    vtkErrorMacro(<< "SetSkyRadiance: radiances must be finite and not negative");
+    return;
+  }
+  this->SkyRadiance[0] = r;
+  this->SkyRadiance[1] = g;
+  this->SkyRadiance[2] = b;
+}
+
+void vtkApertureLightingMapper::SetIntersectionMode(int mode)
+{
+  this->IntersectionMode = mode == SMOOTHSTEP ? SMOOTHSTEP : EXACT;
+}
+
+void vtkApertureLightingMapper::SetLambertMode(int mode)
+{
+  this->LambertMode = mode == EXACT_CAP ? EXACT_CAP : CENTROID;
+}
+
+void vtkApertureLightingMapper::SetExposure(double ev)
+{
+  if (std::isnan(ev))
+  {
+    vtkErrorMacro(<< "SetExposure: NaN");
+    return;
+  }
+  this->Exposure = std::max(-30.0, std::min(30.0, ev));
+}
+
+void vtkApertureLightingMapper::SetToneMapping(bool on)
+{
+  this->ToneMapping = on;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureLightingMapper::CheckInput(vtkPolyData* mesh)
+{
+  vtkPolyData* input = mesh ? mesh : this->GetInput();
+  if (!input)
+  {
+    this->InputProblem = "no input";
+    return false;
+  }
+  const vtkIdType n = input->GetNumberOfPoints();
+  const std::pair<const std::string*, int> wanted[3] = { { &this->NormalName, 3 },
+    { &this->BentName, 3 }, { &this->RadiusName, 1 } };
+  for (const auto& w : wanted)
+  {
+    vtkDataArray* a = input->GetPointData()->GetArray(w.first->c_str());
+    if (!a)
+    {
+      this->InputProblem = "the mesh has no point array '" + *w.first +
+        "' (bake it with vtkApertureSkyVisibility and mesh the result, or set the array names)";
+      return false;
+    }
+    if (a->GetNumberOfComponents() != w.second || a->GetNumberOfTuples() != n)
+    {
+      this->InputProblem = "the point array '" + *w.first + "' has " +
+        std::to_string(a->GetNumberOfComponents()) + " component(s) and " +
+        std::to_string(a->GetNumberOfTuples()) + " tuples; expected " +
+        std::to_string(w.second) + " and " + std::to_string(n) + " (one per point)";
+      return false;
+    }
+  }
+  this->InputProblem.clear();
+  return true;
+}
+
+void vtkApertureLightingMapper::MapArrays()
+{
+  this->RemoveAllVertexAttributeMappings();
+  if (this->UsingAperture)
+  {
+    const int points = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+    this->MapDataArrayToVertexAttribute("apertureNormalMC", this->NormalName.c_str(), points, -1);
+    this->MapDataArrayToVertexAttribute("apertureBentMC", this->BentName.c_str(), points, -1);
+    this->MapDataArrayToVertexAttribute("apertureRadiusMC", this->RadiusName.c_str(), points, -1);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkApertureLightingMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
+{
+  bool aperture = false;
+  if (this->LightingModel == APERTURE)
+  {
+    aperture = this->CheckInput();
+    if (!aperture)
+    {
+      vtkErrorMacro(<< "cannot shade with the aperture model: " << this->InputProblem
+                    << "; drawing with standard lighting");
+    }
+  }
+  if (aperture != this->UsingAperture)
+  {
+    // Shaders and vertex attributes change: rebuild both (once, on a model switch).
+    this->UsingAperture = aperture;
+    this->MapArrays();
+    this->Modified();
+  }
+  this->Superclass::RenderPiece(ren, act);
+}
+
+void vtkApertureLightingMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act)
+{
+  ++this->GeometryUploads;
+  this->Superclass::BuildBufferObjects(ren, act);
+}
 
 //------------------------------------------------------------------------------
 void vtkApertureLightingMapper::ReplaceShaderValues(
   std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act)
 {
-  // Add our code beside VTK's tags, keeping the tags, so the superclass still expands them
-  // (lighting, picking, clipping, depth peeling all keep working).
+  std::string vs = shaders[vtkShader::Vertex]->GetSource();
   std::string fs = shaders[vtkShader::Fragment]->GetSource();
-  vtkShaderProgram::Substitute(fs, "//VTK::Light::Dec",
-    std::string("//VTK::Light::Dec\n") + vtkApertureExposureDecFS, false);
-  vtkShaderProgram::Substitute(fs, "//VTK::Light::Impl",
-    std::string("//VTK::Light::Impl\n") + vtkApertureExposureImplFS, false);
+  if (this->UsingAperture)
+  {
+    Insert(vs, "//VTK::Normal::Dec", vtkApertureLightingDecVS);
+    Insert(vs, "//VTK::Normal::Impl", vtkApertureLightingImplVS);
+    Insert(fs, "//VTK::Light::Dec", vtkApertureLightingDecFS);
+    Insert(fs, "//VTK::Light::Impl", vtkApertureLightingImplFS);
+    Insert(fs, "//VTK::TCoord::Impl", vtkApertureToneMapFS);
+  }
+  else
+  {
+    Insert(fs, "//VTK::Light::Dec", vtkApertureExposureDecFS);
+    Insert(fs, "//VTK::Light::Impl", vtkApertureExposureImplFS);
+  }
+  shaders[vtkShader::Vertex]->SetSource(vs);
   shaders[vtkShader::Fragment]->SetSource(fs);
   this->Superclass::ReplaceShaderValues(shaders, ren, act);
 }
@@ -43,16 +253,125 @@ void vtkApertureLightingMapper::SetMapperShaderParameters(
   vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
 {
   vtkShaderProgram* program = cellBO.Program;
+  const float exposure = static_cast<float>(std::exp2(this->Exposure));
   if (program && program->IsUniformUsed("apertureExposureScale"))
   {
-    program->SetUniformf("apertureExposureScale", static_cast<float>(std::exp2(this->Exposure)));
+    program->SetUniformf("apertureExposureScale", exposure);
+  }
+  if (program && this->UsingAperture && program->IsUniformUsed("apertureSunDirection"))
+  {
+    float dir[3], sun[3], sky[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      dir[c] = static_cast<float>(this->SunDirection[c]);
+      sun[c] = static_cast<float>(this->SunIrradiance[c]);
+      sky[c] = static_cast<float>(this->SkyRadiance[c]);
+    }
+    const double rl = std::min(90.0, this->SunAngularRadius * this->SunScale) * kDeg;
+    program->SetUniform3f("apertureSunDirection", dir);
+    program->SetUniformf("apertureSunRadius", static_cast<float>(rl));
+    program->SetUniform3f("apertureSunIrradiance", sun);
+    program->SetUniform3f("apertureSkyRadiance", sky);
+    program->SetUniformi("apertureIntersection", this->IntersectionMode);
+    program->SetUniformi("apertureLambert", this->LambertMode);
+    program->SetUniformi("apertureToneMap", this->ToneMapping ? 1 : 0);
   }
   this->Superclass::SetMapperShaderParameters(cellBO, ren, act);
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureLightingMapper::ComputeReference(
+  vtkPolyData* mesh, const double albedo[3], vtkDoubleArray* radiance, vtkUnsignedCharArray* display)
+{
+  if (!mesh || !this->CheckInput(mesh))
+  {
+    if (!mesh)
+    {
+      this->InputProblem = "no mesh";
+    }
+    vtkErrorMacro(<< "ComputeReference: " << this->InputProblem);
+    return false;
+  }
+  ap_light_params p;
+  ap_light_params_init(&p);
+  for (int c = 0; c < 3; ++c)
+  {
+    p.sun[c] = this->SunDirection[c];
+    p.sun_irradiance[c] = this->SunIrradiance[c];
+    p.sky_radiance[c] = this->SkyRadiance[c];
+  }
+  p.sun_radius = std::min(90.0, this->SunAngularRadius * this->SunScale) * kDeg;
+  p.intersection = this->IntersectionMode == SMOOTHSTEP ? AP_LIGHT_SMOOTHSTEP : AP_LIGHT_EXACT;
+  p.lambert = this->LambertMode == EXACT_CAP ? AP_LIGHT_EXACTCAP : AP_LIGHT_CENTROID;
+  p.exposure = this->Exposure;
+
+  // The arrays as contiguous float, as the GPU receives them.
+  const vtkIdType n = mesh->GetNumberOfPoints();
+  auto floats = [n, mesh](const std::string& name, int comps) {
+    std::vector<float> v(static_cast<size_t>(n) * comps);
+    vtkDataArray* a = mesh->GetPointData()->GetArray(name.c_str());
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      for (int c = 0; c < comps; ++c)
+      {
+        v[static_cast<size_t>(i) * comps + c] = static_cast<float>(a->GetComponent(i, c));
+      }
+    }
+    return v;
+  };
+  const std::vector<float> normals = floats(this->NormalName, 3);
+  const std::vector<float> bent = floats(this->BentName, 3);
+  const std::vector<float> rp = floats(this->RadiusName, 1);
+  const float a[3] = { static_cast<float>(albedo[0]), static_cast<float>(albedo[1]),
+    static_cast<float>(albedo[2]) };
+  std::vector<float> lo(radiance ? 3 * static_cast<size_t>(n) : 0);
+  std::vector<unsigned char> rgb(display ? 3 * static_cast<size_t>(n) : 0);
+  const ap_status st = ap_light_points(&p, static_cast<size_t>(n), normals.data(), bent.data(),
+    rp.data(), a, 0, radiance ? lo.data() : nullptr, display ? rgb.data() : nullptr);
+  if (st != AP_OK)
+  {
+    this->InputProblem = std::string("the lighting parameters are out of range: ") +
+      ap_status_string(st);
+    vtkErrorMacro(<< "ComputeReference: " << this->InputProblem);
+    return false;
+  }
+  if (radiance)
+  {
+    radiance->SetNumberOfComponents(3);
+    radiance->SetNumberOfTuples(n);
+    for (size_t k = 0; k < lo.size(); ++k)
+    {
+      radiance->SetValue(static_cast<vtkIdType>(k), lo[k]);
+    }
+  }
+  if (display)
+  {
+    display->SetNumberOfComponents(3);
+    display->SetNumberOfTuples(n);
+    std::copy(rgb.begin(), rgb.end(), display->GetPointer(0));
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------
 void vtkApertureLightingMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "LightingModel: " << (this->LightingModel == APERTURE ? "APERTURE" : "STANDARD")
+     << "\n";
+  os << indent << "Arrays: " << this->NormalName << ", " << this->BentName << ", "
+     << this->RadiusName << "\n";
+  os << indent << "SunDirection: " << this->SunDirection[0] << " " << this->SunDirection[1] << " "
+     << this->SunDirection[2] << "\n";
+  os << indent << "SunAngularRadius: " << this->SunAngularRadius << " x " << this->SunScale << "\n";
+  os << indent << "SunIrradiance: " << this->SunIrradiance[0] << " " << this->SunIrradiance[1]
+     << " " << this->SunIrradiance[2] << "\n";
+  os << indent << "SkyRadiance: " << this->SkyRadiance[0] << " " << this->SkyRadiance[1] << " "
+     << this->SkyRadiance[2] << "\n";
+  os << indent << "IntersectionMode: " << (this->IntersectionMode == EXACT ? "EXACT" : "SMOOTHSTEP")
+     << "\n";
+  os << indent << "LambertMode: " << (this->LambertMode == CENTROID ? "CENTROID" : "EXACT_CAP")
+     << "\n";
   os << indent << "Exposure: " << this->Exposure << "\n";
+  os << indent << "ToneMapping: " << this->ToneMapping << "\n";
 }

@@ -1,20 +1,48 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkApertureLightingMapper
- * @brief   Terrain mapper of Aperture (scaffold): VTK's standard lighting plus an exposure
- *          control, with its GLSL kept in Rendering/glsl and embedded at build time.
+ * @brief   Terrain mapper that shades a mesh with the sun and the sky through each point's
+ *          aperture (ambient aperture lighting, Oat & Sander 2007), in one pass on the GPU.
  *
- * This is the base the ambient aperture lighting model grows on. Today it renders exactly
- * like vtkOpenGLPolyDataMapper, then multiplies the lit colour by 2^Exposure (photographic
- * exposure value, EV), which is applied in the fragment shader without re-uploading geometry.
+ * Input: a terrain mesh (vtkApertureTerrainMesh) carrying, as point arrays in its own
+ * East-North-Up frame, the surface normals ("Normals"), the bent normal ("BentNormal", 3
+ * components) and the aperture radius ("ApertureRadius", radians) of
+ * vtkApertureSkyVisibility; the names are configurable. Every quantity below is in that frame.
  *
- * @warning Colours above 1 after exposure are clipped by the 8-bit framebuffer.
+ * The model (exactly that of the CPU reference ap_light.h, which documents every formula):
+ * the visible sky of a point is the spherical cap of axis BentNormal and radius
+ * ApertureRadius. The sun is a cap of angular radius SunAngularRadius x SunScale around
+ * SunDirection; the part of it inside the aperture (IntersectionMode EXACT: the closed form, in
+ * its float-safe half-angle form; SMOOTHSTEP: Oat & Sander's approximation) lights the point
+ * with a Lambert term (LambertMode CENTROID: the visible area times the cosine of its centroid;
+ * EXACT_CAP: the sun cap's exact cosine integral, clipped by the surface's plane, times the
+ * visible fraction). The rest of the aperture is filled with SkyRadiance, cosine-weighted. The
+ * albedo is the actor's colour, or its scalar colours, times its texture if it has one. The
+ * outgoing radiance (W/m²/sr for irradiances in W/m²) is multiplied by 2^Exposure and, with
+ * ToneMapping on (default), mapped by 1 − exp(−x) and the sRGB transfer function for display.
+ *
+ * Moving the sun, changing the sky, the exposure or the modes changes uniforms only: these
+ * setters do not mark the mapper modified, so the next Render() uses them and no geometry is
+ * uploaded again (GetGeometryUploads() counts uploads, for tests).
+ *
+ * LightingModel STANDARD draws with VTK's own lighting (times 2^Exposure) and needs no arrays.
+ * With the default APERTURE model, missing or wrongly sized arrays are an error (vtkErrorMacro
+ * once per render) and the mesh is drawn with VTK's standard lighting instead (documented
+ * fallback; never a shader compile failure). NaN arrays (nodata) give black points. A zero or
+ * non-finite sun direction is an error at the setter, which keeps the previous direction.
+ *
+ * @sa vtkApertureSolarPosition vtkApertureSkyVisibility vtkApertureTerrainMesh
  */
 #ifndef vtkApertureLightingMapper_h
 #define vtkApertureLightingMapper_h
 
 #include "ApertureRenderingModule.h" // for export macro
 #include "vtkOpenGLPolyDataMapper.h"
+
+#include <string> // for std::string
+
+class vtkDoubleArray;
+class vtkUnsignedCharArray;
 
 class APERTURERENDERING_EXPORT vtkApertureLightingMapper : public vtkOpenGLPolyDataMapper
 {
@@ -23,11 +51,101 @@ public:
   vtkTypeMacro(vtkApertureLightingMapper, vtkOpenGLPolyDataMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  enum LightingModels
+  {
+    STANDARD = 0,
+    APERTURE = 1
+  };
+  enum IntersectionModes
+  {
+    EXACT = 0,
+    SMOOTHSTEP = 1
+  };
+  enum LambertModes
+  {
+    CENTROID = 0,
+    EXACT_CAP = 1
+  };
+
   ///@{
-  /** Exposure in EV: the lit colour is scaled by 2^Exposure. Default 0; range [-20, 20]. */
-  vtkSetClampMacro(Exposure, double, -20.0, 20.0);
-  vtkGetMacro(Exposure, double);
+  /** APERTURE (default) or STANDARD (VTK's lighting, times 2^Exposure). Rebuilds shaders. */
+  vtkSetClampMacro(LightingModel, int, STANDARD, APERTURE);
+  vtkGetMacro(LightingModel, int);
   ///@}
+
+  ///@{
+  /** Point arrays read by the APERTURE model (defaults "Normals", "BentNormal",
+   *  "ApertureRadius"). Changing them re-uploads the geometry. */
+  void SetNormalArrayName(const char* name);
+  void SetBentNormalArrayName(const char* name);
+  void SetApertureRadiusArrayName(const char* name);
+  const char* GetNormalArrayName() const { return this->NormalName.c_str(); }
+  const char* GetBentNormalArrayName() const { return this->BentName.c_str(); }
+  const char* GetApertureRadiusArrayName() const { return this->RadiusName.c_str(); }
+  ///@}
+
+  ///@{
+  /**
+   * The sun: direction (towards it, any length > 0, normalised; in the mesh frame: see
+   * vtkApertureSolarPosition::GetDirection), apparent angular radius in degrees (default
+   * 0.26667, SPA's mean), a scale widening it into a soft area light (default 1; the widened
+   * radius is clamped to 90°), and its irradiance normal to the beam in W/m² per RGB channel
+   * (default 1000, 1000, 1000). A zero or non-finite direction is refused (vtkErrorMacro).
+   */
+  void SetSunDirection(double x, double y, double z);
+  void SetSunDirection(const double d[3]) { this->SetSunDirection(d[0], d[1], d[2]); }
+  vtkGetVector3Macro(SunDirection, double);
+  void SetSunAngularRadius(double degrees);
+  double GetSunAngularRadius() const { return this->SunAngularRadius; }
+  void SetSunScale(double scale);
+  double GetSunScale() const { return this->SunScale; }
+  void SetSunIrradiance(double r, double g, double b);
+  vtkGetVector3Macro(SunIrradiance, double);
+  ///@}
+
+  /** Uniform sky radiance filling the aperture, W/m²/sr per RGB channel (default 30, 35, 45). */
+  void SetSkyRadiance(double r, double g, double b);
+  vtkGetVector3Macro(SkyRadiance, double);
+
+  ///@{
+  /** EXACT (default) or SMOOTHSTEP cap intersection; CENTROID (default) or EXACT_CAP Lambert. */
+  void SetIntersectionMode(int mode);
+  int GetIntersectionMode() const { return this->IntersectionMode; }
+  void SetLambertMode(int mode);
+  int GetLambertMode() const { return this->LambertMode; }
+  ///@}
+
+  ///@{
+  /**
+   * Exposure in EV: the radiance is scaled by 2^Exposure before tone mapping (default 0;
+   * clamped to [-30, 30]; negative values darken, as on a camera). Tone mapping on (default):
+   * 1 − exp(−x) then sRGB encoding, for 8-bit display; off: the exposed linear value (clipped
+   * at 1 by an 8-bit framebuffer).
+   */
+  void SetExposure(double ev);
+  double GetExposure() const { return this->Exposure; }
+  void SetToneMapping(bool on);
+  bool GetToneMapping() const { return this->ToneMapping; }
+  ///@}
+
+  /**
+   * The CPU reference of the APERTURE model (ap_light.h, double precision) with this mapper's
+   * current parameters, at every point of `mesh` (which needs the three arrays) for a constant
+   * albedo (RGB in [0, 1]): the outgoing radiance (W/m²/sr, 3 components, NaN at nodata) into
+   * `radiance` and the displayed 8-bit colour (exposure, tone mapping, sRGB as the shader;
+   * black at nodata) into `display`; either may be nullptr. False (GetInputProblem() says
+   * why) if the arrays are missing or wrongly sized.
+   */
+  bool ComputeReference(
+    vtkPolyData* mesh, const double albedo[3], vtkDoubleArray* radiance, vtkUnsignedCharArray* display);
+
+  /** How many times the geometry (vertex buffers) has been uploaded to the GPU. */
+  int GetGeometryUploads() const { return this->GeometryUploads; }
+
+  /** Why the last check of the input failed ("" when the arrays are usable). */
+  const char* GetInputProblem() const { return this->InputProblem.c_str(); }
+
+  void RenderPiece(vtkRenderer* ren, vtkActor* act) override;
 
 protected:
   vtkApertureLightingMapper();
@@ -36,8 +154,29 @@ protected:
   void ReplaceShaderValues(
     std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act) override;
   void SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
+  void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
 
-  double Exposure;
+  /** True when `mesh` (default: the input) has the APERTURE model's arrays; else
+   *  InputProblem says why. */
+  bool CheckInput(vtkPolyData* mesh = nullptr);
+  void MapArrays();
+
+  int LightingModel = APERTURE;
+  std::string NormalName = "Normals";
+  std::string BentName = "BentNormal";
+  std::string RadiusName = "ApertureRadius";
+  double SunDirection[3] = { 0.0, 0.0, 1.0 };
+  double SunAngularRadius = 0.26667;
+  double SunScale = 1.0;
+  double SunIrradiance[3] = { 1000.0, 1000.0, 1000.0 };
+  double SkyRadiance[3] = { 30.0, 35.0, 45.0 };
+  int IntersectionMode = EXACT;
+  int LambertMode = CENTROID;
+  double Exposure = 0.0;
+  bool ToneMapping = true;
+  int GeometryUploads = 0;
+  std::string InputProblem;
+  bool UsingAperture = false; // the shaders in use were built for the APERTURE model
 
 private:
   vtkApertureLightingMapper(const vtkApertureLightingMapper&) = delete;

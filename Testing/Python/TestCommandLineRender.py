@@ -41,7 +41,11 @@ class TestCommandLineRender(unittest.TestCase):
 
     def test_bad_options(self):
         with tempfile.TemporaryDirectory() as tmp:
-            for args, expected in ((("--light-el", "95"), "--light-el must be within"),
+            for args, expected in ((("--light-el", "95"), "--sun-el must be within"),
+                                   (("--sun-scale", "0"), "--sun-scale must be"),
+                                   (("--at", "2026-06-21T12:00Z", "--sun-az", "10"), "not both"),
+                                   (("--albedo", "/nonexistent.png"), "does not exist"),
+                                   (("--baked", "/nonexistent.tif"), "cannot read the baked"),
                                    (("--exaggeration", "-1"), "--exaggeration must be within"),
                                    (("-o", os.path.join(tmp, "no", "x.png")), "does not exist")):
                 status, stdout, stderr = run("render", *args)

@@ -172,8 +172,66 @@ def _parse_size(text):
     return w, h
 
 
+def _attach_baked(image, path, watcher):
+    """Put BentNormal and ApertureRadius (radians) from a GeoTIFF of `aperture bake` onto the
+    DEM image; the two grids must be the same."""
+    import numpy as np
+    from osgeo import gdal
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    gdal.UseExceptions()
+    try:
+        ds = gdal.Open(path)
+    except RuntimeError as e:
+        raise ApertureError("cannot read the baked file %s: %s" % (path, e))
+    bands = {ds.GetRasterBand(b).GetDescription(): b for b in range(1, ds.RasterCount + 1)}
+    need = ["BentNormal_E", "BentNormal_N", "BentNormal_U", "ApertureRadius"]
+    missing = [n for n in need if n not in bands]
+    if missing:
+        raise ApertureError("%s has no band %s: bake it with 'aperture bake' and its default "
+                            "products" % (path, ", ".join(missing)))
+    nx, ny, _ = image.GetDimensions()
+    if (ds.RasterXSize, ds.RasterYSize) != (nx, ny):
+        raise ApertureError("%s is %d x %d cells, the DEM %d x %d: bake this DEM"
+                            % (path, ds.RasterXSize, ds.RasterYSize, nx, ny))
+    # file rows run north to south, image rows south to north
+    read = lambda name: ds.GetRasterBand(bands[name]).ReadAsArray().astype(np.float32)[::-1]
+    bent = np.stack([read("BentNormal_E"), read("BentNormal_N"), read("BentNormal_U")], -1)
+    radius = np.radians(read("ApertureRadius")).astype(np.float32)
+    for name, values in (("BentNormal", bent.reshape(-1, 3)), ("ApertureRadius", radius.ravel())):
+        array = numpy_to_vtk(np.ascontiguousarray(values), deep=1)
+        array.SetName(name)
+        image.GetPointData().AddArray(array)
+    ds = None
+
+
+def _render_sun(args, image, watcher):
+    """A computed vtkApertureSolarPosition for --at/--tz, or for --sun-az/--sun-el."""
+    from aperture import vtkApertureSolarPosition
+    sun = watcher.watch(vtkApertureSolarPosition())
+    if not sun.SetPlaceFromImage(image):
+        raise ApertureError(sun.GetErrorMessage())
+    sun.SetTurbidity(args.turbidity)
+    sun.SetLinkeTurbidity(args.linke_turbidity)
+    if args.at:
+        if args.sun_az is not None or args.sun_el is not None:
+            raise ApertureError("give either --at or --sun-az/--sun-el, not both")
+        if args.tz and not sun.SetTimeZone(args.tz):
+            raise ApertureError(sun.GetErrorMessage())
+        if not sun.SetTime(args.at) or not sun.Compute():
+            raise ApertureError(sun.GetErrorMessage())
+    else:
+        az = 225.0 if args.sun_az is None else args.sun_az
+        el = 35.0 if args.sun_el is None else args.sun_el
+        if not (-90.0 <= el <= 90.0) or not math.isfinite(az):
+            raise ApertureError("--sun-el must be within [-90, 90] degrees (and --sun-az finite)")
+        if not sun.ComputeForDirection(az, el):
+            raise ApertureError(sun.GetErrorMessage())
+    watcher.errors.clear()
+    return sun
+
+
 def cmd_render(args):
-    from aperture import vtkApertureTerrainMesh
+    from aperture import vtkApertureSkyVisibility, vtkApertureTerrainMesh
     from aperture import scene
 
     if not os.environ.get("DISPLAY"):
@@ -181,26 +239,68 @@ def cmd_render(args):
                             "run under xvfb-run -a")
     if not (0.0 <= args.exaggeration <= 1000.0):
         raise ApertureError("--exaggeration must be within [0, 1000]")
-    if not (-90.0 <= args.light_el <= 90.0) or not math.isfinite(args.light_az):
-        raise ApertureError("--light-el must be within [-90, 90] degrees")
+    if not (args.sun_scale > 0 and math.isfinite(args.sun_scale)):
+        raise ApertureError("--sun-scale must be a positive factor")
+    if args.exposure is not None and not math.isfinite(args.exposure):
+        raise ApertureError("--exposure must be a number of EV")
     out_dir = os.path.dirname(os.path.abspath(args.output))
     if not os.path.isdir(out_dir):
         raise ApertureError("the output folder %s does not exist" % out_dir)
+    if args.albedo and not os.path.isfile(args.albedo):
+        raise ApertureError("the albedo image %s does not exist" % args.albedo)
     watcher = Watcher(on_warning=_warn)
     reader, image = read_dem(args, watcher)
+    sun = _render_sun(args, image, watcher)
+
+    if args.lighting == "aperture":
+        if args.baked:
+            _attach_baked(image, args.baked, watcher)
+            source = image
+        else:
+            sky = watcher.watch(vtkApertureSkyVisibility())
+            sky.SetInputData(image)
+            for name in DERIVED + ["HorizonAngles"]:
+                getattr(sky, "SetCompute" + name)(name in ("BentNormal", "ApertureRadius"))
+            source = watcher.update(sky, "bake")
+    else:
+        source = image
     mesher = watcher.watch(vtkApertureTerrainMesh())
-    mesher.SetInputData(image)
+    mesher.SetInputData(source)
     mesher.SetVerticalExaggeration(args.exaggeration)
     mesh = watcher.update(mesher, "meshing")
-    window, _ = scene.build(mesh, size=args.size, view=args.view, light_azimuth=args.light_az,
-                            light_elevation=args.light_el)
+
+    texture = None
+    if args.albedo:
+        from vtkmodules.vtkIOImage import vtkImageReader2Factory
+        from vtkmodules.vtkRenderingCore import vtkTexture
+        image_reader = vtkImageReader2Factory.CreateImageReader2(args.albedo)
+        if image_reader is None:
+            raise ApertureError("cannot read the albedo image %s (PNG, JPEG, TIFF, BMP)"
+                                % args.albedo)
+        image_reader.SetFileName(args.albedo)
+        image_reader.Update()
+        texture = vtkTexture()
+        texture.SetInputConnection(image_reader.GetOutputPort())
+        texture.InterpolateOn()
+    if args.lighting == "aperture":
+        window, _, mapper = scene.build_aperture(
+            mesh, sun, size=args.size, view=args.view, sun_scale=args.sun_scale,
+            intersection=args.intersection, lambert=args.lambert, exposure=args.exposure,
+            texture=texture)
+        exposure = mapper.GetExposure()
+    else:
+        window, _ = scene.build(mesh, size=args.size, view=args.view,
+                                light_azimuth=sun.GetAzimuth(),
+                                light_elevation=sun.GetElevation(), exposure=args.exposure or 0.0)
+        exposure = args.exposure or 0.0
     try:
         path = scene.write_png(window, args.output)
     except OSError as e:
         raise ApertureError(str(e))
-    print("wrote %s (%d x %d, %s view)" % (path, args.size[0], args.size[1], args.view))
+    print("wrote %s (%d x %d, %s view, sun azimuth %.2f, elevation %.2f deg, exposure %.2f EV)"
+          % (path, args.size[0], args.size[1], args.view, sun.GetAzimuth(), sun.GetElevation(),
+             exposure))
     return 0
-
 
 
 # ---------------------------------------------------------------------------------------------
@@ -577,6 +677,15 @@ def cmd_sun(args):
 # ---------------------------------------------------------------------------------------------
 
 
+def _add_atmosphere_options(p):
+    p.add_argument("--turbidity", type=float, default=3.0, metavar="T",
+                   help="Preetham turbidity for the sun's colour and the Preetham sky, 2..10 "
+                        "(default 3)")
+    p.add_argument("--linke-turbidity", type=float, default=3.0, metavar="TL",
+                   help="Linke turbidity for the direct beam's strength (ESRA), 1..8 "
+                        "(default 3)")
+
+
 def build_parser():
     from aperture import __version__
     parser = argparse.ArgumentParser(
@@ -650,11 +759,7 @@ def build_parser():
                    help="report geometric elevations as the apparent ones")
     p.add_argument("--sky", choices=sorted(SKY_MODELS), default="preetham",
                    help="sky radiance model (default preetham)")
-    p.add_argument("--turbidity", type=float, default=3.0, metavar="T",
-                   help="Preetham turbidity for the sun's colour and the Preetham sky, 2..10 "
-                        "(default 3)")
-    p.add_argument("--linke-turbidity", type=float, default=3.0, metavar="TL",
-                   help="Linke turbidity for the direct beam (ESRA), 1..8 (default 3)")
+    _add_atmosphere_options(p)
     p.add_argument("--delta-t", type=float, metavar="S",
                    help="TT - UT1 in seconds (default: estimated for the date)")
     p.add_argument("--days", type=int, metavar="N",
@@ -668,23 +773,49 @@ def build_parser():
                         "transit, sunset and, with --dem, grid_azimuth_deg, direction_enu")
     p.set_defaults(func=cmd_sun, band=0, srcwin=None, overview=-1, decimate=1, srs=None)
 
-    p = sub.add_parser("render", help="render the DEM to a PNG (VTK lighting for now)",
+    p = sub.add_parser("render", help="render the DEM lit by the sun and sky, to a PNG",
                        description="Render the DEM as a terrain mesh coloured by elevation and "
-                                   "lit by a directional light, to a PNG. Needs an X display "
-                                   "(xvfb-run -a aperture render ...).")
+                                   "lit by the sun and the sky through each point's aperture "
+                                   "(baked here, or read from 'aperture bake' output with "
+                                   "--baked), to a PNG. The sun is placed by time (--at, --tz: "
+                                   "its position, colour and strength for the DEM's centre) or "
+                                   "by --sun-az/--sun-el. Needs an X display (xvfb-run -a "
+                                   "aperture render ...).")
     _add_read_options(p)
     p.add_argument("-o", "--output", default="aperture.png", metavar="OUT.png",
                    help="PNG to write (default: aperture.png)")
+    p.add_argument("--baked", metavar="BAKED.tif",
+                   help="reuse the BentNormal and ApertureRadius bands of 'aperture bake' "
+                        "output for this DEM instead of baking")
+    p.add_argument("--at", metavar="ISO", help="time of the sun, as for 'aperture sun'")
+    p.add_argument("--tz", metavar="ZONE", help="IANA time zone for a local --at")
+    p.add_argument("--sun-az", "--light-az", dest="sun_az", type=float, metavar="DEG",
+                   help="sun azimuth, clockwise from true north (default 225 without --at)")
+    p.add_argument("--sun-el", "--light-el", dest="sun_el", type=float, metavar="DEG",
+                   help="sun elevation (default 35 without --at)")
     p.add_argument("--size", type=_parse_size, default=(1200, 900), metavar="WxH",
                    help="image size in pixels (default 1200x900)")
     p.add_argument("--view", choices=("oblique", "top"), default="oblique",
                    help="oblique from the south (default) or top-down with north up")
     p.add_argument("--exaggeration", type=float, default=1.0, metavar="X",
                    help="vertical exaggeration (default 1)")
-    p.add_argument("--light-az", type=float, default=315.0, metavar="DEG",
-                   help="light azimuth, clockwise from north (default 315)")
-    p.add_argument("--light-el", type=float, default=45.0, metavar="DEG",
-                   help="light elevation above the horizon (default 45)")
+    p.add_argument("--intersection", choices=("exact", "smoothstep"), default="exact",
+                   help="sun-aperture cap intersection: exact closed form (default) or Oat & "
+                        "Sander's smoothstep")
+    p.add_argument("--lambert", choices=("centroid", "exactcap"), default="centroid",
+                   help="Lambert term: intersection centroid (default) or the exact sun cap")
+    p.add_argument("--sun-scale", type=float, default=1.0, metavar="S",
+                   help="widen the sun's disc S times: softer, broader penumbrae (default 1)")
+    p.add_argument("--exposure", type=float, metavar="EV",
+                   help="exposure in EV (default: automatic, a flat open white surface in the "
+                        "sun at about 80%% grey)")
+    _add_atmosphere_options(p)
+    p.add_argument("--albedo", metavar="IMAGE",
+                   help="an image (e.g. an orthophoto, PNG/JPEG/TIFF) draped over the whole "
+                        "DEM as its albedo, instead of the elevation colours")
+    p.add_argument("--lighting", choices=("aperture", "standard"), default="aperture",
+                   help="aperture: sun and sky through the aperture (default); standard: VTK's "
+                        "lighting with a light from the sun's direction")
     p.set_defaults(func=cmd_render)
     return parser
 

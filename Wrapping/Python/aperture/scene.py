@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""Terrain scenes for pictures: a DEM mesh coloured by elevation, lit by one directional
-"sun" light with VTK's standard lighting, framed top-down (north up) or obliquely from the
-south. Used by `aperture render` and the rendering regression test.
+"""Terrain scenes for pictures: a DEM mesh coloured by elevation, lit either by the sun and
+the sky through each point's aperture (vtkApertureLightingMapper, `build_aperture`) or by one
+directional light with VTK's standard lighting (`build`), framed top-down (north up) or
+obliquely from the south. Used by `aperture render` and the rendering regression tests.
 
 Frames: the mesh is in the local East-North-Up frame of vtkApertureTerrainMesh (x east,
 y north, z up, metres). Light azimuth is clockwise from north in that frame, elevation above
@@ -64,6 +65,7 @@ def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_ele
     zmin, zmax = elevation_range(mesh)
 
     mapper = vtkApertureLightingMapper()
+    mapper.SetLightingModel(vtkApertureLightingMapper.STANDARD)  # VTK lighting + exposure
     mapper.SetInputData(mesh)
     mapper.SetLookupTable(hypsometric_colors(zmin, zmax))
     mapper.SetScalarModeToUsePointFieldData()
@@ -92,13 +94,89 @@ def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_ele
     light.SetIntensity(1.0)
     renderer.AddLight(light)
 
+    return offscreen_window(renderer, mesh, view, size, multisamples), renderer
+
+
+def offscreen_window(renderer, mesh, view, size, multisamples):
+    """An off-screen render window of `size` showing `renderer`, framed for `view`."""
     window = vtkRenderWindow()
     window.SetOffScreenRendering(1)
     window.SetSize(int(size[0]), int(size[1]))
     window.SetMultiSamples(int(multisamples))
     window.AddRenderer(renderer)
     frame(renderer, mesh, view, size)
-    return window, renderer
+    return window
+
+
+def luminance(rgb):
+    """Rec.709 luminance of linear RGB."""
+    return 0.2126390059 * rgb[0] + 0.7151686788 * rgb[1] + 0.0721923154 * rgb[2]
+
+
+def sky_radiance(sun):
+    """The uniform sky radiance (W/m2/sr, RGB) that gives the sun's sky model's irradiance on a
+    horizontal surface: the model's cosine-weighted hemisphere integral divided by pi."""
+    mean, irradiance = [0.0] * 3, [0.0] * 3
+    if not sun.GetSkyCap([0.0, 0.0, 1.0], 90.0, [0.0, 0.0, 1.0], mean, irradiance):
+        raise ValueError(sun.GetErrorMessage())
+    return [v / math.pi for v in irradiance]
+
+
+def auto_exposure(sun_rgb, sun_elevation, sky_rgb):
+    """EV that maps a flat, open, white (albedo 0.8) surface to x = 1 before tone mapping (0.63,
+    about 209 of 255 on screen): 2^EV = 1 / L, L = 0.8 (E_sun sin e + pi L_sky) / pi, with the
+    sun's elevation counted at 12 degrees at least so that low suns are not over-exposed."""
+    e = math.radians(max(sun_elevation, 12.0))
+    radiance = 0.8 * (luminance(sun_rgb) * math.sin(e) + math.pi * luminance(sky_rgb)) / math.pi
+    return -math.log2(max(radiance, 1e-6))
+
+
+def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
+                   intersection="exact", lambert="centroid", exposure=None, texture=None,
+                   multisamples=8, background=(1.0, 1.0, 1.0), sky=None):
+    """A render window showing the mesh lit by the sun and sky of `sun` (a computed
+    vtkApertureSolarPosition) through each point's aperture. The mesh needs the Normals,
+    BentNormal and ApertureRadius point arrays (bake, then mesh). Albedo: the elevation
+    colours, or `texture` (a vtkTexture draped by the mesh's TextureCoordinates). Exposure in
+    EV, None: auto_exposure. Returns (render_window, renderer, mapper)."""
+    if view not in VIEWS:
+        raise ValueError("view must be one of %s, not %r" % (", ".join(VIEWS), view))
+    zmin, zmax = elevation_range(mesh)
+    direction = [0.0] * 3
+    sun.GetDirection(direction)
+    sun_rgb = [0.0] * 3
+    sun.GetSunColor(sun_rgb)
+    sky_rgb = list(sky) if sky is not None else sky_radiance(sun)
+
+    mapper = vtkApertureLightingMapper()
+    mapper.SetInputData(mesh)
+    mapper.SetSunDirection(direction)
+    mapper.SetSunAngularRadius(sun.GetAngularRadius())
+    mapper.SetSunScale(sun_scale)
+    mapper.SetSunIrradiance(*sun_rgb)
+    mapper.SetSkyRadiance(*sky_rgb)
+    mapper.SetIntersectionMode(mapper.SMOOTHSTEP if intersection == "smoothstep" else mapper.EXACT)
+    mapper.SetLambertMode(mapper.EXACT_CAP if lambert == "exactcap" else mapper.CENTROID)
+    if exposure is None:
+        exposure = auto_exposure(sun_rgb, sun.GetElevation(), sky_rgb)
+    mapper.SetExposure(exposure)
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    if texture is not None:
+        mapper.ScalarVisibilityOff()
+        actor.SetTexture(texture)
+        actor.GetProperty().SetColor(1.0, 1.0, 1.0)
+    else:
+        mapper.SetLookupTable(hypsometric_colors(zmin, zmax))
+        mapper.SetScalarModeToUsePointFieldData()
+        mapper.SelectColorArray("Elevation")
+        mapper.SetScalarRange(zmin, zmax)
+        mapper.ScalarVisibilityOn()
+
+    renderer = vtkRenderer()
+    renderer.AddActor(actor)
+    renderer.SetBackground(*background)
+    return offscreen_window(renderer, mesh, view, size, multisamples), renderer, mapper
 
 
 def frame(renderer, mesh, view, size):
