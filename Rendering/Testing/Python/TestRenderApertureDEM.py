@@ -1,0 +1,173 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Regression images of the embedded DEM lit by vtkApertureLightingMapper (aperture.scene, the
+code `aperture render` uses), each baseline looked at before it was committed, plus checks
+that need no baseline:
+
+- summer midday (2026-06-21 13:40 EDT) is brighter than a low winter evening sun
+  (2026-12-21 16:15 EST), and in the evening the slopes facing the sun (south-west) are
+  brighter than those facing away;
+- smoothstep and exact intersections give nearly the same picture (mean within 3%) but not the
+  same pixels;
+- a widened sun (x20) softens the evening's shadow edges: less local contrast;
+- sky only (sun below the horizon): no directional light, so sun-facing and opposite slopes
+  are alike, and valleys are darker than ridges;
+- an albedo texture (stripes) shows through the lighting.
+
+Set APERTURE_WRITE_IMAGES=folder to write the rendered images there (for new baselines).
+"""
+import math
+import os
+import sys
+
+import numpy as np
+from vtkmodules.test import Testing
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkRenderingCore import vtkTexture, vtkWindowToImageFilter
+from vtkmodules.vtkIOImage import vtkPNGWriter
+
+import aperture
+from aperture import scene
+
+SIZE = (320, 220)
+_MESH = {}
+
+
+def mesh_and_dem():
+    if not _MESH:
+        reader = aperture.vtkApertureDEMReader()
+        reader.SetFileName(aperture.default_dem())
+        sky = aperture.vtkApertureSkyVisibility()
+        sky.SetInputConnection(reader.GetOutputPort())
+        mesher = aperture.vtkApertureTerrainMesh()
+        mesher.SetInputConnection(sky.GetOutputPort())
+        mesher.SetVerticalExaggeration(2.0)
+        mesher.Update()
+        _MESH["mesh"], _MESH["dem"] = mesher.GetOutput(), reader.GetOutput()
+    return _MESH["mesh"], _MESH["dem"]
+
+
+def sun_at(when=None, direction=None):
+    _, dem = mesh_and_dem()
+    sun = aperture.vtkApertureSolarPosition()
+    assert sun.SetPlaceFromImage(dem)
+    if when:
+        assert sun.SetTime(when) and sun.Compute(), sun.GetErrorMessage()
+    else:
+        assert sun.ComputeForDirection(*direction)
+    return sun
+
+
+def render(name, sun, **options):
+    mesh, _ = mesh_and_dem()
+    window, renderer, mapper = scene.build_aperture(mesh, sun, size=SIZE, multisamples=0,
+                                                    **options)
+    window.Render()
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(window)
+    grab.SetInputBufferTypeToRGB()
+    grab.ReadFrontBufferOff()
+    grab.Update()
+    folder = os.environ.get("APERTURE_WRITE_IMAGES")
+    if folder:
+        writer = vtkPNGWriter()
+        writer.SetFileName(os.path.join(folder, name + ".png"))
+        writer.SetInputConnection(grab.GetOutputPort())
+        writer.Write()
+    rgb = vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars()).reshape(SIZE[1], SIZE[0], 3)
+    return window, renderer, rgb[::-1].astype(float)  # row 0 at the top
+
+
+def terrain(rgb):
+    """Pixels of the terrain (not the white background)."""
+    return rgb[rgb.sum(axis=2) < 750]
+
+
+def aspect_means(renderer, rgb, mesh):
+    """Mean luminance of south-west-facing and north-east-facing terrain pixels (by the mesh
+    normal at the vertex projected into each pixel)."""
+    normals = vtk_to_numpy(mesh.GetPointData().GetArray("Normals"))
+    sw, ne = [], []
+    for k in range(0, mesh.GetNumberOfPoints(), 7):
+        n = normals[k]
+        if n[2] > 0.97:
+            continue  # flat
+        facing = (n[0] * -0.707 + n[1] * -0.707) / math.hypot(n[0], n[1])
+        p = mesh.GetPoint(k)
+        renderer.SetWorldPoint(p[0], p[1], p[2], 1.0)
+        renderer.WorldToDisplay()
+        x, y, _ = renderer.GetDisplayPoint()
+        i, j = int(round(x)), SIZE[1] - 1 - int(round(y))
+        if 0 <= i < SIZE[0] and 0 <= j < SIZE[1]:
+            value = rgb[j, i].mean()
+            (sw if facing > 0.7 else ne if facing < -0.7 else []).append(value)
+    return np.mean(sw), np.mean(ne)
+
+
+def local_contrast(rgb):
+    g = rgb.mean(axis=2)
+    return np.abs(np.diff(g, axis=1))[g[:, 1:] < 250].mean()
+
+
+class TestRenderApertureDEM(Testing.vtkTest):
+    def compare(self, window, name):
+        if os.environ.get("APERTURE_WRITE_IMAGES"):
+            return  # writing new candidate baselines: nothing to compare with
+        Testing.compareImage(window, Testing.getAbsImagePath(name + ".png"))
+
+    def testSummerAndWinter(self):
+        mesh, _ = mesh_and_dem()
+        summer = sun_at("2026-06-21T13:40-04:00")
+        winter = sun_at("2026-12-21T16:15-05:00")
+        self.assertGreater(summer.GetElevation(), 70)
+        self.assertTrue(5 < winter.GetElevation() < 12, winter.GetElevation())
+        ws, _, s_rgb = render("TestApertureSummerMidday", summer)
+        self.compare(ws, "TestApertureSummerMidday")
+        ww, wren, w_rgb = render("TestApertureWinterEvening", winter)
+        self.compare(ww, "TestApertureWinterEvening")
+        # both auto-exposed, yet the low sun leaves most slopes in shade
+        self.assertGreater(terrain(s_rgb).std(axis=0).mean(), 1.0)
+        sw, ne = aspect_means(wren, w_rgb, mesh)
+        self.assertGreater(sw, ne + 20, (sw, ne))
+
+    def testSmoothstepAndWideSun(self):
+        winter = sun_at("2026-12-21T16:15-05:00")
+        _, _, exact = render("exact", winter)
+        ws, _, smooth = render("TestApertureSmoothstep", winter, intersection="smoothstep")
+        self.compare(ws, "TestApertureSmoothstep")
+        self.assertAlmostEqual(terrain(smooth).mean() / terrain(exact).mean(), 1.0, delta=0.03)
+        self.assertGreater(np.abs(smooth - exact).max(), 5)
+        ww, _, wide = render("TestApertureWideSun", winter, sun_scale=20.0)
+        self.compare(ww, "TestApertureWideSun")
+        self.assertLess(local_contrast(wide), local_contrast(exact))
+
+    def testSkyOnly(self):
+        mesh, _ = mesh_and_dem()
+        below = sun_at(direction=(225.0, -5.0))
+        window, renderer, rgb = render("TestApertureSkyOnly", below, sky=(40.0, 46.0, 58.0),
+                                       exposure=-5.5)
+        self.compare(window, "TestApertureSkyOnly")
+        sw, ne = aspect_means(renderer, rgb, mesh)
+        self.assertLess(abs(sw - ne), 6, (sw, ne))
+        self.assertGreater(terrain(rgb).mean(), 40)
+
+    def testAlbedoTexture(self):
+        # Stripes of albedo 0.2 and 0.8 running north-south, eight across the DEM.
+        stripes = np.tile(np.where((np.arange(256) // 32) % 2 == 0, 50, 205).astype(np.uint8),
+                          (256, 1))
+        image = vtkImageData()
+        image.SetDimensions(256, 256, 1)
+        data = numpy_to_vtk(np.repeat(stripes.ravel()[:, None], 3, axis=1), deep=1)
+        image.GetPointData().SetScalars(data)
+        texture = vtkTexture()
+        texture.SetInputData(image)
+        winter = sun_at("2026-12-21T12:30-05:00")
+        window, _, rgb = render("TestApertureAlbedo", winter, texture=texture)
+        self.compare(window, "TestApertureAlbedo")
+        # the stripes show: the picture's columns alternate dark and light
+        columns = rgb[SIZE[1] // 2 - 20:SIZE[1] // 2 + 20].mean(axis=(0, 2))
+        self.assertGreater(columns.max() - columns.min(), 80)
+
+
+if __name__ == "__main__":
+    Testing.main([(TestRenderApertureDEM, "test")])
