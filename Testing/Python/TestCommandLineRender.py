@@ -2,6 +2,7 @@
 """`aperture render` end to end (runs under Xvfb): a PNG of the requested size that is not
 blank, for both views, and one-line errors for bad options."""
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -38,6 +39,49 @@ class TestCommandLineRender(unittest.TestCase):
                 # Terrain, not an empty background: many distinct shades, mostly non-white.
                 self.assertGreater(rgb.std(), 20.0)
                 self.assertGreater((rgb.sum(axis=1) < 700).mean(), 0.3)
+
+    def test_exr(self):
+        # The linear radiance in the EXR, exposed and tone mapped as the shader does, gives the
+        # PNG's pixels: the two come from the same lighting (the EXR unclamped, in W/m2/sr).
+        import re
+        import numpy as np
+        import aperture
+        with tempfile.TemporaryDirectory() as tmp:
+            png, exr = os.path.join(tmp, "a.png"), os.path.join(tmp, "a.exr")
+            status, stdout, stderr = run("render", "-o", png, "--exr", exr, "--size", "240x160",
+                                         "--at", "2026-12-21T15:30", "--tz", "America/New_York",
+                                         "--view", "top", "--multisamples", "0")
+            self.assertEqual(status, 0, stderr)
+            self.assertIn("wrote " + exr, stdout)
+            reader = aperture.vtkApertureEXRReader()
+            reader.SetFileName(exr)
+            reader.Update()
+            # the display exposure, recorded in the EXR to 9 decimals (stdout rounds to 2)
+            ev = float(reader.GetMetadataValue("aperture:display_exposure_ev"))
+            self.assertAlmostEqual(ev, float(re.search(r"exposure (-?[0-9.]+) EV",
+                                                       stdout).group(1)), delta=0.006)
+            self.assertIn("W/m^2/sr", reader.GetMetadataValue("aperture:quantity"))
+            image = reader.GetOutput()
+            self.assertEqual(image.GetDimensions()[:2], (240, 160))
+            rgba = vtk_to_numpy(image.GetPointData().GetArray("RGBA")).reshape(160, 240, 4)
+            if shutil.which("exrheader"):  # OpenEXR's own tool (Debian package openexr)
+                header = subprocess.run(["exrheader", exr], capture_output=True, text=True)
+                self.assertEqual(header.returncode, 0, header.stderr)
+                self.assertIn("R, 32-bit floating-point", header.stdout)
+            png_reader = vtkPNGReader()
+            png_reader.SetFileName(png)
+            png_reader.Update()
+            shown = vtk_to_numpy(png_reader.GetOutput().GetPointData().GetScalars())
+            shown = shown.reshape(160, 240, -1)[:, :, :3].astype(float)
+        terrain = rgba[:, :, :3].sum(axis=2) > 0
+        self.assertGreater(terrain.mean(), 0.3)
+        self.assertGreater(rgba[:, :, :3][terrain].max(), 1.0)  # radiance, not 8-bit colour
+        t = 1.0 - np.exp(-rgba[:, :, :3] * 2.0 ** ev)
+        srgb = np.where(t <= 0.0031308, 12.92 * t, 1.055 * np.power(t, 1 / 2.4) - 0.055)
+        diff = np.abs(np.round(255 * srgb) - shown)[terrain]
+        # one 8-bit level: float32 in the shader against float64 here, and the EXR's floats
+        self.assertLessEqual(diff.max(), 1.0)
+        self.assertGreater(np.mean(diff == 0), 0.95)
 
     def test_bad_options(self):
         with tempfile.TemporaryDirectory() as tmp:

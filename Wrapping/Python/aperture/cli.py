@@ -239,6 +239,8 @@ def cmd_render(args):
                             "run under xvfb-run -a")
     if not (0.0 <= args.exaggeration <= 1000.0):
         raise ApertureError("--exaggeration must be within [0, 1000]")
+    if not 0 <= args.multisamples <= 16:
+        raise ApertureError("--multisamples must be within 0..16")
     if not (args.sun_scale > 0 and math.isfinite(args.sun_scale)):
         raise ApertureError("--sun-scale must be a positive factor")
     if args.exposure is not None and not math.isfinite(args.exposure):
@@ -246,6 +248,8 @@ def cmd_render(args):
     out_dir = os.path.dirname(os.path.abspath(args.output))
     if not os.path.isdir(out_dir):
         raise ApertureError("the output folder %s does not exist" % out_dir)
+    if args.exr and not os.path.isdir(os.path.dirname(os.path.abspath(args.exr))):
+        raise ApertureError("the output folder of %s does not exist" % args.exr)
     if args.albedo and not os.path.isfile(args.albedo):
         raise ApertureError("the albedo image %s does not exist" % args.albedo)
     watcher = Watcher(on_warning=_warn)
@@ -286,12 +290,13 @@ def cmd_render(args):
         window, _, mapper = scene.build_aperture(
             mesh, sun, size=args.size, view=args.view, sun_scale=args.sun_scale,
             intersection=args.intersection, lambert=args.lambert, exposure=args.exposure,
-            texture=texture)
+            texture=texture, multisamples=args.multisamples)
         exposure = mapper.GetExposure()
     else:
         window, _ = scene.build(mesh, size=args.size, view=args.view,
                                 light_azimuth=sun.GetAzimuth(),
-                                light_elevation=sun.GetElevation(), exposure=args.exposure or 0.0)
+                                light_elevation=sun.GetElevation(), exposure=args.exposure or 0.0,
+                                multisamples=args.multisamples)
         exposure = args.exposure or 0.0
     try:
         path = scene.write_png(window, args.output)
@@ -300,7 +305,51 @@ def cmd_render(args):
     print("wrote %s (%d x %d, %s view, sun azimuth %.2f, elevation %.2f deg, exposure %.2f EV)"
           % (path, args.size[0], args.size[1], args.view, sun.GetAzimuth(), sun.GetElevation(),
              exposure))
+    if args.exr:
+        exr_path = _write_linear_exr(args, window, mapper if args.lighting == "aperture" else None,
+                                     sun, watcher)
+        print("wrote %s (linear radiance, W/m2/sr, %s)" % (exr_path, args.exr_type))
     return 0
+
+
+def _write_linear_exr(args, window, mapper, sun, watcher):
+    """The picture's linear radiance (no exposure, no tone mapping; W/m2/sr for the aperture
+    lighting) read back from a float framebuffer and written as an RGBA OpenEXR."""
+    from aperture import vtkApertureEXRWriter, vtkApertureLinearCapture
+    from aperture import __version__
+    renderer = window.GetRenderers().GetFirstRenderer()
+    background = renderer.GetBackground()
+    renderer.SetBackground(0.0, 0.0, 0.0)  # no radiance where there is no terrain
+    window.SetMultiSamples(0)
+    if mapper is not None:
+        saved = (mapper.GetExposure(), mapper.GetToneMapping())
+        mapper.SetExposure(0.0)
+        mapper.SetToneMapping(False)
+    image = vtkApertureLinearCapture().Capture(renderer)
+    if mapper is not None:
+        mapper.SetExposure(saved[0])
+        mapper.SetToneMapping(saved[1])
+    renderer.SetBackground(*background)
+    if image is None:
+        raise ApertureError("could not read the float framebuffer back for %s" % args.exr)
+    writer = watcher.watch(vtkApertureEXRWriter())
+    writer.SetInputData(image)
+    writer.SetFileName(args.exr)
+    writer.SetColorArrayName("Radiance")
+    writer.AddArrayName("Radiance")
+    if args.exr_type == "half":
+        writer.SetPixelTypeToHalf()
+    unit = "W/m^2/sr, linear Rec.709 RGB" if mapper is not None else "VTK lighting, linear"
+    for key, value in (("aperture:software", "aperture " + __version__),
+                       ("aperture:quantity", "outgoing radiance of the terrain, " + unit),
+                       ("aperture:sun_azimuth_deg", "%.6f" % sun.GetAzimuth()),
+                       ("aperture:sun_elevation_deg", "%.6f" % sun.GetElevation()),
+                       ("aperture:time_utc", sun.GetTimeString() if args.at else "n/a"),
+                       ("aperture:display_exposure_ev", "%.9f" % (
+                           mapper.GetExposure() if mapper is not None else 0.0))):
+        writer.AddMetadata(key, value)
+    watcher.write(writer, "writing %s" % args.exr)
+    return os.path.abspath(args.exr)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -813,6 +862,14 @@ def build_parser():
     p.add_argument("--albedo", metavar="IMAGE",
                    help="an image (e.g. an orthophoto, PNG/JPEG/TIFF) draped over the whole "
                         "DEM as its albedo, instead of the elevation colours")
+    p.add_argument("--exr", metavar="OUT.exr",
+                   help="also write the linear radiance (W/m2/sr, before exposure and tone "
+                        "mapping) as an RGBA OpenEXR read back from a float framebuffer")
+    p.add_argument("--exr-type", choices=("float", "half"), default="float",
+                   help="EXR sample type (default float)")
+    p.add_argument("--multisamples", type=int, default=8, metavar="N",
+                   help="antialiasing samples per pixel of the PNG, 0..16 (default 8; the EXR "
+                        "is always one sample per pixel)")
     p.add_argument("--lighting", choices=("aperture", "standard"), default="aperture",
                    help="aperture: sun and sky through the aperture (default); standard: VTK's "
                         "lighting with a light from the sun's direction")

@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkApertureLinearCapture.h"
+
+#include "vtkFloatArray.h"
+#include "vtkFramebufferPass.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkPixelBufferObject.h"
+#include "vtkPointData.h"
+#include "vtkRenderStepsPass.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+
+vtkStandardNewMacro(vtkApertureLinearCapture);
+
+//------------------------------------------------------------------------------
+vtkImageData* vtkApertureLinearCapture::Capture(vtkRenderer* renderer)
+{
+  auto* gl = vtkOpenGLRenderer::SafeDownCast(renderer);
+  auto* window = renderer ? vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow())
+                          : nullptr;
+  if (!gl || !window)
+  {
+    vtkErrorMacro(<< "Capture needs an OpenGL renderer in an OpenGL render window");
+    return nullptr;
+  }
+  vtkSmartPointer<vtkRenderPass> previous = gl->GetPass();
+  vtkNew<vtkRenderStepsPass> steps;
+  vtkNew<vtkFramebufferPass> framebuffer;
+  framebuffer->SetDelegatePass(steps);
+  framebuffer->SetColorFormat(vtkTextureObject::Float32);
+  gl->SetPass(framebuffer);
+  window->Render();
+
+  vtkImageData* image = nullptr;
+  vtkTextureObject* texture = framebuffer->GetColorTexture();
+  if (texture && texture->GetWidth() > 0 && texture->GetHeight() > 0)
+  {
+    window->MakeCurrent();
+    const unsigned int w = texture->GetWidth(), h = texture->GetHeight();
+    const int comps = texture->GetComponents();
+    vtkPixelBufferObject* pbo = texture->Download();
+    if (pbo && comps >= 3)
+    {
+      vtkNew<vtkFloatArray> pixels;
+      pixels->SetNumberOfComponents(comps);
+      pixels->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
+      unsigned int dims[2] = { w, h };
+      vtkIdType increments[2] = { 0, 0 };
+      if (pbo->Download2D(VTK_FLOAT, pixels->GetPointer(0), dims, comps, increments))
+      {
+        vtkNew<vtkFloatArray> rgba;
+        rgba->SetName("Radiance");
+        rgba->SetNumberOfComponents(4);
+        rgba->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
+        const char* names[4] = { "R", "G", "B", "A" };
+        for (int c = 0; c < 4; ++c)
+        {
+          rgba->SetComponentName(c, names[c]);
+        }
+        for (vtkIdType i = 0; i < static_cast<vtkIdType>(w) * h; ++i)
+        {
+          for (int c = 0; c < 4; ++c)
+          {
+            rgba->SetTypedComponent(i, c, c < comps ? pixels->GetTypedComponent(i, c) : 1.0f);
+          }
+        }
+        image = vtkImageData::New();
+        image->SetDimensions(static_cast<int>(w), static_cast<int>(h), 1);
+        image->GetPointData()->AddArray(rgba);
+        image->GetPointData()->SetActiveScalars("Radiance");
+      }
+    }
+    if (pbo)
+    {
+      pbo->Delete();
+    }
+  }
+  gl->SetPass(previous);
+  framebuffer->ReleaseGraphicsResources(window); // its FBO and textures, while the context lives
+  if (!image)
+  {
+    vtkErrorMacro(<< "could not read the float framebuffer back");
+  }
+  return image;
+}
+
+//------------------------------------------------------------------------------
+void vtkApertureLinearCapture::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+}
