@@ -99,6 +99,30 @@ class TestCommandLineRender(unittest.TestCase):
             status, _, stderr = run("render", "--size", "10x10")
             self.assertEqual(status, 2)
             self.assertIn("width and height must be within 16..16384", stderr)
+            for camera, expected in (("10", "expected AZ,EL"), ("0,2", "within 5..90"),
+                                     ("0,30,-1", "zoom must be positive")):
+                status, _, stderr = run("render", "--camera", camera)
+                self.assertEqual(status, 2, stderr)
+                self.assertIn(expected, stderr)
+
+    def test_camera(self):
+        # Looking from the north instead of the south turns the picture around: the bright
+        # south-west-facing mountains change sides.
+        halves = {}
+        with tempfile.TemporaryDirectory() as tmp:
+            for camera in ("180,35", "0,35"):
+                out = os.path.join(tmp, "c.png")
+                status, _, stderr = run("render", "-o", out, "--size", "200x120", "--camera",
+                                        camera, "--sun-az", "225", "--sun-el", "20")
+                self.assertEqual(status, 0, stderr)
+                reader = vtkPNGReader()
+                reader.SetFileName(out)
+                reader.Update()
+                rgb = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())
+                g = rgb.reshape(120, 200, -1)[:, :, :3].astype(float).mean(axis=2)
+                halves[camera] = (g[:, :100].mean(), g[:, 100:].mean())
+        self.assertNotAlmostEqual(halves["180,35"][0] - halves["180,35"][1],
+                                  halves["0,35"][0] - halves["0,35"][1], delta=3.0)
 
 
 if __name__ == "__main__":

@@ -290,13 +290,13 @@ def cmd_render(args):
         window, _, mapper = scene.build_aperture(
             mesh, sun, size=args.size, view=args.view, sun_scale=args.sun_scale,
             intersection=args.intersection, lambert=args.lambert, exposure=args.exposure,
-            texture=texture, multisamples=args.multisamples)
+            texture=texture, multisamples=args.multisamples, camera=args.camera)
         exposure = mapper.GetExposure()
     else:
         window, _ = scene.build(mesh, size=args.size, view=args.view,
                                 light_azimuth=sun.GetAzimuth(),
                                 light_elevation=sun.GetElevation(), exposure=args.exposure or 0.0,
-                                multisamples=args.multisamples)
+                                multisamples=args.multisamples, camera=args.camera)
         exposure = args.exposure or 0.0
     try:
         path = scene.write_png(window, args.output)
@@ -726,6 +726,20 @@ def cmd_sun(args):
 # ---------------------------------------------------------------------------------------------
 
 
+def _parse_camera(text):
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        values = []
+    if len(values) not in (2, 3) or not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError("expected AZ,EL or AZ,EL,ZOOM (degrees, degrees, factor)")
+    if not 5.0 <= values[1] <= 90.0:
+        raise argparse.ArgumentTypeError("the camera elevation must be within 5..90 degrees")
+    if len(values) == 3 and not values[2] > 0:
+        raise argparse.ArgumentTypeError("the zoom must be positive")
+    return tuple(values) if len(values) == 3 else (values[0], values[1], 1.0)
+
+
 def _add_atmosphere_options(p):
     p.add_argument("--turbidity", type=float, default=3.0, metavar="T",
                    help="Preetham turbidity for the sun's colour and the Preetham sky, 2..10 "
@@ -848,6 +862,10 @@ def build_parser():
                    help="oblique from the south (default) or top-down with north up")
     p.add_argument("--exaggeration", type=float, default=1.0, metavar="X",
                    help="vertical exaggeration (default 1)")
+    p.add_argument("--camera", type=_parse_camera, metavar="AZ,EL[,ZOOM]",
+                   help="oblique view: look from azimuth AZ (degrees from north; default 180, "
+                        "from the south) down at EL degrees (default 35), zoomed ZOOM times "
+                        "(default 1: the whole DEM fits); top view: only ZOOM is used")
     p.add_argument("--intersection", choices=("exact", "smoothstep"), default="exact",
                    help="sun-aperture cap intersection: exact closed form (default) or Oat & "
                         "Sander's smoothstep")

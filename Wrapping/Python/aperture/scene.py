@@ -55,7 +55,7 @@ def elevation_range(mesh, name="Elevation"):
 
 
 def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_elevation=45.0,
-          exposure=0.0, multisamples=8, background=(1.0, 1.0, 1.0)):
+          exposure=0.0, multisamples=8, background=(1.0, 1.0, 1.0), camera=None):
     """A render window showing the mesh; returns (render_window, renderer). The window renders
     off screen (an X display, e.g. Xvfb, is still needed by Debian's VTK)."""
     if view not in VIEWS:
@@ -94,17 +94,18 @@ def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_ele
     light.SetIntensity(1.0)
     renderer.AddLight(light)
 
-    return offscreen_window(renderer, mesh, view, size, multisamples), renderer
+    return offscreen_window(renderer, mesh, view, size, multisamples, camera), renderer
 
 
-def offscreen_window(renderer, mesh, view, size, multisamples):
-    """An off-screen render window of `size` showing `renderer`, framed for `view`."""
+def offscreen_window(renderer, mesh, view, size, multisamples, camera=None):
+    """An off-screen render window of `size` showing `renderer`, framed for `view`; camera:
+    None or (azimuth, elevation, zoom) for frame()."""
     window = vtkRenderWindow()
     window.SetOffScreenRendering(1)
     window.SetSize(int(size[0]), int(size[1]))
     window.SetMultiSamples(int(multisamples))
     window.AddRenderer(renderer)
-    frame(renderer, mesh, view, size)
+    frame(renderer, mesh, view, size, *(camera or ()))
     return window
 
 
@@ -133,7 +134,7 @@ def auto_exposure(sun_rgb, sun_elevation, sky_rgb):
 
 def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
                    intersection="exact", lambert="centroid", exposure=None, texture=None,
-                   multisamples=8, background=(1.0, 1.0, 1.0), sky=None):
+                   multisamples=8, background=(1.0, 1.0, 1.0), sky=None, camera=None):
     """A render window showing the mesh lit by the sun and sky of `sun` (a computed
     vtkApertureSolarPosition) through each point's aperture. The mesh needs the Normals,
     BentNormal and ApertureRadius point arrays (bake, then mesh). Albedo: the elevation
@@ -176,12 +177,14 @@ def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
     renderer = vtkRenderer()
     renderer.AddActor(actor)
     renderer.SetBackground(*background)
-    return offscreen_window(renderer, mesh, view, size, multisamples), renderer, mapper
+    return offscreen_window(renderer, mesh, view, size, multisamples, camera), renderer, mapper
 
 
-def frame(renderer, mesh, view, size):
+def frame(renderer, mesh, view, size, camera_azimuth=180.0, camera_elevation=35.0, zoom=1.0):
     """Place the camera: "top" looks straight down with north up (orthographic); "oblique"
-    looks north from the south at 35 degrees, perspective."""
+    looks from camera_azimuth (degrees clockwise from north; default 180: from the south,
+    looking north) down at camera_elevation degrees, perspective, at the distance where the
+    whole mesh fits, divided by zoom."""
     b = mesh.GetBounds()
     cx, cy, cz = (b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2
     width, height, depth = b[1] - b[0], b[3] - b[2], b[5] - b[4]
@@ -192,7 +195,7 @@ def frame(renderer, mesh, view, size):
         camera.SetFocalPoint(cx, cy, cz)
         camera.SetPosition(cx, cy, b[5] + 10.0 * max(width, height, 1.0))
         camera.SetViewUp(0.0, 1.0, 0.0)
-        camera.SetParallelScale(0.5 * max(height, width / aspect) * 1.02)
+        camera.SetParallelScale(0.5 * max(height, width / aspect) * 1.02 / zoom)
         renderer.ResetCameraClippingRange()
         return
     camera.ParallelProjectionOff()
@@ -201,10 +204,13 @@ def frame(renderer, mesh, view, size):
     # Look north, down at 35 degrees, from the distance at which all eight corners of the
     # bounding box fit: a corner at q (relative to the focal point) is at depth D + q.d and must
     # satisfy |q.up| <= depth tan(angle/2) and |q.right| <= depth aspect tan(angle/2).
-    elevation = math.radians(35.0)
-    d = (0.0, math.cos(elevation), -math.sin(elevation))
-    up = (0.0, math.sin(elevation), math.cos(elevation))
-    right = (1.0, 0.0, 0.0)
+    elevation = math.radians(camera_elevation)
+    az = math.radians(camera_azimuth)
+    # the horizontal direction the camera looks in: away from its azimuth
+    hx, hy = -math.sin(az), -math.cos(az)
+    d = (hx * math.cos(elevation), hy * math.cos(elevation), -math.sin(elevation))
+    up = (hx * math.sin(elevation), hy * math.sin(elevation), math.cos(elevation))
+    right = (d[1] * up[2] - d[2] * up[1], d[2] * up[0] - d[0] * up[2], d[0] * up[1] - d[1] * up[0])
     t = math.tan(math.radians(view_angle) / 2.0)
     distance = 0.0
     for x in (b[0], b[1]):
@@ -215,7 +221,7 @@ def frame(renderer, mesh, view, size):
                 need_up = abs(sum(a * c for a, c in zip(q, up))) / t - along
                 need_right = abs(sum(a * c for a, c in zip(q, right))) / (aspect * t) - along
                 distance = max(distance, need_up, need_right)
-    distance *= 1.03
+    distance *= 1.03 / zoom
     camera.SetFocalPoint(cx, cy, cz)
     camera.SetPosition(cx - distance * d[0], cy - distance * d[1], cz - distance * d[2])
     camera.SetViewUp(*up)
