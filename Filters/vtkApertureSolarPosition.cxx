@@ -705,6 +705,53 @@ bool vtkApertureSolarPosition::AddSunDirectionArray(vtkImageData* dem, const cha
 }
 
 //------------------------------------------------------------------------------
+bool vtkApertureSolarPosition::ComputeSkyTable(
+  vtkFloatArray* table, int azimuths, int elevations, int radii)
+{
+  Internals& d = *this->Impl;
+  if (!table || !this->Computed || azimuths < 4 || azimuths > 256 || elevations < 2 ||
+    elevations > 256 || radii < 2 || radii > 256)
+  {
+    d.Error = !this->Computed ? "ComputeSkyTable before a successful Compute()"
+                              : "ComputeSkyTable needs a table and sizes within 4..256 "
+                                "(azimuths), 2..256 (elevations, radii)";
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
+  const double halfPi = 0.5 * 3.14159265358979323846;
+  table->SetNumberOfComponents(3);
+  table->SetNumberOfTuples(static_cast<vtkIdType>(azimuths) * elevations * radii);
+  float* out = table->GetPointer(0);
+  for (int k = 0; k < radii; ++k)
+  {
+    const double r = k * halfPi / (radii - 1);
+    for (int j = 0; j < elevations; ++j)
+    {
+      const double el = j * halfPi / (elevations - 1);
+      for (int i = 0; i < azimuths; ++i)
+      {
+        const double az = (i + 0.5) * 4.0 * halfPi / azimuths;
+        const double axis[3] = { std::cos(el) * std::sin(az), std::cos(el) * std::cos(az),
+          std::sin(el) };
+        double mean[3];
+        if (ap_sky_cap(&d.Sky, axis, r, nullptr, mean, nullptr) != AP_OK)
+        {
+          d.Error = "ComputeSkyTable: the sky model failed for a cap";
+          vtkErrorMacro(<< d.Error);
+          return false;
+        }
+        float* v = out + 3 * ((static_cast<size_t>(k) * elevations + j) * azimuths + i);
+        for (int c = 0; c < 3; ++c)
+        {
+          v[c] = static_cast<float>(std::max(0.0, mean[c]));
+        }
+      }
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool vtkApertureSolarPosition::ConfigureLight(vtkLight* light)
 {
   if (!light || !this->Computed)

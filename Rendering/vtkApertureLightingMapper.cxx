@@ -15,6 +15,9 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkDataObject.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkTextureObject.h"
 #include "vtkOpenGLHelper.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -43,7 +46,64 @@ void Insert(std::string& source, const char* tag, const char* code)
 
 //------------------------------------------------------------------------------
 vtkApertureLightingMapper::vtkApertureLightingMapper() = default;
-vtkApertureLightingMapper::~vtkApertureLightingMapper() = default;
+
+vtkApertureLightingMapper::~vtkApertureLightingMapper()
+{
+  if (this->SkyTable)
+  {
+    this->SkyTable->UnRegister(this);
+  }
+  if (this->SkyTexture)
+  {
+    this->SkyTexture->Delete();
+  }
+}
+
+void vtkApertureLightingMapper::SetSkyTable(
+  vtkFloatArray* table, int azimuths, int elevations, int radii)
+{
+  if (table &&
+    (azimuths < 4 || azimuths > 256 || elevations < 2 || elevations > 256 || radii < 2 ||
+      radii > 256 || table->GetNumberOfComponents() != 3 ||
+      table->GetNumberOfTuples() != static_cast<vtkIdType>(azimuths) * elevations * radii))
+  {
+    vtkErrorMacro(<< "SetSkyTable: expected 3 components and azimuths x elevations x radii "
+                     "tuples with sizes within 4..256, 2..256, 2..256; keeping the previous sky");
+    return;
+  }
+  if (table)
+  {
+    table->Register(this);
+  }
+  if (this->SkyTable)
+  {
+    this->SkyTable->UnRegister(this);
+  }
+  this->SkyTable = table;
+  this->SkyTableSize[0] = azimuths;
+  this->SkyTableSize[1] = elevations;
+  this->SkyTableSize[2] = radii;
+  this->SkyTextureTime = 0; // upload at the next draw (a uniform-like change: no Modified)
+}
+
+void vtkApertureLightingMapper::RenderPieceFinish(vtkRenderer* ren, vtkActor* act)
+{
+  if (this->SkyTexture && this->SkyTexture->IsBound())
+  {
+    this->SkyTexture->Deactivate();
+  }
+  this->Superclass::RenderPieceFinish(ren, act);
+}
+
+void vtkApertureLightingMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  if (this->SkyTexture)
+  {
+    this->SkyTexture->ReleaseGraphicsResources(window);
+    this->SkyTextureTime = 0;
+  }
+  this->Superclass::ReleaseGraphicsResources(window);
+}
 
 //------------------------------------------------------------------------------
 void vtkApertureLightingMapper::SetNormalArrayName(const char* name)
@@ -275,6 +335,36 @@ void vtkApertureLightingMapper::SetMapperShaderParameters(
     program->SetUniformi("apertureIntersection", this->IntersectionMode);
     program->SetUniformi("apertureLambert", this->LambertMode);
     program->SetUniformi("apertureToneMap", this->ToneMapping ? 1 : 0);
+    int useTable = 0;
+    if (this->SkyTable)
+    {
+      auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+      if (!this->SkyTexture)
+      {
+        this->SkyTexture = vtkTextureObject::New();
+      }
+      if (window && (this->SkyTextureTime < this->SkyTable->GetMTime() ||
+                      this->SkyTexture->GetContext() != window))
+      {
+        this->SkyTexture->SetContext(window);
+        this->SkyTexture->SetMinificationFilter(vtkTextureObject::Nearest);
+        this->SkyTexture->SetMagnificationFilter(vtkTextureObject::Nearest);
+        this->SkyTexture->SetWrapS(vtkTextureObject::ClampToEdge);
+        this->SkyTexture->SetWrapT(vtkTextureObject::ClampToEdge);
+        this->SkyTexture->Create2DFromRaw(static_cast<unsigned int>(this->SkyTableSize[0]),
+          static_cast<unsigned int>(this->SkyTableSize[1] * this->SkyTableSize[2]), 3, VTK_FLOAT,
+          this->SkyTable->GetPointer(0));
+        this->SkyTextureTime = this->SkyTable->GetMTime();
+      }
+      if (window)
+      {
+        this->SkyTexture->Activate();
+        program->SetUniformi("apertureSkyTable", this->SkyTexture->GetTextureUnit());
+        program->SetUniform1iv("apertureSkyTableSize", 3, this->SkyTableSize);
+        useTable = 1;
+      }
+    }
+    program->SetUniformi("apertureSkyMode", useTable);
   }
   this->Superclass::SetMapperShaderParameters(cellBO, ren, act);
 }
@@ -304,6 +394,14 @@ bool vtkApertureLightingMapper::ComputeReference(
   p.intersection = this->IntersectionMode == SMOOTHSTEP ? AP_LIGHT_SMOOTHSTEP : AP_LIGHT_EXACT;
   p.lambert = this->LambertMode == EXACT_CAP ? AP_LIGHT_EXACTCAP : AP_LIGHT_CENTROID;
   p.exposure = this->Exposure;
+  if (this->SkyTable)
+  {
+    p.sky_table = this->SkyTable->GetPointer(0);
+    for (int k = 0; k < 3; ++k)
+    {
+      p.sky_table_size[k] = this->SkyTableSize[k];
+    }
+  }
 
   // The arrays as contiguous float, as the GPU receives them.
   const vtkIdType n = mesh->GetNumberOfPoints();

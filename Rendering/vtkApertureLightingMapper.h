@@ -42,6 +42,8 @@
 #include <string> // for std::string
 
 class vtkDoubleArray;
+class vtkFloatArray;
+class vtkTextureObject;
 class vtkUnsignedCharArray;
 
 class APERTURERENDERING_EXPORT vtkApertureLightingMapper : public vtkOpenGLPolyDataMapper
@@ -103,8 +105,19 @@ public:
   vtkGetVector3Macro(SunIrradiance, double);
   ///@}
 
-  /** Uniform sky radiance filling the aperture, W/m²/sr per RGB channel (default 30, 35, 45). */
+  /** Uniform sky radiance filling the aperture, W/m²/sr per RGB channel (default 30, 35, 45),
+   *  used when there is no sky table. */
   void SetSkyRadiance(double r, double g, double b);
+
+  /**
+   * Fill each aperture with the sky model averaged over that aperture instead: a table of cap
+   * mean radiances (vtkApertureSolarPosition::ComputeSkyTable; layout and trilinear lookup of
+   * ap_light_sky_lookup), `azimuths` x `elevations` x `radii` RGB tuples, uploaded as a small
+   * float texture (again only when the table or its MTime changes). nullptr: back to the
+   * uniform SkyRadiance. Wrong sizes are an error (the table is then not used).
+   */
+  void SetSkyTable(vtkFloatArray* table, int azimuths, int elevations, int radii);
+  vtkFloatArray* GetSkyTable() { return this->SkyTable; }
   vtkGetVector3Macro(SkyRadiance, double);
 
   ///@{
@@ -155,6 +168,8 @@ protected:
     std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act) override;
   void SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
   void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
+  void RenderPieceFinish(vtkRenderer* ren, vtkActor* act) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
 
   /** True when `mesh` (default: the input) has the APERTURE model's arrays; else
    *  InputProblem says why. */
@@ -176,6 +191,10 @@ protected:
   bool ToneMapping = true;
   int GeometryUploads = 0;
   std::string InputProblem;
+  vtkFloatArray* SkyTable = nullptr;
+  int SkyTableSize[3] = { 0, 0, 0 };
+  vtkTextureObject* SkyTexture = nullptr;
+  vtkMTimeType SkyTextureTime = 0;
   bool UsingAperture = false; // the shaders in use were built for the APERTURE model
 
 private:

@@ -141,6 +141,7 @@ typedef struct light_setup {
   int intersection;      /* ap_light_intersection */
   int lambert;           /* ap_light_lambert */
   double exposure_scale; /* 2^EV */
+  const ap_light_params *params; /* for the sky table, when there is one */
 } light_setup;
 
 /* Cosine-weighted visible sun S (sr) and aperture cosine integral C_sky for unit n, b. */
@@ -206,9 +207,13 @@ static void light_point_core(const light_setup *u, const double n[3], const doub
   double S, C;
   light_terms(u, n, b, rp, &S, &C);
   double sky = fmax(0.0, C - S);
+  double l_sky[3] = { u->l_sky[0], u->l_sky[1], u->l_sky[2] };
+  if (u->params && u->params->sky_table) {
+    ap_light_sky_lookup(u->params, b, rp, l_sky); /* the sky averaged over this aperture */
+  }
   for (int i = 0; i < 3; ++i) {
     e_sun[i] = u->l_sun[i] * S;
-    e_sky[i] = u->l_sky[i] * sky;
+    e_sky[i] = l_sky[i] * sky;
     lo[i] = albedo[i] / PI * (e_sun[i] + e_sky[i]);
   }
 }
@@ -297,6 +302,52 @@ void ap_light_params_init(ap_light_params *p)
   p->intersection = AP_LIGHT_EXACT;
   p->lambert = AP_LIGHT_EXACTCAP;
   p->exposure = -6.0;
+  p->sky_table = NULL;
+  p->sky_table_size[0] = p->sky_table_size[1] = p->sky_table_size[2] = 0;
+}
+
+void ap_light_sky_lookup(const ap_light_params *p, const double b[3], double rp, double rgb[3])
+{
+  if (!p || !b || !rgb) {
+    return;
+  }
+  if (!p->sky_table) {
+    rgb[0] = p->sky_radiance[0];
+    rgb[1] = p->sky_radiance[1];
+    rgb[2] = p->sky_radiance[2];
+    return;
+  }
+  if (!isfinite(b[0]) || !isfinite(b[1]) || !isfinite(b[2]) || isnan(rp)) {
+    set_nan(rgb, 3);
+    return;
+  }
+  const int na = p->sky_table_size[0], ne = p->sky_table_size[1], nr = p->sky_table_size[2];
+  double az = atan2(b[0], b[1]);
+  if (az < 0.0) {
+    az += 2.0 * PI;
+  }
+  double el = asin(fmin(1.0, fmax(-1.0, b[2] / sqrt(dot3(b, b)))));
+  el = fmin(HALF_PI, fmax(0.0, el));
+  const double r = fmin(HALF_PI, fmax(0.0, rp));
+  /* azimuth: cell-centred nodes, wrapping; elevation and radius: nodes at both ends */
+  const double fa = az / (2.0 * PI) * na - 0.5;
+  const double fe = el / HALF_PI * (ne - 1), fr = r / HALF_PI * (nr - 1);
+  const double a0f = floor(fa);
+  const int e0 = (int)fmin(floor(fe), (double)(ne - 2)), r0 = (int)fmin(floor(fr), (double)(nr - 2));
+  const double wa = fa - a0f, we = fe - e0, wr = fr - r0;
+  const int a0 = (((int)a0f % na) + na) % na, a1 = (a0 + 1) % na;
+  for (int c = 0; c < 3; ++c) {
+    double v = 0.0;
+    for (int k = 0; k < 2; ++k) {
+      for (int j = 0; j < 2; ++j) {
+        const size_t row = ((size_t)(r0 + k) * (size_t)ne + (size_t)(e0 + j)) * (size_t)na;
+        const double lo = p->sky_table[(row + (size_t)a0) * 3 + (size_t)c];
+        const double hi = p->sky_table[(row + (size_t)a1) * 3 + (size_t)c];
+        v += (k ? wr : 1.0 - wr) * (j ? we : 1.0 - we) * ((1.0 - wa) * lo + wa * hi);
+      }
+    }
+    rgb[c] = v;
+  }
 }
 
 ap_status ap_light_params_validate(const ap_light_params *p)
@@ -323,6 +374,18 @@ ap_status ap_light_params_validate(const ap_light_params *p)
   if (!(fabs(p->exposure) <= AP_LIGHT_MAX_EXPOSURE)) {
     return AP_ERR_INVALID_ARGUMENT;
   }
+  if (p->sky_table) {
+    const int na = p->sky_table_size[0], ne = p->sky_table_size[1], nr = p->sky_table_size[2];
+    if (!(na >= 4 && na <= 256 && ne >= 2 && ne <= 256 && nr >= 2 && nr <= 256)) {
+      return AP_ERR_INVALID_ARGUMENT;
+    }
+    const size_t n = (size_t)na * (size_t)ne * (size_t)nr * 3;
+    for (size_t i = 0; i < n; ++i) {
+      if (!(isfinite(p->sky_table[i]) && p->sky_table[i] >= 0.0f)) {
+        return AP_ERR_INVALID_ARGUMENT;
+      }
+    }
+  }
   return AP_OK;
 }
 
@@ -341,6 +404,7 @@ static void setup_from_params(const ap_light_params *p, light_setup *u)
   u->intersection = (int)p->intersection;
   u->lambert = (int)p->lambert;
   u->exposure_scale = exp2(p->exposure);
+  u->params = p;
 }
 
 /* One point with the nodata checks of ap_light.h; returns 0 (outputs NaN) for nodata. */

@@ -150,14 +150,30 @@ typedef struct ap_light_params {
   ap_light_lambert lambert;           /**< default AP_LIGHT_EXACTCAP */
   double exposure;             /**< EV, |EV| <= AP_LIGHT_MAX_EXPOSURE; display x = Lo · 2^EV
                                     (default −6: albedo 0.3 in full sun at 45° shows 218/255) */
+  const float *sky_table;      /**< optional (default NULL: the uniform sky_radiance): the sky
+                                    radiance averaged over caps, W/(m²·sr) RGB, that replaces
+                                    sky_radiance for each point's own aperture; see
+                                    ap_light_sky_lookup. Caller-owned, read only. */
+  int sky_table_size[3];       /**< its azimuths, elevations and radii: 4..256, 2..256, 2..256 */
 } ap_light_params;
 
 /** Set the defaults documented on each field (NULL is ignored). */
 void ap_light_params_init(ap_light_params *p);
 
+/** The sky table's lookup, which the shader repeats exactly: for a cap of unit axis b and
+ *  radius rp, with az = atan2(b_E, b_N) in [0, 2π) (clockwise from north), el = asin(b_U)
+ *  clamped to [0, π/2] and r = rp clamped to [0, π/2], the table (na azimuths, ne elevations,
+ *  nr radii; RGB triples, index ((k · ne + j) · na + i) · 3) holds the mean radiance of the cap
+ *  with azimuth (i + ½) 2π / na (cell-centred, wrapping around), elevation j (π/2) / (ne − 1)
+ *  and radius k (π/2) / (nr − 1) (nodes at both ends), and the value is the trilinear
+ *  interpolation between the eight nodes around (az, el, r). Writes rgb; NaN for a b that is
+ *  not finite. Without a table (NULL), rgb = p->sky_radiance. */
+void ap_light_sky_lookup(const ap_light_params *p, const double b[3], double rp, double rgb[3]);
+
 /** AP_OK, AP_ERR_NULL_POINTER, or AP_ERR_INVALID_ARGUMENT when a field is out of range: sun
  *  not finite or not unit (AP_LIGHT_UNIT_TOLERANCE), sun_radius not in
- *  [AP_LIGHT_MIN_SUN_RADIUS, π/2], a negative or non-finite irradiance or radiance, an
+ *  [AP_LIGHT_MIN_SUN_RADIUS, π/2], a negative or non-finite irradiance or radiance (also any
+ *  value of a sky table, or its sizes out of range), an
  *  unknown mode, EV not finite or beyond ±AP_LIGHT_MAX_EXPOSURE. */
 ap_status ap_light_params_validate(const ap_light_params *p);
 

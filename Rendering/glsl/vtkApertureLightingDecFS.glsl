@@ -17,6 +17,9 @@ uniform int apertureIntersection;    // 0: exact (ALGORITHMS.md 1.2), 1: smooths
 uniform int apertureLambert;         // 0: centroid (1.6), 1: exact cap (6.1)
 uniform float apertureExposureScale; // 2^EV
 uniform int apertureToneMap;         // 1: 1 - exp(-x) then sRGB encoding; 0: none (linear)
+uniform int apertureSkyMode;         // 0: apertureSkyRadiance everywhere; 1: the sky table
+uniform sampler2D apertureSkyTable;  // cap-mean sky radiance, RGB float, (azimuth, elev + radius)
+uniform int apertureSkyTableSize[3]; // azimuths, elevations, radii
 
 const float AP_PI = 3.14159265358979;
 
@@ -71,4 +74,37 @@ float apCapCosineIntegral(float cosT, float sin2s)
   float sy = sinT * sqrt(max(0.0, 1.0 - y * y));
   float t = x > 0.0 ? atan(sy / x) : 0.5 * AP_PI;
   return max(0.0, (cosT * acos(clamp(y, -1.0, 1.0)) - x * sy) * sin2s + t);
+}
+
+// The sky table's lookup, ap_light_sky_lookup (ap_light.h) line by line: azimuth cells
+// centred on (i + 1/2) 2 pi / na, wrapping; elevation and radius nodes from 0 to pi/2;
+// trilinear with exact weights (texelFetch, no hardware filtering).
+vec3 apSkyTexel(int i, int j, int k)
+{
+  return texelFetch(apertureSkyTable, ivec2(i, k * apertureSkyTableSize[1] + j), 0).rgb;
+}
+
+vec3 apSkyLookup(vec3 b, float rp)
+{
+  int na = apertureSkyTableSize[0], ne = apertureSkyTableSize[1], nr = apertureSkyTableSize[2];
+  float az = atan(b.x, b.y);
+  if (az < 0.0) { az += 2.0 * AP_PI; }
+  float el = clamp(asin(clamp(b.z / length(b), -1.0, 1.0)), 0.0, 0.5 * AP_PI);
+  float r = clamp(rp, 0.0, 0.5 * AP_PI);
+  float fa = az / (2.0 * AP_PI) * float(na) - 0.5;
+  float fe = el / (0.5 * AP_PI) * float(ne - 1), fr = r / (0.5 * AP_PI) * float(nr - 1);
+  float a0f = floor(fa);
+  int e0 = int(min(floor(fe), float(ne - 2))), r0 = int(min(floor(fr), float(nr - 2)));
+  float wa = fa - a0f, we = fe - float(e0), wr = fr - float(r0);
+  int a0 = ((int(a0f) % na) + na) % na, a1 = (a0 + 1) % na;
+  vec3 v = vec3(0.0);
+  for (int k = 0; k < 2; ++k)
+  {
+    for (int j = 0; j < 2; ++j)
+    {
+      float w = (k == 1 ? wr : 1.0 - wr) * (j == 1 ? we : 1.0 - we);
+      v += w * mix(apSkyTexel(a0, e0 + j, r0 + k), apSkyTexel(a1, e0 + j, r0 + k), wa);
+    }
+  }
+  return v;
 }

@@ -59,7 +59,8 @@
       float apSinRp = sin(apRp);
       float apSky = max(0.0, apCapCosineIntegral(dot(apN, apB), apSinRp * apSinRp) - apS_);
       // 5. irradiance (W/m2)
-      apE = apLsun * apS_ + apertureSkyRadiance * apSky;
+      vec3 apLsky = apertureSkyMode == 1 ? apSkyLookup(apB, apRp) : apertureSkyRadiance;
+      apE = apLsun * apS_ + apLsky * apSky;
     }
     // outgoing radiance of a Lambertian surface of albedo diffuseColor, W/m2/sr
     gl_FragData[0].rgb = diffuseColor / AP_PI * apE;

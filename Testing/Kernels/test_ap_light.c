@@ -757,6 +757,82 @@ static void test_batch(void)
                   AP_ERR_INVALID_ARGUMENT);
 }
 
+/* The sky table: a table whose value is a known function of (azimuth index, elevation,
+ * radius) gives that function at the nodes, trilinear blends between them, wraps around in
+ * azimuth; a constant table reproduces the uniform sky exactly; bad tables are refused. */
+static void test_sky_table(void)
+{
+  enum { NA = 8, NE = 5, NR = 4 };
+  static float table[NA * NE * NR * 3];
+  for (int k = 0; k < NR; ++k) {
+    for (int j = 0; j < NE; ++j) {
+      for (int i = 0; i < NA; ++i) {
+        float *v = &table[(((size_t)k * NE + (size_t)j) * NA + (size_t)i) * 3];
+        v[0] = (float)(10 * i); /* R: azimuth index */
+        v[1] = (float)(100 + 20 * j); /* G: linear in elevation */
+        v[2] = (float)(50 + 7 * k); /* B: linear in radius */
+      }
+    }
+  }
+  ap_light_params p;
+  ap_light_params_init(&p);
+  p.sky_table = table;
+  p.sky_table_size[0] = NA;
+  p.sky_table_size[1] = NE;
+  p.sky_table_size[2] = NR;
+  AP_CHECK_EQ_INT(ap_light_params_validate(&p), AP_OK);
+  double rgb[3];
+  /* a node: azimuth of cell 2 = (2.5) 45 deg = 112.5 deg, elevation node 3 = 67.5 deg,
+   * radius node 2 = 60 deg */
+  const double az = 112.5 * PI / 180, el = 67.5 * PI / 180;
+  const double b[3] = { cos(el) * sin(az), cos(el) * cos(az), sin(el) };
+  ap_light_sky_lookup(&p, b, 60.0 * PI / 180, rgb);
+  AP_CHECK_NEAR(rgb[0], 20.0, 1e-9);
+  AP_CHECK_NEAR(rgb[1], 160.0, 1e-9);
+  AP_CHECK_NEAR(rgb[2], 64.0, 1e-9);
+  /* halfway in elevation and radius: linear quantities interpolate exactly */
+  const double el2 = 56.25 * PI / 180;
+  const double b2[3] = { cos(el2) * sin(az), cos(el2) * cos(az), sin(el2) };
+  ap_light_sky_lookup(&p, b2, 45.0 * PI / 180, rgb);
+  AP_CHECK_NEAR(rgb[1], 150.0, 1e-9);
+  AP_CHECK_NEAR(rgb[2], 60.5, 1e-9);
+  /* azimuth 0 lies halfway between the last cell (337.5) and the first (22.5): wraps */
+  const double b3[3] = { 0.0, cos(el), sin(el) };
+  ap_light_sky_lookup(&p, b3, 0.5, rgb);
+  AP_CHECK_NEAR(rgb[0], 0.5 * (70.0 + 0.0), 1e-9);
+  /* below the horizon and beyond 90 deg: clamped to the edge nodes */
+  const double b4[3] = { 0.0, 1.0, -0.5 };
+  ap_light_sky_lookup(&p, b4, 3.0, rgb);
+  AP_CHECK_NEAR(rgb[1], 100.0, 1e-9);
+  AP_CHECK_NEAR(rgb[2], 71.0, 1e-9);
+  /* a constant table gives exactly the uniform sky's light */
+  static float flat[NA * NE * NR * 3];
+  for (size_t q = 0; q < sizeof(flat) / sizeof(flat[0]); ++q) {
+    flat[q] = 30.0f;
+  }
+  ap_light_params c;
+  ap_light_params_init(&c);
+  ap_light_params t = c;
+  t.sky_table = flat;
+  t.sky_table_size[0] = NA;
+  t.sky_table_size[1] = NE;
+  t.sky_table_size[2] = NR;
+  const double n[3] = { 0.2, 0.1, sqrt(1 - 0.05) }, bb[3] = { -0.1, 0.3, sqrt(1 - 0.1) };
+  const double albedo[3] = { 0.5, 0.5, 0.5 };
+  double lo1[3], lo2[3];
+  AP_CHECK_EQ_INT(ap_light_point(&c, n, bb, 0.9, albedo, lo1, NULL, NULL), AP_OK);
+  AP_CHECK_EQ_INT(ap_light_point(&t, n, bb, 0.9, albedo, lo2, NULL, NULL), AP_OK);
+  AP_CHECK_NEAR(lo2[0], lo1[0], 1e-12 * lo1[0]);
+  /* bad tables */
+  t.sky_table_size[0] = 3;
+  AP_CHECK_EQ_INT(ap_light_params_validate(&t), AP_ERR_INVALID_ARGUMENT);
+  t.sky_table_size[0] = NA;
+  flat[5] = -1.0f;
+  AP_CHECK_EQ_INT(ap_light_params_validate(&t), AP_ERR_INVALID_ARGUMENT);
+  flat[5] = NAN;
+  AP_CHECK_EQ_INT(ap_light_params_validate(&t), AP_ERR_INVALID_ARGUMENT);
+}
+
 int main(int argc, char **argv)
 {
   verbose = argc > 1 && strcmp(argv[1], "-v") == 0;
@@ -768,5 +844,6 @@ int main(int argc, char **argv)
   test_nodata_and_params();
   test_display();
   test_batch();
+  test_sky_table();
   AP_TEST_MAIN_END();
 }

@@ -105,6 +105,24 @@ class TestCommandLineRender(unittest.TestCase):
                 self.assertEqual(status, 2, stderr)
                 self.assertIn(expected, stderr)
 
+    def test_sky_model(self):
+        # The sky model averaged over each aperture lights the shade towards the sun more than
+        # a uniform sky of the same total: the pictures differ, slightly, and stay alike.
+        pictures = {}
+        with tempfile.TemporaryDirectory() as tmp:
+            for sky in ("constant", "model"):
+                out = os.path.join(tmp, sky + ".png")
+                status, _, stderr = run("render", "-o", out, "--size", "200x120", "--sky", sky,
+                                        "--sun-az", "225", "--sun-el", "20", "--exposure", "-6")
+                self.assertEqual(status, 0, stderr)
+                reader = vtkPNGReader()
+                reader.SetFileName(out)
+                reader.Update()
+                pictures[sky] = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())
+        diff = pictures["model"][:, :3].astype(float) - pictures["constant"][:, :3]
+        self.assertGreater(abs(diff).max(), 2)
+        self.assertLess(abs(diff.mean()), 10)
+
     def test_camera(self):
         # Looking from the north instead of the south turns the picture around: the bright
         # south-west-facing mountains change sides.

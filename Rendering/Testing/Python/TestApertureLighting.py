@@ -247,6 +247,26 @@ class TestApertureLighting(Testing.vtkTest):
                     self.assertLessEqual(int(diff.max()), 1, (key, worst))
                     self.assertGreater(np.mean(diff == 0), 0.99, (key, worst))
                     self.assertGreater(cpu.std(), 10.0)  # a varied picture, not a constant
+        # The sky filled from a table of cap means (here an arbitrary smooth, coloured one):
+        # the shader's lookup against ap_light_sky_lookup.
+        from vtkmodules.vtkCommonCore import vtkFloatArray
+        na, ne, nr = 16, 6, 5
+        i, j, k = np.meshgrid(np.arange(na), np.arange(ne), np.arange(nr), indexing="ij")
+        values = np.stack([20 + 10 * np.sin(2 * np.pi * (i + 0.5) / na), 25 + 4 * j + 0 * i,
+                           30 + 6 * k + 0 * i], -1).astype(np.float32)
+        table = numpy_to_vtk(np.ascontiguousarray(values.transpose(2, 1, 0, 3).reshape(-1, 3)),
+                             deep=1)
+        m.SetSkyTable(table, na, ne, nr)
+        m.SetSunScale(1.0)
+        for lambert in (m.CENTROID, m.EXACT_CAP):
+            m.SetLambertMode(lambert)
+            gpu = s.pixels().reshape(-1, 3).astype(int)
+            cpu = reference_display(m, mesh, (0.6, 0.55, 0.5))
+            diff = np.abs(gpu - cpu)[inner.ravel()]
+            worst[("table", lambert)] = (int(diff.max()), round(float(np.mean(diff == 0)), 4))
+            self.assertLessEqual(int(diff.max()), 1, worst)
+            self.assertGreater(np.mean(diff == 0), 0.99, worst)
+        m.SetSkyTable(None, 0, 0, 0)
         print("GPU vs CPU, (largest 8-bit difference, share of equal pixels) per (sun scale, "
               "Lambert, intersection):", worst)
 

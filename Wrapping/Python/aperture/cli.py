@@ -290,7 +290,8 @@ def cmd_render(args):
         window, _, mapper = scene.build_aperture(
             mesh, sun, size=args.size, view=args.view, sun_scale=args.sun_scale,
             intersection=args.intersection, lambert=args.lambert, exposure=args.exposure,
-            texture=texture, multisamples=args.multisamples, camera=args.camera)
+            texture=texture, multisamples=args.multisamples, camera=args.camera,
+            sky_mode=args.sky)
         exposure = mapper.GetExposure()
     else:
         window, _ = scene.build(mesh, size=args.size, view=args.view,
@@ -873,6 +874,10 @@ def build_parser():
                    help="Lambert term: intersection centroid (default) or the exact sun cap")
     p.add_argument("--sun-scale", type=float, default=1.0, metavar="S",
                    help="widen the sun's disc S times: softer, broader penumbrae (default 1)")
+    p.add_argument("--sky", choices=("constant", "model"), default="constant",
+                   help="constant: one sky radiance (the Preetham sky's average over the "
+                        "hemisphere; default); model: each aperture filled with the Preetham "
+                        "sky averaged over that aperture (brighter towards the sun)")
     p.add_argument("--exposure", type=float, metavar="EV",
                    help="exposure in EV (default: automatic, a flat open white surface in the "
                         "sun at about 80%% grey)")

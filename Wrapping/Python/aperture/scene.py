@@ -134,12 +134,16 @@ def auto_exposure(sun_rgb, sun_elevation, sky_rgb):
 
 def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
                    intersection="exact", lambert="centroid", exposure=None, texture=None,
-                   multisamples=8, background=(1.0, 1.0, 1.0), sky=None, camera=None):
+                   multisamples=8, background=(1.0, 1.0, 1.0), sky=None, camera=None,
+                   sky_mode="constant"):
     """A render window showing the mesh lit by the sun and sky of `sun` (a computed
     vtkApertureSolarPosition) through each point's aperture. The mesh needs the Normals,
     BentNormal and ApertureRadius point arrays (bake, then mesh). Albedo: the elevation
     colours, or `texture` (a vtkTexture draped by the mesh's TextureCoordinates). Exposure in
-    EV, None: auto_exposure. Returns (render_window, renderer, mapper)."""
+    EV, None: auto_exposure. sky_mode "constant": one sky radiance everywhere (`sky`, or the
+    model's hemisphere average); "model": each aperture filled with the sun's sky model
+    averaged over that aperture (a table of cap means, vtkApertureSolarPosition.
+    ComputeSkyTable). Returns (render_window, renderer, mapper)."""
     if view not in VIEWS:
         raise ValueError("view must be one of %s, not %r" % (", ".join(VIEWS), view))
     zmin, zmax = elevation_range(mesh)
@@ -156,6 +160,14 @@ def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
     mapper.SetSunScale(sun_scale)
     mapper.SetSunIrradiance(*sun_rgb)
     mapper.SetSkyRadiance(*sky_rgb)
+    if sky_mode == "model":
+        from vtkmodules.vtkCommonCore import vtkFloatArray
+        table = vtkFloatArray()
+        if not sun.ComputeSkyTable(table, 32, 9, 9):
+            raise ValueError(sun.GetErrorMessage())
+        mapper.SetSkyTable(table, 32, 9, 9)
+    elif sky_mode != "constant":
+        raise ValueError("sky_mode must be constant or model, not %r" % (sky_mode,))
     mapper.SetIntersectionMode(mapper.SMOOTHSTEP if intersection == "smoothstep" else mapper.EXACT)
     mapper.SetLambertMode(mapper.EXACT_CAP if lambert == "exactcap" else mapper.CENTROID)
     if exposure is None:
