@@ -35,7 +35,8 @@ vtkStandardNewMacro(vtkApertureLightingMapper);
 
 namespace
 {
-const double kDeg = 3.14159265358979323846 / 180.0;
+const double kPi = 3.14159265358979323846;
+const double kDeg = kPi / 180.0;
 
 void Insert(std::string& source, const char* tag, const char* code)
 {
@@ -71,6 +72,7 @@ void vtkApertureLightingMapper::SetSkyTable(
                      "tuples with sizes within 4..256, 2..256, 2..256; keeping the previous sky");
     return;
   }
+  const bool variantChanges = (table != nullptr) != (this->SkyTable != nullptr);
   if (table)
   {
     table->Register(this);
@@ -80,6 +82,10 @@ void vtkApertureLightingMapper::SetSkyTable(
     this->SkyTable->UnRegister(this);
   }
   this->SkyTable = table;
+  if (variantChanges)
+  {
+    this->Modified(); // switching the sky table on or off compiles the other shader variant
+  }
   this->SkyTableSize[0] = azimuths;
   this->SkyTableSize[1] = elevations;
   this->SkyTableSize[2] = radii;
@@ -294,7 +300,9 @@ void vtkApertureLightingMapper::ReplaceShaderValues(
   {
     Insert(vs, "//VTK::Normal::Dec", vtkApertureLightingDecVS);
     Insert(vs, "//VTK::Normal::Impl", vtkApertureLightingImplVS);
-    Insert(fs, "//VTK::Light::Dec", vtkApertureLightingDecFS);
+    const std::string dec = std::string(this->SkyTable ? "#define AP_SKY_TABLE 1\n" : "") +
+      vtkApertureLightingDecFS;
+    Insert(fs, "//VTK::Light::Dec", dec.c_str());
     Insert(fs, "//VTK::Light::Impl", vtkApertureLightingImplFS);
     Insert(fs, "//VTK::TCoord::Impl", vtkApertureToneMapFS);
   }
@@ -330,12 +338,21 @@ void vtkApertureLightingMapper::SetMapperShaderParameters(
     const double rl = std::min(90.0, this->SunAngularRadius * this->SunScale) * kDeg;
     program->SetUniform3f("apertureSunDirection", dir);
     program->SetUniformf("apertureSunRadius", static_cast<float>(rl));
+    // per-draw constants of the shader, computed once here rather than per fragment
+    const double sinRl = std::sin(rl), halfSin = std::sin(0.5 * rl);
+    float radiance[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      radiance[c] = static_cast<float>(this->SunIrradiance[c] / (kPi * sinRl * sinRl));
+    }
+    program->SetUniformf("apertureSunSin", static_cast<float>(sinRl));
+    program->SetUniformf("apertureSunArea", static_cast<float>(4.0 * kPi * halfSin * halfSin));
+    program->SetUniform3f("apertureSunRadiance", radiance);
     program->SetUniform3f("apertureSunIrradiance", sun);
     program->SetUniform3f("apertureSkyRadiance", sky);
     program->SetUniformi("apertureIntersection", this->IntersectionMode);
     program->SetUniformi("apertureLambert", this->LambertMode);
     program->SetUniformi("apertureToneMap", this->ToneMapping ? 1 : 0);
-    int useTable = 0;
     if (this->SkyTable)
     {
       auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
@@ -361,10 +378,8 @@ void vtkApertureLightingMapper::SetMapperShaderParameters(
         this->SkyTexture->Activate();
         program->SetUniformi("apertureSkyTable", this->SkyTexture->GetTextureUnit());
         program->SetUniform1iv("apertureSkyTableSize", 3, this->SkyTableSize);
-        useTable = 1;
       }
     }
-    program->SetUniformi("apertureSkyMode", useTable);
   }
   this->Superclass::SetMapperShaderParameters(cellBO, ren, act);
 }

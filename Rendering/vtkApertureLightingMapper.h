@@ -114,7 +114,9 @@ public:
    * mean radiances (vtkApertureSolarPosition::ComputeSkyTable; layout and trilinear lookup of
    * ap_light_sky_lookup), `azimuths` x `elevations` x `radii` RGB tuples, uploaded as a small
    * float texture (again only when the table or its MTime changes). nullptr: back to the
-   * uniform SkyRadiance. Wrong sizes are an error (the table is then not used).
+   * uniform SkyRadiance. Switching between a table and none compiles the other shader variant
+   * (and uploads the geometry once); replacing one table by another, as when the sun moves,
+   * does not. Wrong sizes are an error (the table is then not used).
    */
   void SetSkyTable(vtkFloatArray* table, int azimuths, int elevations, int radii);
   vtkFloatArray* GetSkyTable() { return this->SkyTable; }

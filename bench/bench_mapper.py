@@ -5,7 +5,7 @@ same run (Mesa llvmpipe under Xvfb on these machines: a software rasteriser, so 
 are CPU-bound and only their ratios carry over to GPUs).
 
     xvfb-run -a -s "-screen 0 1920x1080x24" build/bin/aperture-python bench/bench_mapper.py \
-        [--sizes 1,4] [--frames 20] [--output bench/results-mapper.md]
+        [--sizes 1,4] [--frames 30] [--output bench/results-mapper.md]
 
 Meshes: a synthetic fractal DEM of 30 m cells with (about) 1 and 4 million triangles, baked
 (BentNormal, ApertureRadius) and meshed by Aperture. Each contender renders --frames frames of
@@ -109,7 +109,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--sizes", default="1,4", help="million triangles (default 1,4)")
-    parser.add_argument("--frames", type=int, default=20)
+    parser.add_argument("--frames", type=int, default=30)
     parser.add_argument("--width", type=int, default=1920)
     parser.add_argument("--height", type=int, default=1080)
     parser.add_argument("--output", default=os.path.join(HERE, "results-mapper.md"))

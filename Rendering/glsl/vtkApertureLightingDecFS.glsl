@@ -12,14 +12,20 @@ in float apertureRadiusVSOut;
 uniform vec3 apertureSunDirection;   // unit vector to the sun's centre, mesh frame
 uniform float apertureSunRadius;     // rl: angular radius of the sun cap (rad), (0, pi/2]
 uniform vec3 apertureSunIrradiance;  // Esun: W/m2 normal to the beam, whole disc, RGB
+uniform float apertureSunSin;        // sin rl
+uniform float apertureSunArea;       // 4 pi sin^2(rl/2): the sun cap's solid angle (sr)
+uniform vec3 apertureSunRadiance;    // Esun / (pi sin^2 rl), W/m2/sr
 uniform vec3 apertureSkyRadiance;    // Lsky: W/m2/sr, uniform over the aperture, RGB
 uniform int apertureIntersection;    // 0: exact (ALGORITHMS.md 1.2), 1: smoothstep (1.4)
 uniform int apertureLambert;         // 0: centroid (1.6), 1: exact cap (6.1)
 uniform float apertureExposureScale; // 2^EV
 uniform int apertureToneMap;         // 1: 1 - exp(-x) then sRGB encoding; 0: none (linear)
-uniform int apertureSkyMode;         // 0: apertureSkyRadiance everywhere; 1: the sky table
+// With a sky table the mapper compiles this shader with AP_SKY_TABLE defined (a variant, not a
+// uniform branch: llvmpipe pays for an untaken branch's texture fetches).
+#ifdef AP_SKY_TABLE
 uniform sampler2D apertureSkyTable;  // cap-mean sky radiance, RGB float, (azimuth, elev + radius)
 uniform int apertureSkyTableSize[3]; // azimuths, elevations, radii
+#endif
 
 const float AP_PI = 3.14159265358979;
 
@@ -51,6 +57,15 @@ float apCapIntersectionExact(float r1, float r2, float d, out float a1, out floa
   return max(0.0, 4.0 * a1 * h1 * h1 + 4.0 * a2 * h2 * h2 - 2.0 * e);
 }
 
+// The half-angles at the two axes of a partial overlap (as in apCapIntersectionExact).
+void apCapLensAngles(float r1, float r2, float d, out float a1, out float a2)
+{
+  float s = 0.5 * (r1 + r2 + d);
+  float k = sqrt(max(0.0, sin(s - r1) * sin(s - r2) * sin(s - d) / sin(s)));
+  a1 = 2.0 * atan(k, sin(s - r2));
+  a2 = 2.0 * atan(k, sin(s - r1));
+}
+
 // Oat & Sander's approximation, ALGORITHMS.md 1.4: the smaller cap's area times a smoothstep
 // of the normalised axis distance.
 float apCapIntersectionSmoothstep(float r1, float r2, float d)
@@ -76,6 +91,7 @@ float apCapCosineIntegral(float cosT, float sin2s)
   return max(0.0, (cosT * acos(clamp(y, -1.0, 1.0)) - x * sy) * sin2s + t);
 }
 
+#ifdef AP_SKY_TABLE
 // The sky table's lookup, ap_light_sky_lookup (ap_light.h) line by line: azimuth cells
 // centred on (i + 1/2) 2 pi / na, wrapping; elevation and radius nodes from 0 to pi/2;
 // trilinear with exact weights (texelFetch, no hardware filtering).
@@ -108,3 +124,4 @@ vec3 apSkyLookup(vec3 b, float rp)
   }
   return v;
 }
+#endif

@@ -15,17 +15,27 @@
       apRp = clamp(apRp, 0.0, 0.5 * AP_PI);
       vec3 apS = apertureSunDirection;
       float apRl = apertureSunRadius;
-      float apSinRl = sin(apRl);
-      // 1. the sun's radiance, so that a fully visible sun facing the surface gives Esun
-      vec3 apLsun = apertureSunIrradiance / (AP_PI * apSinRl * apSinRl);
+      float apSinRl = apertureSunSin; // sin rl, computed once on the CPU
+      // 1. the sun's radiance, so that a fully visible sun facing the surface gives Esun:
+      //    Esun / (pi sin^2 rl), also computed once on the CPU
+      vec3 apLsun = apertureSunRadiance;
       // 2. the visible part of the sun: aperture cap (b, rp) against the sun cap (s, rl)
       float apD = atan(length(cross(apB, apS)), dot(apB, apS));
       float apA1 = 0.0, apA2 = 0.0, apVis = 0.0;
       if (apRp > 0.0)
       {
-        // the exact form also gives the lens angles the centroid needs, in either mode
-        float apExact = apCapIntersectionExact(apRp, apRl, apD, apA1, apA2);
-        apVis = apertureIntersection == 1 ? apCapIntersectionSmoothstep(apRp, apRl, apD) : apExact;
+        if (apertureIntersection == 1)
+        {
+          apVis = apCapIntersectionSmoothstep(apRp, apRl, apD);
+          if (apertureLambert == 0 && apVis > 0.0 && apD > abs(apRp - apRl))
+          {
+            apCapLensAngles(apRp, apRl, apD, apA1, apA2); // the centroid needs the lens' angles
+          }
+        }
+        else
+        {
+          apVis = apCapIntersectionExact(apRp, apRl, apD, apA1, apA2); // gives the angles too
+        }
       }
       // 3. the Lambert term S (sr): cosine-weighted visible sun
       float apS_ = 0.0;
@@ -34,7 +44,7 @@
         if (apertureLambert == 1)
         {
           // exact cap: the sun cap's clipped cosine integral times its visible fraction
-          apS_ = apCapCosineIntegral(dot(apN, apS), apSinRl * apSinRl) * apVis / apCapArea(apRl);
+          apS_ = apCapCosineIntegral(dot(apN, apS), apSinRl * apSinRl) * apVis / apertureSunArea;
         }
         else
         {
@@ -59,7 +69,11 @@
       float apSinRp = sin(apRp);
       float apSky = max(0.0, apCapCosineIntegral(dot(apN, apB), apSinRp * apSinRp) - apS_);
       // 5. irradiance (W/m2)
-      vec3 apLsky = apertureSkyMode == 1 ? apSkyLookup(apB, apRp) : apertureSkyRadiance;
+#ifdef AP_SKY_TABLE
+      vec3 apLsky = apSkyLookup(apB, apRp); // the sky averaged over this aperture
+#else
+      vec3 apLsky = apertureSkyRadiance;
+#endif
       apE = apLsun * apS_ + apLsky * apSky;
     }
     // outgoing radiance of a Lambertian surface of albedo diffuseColor, W/m2/sr
