@@ -10,8 +10,9 @@ are CPU-bound and only their ratios carry over to GPUs).
 Meshes: a synthetic fractal DEM of 30 m cells with (about) 1 and 4 million triangles, baked
 (BentNormal, ApertureRadius) and meshed by Aperture. Each contender renders --frames frames of
 1920 x 1080 while the sun moves 10 degrees per frame (uniforms only; for VTK's mapper the
-light moves), after two warm-up frames; a frame ends when its pixels are read back (one
-pixel), which waits for the rasteriser. Reported: median milliseconds per frame and the
+light moves), after two warm-up frames, the contenders' frames interleaved so that the
+machine's drifts hit them alike; a frame ends when its pixels are read back (one pixel),
+which waits for the rasteriser. Reported: median milliseconds per frame and the
 ratio to VTK's default mapper; and the smoothstep intersection's speed-up over the exact one.
 """
 import argparse
@@ -68,41 +69,54 @@ def terrain_mesh(million_triangles):
     return mesher.GetOutput()
 
 
-def frame_times(mesh, make_mapper, move_sun, frames, size):
-    mapper = make_mapper()
-    mapper.SetInputData(mesh)
-    mapper.ScalarVisibilityOff()
-    actor = vtkActor()
-    actor.SetMapper(mapper)
-    actor.GetProperty().SetColor(0.6, 0.58, 0.5)
-    renderer = vtkRenderer()
-    renderer.AddActor(actor)
-    renderer.AutomaticLightCreationOff()
-    light = vtkLight()
-    light.SetLightTypeToSceneLight()
-    light.SetPositional(False)
-    renderer.AddLight(light)
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetSize(*size)
-    window.SetMultiSamples(0)
-    window.AddRenderer(renderer)
-    renderer.ResetCamera()
-    renderer.GetActiveCamera().Elevation(-45)
-    renderer.ResetCamera()
-    from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
-    pixel = vtkUnsignedCharArray()
-    times = []
-    for k in range(frames + 2):
+class Contender:
+    """One window rendering the mesh with one mapper."""
+
+    def __init__(self, mesh, make_mapper, move_sun, size):
+        from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
+        self.mapper = make_mapper()
+        self.mapper.SetInputData(mesh)
+        self.mapper.ScalarVisibilityOff()
+        self.move_sun = move_sun
+        actor = vtkActor()
+        actor.SetMapper(self.mapper)
+        actor.GetProperty().SetColor(0.6, 0.58, 0.5)
+        renderer = vtkRenderer()
+        renderer.AddActor(actor)
+        renderer.AutomaticLightCreationOff()
+        self.light = vtkLight()
+        self.light.SetLightTypeToSceneLight()
+        self.light.SetPositional(False)
+        renderer.AddLight(self.light)
+        self.window = vtkRenderWindow()
+        self.window.SetOffScreenRendering(1)
+        self.window.SetSize(*size)
+        self.window.SetMultiSamples(0)
+        self.window.AddRenderer(renderer)
+        renderer.ResetCamera()
+        renderer.GetActiveCamera().Elevation(-45)
+        renderer.ResetCamera()
+        self.pixel = vtkUnsignedCharArray()
+        self.times = []
+
+    def frame(self, k, record):
         az = math.radians(10.0 * k)
         d = (math.cos(0.6) * math.sin(az), math.cos(0.6) * math.cos(az), math.sin(0.6))
-        move_sun(mapper, light, d)
+        self.move_sun(self.mapper, self.light, d)
         start = time.perf_counter()
-        window.Render()
-        window.GetPixelData(0, 0, 0, 0, 0, pixel, 0)  # read one pixel back: waits for the frame
-        if k >= 2:
-            times.append(time.perf_counter() - start)
-    return 1000.0 * statistics.median(times)
+        self.window.Render()
+        self.window.GetPixelData(0, 0, 0, 0, 0, self.pixel, 0)  # read back: waits for the frame
+        if record:
+            self.times.append(time.perf_counter() - start)
+
+
+def frame_times(contenders, frames):
+    """Median ms per frame of each contender; their frames interleave (A, B, C, A, B, C, ...)
+    so that the machine's drifts hit all of them alike. Two warm-up rounds."""
+    for k in range(frames + 2):
+        for c in contenders:
+            c.frame(k, record=k >= 2)
+    return [1000.0 * statistics.median(c.times) for c in contenders]
 
 
 def main():
@@ -138,11 +152,12 @@ def main():
     for millions in [float(s) for s in args.sizes.split(",") if s]:
         mesh = terrain_mesh(millions)
         tris = mesh.GetNumberOfPolys()
-        t_vtk = frame_times(mesh, vtk_default, move_light, args.frames, size)
-        t_exact = frame_times(mesh, ours(aperture.vtkApertureLightingMapper.EXACT), move_sun,
-                              args.frames, size)
-        t_smooth = frame_times(mesh, ours(aperture.vtkApertureLightingMapper.SMOOTHSTEP),
-                               move_sun, args.frames, size)
+        contenders = [
+            Contender(mesh, vtk_default, move_light, size),
+            Contender(mesh, ours(aperture.vtkApertureLightingMapper.EXACT), move_sun, size),
+            Contender(mesh, ours(aperture.vtkApertureLightingMapper.SMOOTHSTEP), move_sun, size)]
+        t_vtk, t_exact, t_smooth = frame_times(contenders, args.frames)
+        del contenders
         rows.append((tris, t_vtk, t_exact, t_smooth))
         print("%.2f M triangles: VTK %.1f ms, ours exact %.1f ms (%.2fx), smoothstep %.1f ms"
               % (tris / 1e6, t_vtk, t_exact, t_exact / t_vtk, t_smooth), flush=True)
