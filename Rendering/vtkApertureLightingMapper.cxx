@@ -7,6 +7,7 @@
 #include "vtkApertureLightingDecVS.h"
 #include "vtkApertureLightingImplFS.h"
 #include "vtkApertureLightingImplVS.h"
+#include "vtkApertureLightingModel.h"
 #include "vtkApertureToneMapFS.h"
 
 #include "vtkDataArray.h"
@@ -298,11 +299,18 @@ void vtkApertureLightingMapper::ReplaceShaderValues(
   std::string fs = shaders[vtkShader::Fragment]->GetSource();
   if (this->UsingAperture)
   {
-    Insert(vs, "//VTK::Normal::Dec", vtkApertureLightingDecVS);
+    // Variants are compiled, not branched on uniforms (llvmpipe pays for untaken branches'
+    // texture fetches): the sky table, and where the model runs (per pixel or per vertex).
+    const bool perVertex = this->ShadingFrequency == PER_VERTEX;
+    const std::string defines = std::string(this->SkyTable ? "#define AP_SKY_TABLE 1\n" : "") +
+      (perVertex ? "#define AP_PER_VERTEX 1\n" : "");
+    const std::string decVS = defines + vtkApertureLightingDecVS +
+      (perVertex ? std::string(vtkApertureLightingModel) : std::string());
+    const std::string decFS = defines + vtkApertureLightingDecFS +
+      (perVertex ? std::string() : std::string(vtkApertureLightingModel));
+    Insert(vs, "//VTK::Normal::Dec", decVS.c_str());
     Insert(vs, "//VTK::Normal::Impl", vtkApertureLightingImplVS);
-    const std::string dec = std::string(this->SkyTable ? "#define AP_SKY_TABLE 1\n" : "") +
-      vtkApertureLightingDecFS;
-    Insert(fs, "//VTK::Light::Dec", dec.c_str());
+    Insert(fs, "//VTK::Light::Dec", decFS.c_str());
     Insert(fs, "//VTK::Light::Impl", vtkApertureLightingImplFS);
     Insert(fs, "//VTK::TCoord::Impl", vtkApertureToneMapFS);
   }
@@ -487,4 +495,6 @@ void vtkApertureLightingMapper::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "Exposure: " << this->Exposure << "\n";
   os << indent << "ToneMapping: " << this->ToneMapping << "\n";
+  os << indent << "ShadingFrequency: "
+     << (this->ShadingFrequency == PER_VERTEX ? "PER_VERTEX" : "PER_FRAGMENT") << "\n";
 }

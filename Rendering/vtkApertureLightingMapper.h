@@ -154,6 +154,23 @@ public:
   bool ComputeReference(
     vtkPolyData* mesh, const double albedo[3], vtkDoubleArray* radiance, vtkUnsignedCharArray* display);
 
+  enum ShadingFrequencies
+  {
+    PER_FRAGMENT = 0,
+    PER_VERTEX = 1
+  };
+  ///@{
+  /**
+   * Where the lighting model runs: PER_FRAGMENT (default: every pixel, from interpolated
+   * normals, bent normals and aperture radii) or PER_VERTEX (at the vertices, the irradiance
+   * interpolated across each triangle: faster when triangles are about pixel-sized, as for
+   * large terrain meshes, and identical at the vertices; softer where triangles span many
+   * pixels). Switching compiles the other shader variant.
+   */
+  vtkSetClampMacro(ShadingFrequency, int, PER_FRAGMENT, PER_VERTEX);
+  vtkGetMacro(ShadingFrequency, int);
+  ///@}
+
   /** How many times the geometry (vertex buffers) has been uploaded to the GPU. */
   int GetGeometryUploads() const { return this->GeometryUploads; }
 
@@ -191,6 +208,7 @@ protected:
   int LambertMode = CENTROID;
   double Exposure = 0.0;
   bool ToneMapping = true;
+  int ShadingFrequency = PER_FRAGMENT;
   int GeometryUploads = 0;
   std::string InputProblem;
   vtkFloatArray* SkyTable = nullptr;

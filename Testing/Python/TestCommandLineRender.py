@@ -106,6 +106,7 @@ class TestCommandLineRender(unittest.TestCase):
                 self.assertIn(expected, stderr)
 
     def test_sky_model(self):
+        import numpy as np
         # The sky model averaged over each aperture lights the shade towards the sun more than
         # a uniform sky of the same total: the pictures differ, slightly, and stay alike.
         pictures = {}
@@ -122,6 +123,20 @@ class TestCommandLineRender(unittest.TestCase):
         diff = pictures["model"][:, :3].astype(float) - pictures["constant"][:, :3]
         self.assertGreater(abs(diff).max(), 2)
         self.assertLess(abs(diff.mean()), 10)
+        # shading per vertex: nearly the same picture (this mesh has about pixel-sized cells)
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "v.png")
+            status, _, stderr = run("render", "-o", out, "--size", "200x120", "--shading",
+                                    "vertex", "--sun-az", "225", "--sun-el", "20",
+                                    "--exposure", "-6")
+            self.assertEqual(status, 0, stderr)
+            reader = vtkPNGReader()
+            reader.SetFileName(out)
+            reader.Update()
+            vertex = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())
+        diff = vertex[:, :3].astype(float) - pictures["constant"][:, :3]
+        self.assertLess(abs(diff.mean()), 3)
+        self.assertLess(np.median(abs(diff)), 4)
 
     def test_camera(self):
         # Looking from the north instead of the south turns the picture around: the bright

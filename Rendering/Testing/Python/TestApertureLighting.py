@@ -10,7 +10,7 @@ values stay below 1, no multisampling):
 - an aperture rim swept across the sun: the penumbra (10% to 90% of full sun) widens
   monotonically with the sun's scale (1, 5, 20);
 - GPU against the CPU reference (ap_light.c, double precision) at every vertex, for both
-  intersection modes and both Lambert modes;
+  intersection modes and both Lambert modes, with a sky table, and shading per vertex;
 - moving the sun re-uploads no geometry; bad input gives an error and a documented fallback.
 """
 import math
@@ -266,6 +266,18 @@ class TestApertureLighting(Testing.vtkTest):
             worst[("table", lambert)] = (int(diff.max()), round(float(np.mean(diff == 0)), 4))
             self.assertLessEqual(int(diff.max()), 1, worst)
             self.assertGreater(np.mean(diff == 0), 0.99, worst)
+        # Per-vertex shading: the same values at the vertices (pixels show vertices here).
+        m.SetShadingFrequency(m.PER_VERTEX)
+        for lambert in (m.CENTROID, m.EXACT_CAP):
+            m.SetLambertMode(lambert)
+            gpu = s.pixels().reshape(-1, 3).astype(int)
+            cpu = reference_display(m, mesh, (0.6, 0.55, 0.5))
+            diff = np.abs(gpu - cpu)[inner.ravel()]
+            worst[("per-vertex", lambert)] = (int(diff.max()),
+                                              round(float(np.mean(diff == 0)), 4))
+            self.assertLessEqual(int(diff.max()), 1, worst)
+            self.assertGreater(np.mean(diff == 0), 0.99, worst)
+        m.SetShadingFrequency(m.PER_FRAGMENT)
         m.SetSkyTable(None, 0, 0, 0)
         print("GPU vs CPU, (largest 8-bit difference, share of equal pixels) per (sun scale, "
               "Lambert, intersection):", worst)

@@ -291,7 +291,7 @@ def cmd_render(args):
             mesh, sun, size=args.size, view=args.view, sun_scale=args.sun_scale,
             intersection=args.intersection, lambert=args.lambert, exposure=args.exposure,
             texture=texture, multisamples=args.multisamples, camera=args.camera,
-            sky_mode=args.sky)
+            sky_mode=args.sky, shading=args.shading)
         exposure = mapper.GetExposure()
     else:
         window, _ = scene.build(mesh, size=args.size, view=args.view,
@@ -885,6 +885,9 @@ def build_parser():
     p.add_argument("--albedo", metavar="IMAGE",
                    help="an image (e.g. an orthophoto, PNG/JPEG/TIFF) draped over the whole "
                         "DEM as its albedo, instead of the elevation colours")
+    p.add_argument("--shading", choices=("pixel", "vertex"), default="pixel",
+                   help="evaluate the lighting at every pixel (default) or at the vertices, "
+                        "interpolated (faster for meshes of about pixel-sized triangles)")
     p.add_argument("--exr", metavar="OUT.exr",
                    help="also write the linear radiance (W/m2/sr, before exposure and tone "
                         "mapping) as an RGBA OpenEXR read back from a float framebuffer")

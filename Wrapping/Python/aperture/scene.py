@@ -135,7 +135,7 @@ def auto_exposure(sun_rgb, sun_elevation, sky_rgb):
 def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
                    intersection="exact", lambert="centroid", exposure=None, texture=None,
                    multisamples=8, background=(1.0, 1.0, 1.0), sky=None, camera=None,
-                   sky_mode="constant"):
+                   sky_mode="constant", shading="pixel"):
     """A render window showing the mesh lit by the sun and sky of `sun` (a computed
     vtkApertureSolarPosition) through each point's aperture. The mesh needs the Normals,
     BentNormal and ApertureRadius point arrays (bake, then mesh). Albedo: the elevation
@@ -143,7 +143,8 @@ def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
     EV, None: auto_exposure. sky_mode "constant": one sky radiance everywhere (`sky`, or the
     model's hemisphere average); "model": each aperture filled with the sun's sky model
     averaged over that aperture (a table of cap means, vtkApertureSolarPosition.
-    ComputeSkyTable). Returns (render_window, renderer, mapper)."""
+    ComputeSkyTable). shading "pixel" (default) or "vertex": where the lighting model runs.
+    Returns (render_window, renderer, mapper)."""
     if view not in VIEWS:
         raise ValueError("view must be one of %s, not %r" % (", ".join(VIEWS), view))
     zmin, zmax = elevation_range(mesh)
@@ -160,6 +161,7 @@ def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
     mapper.SetSunScale(sun_scale)
     mapper.SetSunIrradiance(*sun_rgb)
     mapper.SetSkyRadiance(*sky_rgb)
+    mapper.SetShadingFrequency(mapper.PER_VERTEX if shading == "vertex" else mapper.PER_FRAGMENT)
     if sky_mode == "model":
         from vtkmodules.vtkCommonCore import vtkFloatArray
         table = vtkFloatArray()
