@@ -3,7 +3,7 @@
 
     aperture info [DEM] [--json]          what a DEM is: size, cell size, CRS, bounds, elevations
     aperture bake DEM OUT.tif             what every cell sees of the sky (horizons, SVF, ...)
-    aperture render [DEM] -o OUT.png      a picture of the DEM (VTK lighting, for now)
+    aperture render [DEM] -o OUT.png      a picture of the DEM lit by the sun and sky (PNG, EXR)
     aperture sun --at ISO (--lat --lon | --dem DEM)   where the sun is; sunrise, sunset
 
 DEM is any single-band raster GDAL reads (GeoTIFF, .hgt, .asc, .dt0, VRT, ...); without it, the
