@@ -4,6 +4,7 @@
  * Appendix A. The periodic-term tables are the report's published data, checked term by term
  * against the full VSOP87D Earth series and Meeus' Table 22.A. */
 #include "ap_sun.h"
+#include "ap_time.h" /* the calendar: days <-> civil dates */
 
 #include <math.h>
 #include <stddef.h>
@@ -265,54 +266,18 @@ static double clamp1(double x) { return x > 1.0 ? 1.0 : (x < -1.0 ? -1.0 : x); }
 
 static int in_range(double x, double lo, double hi) { return x >= lo && x <= hi; }
 
-/* Days from 1970-01-01 to year-month-day on the proleptic Gregorian calendar. The year is
- * shifted to start in March, so the leap day ends it, and counted in 400-year eras of 146097
- * days. */
-static long long days_from_civil(long long y, int m, int d)
-{
-  y -= m <= 2;
-  long long era = (y >= 0 ? y : y - 399) / 400;
-  long long yoe = y - era * 400;                               /* [0, 399] */
-  long long mp = m > 2 ? m - 3 : m + 9;                        /* March = 0 */
-  long long doy = (153 * mp + 2) / 5 + d - 1;                  /* [0, 365] */
-  long long doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;       /* [0, 146096] */
-  return era * 146097 + doe - 719468;
-}
-
-/* Inverse of days_from_civil (year and month only). */
-static void civil_from_days(long long z, long long *year, int *month)
-{
-  z += 719468;
-  long long era = (z >= 0 ? z : z - 146096) / 146097;
-  long long doe = z - era * 146097;
-  long long yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
-  long long doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-  long long mp = (5 * doy + 2) / 153;
-  int m = (int)(mp < 10 ? mp + 3 : mp - 9);
-  *year = yoe + era * 400 + (m <= 2);
-  *month = m;
-}
-
-static int is_leap(long long y) { return (y % 4 == 0 && y % 100 != 0) || y % 400 == 0; }
-
-static int days_in_month(long long y, int m)
-{
-  static const int dim[12] = { 31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31 };
-  return m == 2 && is_leap(y) ? 29 : dim[m - 1];
-}
-
 /* Is t (POSIX seconds) within the years AP_SUN_YEAR_MIN..AP_SUN_YEAR_MAX? If so, give its
  * decimal year y = year + (month - 0.5) / 12 as Espenak & Meeus define it for ΔT. */
 static int instant_ok(double t, double *decimal_year)
 {
-  const double t_min = (double)days_from_civil(AP_SUN_YEAR_MIN, 1, 1) * SECONDS_PER_DAY;
-  const double t_end = (double)days_from_civil(AP_SUN_YEAR_MAX + 1, 1, 1) * SECONDS_PER_DAY;
+  const double t_min = (double)ap_time_days_from_civil(AP_SUN_YEAR_MIN, 1, 1) * SECONDS_PER_DAY;
+  const double t_end = (double)ap_time_days_from_civil(AP_SUN_YEAR_MAX + 1, 1, 1) * SECONDS_PER_DAY;
   if (!(t >= t_min && t < t_end)) { /* also rejects NaN */
     return 0;
   }
-  long long year;
-  int month;
-  civil_from_days((long long)floor(t / SECONDS_PER_DAY), &year, &month);
+  int64_t year;
+  int month, day;
+  ap_time_civil_from_days((int64_t)floor(t / SECONDS_PER_DAY), &year, &month, &day);
   *decimal_year = (double)year + ((double)month - 0.5) / 12.0;
   return 1;
 }
@@ -456,11 +421,11 @@ ap_status ap_sun_unix_time(int year, int month, int day, int hour, int minute, d
     return AP_ERR_NULL_POINTER;
   }
   if (year < AP_SUN_YEAR_MIN || year > AP_SUN_YEAR_MAX || month < 1 || month > 12 || day < 1 ||
-      day > days_in_month(year, month) || hour < 0 || hour > 23 || minute < 0 || minute > 59 ||
-      !(second >= 0.0 && second < 61.0)) {
+      day > ap_time_days_in_month(year, month) || hour < 0 || hour > 23 || minute < 0 ||
+      minute > 59 || !(second >= 0.0 && second < 61.0)) {
     return AP_ERR_OUT_OF_RANGE;
   }
-  *unix_seconds = (double)(days_from_civil(year, month, day) * 86400LL + hour * 3600LL +
+  *unix_seconds = (double)(ap_time_days_from_civil(year, month, day) * 86400LL + hour * 3600LL +
                            minute * 60LL) +
                   second;
   return AP_OK;
@@ -674,7 +639,7 @@ ap_status ap_sun_rise_transit_set(const ap_sun_params *p, int year, int month, i
     return st;
   }
   if (year < AP_SUN_YEAR_MIN || year > AP_SUN_YEAR_MAX || month < 1 || month > 12 || day < 1 ||
-      day > days_in_month(year, month) || !in_range(utc_offset_hours, -18.0, 18.0) ||
+      day > ap_time_days_in_month(year, month) || !in_range(utc_offset_hours, -18.0, 18.0) ||
       !in_range(lat_deg, -90.0, 90.0) || !in_range(lon_deg, -180.0, 180.0)) {
     return AP_ERR_OUT_OF_RANGE;
   }
@@ -684,7 +649,7 @@ ap_status ap_sun_rise_transit_set(const ap_sun_params *p, int year, int month, i
 
   /* A.2 step 1-2: local midnight as a UT instant (0 UT when the offset is 0); the apparent
    * sidereal time there and the geocentric α, δ at that midnight and ±1 day, with ΔT = 0. */
-  const double t0 = (double)days_from_civil(year, month, day) * SECONDS_PER_DAY -
+  const double t0 = (double)ap_time_days_from_civil(year, month, day) * SECONDS_PER_DAY -
                     utc_offset_hours * 3600.0;
   const double d0 = (t0 - UNIX_J2000) / SECONDS_PER_DAY;
   geo g[3];

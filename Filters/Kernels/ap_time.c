@@ -79,7 +79,7 @@ int ap_time_is_leap_year(int64_t year)
   return (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
 }
 
-static int days_in_month(int64_t year, int month)
+int ap_time_days_in_month(int64_t year, int month)
 {
   static const unsigned char days[12] = { 31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31 };
   if (month == 2 && ap_time_is_leap_year(year)) {
@@ -91,8 +91,8 @@ static int days_in_month(int64_t year, int month)
 /* Fields of a civil time, without the year range: 1 if valid. */
 static int civil_fields_valid(int64_t year, int month, int day, int hour, int minute, int second)
 {
-  return month >= 1 && month <= 12 && day >= 1 && day <= days_in_month(year, month) && hour >= 0 &&
-         hour <= 23 && minute >= 0 && minute <= 59 && second >= 0 && second <= 59;
+  return month >= 1 && month <= 12 && day >= 1 && day <= ap_time_days_in_month(year, month) &&
+         hour >= 0 && hour <= 23 && minute >= 0 && minute <= 59 && second >= 0 && second <= 59;
 }
 
 static int fraction_valid(double f)
@@ -685,7 +685,7 @@ static int64_t rule_transition(const tz_rule_date *d, int64_t year, int32_t utof
   } else {
     const int64_t first = ap_time_days_from_civil(year, d->m, 1);
     const int64_t wd_first = floor_mod(first + 4, 7); /* 1970-01-01 was a Thursday (4) */
-    const int64_t dim = days_in_month(year, d->m);
+    const int64_t dim = ap_time_days_in_month(year, d->m);
     day = first + floor_mod(d->d - wd_first, 7) + 7 * (int64_t)(d->w - 1);
     while (day >= first + dim) { /* w = 5: the last such weekday */
       day -= 7;

@@ -65,6 +65,9 @@ void ap_time_civil_from_days(int64_t days, int64_t *year, int *month, int *day);
 /** 1 if `year` is a Gregorian leap year, else 0. */
 int ap_time_is_leap_year(int64_t year);
 
+/** Days in `month` (1..12, not checked) of `year` on the proleptic Gregorian calendar. */
+int ap_time_days_in_month(int64_t year, int month);
+
 /** Check a civil time: AP_ERR_NULL_POINTER, AP_ERR_INVALID_ARGUMENT (a field outside the ranges
  *  documented on ap_civil_time, e.g. 2026-02-29 or second 60), AP_ERR_OUT_OF_RANGE (year outside
  *  the supported range), else AP_OK. */
