@@ -32,6 +32,15 @@ float apCapArea(float r)
   return 4.0 * AP_PI * h * h;
 }
 
+// The half-angles at the two axes of a partial overlap (used by apCapIntersectionExact).
+void apCapLensAngles(float r1, float r2, float d, out float a1, out float a2)
+{
+  float s = 0.5 * (r1 + r2 + d);
+  float k = sqrt(max(0.0, sin(s - r1) * sin(s - r2) * sin(s - d) / sin(s)));
+  a1 = 2.0 * atan(k, sin(s - r2));
+  a2 = 2.0 * atan(k, sin(s - r1));
+}
+
 // Intersection of caps (r1, r2) whose axes are d apart, ALGORITHMS.md 1.1/1.2: the four cases,
 // and in partial overlap the half-angle angles and L'Huilier's excess (no cancellation of
 // nearly equal cosines: the acos form is off by thousands of percent for the sun in float).
@@ -43,23 +52,12 @@ float apCapIntersectionExact(float r1, float r2, float d, out float a1, out floa
   if (d <= abs(r1 - r2)) { return apCapArea(min(r1, r2)); }
   if (d >= r1 + r2) { return 0.0; }
   if (d >= 2.0 * AP_PI - r1 - r2) { return apCapArea(r1) + apCapArea(r2) - 4.0 * AP_PI; }
+  apCapLensAngles(r1, r2, d, a1, a2);
   float s = 0.5 * (r1 + r2 + d);
-  float k = sqrt(max(0.0, sin(s - r1) * sin(s - r2) * sin(s - d) / sin(s)));
-  a1 = 2.0 * atan(k, sin(s - r2));
-  a2 = 2.0 * atan(k, sin(s - r1));
   float e = 4.0 * atan(sqrt(max(0.0, tan(0.5 * s) * tan(0.5 * (s - r1)) *
                                        tan(0.5 * (s - r2)) * tan(0.5 * (s - d)))));
   float h1 = sin(0.5 * r1), h2 = sin(0.5 * r2);
   return max(0.0, 4.0 * a1 * h1 * h1 + 4.0 * a2 * h2 * h2 - 2.0 * e);
-}
-
-// The half-angles at the two axes of a partial overlap (as in apCapIntersectionExact).
-void apCapLensAngles(float r1, float r2, float d, out float a1, out float a2)
-{
-  float s = 0.5 * (r1 + r2 + d);
-  float k = sqrt(max(0.0, sin(s - r1) * sin(s - r2) * sin(s - d) / sin(s)));
-  a1 = 2.0 * atan(k, sin(s - r2));
-  a2 = 2.0 * atan(k, sin(s - r1));
 }
 
 // Oat & Sander's approximation, ALGORITHMS.md 1.4: the smaller cap's area times a smoothstep
