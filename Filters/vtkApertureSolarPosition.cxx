@@ -306,8 +306,13 @@ bool vtkApertureSolarPosition::SetPlaceFromImage(vtkImageData* dem)
   if (z && z->GetNumberOfTuples() == static_cast<vtkIdType>(dims[0]) * dims[1])
   {
     const double ic = 0.5 * (dims[0] - 1), jc = 0.5 * (dims[1] - 1);
-    double best = std::numeric_limits<double>::infinity();
-    for (int j = 0; j < dims[1]; ++j)
+    // The cell nearest the centre (the first of the tied ones in scan order) is usually valid:
+    // read it alone, and scan the grid only when it is nodata.
+    const double centre =
+      z->GetComponent(static_cast<vtkIdType>(dims[1] - 1) / 2 * dims[0] + (dims[0] - 1) / 2, 0);
+    double best = std::isfinite(centre) ? 0.0 : std::numeric_limits<double>::infinity();
+    height = std::isfinite(centre) ? centre : 0.0;
+    for (int j = 0; best > 0.0 && j < dims[1]; ++j)
     {
       for (int i = 0; i < dims[0]; ++i)
       {

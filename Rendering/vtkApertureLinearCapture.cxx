@@ -41,33 +41,22 @@ vtkImageData* vtkApertureLinearCapture::Capture(vtkRenderer* renderer)
   {
     window->MakeCurrent();
     const unsigned int w = texture->GetWidth(), h = texture->GetHeight();
-    const int comps = texture->GetComponents();
     vtkPixelBufferObject* pbo = texture->Download();
-    if (pbo && comps >= 3)
+    if (pbo && texture->GetComponents() == 4) // vtkFramebufferPass's colour is RGBA
     {
-      vtkNew<vtkFloatArray> pixels;
-      pixels->SetNumberOfComponents(comps);
-      pixels->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
+      vtkNew<vtkFloatArray> rgba;
+      rgba->SetName("Radiance");
+      rgba->SetNumberOfComponents(4);
+      rgba->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
+      const char* names[4] = { "R", "G", "B", "A" };
+      for (int c = 0; c < 4; ++c)
+      {
+        rgba->SetComponentName(c, names[c]);
+      }
       unsigned int dims[2] = { w, h };
       vtkIdType increments[2] = { 0, 0 };
-      if (pbo->Download2D(VTK_FLOAT, pixels->GetPointer(0), dims, comps, increments))
+      if (pbo->Download2D(VTK_FLOAT, rgba->GetPointer(0), dims, 4, increments))
       {
-        vtkNew<vtkFloatArray> rgba;
-        rgba->SetName("Radiance");
-        rgba->SetNumberOfComponents(4);
-        rgba->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
-        const char* names[4] = { "R", "G", "B", "A" };
-        for (int c = 0; c < 4; ++c)
-        {
-          rgba->SetComponentName(c, names[c]);
-        }
-        for (vtkIdType i = 0; i < static_cast<vtkIdType>(w) * h; ++i)
-        {
-          for (int c = 0; c < 4; ++c)
-          {
-            rgba->SetTypedComponent(i, c, c < comps ? pixels->GetTypedComponent(i, c) : 1.0f);
-          }
-        }
         image = vtkImageData::New();
         image->SetDimensions(static_cast<int>(w), static_cast<int>(h), 1);
         image->GetPointData()->AddArray(rgba);
