@@ -21,11 +21,11 @@ from vtkmodules.test import Testing
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkCommand, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkRenderer, vtkRenderWindow,
-                                         vtkWindowToImageFilter)
+from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 
 import aperture
+from aperture import scene
 
 N = 48  # vertices per side; one pixel per vertex
 
@@ -98,13 +98,7 @@ class Scene:
 
     def pixels(self):
         """(N, N, 3) array, [j, i] = pixel over vertex (i, j)."""
-        self.window.Render()
-        grab = vtkWindowToImageFilter()
-        grab.SetInput(self.window)
-        grab.SetInputBufferTypeToRGB()
-        grab.ReadFrontBufferOff()
-        grab.Update()
-        return vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars()).reshape(N, N, 3)
+        return scene.rgb_pixels(self.window)
 
 
 UP = (0.0, 0.0, 1.0)

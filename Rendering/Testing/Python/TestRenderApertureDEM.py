@@ -23,8 +23,7 @@ import numpy as np
 from vtkmodules.test import Testing
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.vtkRenderingCore import vtkTexture, vtkWindowToImageFilter
-from vtkmodules.vtkIOImage import vtkPNGWriter
+from vtkmodules.vtkRenderingCore import vtkTexture
 
 import aperture
 from aperture import scene
@@ -62,19 +61,10 @@ def render(name, sun, **options):
     mesh, _ = mesh_and_dem()
     window, renderer, mapper = scene.build_aperture(mesh, sun, size=SIZE, multisamples=0,
                                                     **options)
-    window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.SetInputBufferTypeToRGB()
-    grab.ReadFrontBufferOff()
-    grab.Update()
     folder = os.environ.get("APERTURE_WRITE_IMAGES")
     if folder:
-        writer = vtkPNGWriter()
-        writer.SetFileName(os.path.join(folder, name + ".png"))
-        writer.SetInputConnection(grab.GetOutputPort())
-        writer.Write()
-    rgb = vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars()).reshape(SIZE[1], SIZE[0], 3)
+        scene.write_png(window, os.path.join(folder, name + ".png"))
+    rgb = scene.rgb_pixels(window)
     return window, renderer, rgb[::-1].astype(float)  # row 0 at the top
 
 

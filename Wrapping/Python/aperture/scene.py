@@ -242,17 +242,31 @@ def frame(renderer, mesh, view, size, camera_azimuth=180.0, camera_elevation=35.
     renderer.ResetCameraClippingRange()
 
 
+def grab(window):
+    """Render the window and return its RGB pixels as a vtkImageData (row 0 at the bottom)."""
+    window.Render()
+    grabber = vtkWindowToImageFilter()
+    grabber.SetInput(window)
+    grabber.SetInputBufferTypeToRGB()
+    grabber.ReadFrontBufferOff()
+    grabber.Update()
+    return grabber.GetOutput()
+
+
+def rgb_pixels(window):
+    """Render the window and return its pixels as a (height, width, 3) uint8 numpy array, row 0
+    at the bottom (VTK's order)."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    image = grab(window)
+    width, height, _ = image.GetDimensions()
+    return vtk_to_numpy(image.GetPointData().GetScalars()).reshape(height, width, 3)
+
+
 def write_png(window, path):
     """Render and write the window's pixels to a PNG; returns the absolute path."""
-    window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.SetInputBufferTypeToRGB()
-    grab.ReadFrontBufferOff()
-    grab.Update()
     writer = vtkPNGWriter()
     writer.SetFileName(path)
-    writer.SetInputConnection(grab.GetOutputPort())
+    writer.SetInputData(grab(window))
     writer.Write()
     if writer.GetErrorCode():
         raise OSError("cannot write the PNG %s" % path)
