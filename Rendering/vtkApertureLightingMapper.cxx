@@ -85,7 +85,7 @@ void vtkApertureLightingMapper::SetSkyTable(
   this->SkyTable = table;
   if (variantChanges)
   {
-    this->Modified(); // switching the sky table on or off compiles the other shader variant
+    this->VariantTime.Modified(); // on or off: compile the other shader variant
   }
   this->SkyTableSize[0] = azimuths;
   this->SkyTableSize[1] = elevations;
@@ -191,14 +191,43 @@ void vtkApertureLightingMapper::SetSkyRadiance(double r, double g, double b)
   this->SkyRadiance[2] = b;
 }
 
+// The modes and the shading frequency select compiled shader variants: a change rebuilds the
+// shaders at the next draw (VariantTime), but not the geometry.
 void vtkApertureLightingMapper::SetIntersectionMode(int mode)
 {
-  this->IntersectionMode = mode == SMOOTHSTEP ? SMOOTHSTEP : EXACT;
+  mode = mode == SMOOTHSTEP ? SMOOTHSTEP : EXACT;
+  if (mode != this->IntersectionMode)
+  {
+    this->IntersectionMode = mode;
+    this->VariantTime.Modified();
+  }
 }
 
 void vtkApertureLightingMapper::SetLambertMode(int mode)
 {
-  this->LambertMode = mode == EXACT_CAP ? EXACT_CAP : CENTROID;
+  mode = mode == EXACT_CAP ? EXACT_CAP : CENTROID;
+  if (mode != this->LambertMode)
+  {
+    this->LambertMode = mode;
+    this->VariantTime.Modified();
+  }
+}
+
+void vtkApertureLightingMapper::SetShadingFrequency(int frequency)
+{
+  frequency = frequency == PER_VERTEX ? PER_VERTEX : PER_FRAGMENT;
+  if (frequency != this->ShadingFrequency)
+  {
+    this->ShadingFrequency = frequency;
+    this->VariantTime.Modified();
+  }
+}
+
+bool vtkApertureLightingMapper::GetNeedToRebuildShaders(
+  vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
+{
+  return cellBO.ShaderSourceTime < this->VariantTime ||
+    this->Superclass::GetNeedToRebuildShaders(cellBO, ren, act);
 }
 
 void vtkApertureLightingMapper::SetExposure(double ev)
@@ -299,13 +328,14 @@ void vtkApertureLightingMapper::ReplaceShaderValues(
   std::string fs = shaders[vtkShader::Fragment]->GetSource();
   if (this->UsingAperture)
   {
-    // Variants are compiled, not branched on uniforms (llvmpipe pays for untaken branches'
-    // texture fetches): the sky table, and where the model runs (per pixel or per vertex).
+    // Variants are compiled, not branched on uniforms (llvmpipe runs untaken branches, masked):
+    // the sky table, where the model runs (per pixel or per vertex), and the two modes.
     const bool perVertex = this->ShadingFrequency == PER_VERTEX;
     const std::string defines = std::string(this->SkyTable ? "#define AP_SKY_TABLE 1\n" : "") +
-      (perVertex ? "#define AP_PER_VERTEX 1\n" : "");
-    const std::string decVS = defines + vtkApertureLightingDecVS +
-      (perVertex ? std::string(vtkApertureLightingModel) : std::string());
+      (perVertex ? "#define AP_PER_VERTEX 1\n" : "") +
+      (this->IntersectionMode == SMOOTHSTEP ? "#define AP_SMOOTHSTEP 1\n" : "") +
+      (this->LambertMode == EXACT_CAP ? "#define AP_EXACT_CAP 1\n" : "");
+    const std::string decVS = defines + vtkApertureLightingDecVS + vtkApertureLightingModel;
     const std::string decFS = defines + vtkApertureLightingDecFS +
       (perVertex ? std::string() : std::string(vtkApertureLightingModel));
     Insert(vs, "//VTK::Normal::Dec", decVS.c_str());
@@ -354,12 +384,12 @@ void vtkApertureLightingMapper::SetMapperShaderParameters(
       radiance[c] = static_cast<float>(this->SunIrradiance[c] / (kPi * sinRl * sinRl));
     }
     program->SetUniformf("apertureSunSin", static_cast<float>(sinRl));
+    program->SetUniformf("apertureSunCos", static_cast<float>(std::cos(rl)));
+    program->SetUniformf("apertureSunHalfSin2", static_cast<float>(halfSin * halfSin));
     program->SetUniformf("apertureSunArea", static_cast<float>(4.0 * kPi * halfSin * halfSin));
     program->SetUniform3f("apertureSunRadiance", radiance);
     program->SetUniform3f("apertureSunIrradiance", sun);
     program->SetUniform3f("apertureSkyRadiance", sky);
-    program->SetUniformi("apertureIntersection", this->IntersectionMode);
-    program->SetUniformi("apertureLambert", this->LambertMode);
     program->SetUniformi("apertureToneMap", this->ToneMapping ? 1 : 0);
     if (this->SkyTable)
     {

@@ -21,9 +21,11 @@
  * outgoing radiance (W/m²/sr for irradiances in W/m²) is multiplied by 2^Exposure and, with
  * ToneMapping on (default), mapped by 1 − exp(−x) and the sRGB transfer function for display.
  *
- * Moving the sun, changing the sky, the exposure or the modes changes uniforms only: these
- * setters do not mark the mapper modified, so the next Render() uses them and no geometry is
- * uploaded again (GetGeometryUploads() counts uploads, for tests).
+ * Moving the sun, changing the sky or the exposure changes uniforms only: these setters do not
+ * mark the mapper modified, so the next Render() uses them and no geometry is uploaded again
+ * (GetGeometryUploads() counts uploads, for tests). The modes, the shading frequency and
+ * switching the sky table on or off select compiled shader variants: the next Render()
+ * compiles (or takes from VTK's shader cache) the variant, again without a geometry upload.
  *
  * LightingModel STANDARD draws with VTK's own lighting (times 2^Exposure) and needs no arrays.
  * With the default APERTURE model, missing or wrongly sized arrays are an error (vtkErrorMacro
@@ -123,7 +125,11 @@ public:
   vtkGetVector3Macro(SkyRadiance, double);
 
   ///@{
-  /** EXACT (default) or SMOOTHSTEP cap intersection; CENTROID (default) or EXACT_CAP Lambert. */
+  /**
+   * EXACT (default) or SMOOTHSTEP cap intersection; CENTROID (default) or EXACT_CAP Lambert.
+   * Each combination is a compiled shader variant: a change compiles (or takes from the
+   * shader cache) the other variant at the next draw, without re-uploading the geometry.
+   */
   void SetIntersectionMode(int mode);
   int GetIntersectionMode() const { return this->IntersectionMode; }
   void SetLambertMode(int mode);
@@ -161,13 +167,15 @@ public:
   };
   ///@{
   /**
-   * Where the lighting model runs: PER_FRAGMENT (default: every pixel, from interpolated
-   * normals, bent normals and aperture radii) or PER_VERTEX (at the vertices, the irradiance
+   * Where the lighting model runs: PER_FRAGMENT (default: the sun at every pixel, from
+   * interpolated normals, bent normals and aperture radii; the sky's sun-independent share,
+   * the aperture's cosine-weighted solid angle and the sky radiance averaged over it, at the
+   * vertices, interpolated) or PER_VERTEX (everything at the vertices, the irradiance
    * interpolated across each triangle: faster when triangles are about pixel-sized, as for
    * large terrain meshes, and identical at the vertices; softer where triangles span many
-   * pixels). Switching compiles the other shader variant.
+   * pixels). Switching compiles the other shader variant (no geometry upload).
    */
-  vtkSetClampMacro(ShadingFrequency, int, PER_FRAGMENT, PER_VERTEX);
+  void SetShadingFrequency(int frequency);
   vtkGetMacro(ShadingFrequency, int);
   ///@}
 
@@ -187,6 +195,7 @@ protected:
     std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act) override;
   void SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
   void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
+  bool GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
   void RenderPieceFinish(vtkRenderer* ren, vtkActor* act) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
@@ -215,6 +224,7 @@ protected:
   int SkyTableSize[3] = { 0, 0, 0 };
   vtkTextureObject* SkyTexture = nullptr;
   vtkMTimeType SkyTextureTime = 0;
+  vtkTimeStamp VariantTime; // the last change of a compiled shader variant's choice
   bool UsingAperture = false; // the shaders in use were built for the APERTURE model
 
 private:

@@ -2,22 +2,26 @@
 // vtkApertureLightingMapper: the lighting model, compiled into the fragment shader (per-pixel
 // shading, the default) or into the vertex shader (per-vertex shading). The ambient aperture
 // lighting of Oat & Sander (2007, "Ambient aperture lighting", seed 000) with the exact
-// spherical-cap intersection and Lambert terms of ALGORITHMS.md; a line-by-line port, in single
-// precision, of the CPU reference in Filters/Kernels/ap_light.c (double precision); the two must
-// stay identical in meaning, and the regression test compares them pixel by pixel.
+// spherical-cap intersection and Lambert terms of ALGORITHMS.md; the CPU reference in
+// Filters/Kernels/ap_light.c (double precision, the formulas as ALGORITHMS.md writes them) step
+// by step, in single precision, with the trigonometry shared between the steps (identities
+// noted where they are used); the two must stay identical in meaning, and the regression test
+// compares them pixel by pixel.
 // (Never write VTK's tag strings in these comments: the superclass expands them anywhere.)
 
 uniform vec3 apertureSunDirection;   // unit vector to the sun's centre, mesh frame
 uniform float apertureSunRadius;     // rl: angular radius of the sun cap (rad), (0, pi/2]
 uniform vec3 apertureSunIrradiance;  // Esun: W/m2 normal to the beam, whole disc, RGB
 uniform float apertureSunSin;        // sin rl
+uniform float apertureSunCos;        // cos rl
+uniform float apertureSunHalfSin2;   // sin^2(rl/2)
 uniform float apertureSunArea;       // 4 pi sin^2(rl/2): the sun cap's solid angle (sr)
 uniform vec3 apertureSunRadiance;    // Esun / (pi sin^2 rl), W/m2/sr
 uniform vec3 apertureSkyRadiance;    // Lsky: W/m2/sr, uniform over the aperture, RGB
-uniform int apertureIntersection;    // 0: exact (ALGORITHMS.md 1.2), 1: smoothstep (1.4)
-uniform int apertureLambert;         // 0: centroid (1.6), 1: exact cap (6.1)
-// With a sky table the mapper compiles this shader with AP_SKY_TABLE defined (a variant, not a
-// uniform branch: llvmpipe pays for an untaken branch's texture fetches).
+// The modes are compiled variants, not uniform branches (llvmpipe pays for untaken branches):
+// AP_SMOOTHSTEP (defined: Oat & Sander's intersection, 1.4; else the exact one, 1.2),
+// AP_EXACT_CAP (defined: the exact-cap Lambert term, 6.1; else the lens centroid, 1.6) and
+// AP_SKY_TABLE (defined: the sky model averaged over each aperture, from a table).
 #ifdef AP_SKY_TABLE
 uniform sampler2D apertureSkyTable;  // cap-mean sky radiance, RGB float, (azimuth, elev + radius)
 uniform int apertureSkyTableSize[3]; // azimuths, elevations, radii
@@ -25,64 +29,73 @@ uniform int apertureSkyTableSize[3]; // azimuths, elevations, radii
 
 const float AP_PI = 3.14159265358979;
 
-// Solid angle of a cap of angular radius r: 4 pi sin^2(r/2) (the float-safe form).
-float apCapArea(float r)
-{
-  float h = sin(0.5 * r);
-  return 4.0 * AP_PI * h * h;
-}
+// Cost note: a software rasteriser (llvmpipe) runs every side of a branch whose condition
+// differs between pixels, masked, so the functions below share their transcendentals: each cap
+// arrives with h2 = sin^2(r/2), sin r and cos r (1 - cos r = 2 h2, no cancellation), computed
+// once per pixel or per draw, and the distance d between the axes with its cos d and sin d
+// (the dot and cross products of the unit axes).
 
-// The half-angles at the two axes of a partial overlap (used by apCapIntersectionExact).
-void apCapLensAngles(float r1, float r2, float d, out float a1, out float a2)
+// The lens of two caps (r1, r2) whose axes are d apart, in partial overlap: the half-angles
+// a1, a2 at the axes with their sines, and the excess e of the triangle (axis 1, axis 2, a
+// rim crossing), all from the four sines of L'Huilier's half-perimeter (ALGORITHMS.md 1.2).
+// a: 2 atan2(k, sin(s - r2)), so sin a = 2 k sin(s - r2) / (k^2 + sin^2(s - r2)).
+// e: 2 atan2(2 k sin s, 1 + cos r1 + cos r2 + cos d), the quotient of Cagnoli's
+//   sin(e/2) = k sin s / (2 cos(r1/2) cos(r2/2) cos(d/2)) and of
+//   cos(e/2) = (1 + cos r1 + cos r2 + cos d) / (4 cos(r1/2) cos(r2/2) cos(d/2)), equal to
+//   L'Huilier's 4 atan sqrt(tan(s/2) tan((s-r1)/2) tan((s-r2)/2) tan((s-d)/2)) (to 2e-9 in
+//   double over random lenses) and as safe in float: sums of angles go into sines, no
+//   cosines of nearly equal angles are subtracted, and atan2 has no pole.
+void apCapLens(float r1, float r2, float d, float cosR1, float cosR2, float cosD,
+  out float a1, out float a2, out float sinA1, out float sinA2, out float e)
 {
   float s = 0.5 * (r1 + r2 + d);
-  float k = sqrt(max(0.0, sin(s - r1) * sin(s - r2) * sin(s - d) / sin(s)));
-  a1 = 2.0 * atan(k, sin(s - r2));
-  a2 = 2.0 * atan(k, sin(s - r1));
+  float s0 = sin(s), s1 = sin(s - r1), s2 = sin(s - r2), s3 = sin(s - d);
+  float k = sqrt(max(0.0, s1 * s2 * s3 / max(s0, 1e-30)));
+  a1 = 2.0 * atan(k, s2);
+  a2 = 2.0 * atan(k, s1);
+  sinA1 = 2.0 * k * s2 / max(k * k + s2 * s2, 1e-30);
+  sinA2 = 2.0 * k * s1 / max(k * k + s1 * s1, 1e-30);
+  e = 2.0 * atan(2.0 * k * s0, 1.0 + cosR1 + cosR2 + cosD);
 }
 
-// Intersection of caps (r1, r2) whose axes are d apart, ALGORITHMS.md 1.1/1.2: the four cases,
-// and in partial overlap the half-angle angles and L'Huilier's excess (no cancellation of
-// nearly equal cosines: the acos form is off by thousands of percent for the sun in float).
-// a1, a2 return the half-angles at the two axes (used by the lens moment); 0 outside overlap.
-float apCapIntersectionExact(float r1, float r2, float d, out float a1, out float a2)
+// Intersection area (sr) of caps (r1, r2) whose axes are d apart, ALGORITHMS.md 1.1/1.2: the
+// four cases, and in partial overlap the sector form 4 a1 h1 + 4 a2 h2 - 2 e of the lens
+// (h = sin^2(r/2), no cancellation of nearly equal cosines: the acos form is off by thousands
+// of percent for the sun in float). partial: whether the caps overlap partially.
+float apCapIntersectionExact(float r1, float r2, float d, float h1, float h2, float a1,
+  float a2, float e, out bool partial)
 {
-  a1 = 0.0;
-  a2 = 0.0;
-  if (d <= abs(r1 - r2)) { return apCapArea(min(r1, r2)); }
+  partial = false;
+  if (d <= abs(r1 - r2)) { return 4.0 * AP_PI * min(h1, h2); }
   if (d >= r1 + r2) { return 0.0; }
-  if (d >= 2.0 * AP_PI - r1 - r2) { return apCapArea(r1) + apCapArea(r2) - 4.0 * AP_PI; }
-  apCapLensAngles(r1, r2, d, a1, a2);
-  float s = 0.5 * (r1 + r2 + d);
-  float e = 4.0 * atan(sqrt(max(0.0, tan(0.5 * s) * tan(0.5 * (s - r1)) *
-                                       tan(0.5 * (s - r2)) * tan(0.5 * (s - d)))));
-  float h1 = sin(0.5 * r1), h2 = sin(0.5 * r2);
-  return max(0.0, 4.0 * a1 * h1 * h1 + 4.0 * a2 * h2 * h2 - 2.0 * e);
+  if (d >= 2.0 * AP_PI - r1 - r2) { return 4.0 * AP_PI * (h1 + h2 - 1.0); }
+  partial = true;
+  return max(0.0, 4.0 * a1 * h1 + 4.0 * a2 * h2 - 2.0 * e);
 }
 
 // Oat & Sander's approximation, ALGORITHMS.md 1.4: the smaller cap's area times a smoothstep
-// of the normalised axis distance.
-float apCapIntersectionSmoothstep(float r1, float r2, float d)
+// of the normalised axis distance (h = sin^2(r/2)).
+float apCapIntersectionSmoothstep(float r1, float r2, float d, float h1, float h2)
 {
-  float rmin = min(r1, r2), diff = abs(r1 - r2);
-  float amin = apCapArea(rmin);
+  float amin = 4.0 * AP_PI * min(h1, h2), diff = abs(r1 - r2);
   if (d <= diff) { return amin; }
   if (d >= r1 + r2) { return 0.0; }
   float x = 1.0 - (d - diff) / (r1 + r2 - diff);
   return amin * x * x * (3.0 - 2.0 * x);
 }
 
-// Integral of max(0, n.w) over a cap of half-angle sigma <= pi/2 whose axis makes cosT with n
-// (sin2s = sin^2 sigma): Snyder (1996) in Frostbite's form, ALGORITHMS.md 6.1.
-float apCapCosineIntegral(float cosT, float sin2s)
+// Integral of max(0, n.w) over a cap of half-angle sigma <= pi/2 whose axis makes cosT with n:
+// Snyder (1996) in Frostbite's form, ALGORITHMS.md 6.1, with x = sqrt(1/sin^2 sigma - 1)
+// = cos sigma / sin sigma and atan(sy / x) = atan2(sy sin sigma, cos sigma).
+float apCapCosineIntegral(float cosT, float sinS, float cosS)
 {
+  float sin2s = sinS * sinS;
   if (cosT * cosT >= sin2s) { return AP_PI * sin2s * max(cosT, 0.0); }
   float sinT = sqrt(max(0.0, 1.0 - cosT * cosT));
-  float x = sqrt(max(0.0, 1.0 / sin2s - 1.0));
-  float y = -x * cosT / sinT;
+  float y = -cosS * cosT / (sinS * sinT);
   float sy = sinT * sqrt(max(0.0, 1.0 - y * y));
-  float t = x > 0.0 ? atan(sy / x) : 0.5 * AP_PI;
-  return max(0.0, (cosT * acos(clamp(y, -1.0, 1.0)) - x * sy) * sin2s + t);
+  float t = atan(sy * sinS, cosS);
+  return max(0.0, cosT * acos(clamp(y, -1.0, 1.0)) * sin2s - cosS * sinS * sy + t);
 }
 
 #ifdef AP_SKY_TABLE
@@ -120,81 +133,109 @@ vec3 apSkyLookup(vec3 b, float rp)
 }
 #endif
 
-// The irradiance of a point (W/m2, RGB): sun through the aperture plus the sky filling the rest
-// of it (ap_light.c, step by step). apN: normal, apB: bent normal, apRp: aperture radius (rad).
-// Nodata (NaN, zero vectors) gives 0: a black point.
-vec3 apIrradiance(vec3 apN, vec3 apB, float apRp)
+// Nodata: NaN or zero vectors (a black point).
+bool apValid(vec3 apN, vec3 apB, float apRp)
 {
-  bool apValid = !(isnan(apRp) || isnan(apN.x) || isnan(apB.x)) && dot(apN, apN) > 0.0 &&
+  return !(isnan(apRp) || isnan(apN.x) || isnan(apB.x)) && dot(apN, apN) > 0.0 &&
     dot(apB, apB) > 0.0;
+}
+
+// The aperture cap's half-angle sine squared, sine and cosine: h = sin^2(rp/2), sin rp,
+// cos rp = 1 - 2h (one sine for all three).
+vec3 apApertureSines(float apRp)
+{
+  float apHalf = sin(0.5 * clamp(apRp, 0.0, 0.5 * AP_PI));
+  float apH = apHalf * apHalf;
+  return vec3(apH, 2.0 * apHalf * sqrt(max(0.0, 1.0 - apH)), 1.0 - 2.0 * apH);
+}
+
+// The sky's share that does not depend on the sun (step 4 of ap_light.c before the sun's share
+// is taken off): the aperture's cosine-weighted solid angle (sr), and the sky radiance averaged
+// over the aperture (W/m2/sr, RGB). Shading per pixel, the vertex shader computes both and the
+// rasteriser interpolates them (they vary as slowly as the normals); the sun, which makes the
+// sharp shadow edges, is computed per pixel.
+float apSkyAperture(vec3 apN, vec3 apB, float apRp)
+{
+  if (!apValid(apN, apB, apRp)) { return 0.0; }
+  vec3 apSines = apApertureSines(apRp);
+  return apCapCosineIntegral(dot(normalize(apN), normalize(apB)), apSines.y, apSines.z);
+}
+
+vec3 apSkyLight(vec3 apB, float apRp)
+{
+#ifdef AP_SKY_TABLE
+  return apSkyLookup(apB, apRp); // the sky averaged over this aperture
+#else
+  return apertureSkyRadiance;
+#endif
+}
+
+// The irradiance of a point (W/m2, RGB): sun through the aperture plus the sky filling the rest
+// of it (ap_light.c, step by step). apN: normal, apB: bent normal, apRp: aperture radius (rad);
+// apSkyC, apLsky: apSkyAperture and apSkyLight of the point. Nodata gives 0: a black point.
+vec3 apIrradianceSky(vec3 apN, vec3 apB, float apRp, float apSkyC, vec3 apLsky)
+{
   vec3 apE = vec3(0.0);
-  if (apValid)
+  if (apValid(apN, apB, apRp))
   {
     apN = normalize(apN);
     apB = normalize(apB);
     apRp = clamp(apRp, 0.0, 0.5 * AP_PI);
     vec3 apS = apertureSunDirection;
     float apRl = apertureSunRadius;
-    float apSinRl = apertureSunSin; // sin rl, computed once on the CPU
+    vec3 apSines = apApertureSines(apRp);
+    float apHp = apSines.x, apSinRp = apSines.y, apCosRp = apSines.z;
     // 1. the sun's radiance, so that a fully visible sun facing the surface gives Esun:
-    //    Esun / (pi sin^2 rl), also computed once on the CPU
+    //    Esun / (pi sin^2 rl), computed once on the CPU
     vec3 apLsun = apertureSunRadiance;
-    // 2. the visible part of the sun: aperture cap (b, rp) against the sun cap (s, rl)
-    float apD = atan(length(cross(apB, apS)), dot(apB, apS));
-    float apA1 = 0.0, apA2 = 0.0, apVis = 0.0;
-    if (apRp > 0.0)
+    // 2. the visible part of the sun: aperture cap (b, rp) against the sun cap (s, rl), axes
+    //    d = atan2(|b x s|, b.s) apart
+    float apCd = dot(apB, apS), apSd = length(cross(apB, apS));
+    float apD = atan(apSd, apCd);
+    float apA1, apA2, apSinA1, apSinA2, apE3;
+    apCapLens(apRp, apRl, apD, apCosRp, apertureSunCos, apCd, apA1, apA2, apSinA1, apSinA2, apE3);
+    bool apPartial;
+    float apVis = apCapIntersectionExact(apRp, apRl, apD, apHp, apertureSunHalfSin2, apA1, apA2,
+      apE3, apPartial);
+#ifdef AP_SMOOTHSTEP
+    apVis = apCapIntersectionSmoothstep(apRp, apRl, apD, apHp, apertureSunHalfSin2);
+#endif
+    if (apRp <= 0.0)
     {
-      if (apertureIntersection == 1)
-      {
-        apVis = apCapIntersectionSmoothstep(apRp, apRl, apD);
-        if (apertureLambert == 0 && apVis > 0.0 && apD > abs(apRp - apRl))
-        {
-          apCapLensAngles(apRp, apRl, apD, apA1, apA2); // the centroid needs the lens' angles
-        }
-      }
-      else
-      {
-        apVis = apCapIntersectionExact(apRp, apRl, apD, apA1, apA2); // gives the angles too
-      }
+      apVis = 0.0;
     }
     // 3. the Lambert term S (sr): cosine-weighted visible sun
     float apS_ = 0.0;
-    if (apVis > 0.0)
-    {
-      if (apertureLambert == 1)
-      {
-        // exact cap: the sun cap's clipped cosine integral times its visible fraction
-        apS_ = apCapCosineIntegral(dot(apN, apS), apSinRl * apSinRl) * apVis / apertureSunArea;
-      }
-      else
-      {
-        // centroid: area times the cosine of the lens centroid (first moment, 1.6)
-        vec3 apC;
-        if (apD <= abs(apRp - apRl))
-        {
-          apC = apRp < apRl ? apB : apS; // containment: the smaller cap's axis
-        }
-        else
-        {
-          float apSd = sin(apD), apCd = cos(apD);
-          vec3 apT1 = (apS - apCd * apB) / apSd, apT2 = (apB - apCd * apS) / apSd;
-          vec3 apM = sin(apRp) * (apA1 * sin(apRp) * apB - sin(apA1) * cos(apRp) * apT1) +
-            apSinRl * (apA2 * apSinRl * apS - sin(apA2) * cos(apRl) * apT2);
-          apC = normalize(apM);
-        }
-        apS_ = apVis * max(0.0, dot(apN, apC));
-      }
-    }
-    // 4. the sky: the aperture's cosine-weighted solid angle less the sun's share
-    float apSinRp = sin(apRp);
-    float apSky = max(0.0, apCapCosineIntegral(dot(apN, apB), apSinRp * apSinRp) - apS_);
-    // 5. irradiance (W/m2)
-#ifdef AP_SKY_TABLE
-    vec3 apLsky = apSkyLookup(apB, apRp); // the sky averaged over this aperture
+#ifdef AP_EXACT_CAP
+    // exact cap: the sun cap's clipped cosine integral times its visible fraction
+    apS_ = apCapCosineIntegral(dot(apN, apS), apertureSunSin, apertureSunCos) * apVis /
+      apertureSunArea;
 #else
-    vec3 apLsky = apertureSkyRadiance;
+    {
+      // centroid: area times the cosine of the lens centroid (first moment, 1.6); in
+      // containment the smaller cap's axis, else the lens' moment from the tangents
+      // t1 = (s - cos d b) / sin d, t2 = (b - cos d s) / sin d
+      vec3 apC = apRp < apRl ? apB : apS;
+      if (apPartial)
+      {
+        vec3 apT1 = (apS - apCd * apB) / apSd, apT2 = (apB - apCd * apS) / apSd;
+        vec3 apM = apSinRp * (apA1 * apSinRp * apB - apSinA1 * apCosRp * apT1) +
+          apertureSunSin * (apA2 * apertureSunSin * apS - apSinA2 * apertureSunCos * apT2);
+        apC = normalize(apM);
+      }
+      apS_ = apVis * max(0.0, dot(apN, apC));
+    }
 #endif
+    // 4. the sky: the aperture's cosine-weighted solid angle less the sun's share
+    float apSky = max(0.0, apSkyC - apS_);
+    // 5. irradiance (W/m2)
     apE = apLsun * apS_ + apLsky * apSky;
   }
   return apE;
+}
+
+// The same, everything at this point.
+vec3 apIrradiance(vec3 apN, vec3 apB, float apRp)
+{
+  return apIrradianceSky(apN, apB, apRp, apSkyAperture(apN, apB, apRp), apSkyLight(apB, apRp));
 }

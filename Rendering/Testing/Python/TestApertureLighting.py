@@ -11,7 +11,7 @@ values stay below 1, no multisampling):
   monotonically with the sun's scale (1, 5, 20);
 - GPU against the CPU reference (ap_light.c, double precision) at every vertex, for both
   intersection modes and both Lambert modes, with a sky table, and shading per vertex;
-- moving the sun re-uploads no geometry; bad input gives an error and a documented fallback.
+- moving the sun or switching a mode re-uploads no geometry; bad input gives an error and a documented fallback.
 """
 import math
 import sys
@@ -276,17 +276,22 @@ class TestApertureLighting(Testing.vtkTest):
         print("GPU vs CPU, (largest 8-bit difference, share of equal pixels) per (sun scale, "
               "Lambert, intersection):", worst)
 
-    def testUniformsOnly(self):
+    def testNoGeometryUploads(self):
+        # moving the sun sets uniforms; switching a mode or the shading frequency compiles
+        # another shader variant: neither uploads the geometry again
         s = linear_scene(grid_mesh(UP, UP, 1.0), exposure=-8.0)
+        m = s.mapper
         s.pixels()
-        uploads = s.mapper.GetGeometryUploads()
-        for az in range(0, 360, 45):
-            s.mapper.SetSunDirection(sun_dir(az, 30.0))
-            s.mapper.SetExposure(-7.0)
-            s.mapper.SetSunScale(3.0)
-            s.mapper.SetIntersectionMode(s.mapper.SMOOTHSTEP)
+        uploads = m.GetGeometryUploads()
+        for k, az in enumerate(range(0, 360, 45)):
+            m.SetSunDirection(sun_dir(az, 30.0))
+            m.SetExposure(-7.0)
+            m.SetSunScale(3.0)
+            m.SetIntersectionMode(m.SMOOTHSTEP if k % 2 else m.EXACT)
+            m.SetLambertMode(m.EXACT_CAP if k % 4 < 2 else m.CENTROID)
+            m.SetShadingFrequency(m.PER_VERTEX if k % 3 == 0 else m.PER_FRAGMENT)
             s.pixels()
-        self.assertEqual(s.mapper.GetGeometryUploads(), uploads)
+        self.assertEqual(m.GetGeometryUploads(), uploads)
 
     def testBadInput(self):
         errors = []
