@@ -335,7 +335,8 @@ void vtkApertureLightingMapper::ReplaceShaderValues(
       (perVertex ? "#define AP_PER_VERTEX 1\n" : "") +
       (this->IntersectionMode == SMOOTHSTEP ? "#define AP_SMOOTHSTEP 1\n" : "") +
       (this->LambertMode == EXACT_CAP ? "#define AP_EXACT_CAP 1\n" : "");
-    const std::string decVS = defines + vtkApertureLightingDecVS + vtkApertureLightingModel;
+    const std::string decVS = defines + vtkApertureLightingDecVS +
+      (perVertex ? std::string(vtkApertureLightingModel) : std::string());
     const std::string decFS = defines + vtkApertureLightingDecFS +
       (perVertex ? std::string() : std::string(vtkApertureLightingModel));
     Insert(vs, "//VTK::Normal::Dec", decVS.c_str());
@@ -385,7 +386,8 @@ void vtkApertureLightingMapper::SetMapperShaderParameters(
     }
     program->SetUniformf("apertureSunSin", static_cast<float>(sinRl));
     program->SetUniformf("apertureSunCos", static_cast<float>(std::cos(rl)));
-    program->SetUniformf("apertureSunHalfSin2", static_cast<float>(halfSin * halfSin));
+    const float half[2] = { static_cast<float>(halfSin), static_cast<float>(std::cos(0.5 * rl)) };
+    program->SetUniform2f("apertureSunHalf", half);
     program->SetUniformf("apertureSunArea", static_cast<float>(4.0 * kPi * halfSin * halfSin));
     program->SetUniform3f("apertureSunRadiance", radiance);
     program->SetUniform3f("apertureSunIrradiance", sun);

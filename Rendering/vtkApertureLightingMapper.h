@@ -167,10 +167,8 @@ public:
   };
   ///@{
   /**
-   * Where the lighting model runs: PER_FRAGMENT (default: the sun at every pixel, from
-   * interpolated normals, bent normals and aperture radii; the sky's sun-independent share,
-   * the aperture's cosine-weighted solid angle and the sky radiance averaged over it, at the
-   * vertices, interpolated) or PER_VERTEX (everything at the vertices, the irradiance
+   * Where the lighting model runs: PER_FRAGMENT (default: every pixel, from interpolated
+   * normals, bent normals and aperture radii) or PER_VERTEX (at the vertices, the irradiance
    * interpolated across each triangle: faster when triangles are about pixel-sized, as for
    * large terrain meshes, and identical at the vertices; softer where triangles span many
    * pixels). Switching compiles the other shader variant (no geometry upload).

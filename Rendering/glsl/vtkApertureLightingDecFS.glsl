@@ -11,8 +11,4 @@ in vec3 apertureIrradianceVSOut;     // W/m2 RGB, computed per vertex and interp
 in vec3 apertureNormalVSOut;
 in vec3 apertureBentVSOut;
 in float apertureRadiusVSOut;
-in float apertureSkyApertureVSOut;
-#ifdef AP_SKY_TABLE
-in vec3 apertureSkyLightVSOut;
-#endif
 #endif

@@ -1,11 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// vtkApertureLightingMapper, vertex shader declarations (after the normal declarations; the
-// lighting model follows them).
+// vtkApertureLightingMapper, vertex shader declarations (after the normal declarations).
 // Per-vertex inputs in the mesh's own frame (East-North-Up metres of vtkApertureTerrainMesh):
 // the surface normal, the bent normal (axis of the visible-sky cap) and the aperture radius
-// (radians). Shading per pixel, they go to the fragment shader, which interpolates them, with
-// the sky's sun-independent share computed here; shading per vertex, the whole irradiance is
-// computed here.
+// (radians). Shading per pixel, they go to the fragment shader, which interpolates them;
+// shading per vertex, the irradiance is computed here (the model follows these lines then).
 // (Never write VTK's tag strings in these comments: the superclass expands them anywhere.)
 in vec3 apertureNormalMC;
 in vec3 apertureBentMC;
@@ -16,8 +14,4 @@ out vec3 apertureIrradianceVSOut;
 out vec3 apertureNormalVSOut;
 out vec3 apertureBentVSOut;
 out float apertureRadiusVSOut;
-out float apertureSkyApertureVSOut; // the aperture's cosine-weighted solid angle (sr)
-#ifdef AP_SKY_TABLE
-out vec3 apertureSkyLightVSOut;     // the sky radiance averaged over the aperture
-#endif
 #endif

@@ -5,11 +5,6 @@
 #ifdef AP_PER_VERTEX
   gl_FragData[0].rgb = diffuseColor / AP_PI * apertureIrradianceVSOut;
 #else
-#ifdef AP_SKY_TABLE
-  vec3 apSkyL = apertureSkyLightVSOut;
-#else
-  vec3 apSkyL = apertureSkyRadiance;
-#endif
-  gl_FragData[0].rgb = diffuseColor / AP_PI * apIrradianceSky(apertureNormalVSOut,
-    apertureBentVSOut, apertureRadiusVSOut, apertureSkyApertureVSOut, apSkyL);
+  gl_FragData[0].rgb = diffuseColor / AP_PI *
+    apIrradiance(apertureNormalVSOut, apertureBentVSOut, apertureRadiusVSOut);
 #endif

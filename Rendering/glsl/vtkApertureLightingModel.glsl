@@ -14,7 +14,7 @@ uniform float apertureSunRadius;     // rl: angular radius of the sun cap (rad),
 uniform vec3 apertureSunIrradiance;  // Esun: W/m2 normal to the beam, whole disc, RGB
 uniform float apertureSunSin;        // sin rl
 uniform float apertureSunCos;        // cos rl
-uniform float apertureSunHalfSin2;   // sin^2(rl/2)
+uniform vec2 apertureSunHalf;        // sin(rl/2), cos(rl/2)
 uniform float apertureSunArea;       // 4 pi sin^2(rl/2): the sun cap's solid angle (sr)
 uniform vec3 apertureSunRadiance;    // Esun / (pi sin^2 rl), W/m2/sr
 uniform vec3 apertureSkyRadiance;    // Lsky: W/m2/sr, uniform over the aperture, RGB
@@ -30,45 +30,67 @@ uniform int apertureSkyTableSize[3]; // azimuths, elevations, radii
 const float AP_PI = 3.14159265358979;
 
 // Cost note: a software rasteriser (llvmpipe) runs every side of a branch whose condition
-// differs between pixels, masked, so the functions below share their transcendentals: each cap
-// arrives with h2 = sin^2(r/2), sin r and cos r (1 - cos r = 2 h2, no cancellation), computed
-// once per pixel or per draw, and the distance d between the axes with its cos d and sin d
-// (the dot and cross products of the unit axes).
+// differs between pixels, masked, so the functions below share their trigonometry. Each cap
+// and the distance d between the axes arrive as the sine and cosine of their half-angles
+// (the sun's computed once per draw, the aperture's from one sine, d's from the dot and cross
+// products of the unit axes); 1 - cos r = 2 sin^2(r/2) and sin r = 2 sin(r/2) cos(r/2).
 
-// The lens of two caps (r1, r2) whose axes are d apart, in partial overlap: the half-angles
-// a1, a2 at the axes with their sines, and the excess e of the triangle (axis 1, axis 2, a
-// rim crossing), all from the four sines of L'Huilier's half-perimeter (ALGORITHMS.md 1.2).
-// a: 2 atan2(k, sin(s - r2)), so sin a = 2 k sin(s - r2) / (k^2 + sin^2(s - r2)).
-// e: 2 atan2(2 k sin s, 1 + cos r1 + cos r2 + cos d), the quotient of Cagnoli's
+// The half-angle sine and cosine of d, from cos d = b.s and sin d = |b x s| (d in [0, pi]):
+// the square root where it does not cancel, the other from sin d = 2 sin(d/2) cos(d/2).
+vec2 apHalfAngle(float cosD, float sinD)
+{
+  float c = sqrt(max(0.0, 0.5 * (1.0 + cosD))), sn = sqrt(max(0.0, 0.5 * (1.0 - cosD)));
+  return cosD >= 0.0 ? vec2(0.5 * sinD / max(c, 1e-30), c) : vec2(sn, 0.5 * sinD / max(sn, 1e-30));
+}
+
+// The four sines of L'Huilier's half-perimeter s = (r1 + r2 + d) / 2 (ALGORITHMS.md 1.2):
+// (sin s, sin(s - r1), sin(s - r2), sin(s - d)), by angle addition from the half-angles h1, h2,
+// hd (each (sin, cos) of half the angle) with P = (r1 + r2)/2 and M = (r1 - r2)/2:
+// s = P + d/2, s - r1 = d/2 - M, s - r2 = d/2 + M, s - d = P - d/2. A sum or difference of
+// products carries the same absolute rounding (~1e-7) as the float angles s - r it replaces,
+// so near tangency the lens is as exact as with the sines of those angles.
+vec4 apLensSines(vec2 h1, vec2 h2, vec2 hd)
+{
+  float sinP = h1.x * h2.y + h1.y * h2.x, cosP = h1.y * h2.y - h1.x * h2.x;
+  float sinM = h1.x * h2.y - h1.y * h2.x, cosM = h1.y * h2.y + h1.x * h2.x;
+  return vec4(sinP * hd.y + cosP * hd.x, cosM * hd.x - sinM * hd.y,
+    sinM * hd.y + cosM * hd.x, sinP * hd.y - cosP * hd.x);
+}
+
+// The lens of two caps (r1, r2) in partial overlap, from the four sines sn of apLensSines:
+// the half-angles a1, a2 at the axes with their sines, and the excess e of the triangle
+// (axis 1, axis 2, a rim crossing).
+// k = sqrt(sin(s - r1) sin(s - r2) sin(s - d) / sin s); a1 = 2 atan2(k, sin(s - r2)),
+// a2 = 2 atan2(k, sin(s - r1)), so sin a = 2 k t / (k^2 + t^2) with t the atan2's second term.
+// e = 2 atan2(2 k sin s, 1 + cos r1 + cos r2 + cos d): the quotient of Cagnoli's
 //   sin(e/2) = k sin s / (2 cos(r1/2) cos(r2/2) cos(d/2)) and of
 //   cos(e/2) = (1 + cos r1 + cos r2 + cos d) / (4 cos(r1/2) cos(r2/2) cos(d/2)), equal to
 //   L'Huilier's 4 atan sqrt(tan(s/2) tan((s-r1)/2) tan((s-r2)/2) tan((s-d)/2)) (to 2e-9 in
-//   double over random lenses) and as safe in float: sums of angles go into sines, no
-//   cosines of nearly equal angles are subtracted, and atan2 has no pole.
-void apCapLens(float r1, float r2, float d, float cosR1, float cosR2, float cosD,
+//   double over random lenses) and as safe in float (atan2 has no pole).
+void apCapLens(vec4 sn, float cosR1, float cosR2, float cosD,
   out float a1, out float a2, out float sinA1, out float sinA2, out float e)
 {
-  float s = 0.5 * (r1 + r2 + d);
-  float s0 = sin(s), s1 = sin(s - r1), s2 = sin(s - r2), s3 = sin(s - d);
-  float k = sqrt(max(0.0, s1 * s2 * s3 / max(s0, 1e-30)));
-  a1 = 2.0 * atan(k, s2);
-  a2 = 2.0 * atan(k, s1);
-  sinA1 = 2.0 * k * s2 / max(k * k + s2 * s2, 1e-30);
-  sinA2 = 2.0 * k * s1 / max(k * k + s1 * s1, 1e-30);
-  e = 2.0 * atan(2.0 * k * s0, 1.0 + cosR1 + cosR2 + cosD);
+  float k = sqrt(max(0.0, sn.y * sn.z * sn.w / max(sn.x, 1e-30)));
+  a1 = 2.0 * atan(k, sn.z);
+  a2 = 2.0 * atan(k, sn.y);
+  sinA1 = 2.0 * k * sn.z / max(k * k + sn.z * sn.z, 1e-30);
+  sinA2 = 2.0 * k * sn.y / max(k * k + sn.y * sn.y, 1e-30);
+  e = 2.0 * atan(2.0 * k * sn.x, 1.0 + cosR1 + cosR2 + cosD);
 }
 
-// Intersection area (sr) of caps (r1, r2) whose axes are d apart, ALGORITHMS.md 1.1/1.2: the
-// four cases, and in partial overlap the sector form 4 a1 h1 + 4 a2 h2 - 2 e of the lens
-// (h = sin^2(r/2), no cancellation of nearly equal cosines: the acos form is off by thousands
-// of percent for the sun in float). partial: whether the caps overlap partially.
-float apCapIntersectionExact(float r1, float r2, float d, float h1, float h2, float a1,
-  float a2, float e, out bool partial)
+// Intersection area (sr) of caps whose lens sines are sn (apLensSines), ALGORITHMS.md 1.1/1.2:
+// contained (d <= |r1 - r2|: sin(s - r1) or sin(s - r2) not positive) the smaller cap,
+// disjoint (d >= r1 + r2: sin(s - d) not positive) nothing, else the sector form
+// 4 a1 h1 + 4 a2 h2 - 2 e of the lens (h = sin^2(r/2): no cancellation of nearly equal
+// cosines; the acos form is off by thousands of percent for the sun in float). The fourth case
+// of 1.1, d >= 2 pi - r1 - r2, needs r1 + r2 > pi: not with radii of at most pi/2.
+// partial: whether the caps overlap partially.
+float apCapIntersectionExact(vec4 sn, float h1, float h2, float a1, float a2, float e,
+  out bool partial)
 {
   partial = false;
-  if (d <= abs(r1 - r2)) { return 4.0 * AP_PI * min(h1, h2); }
-  if (d >= r1 + r2) { return 0.0; }
-  if (d >= 2.0 * AP_PI - r1 - r2) { return 4.0 * AP_PI * (h1 + h2 - 1.0); }
+  if (sn.y <= 0.0 || sn.z <= 0.0) { return 4.0 * AP_PI * min(h1, h2); }
+  if (sn.w <= 0.0) { return 0.0; }
   partial = true;
   return max(0.0, 4.0 * a1 * h1 + 4.0 * a2 * h2 - 2.0 * e);
 }
@@ -140,40 +162,17 @@ bool apValid(vec3 apN, vec3 apB, float apRp)
     dot(apB, apB) > 0.0;
 }
 
-// The aperture cap's half-angle sine squared, sine and cosine: h = sin^2(rp/2), sin rp,
-// cos rp = 1 - 2h (one sine for all three).
-vec3 apApertureSines(float apRp)
+// The aperture's half-angle sine and cosine: (sin(rp/2), cos(rp/2)), rp clamped to [0, pi/2].
+vec2 apApertureHalf(float apRp)
 {
-  float apHalf = sin(0.5 * clamp(apRp, 0.0, 0.5 * AP_PI));
-  float apH = apHalf * apHalf;
-  return vec3(apH, 2.0 * apHalf * sqrt(max(0.0, 1.0 - apH)), 1.0 - 2.0 * apH);
-}
-
-// The sky's share that does not depend on the sun (step 4 of ap_light.c before the sun's share
-// is taken off): the aperture's cosine-weighted solid angle (sr), and the sky radiance averaged
-// over the aperture (W/m2/sr, RGB). Shading per pixel, the vertex shader computes both and the
-// rasteriser interpolates them (they vary as slowly as the normals); the sun, which makes the
-// sharp shadow edges, is computed per pixel.
-float apSkyAperture(vec3 apN, vec3 apB, float apRp)
-{
-  if (!apValid(apN, apB, apRp)) { return 0.0; }
-  vec3 apSines = apApertureSines(apRp);
-  return apCapCosineIntegral(dot(normalize(apN), normalize(apB)), apSines.y, apSines.z);
-}
-
-vec3 apSkyLight(vec3 apB, float apRp)
-{
-#ifdef AP_SKY_TABLE
-  return apSkyLookup(apB, apRp); // the sky averaged over this aperture
-#else
-  return apertureSkyRadiance;
-#endif
+  float apSh = sin(0.5 * clamp(apRp, 0.0, 0.5 * AP_PI));
+  return vec2(apSh, sqrt(max(0.0, 1.0 - apSh * apSh)));
 }
 
 // The irradiance of a point (W/m2, RGB): sun through the aperture plus the sky filling the rest
-// of it (ap_light.c, step by step). apN: normal, apB: bent normal, apRp: aperture radius (rad);
-// apSkyC, apLsky: apSkyAperture and apSkyLight of the point. Nodata gives 0: a black point.
-vec3 apIrradianceSky(vec3 apN, vec3 apB, float apRp, float apSkyC, vec3 apLsky)
+// of it (ap_light.c, step by step). apN: normal, apB: bent normal, apRp: aperture radius (rad).
+// Nodata (NaN, zero vectors) gives 0: a black point.
+vec3 apIrradiance(vec3 apN, vec3 apB, float apRp)
 {
   vec3 apE = vec3(0.0);
   if (apValid(apN, apB, apRp))
@@ -183,22 +182,24 @@ vec3 apIrradianceSky(vec3 apN, vec3 apB, float apRp, float apSkyC, vec3 apLsky)
     apRp = clamp(apRp, 0.0, 0.5 * AP_PI);
     vec3 apS = apertureSunDirection;
     float apRl = apertureSunRadius;
-    vec3 apSines = apApertureSines(apRp);
-    float apHp = apSines.x, apSinRp = apSines.y, apCosRp = apSines.z;
+    // the aperture's half-angle (sine, cosine), h = sin^2(rp/2), sin rp and cos rp = 1 - 2h
+    vec2 apHalf = apApertureHalf(apRp);
+    float apHp = apHalf.x * apHalf.x;
+    float apSinRp = 2.0 * apHalf.x * apHalf.y, apCosRp = 1.0 - 2.0 * apHp;
+    float apHl = apertureSunHalf.x * apertureSunHalf.x;
     // 1. the sun's radiance, so that a fully visible sun facing the surface gives Esun:
     //    Esun / (pi sin^2 rl), computed once on the CPU
     vec3 apLsun = apertureSunRadiance;
     // 2. the visible part of the sun: aperture cap (b, rp) against the sun cap (s, rl), axes
-    //    d = atan2(|b x s|, b.s) apart
+    //    d apart: cos d = b.s, sin d = |b x s|
     float apCd = dot(apB, apS), apSd = length(cross(apB, apS));
-    float apD = atan(apSd, apCd);
+    vec4 apSn = apLensSines(apHalf, apertureSunHalf, apHalfAngle(apCd, apSd));
     float apA1, apA2, apSinA1, apSinA2, apE3;
-    apCapLens(apRp, apRl, apD, apCosRp, apertureSunCos, apCd, apA1, apA2, apSinA1, apSinA2, apE3);
+    apCapLens(apSn, apCosRp, apertureSunCos, apCd, apA1, apA2, apSinA1, apSinA2, apE3);
     bool apPartial;
-    float apVis = apCapIntersectionExact(apRp, apRl, apD, apHp, apertureSunHalfSin2, apA1, apA2,
-      apE3, apPartial);
+    float apVis = apCapIntersectionExact(apSn, apHp, apHl, apA1, apA2, apE3, apPartial);
 #ifdef AP_SMOOTHSTEP
-    apVis = apCapIntersectionSmoothstep(apRp, apRl, apD, apHp, apertureSunHalfSin2);
+    apVis = apCapIntersectionSmoothstep(apRp, apRl, atan(apSd, apCd), apHp, apHl);
 #endif
     if (apRp <= 0.0)
     {
@@ -227,15 +228,14 @@ vec3 apIrradianceSky(vec3 apN, vec3 apB, float apRp, float apSkyC, vec3 apLsky)
     }
 #endif
     // 4. the sky: the aperture's cosine-weighted solid angle less the sun's share
-    float apSky = max(0.0, apSkyC - apS_);
+    float apSky = max(0.0, apCapCosineIntegral(dot(apN, apB), apSinRp, apCosRp) - apS_);
     // 5. irradiance (W/m2)
+#ifdef AP_SKY_TABLE
+    vec3 apLsky = apSkyLookup(apB, apRp); // the sky averaged over this aperture
+#else
+    vec3 apLsky = apertureSkyRadiance;
+#endif
     apE = apLsun * apS_ + apLsky * apSky;
   }
   return apE;
-}
-
-// The same, everything at this point.
-vec3 apIrradiance(vec3 apN, vec3 apB, float apRp)
-{
-  return apIrradianceSky(apN, apB, apRp, apSkyAperture(apN, apB, apRp), apSkyLight(apB, apRp));
 }
