@@ -98,25 +98,60 @@ static int hull_push_near(hull *h, const sample *q)
 }
 
 /* The vertex with the largest slope (u_i - uq) / (x_i - xq), for xq below every x_i, or NULL
- * when empty. Along an upper hull these slopes are unimodal, so a binary search finds the
- * tangent vertex; the comparison is division-free (all differences in x are positive). */
-static const sample *hull_tangent(const hull *h, double xq, double uq, double *slope)
+ * when empty; the slope in *slope. Along an upper hull these slopes are unimodal: "the slope
+ * rises to the next vertex" holds for every index below the tangent vertex and for none from it
+ * on, so any search for that boundary finds the same vertex. The search gallops from *hint (the
+ * index a previous query of this hull returned; successive columns' tangents are mostly close)
+ * and then bisects: a few steps instead of log2(n). The comparison is division-free (all
+ * differences in x are positive). *hint is updated. */
+static const sample *hull_tangent(const hull *h, double xq, double uq, int *hint,
+                                  double *slope)
 {
   const sample *v = h->v;
-  int lo = 0, n = h->n - 1; /* search the first i in [0, n) whose slope is not below i + 1's */
+  const int last = h->n - 1; /* the boundary lies in [0, last] */
+  int lo, hi, step, i;
   if (h->n == 0) {
     return NULL;
   }
-  /* Branch-free lower bound (the comparison decides a conditional move, not a jump): each step
-   * is a coin toss for a branch predictor. */
-  while (n > 0) {
-    const int half = n >> 1, mid = lo + half;
-    const double da = v[mid].x - xq, ua = v[mid].u - uq;
-    const double db = v[mid + 1].x - xq, ub = v[mid + 1].u - uq;
-    const int rising = ua * db < ub * da;
-    lo = rising ? mid + 1 : lo;
-    n = rising ? n - half - 1 : half;
+#define RISING(k) ((v[(k)].u - uq) * (v[(k) + 1].x - xq) < (v[(k) + 1].u - uq) * (v[(k)].x - xq))
+  i = *hint < 0 ? 0 : (*hint > last ? last : *hint);
+  if (i < last && RISING(i)) {
+    /* the boundary is above i: gallop up */
+    lo = i + 1;
+    step = 1;
+    hi = lo;
+    while (hi < last && RISING(hi)) {
+      lo = hi + 1;
+      hi += step;
+      step *= 2;
+      if (hi > last) {
+        hi = last;
+      }
+    }
+    /* boundary in [lo, hi]: RISING false at hi (or hi == last) */
+  } else {
+    /* the boundary is at or below i: gallop down */
+    hi = i;
+    step = 1;
+    lo = i - 1;
+    while (lo >= 0 && !RISING(lo)) {
+      hi = lo;
+      lo -= step;
+      step *= 2;
+    }
+    lo = lo < 0 ? 0 : lo + 1;
+    /* boundary in [lo, hi] */
   }
+  while (lo < hi) {
+    const int mid = lo + ((hi - lo) >> 1);
+    if (RISING(mid)) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+#undef RISING
+  *hint = lo;
   *slope = (v[lo].u - uq) / (v[lo].x - xq);
   return &v[lo];
 }
@@ -186,6 +221,15 @@ static int window_push(window *w, const sample *q, int W)
       return 0;
     }
     w->mask = len - 1;
+    /* The window never holds more samples than the ring: size its stacks for that at once
+     * (GROW below still guards every push), instead of doubling them up from 16 in every
+     * chunk of lines. */
+    if (!GROW(w->in_raw, w->in_cap, len) || !GROW(w->in_hull, w->in_hcap, len) ||
+        !GROW(w->out_raw, w->out_cap, len) || !GROW(w->out_popped, w->popped_cap, len) ||
+        !GROW(w->out_umax, w->umax_cap, len) || !GROW(w->out_x, w->x_cap, len) ||
+        !GROW(w->out_hull, w->out_hcap, len) || !GROW(w->undo, w->undo_cap, len)) {
+      return 0;
+    }
   }
   *RING(w, col) = *q;
   if (!GROW(w->in_raw, w->in_cap, w->in_n + 1) ||
@@ -292,11 +336,12 @@ static int window_evict(window *w, double xlimit)
 }
 
 /* The vertex of a hull of columns (any x-monotone order) with the largest slope from
- * (xq, uq), by the binary search of hull_tangent; NULL when empty. */
+ * (xq, uq), by bisection on the same boundary as hull_tangent; NULL when empty. */
 static const sample *ring_tangent(const window *w, const int *h, int n, double xq, double uq,
                                   double *slope)
 {
-  int lo = 0, m = n - 1; /* as hull_tangent, branch-free */
+  int lo = 0, m = n - 1; /* the first index whose slope is not below the next one's,
+                          * branch-free (the comparison decides a conditional move) */
   const sample *v;
   if (n == 0) {
     return NULL;
@@ -983,6 +1028,7 @@ typedef struct line_state {
   double s, x;   /* position on the current column; distance along the line (m) */
   double xend;   /* distance of the farthest sample position inside the grid; NAN: none yet */
   hull h;        /* unlimited search: the hull of the samples at least K columns away */
+  int hint[2];   /* the last tangent index of h for the cell below (0) and above (1) */
   window w;      /* limited search: the window of those samples within the distance */
 } line_state;
 
@@ -1186,13 +1232,14 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
                * window's own search run. */
               double unused;
               const double uq = zq - c * ln->x * ln->x;
-              v = hull_tangent(&ln->h, ln->x, uq, &unused);
+              v = hull_tangent(&ln->h, ln->x, uq, &ln->hint[1 - e], &unused);
               if (v && v->x > ln->x + L) {
                 v = window_tangent(&ln->w, ln->x, uq);
               }
             } else {
               double unused;
-              v = hull_tangent(&ln->h, ln->x, zq - c * ln->x * ln->x, &unused);
+              v = hull_tangent(&ln->h, ln->x, zq - c * ln->x * ln->x, &ln->hint[1 - e],
+                                    &unused);
             }
             double sn, zn, dn, slope;
             if (!v) {
