@@ -17,11 +17,12 @@
  *  keeps the upper convex hull of the terrain it has passed in u = z − c·x² (x = distance along
  *  the line, which makes curvature exact, ALGORITHMS.md §3.5), so the cost is amortised O(1)
  *  per cell and direction and does not grow with the search distance. Each cell queries the
- *  hulls of the two lines that bracket it *with its own height* (binary search for the tangent,
- *  blended by lateral position) and marches its own ray exactly for the first K − 1 samples
- *  (the near field); querying with interpolated line samples instead is wrong by tens of
- *  degrees at peaks and ridges (ALGORITHMS.md §3.4). Terrain is sampled by linear
- *  interpolation across the grid lines the rays cross.
+ *  hulls of the two lines that bracket it *with its own height* (a galloping search for the
+ *  tangent vertex from the line's previous answer; the cell's own ray is then evaluated at
+ *  both tangent columns and the higher slope kept) and marches its own ray exactly for the
+ *  first K − 1 samples (the near field); querying with interpolated line samples instead is
+ *  wrong by tens of degrees at peaks and ridges (ALGORITHMS.md §3.4). Terrain is sampled by
+ *  linear interpolation across the grid lines the rays cross.
  *
  *  Geometry: cell sizes are given per row in metres, so lat/lon DEMs are exact (the lines
  *  follow constant ground azimuth — rhumb lines — and bend in index space as the east-west
