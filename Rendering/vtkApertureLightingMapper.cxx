@@ -39,6 +39,13 @@ namespace
 const double kPi = 3.14159265358979323846;
 const double kDeg = kPi / 180.0;
 
+// The sun cap's angular radius as drawn, radians: the disc's radius times the user's scale, at
+// most 90 degrees (the shader and the CPU reference must use the same).
+double DrawnSunRadius(double degrees, double scale)
+{
+  return std::min(90.0, degrees * scale) * kDeg;
+}
+
 void Insert(std::string& source, const char* tag, const char* code)
 {
   // Keep the tag (the superclass expands it afterwards) and add our code after it.
@@ -367,14 +374,13 @@ void vtkApertureLightingMapper::SetMapperShaderParameters(
   }
   if (program && this->UsingAperture && program->IsUniformUsed("apertureSunDirection"))
   {
-    float dir[3], sun[3], sky[3];
+    float dir[3], sky[3];
     for (int c = 0; c < 3; ++c)
     {
       dir[c] = static_cast<float>(this->SunDirection[c]);
-      sun[c] = static_cast<float>(this->SunIrradiance[c]);
       sky[c] = static_cast<float>(this->SkyRadiance[c]);
     }
-    const double rl = std::min(90.0, this->SunAngularRadius * this->SunScale) * kDeg;
+    const double rl = DrawnSunRadius(this->SunAngularRadius, this->SunScale);
     program->SetUniform3f("apertureSunDirection", dir);
     program->SetUniformf("apertureSunRadius", static_cast<float>(rl));
     // per-draw constants of the shader, computed once here rather than per fragment
@@ -390,7 +396,6 @@ void vtkApertureLightingMapper::SetMapperShaderParameters(
     program->SetUniform2f("apertureSunHalf", half);
     program->SetUniformf("apertureSunArea", static_cast<float>(4.0 * kPi * halfSin * halfSin));
     program->SetUniform3f("apertureSunRadiance", radiance);
-    program->SetUniform3f("apertureSunIrradiance", sun);
     program->SetUniform3f("apertureSkyRadiance", sky);
     program->SetUniformi("apertureToneMap", this->ToneMapping ? 1 : 0);
     if (this->SkyTable)
@@ -445,7 +450,7 @@ bool vtkApertureLightingMapper::ComputeReference(
     p.sun_irradiance[c] = this->SunIrradiance[c];
     p.sky_radiance[c] = this->SkyRadiance[c];
   }
-  p.sun_radius = std::min(90.0, this->SunAngularRadius * this->SunScale) * kDeg;
+  p.sun_radius = DrawnSunRadius(this->SunAngularRadius, this->SunScale);
   p.intersection = this->IntersectionMode == SMOOTHSTEP ? AP_LIGHT_SMOOTHSTEP : AP_LIGHT_EXACT;
   p.lambert = this->LambertMode == EXACT_CAP ? AP_LIGHT_EXACTCAP : AP_LIGHT_CENTROID;
   p.exposure = this->Exposure;

@@ -11,12 +11,11 @@
 
 uniform vec3 apertureSunDirection;   // unit vector to the sun's centre, mesh frame
 uniform float apertureSunRadius;     // rl: angular radius of the sun cap (rad), (0, pi/2]
-uniform vec3 apertureSunIrradiance;  // Esun: W/m2 normal to the beam, whole disc, RGB
 uniform float apertureSunSin;        // sin rl
 uniform float apertureSunCos;        // cos rl
 uniform vec2 apertureSunHalf;        // sin(rl/2), cos(rl/2)
 uniform float apertureSunArea;       // 4 pi sin^2(rl/2): the sun cap's solid angle (sr)
-uniform vec3 apertureSunRadiance;    // Esun / (pi sin^2 rl), W/m2/sr
+uniform vec3 apertureSunRadiance;    // Esun / (pi sin^2 rl), W/m2/sr, RGB; Esun normal to the beam
 uniform vec3 apertureSkyRadiance;    // Lsky: W/m2/sr, uniform over the aperture, RGB
 // The modes are compiled variants, not uniform branches (llvmpipe pays for untaken branches):
 // AP_SMOOTHSTEP (defined: Oat & Sander's intersection, 1.4; else the exact one, 1.2),
@@ -162,10 +161,10 @@ bool apValid(vec3 apN, vec3 apB, float apRp)
     dot(apB, apB) > 0.0;
 }
 
-// The aperture's half-angle sine and cosine: (sin(rp/2), cos(rp/2)), rp clamped to [0, pi/2].
+// The aperture's half-angle sine and cosine: (sin(rp/2), cos(rp/2)), rp in [0, pi/2].
 vec2 apApertureHalf(float apRp)
 {
-  float apSh = sin(0.5 * clamp(apRp, 0.0, 0.5 * AP_PI));
+  float apSh = sin(0.5 * apRp);
   return vec2(apSh, sqrt(max(0.0, 1.0 - apSh * apSh)));
 }
 
