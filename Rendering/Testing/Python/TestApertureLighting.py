@@ -107,6 +107,12 @@ ESUN = (1000.0, 900.0, 800.0)
 LSKY = (30.0, 35.0, 45.0)
 
 
+ALBEDO = (0.6, 0.55, 0.5)
+INNER = np.zeros((N, N), bool)
+INNER[1:-1, 1:-1] = True  # border pixels lie on the mesh's edge
+INNER = INNER.ravel()
+
+
 def linear_scene(mesh, exposure):
     s = Scene(mesh)
     m = s.mapper
@@ -212,9 +218,25 @@ class TestApertureLighting(Testing.vtkTest):
         self.assertEqual(widths, sorted(widths), widths)
         self.assertGreater(widths[2], widths[0] + 4, widths)
 
+    def checkAgainstReference(self, s, mesh, key, worst, share=0.99):
+        """The GPU picture of scene s against the CPU reference of its mapper at every inner
+        pixel: at most one 8-bit level apart and more than `share` of them equal. Both sides
+        round the same quantity to 8 bits; it differs only by single-precision rounding on the
+        GPU (the exact cap area is float-safe to 4e-4 relative, ALGORITHMS.md 1.2; the rest is
+        ~1e-6), which moves a value across a rounding edge at some pixels but can never move it
+        by two levels (a level is 0.4%). Records (largest difference, share equal) as
+        worst[key]; returns the reference, (N*N, 3) ints."""
+        gpu = s.pixels().reshape(-1, 3).astype(int)
+        cpu = reference_display(s.mapper, mesh, ALBEDO)
+        diff = np.abs(gpu - cpu)[INNER]
+        worst[key] = (int(diff.max()), round(float(np.mean(diff == 0)), 4))
+        self.assertLessEqual(int(diff.max()), 1, (key, worst))
+        self.assertGreater(np.mean(diff == 0), share, (key, worst))
+        return cpu
+
     def testGPUAgainstCPU(self):
         mesh = random_mesh()
-        s = Scene(mesh, albedo=(0.6, 0.55, 0.5))
+        s = Scene(mesh, albedo=ALBEDO)
         m = s.mapper
         m.SetSunIrradiance(*ESUN)
         m.SetSkyRadiance(*LSKY)
@@ -227,20 +249,8 @@ class TestApertureLighting(Testing.vtkTest):
                 for intersection in (m.EXACT, m.SMOOTHSTEP):
                     m.SetLambertMode(lambert)
                     m.SetIntersectionMode(intersection)
-                    gpu = s.pixels().reshape(-1, 3).astype(int)
-                    cpu = reference_display(m, mesh, (0.6, 0.55, 0.5))
-                    inner = np.zeros((N, N), bool)
-                    inner[1:-1, 1:-1] = True  # border pixels lie on the mesh's edge
-                    diff = np.abs(gpu - cpu)[inner.ravel()]
-                    key = (scale, lambert, intersection)
-                    worst[key] = (int(diff.max()), round(float(np.mean(diff == 0)), 4))
-                    # Tolerance: one 8-bit level. Both sides round the same quantity to 8 bits;
-                    # it differs only by single-precision rounding on the GPU (the exact cap
-                    # area is float-safe to 4e-4 relative, ALGORITHMS.md 1.2; the rest is
-                    # ~1e-6), which moves a value across a rounding edge at some pixels but can
-                    # never move it by two levels (a level is 0.4%). Most pixels must match.
-                    self.assertLessEqual(int(diff.max()), 1, (key, worst))
-                    self.assertGreater(np.mean(diff == 0), 0.99, (key, worst))
+                    cpu = self.checkAgainstReference(s, mesh, (scale, lambert, intersection),
+                                                     worst)
                     self.assertGreater(cpu.std(), 10.0)  # a varied picture, not a constant
         # The sky filled from a table of cap means (here an arbitrary smooth, coloured one):
         # the shader's lookup against ap_light_sky_lookup.
@@ -255,23 +265,12 @@ class TestApertureLighting(Testing.vtkTest):
         m.SetSunScale(1.0)
         for lambert in (m.CENTROID, m.EXACT_CAP):
             m.SetLambertMode(lambert)
-            gpu = s.pixels().reshape(-1, 3).astype(int)
-            cpu = reference_display(m, mesh, (0.6, 0.55, 0.5))
-            diff = np.abs(gpu - cpu)[inner.ravel()]
-            worst[("table", lambert)] = (int(diff.max()), round(float(np.mean(diff == 0)), 4))
-            self.assertLessEqual(int(diff.max()), 1, worst)
-            self.assertGreater(np.mean(diff == 0), 0.99, worst)
+            self.checkAgainstReference(s, mesh, ("table", lambert), worst)
         # Per-vertex shading: the same values at the vertices (pixels show vertices here).
         m.SetShadingFrequency(m.PER_VERTEX)
         for lambert in (m.CENTROID, m.EXACT_CAP):
             m.SetLambertMode(lambert)
-            gpu = s.pixels().reshape(-1, 3).astype(int)
-            cpu = reference_display(m, mesh, (0.6, 0.55, 0.5))
-            diff = np.abs(gpu - cpu)[inner.ravel()]
-            worst[("per-vertex", lambert)] = (int(diff.max()),
-                                              round(float(np.mean(diff == 0)), 4))
-            self.assertLessEqual(int(diff.max()), 1, worst)
-            self.assertGreater(np.mean(diff == 0), 0.99, worst)
+            self.checkAgainstReference(s, mesh, ("per-vertex", lambert), worst)
         m.SetShadingFrequency(m.PER_FRAGMENT)
         m.SetSkyTable(None, 0, 0, 0)
         print("GPU vs CPU, (largest 8-bit difference, share of equal pixels) per (sun scale, "
@@ -297,28 +296,21 @@ class TestApertureLighting(Testing.vtkTest):
         normals = np.array([unit(sun + 0.3 * rng.normal(size=3)) for _ in range(count)])
         mesh = grid_mesh(lambda i, j: normals[j * N + i], lambda i, j: bents[j * N + i],
                          lambda i, j: radii[j * N + i])
-        s = Scene(mesh, albedo=(0.6, 0.55, 0.5))
+        s = Scene(mesh, albedo=ALBEDO)
         m = s.mapper
         m.SetSunIrradiance(*ESUN)
         m.SetSkyRadiance(*LSKY)
         m.SetExposure(-7.5)
         m.SetSunDirection(sun)
-        inner = np.zeros((N, N), bool)
-        inner[1:-1, 1:-1] = True
         worst = {}
         for lambert in (m.CENTROID, m.EXACT_CAP):
             m.SetLambertMode(lambert)
-            gpu = s.pixels().reshape(-1, 3).astype(int)
-            cpu = reference_display(m, mesh, (0.6, 0.55, 0.5))
-            diff = np.abs(gpu - cpu)[inner.ravel()]
-            worst[lambert] = (int(diff.max()), round(float(np.mean(diff == 0)), 4))
             # One 8-bit level at most, as testGPUAgainstCPU; but here every pixel carries the
             # float lens error (up to 2e-4 relative for the sun against an aperture rim,
             # measured against double; ~0.03 of a level at these values), so a few percent
             # of the pixels cross a rounding edge (the shader before the angle-addition lens:
             # 95.2% equal; now 97%).
-            self.assertLessEqual(int(diff.max()), 1, worst)
-            self.assertGreater(np.mean(diff == 0), 0.95, worst)
+            cpu = self.checkAgainstReference(s, mesh, lambert, worst, share=0.95)
             self.assertGreater(cpu.std(), 10.0)  # partly lit suns: a varied picture
         print("GPU vs CPU at the rim (largest 8-bit difference, share equal) per Lambert:",
               worst)
