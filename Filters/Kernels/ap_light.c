@@ -2,6 +2,7 @@
 /* Sun-and-sky lighting of a terrain point from its aperture; the model, its formulas and
  * sources are in ap_light.h. The "shader core" section is the code the GLSL port mirrors. */
 #include "ap_light.h"
+#include "ap_vec.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -14,23 +15,6 @@
 /* ---------------------------------------------------------------------------------------------
  * Shader core: double here, float in GLSL, same operations. No domain checks (callers do them).
  * ------------------------------------------------------------------------------------------- */
-
-static double dot3(const double a[3], const double b[3])
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void cross3(const double a[3], const double b[3], double c[3])
-{
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double clamp1(double x)
-{
-  return fmin(1.0, fmax(-1.0, x));
-}
 
 /* Ω(r) = 2π(1 − cos r) = 4π sin²(r/2). */
 static double cap_area(double r)

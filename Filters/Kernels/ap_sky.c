@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Sun and sky radiometry; formulas and sources are in ap_sky.h. */
 #include "ap_sky.h"
+#include "ap_vec.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -138,16 +139,6 @@ static int unit_vector(const double v[3], double u[3])
   u[1] = y / len;
   u[2] = z / len;
   return 1;
-}
-
-static double dot3(const double a[3], const double b[3])
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static double clamp1(double c)
-{
-  return c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c);
 }
 
 static void xyz_rgb(const double xyz[3], double rgb[3])
@@ -597,13 +588,6 @@ typedef struct region {
   double c[3];
   const double *n; /* cosine weight max(0, n·ω), or NULL */
 } region;
-
-static void cross3(const double a[3], const double b[3], double out[3])
-{
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 /* Sorted ψ in [0, 2π) (about the pole, frame e1, e2) of the region's corners: the points where
  * two boundary circles cross and every constraint holds. At most 6. */

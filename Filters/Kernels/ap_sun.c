@@ -5,6 +5,7 @@
  * against the full VSOP87D Earth series and Meeus' Table 22.A. */
 #include "ap_sun.h"
 #include "ap_time.h" /* the calendar: days <-> civil dates */
+#include "ap_vec.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -261,8 +262,6 @@ static double frac01(double x)
   double r = x - floor(x);
   return r >= 1.0 ? 0.0 : r;
 }
-
-static double clamp1(double x) { return x > 1.0 ? 1.0 : (x < -1.0 ? -1.0 : x); }
 
 static int in_range(double x, double lo, double hi) { return x >= lo && x <= hi; }
 
