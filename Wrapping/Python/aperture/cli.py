@@ -172,7 +172,7 @@ def _parse_size(text):
     return w, h
 
 
-def _attach_baked(image, path, watcher):
+def _attach_baked(image, path):
     """Put BentNormal and ApertureRadius (radians) from a GeoTIFF of `aperture bake` onto the
     DEM image; the two grids must be the same."""
     import numpy as np
@@ -258,7 +258,7 @@ def cmd_render(args):
 
     if args.lighting == "aperture":
         if args.baked:
-            _attach_baked(image, args.baked, watcher)
+            _attach_baked(image, args.baked)
             source = image
         else:
             sky = watcher.watch(vtkApertureSkyVisibility())

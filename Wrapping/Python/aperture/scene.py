@@ -54,6 +54,16 @@ def elevation_range(mesh, name="Elevation"):
     return lo, hi
 
 
+def color_by_elevation(mapper, mesh):
+    """Colour the mesh by its Elevation point array with the hypsometric colours."""
+    zmin, zmax = elevation_range(mesh)
+    mapper.SetLookupTable(hypsometric_colors(zmin, zmax))
+    mapper.SetScalarModeToUsePointFieldData()
+    mapper.SelectColorArray("Elevation")
+    mapper.SetScalarRange(zmin, zmax)
+    mapper.ScalarVisibilityOn()
+
+
 def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_elevation=45.0,
           exposure=0.0, multisamples=8, background=(1.0, 1.0, 1.0), camera=None):
     """A render window showing the mesh; returns (render_window, renderer). The window renders
@@ -62,17 +72,11 @@ def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_ele
         raise ValueError("view must be one of %s, not %r" % (", ".join(VIEWS), view))
     if not -90.0 <= light_elevation <= 90.0:
         raise ValueError("light elevation must be within [-90, 90] degrees")
-    zmin, zmax = elevation_range(mesh)
-
     mapper = vtkApertureLightingMapper()
     mapper.SetLightingModel(vtkApertureLightingMapper.STANDARD)  # VTK lighting + exposure
     mapper.SetInputData(mesh)
-    mapper.SetLookupTable(hypsometric_colors(zmin, zmax))
-    mapper.SetScalarModeToUsePointFieldData()
-    mapper.SelectColorArray("Elevation")
-    mapper.SetScalarRange(zmin, zmax)
+    color_by_elevation(mapper, mesh)
     mapper.SetExposure(exposure)
-    mapper.ScalarVisibilityOn()
 
     actor = vtkActor()
     actor.SetMapper(mapper)
@@ -147,7 +151,7 @@ def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
     Returns (render_window, renderer, mapper)."""
     if view not in VIEWS:
         raise ValueError("view must be one of %s, not %r" % (", ".join(VIEWS), view))
-    zmin, zmax = elevation_range(mesh)
+    elevation_range(mesh)  # the elevation colours need the array: fail before any work
     direction = [0.0] * 3
     sun.GetDirection(direction)
     sun_rgb = [0.0] * 3
@@ -182,11 +186,7 @@ def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
         actor.SetTexture(texture)
         actor.GetProperty().SetColor(1.0, 1.0, 1.0)
     else:
-        mapper.SetLookupTable(hypsometric_colors(zmin, zmax))
-        mapper.SetScalarModeToUsePointFieldData()
-        mapper.SelectColorArray("Elevation")
-        mapper.SetScalarRange(zmin, zmax)
-        mapper.ScalarVisibilityOn()
+        color_by_elevation(mapper, mesh)
 
     renderer = vtkRenderer()
     renderer.AddActor(actor)
