@@ -94,6 +94,13 @@ std::string FormatOffset(int32_t offset)
   return buf;
 }
 
+/** The meridian convergence (degrees) at lon/lat in the DEM's projection: 0 without a DEM
+ *  (a place given by latitude and longitude only), NaN where the projection fails. */
+double ConvergenceAt(vtkApertureGeoreference* geo, double lon, double lat)
+{
+  return geo ? geo->ComputeMeridianConvergence(lon, lat) : 0.0;
+}
+
 struct ZoneDeleter
 {
   void operator()(ap_tz* tz) const { ap_tz_free(tz); }
@@ -415,16 +422,12 @@ bool vtkApertureSolarPosition::Compute()
   d.Transit = FormatUTC(this->Events[1]);
   d.Sunset = FormatUTC(this->Events[2]);
 
-  this->Convergence = 0.0;
-  if (d.Geo)
+  this->Convergence = ConvergenceAt(d.Geo, this->Longitude, this->Latitude);
+  if (!std::isfinite(this->Convergence))
   {
-    this->Convergence = d.Geo->ComputeMeridianConvergence(this->Longitude, this->Latitude);
-    if (!std::isfinite(this->Convergence))
-    {
-      d.Error = std::string("meridian convergence at the DEM centre: ") + d.Geo->GetErrorMessage();
-      vtkErrorMacro(<< d.Error);
-      return false;
-    }
+    d.Error = std::string("meridian convergence at the DEM centre: ") + d.Geo->GetErrorMessage();
+    vtkErrorMacro(<< d.Error);
+    return false;
   }
   // The light: the beam for the apparent zenith, and the sky for the sun's direction.
   if (!this->ComputeLight(r.distance))
@@ -487,14 +490,11 @@ bool vtkApertureSolarPosition::ComputeForDirection(double azimuth, double elevat
   this->Result[2] = this->Result[4] = 90.0 - elevation;
   this->Result[5] = 959.63 / 3600.0; // the disc at 1 AU
   this->Result[8] = 1.0;
-  this->Convergence = 0.0;
-  if (d.Geo)
+  // a sun given by its direction needs no projection: a failing one counts as no convergence
+  this->Convergence = ConvergenceAt(d.Geo, this->Longitude, this->Latitude);
+  if (!std::isfinite(this->Convergence))
   {
-    this->Convergence = d.Geo->ComputeMeridianConvergence(this->Longitude, this->Latitude);
-    if (!std::isfinite(this->Convergence))
-    {
-      this->Convergence = 0.0;
-    }
+    this->Convergence = 0.0;
   }
   if (!this->ComputeLight(1.0))
   {
