@@ -331,6 +331,15 @@ int vtkApertureSkyVisibility::RequestData(
         failure = ps;
         break;
       }
+      const vtkIdType columns = static_cast<vtkIdType>(ap_horizon_column_count(hz));
+      vtkSMPTools::For(0, columns, 16, [&](vtkIdType c0, vtkIdType c1) {
+        const ap_status s =
+          ap_horizon_near_field(hz, static_cast<size_t>(c0), static_cast<size_t>(c1));
+        if (s != AP_OK)
+        {
+          failure = s;
+        }
+      });
       const vtkIdType brackets = static_cast<vtkIdType>(ap_horizon_bracket_count(hz));
       // Small chunks of lines: on the 2048^2 bench DEM (10 km) two threads took 11.4-13.7 s
       // with 16 brackets per chunk against 15.3-15.5 s with 256 (a few large chunks leave one

@@ -62,6 +62,7 @@
  *      ap_horizon_create(&grid, &p, &products, &hz);          (validates once, allocates)
  *      for d in 0..D-1:
  *          ap_horizon_prepare(hz, d);
+ *          split [0, ap_horizon_column_count(hz)) into ranges;  ap_horizon_near_field() each
  *          split [0, ap_horizon_bracket_count(hz)) into ranges; ap_horizon_sweep() each
  *          split [0, ny) into row ranges;                      ap_horizon_accumulate() each
  *      split [0, ny) into row ranges;                          ap_horizon_finish() each
@@ -151,11 +152,20 @@ double ap_horizon_azimuth(const ap_horizon *hz, int d);
  *  parallel phases). */
 ap_status ap_horizon_prepare(ap_horizon *hz, int d);
 
+/** Number of view columns of the prepared sector (the DEM's columns or rows, whichever the
+ *  sector's direction crosses faster). */
+size_t ap_horizon_column_count(const ap_horizon *hz);
+
+/** The near field (the first K − 1 samples of every cell's ray, exactly on the bilinear
+ *  surface) of view columns [c0, c1) of the prepared sector. Every column must be done before
+ *  any ap_horizon_sweep of the sector, which reads these results. */
+ap_status ap_horizon_near_field(const ap_horizon *hz, size_t c0, size_t c1);
+
 /** Number of brackets (gaps between neighbouring sweep lines) of the prepared sector. */
 size_t ap_horizon_bracket_count(const ap_horizon *hz);
 
-/** Sweep brackets [b0, b1) of the prepared sector: computes the horizon and edge flag of every
- *  cell between those lines. Allocates and frees its own hull stacks; returns
+/** Sweep brackets [b0, b1) of the prepared sector after its near field: computes the horizon
+ *  and edge flag of every cell between those lines. Allocates and frees its own hull stacks; returns
  *  AP_ERR_OUT_OF_MEMORY if that fails (the products are then incomplete). */
 ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1);
 

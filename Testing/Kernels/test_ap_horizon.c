@@ -559,11 +559,16 @@ static void test_split_invariance(void)
     AP_CHECK_EQ_INT(ap_horizon_create(&g, &p, &o, &hz[run]), AP_OK);
     for (d = 0; d < 16; ++d) {
       const size_t nb = (ap_horizon_prepare(hz[run], d), ap_horizon_bracket_count(hz[run]));
+      const size_t nc = ap_horizon_column_count(hz[run]);
       if (run == 0) {
+        AP_CHECK_EQ_INT(ap_horizon_near_field(hz[run], 0, nc), AP_OK);
         AP_CHECK_EQ_INT(ap_horizon_sweep(hz[run], 0, nb), AP_OK);
         ap_horizon_accumulate(hz[run], 0, t.ny);
       } else {
         size_t b, r0;
+        for (b = 0; b < nc; b += 5) {
+          AP_CHECK_EQ_INT(ap_horizon_near_field(hz[run], b, b + 5 < nc ? b + 5 : nc), AP_OK);
+        }
         for (b = 0; b < nb; b += 7) {
           AP_CHECK_EQ_INT(ap_horizon_sweep(hz[run], b, b + 7 < nb ? b + 7 : nb), AP_OK);
         }
