@@ -914,23 +914,6 @@ static size_t scratch_index(const ap_horizon *hz, size_t p, size_t s)
   return hz->xmajor ? q * hz->ny + s : s + q * hz->nx;
 }
 
-/* Bilinear height at fractional view position (p, s); NaN outside the grid or on nodata. */
-static double view_bilinear(const ap_horizon *hz, double p, double s)
-{
-  size_t p0;
-  double t;
-  if (!(p >= 0.0) || p > (double)(hz->np - 1)) {
-    return NAN;
-  }
-  p0 = (size_t)p;
-  t = p - (double)p0;
-  if (t == 0.0 || p0 + 1 >= hz->np) {
-    return interp(view_column(hz, p0), hz->ns, s);
-  }
-  return (1.0 - t) * interp(view_column(hz, p0), hz->ns, s) +
-         t * interp(view_column(hz, p0 + 1), hz->ns, s);
-}
-
 /* ---------------------------------------------------------------------------------------- */
 /* Near field on the bilinear surface.
  *
@@ -1093,6 +1076,51 @@ static void near_column(const ap_horizon *hz, const pattern *pt, size_t p, long 
   }
 }
 
+/* The point exactly at the search distance L on the rays of cells [sa, sb) of view column p
+ * (pattern pt), max-merged into best[]: rising terrain peaks there, between the column samples
+ * the hulls hold. Only where that point lies beyond the near field: always in row-major views
+ * (the caller checks the column), per row (x-major: s is the row) otherwise. Bilinear between
+ * the two view columns around it, each linear as interp() is, written with selects (and every
+ * load kept inside the column) so that it vectorises; a point off the grid or on nodata gives NaN, which never wins. Storing the
+ * float max here rounds exactly as the sweep's final float max would (rounding is monotonic). */
+AP_MULTIVERSION
+static void far_point_column(const ap_horizon *hz, const pattern *pt, size_t p, long sa,
+                             long sb, const float *col, float *best)
+{
+  const double L = hz->p.max_distance, c = hz->c, K = (double)hz->p.near_field;
+  const double pf = (double)p + pt->lp, ls = pt->ls, lasts = (double)(hz->ns - 1);
+  const long ns = (long)hz->ns;
+  const int xmajor = hz->xmajor;
+  const double *len_row = hz->len_row;
+  size_t p0;
+  double tp;
+  int two;
+  const float *z0, *z1;
+  long s;
+  if (!(pf >= 0.0) || pf > (double)(hz->np - 1)) {
+    return;
+  }
+  p0 = (size_t)pf;
+  tp = pf - (double)p0;
+  two = !(tp == 0.0 || p0 + 1 >= hz->np);
+  z0 = view_column(hz, p0);
+  z1 = two ? view_column(hz, p0 + 1) : z0;
+  for (s = sa; s < sb; ++s) {
+    const double sp = (double)s + ls;
+    const int inside = (sp >= 0.0) & (sp <= lasts);
+    const long s0 = inside ? (long)sp : 0;
+    const long s1 = s0 + 1 < ns ? s0 + 1 : s0;
+    const double t = sp - (double)s0;
+    const double a0 = z0[s0], a1 = z0[s1], b0 = z1[s0], b1 = z1[s1];
+    const double i0 = t == 0.0 ? a0 : a0 + t * (a1 - a0);
+    const double i1 = t == 0.0 ? b0 : b0 + t * (b1 - b0);
+    const double zl = two ? (1.0 - tp) * i0 + tp * i1 : i0;
+    const double sl = (zl - (double)col[s]) / L - c * L;
+    const int use = inside & (xmajor ? L > K * len_row[s] : 1); /* (len_row has ny entries) */
+    best[s] = (use & (sl > (double)best[s])) ? (float)sl : best[s];
+  }
+}
+
 /* The near field of every cell of view columns [c0, c1) into the slope scratch. */
 ap_status ap_horizon_near_field(const ap_horizon *hz, size_t c0, size_t c1)
 {
@@ -1106,7 +1134,14 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t c0, size_t c1)
   for (p = c0; p < c1 && p < hz->np; ++p) {
     const float *col = view_column(hz, p);
     float *best = hz->slope + scratch_index(hz, p, 0);
-    const long ns = (long)hz->ns;
+    const long ns = (long)hz->ns, np = (long)hz->np;
+    /* in row-major views, whether the point at the search distance lies beyond the near field
+     * is the same for the whole column; x-major views check each row */
+    const int far_point =
+      isfinite(hz->p.max_distance) &&
+      (hz->xmajor || hz->p.max_distance > (double)hz->p.near_field *
+                                             (hz->cum_len[p + 1 < (size_t)np ? p + 1 : p] -
+                                              hz->cum_len[p + 1 < (size_t)np ? p : p - 1]));
     long run, s;
     for (s = 0; s < ns; ++s) {
       best[s] = -INFINITY;
@@ -1124,6 +1159,9 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t c0, size_t c1)
         pat = hz->pat_of[p];
       }
       near_column(hz, &hz->pats[pat], p, run, run_end, col, hz->c, best);
+      if (far_point) {
+        far_point_column(hz, &hz->pats[pat], p, run, run_end, col, best);
+      }
       run = run_end;
     }
   }
@@ -1271,11 +1309,6 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
     {
       const size_t out_base = scratch_index(hz, p, 0); /* a view column is contiguous there */
       const double first = lines[0].s, last = lines[nl - 1].s;
-      /* whether the point at the search distance lies beyond the near field (row-major views:
-       * the same for the whole column) */
-      const int far_point_col =
-        limited && !hz->xmajor &&
-        L > (double)K * (hz->cum_len[p + 1 < np ? p + 1 : p] - hz->cum_len[p + 1 < np ? p : p - 1]);
       const long s_begin = first <= 0.0 ? 0 : (long)ceil(first);
       const long s_end = last > (double)ns ? (long)ns : (long)ceil(last);
       for (cell = (size_t)s_begin; (long)cell < s_end; ++cell) {
@@ -1290,16 +1323,6 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
           hz->slope[out_index] = NAN;
           hz->edge[out_index] = 0;
           continue;
-        }
-        if (hz->xmajor ? limited && L > (double)K * hz->len_row[cell] : far_point_col) {
-          /* The point exactly at the search distance: rising terrain peaks there, between the
-           * column samples the hulls hold. */
-          const pattern *pt = &hz->pats[hz->xmajor ? hz->pat_of[cell] : hz->pat_of[p]];
-          const double zl = view_bilinear(hz, (double)p + pt->lp, sq + pt->ls);
-          if (!isnan(zl)) {
-            const double sl = (zl - zq) / L - c * L;
-            if (sl > near) near = sl;
-          }
         }
         /* Far field: the hulls of the two bracketing lines, each queried with the cell's own
          * height for the column of its tangent point; the cell's own ray is then evaluated on
