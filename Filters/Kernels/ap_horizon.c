@@ -26,6 +26,14 @@
 #define AP_PI 3.14159265358979323846
 #define AP_HALF_PI 1.57079632679489661923
 
+/* For the few small functions of the inner loops that GCC would otherwise call (a call costs
+ * as much as their body). */
+#if defined(__GNUC__)
+#define AP_INLINE static inline __attribute__((always_inline))
+#else
+#define AP_INLINE static inline
+#endif
+
 /* ---------------------------------------------------------------------------------------- */
 /* Upper convex hulls of the samples along one line, queried from a point on the near side
  * (smaller x than every sample). A sample remembers where it was taken (view column and the
@@ -104,7 +112,7 @@ static int hull_push_near(hull *h, const sample *q)
  * index a previous query of this hull returned; successive columns' tangents are mostly close)
  * and then bisects: a few steps instead of log2(n). The comparison is division-free (all
  * differences in x are positive). *hint is updated. */
-static const sample *hull_tangent(const hull *h, double xq, double uq, int *hint)
+AP_INLINE const sample *hull_tangent(const hull *h, double xq, double uq, int *hint)
 {
   const sample *v = h->v;
   const int last = h->n - 1; /* the boundary lies in [0, last] */
@@ -1421,11 +1429,6 @@ done:
  * Moshier's Cephes atan (reduction to |r| <= 0.66 by atan x = pi/4 + atan((x-1)/(x+1)) and
  * atan x = pi/2 - atan(1/x), then a 4/5 rational in r^2), written with selects instead of
  * branches. Within 1 ulp of glibc's atan; atan(+-inf) = +-pi/2, atan(+-0) = +-0. */
-#if defined(__GNUC__)
-#define AP_INLINE static inline __attribute__((always_inline))
-#else
-#define AP_INLINE static inline
-#endif
 AP_INLINE double ap_atan(double x)
 {
   static const double P0 = -8.750608600031904122785e-1, P1 = -1.615753718733365076637e1,
