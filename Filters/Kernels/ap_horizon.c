@@ -182,9 +182,9 @@ AP_INLINE const sample *hull_tangent(const hull *h, double xq, double uq, int *h
  * are kept only while a line needs them: the ring is always written, the first query that
  * needs the window builds "out" from the ring's samples within the distance (as a transfer
  * would), and a line whose window went unused for a ring's length of samples drops its stacks.
- * A build costs at most a ring's length and follows at least that many cheap pushes, so the
- * cost stays O(1) amortised; the window's content, and so every result, is the same as if it
- * had been kept all along. */
+ * A build adds at most a ring's length of samples, and stacks are dropped only after that many
+ * pushes, so the builds after a line's first are paid for by those pushes: O(1) amortised. The
+ * window's content, and so every result, is the same as if it had been kept all along. */
 
 typedef struct window {
   sample *ring;      /* the sample of column col is ring[col & mask] while in the window */
@@ -937,9 +937,9 @@ static size_t scratch_index(const ap_horizon *hz, size_t p, size_t s)
  * ("pattern") and applied to whole view columns at a time, a loop over contiguous cells that
  * compilers vectorise. That is a phase of its own (ap_horizon_near_field) before the sweep:
  * there a band of 16 lines spans 16 cells of a column, too short a loop for vectors (the near
- * field took twice the instructions inside the sweep). Where the cell size varies by row (lat/lon DEMs), rows (x-major) or
- * columns (row-major) whose rays differ by less than a thousandth of a row over the near field
- * share a pattern. */
+ * field took twice the instructions inside the sweep). Where the cell size varies by row
+ * (lat/lon DEMs), rows (x-major) or columns (row-major) whose rays differ by less than a
+ * thousandth of a row over the near field share a pattern. */
 
 static int push_rec(ap_horizon *hz, const patch_rec *r)
 {
@@ -1089,8 +1089,9 @@ static void near_column(const ap_horizon *hz, const pattern *pt, size_t p, long 
  * the hulls hold. Only where that point lies beyond the near field: always in row-major views
  * (the caller checks the column), per row (x-major: s is the row) otherwise. Bilinear between
  * the two view columns around it, each linear as interp() is, written with selects (and every
- * load kept inside the column) so that it vectorises; a point off the grid or on nodata gives NaN, which never wins. Storing the
- * float max here rounds exactly as the sweep's final float max would (rounding is monotonic). */
+ * load kept inside the column) so that it vectorises; a point off the grid or on nodata gives
+ * NaN, which never wins. Storing the float max here rounds exactly as the sweep's final float
+ * max would (rounding is monotonic). */
 AP_MULTIVERSION
 static void far_point_column(const ap_horizon *hz, const pattern *pt, size_t p, long sa,
                              long sb, const float *col, float *best)
@@ -1456,7 +1457,8 @@ AP_INLINE double ap_atan(double x)
  * nodata cell (tt NaN) gets meaningless terms, which ap_horizon_finish overwrites. */
 AP_MULTIVERSION
 static void sector_terms(size_t n, const float *tt_in, size_t tt_stride, const float *grad,
-                         double sphi, double cphi, int want_ht, double *restrict ce_out, double *restrict se_out,
+                         double sphi, double cphi, int want_ht, double *restrict ce_out,
+                         double *restrict se_out,
                          double *restrict he_out, double *restrict ht_out,
                          double *restrict tt_out)
 {

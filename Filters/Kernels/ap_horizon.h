@@ -165,8 +165,8 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t c0, size_t c1);
 size_t ap_horizon_bracket_count(const ap_horizon *hz);
 
 /** Sweep brackets [b0, b1) of the prepared sector after its near field: computes the horizon
- *  and edge flag of every cell between those lines. Allocates and frees its own hull stacks; returns
- *  AP_ERR_OUT_OF_MEMORY if that fails (the products are then incomplete). */
+ *  and edge flag of every cell between those lines. Allocates and frees its own hull stacks;
+ *  returns AP_ERR_OUT_OF_MEMORY if that fails (the products are then incomplete). */
 ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1);
 
 /** Add the prepared sector's horizons of rows [j0, j1) to the products. */
