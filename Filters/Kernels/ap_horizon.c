@@ -1645,7 +1645,13 @@ ap_status ap_horizon_run(const ap_horizon_grid *g, const ap_horizon_params *p,
       st = ap_horizon_near_field(hz, 0, ap_horizon_column_count(hz));
     }
     if (st == AP_OK) {
-      st = ap_horizon_sweep(hz, 0, ap_horizon_bracket_count(hz));
+      /* in bands of 16 brackets, as the VTK filter's threads take them: one sweep over every
+       * line at once keeps thousands of hulls in use: 2048^2 took 31.5 s instead of 18.8 s */
+      const size_t nb = ap_horizon_bracket_count(hz);
+      size_t b;
+      for (b = 0; b < nb && st == AP_OK; b += 16) {
+        st = ap_horizon_sweep(hz, b, b + 16 < nb ? b + 16 : nb);
+      }
     }
     if (st == AP_OK) {
       ap_horizon_accumulate(hz, 0, g->z.ny);
