@@ -36,7 +36,8 @@ first (as root, or through sudo) unless --no-install.
 
 Then ours alone (skippable): on 2048^2 and 4096^2 synthetic DEMs (scaling with cells), on the
 2048^2 one at radius 1 km, 10 km and unlimited (no --radius), and with --threads 1 vs the
-default (parallel speed-up). Peers are not run on those large DEMs unless --peers-on-scaling:
+default (parallel speed-up; then --thread-pairs more such pairs, each run right after the other,
+reported with their median, since this is the number VM noise moves most). Peers are not run on those large DEMs unless --peers-on-scaling:
 on 2 cores SAGA took 381 s and GRASS 428 s on 2048^2, and 4096^2 (4x the cells) would come
 close to the default 1800 s timeout.
 
@@ -447,7 +448,7 @@ def report(rows, args, header):
                                              "%.0f"),
             fmt(rate if row["status"] == "ok" else None, "%.1f"), fmt(per_core, "%.1f"),
             speedup, row["status"]))
-    notes = scaling_notes(rows) + memory_notes(rows, args)
+    notes = scaling_notes(rows) + pair_notes(args) + memory_notes(rows, args)
     if notes:
         lines.append("")
         lines.extend(notes)
@@ -494,6 +495,18 @@ def memory_notes(rows, args):
     return ["Ours, peak RSS above the baseline of the process (%.0f MiB: interpreter, VTK and "
             "GDAL loaded, `aperture info` on the embedded DEM) against input + outputs as "
             "float32 (1 + %d bands): " % (base, OUR_BANDS) + "; ".join(parts) + "."]
+
+
+def pair_notes(args):
+    pairs = getattr(args, "thread_pairs_done", [])
+    if not pairs:
+        return []
+    ratios = [one / many for one, many in pairs]
+    return ["Ours, parallel speed-up in %d more interleaved pairs (1 thread, then %d; sky filter "
+            "seconds): %s; median %.2f." % (
+                len(pairs), args.threads,
+                ", ".join("%.2f/%.2f s = %.2f" % (one, many, one / many) for one, many in pairs),
+                statistics.median(ratios))]
 
 
 def scaling_notes(rows):
@@ -561,6 +574,8 @@ def main():
                         help="skip ours on the --scaling-sizes DEMs")
     parser.add_argument("--no-radius-scaling", action="store_true")
     parser.add_argument("--no-thread-scaling", action="store_true")
+    parser.add_argument("--thread-pairs", type=int, default=3,
+                        help="extra interleaved 1-thread / all-threads pairs (default 3)")
     parser.add_argument("--scaling-only", action="store_true",
                         help="skip the comparison DEMs, run only the scaling part")
     parser.add_argument("--peers-on-scaling", action="store_true",
@@ -676,6 +691,18 @@ def main():
         if not args.no_ours and not args.no_thread_scaling:
             for threads in sorted({1, args.threads}):
                 ours(big[0], args.radius, threads, "threads")
+            # A single pair says little on a shared VM (one-thread times wandered by 40%):
+            # more pairs, each one thread then all, right after each other.
+            args.thread_pairs_done = []
+            for k in range(args.thread_pairs if args.threads > 1 else 0):
+                t = {}
+                for threads in (1, args.threads):
+                    res = run_ours(big[0], tag_of(big[0], "pair%d" % k, "t%d" % threads), args,
+                                   args.radius, threads)
+                    t[threads] = res["compute"]
+                print("  thread pair %d: %s" % (k + 1, t), flush=True)
+                if t[1] and t[args.threads]:
+                    args.thread_pairs_done.append((t[1], t[args.threads]))
     elif scaling_sizes:
         print("scaling runs skipped: ours not available (%s)" % args.ours_unavailable,
               flush=True)
