@@ -748,6 +748,14 @@ static size_t prim_index(const ap_horizon *hz, size_t p)
   return hz->flip ? hz->np - 1 - p : p;
 }
 
+/* Row-major views: the step at view position p of a prefix sum over p (cum_m or cum_len), the
+ * step to p + 1, or from p - 1 on the last position. */
+static double view_step(const double *cum, size_t np, size_t p)
+{
+  const size_t a = p + 1 < np ? p : p - 1;
+  return cum[a + 1] - cum[a];
+}
+
 /* A per-row quantity at fractional row r, linearly interpolated, clamped to the grid. */
 static double row_value(const double *table, size_t ny, double r)
 {
@@ -861,9 +869,8 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
         m = hz->m_row[q];
         len = hz->len_row[q];
       } else {
-        const size_t pa = q + 1 < hz->np ? q : q - 1;
-        m = hz->cum_m[pa + 1] - hz->cum_m[pa];
-        len = hz->cum_len[pa + 1] - hz->cum_len[pa];
+        m = view_step(hz->cum_m, hz->np, q);
+        len = view_step(hz->cum_len, hz->np, q);
       }
       tmax = fmin(hz->p.max_distance, (double)hz->p.near_field * len);
       if (q == 0 || fabs(m - hz->pats[hz->npats - 1].m) > tol ||
@@ -1152,14 +1159,13 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t c0, size_t c1)
   for (p = c0; p < c1 && p < hz->np; ++p) {
     const float *col = view_column(hz, p);
     float *best = hz->slope + scratch_index(hz, p, 0);
-    const long ns = (long)hz->ns, np = (long)hz->np;
+    const long ns = (long)hz->ns;
     /* in row-major views, whether the point at the search distance lies beyond the near field
      * is the same for the whole column; x-major views check each row */
     const int far_point =
       isfinite(hz->p.max_distance) &&
       (hz->xmajor || hz->p.max_distance > (double)hz->p.near_field *
-                                             (hz->cum_len[p + 1 < (size_t)np ? p + 1 : p] -
-                                              hz->cum_len[p + 1 < (size_t)np ? p : p - 1]));
+                                             view_step(hz->cum_len, hz->np, p));
     long run, s;
     for (s = 0; s < ns; ++s) {
       best[s] = -INFINITY;
@@ -1481,9 +1487,8 @@ AP_INLINE double ap_atan(double x)
 AP_MULTIVERSION
 static void sector_terms(size_t n, const float *tt_in, size_t tt_stride, const float *grad,
                          double sphi, double cphi, int want_ht, double *restrict ce_out,
-                         double *restrict se_out,
-                         double *restrict he_out, double *restrict ht_out,
-                         double *restrict tt_out)
+                         double *restrict se_out, double *restrict he_out,
+                         double *restrict ht_out, double *restrict tt_out)
 {
   size_t k;
   for (k = 0; k < n; ++k) {
