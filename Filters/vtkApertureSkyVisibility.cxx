@@ -341,11 +341,9 @@ int vtkApertureSkyVisibility::RequestData(
         }
       });
       const vtkIdType brackets = static_cast<vtkIdType>(ap_horizon_bracket_count(hz));
-      // Small chunks of lines: on the 2048^2 bench DEM (10 km) two threads took 11.4-13.7 s
-      // with 16 brackets per chunk against 15.3-15.5 s with 256 (a few large chunks leave one
-      // thread idle at the end of a direction, and a small chunk's hulls and windows stay in
-      // cache). Results do not depend on the chunks.
-      vtkSMPTools::For(0, brackets, 16, [&](vtkIdType b0, vtkIdType b1) {
+      // Small chunks of lines (ap_horizon.h): their hulls and windows stay in cache, and no
+      // thread idles long at the end of a direction. Results do not depend on the chunks.
+      vtkSMPTools::For(0, brackets, AP_HORIZON_SWEEP_BAND, [&](vtkIdType b0, vtkIdType b1) {
         const ap_status s = ap_horizon_sweep(hz, static_cast<size_t>(b0), static_cast<size_t>(b1));
         if (s != AP_OK)
         {

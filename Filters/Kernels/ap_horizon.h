@@ -161,6 +161,13 @@ size_t ap_horizon_column_count(const ap_horizon *hz);
  *  any ap_horizon_sweep of the sector, which reads these results. */
 ap_status ap_horizon_near_field(const ap_horizon *hz, size_t c0, size_t c1);
 
+/** Brackets per ap_horizon_sweep call that perform best, as ap_horizon_run and the VTK filter
+ *  split them (the filter as its threads' grain): a band's hulls and windows stay in cache. One
+ *  call over every bracket of a 2048^2 DEM (10 km) took 31.5 s instead of 18.8 s on one core,
+ *  and two threads took 15.3-15.5 s with 256 per call against 11.4-13.7 s with 16. Results do
+ *  not depend on the split. */
+#define AP_HORIZON_SWEEP_BAND 16
+
 /** Number of brackets (gaps between neighbouring sweep lines) of the prepared sector. */
 size_t ap_horizon_bracket_count(const ap_horizon *hz);
 
