@@ -1274,7 +1274,10 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
     if (p >= AP_PREFETCH_COLUMNS) {
       const size_t pf = p - AP_PREFETCH_COLUMNS;
       const double s_first = hz->parallel ? k0 - shift : lines[0].s;
-      const size_t sa = s_first > 0.0 ? (size_t)s_first : 0;
+      /* the band's first and last cells, kept inside the column (a band can lie wholly
+       * beside the grid at this column, and a pointer past the column is not to be formed) */
+      const size_t sa =
+        s_first <= 0.0 ? 0 : (s_first < (double)(ns - 1) ? (size_t)s_first : ns - 1);
       const size_t sb = sa + nl < ns ? sa + nl : ns - 1;
       AP_PREFETCH(view_column(hz, pf) + sa);
       AP_PREFETCH(view_column(hz, pf) + sb);
