@@ -43,6 +43,7 @@ struct vtkApertureDEMWriter::Internals
 vtkApertureDEMWriter::vtkApertureDEMWriter()
   : FileName(nullptr)
   , Compression(nullptr)
+  , NumberOfThreads(0)
   , Impl(new Internals)
 {
   this->SetCompression("DEFLATE");
@@ -252,6 +253,13 @@ void vtkApertureDEMWriter::WriteData()
   {
     options = CSLSetNameValue(options, "PREDICTOR", "3"); // floating-point predictor
   }
+  if (compression != "NONE")
+  {
+    // GDAL compresses whole tiles on worker threads and writes them in order: same bytes.
+    const std::string threads =
+      this->NumberOfThreads > 0 ? std::to_string(this->NumberOfThreads) : "ALL_CPUS";
+    options = CSLSetNameValue(options, "NUM_THREADS", threads.c_str());
+  }
   const GDALDataType type = anyDouble ? GDT_Float64 : GDT_Float32;
   GDALDatasetH ds =
     GDALCreate(driver, path.c_str(), nx, ny, static_cast<int>(bands.size()), type, options);
@@ -349,6 +357,7 @@ void vtkApertureDEMWriter::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
   os << indent << "Compression: " << (this->Compression ? this->Compression : "(none)") << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ArrayNames:";
   for (const auto& n : this->Impl->ArrayNames)
   {

@@ -17,7 +17,8 @@
  * Samples: Float32 bands, or Float64 when any written array is double. NaN is the nodata value
  * and is declared as such. Compression: DEFLATE with the floating-point predictor, tiled
  * 256 x 256, BigTIFF when needed; Compression may name another GeoTIFF codec (LZW, ZSTD,
- * NONE, ...).
+ * NONE, ...). Tiles are compressed on NumberOfThreads threads (GDAL's NUM_THREADS; the file's
+ * bytes do not depend on it).
  *
  * Errors (vtkErrorMacro, nothing left behind): no file name, an input that is not 2-D, a named
  * array that does not exist, an array that is not numeric, or GDAL failing to create or write.
@@ -59,6 +60,14 @@ public:
   ///@}
 
   ///@{
+  /** Threads compressing tiles (GDAL's NUM_THREADS): 0 (default) = all cores, 1 = on the
+   * writing thread alone.
+   * Negative values are clamped to 0. Has no effect without compression. */
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
   /** Dataset metadata (key = value, the GeoTIFF's GDAL metadata domain), written with the file. */
   void AddMetadata(const char* key, const char* value);
   /** Metadata for the bands of one array (all its components). */
@@ -77,6 +86,7 @@ protected:
 
   char* FileName;
   char* Compression;
+  int NumberOfThreads;
 
 private:
   vtkApertureDEMWriter(const vtkApertureDEMWriter&) = delete;

@@ -23,6 +23,7 @@
 #include <sys/stat.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace
@@ -192,6 +193,70 @@ void TestSelectionAndTypes()
   }
 }
 
+std::string ReadBytes(const std::string& path)
+{
+  std::string bytes;
+  if (FILE* f = std::fopen(path.c_str(), "rb"))
+  {
+    char buf[65536];
+    size_t n;
+    while ((n = std::fread(buf, 1, sizeof(buf), f)) > 0)
+    {
+      bytes.append(buf, n);
+    }
+    std::fclose(f);
+  }
+  return bytes;
+}
+
+// Tiles compressed on several threads (NUM_THREADS) give the same file as on one, byte for
+// byte, on an image of 3 x 3 tiles with values that do not compress to nothing.
+void TestThreadsSameBytes()
+{
+  const int nx = 600, ny = 520;
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(nx, ny, 1);
+  image->SetOrigin(300015.0, 5000015.0, 0.0);
+  image->SetSpacing(30.0, 30.0, 1.0);
+  vtkNew<vtkFloatArray> z;
+  z->SetName("Elevation");
+  z->SetNumberOfTuples(static_cast<vtkIdType>(nx) * ny);
+  unsigned state = 12345u;
+  for (vtkIdType k = 0; k < z->GetNumberOfTuples(); ++k)
+  {
+    state = state * 1664525u + 1013904223u; // Numerical Recipes' LCG
+    z->SetValue(k, static_cast<float>(k % nx) + static_cast<float>(state >> 8) * 1e-6f);
+  }
+  image->GetPointData()->SetScalars(z);
+  vtkNew<vtkApertureGeoreference> geo;
+  geo->SetCRS("EPSG:32633");
+  geo->AttachToImage(image);
+  std::string files[2];
+  const int threads[2] = { 1, 3 };
+  for (int t = 0; t < 2; ++t)
+  {
+    files[t] = tmp + "/threads" + std::to_string(threads[t]) + ".tif";
+    vtkNew<vtkApertureDEMWriter> writer;
+    AP_CHECK(writer->GetNumberOfThreads() == 0); // default: all cores
+    writer->SetNumberOfThreads(threads[t]);
+    AP_CHECK(writer->GetNumberOfThreads() == threads[t]);
+    writer->SetInputData(image);
+    writer->SetFileName(files[t].c_str());
+    writer->Write();
+  }
+  const std::string one = ReadBytes(files[0]), three = ReadBytes(files[1]);
+  AP_CHECK(one.size() > 100000); // compressed, but not to nothing (~1.2 MB of samples)
+  AP_CHECK(one == three);
+  GDALDatasetH ds = GDALOpen(files[1].c_str(), GA_ReadOnly);
+  AP_CHECK(ds != nullptr);
+  if (ds)
+  {
+    const vtkIdType k = static_cast<vtkIdType>(ny - 1 - 300) * nx + 457; // file row 300
+    AP_CHECK_NEAR(Value(ds, 1, 457, 300), z->GetValue(k), 0.0);
+    GDALClose(ds);
+  }
+}
+
 void ExpectError(vtkApertureDEMWriter* writer, const std::string& expected)
 {
   vtkNew<vtkTest::ErrorObserver> errors, executiveErrors;
@@ -232,6 +297,7 @@ int TestApertureDEMWriter(int argc, char* argv[])
   tmp = aptest::TempDir(argc, argv);
   TestWriteAndReadBack();
   TestSelectionAndTypes();
+  TestThreadsSameBytes();
   TestErrors();
   return aptest::Result();
 }

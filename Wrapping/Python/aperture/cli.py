@@ -499,6 +499,7 @@ def cmd_bake(args):
     writer.SetInputData(image)
     writer.SetFileName(args.output)
     writer.SetCompression(args.compress)
+    writer.SetNumberOfThreads(args.threads)  # tiles compressed in parallel; same bytes
     for key, value in provenance.items():
         writer.AddMetadata(key, value)
     for name in products:
