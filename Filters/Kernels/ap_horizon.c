@@ -43,6 +43,14 @@
 #define AP_INLINE static inline
 #endif
 
+/* Unroll the next loop twice: the sweep's two-line loop, whose two hull queries are then
+ * scheduled together (and no loop branch mispredicts between them). */
+#if defined(__clang__) || (defined(__GNUC__) && __GNUC__ >= 8)
+#define AP_UNROLL_2 _Pragma("GCC unroll 2")
+#else
+#define AP_UNROLL_2
+#endif
+
 /* ---------------------------------------------------------------------------------------- */
 /* Upper convex hulls of the samples along one line, queried from a point on the near side
  * (smaller x than every sample). A sample remembers where it was taken (view column and the
@@ -130,7 +138,7 @@ AP_INLINE const sample *hull_tangent(const hull *h, double xq, double uq, int *h
     return NULL;
   }
 #define RISING(k) ((v[(k)].u - uq) * (v[(k) + 1].x - xq) < (v[(k) + 1].u - uq) * (v[(k)].x - xq))
-  i = *hint < 0 ? 0 : (*hint > last ? last : *hint);
+  i = *hint > last ? last : *hint; /* a hint is never negative */
   if (i < last && RISING(i)) {
     /* the boundary is above i: gallop up */
     lo = i + 1;
@@ -913,18 +921,19 @@ static const float *view_column(const ap_horizon *hz, size_t p)
   return hz->colp[p];
 }
 
-/* Elevation at fractional s of a view column, linear between the two nearest cells; NaN when
- * outside or when a cell with non-zero weight is nodata. */
-static double interp(const float *col, size_t ns, double s)
+/* Elevation at fractional s of a view column of ns cells (smax = ns - 1), linear between the
+ * two nearest cells; NaN when outside or when a cell with non-zero weight is nodata. (At
+ * s = smax the weight of the cell above is zero. Signed conversions: one instruction each.) */
+AP_INLINE double interp(const float *col, double smax, double s)
 {
-  size_t s0;
+  long s0;
   double t;
-  if (!(s >= 0.0) || s > (double)(ns - 1)) {
+  if (!(s >= 0.0) || s > smax) {
     return NAN;
   }
-  s0 = (size_t)s;
+  s0 = (long)s;
   t = s - (double)s0;
-  if (t == 0.0 || s0 + 1 >= ns) {
+  if (t == 0.0) {
     return col[s0];
   }
   return (double)col[s0] + t * ((double)col[s0 + 1] - (double)col[s0]);
@@ -1208,7 +1217,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
   size_t np, ns, nl, l, pp;
   line_state *lines = NULL;
   sample *ring = NULL; /* per line, K pending samples (u NaN: none) */
-  double shift, xc, k0;
+  double shift, xc, k0, smax;
   ap_status st = AP_OK;
   if (!hz) {
     return AP_ERR_NULL_POINTER;
@@ -1222,6 +1231,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
   c = hz->c;
   np = hz->np;
   ns = hz->ns;
+  smax = (double)(ns - 1);
   /* A window holds the samples of at most L / (shortest step) + 1 columns, plus the K - 1
    * pending ones; a ring a little longer never overwrites a sample still in use. */
   {
@@ -1267,7 +1277,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
     const size_t p = pp;
     const float *col = view_column(hz, p);
     const int slot = (int)(p % (size_t)K);
-    size_t cell;
+    long cell;
     /* A band touches a cache line or two of each column's elevations and scratch, one page
      * (4 KiB or more) apart from the previous column's: no hardware prefetcher follows that,
      * so fetch a few columns ahead. */
@@ -1301,8 +1311,9 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
       }
       /* line l is at s = k0 + l - shift, inside for 0 <= s <= ns - 1 */
       for (l = 0; l < nl; ++l) {
-        lines[l].s = k0 + (double)l - shift;
+        lines[l].s = k0 + (double)(long)l - shift; /* (long): a one-instruction conversion */
         lines[l].x = xc;
+        lines[l].avail = isnan(lines[l].xend) ? 0.0 : lines[l].xend - xc;
       }
       {
         const double lo = ceil(shift - k0), hi = floor((double)(ns - 1) + shift - k0);
@@ -1312,10 +1323,10 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
           line_state *ln = &lines[l];
           sample *q = &ring[l * (size_t)K + (size_t)slot];
           if (isnan(ln->xend)) {
-            ln->xend = xc;
+            ln->xend = xc; /* avail stays 0 */
           }
           q->x = xc;
-          q->u = interp(col, ns, ln->s) - c * xc * xc; /* NaN on nodata */
+          q->u = interp(col, smax, ln->s) - c * xc * xc; /* NaN on nodata */
           q->s = ln->s;
           q->col = (long)p;
         }
@@ -1328,21 +1339,18 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
           ln->x -= row_value(hz->len_row, hz->ny, r);
           ln->s -= row_value(hz->m_row, hz->ny, r);
         }
-        if (ln->s >= 0.0 && ln->s <= (double)(ns - 1)) {
+        if (ln->s >= 0.0 && ln->s <= smax) {
           sample *q = &ring[l * (size_t)K + (size_t)slot];
           if (isnan(ln->xend)) {
             ln->xend = ln->x;
           }
           q->x = ln->x;
-          q->u = interp(col, ns, ln->s) - c * ln->x * ln->x;
+          q->u = interp(col, smax, ln->s) - c * ln->x * ln->x;
           q->s = ln->s;
           q->col = (long)p;
         }
+        ln->avail = isnan(ln->xend) ? 0.0 : ln->xend - ln->x;
       }
-    }
-
-    for (l = 0; l < nl; ++l) {
-      lines[l].avail = isnan(lines[l].xend) ? 0.0 : lines[l].xend - lines[l].x;
     }
 
     /* 2. Every cell of column p bracketed by this band's lines. */
@@ -1352,10 +1360,10 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
       const double first = lines[0].s, last = lines[nl - 1].s;
       const long s_begin = first <= 0.0 ? 0 : (long)ceil(first);
       const long s_end = last > (double)ns ? (long)ns : (long)ceil(last);
-      for (cell = (size_t)s_begin; (long)cell < s_end; ++cell) {
+      for (cell = s_begin; cell < s_end; ++cell) {
         const double sq = (double)cell;
         const double zq = col[cell];
-        const size_t out_index = out_base + cell;
+        const size_t out_index = out_base + (size_t)cell;
         double near = hz->slope[out_index], far = -INFINITY, limit, avail;
         while (l + 2 < nl && lines[l + 1].s <= sq) {
           ++l;
@@ -1376,6 +1384,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
           int e;
           bl[0] = &lines[l];
           bl[1] = &lines[l + 1];
+          AP_UNROLL_2
           for (e = 0; e < 2; ++e) {
             line_state *ln = bl[e];
             const sample *v;
@@ -1406,7 +1415,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
               continue;
             }
             sn = sq + (v->s - ln->s);
-            zn = interp(view_column(hz, (size_t)v->col), ns, sn);
+            zn = interp(view_column(hz, (size_t)v->col), smax, sn);
             dn = v->x - ln->x;
             if (isnan(zn) || !(dn > 0.0)) {
               continue;
@@ -1514,67 +1523,80 @@ static void sector_terms(size_t n, const float *tt_in, size_t tt_stride, const f
   }
 }
 
-void ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
+/* Add one sector's terms for the n cells from c0 (sector scratch from s0, with stride) to the
+ * sums. Its own function so that the loops vectorise in the AVX2 clone (the same operations in
+ * the same order: no result depends on the clone). */
+AP_MULTIVERSION
+static void accumulate_terms(const ap_horizon *hz, size_t c0, size_t s0, size_t stride, size_t n,
+                             const double *restrict ce, const double *restrict se,
+                             const double *restrict he, const double *restrict ht,
+                             const double *restrict tt, double sphi, double cphi)
 {
-  enum { BLOCK = 256 };
   const double delta = 2.0 * AP_PI / (double)hz->p.directions;
   const double w = 2.0 * sin(0.5 * delta);
-  const double sphi = sin(hz->phi), cphi = cos(hz->phi);
-  const int D = hz->p.directions, d = hz->d;
   const ap_sky_products *o = &hz->out;
   float *A = o->visible_solid_angle ? o->visible_solid_angle : o->aperture_radius;
   float *B = o->bent_normal ? o->bent_normal : hz->bsum;
+  const int D = hz->p.directions, d = hz->d;
+  size_t k;
+  if (A) {
+    float *a = A + c0;
+    for (k = 0; k < n; ++k) {
+      a[k] += (float)(delta * (1.0 - se[k]));
+    }
+  }
+  if (B) {
+    float *b = B + 3 * c0;
+    for (k = 0; k < n; ++k) {
+      const double Q = 0.5 * ((AP_HALF_PI - he[k]) - se[k] * ce[k]);
+      b[3 * k] += (float)(w * sphi * Q);
+      b[3 * k + 1] += (float)(w * cphi * Q);
+      b[3 * k + 2] += (float)(0.5 * delta * ce[k] * ce[k]);
+    }
+  }
+  if (o->sky_view_factor) {
+    float *v = o->sky_view_factor + c0;
+    for (k = 0; k < n; ++k) {
+      v[k] += tt[k] > 0.0 ? (float)(tt[k] / sqrt(1.0 + tt[k] * tt[k])) : 0.0f;
+    }
+  }
+  if (o->positive_openness) {
+    float *v = o->positive_openness + c0;
+    for (k = 0; k < n; ++k) {
+      v[k] += (float)(AP_HALF_PI - ht[k]);
+    }
+  }
+  if (o->edge_truncated) {
+    unsigned char *v = o->edge_truncated + c0;
+    const unsigned char *e = hz->edge + s0;
+    for (k = 0; k < n; ++k) {
+      v[k] |= e[k * stride];
+    }
+  }
+  if (o->horizon_angles) {
+    for (k = 0; k < n; ++k) {
+      o->horizon_angles[(c0 + k) * (size_t)D + (size_t)d] = (float)ht[k];
+    }
+  }
+}
+
+void ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
+{
+  enum { BLOCK = 256 };
+  const double sphi = sin(hz->phi), cphi = cos(hz->phi);
+  const ap_sky_products *o = &hz->out;
   const int want_ht = o->positive_openness || o->horizon_angles;
   double ce[BLOCK], se[BLOCK], he[BLOCK], ht[BLOCK], tt[BLOCK];
+  const size_t stride = hz->xmajor ? hz->ny : 1;
   size_t i0, j;
   for (j = j0; j < j1 && j < hz->ny; ++j) {
     for (i0 = 0; i0 < hz->nx; i0 += BLOCK) {
       const size_t n = hz->nx - i0 < BLOCK ? hz->nx - i0 : BLOCK;
       const size_t c0 = j * hz->nx + i0; /* the first cell */
       const size_t s0 = hz->xmajor ? i0 * hz->ny + j : c0;
-      size_t k;
-      sector_terms(n, hz->slope + s0, hz->xmajor ? hz->ny : 1, hz->grad + 2 * c0, sphi, cphi,
-                   want_ht, ce, se, he, ht, tt);
-      if (A) {
-        float *a = A + c0;
-        for (k = 0; k < n; ++k) {
-          a[k] += (float)(delta * (1.0 - se[k]));
-        }
-      }
-      if (B) {
-        float *b = B + 3 * c0;
-        for (k = 0; k < n; ++k) {
-          const double Q = 0.5 * ((AP_HALF_PI - he[k]) - se[k] * ce[k]);
-          b[3 * k] += (float)(w * sphi * Q);
-          b[3 * k + 1] += (float)(w * cphi * Q);
-          b[3 * k + 2] += (float)(0.5 * delta * ce[k] * ce[k]);
-        }
-      }
-      if (o->sky_view_factor) {
-        float *v = o->sky_view_factor + c0;
-        for (k = 0; k < n; ++k) {
-          v[k] += tt[k] > 0.0 ? (float)(tt[k] / sqrt(1.0 + tt[k] * tt[k])) : 0.0f;
-        }
-      }
-      if (o->positive_openness) {
-        float *v = o->positive_openness + c0;
-        for (k = 0; k < n; ++k) {
-          v[k] += (float)(AP_HALF_PI - ht[k]);
-        }
-      }
-      if (o->edge_truncated) {
-        unsigned char *v = o->edge_truncated + c0;
-        const unsigned char *e = hz->edge + s0;
-        const size_t stride = hz->xmajor ? hz->ny : 1;
-        for (k = 0; k < n; ++k) {
-          v[k] |= e[k * stride];
-        }
-      }
-      if (o->horizon_angles) {
-        for (k = 0; k < n; ++k) {
-          o->horizon_angles[(c0 + k) * (size_t)D + (size_t)d] = (float)ht[k];
-        }
-      }
+      sector_terms(n, hz->slope + s0, stride, hz->grad + 2 * c0, sphi, cphi, want_ht, ce, se, he,
+                   ht, tt);
+      accumulate_terms(hz, c0, s0, stride, n, ce, se, he, ht, tt, sphi, cphi);
     }
   }
 }
