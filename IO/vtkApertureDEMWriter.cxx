@@ -23,6 +23,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -283,9 +284,12 @@ void vtkApertureDEMWriter::WriteData()
     ok = ok && GDALSetMetadataItem(ds, kv.first.c_str(), kv.second.c_str(), nullptr) == CE_None;
   }
 
-  // 4. Bands, written in strips in file order (north first), converting on the fly.
+  // 4. Bands, written in strips of one tile row in file order (north first), converting on
+  //    the fly into a buffer of the file's sample type, and each strip's tiles flushed at once
+  //    (compressed on the worker threads): GDAL's block cache never holds more than a strip.
   const int stripRows = 256;
-  std::vector<double> strip;
+  std::vector<float> stripF;
+  std::vector<double> stripD;
   for (size_t b = 0; ok && b < bands.size(); ++b)
   {
     const Band& band = bands[b];
@@ -300,21 +304,20 @@ void vtkApertureDEMWriter::WriteData()
       }
     }
     const int nc = band.Array->GetNumberOfComponents();
-    for (int r0 = 0; ok && r0 < ny; r0 += stripRows)
-    {
-      const int k = std::min(stripRows, ny - r0);
-      strip.resize(static_cast<size_t>(k) * static_cast<size_t>(nx));
+    // Rows r0 .. r0 + k - 1 of the file (image rows counted from the south) into dst.
+    auto fill = [&](auto* dst, int r0, int k) {
+      using T = typename std::remove_pointer<decltype(dst)>::type;
       for (int r = 0; r < k; ++r)
       {
         const vtkIdType row = ny - 1 - (r0 + r); // file row r0 + r is image row ny-1-(r0+r)
-        double* dst = strip.data() + static_cast<size_t>(r) * static_cast<size_t>(nx);
+        T* out = dst + static_cast<size_t>(r) * static_cast<size_t>(nx);
         const vtkIdType first = row * nx;
         if (auto* fa = vtkFloatArray::SafeDownCast(band.Array))
         {
           const float* src = fa->GetPointer(0) + first * nc + band.Component;
           for (int i = 0; i < nx; ++i)
           {
-            dst[i] = src[static_cast<size_t>(i) * nc];
+            out[i] = static_cast<T>(src[static_cast<size_t>(i) * nc]);
           }
         }
         else if (auto* da = vtkDoubleArray::SafeDownCast(band.Array))
@@ -322,23 +325,38 @@ void vtkApertureDEMWriter::WriteData()
           const double* src = da->GetPointer(0) + first * nc + band.Component;
           for (int i = 0; i < nx; ++i)
           {
-            dst[i] = src[static_cast<size_t>(i) * nc];
+            out[i] = static_cast<T>(src[static_cast<size_t>(i) * nc]);
           }
         }
         else
         {
           for (int i = 0; i < nx; ++i)
           {
-            dst[i] = band.Array->GetComponent(first + i, band.Component);
+            out[i] = static_cast<T>(band.Array->GetComponent(first + i, band.Component));
           }
         }
       }
-      ok = GDALRasterIO(hb, GF_Write, 0, r0, nx, k, strip.data(), nx, k, GDT_Float64, 0, 0) ==
-        CE_None;
+    };
+    for (int r0 = 0; ok && r0 < ny; r0 += stripRows)
+    {
+      const int k = std::min(stripRows, ny - r0);
+      const size_t n = static_cast<size_t>(k) * static_cast<size_t>(nx);
+      void* data;
+      if (type == GDT_Float32)
+      {
+        stripF.resize(n);
+        fill(stripF.data(), r0, k);
+        data = stripF.data();
+      }
+      else
+      {
+        stripD.resize(n);
+        fill(stripD.data(), r0, k);
+        data = stripD.data();
+      }
+      ok = GDALRasterIO(hb, GF_Write, 0, r0, nx, k, data, nx, k, type, 0, 0) == CE_None &&
+        GDALFlushRasterCache(hb) == CE_None;
     }
-    // Write the band's tiles out now: GDAL's block cache (5% of RAM by default) would
-    // otherwise hold every band until the file is closed.
-    ok = ok && GDALFlushRasterCache(hb) == CE_None;
     this->UpdateProgress(static_cast<double>(b + 1) / static_cast<double>(bands.size()));
   }
   GDALFlushCache(ds);

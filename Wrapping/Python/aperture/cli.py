@@ -441,9 +441,11 @@ def _product_image(sky, products):
         src = sky.GetPointData().GetArray(name)
         values = vtk_to_numpy(src)
         if name == "EdgeTruncated":
+            # one new float32 array (uint8 and float32 make float32), shared with VTK, which
+            # keeps a reference to it: no further copies of a band
             nodata = np.isnan(vtk_to_numpy(sky.GetPointData().GetArray("Elevation")))
-            values = np.where(nodata, np.float32(np.nan), values).astype(np.float32)
-            array = numpy_to_vtk(values, deep=1)
+            values = np.where(nodata, np.float32(np.nan), values).astype(np.float32, copy=False)
+            array = numpy_to_vtk(values, deep=0)
             array.SetName(name)
             image.GetPointData().AddArray(array)
             continue
