@@ -130,14 +130,18 @@ class TestBake(unittest.TestCase):
         self.assertEqual(r.GetMetadataValue("aperture:directions"), "360")
 
     def test_threads_do_not_matter(self):
-        outs = []
+        outs, files = [], []
         for t in (1, 2):
             out = self.path("t%d.tif" % t)
             status, _, err = run("bake", self.dem, out, "--threads", t, "--radius", "900")
             self.assertEqual(status, 0, err)
             outs.append(bands(out)[0])
+            with open(out, "rb") as f:
+                files.append(f.read())
         for name in outs[0]:
             np.testing.assert_array_equal(outs[0][name][0], outs[1][name][0])
+        # the tiles are compressed on --threads threads too: the same file, byte for byte
+        self.assertEqual(files[0], files[1])
 
     def test_products_option(self):
         out = self.path("two.tif")

@@ -788,7 +788,8 @@ def build_parser():
     p.add_argument("--refraction", type=float, default=0.13, metavar="K",
                    help="refraction coefficient (default 0.13)")
     p.add_argument("--threads", type=int, default=0, metavar="N",
-                   help="threads (default 0: all cores); results do not depend on it")
+                   help="threads for the sweep and for compressing the GeoTIFF (default 0: all "
+                        "cores); results and file contents do not depend on it")
     p.add_argument("--products", metavar="LIST",
                    help="comma-separated products: %s; 'all' adds HorizonAngles (default: all "
                         "but HorizonAngles)" % ", ".join(n for n, *_ in PRODUCTS))
