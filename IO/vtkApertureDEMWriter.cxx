@@ -337,24 +337,16 @@ void vtkApertureDEMWriter::WriteData()
         }
       }
     };
+    // One strip through a buffer whose element type is the file's sample type.
+    auto writeStrip = [&](auto& strip, int r0, int k) {
+      strip.resize(static_cast<size_t>(k) * static_cast<size_t>(nx));
+      fill(strip.data(), r0, k);
+      return GDALRasterIO(hb, GF_Write, 0, r0, nx, k, strip.data(), nx, k, type, 0, 0) == CE_None;
+    };
     for (int r0 = 0; ok && r0 < ny; r0 += stripRows)
     {
       const int k = std::min(stripRows, ny - r0);
-      const size_t n = static_cast<size_t>(k) * static_cast<size_t>(nx);
-      void* data;
-      if (type == GDT_Float32)
-      {
-        stripF.resize(n);
-        fill(stripF.data(), r0, k);
-        data = stripF.data();
-      }
-      else
-      {
-        stripD.resize(n);
-        fill(stripD.data(), r0, k);
-        data = stripD.data();
-      }
-      ok = GDALRasterIO(hb, GF_Write, 0, r0, nx, k, data, nx, k, type, 0, 0) == CE_None &&
+      ok = (type == GDT_Float32 ? writeStrip(stripF, r0, k) : writeStrip(stripD, r0, k)) &&
         GDALFlushRasterCache(hb) == CE_None;
     }
     this->UpdateProgress(static_cast<double>(b + 1) / static_cast<double>(bands.size()));
