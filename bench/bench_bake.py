@@ -37,9 +37,9 @@ first (as root, or through sudo) unless --no-install.
 Then ours alone (skippable): on 2048^2 and 4096^2 synthetic DEMs (scaling with cells), on the
 2048^2 one at radius 1 km, 10 km and unlimited (no --radius), and with --threads 1 vs the
 default (parallel speed-up; then --thread-pairs more such pairs, each run right after the other,
-reported with their median, since this is the number VM noise moves most). Peers are not run on those large DEMs unless --peers-on-scaling:
-on 2 cores SAGA took 381 s and GRASS 428 s on 2048^2, and 4096^2 (4x the cells) would come
-close to the default 1800 s timeout.
+reported with their median, since this is the number VM noise moves most). Peers are not run on
+those large DEMs unless --peers-on-scaling: on 2 cores SAGA took 381 s and GRASS 428 s on
+2048^2, and 4096^2 (4x the cells) would come close to the default 1800 s timeout.
 
 Writes a Markdown table (stdout and --output) with, per DEM and contender: cells, parameters,
 wall seconds, peak RSS in MiB, cell-directions per second (cells x directions / wall), and our
