@@ -63,9 +63,18 @@ typedef struct sample {
   long col;  /* view column */
 } sample;
 
+/* The line through two neighbouring hull vertices, u = b + e x. */
+typedef struct hull_edge {
+  double e, b;
+} hull_edge;
+
+/* v[0] is the farthest vertex, v[n - 1] the nearest; ed[k] (k >= 1) is the line through v[k - 1]
+ * and v[k], so that the two tests on a vertex pair below, which are about a point's position
+ * relative to that line, cost a multiply and a compare (the slope is divided once per push). */
 typedef struct hull {
   sample *v;
-  int n, cap;
+  hull_edge *ed;
+  int n, cap, ecap;
 } hull;
 
 /* Make the array *pa (elements of size bytes, capacity *cap) hold at least need elements,
@@ -96,48 +105,51 @@ static int grow(void *pa, int *cap, int need, size_t size)
 static void hull_free(hull *h)
 {
   free(h->v);
+  free(h->ed);
   h->v = NULL;
-  h->n = h->cap = 0;
+  h->ed = NULL;
+  h->n = h->cap = h->ecap = 0;
 }
 
 /* Push a sample nearer than every sample in the hull (Timonen & Westerholm, Algorithm 1;
- * Andrew's monotone chain): the top is dropped while the second is at least as steep from
- * the new sample, because it can then never be the tangent point again. */
+ * Andrew's monotone chain): the top is dropped while the new sample lies on or above the line
+ * through the second and the top (the second is then at least as steep from it), because the
+ * top can then never be the tangent point again. */
 static int hull_push_near(hull *h, const sample *q)
 {
-  while (h->n >= 2) {
-    const sample *top = &h->v[h->n - 1], *second = &h->v[h->n - 2];
-    const double d1 = top->x - q->x, h1 = top->u - q->u;
-    const double d2 = second->x - q->x, h2 = second->u - q->u;
-    if (h2 * d1 >= h1 * d2) {
-      --h->n;
-    } else {
-      break;
-    }
+  while (h->n >= 2 && q->u >= h->ed[h->n - 1].b + h->ed[h->n - 1].e * q->x) {
+    --h->n;
   }
-  if (!GROW(h->v, h->cap, h->n + 1)) {
+  if (!GROW(h->v, h->cap, h->n + 1) || !GROW(h->ed, h->ecap, h->n + 1)) {
     return 0;
+  }
+  if (h->n >= 1) {
+    const sample *top = &h->v[h->n - 1];
+    const double e = (top->u - q->u) / (top->x - q->x);
+    h->ed[h->n].e = e;
+    h->ed[h->n].b = q->u - e * q->x;
   }
   h->v[h->n++] = *q;
   return 1;
 }
 
 /* The vertex with the largest slope (u_i - uq) / (x_i - xq), for xq below every x_i, or NULL
- * when empty. Along an upper hull these slopes are unimodal: "the slope
- * rises to the next vertex" holds for every index below the tangent vertex and for none from it
- * on, so any search for that boundary finds the same vertex. The search gallops from *hint (the
- * index a previous query of this hull returned; successive columns' tangents are mostly close)
- * and then bisects: a few steps instead of log2(n). The comparison is division-free (all
- * differences in x are positive). *hint is updated. */
+ * when empty. Along an upper hull these slopes are unimodal: "the slope rises to the next
+ * vertex", i.e. the query point lies below the line through the two (the lines of an upper
+ * hull's edges, taken at xq, fall from the farthest edge to the nearest), holds for every index
+ * below the tangent vertex and for none from it on, so any search for that boundary finds the
+ * same vertex. The search gallops from *hint (the index a previous query of this hull returned;
+ * successive columns' tangents are mostly close) and then bisects: a few steps instead of
+ * log2(n). *hint is updated. */
 AP_INLINE const sample *hull_tangent(const hull *h, double xq, double uq, int *hint)
 {
-  const sample *v = h->v;
+  const hull_edge *ed = h->ed;
   const int last = h->n - 1; /* the boundary lies in [0, last] */
   int lo, hi, step, i;
   if (h->n == 0) {
     return NULL;
   }
-#define RISING(k) ((v[(k)].u - uq) * (v[(k) + 1].x - xq) < (v[(k) + 1].u - uq) * (v[(k)].x - xq))
+#define RISING(k) (uq < ed[(k) + 1].b + ed[(k) + 1].e * xq)
   i = *hint > last ? last : *hint; /* a hint is never negative */
   if (i < last && RISING(i)) {
     /* the boundary is above i: gallop up */
@@ -176,7 +188,7 @@ AP_INLINE const sample *hull_tangent(const hull *h, double xq, double uq, int *h
   }
 #undef RISING
   *hint = lo;
-  return &v[lo];
+  return &h->v[lo];
 }
 
 /* ---------------------------------------------------------------------------------------- */
@@ -1112,45 +1124,52 @@ static void near_column(const ap_horizon *hz, const pattern *pt, size_t p, long 
 /* The point exactly at the search distance L on the rays of cells [sa, sb) of view column p
  * (pattern pt), max-merged into best[]: rising terrain peaks there, between the column samples
  * the hulls hold. Only where that point lies beyond the near field: always in row-major views
- * (the caller checks the column), per row (x-major: s is the row) otherwise. Bilinear between
- * the two view columns around it, each linear as interp() is, written with selects (and every
- * load kept inside the column) so that it vectorises; a point off the grid or on nodata gives
- * NaN, which never wins. Storing the float max here rounds exactly as the sweep's final float
- * max would (rounding is monotonic). */
+ * (the caller checks the column), per row (x-major: s is the row) otherwise. The point of cell s
+ * is at s + ls on the column pf = p + lp, the same offset for every cell: so it is bilinear with
+ * the same weights between cells s + o and s + o + 1 (o = floor(ls)) of the two view columns
+ * around pf, a loop over contiguous cells that vectorises. Each weight degenerates exactly as
+ * interp()'s does (a zero weight reads the same cell twice: x + 0 (y - x) = x); a point off
+ * the grid is skipped, one on nodata gives NaN, which never wins. Storing the float max
+ * here rounds exactly as the sweep's final float max would (rounding is monotonic). */
 AP_MULTIVERSION
 static void far_point_column(const ap_horizon *hz, const pattern *pt, size_t p, long sa,
                              long sb, const float *col, float *best)
 {
   const double L = hz->p.max_distance, c = hz->c, K = (double)hz->p.near_field;
-  const double pf = (double)p + pt->lp, ls = pt->ls, lasts = (double)(hz->ns - 1);
+  const double pf = (double)p + pt->lp, cl = c * L;
   const long ns = (long)hz->ns;
   const int xmajor = hz->xmajor;
   const double *len_row = hz->len_row;
+  /* an offset within 1e-9 of a whole cell is that cell, so that a nodata neighbour with a
+   * weight of rounding noise does not void the point */
+  const double ls = fabs(pt->ls - nearbyint(pt->ls)) < 1e-9 ? nearbyint(pt->ls) : pt->ls;
+  const double of = floor(ls), t = ls - of;
+  long o, up, s, lo, hi;
   size_t p0;
   double tp;
-  int two;
   const float *z0, *z1;
-  long s;
-  if (!(pf >= 0.0) || pf > (double)(hz->np - 1)) {
+  if (!(pf >= 0.0) || pf > (double)(hz->np - 1) || !(fabs(of) < (double)ns)) {
     return;
   }
   p0 = (size_t)pf;
   tp = pf - (double)p0;
-  two = !(tp == 0.0 || p0 + 1 >= hz->np);
   z0 = view_column(hz, p0);
-  z1 = two ? view_column(hz, p0 + 1) : z0;
-  for (s = sa; s < sb; ++s) {
-    const double sp = (double)s + ls;
-    const int inside = (sp >= 0.0) & (sp <= lasts);
-    const long s0 = inside ? (long)sp : 0;
-    const long s1 = s0 + 1 < ns ? s0 + 1 : s0;
-    const double t = sp - (double)s0;
-    const double a0 = z0[s0], a1 = z0[s1], b0 = z1[s0], b1 = z1[s1];
-    const double i0 = t == 0.0 ? a0 : a0 + t * (a1 - a0);
-    const double i1 = t == 0.0 ? b0 : b0 + t * (b1 - b0);
-    const double zl = two ? (1.0 - tp) * i0 + tp * i1 : i0;
-    const double sl = (zl - (double)col[s]) / L - c * L;
-    const int use = inside & (xmajor ? L > K * len_row[s] : 1); /* (len_row has ny entries) */
+  z1 = (tp == 0.0 || p0 + 1 >= hz->np) ? z0 : view_column(hz, p0 + 1);
+  if (z1 == z0) {
+    tp = 0.0;
+  }
+  o = (long)of;
+  up = t == 0.0 ? 0 : 1;
+  /* on the grid: 0 <= s + o and s + o + up <= ns - 1 */
+  lo = sa > -o ? sa : -o;
+  hi = sb < ns - o - up ? sb : ns - o - up;
+  for (s = lo; s < hi; ++s) {
+    const long s1 = s + o + up;
+    const double a0 = z0[s + o], a1 = z0[s1], b0 = z1[s + o], b1 = z1[s1];
+    const double i0 = a0 + t * (a1 - a0), i1 = b0 + t * (b1 - b0);
+    const double zl = (1.0 - tp) * i0 + tp * i1;
+    const double sl = (zl - (double)col[s]) / L - cl;
+    const int use = xmajor ? L > K * len_row[s] : 1; /* (len_row has ny entries) */
     best[s] = (use & (sl > (double)best[s])) ? (float)sl : best[s];
   }
 }
