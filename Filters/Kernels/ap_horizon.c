@@ -1486,58 +1486,59 @@ done:
   return st;
 }
 
-/* arctan in double precision without a library call, so that the loops below vectorise:
- * Moshier's Cephes atan (reduction to |r| <= 0.66 by atan x = pi/4 + atan((x-1)/(x+1)) and
- * atan x = pi/2 - atan(1/x), then a 4/5 rational in r^2), written with selects instead of
- * branches. Within 1 ulp of glibc's atan; atan(+-inf) = +-pi/2, atan(+-0) = +-0. */
-AP_INLINE double ap_atan(double x)
+/* arctan in single precision without a library call, so that the loops below vectorise (eight
+ * cells per AVX2 instruction): Moshier's Cephes atanf (reduction to |r| <= tan(pi/8) by
+ * atan x = pi/4 + atan((x-1)/(x+1)) and atan x = pi/2 - atan(1/x), then an odd polynomial of
+ * degree 9), written with selects instead of branches. Within 2.1e-7 relative of atan for every
+ * positive float from 1e-30 up (checked exhaustively when written); atan(+-inf) = +-pi/2,
+ * atan(+-0) = +-0. The per-sector terms need no more: each is an addend of a float sum. */
+AP_INLINE float ap_atanf(float x)
 {
-  static const double P0 = -8.750608600031904122785e-1, P1 = -1.615753718733365076637e1,
-                      P2 = -7.500855792314704667340e1, P3 = -1.228866684490136173410e2,
-                      P4 = -6.485021904942025371773e1;
-  static const double Q0 = 2.485846490142306297962e1, Q1 = 1.650270098316988542046e2,
-                      Q2 = 4.328810604912902668951e2, Q3 = 4.853903996359136964868e2,
-                      Q4 = 1.945506571482613964425e2;
-  const double ax = fabs(x);
-  const int big = ax > 2.41421356237309504880, mid = ax > 0.66; /* tan(3 pi / 8) */
-  const double num = big ? -1.0 : (mid ? ax - 1.0 : ax);
-  const double den = big ? ax : (mid ? ax + 1.0 : 1.0);
-  const double r = num / den, z = r * r;
-  const double pz = (((P0 * z + P1) * z + P2) * z + P3) * z + P4;
-  const double qz = ((((z + Q0) * z + Q1) * z + Q2) * z + Q3) * z + Q4;
-  /* pi/2 and pi/4, and the parts of them a double cannot hold */
-  const double base = big ? 1.57079632679489661923 : (mid ? 0.78539816339744830962 : 0.0);
-  const double more = big ? 6.123233995736765886130e-17 : (mid ? 3.061616997868382943065e-17 : 0.0);
-  return copysign(base + ((r * (z * pz / qz) + r) + more), x);
+  const float ax = fabsf(x);
+  const int big = ax > 2.414213562373095f, mid = ax > 0.4142135623730950f; /* tan(3pi/8, pi/8) */
+  const float num = big ? -1.0f : (mid ? ax - 1.0f : ax);
+  const float den = big ? ax : (mid ? ax + 1.0f : 1.0f);
+  const float r = num / den, z = r * r;
+  const float base = big ? 1.5707963267948966f : (mid ? 0.7853981633974483f : 0.0f);
+  const float poly =
+    (((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z -
+     3.33329491539e-1f) * z * r + r;
+  return copysignf(base + poly, x);
 }
 
-/* The per-cell terms of one sector for n cells: the cosine ce and sine se of the effective
- * horizon (tangent te), and the arctangents of te and of the terrain horizon tt. Branch-free so
- * that it vectorises (AVX2 clone where available, the same operations in the same order). A
- * nodata cell (tt NaN) gets meaningless terms, which ap_horizon_finish overwrites. */
+/* Tangents above this are clamped (an elevation angle within 1e-18 rad of the zenith), so that
+ * their squares stay finite in single precision. */
+#define AP_TAN_MAX 1e18f
+
+/* The per-cell terms of one sector for n cells, in single precision: the cosine ce and sine se
+ * of the effective horizon (tangent te), and the arctangents of te and of the terrain horizon
+ * tt. Branch-free so that it vectorises (AVX2 clone where available, the same operations in the
+ * same order). A nodata cell (tt NaN) gets meaningless terms, which ap_horizon_finish
+ * overwrites. */
 AP_MULTIVERSION
 static void sector_terms(size_t n, const float *tt_in, size_t tt_stride, const float *grad,
-                         double sphi, double cphi, int want_ht, double *restrict ce_out,
-                         double *restrict se_out, double *restrict he_out,
-                         double *restrict ht_out, double *restrict tt_out)
+                         float sphi, float cphi, int want_ht, float *restrict ce_out,
+                         float *restrict se_out, float *restrict he_out, float *restrict ht_out,
+                         float *restrict tt_out)
 {
   size_t k;
   for (k = 0; k < n; ++k) {
-    const double tt = tt_in[k * tt_stride];
-    const double ts = (double)grad[2 * k] * sphi + (double)grad[2 * k + 1] * cphi;
+    const float tt = tt_in[k * tt_stride];
+    const float ts = grad[2 * k] * sphi + grad[2 * k + 1] * cphi;
     /* The sky a cell sees lies above the horizontal, the terrain and its own tangent plane. */
-    double te = tt > ts ? tt : ts;
-    double ce;
-    te = te > 0.0 ? te : 0.0;
-    ce = 1.0 / sqrt(1.0 + te * te);
+    float te = tt > ts ? tt : ts;
+    float ce;
+    te = te > 0.0f ? te : 0.0f;
+    te = te < AP_TAN_MAX ? te : AP_TAN_MAX;
+    ce = 1.0f / sqrtf(1.0f + te * te);
     ce_out[k] = ce;
     se_out[k] = te * ce;
-    he_out[k] = ap_atan(te);
+    he_out[k] = ap_atanf(te);
     tt_out[k] = tt;
   }
   if (want_ht) {
     for (k = 0; k < n; ++k) {
-      ht_out[k] = ap_atan(tt_out[k]); /* -pi/2 for an empty direction (tt = -inf) */
+      ht_out[k] = ap_atanf(tt_out[k]); /* -pi/2 for an empty direction (tt = -inf) */
     }
   }
 }
@@ -1547,12 +1548,14 @@ static void sector_terms(size_t n, const float *tt_in, size_t tt_stride, const f
  * the same order: no result depends on the clone). */
 AP_MULTIVERSION
 static void accumulate_terms(const ap_horizon *hz, size_t c0, size_t s0, size_t stride, size_t n,
-                             const double *restrict ce, const double *restrict se,
-                             const double *restrict he, const double *restrict ht,
-                             const double *restrict tt, double sphi, double cphi)
+                             const float *restrict ce, const float *restrict se,
+                             const float *restrict he, const float *restrict ht,
+                             const float *restrict tt, double sphi, double cphi)
 {
   const double delta = 2.0 * AP_PI / (double)hz->p.directions;
   const double w = 2.0 * sin(0.5 * delta);
+  const float fdelta = (float)delta, fhalf_delta = (float)(0.5 * delta);
+  const float wsphi = (float)(w * sphi), wcphi = (float)(w * cphi), half_pi = (float)AP_HALF_PI;
   const ap_sky_products *o = &hz->out;
   float *A = o->visible_solid_angle ? o->visible_solid_angle : o->aperture_radius;
   float *B = o->bent_normal ? o->bent_normal : hz->bsum;
@@ -1561,28 +1564,29 @@ static void accumulate_terms(const ap_horizon *hz, size_t c0, size_t s0, size_t 
   if (A) {
     float *a = A + c0;
     for (k = 0; k < n; ++k) {
-      a[k] += (float)(delta * (1.0 - se[k]));
+      a[k] += fdelta * (1.0f - se[k]);
     }
   }
   if (B) {
     float *b = B + 3 * c0;
     for (k = 0; k < n; ++k) {
-      const double Q = 0.5 * ((AP_HALF_PI - he[k]) - se[k] * ce[k]);
-      b[3 * k] += (float)(w * sphi * Q);
-      b[3 * k + 1] += (float)(w * cphi * Q);
-      b[3 * k + 2] += (float)(0.5 * delta * ce[k] * ce[k]);
+      const float Q = 0.5f * ((half_pi - he[k]) - se[k] * ce[k]);
+      b[3 * k] += wsphi * Q;
+      b[3 * k + 1] += wcphi * Q;
+      b[3 * k + 2] += fhalf_delta * (ce[k] * ce[k]);
     }
   }
   if (o->sky_view_factor) {
     float *v = o->sky_view_factor + c0;
     for (k = 0; k < n; ++k) {
-      v[k] += tt[k] > 0.0 ? (float)(tt[k] / sqrt(1.0 + tt[k] * tt[k])) : 0.0f;
+      const float t = tt[k] < AP_TAN_MAX ? tt[k] : AP_TAN_MAX;
+      v[k] += t > 0.0f ? t / sqrtf(1.0f + t * t) : 0.0f;
     }
   }
   if (o->positive_openness) {
     float *v = o->positive_openness + c0;
     for (k = 0; k < n; ++k) {
-      v[k] += (float)(AP_HALF_PI - ht[k]);
+      v[k] += half_pi - ht[k];
     }
   }
   if (o->edge_truncated) {
@@ -1594,7 +1598,7 @@ static void accumulate_terms(const ap_horizon *hz, size_t c0, size_t s0, size_t 
   }
   if (o->horizon_angles) {
     for (k = 0; k < n; ++k) {
-      o->horizon_angles[(c0 + k) * (size_t)D + (size_t)d] = (float)ht[k];
+      o->horizon_angles[(c0 + k) * (size_t)D + (size_t)d] = ht[k];
     }
   }
 }
@@ -1605,7 +1609,7 @@ void ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
   const double sphi = sin(hz->phi), cphi = cos(hz->phi);
   const ap_sky_products *o = &hz->out;
   const int want_ht = o->positive_openness || o->horizon_angles;
-  double ce[BLOCK], se[BLOCK], he[BLOCK], ht[BLOCK], tt[BLOCK];
+  float ce[BLOCK], se[BLOCK], he[BLOCK], ht[BLOCK], tt[BLOCK];
   const size_t stride = hz->xmajor ? hz->ny : 1;
   size_t i0, j;
   for (j = j0; j < j1 && j < hz->ny; ++j) {
@@ -1613,8 +1617,8 @@ void ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
       const size_t n = hz->nx - i0 < BLOCK ? hz->nx - i0 : BLOCK;
       const size_t c0 = j * hz->nx + i0; /* the first cell */
       const size_t s0 = hz->xmajor ? i0 * hz->ny + j : c0;
-      sector_terms(n, hz->slope + s0, stride, hz->grad + 2 * c0, sphi, cphi, want_ht, ce, se, he,
-                   ht, tt);
+      sector_terms(n, hz->slope + s0, stride, hz->grad + 2 * c0, (float)sphi, (float)cphi, want_ht,
+                   ce, se, he, ht, tt);
       accumulate_terms(hz, c0, s0, stride, n, ce, se, he, ht, tt, sphi, cphi);
     }
   }
