@@ -204,7 +204,10 @@ AP_INLINE const sample *hull_tangent(const hull *h, double xq, double uq, int *h
  *
  * A line takes at most one sample per column, so the window's samples live in a ring indexed
  * by column (longer than any window), and the stacks, hulls and undo log move 4-byte column
- * numbers instead of samples.
+ * numbers instead of samples. Beside each ring slot are the lines (as in the unlimited hull) to
+ * the column's neighbour in each hull: in "in", its farther neighbour; in "out", its nearer one.
+ * A vertex keeps that neighbour while it is in its hull, and one that "out" popped gets it back
+ * when it is restored, so these lines stay valid until the slot's column leaves the window.
  *
  * Most queries never need the window: the tangent to the line's unlimited hull is the answer
  * whenever it lies within the distance (on a 1024^2 DEM at 10 km, 92% of them). So the stacks
@@ -217,21 +220,22 @@ AP_INLINE const sample *hull_tangent(const hull *h, double xq, double uq, int *h
 
 typedef struct window {
   sample *ring;      /* the sample of column col is ring[col & mask] while in the window */
+  hull_edge *in_edge;  /* per ring slot: the line to the column's farther neighbour in "in" */
+  hull_edge *out_edge; /* per ring slot: the line to the column's nearer neighbour in "out" */
   int mask;          /* ring length - 1, the length a power of two */
   int *in_raw;       /* columns of "in", in arrival order (decreasing) */
-  int in_n, in_cap;
   int *in_hull;      /* "in"'s upper hull: columns, farthest first */
-  int in_hn, in_hcap;
+  int in_n, in_hn;
+  int in_cap;        /* capacity of in_raw and in_hull (in_hn <= in_n) */
   int *out_raw;      /* columns of "out", increasing (last = farthest) */
   int *out_popped;   /* per out_raw entry: how many hull vertices its addition popped */
   double *out_umax;  /* per out_raw entry: the largest u from out_raw[0] to it */
   double *out_x;     /* per out_raw entry: its x (read on eviction without touching the ring) */
-  int umax_cap, x_cap;
-  int out_n, out_cap, popped_cap;
   int *out_hull;     /* "out"'s upper hull: columns, increasing */
-  int out_hn, out_hcap;
   int *undo;         /* the popped vertices, a stack */
-  int undo_n, undo_cap;
+  int out_n, out_hn, undo_n;
+  int out_cap;       /* capacity of the six out arrays (out_hn + undo_n <= out_n: every
+                      * sample of "out" is a vertex of its hull or popped once) */
   double out_last_x; /* x of out_raw's last (farthest) sample, when out_n > 0 */
   double in_first_x; /* x of in_raw's first (farthest) sample, when in_n > 0 */
   int newest;        /* column of the newest sample in the ring; -1: none yet */
@@ -242,6 +246,8 @@ typedef struct window {
 static void window_free(window *w)
 {
   free(w->ring);
+  free(w->in_edge);
+  free(w->out_edge);
   free(w->in_raw);
   free(w->in_hull);
   free(w->out_raw);
@@ -253,7 +259,52 @@ static void window_free(window *w)
   memset(w, 0, sizeof(*w));
 }
 
+/* Make room for need entries in the in (out) arrays; 0 when out of memory. */
+static int in_reserve(window *w, int need)
+{
+  int c1 = w->in_cap, c2 = w->in_cap;
+  if (need <= w->in_cap) {
+    return 1;
+  }
+  if (!GROW(w->in_raw, c1, need) || !GROW(w->in_hull, c2, need)) {
+    return 0;
+  }
+  w->in_cap = c1 < c2 ? c1 : c2;
+  return 1;
+}
+
+static int out_reserve(window *w, int need)
+{
+  int c[6], k, m;
+  if (need <= w->out_cap) {
+    return 1;
+  }
+  for (k = 0; k < 6; ++k) {
+    c[k] = w->out_cap;
+  }
+  if (!GROW(w->out_raw, c[0], need) || !GROW(w->out_popped, c[1], need) ||
+      !GROW(w->out_umax, c[2], need) || !GROW(w->out_x, c[3], need) ||
+      !GROW(w->out_hull, c[4], need) || !GROW(w->undo, c[5], need)) {
+    return 0;
+  }
+  for (m = c[0], k = 1; k < 6; ++k) {
+    m = c[k] < m ? c[k] : m;
+  }
+  w->out_cap = m;
+  return 1;
+}
+
+/* The line through two samples, u = b + e x. */
+AP_INLINE hull_edge edge_through(const sample *p, const sample *q)
+{
+  hull_edge r;
+  r.e = (p->u - q->u) / (p->x - q->x);
+  r.b = q->u - r.e * q->x;
+  return r;
+}
+
 #define RING(w, col) (&(w)->ring[(col) & (w)->mask])
+#define SLOT(col, w) ((col) & (w)->mask)
 
 static int window_push(window *w, const sample *q, int W)
 {
@@ -265,7 +316,9 @@ static int window_push(window *w, const sample *q, int W)
       len *= 2;
     }
     w->ring = (sample *)malloc((size_t)len * sizeof(sample));
-    if (!w->ring) {
+    w->in_edge = (hull_edge *)malloc((size_t)len * sizeof(hull_edge));
+    w->out_edge = (hull_edge *)malloc((size_t)len * sizeof(hull_edge));
+    if (!w->ring || !w->in_edge || !w->out_edge) {
       return 0;
     }
     w->mask = len - 1;
@@ -273,12 +326,9 @@ static int window_push(window *w, const sample *q, int W)
       w->ring[c].col = -1; /* no sample: window_activate reads the ring by column */
     }
     /* The window never holds more samples than the ring: size its stacks for that at once
-     * (GROW below still guards every push), instead of doubling them up from 16 in every
-     * chunk of lines. */
-    if (!GROW(w->in_raw, w->in_cap, len) || !GROW(w->in_hull, w->in_hcap, len) ||
-        !GROW(w->out_raw, w->out_cap, len) || !GROW(w->out_popped, w->popped_cap, len) ||
-        !GROW(w->out_umax, w->umax_cap, len) || !GROW(w->out_x, w->x_cap, len) ||
-        !GROW(w->out_hull, w->out_hcap, len) || !GROW(w->undo, w->undo_cap, len)) {
+     * (the reserves below still guard every push), instead of doubling them up from 16 in
+     * every chunk of lines. */
+    if (!in_reserve(w, len) || !out_reserve(w, len)) {
       return 0;
     }
   }
@@ -293,8 +343,7 @@ static int window_push(window *w, const sample *q, int W)
     w->active = 0;
     return 1;
   }
-  if (!GROW(w->in_raw, w->in_cap, w->in_n + 1) ||
-      !GROW(w->in_hull, w->in_hcap, w->in_hn + 1)) {
+  if (!in_reserve(w, w->in_n + 1)) {
     return 0;
   }
   if (w->in_n == 0) {
@@ -303,15 +352,15 @@ static int window_push(window *w, const sample *q, int W)
   w->in_raw[w->in_n++] = col;
   /* the near-pushed hull of "in": the pop rule of hull_push_near */
   while (w->in_hn >= 2) {
-    const sample *top = RING(w, w->in_hull[w->in_hn - 1]);
-    const sample *second = RING(w, w->in_hull[w->in_hn - 2]);
-    const double d1 = top->x - q->x, h1 = top->u - q->u;
-    const double d2 = second->x - q->x, h2 = second->u - q->u;
-    if (h2 * d1 >= h1 * d2) {
+    const hull_edge *ed = &w->in_edge[SLOT(w->in_hull[w->in_hn - 1], w)];
+    if (q->u >= ed->b + ed->e * q->x) {
       --w->in_hn;
     } else {
       break;
     }
+  }
+  if (w->in_hn >= 1) {
+    w->in_edge[SLOT(col, w)] = edge_through(RING(w, w->in_hull[w->in_hn - 1]), q);
   }
   w->in_hull[w->in_hn++] = col;
   return 1;
@@ -322,26 +371,22 @@ static int out_add_far(window *w, int col)
 {
   const sample *q = RING(w, col);
   int popped = 0;
+  if (!out_reserve(w, w->out_n + 1)) {
+    return 0;
+  }
   while (w->out_hn >= 2) {
-    const sample *a = RING(w, w->out_hull[w->out_hn - 2]);
-    const sample *b = RING(w, w->out_hull[w->out_hn - 1]);
-    /* b is on or below the chord a-q: it can never be a tangent point from the near side. */
-    if ((q->u - a->u) * (b->x - a->x) >= (b->u - a->u) * (q->x - a->x)) {
-      if (!GROW(w->undo, w->undo_cap, w->undo_n + 1)) {
-        return 0;
-      }
+    /* The last vertex b is on or below the chord from the one before it (a) to q, i.e. q is on
+     * or above the line through a and b: b can never be a tangent point from the near side. */
+    const hull_edge *ed = &w->out_edge[SLOT(w->out_hull[w->out_hn - 1], w)];
+    if (q->u >= ed->b + ed->e * q->x) {
       w->undo[w->undo_n++] = w->out_hull[--w->out_hn];
       ++popped;
     } else {
       break;
     }
   }
-  if (!GROW(w->out_hull, w->out_hcap, w->out_hn + 1) ||
-      !GROW(w->out_raw, w->out_cap, w->out_n + 1) ||
-      !GROW(w->out_popped, w->popped_cap, w->out_n + 1) ||
-      !GROW(w->out_umax, w->umax_cap, w->out_n + 1) ||
-      !GROW(w->out_x, w->x_cap, w->out_n + 1)) {
-    return 0;
+  if (w->out_hn >= 1) {
+    w->out_edge[SLOT(col, w)] = edge_through(RING(w, w->out_hull[w->out_hn - 1]), q);
   }
   w->out_hull[w->out_hn++] = col;
   w->out_raw[w->out_n] = col;
@@ -421,10 +466,12 @@ static int window_activate(window *w, double xlimit)
   return 1;
 }
 
-/* The vertex of a hull of columns (any x-monotone order) with the largest slope from
- * (xq, uq), by bisection on the same boundary as hull_tangent; NULL when empty. */
-static const sample *ring_tangent(const window *w, const int *h, int n, double xq, double uq,
-                                  double *slope)
+/* The vertex of a hull of columns with the largest slope from (xq, uq), by bisection on the
+ * same boundary as hull_tangent; NULL when empty. ed holds each vertex's line to its previous
+ * vertex in h; the slope rises from h[k] to h[k + 1] when the query point lies below that line
+ * if h runs farthest first ("in"), above it if nearest first ("out"). */
+static const sample *ring_tangent(const window *w, const int *h, int n, const hull_edge *ed,
+                                  int far_first, double xq, double uq, double *slope)
 {
   int lo = 0, m = n - 1; /* the first index whose slope is not below the next one's,
                           * branch-free (the comparison decides a conditional move) */
@@ -434,8 +481,9 @@ static const sample *ring_tangent(const window *w, const int *h, int n, double x
   }
   while (m > 0) {
     const int half = m >> 1, mid = lo + half;
-    const sample *a = RING(w, h[mid]), *b = RING(w, h[mid + 1]);
-    const int rising = (a->u - uq) * (b->x - xq) < (b->u - uq) * (a->x - xq);
+    const hull_edge *e = &ed[SLOT(h[mid + 1], w)];
+    const double line = e->b + e->e * xq;
+    const int rising = far_first ? uq < line : uq > line;
     lo = rising ? mid + 1 : lo;
     m = rising ? m - half - 1 : half;
   }
@@ -450,14 +498,14 @@ static const sample *ring_tangent(const window *w, const int *h, int n, double x
 static const sample *window_tangent(const window *w, double xq, double uq)
 {
   double sa = -INFINITY, sb = -INFINITY;
-  const sample *a = ring_tangent(w, w->in_hull, w->in_hn, xq, uq, &sa);
+  const sample *a = ring_tangent(w, w->in_hull, w->in_hn, w->in_edge, 1, xq, uq, &sa);
   const sample *b = NULL;
   if (w->out_hn > 0) {
     const double rise = w->out_umax[w->out_n - 1] - uq;
     const double d = rise >= 0.0 ? RING(w, w->out_raw[0])->x - xq
                                  : RING(w, w->out_raw[w->out_n - 1])->x - xq;
     if (!a || rise / d > sa) {
-      b = ring_tangent(w, w->out_hull, w->out_hn, xq, uq, &sb);
+      b = ring_tangent(w, w->out_hull, w->out_hn, w->out_edge, 0, xq, uq, &sb);
     }
   }
   if (!a) {
