@@ -259,13 +259,11 @@ static void window_free(window *w)
   memset(w, 0, sizeof(*w));
 }
 
-/* Make room for need entries in the in (out) arrays; 0 when out of memory. */
+/* Make room for need entries in the in (out) arrays, need > their capacity; 0 when out of
+ * memory. (The callers check the capacity inline: it is almost never short.) */
 static int in_reserve(window *w, int need)
 {
   int c1 = w->in_cap, c2 = w->in_cap;
-  if (need <= w->in_cap) {
-    return 1;
-  }
   if (!GROW(w->in_raw, c1, need) || !GROW(w->in_hull, c2, need)) {
     return 0;
   }
@@ -276,9 +274,6 @@ static int in_reserve(window *w, int need)
 static int out_reserve(window *w, int need)
 {
   int c[6], k, m;
-  if (need <= w->out_cap) {
-    return 1;
-  }
   for (k = 0; k < 6; ++k) {
     c[k] = w->out_cap;
   }
@@ -328,7 +323,7 @@ static int window_push(window *w, const sample *q, int W)
     /* The window never holds more samples than the ring: size its stacks for that at once
      * (the reserves below still guard every push), instead of doubling them up from 16 in
      * every chunk of lines. */
-    if (!in_reserve(w, len) || !out_reserve(w, len)) {
+    if ((len > w->in_cap && !in_reserve(w, len)) || (len > w->out_cap && !out_reserve(w, len))) {
       return 0;
     }
   }
@@ -343,7 +338,7 @@ static int window_push(window *w, const sample *q, int W)
     w->active = 0;
     return 1;
   }
-  if (!in_reserve(w, w->in_n + 1)) {
+  if (w->in_n >= w->in_cap && !in_reserve(w, w->in_n + 1)) {
     return 0;
   }
   if (w->in_n == 0) {
@@ -371,7 +366,7 @@ static int out_add_far(window *w, int col)
 {
   const sample *q = RING(w, col);
   int popped = 0;
-  if (!out_reserve(w, w->out_n + 1)) {
+  if (w->out_n >= w->out_cap && !out_reserve(w, w->out_n + 1)) {
     return 0;
   }
   while (w->out_hn >= 2) {
@@ -519,10 +514,11 @@ static const sample *window_tangent(const window *w, double xq, double uq)
 
 typedef struct patch_rec {
   long dp, ds;       /* the patch's lower corner relative to the ray's start node (view) */
+  int first;         /* the first patch of the ray (it starts at the cell's own node) */
   float t1, t2;      /* the ray's segment on the patch (m); t1 = 0 on the first patch */
-  float dt, inv_t1, inv_t2, first; /* t2 - t1; 1/t1 (0 on the first patch); 1/t2; 1 or 0 */
-  float wa[4], wb[4], wg[4]; /* weights of corners z(dp,ds), z(dp+1,ds), z(dp,ds+1),
-                                z(dp+1,ds+1) in A1, B1 and C (see build_pattern) */
+  float dt, inv_t1, inv_t2, t1x2; /* t2 - t1; 1/t1 (0 on the first patch); 1/t2; 2 t1 */
+  float u1, v1, u1v1; /* where the ray enters the patch, in the patch's coordinates; their product */
+  float wa, wb, wk, wab; /* a, b (the ray's columns and rows per metre), k = u1 b + v1 a, a b */
 } patch_rec;
 
 typedef struct pattern {
@@ -1069,23 +1065,19 @@ static int build_pattern(ap_horizon *hz, double m, double len, double tmax)
     r.dt = (float)(t2 - t1);
     r.inv_t1 = t1 > 0.0 ? (float)(1.0 / t1) : 0.0f;
     r.inv_t2 = (float)(1.0 / t2);
-    r.first = t1 > 0.0 ? 0.0f : 1.0f;
+    r.t1x2 = (float)(2.0 * t1);
+    r.first = !(t1 > 0.0);
     /* z(u, v) = z00 (1-u)(1-v) + z10 u (1-v) + z01 (1-u) v + z11 u v along the segment, with
      * tau = t - t1: z = A1 + B1 tau + C tau^2, A1 = z(u1, v1),
      * B1 = e a + f b + g (u1 b + v1 a), C = g a b, where e = z10 - z00, f = z01 - z00,
      * g = z11 - z10 - z01 + z00. */
-    r.wa[0] = (float)((1 - u1) * (1 - v1));
-    r.wa[1] = (float)(u1 * (1 - v1));
-    r.wa[2] = (float)((1 - u1) * v1);
-    r.wa[3] = (float)(u1 * v1);
-    r.wb[0] = (float)(-a - b + k);
-    r.wb[1] = (float)(a - k);
-    r.wb[2] = (float)(b - k);
-    r.wb[3] = (float)k;
-    r.wg[0] = (float)(a * b);
-    r.wg[1] = (float)(-a * b);
-    r.wg[2] = (float)(-a * b);
-    r.wg[3] = (float)(a * b);
+    r.u1 = (float)u1;
+    r.v1 = (float)v1;
+    r.u1v1 = (float)(u1 * v1);
+    r.wa = (float)a;
+    r.wb = (float)b;
+    r.wk = (float)k;
+    r.wab = (float)(a * b);
     if (!push_rec(hz, &r)) {
       return 0;
     }
@@ -1138,19 +1130,19 @@ static void near_column(const ap_horizon *hz, const pattern *pt, size_t p, long 
     c1 = view_column(hz, p + (size_t)rec->dp + 1) + rec->ds;
     lo = sa > -rec->ds ? sa : -rec->ds;
     hi = sb < ns - 1 - rec->ds ? sb : ns - 1 - rec->ds;
-    /* Branch-free single precision so that it vectorises four cells at a time. It works on
-     * height differences from the cell (exact for nearby heights, Sterbenz) and on each patch
-     * from where the ray enters it, so the weights stay bounded and float rounding stays near
-     * 1e-7 of a slope. The weights of A1 sum to 1 and those of B1 and C to 0, so the same sums
-     * of the differences give A1 - zq, B1 and C. On the first patch the ray starts at the
-     * cell's own node (A1 = zq) and f1 is the limit B1 (first = 1, inv_t1 = 0). */
+    /* Branch-free single precision so that it vectorises eight cells at a time. It works on
+     * the patch's corner differences e, f, g (exact for nearby heights, Sterbenz), on the
+     * height difference from the cell, and on each patch from where the ray enters it, so the
+     * weights stay bounded and float rounding stays near 1e-7 of a slope. On the first patch
+     * the ray leaves the cell's own node (A1 = zq) and the slope tends to B1. (A patch's start
+     * is the previous patch's end, but that one gives NaN when one of its corners is nodata.) */
     for (s = lo; s < hi; ++s) {
       const float zq = col[s];
-      const float d00 = c0[s] - zq, d01 = c0[s + 1] - zq, d10 = c1[s] - zq, d11 = c1[s + 1] - zq;
-      const float a1 = rec->wa[0] * d00 + rec->wa[1] * d10 + rec->wa[2] * d01 + rec->wa[3] * d11;
-      const float B1 = rec->wb[0] * d00 + rec->wb[1] * d10 + rec->wb[2] * d01 + rec->wb[3] * d11;
-      const float C = rec->wg[0] * d00 + rec->wg[1] * d10 + rec->wg[2] * d01 + rec->wg[3] * d11;
-      const float f1 = rec->first * B1 + a1 * rec->inv_t1 - cf * rec->t1;
+      const float z00 = c0[s], z10 = c1[s], z01 = c0[s + 1], z11 = c1[s + 1];
+      const float d00 = z00 - zq, e = z10 - z00, f = z01 - z00, g = (z11 - z10) - f;
+      const float a1 = d00 + rec->u1 * e + rec->v1 * f + rec->u1v1 * g; /* A1 - zq */
+      const float B1 = rec->wa * e + rec->wb * f + rec->wk * g;
+      const float C = rec->wab * g;
       const float f2 = (a1 + (B1 + C * rec->dt) * rec->dt) * rec->inv_t2 - cf * rec->t2;
       /* In absolute distance t the slope is f(t) = alpha/t + B + gamma t with
        * alpha = A1 - zq - B1 t1 + C t1^2, B = B1 - 2 C t1, gamma = C - c. An interior maximum
@@ -1161,7 +1153,8 @@ static void near_column(const ap_horizon *hz, const pattern *pt, size_t p, long 
       const float gamma = C - cf;
       const int inside = (alpha < 0.0f) & (gamma < 0.0f) &
                          (alpha >= gamma * rec->t2 * rec->t2) & (alpha <= gamma * rec->t1 * rec->t1);
-      const float fi = inside ? (B1 - 2.0f * C * rec->t1) - 2.0f * sqrtf(alpha * gamma) : f1;
+      const float fi = inside ? (B1 - C * rec->t1x2) - 2.0f * sqrtf(alpha * gamma) : f2;
+      const float f1 = rec->first ? B1 : a1 * rec->inv_t1 - cf * rec->t1;
       float v = f1 > f2 ? f1 : f2;
       v = fi > v ? fi : v;
       best[s] = v > best[s] ? v : best[s]; /* NaN (nodata corner) never wins */
