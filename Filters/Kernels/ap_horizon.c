@@ -43,6 +43,14 @@
 #define AP_INLINE static inline
 #endif
 
+/* For the window's rebuilds, kept out of the sweep's hot loop (inlined there, they cost it
+ * registers). */
+#if defined(__GNUC__)
+#define AP_NOINLINE __attribute__((noinline))
+#else
+#define AP_NOINLINE
+#endif
+
 /* Unroll the next loop twice: the sweep's two-line loop, whose two hull queries are then
  * scheduled together (and no loop branch mispredicts between them). */
 #if defined(__clang__) || (defined(__GNUC__) && __GNUC__ >= 8)
@@ -361,36 +369,62 @@ static int window_push(window *w, const sample *q, int W)
   return 1;
 }
 
-/* Add column col, farther than every sample of "out"'s hull, logging the popped vertices. */
-static int out_add_far(window *w, int col)
+/* Add the count columns cols[0], cols[step], ... (nearest first, each farther than every
+ * sample of "out") to "out" and its hull, logging the popped vertices. One loop with the
+ * window's counts and arrays in locals (stores through the int arrays could otherwise alias the
+ * counts): a build or a transfer adds hundreds of samples at a time. */
+AP_NOINLINE static int out_add_far(window *w, const int *cols, int count, int step)
 {
-  const sample *q = RING(w, col);
-  int popped = 0;
-  if (w->out_n >= w->out_cap && !out_reserve(w, w->out_n + 1)) {
+  const sample *ring = w->ring;
+  const int mask = w->mask;
+  int *hull, *undo, *raw, *npop;
+  double *umax, *xs;
+  hull_edge *edge;
+  int n = w->out_n, hn = w->out_hn, un = w->undo_n, k;
+  if (count <= 0) {
+    return 1;
+  }
+  if (n + count > w->out_cap && !out_reserve(w, n + count)) {
     return 0;
   }
-  while (w->out_hn >= 2) {
-    /* The last vertex b is on or below the chord from the one before it (a) to q, i.e. q is on
-     * or above the line through a and b: b can never be a tangent point from the near side. */
-    const hull_edge *ed = &w->out_edge[SLOT(w->out_hull[w->out_hn - 1], w)];
-    if (q->u >= ed->b + ed->e * q->x) {
-      w->undo[w->undo_n++] = w->out_hull[--w->out_hn];
-      ++popped;
-    } else {
-      break;
+  hull = w->out_hull;
+  undo = w->undo;
+  raw = w->out_raw;
+  npop = w->out_popped;
+  umax = w->out_umax;
+  xs = w->out_x;
+  edge = w->out_edge;
+  for (k = 0; k < count; ++k) {
+    const int col = cols[(ptrdiff_t)k * step];
+    const sample *q = &ring[col & mask];
+    const double qu = q->u, qx = q->x;
+    int popped = 0;
+    while (hn >= 2) {
+      /* The last vertex b is on or below the chord from the one before it (a) to q, i.e. q is
+       * on or above the line through a and b: b can never be a tangent point from the near
+       * side. */
+      const hull_edge *ed = &edge[hull[hn - 1] & mask];
+      if (qu >= ed->b + ed->e * qx) {
+        undo[un++] = hull[--hn];
+        ++popped;
+      } else {
+        break;
+      }
     }
+    if (hn >= 1) {
+      edge[col & mask] = edge_through(&ring[hull[hn - 1] & mask], q);
+    }
+    hull[hn++] = col;
+    raw[n] = col;
+    npop[n] = popped;
+    umax[n] = (n > 0 && umax[n - 1] > qu) ? umax[n - 1] : qu;
+    xs[n] = qx;
+    ++n;
   }
-  if (w->out_hn >= 1) {
-    w->out_edge[SLOT(col, w)] = edge_through(RING(w, w->out_hull[w->out_hn - 1]), q);
-  }
-  w->out_hull[w->out_hn++] = col;
-  w->out_raw[w->out_n] = col;
-  w->out_popped[w->out_n] = popped;
-  w->out_umax[w->out_n] =
-    (w->out_n > 0 && w->out_umax[w->out_n - 1] > q->u) ? w->out_umax[w->out_n - 1] : q->u;
-  w->out_x[w->out_n] = q->x;
-  ++w->out_n;
-  w->out_last_x = q->x;
+  w->out_n = n;
+  w->out_hn = hn;
+  w->undo_n = un;
+  w->out_last_x = xs[n - 1];
   return 1;
 }
 
@@ -422,11 +456,8 @@ static int window_evict(window *w, double xlimit)
     }
     if (w->in_n > 0 && w->in_first_x > xlimit) {
       /* Move all of "in" to "out", nearest first; "in" starts afresh. */
-      int i;
-      for (i = w->in_n - 1; i >= 0; --i) {
-        if (!out_add_far(w, w->in_raw[i])) {
-          return 0;
-        }
+      if (!out_add_far(w, w->in_raw + w->in_n - 1, w->in_n, -1)) {
+        return 0;
       }
       w->in_n = 0;
       w->in_hn = 0;
@@ -437,10 +468,11 @@ static int window_evict(window *w, double xlimit)
 }
 
 /* Start keeping the stacks: every sample in the ring within xlimit goes to "out", nearest
- * first, exactly as a transfer from "in" would put it. */
+ * first, exactly as a transfer from "in" would put it. (The columns are listed in in_raw,
+ * which is empty while the stacks are not kept.) */
 static int window_activate(window *w, double xlimit)
 {
-  int c;
+  int c, count = 0;
   w->active = 1;
   w->idle = 0;
   if (!w->ring || w->newest < 0) {
@@ -454,11 +486,9 @@ static int window_activate(window *w, double xlimit)
     if (q->x > xlimit) {
       break;
     }
-    if (!out_add_far(w, c)) {
-      return 0;
-    }
+    w->in_raw[count++] = c; /* (in_raw holds a ring's length) */
   }
-  return 1;
+  return out_add_far(w, w->in_raw, count, 1);
 }
 
 /* The vertex of a hull of columns with the largest slope from (xq, uq), by bisection on the
