@@ -1446,21 +1446,26 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
     /* 2. Every cell of column p bracketed by this band's lines. */
     l = 0;
     {
-      const size_t out_base = scratch_index(hz, p, 0); /* a view column is contiguous there */
+      /* the sector scratch of this column (contiguous there) and what the loop reads of hz, in
+       * locals */
+      const size_t out_base = scratch_index(hz, p, 0);
+      float *const slope_out = hz->slope + out_base;
+      unsigned char *const edge_out = hz->edge + out_base;
+      const float *const *const colp = hz->colp;
+      const double zmax = (double)hz->zmax;
       const double first = lines[0].s, last = lines[nl - 1].s;
       const long s_begin = first <= 0.0 ? 0 : (long)ceil(first);
       const long s_end = last > (double)ns ? (long)ns : (long)ceil(last);
       for (cell = s_begin; cell < s_end; ++cell) {
         const double sq = (double)cell;
         const double zq = col[cell];
-        const size_t out_index = out_base + (size_t)cell;
-        double near = hz->slope[out_index], far = -INFINITY, limit, avail;
+        double near = slope_out[cell], far = -INFINITY, limit, avail;
         while (l + 2 < nl && lines[l + 1].s <= sq) {
           ++l;
         }
         if (isnan(zq)) {
-          hz->slope[out_index] = NAN;
-          hz->edge[out_index] = 0;
+          slope_out[cell] = NAN;
+          edge_out[cell] = 0;
           continue;
         }
         /* Far field: the hulls of the two bracketing lines, each queried with the cell's own
@@ -1505,7 +1510,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
               continue;
             }
             sn = sq + (v->s - ln->s);
-            zn = interp(view_column(hz, (size_t)v->col), smax, sn);
+            zn = interp(colp[v->col], smax, sn);
             dn = v->x - ln->x;
             if (isnan(zn) || !(dn > 0.0)) {
               continue;
@@ -1517,12 +1522,11 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
           }
           avail = bl[0]->avail < bl[1]->avail ? bl[0]->avail : bl[1]->avail;
         }
-        hz->slope[out_index] = (float)(near > far ? near : far);
+        slope_out[cell] = (float)(near > far ? near : far);
         /* Truncated when the DEM ends before the search limit: L, and with curvature
          * sqrt((zmax - z)/c) (compared squared: avail^2 c < zmax - z). */
         limit = L;
-        hz->edge[out_index] =
-          avail < limit && (c <= 0.0 || avail * avail * c < (double)hz->zmax - zq);
+        edge_out[cell] = avail < limit && (c <= 0.0 || avail * avail * c < zmax - zq);
       }
     }
 
