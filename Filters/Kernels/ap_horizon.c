@@ -1453,6 +1453,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
       unsigned char *const edge_out = hz->edge + out_base;
       const float *const *const colp = hz->colp;
       const double zmax = (double)hz->zmax;
+      const int parallel = hz->parallel;
       const double first = lines[0].s, last = lines[nl - 1].s;
       const long s_begin = first <= 0.0 ? 0 : (long)ceil(first);
       const long s_end = last > (double)ns ? (long)ns : (long)ceil(last);
@@ -1476,6 +1477,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
          * distances. u = z - c x^2 makes the curvature exact (ALGORITHMS.md 3.5). */
         {
           line_state *bl[2];
+          long done = -1; /* the column the cell's ray was evaluated on */
           int e;
           bl[0] = &lines[l];
           bl[1] = &lines[l + 1];
@@ -1506,9 +1508,10 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
               v = hull_tangent(&ln->h, ln->x, zq - c * ln->x * ln->x, &ln->hint[1 - e]);
             }
             double sn, zn, dn, slope;
-            if (!v) {
-              continue;
+            if (!v || (parallel && v->col == done)) {
+              continue; /* parallel lines: the same column is the same point of the ray */
             }
+            done = v->col;
             sn = sq + (v->s - ln->s);
             zn = interp(colp[v->col], smax, sn);
             dn = v->x - ln->x;
