@@ -1178,11 +1178,12 @@ static void near_column(const ap_horizon *hz, const pattern *pt, size_t p, long 
        * alpha = A1 - zq - B1 t1 + C t1^2, B = B1 - 2 C t1, gamma = C - c. An interior maximum
        * needs alpha < 0 and gamma < 0 (f'' = 2 alpha / t^3 < 0); it lies in the segment iff
        * t1^2 <= alpha/gamma <= t2^2, i.e. gamma t2^2 <= alpha <= gamma t1^2, and there
-       * f(t*) = B - 2 sqrt(alpha gamma): no division. */
+       * f(t*) = B - 2 sqrt(alpha gamma): no division. Those two bounds alone imply
+       * gamma <= 0 (t2 > t1) and so alpha <= 0; where one is 0, sqrt gives 0 and B is then
+       * the supremum of f on the segment, so the sign tests are not needed. */
       const float alpha = a1 - (B1 - C * rec->t1) * rec->t1;
       const float gamma = C - cf;
-      const int inside = (alpha < 0.0f) & (gamma < 0.0f) &
-                         (alpha >= gamma * rec->t2 * rec->t2) & (alpha <= gamma * rec->t1 * rec->t1);
+      const int inside = (alpha >= gamma * rec->t2 * rec->t2) & (alpha <= gamma * rec->t1 * rec->t1);
       const float fi = inside ? (B1 - C * rec->t1x2) - 2.0f * sqrtf(alpha * gamma) : f2;
       const float f1 = rec->first ? B1 : a1 * rec->inv_t1 - cf * rec->t1;
       float v = f1 > f2 ? f1 : f2;
