@@ -76,6 +76,21 @@ typedef struct hull_edge {
   double e, b;
 } hull_edge;
 
+/* The line through two samples (p->x != q->x). */
+AP_INLINE hull_edge edge_through(const sample *p, const sample *q)
+{
+  hull_edge r;
+  r.e = (p->u - q->u) / (p->x - q->x);
+  r.b = q->u - r.e * q->x;
+  return r;
+}
+
+/* The line's height at x. */
+AP_INLINE double edge_at(const hull_edge *ed, double x)
+{
+  return ed->b + ed->e * x;
+}
+
 /* v[0] is the farthest vertex, v[n - 1] the nearest; ed[k] (k >= 1) is the line through v[k - 1]
  * and v[k], so that the two tests on a vertex pair below, which are about a point's position
  * relative to that line, cost a multiply and a compare (the slope is divided once per push). */
@@ -125,17 +140,14 @@ static void hull_free(hull *h)
  * top can then never be the tangent point again. */
 static int hull_push_near(hull *h, const sample *q)
 {
-  while (h->n >= 2 && q->u >= h->ed[h->n - 1].b + h->ed[h->n - 1].e * q->x) {
+  while (h->n >= 2 && q->u >= edge_at(&h->ed[h->n - 1], q->x)) {
     --h->n;
   }
   if (!GROW(h->v, h->cap, h->n + 1) || !GROW(h->ed, h->ecap, h->n + 1)) {
     return 0;
   }
   if (h->n >= 1) {
-    const sample *top = &h->v[h->n - 1];
-    const double e = (top->u - q->u) / (top->x - q->x);
-    h->ed[h->n].e = e;
-    h->ed[h->n].b = q->u - e * q->x;
+    h->ed[h->n] = edge_through(&h->v[h->n - 1], q);
   }
   h->v[h->n++] = *q;
   return 1;
@@ -157,7 +169,7 @@ AP_INLINE const sample *hull_tangent(const hull *h, double xq, double uq, int *h
   if (h->n == 0) {
     return NULL;
   }
-#define RISING(k) (uq < ed[(k) + 1].b + ed[(k) + 1].e * xq)
+#define RISING(k) (uq < edge_at(&ed[(k) + 1], xq))
   i = *hint > last ? last : *hint; /* a hint is never negative */
   if (i < last && RISING(i)) {
     /* the boundary is above i: gallop up */
@@ -267,47 +279,42 @@ static void window_free(window *w)
   memset(w, 0, sizeof(*w));
 }
 
+/* Grow the n arrays *arrays[k] (element sizes sizes[k]) that share the capacity *cap to hold at
+ * least need elements; 0 when out of memory (*cap then still holds for every array). */
+static int grow_together(void *const *arrays, const size_t *sizes, int n, int *cap, int need)
+{
+  int k, least = -1;
+  for (k = 0; k < n; ++k) {
+    int c = *cap;
+    if (!grow(arrays[k], &c, need, sizes[k])) {
+      return 0;
+    }
+    least = least < 0 || c < least ? c : least;
+  }
+  *cap = least;
+  return 1;
+}
+
 /* Make room for need entries in the in (out) arrays, need > their capacity; 0 when out of
  * memory. (The callers check the capacity inline: it is almost never short.) */
 static int in_reserve(window *w, int need)
 {
-  int c1 = w->in_cap, c2 = w->in_cap;
-  if (!GROW(w->in_raw, c1, need) || !GROW(w->in_hull, c2, need)) {
-    return 0;
-  }
-  w->in_cap = c1 < c2 ? c1 : c2;
-  return 1;
+  void *const arrays[2] = { &w->in_raw, &w->in_hull };
+  const size_t sizes[2] = { sizeof(*w->in_raw), sizeof(*w->in_hull) };
+  return grow_together(arrays, sizes, 2, &w->in_cap, need);
 }
 
 static int out_reserve(window *w, int need)
 {
-  int c[6], k, m;
-  for (k = 0; k < 6; ++k) {
-    c[k] = w->out_cap;
-  }
-  if (!GROW(w->out_raw, c[0], need) || !GROW(w->out_popped, c[1], need) ||
-      !GROW(w->out_umax, c[2], need) || !GROW(w->out_x, c[3], need) ||
-      !GROW(w->out_hull, c[4], need) || !GROW(w->undo, c[5], need)) {
-    return 0;
-  }
-  for (m = c[0], k = 1; k < 6; ++k) {
-    m = c[k] < m ? c[k] : m;
-  }
-  w->out_cap = m;
-  return 1;
+  void *const arrays[6] = { &w->out_raw, &w->out_popped, &w->out_umax,
+                            &w->out_x,   &w->out_hull,   &w->undo };
+  const size_t sizes[6] = { sizeof(*w->out_raw), sizeof(*w->out_popped), sizeof(*w->out_umax),
+                            sizeof(*w->out_x),   sizeof(*w->out_hull),   sizeof(*w->undo) };
+  return grow_together(arrays, sizes, 6, &w->out_cap, need);
 }
 
-/* The line through two samples, u = b + e x. */
-AP_INLINE hull_edge edge_through(const sample *p, const sample *q)
-{
-  hull_edge r;
-  r.e = (p->u - q->u) / (p->x - q->x);
-  r.b = q->u - r.e * q->x;
-  return r;
-}
-
-#define RING(w, col) (&(w)->ring[(col) & (w)->mask])
-#define SLOT(col, w) ((col) & (w)->mask)
+#define SLOT(w, col) ((col) & (w)->mask)
+#define RING(w, col) (&(w)->ring[SLOT(w, col)])
 
 static int window_push(window *w, const sample *q, int W)
 {
@@ -355,15 +362,14 @@ static int window_push(window *w, const sample *q, int W)
   w->in_raw[w->in_n++] = col;
   /* the near-pushed hull of "in": the pop rule of hull_push_near */
   while (w->in_hn >= 2) {
-    const hull_edge *ed = &w->in_edge[SLOT(w->in_hull[w->in_hn - 1], w)];
-    if (q->u >= ed->b + ed->e * q->x) {
+    if (q->u >= edge_at(&w->in_edge[SLOT(w, w->in_hull[w->in_hn - 1])], q->x)) {
       --w->in_hn;
     } else {
       break;
     }
   }
   if (w->in_hn >= 1) {
-    w->in_edge[SLOT(col, w)] = edge_through(RING(w, w->in_hull[w->in_hn - 1]), q);
+    w->in_edge[SLOT(w, col)] = edge_through(RING(w, w->in_hull[w->in_hn - 1]), q);
   }
   w->in_hull[w->in_hn++] = col;
   return 1;
@@ -403,8 +409,7 @@ AP_NOINLINE static int out_add_far(window *w, const int *cols, int count, int st
       /* The last vertex b is on or below the chord from the one before it (a) to q, i.e. q is
        * on or above the line through a and b: b can never be a tangent point from the near
        * side. */
-      const hull_edge *ed = &edge[hull[hn - 1] & mask];
-      if (qu >= ed->b + ed->e * qx) {
+      if (qu >= edge_at(&edge[hull[hn - 1] & mask], qx)) {
         undo[un++] = hull[--hn];
         ++popped;
       } else {
@@ -506,8 +511,7 @@ static const sample *ring_tangent(const window *w, const int *h, int n, const hu
   }
   while (m > 0) {
     const int half = m >> 1, mid = lo + half;
-    const hull_edge *e = &ed[SLOT(h[mid + 1], w)];
-    const double line = e->b + e->e * xq;
+    const double line = edge_at(&ed[SLOT(w, h[mid + 1])], xq);
     const int rising = far_first ? uq < line : uq > line;
     lo = rising ? mid + 1 : lo;
     m = rising ? m - half - 1 : half;
@@ -547,7 +551,7 @@ typedef struct patch_rec {
   int first;         /* the first patch of the ray (it starts at the cell's own node) */
   float t1, t2;      /* the ray's segment on the patch (m); t1 = 0 on the first patch */
   float dt, inv_t1, inv_t2, t1x2; /* t2 - t1; 1/t1 (0 on the first patch); 1/t2; 2 t1 */
-  float u1, v1, u1v1; /* where the ray enters the patch, in the patch's coordinates; their product */
+  float u1, v1, u1v1; /* where the ray enters the patch (the patch's coordinates); their product */
   float wa, wb, wk, wab; /* a, b (the ray's columns and rows per metre), k = u1 b + v1 a, a b */
 } patch_rec;
 
@@ -1183,7 +1187,8 @@ static void near_column(const ap_horizon *hz, const pattern *pt, size_t p, long 
        * the supremum of f on the segment, so the sign tests are not needed. */
       const float alpha = a1 - (B1 - C * rec->t1) * rec->t1;
       const float gamma = C - cf;
-      const int inside = (alpha >= gamma * rec->t2 * rec->t2) & (alpha <= gamma * rec->t1 * rec->t1);
+      const int inside =
+        (alpha >= gamma * rec->t2 * rec->t2) & (alpha <= gamma * rec->t1 * rec->t1);
       const float fi = inside ? (B1 - C * rec->t1x2) - 2.0f * sqrtf(alpha * gamma) : f2;
       const float f1 = rec->first ? B1 : a1 * rec->inv_t1 - cf * rec->t1;
       float v = f1 > f2 ? f1 : f2;
@@ -1226,10 +1231,7 @@ static void far_point_column(const ap_horizon *hz, const pattern *pt, size_t p, 
   p0 = (size_t)pf;
   tp = pf - (double)p0;
   z0 = view_column(hz, p0);
-  z1 = (tp == 0.0 || p0 + 1 >= hz->np) ? z0 : view_column(hz, p0 + 1);
-  if (z1 == z0) {
-    tp = 0.0;
-  }
+  z1 = tp == 0.0 ? z0 : view_column(hz, p0 + 1); /* (pf <= np - 1: p0 = np - 1 has tp = 0) */
   o = (long)of;
   up = t == 0.0 ? 0 : 1;
   /* on the grid: 0 <= s + o and s + o + up <= ns - 1 */
@@ -1461,7 +1463,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
       for (cell = s_begin; cell < s_end; ++cell) {
         const double sq = (double)cell;
         const double zq = col[cell];
-        double near = slope_out[cell], far = -INFINITY, limit, avail;
+        double near = slope_out[cell], far = -INFINITY, avail;
         while (l + 2 < nl && lines[l + 1].s <= sq) {
           ++l;
         }
@@ -1529,8 +1531,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
         slope_out[cell] = (float)(near > far ? near : far);
         /* Truncated when the DEM ends before the search limit: L, and with curvature
          * sqrt((zmax - z)/c) (compared squared: avail^2 c < zmax - z). */
-        limit = L;
-        edge_out[cell] = avail < limit && (c <= 0.0 || avail * avail * c < zmax - zq);
+        edge_out[cell] = avail < L && (c <= 0.0 || avail * avail * c < zmax - zq);
       }
     }
 
