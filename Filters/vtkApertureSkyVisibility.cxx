@@ -351,8 +351,17 @@ int vtkApertureSkyVisibility::RequestData(
         }
       });
       vtkSMPTools::For(0, ny, 64, [&](vtkIdType j0, vtkIdType j1) {
-        ap_horizon_accumulate(hz, static_cast<size_t>(j0), static_cast<size_t>(j1));
+        const ap_status s =
+          ap_horizon_accumulate(hz, static_cast<size_t>(j0), static_cast<size_t>(j1));
+        if (s != AP_OK)
+        {
+          failure = s;
+        }
       });
+      if (failure != AP_OK)
+      {
+        break;
+      }
       this->UpdateProgress(static_cast<double>(d + 1) / D);
       if (this->GetAbortExecute())
       {

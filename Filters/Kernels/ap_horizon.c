@@ -1596,14 +1596,14 @@ AP_INLINE float ap_atanf(float x)
  * same order). A nodata cell (tt NaN) gets meaningless terms, which ap_horizon_finish
  * overwrites. */
 AP_MULTIVERSION
-static void sector_terms(size_t n, const float *tt_in, size_t tt_stride, const float *grad,
+static void sector_terms(size_t n, const float *tt_in, const float *grad,
                          float sphi, float cphi, int want_ht, float *restrict ce_out,
                          float *restrict se_out, float *restrict he_out, float *restrict ht_out,
                          float *restrict tt_out)
 {
   size_t k;
   for (k = 0; k < n; ++k) {
-    const float tt = tt_in[k * tt_stride];
+    const float tt = tt_in[k];
     const float ts = grad[2 * k] * sphi + grad[2 * k + 1] * cphi;
     /* The sky a cell sees lies above the horizontal, the terrain and its own tangent plane. */
     float te = tt > ts ? tt : ts;
@@ -1623,12 +1623,12 @@ static void sector_terms(size_t n, const float *tt_in, size_t tt_stride, const f
   }
 }
 
-/* Add one sector's terms for the n cells from c0 (sector scratch from s0, with stride) to the
+/* Add one sector's terms for the n cells from c0 (their edge flags contiguous at e) to the
  * sums. Its own function so that the loops vectorise in the AVX2 clone (the same operations in
  * the same order: no result depends on the clone). */
 AP_MULTIVERSION
-static void accumulate_terms(const ap_horizon *hz, size_t c0, size_t s0, size_t stride, size_t n,
-                             const float *restrict ce, const float *restrict se,
+static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned char *restrict e,
+                             size_t n, const float *restrict ce, const float *restrict se,
                              const float *restrict he, const float *restrict ht,
                              const float *restrict tt, double sphi, double cphi)
 {
@@ -1671,9 +1671,8 @@ static void accumulate_terms(const ap_horizon *hz, size_t c0, size_t s0, size_t 
   }
   if (o->edge_truncated) {
     unsigned char *v = o->edge_truncated + c0;
-    const unsigned char *e = hz->edge + s0;
     for (k = 0; k < n; ++k) {
-      v[k] |= e[k * stride];
+      v[k] |= e[k];
     }
   }
   if (o->horizon_angles) {
@@ -1683,25 +1682,69 @@ static void accumulate_terms(const ap_horizon *hz, size_t c0, size_t s0, size_t 
   }
 }
 
-void ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
+ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
 {
-  enum { BLOCK = 256 };
-  const double sphi = sin(hz->phi), cphi = cos(hz->phi);
-  const ap_sky_products *o = &hz->out;
-  const int want_ht = o->positive_openness || o->horizon_angles;
+  /* Cells in blocks of BLOCK along a row, row after row. An x-major sector's scratch is
+   * column-major: there ROWS whole rows are first copied out column by column (contiguous
+   * reads of ROWS cells) instead of reading each row at a stride of a whole column. */
+  enum { BLOCK = 256, ROWS = 16 };
   float ce[BLOCK], se[BLOCK], he[BLOCK], ht[BLOCK], tt[BLOCK];
-  const size_t stride = hz->xmajor ? hz->ny : 1;
-  size_t i0, j;
-  for (j = j0; j < j1 && j < hz->ny; ++j) {
-    for (i0 = 0; i0 < hz->nx; i0 += BLOCK) {
-      const size_t n = hz->nx - i0 < BLOCK ? hz->nx - i0 : BLOCK;
-      const size_t c0 = j * hz->nx + i0; /* the first cell */
-      const size_t s0 = hz->xmajor ? i0 * hz->ny + j : c0;
-      sector_terms(n, hz->slope + s0, stride, hz->grad + 2 * c0, (float)sphi, (float)cphi, want_ht,
-                   ce, se, he, ht, tt);
-      accumulate_terms(hz, c0, s0, stride, n, ce, se, he, ht, tt, sphi, cphi);
+  float *tile = NULL;
+  unsigned char *etile = NULL;
+  double sphi, cphi;
+  int want_ht;
+  size_t i0, j, r, k;
+  if (!hz) {
+    return AP_ERR_NULL_POINTER;
+  }
+  if (hz->d < 0) {
+    return AP_ERR_INVALID_ARGUMENT;
+  }
+  sphi = sin(hz->phi);
+  cphi = cos(hz->phi);
+  want_ht = hz->out.positive_openness || hz->out.horizon_angles;
+  if (j1 > hz->ny) {
+    j1 = hz->ny;
+  }
+  if (j0 >= j1) {
+    return AP_OK;
+  }
+  if (hz->xmajor) {
+    tile = (float *)malloc(ROWS * hz->nx * sizeof(float));
+    etile = (unsigned char *)malloc(ROWS * hz->nx);
+    if (!tile || !etile) {
+      free(tile);
+      free(etile);
+      return AP_ERR_OUT_OF_MEMORY;
     }
   }
+  for (j = j0; j < j1; j += ROWS) {
+    const size_t nr = j1 - j < ROWS ? j1 - j : ROWS;
+    if (hz->xmajor) {
+      for (k = 0; k < hz->nx; ++k) {
+        const float *sl = hz->slope + k * hz->ny + j;
+        const unsigned char *ed = hz->edge + k * hz->ny + j;
+        for (r = 0; r < nr; ++r) {
+          tile[r * hz->nx + k] = sl[r];
+          etile[r * hz->nx + k] = ed[r];
+        }
+      }
+    }
+    for (r = 0; r < nr; ++r) {
+      for (i0 = 0; i0 < hz->nx; i0 += BLOCK) {
+        const size_t n = hz->nx - i0 < BLOCK ? hz->nx - i0 : BLOCK;
+        const size_t c0 = (j + r) * hz->nx + i0; /* the first cell */
+        const float *slope = hz->xmajor ? tile + r * hz->nx + i0 : hz->slope + c0;
+        const unsigned char *edge = hz->xmajor ? etile + r * hz->nx + i0 : hz->edge + c0;
+        sector_terms(n, slope, hz->grad + 2 * c0, (float)sphi, (float)cphi, want_ht, ce, se,
+                     he, ht, tt);
+        accumulate_terms(hz, c0, edge, n, ce, se, he, ht, tt, sphi, cphi);
+      }
+    }
+  }
+  free(tile);
+  free(etile);
+  return AP_OK;
 }
 
 void ap_horizon_finish(const ap_horizon *hz, size_t j0, size_t j1)
@@ -1785,7 +1828,7 @@ ap_status ap_horizon_run(const ap_horizon_grid *g, const ap_horizon_params *p,
       }
     }
     if (st == AP_OK) {
-      ap_horizon_accumulate(hz, 0, g->z.ny);
+      st = ap_horizon_accumulate(hz, 0, g->z.ny);
     }
   }
   if (st == AP_OK) {

@@ -176,8 +176,10 @@ size_t ap_horizon_bracket_count(const ap_horizon *hz);
  *  returns AP_ERR_OUT_OF_MEMORY if that fails (the products are then incomplete). */
 ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1);
 
-/** Add the prepared sector's horizons of rows [j0, j1) to the products. */
-void ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1);
+/** Add the prepared sector's horizons of rows [j0, j1) to the products, after its sweep.
+ *  Allocates a tile of 16 rows (80 bytes per column) for x-major sectors; returns
+ *  AP_ERR_OUT_OF_MEMORY if that fails (nothing is then added). */
+ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1);
 
 /** After the last sector: turn the sums of rows [j0, j1) into the products. */
 void ap_horizon_finish(const ap_horizon *hz, size_t j0, size_t j1);

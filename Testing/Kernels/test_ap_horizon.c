@@ -563,7 +563,7 @@ static void test_split_invariance(void)
       if (run == 0) {
         AP_CHECK_EQ_INT(ap_horizon_near_field(hz[run], 0, nc), AP_OK);
         AP_CHECK_EQ_INT(ap_horizon_sweep(hz[run], 0, nb), AP_OK);
-        ap_horizon_accumulate(hz[run], 0, t.ny);
+        AP_CHECK_EQ_INT(ap_horizon_accumulate(hz[run], 0, t.ny), AP_OK);
       } else {
         size_t b, r0;
         for (b = 0; b < nc; b += 5) {
@@ -573,7 +573,7 @@ static void test_split_invariance(void)
           AP_CHECK_EQ_INT(ap_horizon_sweep(hz[run], b, b + 7 < nb ? b + 7 : nb), AP_OK);
         }
         for (r0 = 0; r0 < t.ny; r0 += 3) {
-          ap_horizon_accumulate(hz[run], r0, r0 + 3);
+          AP_CHECK_EQ_INT(ap_horizon_accumulate(hz[run], r0, r0 + 3), AP_OK);
         }
       }
     }
