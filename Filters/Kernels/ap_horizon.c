@@ -18,6 +18,8 @@
  */
 #include "ap_horizon.h"
 
+#include "ap_atanf.h"
+
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -1564,26 +1566,6 @@ done:
   free(lines);
   free(ring);
   return st;
-}
-
-/* arctan in single precision without a library call, so that the loops below vectorise (eight
- * cells per AVX2 instruction): Moshier's Cephes atanf (reduction to |r| <= tan(pi/8) by
- * atan x = pi/4 + atan((x-1)/(x+1)) and atan x = pi/2 - atan(1/x), then an odd polynomial of
- * degree 9), written with selects instead of branches. Within 2.1e-7 relative of atan for every
- * positive float from 1e-30 up (checked exhaustively when written); atan(+-inf) = +-pi/2,
- * atan(+-0) = +-0. The per-sector terms need no more: each is an addend of a float sum. */
-AP_INLINE float ap_atanf(float x)
-{
-  const float ax = fabsf(x);
-  const int big = ax > 2.414213562373095f, mid = ax > 0.4142135623730950f; /* tan(3pi/8, pi/8) */
-  const float num = big ? -1.0f : (mid ? ax - 1.0f : ax);
-  const float den = big ? ax : (mid ? ax + 1.0f : 1.0f);
-  const float r = num / den, z = r * r;
-  const float base = big ? 1.5707963267948966f : (mid ? 0.7853981633974483f : 0.0f);
-  const float poly =
-    (((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z -
-     3.33329491539e-1f) * z * r + r;
-  return copysignf(base + poly, x);
 }
 
 /* Tangents above this are clamped (an elevation angle within 1e-18 rad of the zenith), so that
