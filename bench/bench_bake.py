@@ -422,7 +422,7 @@ def fmt(value, spec):
     return spec % value if value is not None else "—"
 
 
-def report(rows, args, header):
+def report(rows, args, header, baseline_rss=None, thread_pairs=()):
     lines = list(header)
     lines.append("| DEM | cells | contender | parameters | wall s | compute s | peak RSS MiB | "
                  "M cell-dirs/s | M cell-dirs/s/core (compute) | our speed-up | status |")
@@ -448,7 +448,8 @@ def report(rows, args, header):
                                              "%.0f"),
             fmt(rate if row["status"] == "ok" else None, "%.1f"), fmt(per_core, "%.1f"),
             speedup, row["status"]))
-    notes = scaling_notes(rows) + pair_notes(args) + memory_notes(rows, args)
+    notes = (scaling_notes(rows) + pair_notes(thread_pairs, args.threads)
+             + memory_notes(rows, baseline_rss))
     if notes:
         lines.append("")
         lines.extend(notes)
@@ -469,7 +470,8 @@ def report(rows, args, header):
                  "r.horizon alone (its own /usr/bin/time), SAGA's own report of the tool "
                  "(1 s resolution), ours: the sky filter alone (as `aperture bake` reports "
                  "it: the sweep and the products, without start-up, reading and writing). "
-                 "M cell-dirs/s/core: cells x directions / compute s / threads (ours). peak RSS: largest process of the command. "
+                 "M cell-dirs/s/core: cells x directions / compute s / threads (ours). "
+                 "peak RSS: largest process of the command. "
                  "M cell-dirs/s: cells x %d directions / wall. our speed-up: peer wall / our "
                  "wall on the same DEM (> 1: ours faster; n/a: no successful run of ours on it)."
                  % args.directions)
@@ -480,9 +482,9 @@ def report(rows, args, header):
 OUR_BANDS = 9
 
 
-def memory_notes(rows, args):
-    """Our peak memory above the process's own baseline, against the data it must hold."""
-    base = getattr(args, "baseline_rss", None)
+def memory_notes(rows, base):
+    """Our peak memory above the process's own baseline (base MiB), against the data it must
+    hold."""
     ours = [r for r in rows if r["contender"] == "ours" and r["status"] == "ok" and r["rss"]]
     if not base or not ours:
         return []
@@ -497,14 +499,14 @@ def memory_notes(rows, args):
             "float32 (1 + %d bands): " % (base, OUR_BANDS) + "; ".join(parts) + "."]
 
 
-def pair_notes(args):
-    pairs = getattr(args, "thread_pairs_done", [])
+def pair_notes(pairs, threads):
+    """The extra (one-thread seconds, many-thread seconds) pairs."""
     if not pairs:
         return []
     ratios = [one / many for one, many in pairs]
     return ["Ours, parallel speed-up in %d more interleaved pairs (1 thread, then %d; sky filter "
             "seconds): %s; median %.2f." % (
-                len(pairs), args.threads,
+                len(pairs), threads,
                 ", ".join("%.2f/%.2f s = %.2f" % (one, many, one / many) for one, many in pairs),
                 statistics.median(ratios))]
 
@@ -661,10 +663,12 @@ def main():
         if series:
             row["series"].add(series)
 
+    baseline_rss = None  # MiB: the process with everything loaded, for memory_notes
+    thread_pairs = []  # (one-thread s, all-threads s) of the extra interleaved pairs
     if not args.no_ours and embedded:
         r = run_timed([args.aperture, "info", embedded],
                       os.path.join(args.workdir, "logs", "ours_baseline"), args.timeout)
-        args.baseline_rss = r["rss"] if r["rc"] == 0 else None
+        baseline_rss = r["rss"] if r["rc"] == 0 else None
 
     print("comparison: %d directions, radius %g m" % (args.directions, args.radius), flush=True)
     for dem in [] if args.scaling_only else dems:
@@ -693,7 +697,6 @@ def main():
                 ours(big[0], args.radius, threads, "threads")
             # A single pair says little on a shared VM (one-thread times wandered by 40%):
             # more pairs, each one thread then all, right after each other.
-            args.thread_pairs_done = []
             for k in range(args.thread_pairs if args.threads > 1 else 0):
                 t = {}
                 for threads in (1, args.threads):
@@ -702,7 +705,7 @@ def main():
                     t[threads] = res["compute"]
                 print("  thread pair %d: %s" % (k + 1, t), flush=True)
                 if t[1] and t[args.threads]:
-                    args.thread_pairs_done.append((t[1], t[args.threads]))
+                    thread_pairs.append((t[1], t[args.threads]))
     elif scaling_sizes:
         print("scaling runs skipped: ours not available (%s)" % args.ours_unavailable,
               flush=True)
@@ -718,7 +721,7 @@ def main():
         "Versions: " + "; ".join("%s %s" % kv for kv in found.items()) + ".",
         "",
     ]
-    text = report(rows, args, header)
+    text = report(rows, args, header, baseline_rss, thread_pairs)
     print()
     print(text)
     with open(args.output, "w") as f:
