@@ -22,6 +22,7 @@
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPThreadLocalObject.h"
 #include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include "ap_grid.h"
@@ -218,6 +219,19 @@ int vtkApertureTerrainMesh::RequestData(
     ? nullptr
     : static_cast<vtkFloatArray*>(pointData)->GetPointer(0);
   double* outDouble = outFloat ? nullptr : static_cast<vtkDoubleArray*>(pointData)->GetPointer(0);
+  // A bent normal (vtkApertureSkyVisibility: unit, in each point's own local East-North-Up) is
+  // rotated into the mesh's frame as the points are placed, with GeographicLib's rotation from
+  // the local frame at the point to the LocalCartesian one.
+  vtkDataArray* bentIn = input->GetPointData()->GetArray("BentNormal");
+  vtkSmartPointer<vtkFloatArray> bentOut;
+  if (bentIn && bentIn->GetNumberOfComponents() == 3 && bentIn->GetNumberOfTuples() == n)
+  {
+    bentOut = vtkSmartPointer<vtkFloatArray>::New();
+    bentOut->SetName("BentNormal");
+    bentOut->SetNumberOfComponents(3);
+    bentOut->SetNumberOfTuples(n);
+  }
+  float* bent = bentOut ? bentOut->GetPointer(0) : nullptr;
   vtkSMPThreadLocalObject<vtkApertureGeoreference> transformers;
   vtkSMPThreadLocal<vtkIdType> unprojectable(0);
   std::atomic<bool> failed(false);
@@ -235,7 +249,8 @@ int vtkApertureTerrainMesh::RequestData(
       }
       const size_t first = static_cast<size_t>(j0) * nx;
       const size_t count = static_cast<size_t>(j1 - j0) * nx;
-      std::vector<double> xy(2 * count), ll(2 * count);
+      // (Forward fills the rotation only when given 9 elements)
+      std::vector<double> xy(2 * count), ll(2 * count), rotation(bent ? 9 : 0);
       for (size_t q = 0; q < count; ++q)
       {
         const size_t i = q % nx, j = static_cast<size_t>(j0) + q / nx;
@@ -268,8 +283,20 @@ int vtkApertureTerrainMesh::RequestData(
         }
         else
         {
-          frame.Forward(lat, lon, exaggeration * z[k], p[0], p[1], p[2]);
+          frame.Forward(lat, lon, exaggeration * z[k], p[0], p[1], p[2], rotation);
           std::copy(p, p + 3, stored);
+        }
+        if (bent)
+        {
+          double v[3];
+          bentIn->GetTuple(static_cast<vtkIdType>(k), v);
+          for (int r = 0; r < 3; ++r)
+          {
+            bent[3 * k + r] = std::isnan(z[k])
+              ? std::numeric_limits<float>::quiet_NaN()
+              : static_cast<float>(rotation[3 * r] * v[0] + rotation[3 * r + 1] * v[1] +
+                  rotation[3 * r + 2] * v[2]);
+          }
         }
         if (outFloat)
         {
@@ -370,9 +397,14 @@ int vtkApertureTerrainMesh::RequestData(
   }
   output->SetPolys(polys);
 
-  // 7. Point data: the DEM's arrays unchanged (vertex id = point id), then ours.
+  // 7. Point data: the DEM's arrays (vertex id = point id; BentNormal rotated above), then ours.
   vtkPointData* outPD = output->GetPointData();
   outPD->PassData(input->GetPointData());
+  if (bentOut)
+  {
+    outPD->RemoveArray("BentNormal");
+    outPD->AddArray(bentOut);
+  }
   if (this->ComputeNormals)
   {
     vtkNew<vtkFloatArray> normals;

@@ -12,7 +12,8 @@
  * far from the origin the surface drops below z = elevation by about d^2 / (2 R).
  *
  * Output: one vertex per input point, vertex id = input point id (i + j * columns), so every
- * input point array (Elevation and later products) is carried over unchanged. Triangles follow
+ * input point array (Elevation and later products) is carried over, unchanged except
+ * `BentNormal` (below). Triangles follow
  * ap_mesh_triangulate(): two per cell, and nodata cells leave holes (a quad with one nodata
  * corner keeps the triangle of its three valid corners). Vertices of nodata points are kept
  * (with NaN normals, at the lowest valid elevation) so ids stay aligned with the grid; no
@@ -26,6 +27,11 @@
  * Point arrays added: `Normals` (unit, ENU, of the output geometry including the vertical
  * exaggeration; active normals) and `TextureCoordinates` (u east, v north, spanning the outer
  * edges of the whole extent, so an image covering the DEM's bounds drapes exactly).
+ * A 3-component input array `BentNormal` (vtkApertureSkyVisibility's: unit vectors in each
+ * point's own local East-North-Up) is carried rotated into the mesh's frame, as float, NaN at
+ * nodata points: it and `Normals` then share one frame, as vtkApertureLightingMapper expects.
+ * (The local frames of a DEM's points differ from the mesh's by their angular distance from
+ * its centre: 0.1 degree at 11 km, degrees on a lat/lon DEM of a region.)
  * Field data added: `FrameOrigin` (latitude, longitude in degrees, height in metres of the ENU
  * origin), `FrameEllipsoid` (semi-major axis in metres, flattening) and
  * `VerticalExaggeration`; the input's `CRS` and `GeoTransform` are passed through.

@@ -184,10 +184,30 @@ class TestBake(unittest.TestCase):
         mesh = aperture.vtkApertureTerrainMesh()
         mesh.SetInputConnection(skyv.GetOutputPort())
         mesh.Update()
-        for name in ("SkyViewFactor", "BentNormal", "ApertureRadius"):
+        out = mesh.GetOutput()
+        for name in ("SkyViewFactor", "ApertureRadius"):
             np.testing.assert_array_equal(
-                vtk_to_numpy(mesh.GetOutput().GetPointData().GetArray(name)),
+                vtk_to_numpy(out.GetPointData().GetArray(name)),
                 vtk_to_numpy(skyv.GetOutput().GetPointData().GetArray(name)))
+        # BentNormal leaves each point's local East-North-Up for the mesh's frame (exact
+        # rotations: TestApertureTerrainMesh): still unit vectors, turned by about the angle
+        # between the two frames' verticals, distance / Earth radius (a little more with the
+        # turn about the vertical), the least at the centre.
+        local = vtk_to_numpy(skyv.GetOutput().GetPointData().GetArray("BentNormal"))
+        frame = vtk_to_numpy(out.GetPointData().GetArray("BentNormal"))
+        valid = ~np.isnan(local[:, 0])
+        np.testing.assert_array_equal(np.isnan(frame), ~valid[:, None].repeat(3, axis=1))
+        local, frame = local[valid], frame[valid]
+        np.testing.assert_allclose(np.linalg.norm(frame, axis=1), 1.0, atol=1e-6)
+        # (the angle from the chord, in double: arccos of a float dot product near 1 is
+        # coarser than these angles)
+        chord = np.linalg.norm(frame.astype(np.float64) - local.astype(np.float64), axis=1)
+        turn = 2.0 * np.arcsin(0.5 * chord)
+        xy = vtk_to_numpy(out.GetPoints().GetData())[valid, :2]
+        distance = np.hypot(xy[:, 0], xy[:, 1])
+        self.assertTrue(np.all(turn <= 2.0 * distance / 6.3e6 + 1e-6), turn.max())
+        self.assertGreater(turn.max(), 0.3 * distance.max() / 6.4e6)
+        self.assertLess(turn[np.argmin(distance)], 1e-5)
 
 
 if __name__ == "__main__":

@@ -20,6 +20,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkTestErrorObserver.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -43,6 +44,16 @@ void Ecef(double latDeg, double lonDeg, double h, double p[3])
   p[2] = (n * (1.0 - e2) + h) * sl;
 }
 
+// An ECEF vector in East-North-Up components at (lat0, lon0).
+void EcefToEnu(double lat0, double lon0, const double d[3], double out[3])
+{
+  const double sp = std::sin(lat0 * kDeg), cp = std::cos(lat0 * kDeg);
+  const double sl = std::sin(lon0 * kDeg), cl = std::cos(lon0 * kDeg);
+  out[0] = -sl * d[0] + cl * d[1];
+  out[1] = -sp * cl * d[0] - sp * sl * d[1] + cp * d[2];
+  out[2] = cp * cl * d[0] + cp * sl * d[1] + sp * d[2];
+}
+
 // ECEF difference rotated into East-North-Up at (lat0, lon0, 0).
 void Enu(double lat0, double lon0, double lat, double lon, double h, double out[3])
 {
@@ -50,11 +61,7 @@ void Enu(double lat0, double lon0, double lat, double lon, double h, double out[
   Ecef(lat0, lon0, 0.0, p0);
   Ecef(lat, lon, h, p);
   const double d[3] = { p[0] - p0[0], p[1] - p0[1], p[2] - p0[2] };
-  const double sp = std::sin(lat0 * kDeg), cp = std::cos(lat0 * kDeg);
-  const double sl = std::sin(lon0 * kDeg), cl = std::cos(lon0 * kDeg);
-  out[0] = -sl * d[0] + cl * d[1];
-  out[1] = -sp * cl * d[0] - sp * sl * d[1] + cp * d[2];
-  out[2] = cp * cl * d[0] + cp * sl * d[1] + sp * d[2];
+  EcefToEnu(lat0, lon0, d, out);
 }
 
 double Distance(const double a[3], const double b[3])
@@ -277,6 +284,80 @@ void TestExaggeration()
   }
 }
 
+// A vector given in local East-North-Up at (lat, lon), in the frame East-North-Up at
+// (lat0, lon0): through ECEF with the textbook unit vectors.
+void RotateToFrame(double lat0, double lon0, double lat, double lon, const double v[3],
+  double out[3])
+{
+  const double sp = std::sin(lat * kDeg), cp = std::cos(lat * kDeg);
+  const double sl = std::sin(lon * kDeg), cl = std::cos(lon * kDeg);
+  const double east[3] = { -sl, cl, 0.0 }, north[3] = { -sp * cl, -sp * sl, cp },
+               up[3] = { cp * cl, cp * sl, sp };
+  double d[3];
+  for (int c = 0; c < 3; ++c)
+  {
+    d[c] = v[0] * east[c] + v[1] * north[c] + v[2] * up[c];
+  }
+  EcefToEnu(lat0, lon0, d, out);
+}
+
+// BentNormal comes in each point's local East-North-Up and leaves in the mesh's frame, like
+// Normals: on a lat/lon DEM spanning 20 x 15 degrees the local frames differ from the mesh's
+// by up to ~12 degrees. Local up at a point of flat ground is then the mesh's normal there.
+void TestBentNormalFrame()
+{
+  const int nx = 5, ny = 4;
+  const double lonW = 10.0, latS = 40.0, step = 5.0; // centre (20 E, 47.5 N)
+  auto dem = MakeDEM("EPSG:4326", lonW, latS, step, step, nx, ny,
+    [](int i, int j) { return (i == 3 && j == 2) ? NAN : 0.0f; });
+  vtkNew<vtkFloatArray> bent;
+  bent->SetName("BentNormal");
+  bent->SetNumberOfComponents(3);
+  bent->SetNumberOfTuples(nx * ny);
+  for (vtkIdType k = 0; k < nx * ny; ++k)
+  {
+    // a different unit vector per point; up at point 0
+    const double a = 0.05 * static_cast<double>(k), b = 0.5 + 0.02 * static_cast<double>(k);
+    const double v[3] = { std::sin(b) * std::cos(a), std::sin(b) * std::sin(a), std::cos(b) };
+    bent->SetTuple3(k, k == 0 ? 0.0 : v[0], k == 0 ? 0.0 : v[1], k == 0 ? 1.0 : v[2]);
+  }
+  dem->GetPointData()->AddArray(bent);
+  auto mesh = Mesh(dem);
+  vtkDataArray* out = mesh->GetPointData()->GetArray("BentNormal");
+  AP_CHECK(out && out->GetNumberOfComponents() == 3 && out->GetNumberOfTuples() == nx * ny);
+  if (!out)
+  {
+    return;
+  }
+  double largest = 0.0;
+  for (vtkIdType k = 0; k < nx * ny; ++k)
+  {
+    const int i = static_cast<int>(k % nx), j = static_cast<int>(k / nx);
+    double v[3], expected[3], got[3];
+    bent->GetTuple(k, v);
+    out->GetTuple(k, got);
+    if (i == 3 && j == 2)
+    {
+      AP_CHECK(std::isnan(got[0]) && std::isnan(got[1]) && std::isnan(got[2]));
+      continue;
+    }
+    RotateToFrame(latS + 1.5 * step, lonW + 2.0 * step, latS + j * step, lonW + i * step, v,
+      expected);
+    for (int c = 0; c < 3; ++c)
+    {
+      AP_CHECK_NEAR(got[c], expected[c], 1e-6); // float output of unit vectors
+    }
+    largest = std::max(largest, std::acos(std::min(1.0, v[0] * got[0] + v[1] * got[1] +
+                                          v[2] * got[2])) / kDeg);
+  }
+  AP_CHECK(largest > 10.0); // the rotation is not the identity here
+  // The corner's local up is the ellipsoid normal there: along the (flat) mesh's own normal.
+  double up[3], normal[3];
+  out->GetTuple(0, up);
+  mesh->GetPointData()->GetNormals()->GetTuple(0, normal);
+  AP_CHECK_NEAR(up[0] * normal[0] + up[1] * normal[1] + up[2] * normal[2], 1.0, 2e-3);
+}
+
 // Each documented error: a clear message and a failed update, nothing printed.
 void ExpectError(vtkImageData* dem, const std::string& expected, const char* arrayName = nullptr)
 {
@@ -328,6 +409,7 @@ int TestApertureTerrainMesh(int, char*[])
   TestLatLonGeometry(36.6, 8.95);
   TestLatLonGeometry(60.0, 5.58);
   TestUTMGeometry();
+  TestBentNormalFrame();
   TestHolesAndArrays();
   TestExaggeration();
   TestErrors();
