@@ -321,6 +321,12 @@ int vtkApertureSkyVisibility::RequestData(
     return 0;
   }
   std::atomic<int> failure(AP_OK);
+  auto record = [&failure](ap_status s) {
+    if (s != AP_OK)
+    {
+      failure = s;
+    }
+  };
   bool aborted = false;
   vtkSMPTools::LocalScope(vtkSMPTools::Config{ this->NumberOfThreads }, [&]() {
     for (int d = 0; d < D && failure == AP_OK; ++d)
@@ -333,34 +339,20 @@ int vtkApertureSkyVisibility::RequestData(
       }
       const vtkIdType columns = static_cast<vtkIdType>(ap_horizon_column_count(hz));
       vtkSMPTools::For(0, columns, 16, [&](vtkIdType c0, vtkIdType c1) {
-        const ap_status s =
-          ap_horizon_near_field(hz, static_cast<size_t>(c0), static_cast<size_t>(c1));
-        if (s != AP_OK)
-        {
-          failure = s;
-        }
+        record(ap_horizon_near_field(hz, static_cast<size_t>(c0), static_cast<size_t>(c1)));
       });
       const vtkIdType brackets = static_cast<vtkIdType>(ap_horizon_bracket_count(hz));
       // Small chunks of lines (ap_horizon.h): their hulls and windows stay in cache, and no
       // thread idles long at the end of a direction. Results do not depend on the chunks.
       vtkSMPTools::For(0, brackets, AP_HORIZON_SWEEP_BAND, [&](vtkIdType b0, vtkIdType b1) {
-        const ap_status s = ap_horizon_sweep(hz, static_cast<size_t>(b0), static_cast<size_t>(b1));
-        if (s != AP_OK)
-        {
-          failure = s;
-        }
+        record(ap_horizon_sweep(hz, static_cast<size_t>(b0), static_cast<size_t>(b1)));
       });
       vtkSMPTools::For(0, ny, 64, [&](vtkIdType j0, vtkIdType j1) {
-        const ap_status s =
-          ap_horizon_accumulate(hz, static_cast<size_t>(j0), static_cast<size_t>(j1));
-        if (s != AP_OK)
-        {
-          failure = s;
-        }
+        record(ap_horizon_accumulate(hz, static_cast<size_t>(j0), static_cast<size_t>(j1)));
       });
       if (failure != AP_OK)
       {
-        break;
+        break; // (no progress reported for a failed sector)
       }
       this->UpdateProgress(static_cast<double>(d + 1) / D);
       if (this->GetAbortExecute())
