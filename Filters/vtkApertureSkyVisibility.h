@@ -32,7 +32,10 @@
  * curvature in each azimuth at the DEM centre.
  *
  * Terrain beyond the DEM edge is invisible; EdgeTruncated marks the cells where that may
- * matter. Nodata never occludes and gives NaN products.
+ * matter for the sky above the horizontal (A, rp, BentNormal, both sky-view factors).
+ * PositiveOpenness and HorizonAngles below the horizontal may differ near the edge on
+ * unflagged cells too (a sector whose ray leaves the DEM at once has horizon -90 degrees).
+ * Nodata never occludes and gives NaN products.
  *
  * Streaming: a request for a sub-extent computes only what that region needs, reading the
  * input extent grown by the search distance on every side (the whole extent when the

@@ -54,7 +54,12 @@
  *      EdgeTruncated      1 where, in some sector, the DEM ends closer than the search limit:
  *                         max_distance, and with curvature on at most sqrt((z_max − z)/c),
  *                         beyond which terrain no higher than the DEM's highest cell stays
- *                         below the cell's horizontal.
+ *                         below the cell's horizontal. So it guards the products clipped at
+ *                         the horizontal (A, rp, B, DiffuseSkyFactor, SkyViewFactor), not
+ *                         PositiveOpenness and h_t below the horizontal, which terrain beyond
+ *                         the edge could raise on unflagged cells (on a plain with curvature
+ *                         no cell is flagged, yet an edge cell's openness is 132° at D = 32:
+ *                         the sectors leaving the DEM at once count −π/2).
  *  The sums converge as O(1/D²) to the continuous integrals.
  *
  *  ## Use and threads

@@ -167,6 +167,23 @@ static void test_flat(void)
   AP_CHECK_NEAR(r.h[(10 * t.nx + 0) * 32 + 24], -PI / 2, 1e-6);
   AP_CHECK_EQ_INT(r.edge[10 * t.nx], 1);
   release(&r);
+  /* With curvature, a plain continued beyond the edge would stay below every cell's
+   * horizontal: no cell is flagged, and the products clipped at the horizontal are those of
+   * the endless plain on the edges too. PositiveOpenness is not clipped (ap_horizon.h): on the
+   * west edge the 15 sectors pointing west of north-south (azimuths 191.25..348.75 deg) leave
+   * the DEM at once and count a zenith angle of 180 deg, the other 17 about 90 deg, so the
+   * edge's openness is (15 x 180 + 17 x 90) / 32 = 132.19 deg where the plain gives 90. */
+  p = params(32, 1);
+  r = compute(&t, &p);
+  {
+    const size_t k = 10 * t.nx; /* west edge, mid-height */
+    AP_CHECK_EQ_INT(r.edge[k], 0);
+    AP_CHECK_NEAR(r.A[k], 2 * PI, 1e-5);
+    AP_CHECK_NEAR(r.svf[k], 1.0, 1e-6);
+    AP_CHECK_NEAR(r.h[k * 32 + 24], -PI / 2, 1e-6);
+    AP_CHECK_NEAR(r.open[k], (15 * PI + 17 * PI / 2) / 32, 1e-4);
+  }
+  release(&r);
   drop(&t);
 }
 
