@@ -5,11 +5,11 @@
  *
  * Output: a vtkImageData with one float32 point array `Elevation` in metres: the band's scale
  * and offset are applied, and a band unit of feet or US survey feet is converted. Nodata
- * (the band's nodata value, a GDAL mask, NaN, or a value that does not fit a float) becomes
- * NaN. The grid follows vtkApertureGeoreference's conventions: origin and spacing in CRS
- * units, origin at the centre of the south-west cell, row 0 south, identity direction. North-up
- * and south-up rasters both come out north-up (rows are flipped once, here). The CRS (WKT) and
- * the GeoTransform of the output grid are in the output's field data.
+ * (the band's nodata value, a GDAL mask, NaN, an infinity, or a value that does not fit a
+ * float) becomes NaN. The grid follows vtkApertureGeoreference's conventions: origin and
+ * spacing in CRS units, origin at the centre of the south-west cell, row 0 south, identity
+ * direction. North-up and south-up rasters both come out north-up (rows are flipped once,
+ * here). The CRS (WKT) and the GeoTransform of the output grid are in the output's field data.
  *
  * Options:
  * - BandIndex: 1-based band; 0 (default) reads band 1 and warns when the raster has several.
