@@ -1574,14 +1574,13 @@ done:
 
 /* The per-cell terms of one sector for n cells, in single precision: the cosine ce and sine se
  * of the effective horizon (tangent te), and the arctangents of te and of the terrain horizon
- * tt. Branch-free so that it vectorises (AVX2 clone where available, the same operations in the
- * same order). A nodata cell (tt NaN) gets meaningless terms, which ap_horizon_finish
- * overwrites. */
+ * (tangent tt_in, the sector scratch, contiguous). Branch-free so that it vectorises (AVX2 clone
+ * where available, the same operations in the same order). A nodata cell (tt NaN) gets
+ * meaningless terms, which ap_horizon_finish overwrites. */
 AP_MULTIVERSION
 static void sector_terms(size_t n, const float *tt_in, const float *grad,
                          float sphi, float cphi, int want_ht, float *restrict ce_out,
-                         float *restrict se_out, float *restrict he_out, float *restrict ht_out,
-                         float *restrict tt_out)
+                         float *restrict se_out, float *restrict he_out, float *restrict ht_out)
 {
   size_t k;
   for (k = 0; k < n; ++k) {
@@ -1596,18 +1595,17 @@ static void sector_terms(size_t n, const float *tt_in, const float *grad,
     ce_out[k] = ce;
     se_out[k] = te * ce;
     he_out[k] = ap_atanf(te);
-    tt_out[k] = tt;
   }
   if (want_ht) {
     for (k = 0; k < n; ++k) {
-      ht_out[k] = ap_atanf(tt_out[k]); /* -pi/2 for an empty direction (tt = -inf) */
+      ht_out[k] = ap_atanf(tt_in[k]); /* -pi/2 for an empty direction (tt = -inf) */
     }
   }
 }
 
-/* Add one sector's terms for the n cells from c0 (their edge flags contiguous at e) to the
- * sums. Its own function so that the loops vectorise in the AVX2 clone (the same operations in
- * the same order: no result depends on the clone). */
+/* Add one sector's terms for the n cells from c0 (their edge flags contiguous at e, their terrain
+ * horizon tangents at tt) to the sums. Its own function so that the loops vectorise in the AVX2
+ * clone (the same operations in the same order: no result depends on the clone). */
 AP_MULTIVERSION
 static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned char *restrict e,
                              size_t n, const float *restrict ce, const float *restrict se,
@@ -1670,7 +1668,7 @@ ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
    * column-major: there ROWS whole rows are first copied out column by column (contiguous
    * reads of ROWS cells) instead of reading each row at a stride of a whole column. */
   enum { BLOCK = 256, ROWS = 16 };
-  float ce[BLOCK], se[BLOCK], he[BLOCK], ht[BLOCK], tt[BLOCK];
+  float ce[BLOCK], se[BLOCK], he[BLOCK], ht[BLOCK];
   float *tile = NULL;
   unsigned char *etile = NULL;
   double sphi, cphi;
@@ -1719,8 +1717,8 @@ ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
         const float *slope = hz->xmajor ? tile + r * hz->nx + i0 : hz->slope + c0;
         const unsigned char *edge = hz->xmajor ? etile + r * hz->nx + i0 : hz->edge + c0;
         sector_terms(n, slope, hz->grad + 2 * c0, (float)sphi, (float)cphi, want_ht, ce, se,
-                     he, ht, tt);
-        accumulate_terms(hz, c0, edge, n, ce, se, he, ht, tt, sphi, cphi);
+                     he, ht);
+        accumulate_terms(hz, c0, edge, n, ce, se, he, ht, slope, sphi, cphi);
       }
     }
   }
