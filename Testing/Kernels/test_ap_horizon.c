@@ -671,11 +671,6 @@ static void test_errors(void)
   drop(&t);
 }
 
-/* The sums' single-precision arctangent against the double-precision library one: 2^20 floats
- * spread evenly over the bit patterns from 1e-30 to FLT_MAX (every exponent, varied
- * mantissas), the floats next to the reduction's boundaries tan(pi/8), 1 and tan(3pi/8), and
- * the special values. Relative error within 2.1e-7 (the bound found exhaustively when it was
- * written: 1.8 float ulps at most), odd symmetry exact. */
 /* Relative error of ap_atanf at x > 0; infinite for a NaN result (fmax would drop a NaN). */
 static double atanf_error(float x)
 {
@@ -683,6 +678,11 @@ static double atanf_error(float x)
   return isnan(r) ? INFINITY : fabs((double)r - atan((double)x)) / atan((double)x);
 }
 
+/* The sums' single-precision arctangent against the double-precision library one: 2^20 floats
+ * spread evenly over the bit patterns from 1e-30 to FLT_MAX (every exponent, varied
+ * mantissas), the floats next to the reduction's boundaries tan(pi/8), 1 and tan(3pi/8), and
+ * the special values. Relative error within 2.1e-7 (the bound found exhaustively when it was
+ * written: 1.8 float ulps at most), odd symmetry exact. */
 static void test_atanf(void)
 {
   const float bounds[3] = { 0.41421356237309503f, 1.0f, 2.4142135623730950f };
