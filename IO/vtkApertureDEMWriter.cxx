@@ -20,6 +20,7 @@
 #include <ogr_srs_api.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -44,6 +45,7 @@ struct vtkApertureDEMWriter::Internals
 vtkApertureDEMWriter::vtkApertureDEMWriter()
   : FileName(nullptr)
   , Compression(nullptr)
+  , CompressionLevel(1)
   , NumberOfThreads(0)
   , Impl(new Internals)
 {
@@ -130,6 +132,99 @@ int vtkApertureDEMWriter::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
   return 1;
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+// The level's creation option and range for the GeoTIFF codecs that have one (GDAL 3.6).
+struct CompressionLevelOption
+{
+  const char *Codec, *Option;
+  int Lowest, Highest;
+};
+const CompressionLevelOption levelOptions[] = { { "DEFLATE", "ZLEVEL", 1, 12 },
+  { "ZSTD", "ZSTD_LEVEL", 1, 22 }, { "LZMA", "LZMA_PRESET", 0, 9 } };
+
+// The values GDAL's GeoTIFF driver accepts for COMPRESS, from its creation option list.
+std::vector<std::string> GeoTIFFCodecs(GDALDriverH driver)
+{
+  std::vector<std::string> codecs;
+  const char* list = GDALGetMetadataItem(driver, GDAL_DMD_CREATIONOPTIONLIST, nullptr);
+  const std::string xml = list ? list : "";
+  size_t begin = xml.find("name='COMPRESS'"); // (GDAL 3.6 quotes so; others may not)
+  begin = begin == std::string::npos ? xml.find("name=\"COMPRESS\"") : begin;
+  const size_t end = begin == std::string::npos ? begin : xml.find("</Option>", begin);
+  for (size_t at = begin; end != std::string::npos;)
+  {
+    at = xml.find("<Value>", at);
+    if (at == std::string::npos || at > end)
+    {
+      break;
+    }
+    at += 7;
+    const size_t stop = xml.find("</Value>", at);
+    if (stop == std::string::npos)
+    {
+      break;
+    }
+    codecs.push_back(xml.substr(at, stop - at));
+  }
+  return codecs;
+}
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureDEMWriter::CheckCompression()
+{
+  GDALAllRegister();
+  GDALDriverH driver = GDALGetDriverByName("GTiff");
+  if (!driver)
+  {
+    vtkErrorMacro(<< "GDAL has no GeoTIFF driver");
+    return false;
+  }
+  std::string codec;
+  const char* levelOption = nullptr;
+  return this->CheckCompression(driver, codec, levelOption);
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureDEMWriter::CheckCompression(
+  void* driver, std::string& codec, const char*& levelOption)
+{
+  codec = this->Compression && *this->Compression ? this->Compression : "NONE";
+  for (char& ch : codec)
+  {
+    ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  }
+  const std::vector<std::string> codecs = GeoTIFFCodecs(static_cast<GDALDriverH>(driver));
+  if (std::find(codecs.begin(), codecs.end(), codec) == codecs.end())
+  {
+    std::string known;
+    for (const std::string& c : codecs)
+    {
+      known += (known.empty() ? "" : ", ") + c;
+    }
+    vtkErrorMacro(<< "unknown GeoTIFF compression '" << (this->Compression ? this->Compression : "")
+                  << "' (GDAL offers " << known << ")");
+    return false;
+  }
+  const CompressionLevelOption* level = nullptr;
+  for (const CompressionLevelOption& lo : levelOptions)
+  {
+    level = codec == lo.Codec ? &lo : level;
+  }
+  if (level && this->CompressionLevel != -1 &&
+    (this->CompressionLevel < level->Lowest || this->CompressionLevel > level->Highest))
+  {
+    vtkErrorMacro(<< "compression level " << this->CompressionLevel << " is outside "
+                  << level->Codec << "'s range " << level->Lowest << "-" << level->Highest
+                  << " (-1: GDAL's default)");
+    return false;
+  }
+  levelOption = level && this->CompressionLevel != -1 ? level->Option : nullptr;
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -242,7 +337,12 @@ void vtkApertureDEMWriter::WriteData()
     vtkErrorMacro(<< "GDAL has no GeoTIFF driver");
     return;
   }
-  const std::string compression = this->Compression ? this->Compression : "NONE";
+  std::string compression;
+  const char* levelOption = nullptr;
+  if (!this->CheckCompression(driver, compression, levelOption))
+  {
+    return; // (reported)
+  }
   char** options = nullptr;
   options = CSLSetNameValue(options, "TILED", "YES");
   options = CSLSetNameValue(options, "BLOCKXSIZE", "256");
@@ -253,6 +353,11 @@ void vtkApertureDEMWriter::WriteData()
   if (compression == "DEFLATE" || compression == "LZW" || compression == "ZSTD")
   {
     options = CSLSetNameValue(options, "PREDICTOR", "3"); // floating-point predictor
+  }
+  if (levelOption)
+  {
+    options =
+      CSLSetNameValue(options, levelOption, std::to_string(this->CompressionLevel).c_str());
   }
   if (compression != "NONE")
   {
@@ -367,6 +472,7 @@ void vtkApertureDEMWriter::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
   os << indent << "Compression: " << (this->Compression ? this->Compression : "(none)") << "\n";
+  os << indent << "CompressionLevel: " << this->CompressionLevel << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ArrayNames:";
   for (const auto& n : this->Impl->ArrayNames)

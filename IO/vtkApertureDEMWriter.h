@@ -17,11 +17,12 @@
  * Samples: Float32 bands, or Float64 when any written array is double. NaN is the nodata value
  * and is declared as such. Compression: DEFLATE with the floating-point predictor, tiled
  * 256 x 256, BigTIFF when needed; Compression may name another GeoTIFF codec (LZW, ZSTD,
- * NONE, ...). Tiles are compressed on NumberOfThreads threads (GDAL's NUM_THREADS; the file's
- * bytes do not depend on it).
+ * NONE, ...), CompressionLevel sets its level (default 1, the fastest). Tiles are compressed
+ * on NumberOfThreads threads (GDAL's NUM_THREADS; the file's bytes do not depend on it).
  *
  * Errors (vtkErrorMacro, nothing left behind): no file name, an input that is not 2-D, a named
- * array that does not exist, an array that is not numeric, or GDAL failing to create or write.
+ * array that does not exist, an array that is not numeric, a codec GDAL does not offer, a
+ * compression level outside the codec's range, or GDAL failing to create or write.
  * @sa vtkApertureDEMReader vtkApertureGeoreference
  */
 #ifndef vtkApertureDEMWriter_h
@@ -29,6 +30,8 @@
 
 #include "ApertureIOModule.h" // for export macro
 #include "vtkWriter.h"
+
+#include <string> // for std::string
 
 class vtkImageData;
 
@@ -54,10 +57,25 @@ public:
   ///@}
 
   ///@{
-  /** GeoTIFF COMPRESS option. Default "DEFLATE". */
+  /** GeoTIFF COMPRESS option (case-insensitive). Default "DEFLATE". */
   vtkSetStringMacro(Compression);
   vtkGetStringMacro(Compression);
   ///@}
+
+  ///@{
+  /** Compression level: DEFLATE's ZLEVEL (1-12), ZSTD's ZSTD_LEVEL (1-22) or LZMA's
+   * LZMA_PRESET (0-9); -1 = GDAL's default for the codec (6, 9, 6). Default 1: with the
+   * floating-point predictor, DEFLATE level 6 makes float files under 1% smaller than level 1
+   * and takes 1.2 to 1.6 times as long. Ignored by codecs without levels (LZW, NONE, ...); a
+   * level outside the codec's range is an error when writing. */
+  vtkSetMacro(CompressionLevel, int);
+  vtkGetMacro(CompressionLevel, int);
+  ///@}
+
+  /** Whether GDAL's GeoTIFF driver offers Compression and CompressionLevel is within its
+   * range; otherwise false, with an error naming the problem. Writing checks the same first;
+   * callers with long pipelines ahead of the writer call this to fail early. */
+  bool CheckCompression();
 
   ///@{
   /** Threads compressing tiles (GDAL's NUM_THREADS): 0 (default) = all cores, 1 = on the
@@ -84,8 +102,13 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   void WriteData() override;
 
+  /** CheckCompression with GDAL's GTiff driver (a GDALDriverH); on success the codec in upper
+   * case and the creation option of its level (nullptr: none to set). */
+  bool CheckCompression(void* driver, std::string& codec, const char*& levelOption);
+
   char* FileName;
   char* Compression;
+  int CompressionLevel;
   int NumberOfThreads;
 
 private:

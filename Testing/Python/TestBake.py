@@ -143,6 +143,21 @@ class TestBake(unittest.TestCase):
         # the tiles are compressed on --threads threads too: the same file, byte for byte
         self.assertEqual(files[0], files[1])
 
+    def test_compress_level(self):
+        # the level changes the file's bytes, never its values
+        outs, files = [], []
+        for level in ("1", "9"):
+            out = self.path("level%s.tif" % level)
+            args = ["--compress-level", level] if level != "1" else []  # 1: the default
+            status, _, err = run("bake", self.dem, out, "--radius", "900", *args)
+            self.assertEqual(status, 0, err)
+            outs.append(bands(out)[0])
+            with open(out, "rb") as f:
+                files.append(f.read())
+        self.assertNotEqual(files[0], files[1])
+        for name in outs[0]:
+            np.testing.assert_array_equal(outs[0][name][0], outs[1][name][0])
+
     def test_products_option(self):
         out = self.path("two.tif")
         status, _, err = run("bake", self.dem, out, "--products", "skyviewfactor,BentNormal")
@@ -157,7 +172,9 @@ class TestBake(unittest.TestCase):
                 (("--directions", "361"), "--directions must be within 4..360"),
                 (("--radius", "-5"), "--radius must be a positive distance"),
                 (("--refraction", "1"), "--refraction must be within [0, 1)"),
-                (("--products", "Slope"), "unknown product 'Slope'")):
+                (("--products", "Slope"), "unknown product 'Slope'"),
+                (("--compress", "FOO"), "unknown GeoTIFF compression 'FOO'"),
+                (("--compress-level", "13"), "outside DEFLATE's range 1-12")):
             status, stdout, err = run("bake", self.dem, out, *args)
             self.assertEqual(status, 1, err)
             self.assertEqual(len(err.strip().splitlines()), 1, err)

@@ -209,9 +209,9 @@ std::string ReadBytes(const std::string& path)
   return bytes;
 }
 
-// Tiles compressed on several threads (NUM_THREADS) give the same file as on one, byte for
-// byte, on an image of 3 x 3 tiles with values that do not compress to nothing.
-void TestThreadsSameBytes()
+// An image of 3 x 3 tiles (600 x 520) with values that do not compress to nothing:
+// Elevation(i, j) = i + noise below 17, in EPSG:32633.
+vtkSmartPointer<vtkImageData> MakeNoisyImage()
 {
   const int nx = 600, ny = 520;
   auto image = vtkSmartPointer<vtkImageData>::New();
@@ -231,6 +231,16 @@ void TestThreadsSameBytes()
   vtkNew<vtkApertureGeoreference> geo;
   geo->SetCRS("EPSG:32633");
   geo->AttachToImage(image);
+  return image;
+}
+
+// Tiles compressed on several threads (NUM_THREADS) give the same file as on one, byte for
+// byte.
+void TestThreadsSameBytes()
+{
+  const int nx = 600, ny = 520;
+  vtkSmartPointer<vtkImageData> image = MakeNoisyImage();
+  vtkFloatArray* z = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Elevation"));
   std::string files[2];
   const int threads[2] = { 1, 3 };
   for (int t = 0; t < 2; ++t)
@@ -254,6 +264,56 @@ void TestThreadsSameBytes()
     const vtkIdType k = static_cast<vtkIdType>(ny - 1 - 300) * nx + 457; // file row 300
     AP_CHECK_NEAR(Value(ds, 1, 457, 300), z->GetValue(k), 0.0);
     GDALClose(ds);
+  }
+}
+
+// The compression level reaches GDAL: -1 gives GDAL's default file byte for byte (DEFLATE 6,
+// ZSTD 9), other levels other files holding the same values; the codec's name is
+// case-insensitive (the predictor still applies); codecs without levels ignore it.
+void TestCompressionLevels()
+{
+  vtkSmartPointer<vtkImageData> image = MakeNoisyImage();
+  auto write = [&](const char* codec, int level) {
+    const std::string path =
+      tmp + "/level_" + codec + "_" + std::to_string(level) + ".tif";
+    vtkNew<vtkApertureDEMWriter> writer;
+    writer->SetInputData(image);
+    writer->SetFileName(path.c_str());
+    writer->SetCompression(codec);
+    writer->SetCompressionLevel(level);
+    writer->SetNumberOfThreads(1);
+    writer->Write();
+    return path;
+  };
+  vtkNew<vtkApertureDEMWriter> defaults;
+  AP_CHECK(defaults->GetCompressionLevel() == 1);
+  const std::string d1 = write("DEFLATE", 1), d6 = write("DEFLATE", 6),
+                    dgdal = write("DEFLATE", -1), d9 = write("deflate", 9);
+  const std::string b1 = ReadBytes(d1), b6 = ReadBytes(d6), bgdal = ReadBytes(dgdal),
+                    b9 = ReadBytes(d9);
+  AP_CHECK(b1.size() > 100000);
+  AP_CHECK(bgdal == b6);
+  AP_CHECK(b1 != b6);
+  AP_CHECK(b9.size() < b1.size()); // the slowest level packs tighter than the fastest
+  const std::string z1 = ReadBytes(write("ZSTD", 1)), zgdal = ReadBytes(write("ZSTD", -1)),
+                    z9 = ReadBytes(write("ZSTD", 9));
+  AP_CHECK(z1.size() > 100000);
+  AP_CHECK(zgdal == z9);
+  AP_CHECK(z1 != z9);
+  AP_CHECK(ReadBytes(write("LZW", 50)).size() > 100000); // no levels: ignored
+  vtkFloatArray* z = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Elevation"));
+  for (const std::string& path : { d1, d9 })
+  {
+    GDALDatasetH ds = GDALOpen(path.c_str(), GA_ReadOnly);
+    AP_CHECK(ds != nullptr);
+    if (ds)
+    {
+      const char* predictor = GDALGetMetadataItem(ds, "PREDICTOR", "IMAGE_STRUCTURE");
+      AP_CHECK(predictor && std::string(predictor) == "3");
+      const vtkIdType k = static_cast<vtkIdType>(519 - 211) * 600 + 33; // file row 211
+      AP_CHECK_NEAR(Value(ds, 1, 33, 211), z->GetValue(k), 0.0);
+      GDALClose(ds);
+    }
   }
 }
 
@@ -289,6 +349,45 @@ void TestErrors()
     w->SetFileName("/nonexistent-folder/x.tif");
     ExpectError(w, "GDAL cannot create '/nonexistent-folder/x.tif'");
   }
+  const struct
+  {
+    const char* Codec;
+    int Level;
+    const char* Message;
+  } badLevels[] = { { "DEFLATE", 13, "compression level 13 is outside DEFLATE's range 1-12" },
+    { "deflate", 0, "compression level 0 is outside DEFLATE's range 1-12" },
+    { "ZSTD", 23, "compression level 23 is outside ZSTD's range 1-22" },
+    { "LZMA", -2, "compression level -2 is outside LZMA's range 0-9" } };
+  {
+    // an unknown codec: GDAL would warn and write the file uncompressed
+    vtkNew<vtkApertureDEMWriter> w;
+    AP_CHECK(w->CheckCompression());
+    w->SetInputData(MakeImage(true));
+    const std::string path = tmp + "/badcodec.tif";
+    w->SetFileName(path.c_str());
+    w->SetCompression("DEFLATE9");
+    ExpectError(w, "unknown GeoTIFF compression 'DEFLATE9' (GDAL offers NONE, LZW, ");
+    struct stat sb;
+    AP_CHECK(stat(path.c_str(), &sb) != 0); // nothing left behind
+    vtkNew<vtkTest::ErrorObserver> errors;
+    w->AddObserver(vtkCommand::ErrorEvent, errors);
+    AP_CHECK(!w->CheckCompression());
+    AP_CHECK_CONTAINS(errors->GetErrorMessage(), "ZSTD");
+    w->SetCompression("zstd");
+    AP_CHECK(w->CheckCompression());
+  }
+  for (const auto& bad : badLevels)
+  {
+    vtkNew<vtkApertureDEMWriter> w;
+    w->SetInputData(MakeImage(true));
+    const std::string path = tmp + "/badlevel.tif";
+    w->SetFileName(path.c_str());
+    w->SetCompression(bad.Codec);
+    w->SetCompressionLevel(bad.Level);
+    ExpectError(w, bad.Message);
+    struct stat sb;
+    AP_CHECK(stat(path.c_str(), &sb) != 0); // nothing left behind
+  }
 }
 } // namespace
 
@@ -298,6 +397,7 @@ int TestApertureDEMWriter(int argc, char* argv[])
   TestWriteAndReadBack();
   TestSelectionAndTypes();
   TestThreadsSameBytes();
+  TestCompressionLevels();
   TestErrors();
   return aptest::Result();
 }
