@@ -18,6 +18,7 @@
 #include <cpl_conv.h>
 #include <ogr_srs_api.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -597,7 +598,7 @@ bool vtkApertureGeoreference::GetRowCellSizesMetres(double* dx, double* dy)
     const GeographicLib::Geodesic geod(ell[0], ell[1]);
     for (int j = 0; j < ny; ++j)
     {
-      const double* q = &ll[8 * static_cast<size_t>(j)];
+      double* q = &ll[8 * static_cast<size_t>(j)];
       for (int k = 0; k < 8; ++k)
       {
         if (std::isnan(q[k]))
@@ -608,8 +609,30 @@ bool vtkApertureGeoreference::GetRowCellSizesMetres(double* dx, double* dy)
           return false;
         }
       }
+      for (int k = 1; k < 8; k += 2)
+      {
+        // A cell edge on a pole comes out a rounding error beyond it (88.025 + 39 * 0.05 +
+        // 0.025 = 90.00000000000001), where GeographicLib gives NaN: clamp that, refuse more.
+        const double beyond = std::fabs(q[k]) - 90.0;
+        if (beyond > 1e-9)
+        {
+          std::ostringstream msg;
+          msg << "row " << j << " of the grid reaches latitude " << q[k] << ", beyond the pole";
+          this->Impl->Error = msg.str();
+          return false;
+        }
+        q[k] = std::max(-90.0, std::min(90.0, q[k]));
+      }
       geod.Inverse(q[1], q[0], q[3], q[2], dx[j]);
       geod.Inverse(q[5], q[4], q[7], q[6], dy[j]);
+      if (!(std::isfinite(dx[j]) && dx[j] > 0.0 && std::isfinite(dy[j]) && dy[j] > 0.0))
+      {
+        std::ostringstream msg;
+        msg << "row " << j << " of the grid has no positive ground cell size (" << dx[j]
+            << " m east-west, " << dy[j] << " m north-south)";
+        this->Impl->Error = msg.str();
+        return false;
+      }
     }
   }
   catch (const std::exception& e)

@@ -156,7 +156,9 @@ public:
    * Ground size of the cells of every row, metres: dx[j] east-west and dy[j] south-north for
    * row j (0 = south), geodesic distances between the centres of opposite cell edges at the
    * grid's central column. For a lat/lon grid they change with latitude; for a projected grid
-   * they change little (scale factor). dx and dy hold GridSize[1] values each.
+   * they change little (scale factor). dx and dy hold GridSize[1] values each. False (with
+   * GetErrorMessage naming the row) when a row has no geographic coordinates, reaches beyond a
+   * pole (an edge on the pole is fine) or gets a size that is not positive.
    */
   VTK_WRAPEXCLUDE bool GetRowCellSizesMetres(double* dx, double* dy);
 

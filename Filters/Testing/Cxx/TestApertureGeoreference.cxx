@@ -211,6 +211,29 @@ void TestRowSizes()
   }
   AP_CHECK(dx[100] < dx[0]);
 }
+
+// A grid whose last row's north edge is the pole (90.00000000000001 after rounding): sizes from
+// the closed forms; a grid reaching beyond the pole is refused, naming the row.
+void TestRowSizesAtPole()
+{
+  vtkNew<vtkApertureGeoreference> geo;
+  AP_CHECK(geo->SetCRS("EPSG:4326"));
+  const double cell = 0.05;
+  geo->SetGrid(-175.5, 88.025, 9.0, cell, 40, 40); // rows from 88 N to the pole, all longitudes
+  double dx[40], dy[40];
+  AP_CHECK(geo->GetRowCellSizesMetres(dx, dy));
+  const double a = 6378137.0, f = 1.0 / 298.257223563, e2 = f * (2 - f);
+  const double lat = 89.975 * kDeg, s = std::sin(lat), w = std::sqrt(1 - e2 * s * s);
+  // meridian arc over the top row (M is stationary at the pole: the midpoint value holds)
+  AP_CHECK_NEAR(dy[39] / (a * (1 - e2) / (w * w * w) * cell * kDeg), 1.0, 1e-6);
+  // the geodesic across 9 degrees of that parallel is a little shorter than the parallel arc
+  const double arc = a / w * std::cos(lat) * 9.0 * kDeg;
+  AP_CHECK(dx[39] < arc && dx[39] > 0.995 * arc);
+  geo->SetGrid(-175.5, 88.075, 9.0, cell, 40, 40); // the last row's centre at 90.025 N
+  AP_CHECK(!geo->GetRowCellSizesMetres(dx, dy));
+  AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
+    "row 39 of the grid reaches latitude 90.025, beyond the pole");
+}
 } // namespace
 
 int TestApertureGeoreference(int, char*[])
@@ -222,5 +245,6 @@ int TestApertureGeoreference(int, char*[])
   TestFieldData();
   TestConvergence();
   TestRowSizes();
+  TestRowSizesAtPole();
   return aptest::Result();
 }
