@@ -24,6 +24,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -139,6 +140,52 @@ int vtkApertureSkyVisibility::RequestUpdateExtent(
 //------------------------------------------------------------------------------
 int vtkApertureSkyVisibility::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  try
+  {
+    return this->Execute(inputVector, outputVector);
+  }
+  catch (const std::bad_alloc&)
+  {
+    // (VTK's arrays and std::vector throw; the C kernel reports AP_ERR_OUT_OF_MEMORY itself)
+    vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+    int dims[3] = { 0, 0, 0 };
+    if (input)
+    {
+      input->GetDimensions(dims);
+    }
+    const double mib = std::ceil(this->EstimateBytes(double(dims[0]) * dims[1]) / 1048576.0);
+    vtkErrorMacro(<< "out of memory: a " << dims[0] << " x " << dims[1]
+                  << " DEM with these products needs about " << mib << " MiB"
+                  << (this->ComputeHorizonAngles
+                         ? " (HorizonAngles take 4 bytes per cell and direction)"
+                         : ""));
+    return 0;
+  }
+}
+
+//------------------------------------------------------------------------------
+double vtkApertureSkyVisibility::EstimateBytes(double n) const
+{
+  const bool floats[] = { this->ComputeVisibleSolidAngle, this->ComputeApertureRadius,
+    this->ComputeSkyViewFactor, this->ComputeDiffuseSkyFactor, this->ComputePositiveOpenness };
+  double perCell = 0.0;
+  for (bool f : floats)
+  {
+    perCell += f ? 4.0 : 0.0;
+  }
+  perCell += this->ComputeBentNormal ? 12.0 : 0.0;
+  perCell += this->ComputeEdgeTruncated ? 1.0 : 0.0;
+  perCell += this->ComputeHorizonAngles ? 4.0 * this->NumberOfDirections : 0.0;
+  // the elevations' float copy, and the sweep's transposed elevations, gradients, sector
+  // scratch and bent-normal sums (ap_horizon_create)
+  perCell += 4.0 + 4.0 + 8.0 + 5.0 + 12.0;
+  return perCell * n;
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureSkyVisibility::Execute(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -295,6 +342,10 @@ int vtkApertureSkyVisibility::RequestData(
     pr.Full->SetName(pr.Name);
     pr.Full->SetNumberOfComponents(pr.Components);
     pr.Full->SetNumberOfTuples(static_cast<vtkIdType>(n));
+    if (pr.Full->GetNumberOfTuples() != static_cast<vtkIdType>(n))
+    {
+      throw std::bad_alloc(); // (VTK reported it too; RequestData says what was asked for)
+    }
   }
   auto fptr = [&](int k) {
     return products[k].Full ? static_cast<vtkFloatArray*>(products[k].Full.Get())->GetPointer(0)
@@ -454,8 +505,13 @@ int vtkApertureSkyVisibility::RequestData(
       arr.TakeReference(pr.Full->NewInstance());
       arr->SetName(pr.Name);
       arr->SetNumberOfComponents(pr.Components);
-      arr->SetNumberOfTuples(
-        static_cast<vtkIdType>(outExt[1] - outExt[0] + 1) * (outExt[3] - outExt[2] + 1));
+      const vtkIdType outCells =
+        static_cast<vtkIdType>(outExt[1] - outExt[0] + 1) * (outExt[3] - outExt[2] + 1);
+      arr->SetNumberOfTuples(outCells);
+      if (arr->GetNumberOfTuples() != outCells)
+      {
+        throw std::bad_alloc();
+      }
       if (auto* f = vtkFloatArray::SafeDownCast(arr))
       {
         CopyBlock(static_cast<vtkFloatArray*>(pr.Full.Get())->GetPointer(0), inExt, outExt,

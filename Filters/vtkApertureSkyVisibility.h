@@ -47,7 +47,9 @@
  *
  * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, no CRS
  * or no metric cell size, every cell nodata, NumberOfDirections outside 4..360, a negative
- * MaximumDistance, a refraction coefficient outside [0, 1).
+ * MaximumDistance, a refraction coefficient outside [0, 1), not enough memory for the outputs
+ * and the sweep (the message gives the estimated need; HorizonAngles take 4 bytes per cell
+ * and direction).
  *
  * @warning Threads: NumberOfThreads (default all cores, through vtkSMPTools); the results are
  * bit-identical for any thread count.
@@ -143,6 +145,10 @@ protected:
     vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
+  /** RequestData's work; RequestData turns a failed allocation in it into an error. */
+  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  /** Bytes the outputs and the sweep's buffers take for n cells (an estimate for messages). */
+  double EstimateBytes(double n) const;
 
   int NumberOfDirections;
   double MaximumDistance;

@@ -279,6 +279,47 @@ class TestSkyVisibility(Testing.vtkTest):
                       self.error(make_image(np.full((5, 5), np.nan), 0, 0, 30, 30, "EPSG:32633")))
         self.assertIn("at least 2 x 2", self.error(make_image(np.ones((1, 5)), 0, 0, 30, 30, "EPSG:32633")))
 
+    def testOutOfMemory(self):
+        # A child process whose address space leaves 256 MiB above what it holds once the DEM
+        # is built: the 360 MiB of HorizonAngles (512 x 512 cells x 360 directions x 4 bytes)
+        # cannot be allocated, which must be an error naming the size, not an abort. The size
+        # named: 1506 bytes per cell (1440 of horizon angles, 33 of the seven derived products,
+        # 33 of elevations and sweep buffers) x 262144 cells = 376.5 MiB.
+        import subprocess
+        script = """
+import resource
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.vtkCommonDataModel import vtkImageData
+import aperture
+from aperture.errors import Watcher
+image = vtkImageData()
+image.SetDimensions(512, 512, 1)
+image.SetSpacing(30, 30, 1)
+values = numpy_to_vtk(np.zeros(512 * 512, dtype=np.float32), deep=1)
+values.SetName("Elevation")
+image.GetPointData().SetScalars(values)
+geo = aperture.vtkApertureGeoreference()
+assert geo.SetCRS("EPSG:32633")
+geo.AttachToImage(image)
+w = Watcher()
+f = w.watch(aperture.vtkApertureSkyVisibility())
+f.SetInputData(image)
+f.SetNumberOfDirections(360)
+f.SetComputeHorizonAngles(True)
+f.SetNumberOfThreads(1)
+with open("/proc/self/status") as status:
+    vm = next(int(line.split()[1]) for line in status if line.startswith("VmSize:"))
+resource.setrlimit(resource.RLIMIT_AS, ((vm + 256 * 1024) * 1024, resource.RLIM_INFINITY))
+f.Update()
+print(w.errors[0] if w.errors else "no error")
+"""
+        p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                           timeout=120)
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        self.assertIn("out of memory: a 512 x 512 DEM with these products needs about 377 MiB "
+                      "(HorizonAngles take 4 bytes per cell and direction)", p.stdout)
+
     def error(self, image, **options):
         from aperture.errors import Watcher
         w = Watcher()
