@@ -158,6 +158,27 @@ class TestBake(unittest.TestCase):
         for name in outs[0]:
             np.testing.assert_array_equal(outs[0][name][0], outs[1][name][0])
 
+    def test_odd_terrain(self):
+        # a lat/lon DEM whose north edge is the pole (the edge comes out a rounding error
+        # beyond 90 degrees), and a flat DEM at 3e37 m: products in range, the plain's exact
+        rng = np.random.default_rng(7)
+        polar = self.path("polar.tif")
+        make_dem(polar, (rng.random((40, 40)) * 100).astype(np.float32),
+                 (-180, 9, 0, 90, 0, -0.05), 4326)
+        flat = self.path("flat.tif")
+        make_dem(flat, np.full((20, 20), 3e37, np.float32), (500000, 30, 0, 4e6, 0, -30), 32611)
+        for dem in (polar, flat):
+            out = self.path("odd.tif")
+            status, _, err = run("bake", dem, out, "--products", "VisibleSolidAngle,SkyViewFactor")
+            self.assertEqual(status, 0, err)
+            b = bands(out)[0]
+            svf, vsa = b["SkyViewFactor"][0], b["VisibleSolidAngle"][0]
+            self.assertTrue(np.all((svf >= 0) & (svf <= 1)), dem)
+            self.assertTrue(np.all((vsa >= 0) & (vsa <= 2 * math.pi + 1e-5)), dem)
+            if dem == flat:
+                np.testing.assert_allclose(svf, 1.0, atol=1e-6)
+                np.testing.assert_allclose(vsa, 2 * math.pi, atol=1e-5)
+
     def test_products_option(self):
         out = self.path("two.tif")
         status, _, err = run("bake", self.dem, out, "--products", "skyviewfactor,BentNormal")
