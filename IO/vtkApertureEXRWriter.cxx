@@ -12,6 +12,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkSMPTools.h"
 #include "vtkStringArray.h"
 
 #include <openexr.h>
@@ -23,6 +24,7 @@
 #include <limits>
 #include <locale>
 #include <map>
+#include <new>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -154,6 +156,92 @@ void FillScanlines(const Channel& ch, int nx, int ny, int y0, int rows, float* d
     }
   }
 }
+
+// One chunk of scanlines to encode on a worker thread: its place, its compressed bytes, and
+// the outcome (with OpenEXR's message on failure).
+struct ChunkJob
+{
+  exr_chunk_info_t Info;
+  std::vector<uint8_t> Bytes;
+  exr_result_t Result = EXR_ERR_SUCCESS;
+  std::string Message;
+};
+
+// The encoding pipeline's last step, instead of writing: keep the compressed bytes (or the
+// packed ones, without compression) for the writing thread.
+exr_result_t KeepChunk(exr_encode_pipeline_t* encoder)
+{
+  auto* job = static_cast<ChunkJob*>(encoder->encoding_user_data);
+  const auto* bytes = static_cast<const uint8_t*>(encoder->compressed_buffer);
+  try
+  {
+    job->Bytes.assign(bytes, bytes + encoder->compressed_bytes);
+  }
+  catch (const std::bad_alloc&)
+  {
+    return EXR_ERR_OUT_OF_MEMORY;
+  }
+  return EXR_ERR_SUCCESS;
+}
+
+// Convert and compress one chunk (any thread: after the header is written, OpenEXR's encoding
+// calls take no lock and only read the context).
+void EncodeChunk(exr_context_t ctx, int part, const std::vector<Channel>& channels,
+  const std::map<std::string, size_t>& byName, int nx, int ny, ChunkJob& job)
+{
+  ErrorTrap trap; // this thread's messages
+  exr_encode_pipeline_t encoder = EXR_ENCODE_PIPELINE_INITIALIZER;
+  exr_result_t rv = exr_encoding_initialize(ctx, part, &job.Info, &encoder);
+  const bool initialized = rv == EXR_ERR_SUCCESS;
+  std::vector<float> scratch;
+  try
+  {
+    scratch.resize(static_cast<size_t>(job.Info.height) * static_cast<size_t>(nx) *
+      channels.size());
+  }
+  catch (const std::bad_alloc&)
+  {
+    rv = initialized ? EXR_ERR_OUT_OF_MEMORY : rv;
+  }
+  const size_t chunkValues = static_cast<size_t>(job.Info.height) * static_cast<size_t>(nx);
+  for (int c = 0; rv == EXR_ERR_SUCCESS && c < encoder.channel_count; ++c)
+  {
+    exr_coding_channel_info_t& out = encoder.channels[c];
+    const auto found = byName.find(out.channel_name ? out.channel_name : "");
+    if (found == byName.end())
+    {
+      rv = EXR_ERR_INCORRECT_CHUNK; // cannot happen: the header holds only our channels
+      break;
+    }
+    float* dst = scratch.data() + found->second * chunkValues;
+    FillScanlines(channels[found->second], nx, ny, job.Info.start_y, job.Info.height, dst);
+    out.encode_from_ptr = reinterpret_cast<const uint8_t*>(dst);
+    out.user_pixel_stride = static_cast<int32_t>(sizeof(float));
+    out.user_line_stride = static_cast<int32_t>(sizeof(float)) * nx;
+    out.user_bytes_per_element = static_cast<int16_t>(sizeof(float));
+    out.user_data_type = EXR_PIXEL_FLOAT;
+  }
+  if (rv == EXR_ERR_SUCCESS)
+  {
+    rv = exr_encoding_choose_default_routines(ctx, part, &encoder);
+  }
+  if (rv == EXR_ERR_SUCCESS)
+  {
+    encoder.yield_until_ready_fn = nullptr; // (the writing thread keeps the order)
+    encoder.write_fn = &KeepChunk;
+    encoder.encoding_user_data = &job;
+    rv = exr_encoding_run(ctx, part, &encoder);
+  }
+  if (initialized)
+  {
+    exr_encoding_destroy(ctx, &encoder);
+  }
+  job.Result = rv;
+  if (rv != EXR_ERR_SUCCESS)
+  {
+    job.Message = trap.Message(rv);
+  }
+}
 } // namespace
 
 struct vtkApertureEXRWriter::Internals
@@ -168,6 +256,7 @@ vtkApertureEXRWriter::vtkApertureEXRWriter()
   , ColorArrayName(nullptr)
   , PixelType(FLOAT)
   , Compression(ZIP)
+  , NumberOfThreads(0)
   , Impl(new Internals)
 {
 }
@@ -490,57 +579,60 @@ void vtkApertureEXRWriter::WriteData()
     return;
   }
 
-  // 4. Scanlines, one chunk at a time, top (north) first; every channel of a chunk is converted
-  // to float in `scratch` and the encoder converts to HALF when asked.
+  // 4. Scanlines in batches of chunks, top (north) first: the worker threads convert each
+  // chunk's channels to float in their own scratch (the encoder converts to HALF when asked)
+  // and compress it into the chunk's buffer; this thread then writes the batch in order.
+  // Compression is per chunk and deterministic, so the bytes do not depend on the threads.
+  const int chunkCount = (ny + linesPerChunk - 1) / linesPerChunk;
   const size_t chunkValues = static_cast<size_t>(linesPerChunk) * static_cast<size_t>(nx);
-  std::vector<float> scratch(chunkValues * channels.size());
-  exr_encode_pipeline_t encoder = EXR_ENCODE_PIPELINE_INITIALIZER;
-  bool initialized = false, routinesChosen = false;
-  for (int y = 0; rv == EXR_ERR_SUCCESS && y < ny; y += linesPerChunk)
-  {
-    exr_chunk_info_t chunk;
-    rv = exr_write_scanline_chunk_info(ctx.H, part, y, &chunk);
-    if (rv == EXR_ERR_SUCCESS)
+  const size_t chunkBytes = chunkValues * channels.size() * sizeof(float);
+  const size_t batchBytes = size_t(64) << 20; // of scratch and compressed chunks together
+  const int batch =
+    static_cast<int>(std::max<size_t>(1, std::min<size_t>(256, batchBytes / (2 * chunkBytes))));
+  std::vector<ChunkJob> jobs;
+  std::string chunkMessage; // a worker's OpenEXR message for a failed chunk
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ this->NumberOfThreads }, [&]() {
+    for (int first = 0; rv == EXR_ERR_SUCCESS && first < chunkCount; first += batch)
     {
-      rv = initialized ? exr_encoding_update(ctx.H, part, &chunk, &encoder)
-                       : exr_encoding_initialize(ctx.H, part, &chunk, &encoder);
-      initialized = initialized || rv == EXR_ERR_SUCCESS;
-    }
-    for (int c = 0; rv == EXR_ERR_SUCCESS && c < encoder.channel_count; ++c)
-    {
-      exr_coding_channel_info_t& out = encoder.channels[c];
-      const auto found = byName.find(out.channel_name ? out.channel_name : "");
-      if (found == byName.end())
+      const int count = std::min(batch, chunkCount - first);
+      jobs.assign(static_cast<size_t>(count), ChunkJob());
+      for (int k = 0; rv == EXR_ERR_SUCCESS && k < count; ++k)
       {
-        rv = EXR_ERR_INCORRECT_CHUNK; // cannot happen: the header holds only our channels
+        rv = exr_write_scanline_chunk_info(
+          ctx.H, part, (first + k) * linesPerChunk, &jobs[static_cast<size_t>(k)].Info);
+      }
+      if (rv != EXR_ERR_SUCCESS)
+      {
         break;
       }
-      float* dst = scratch.data() + found->second * chunkValues;
-      FillScanlines(channels[found->second], nx, ny, chunk.start_y, chunk.height, dst);
-      out.encode_from_ptr = reinterpret_cast<const uint8_t*>(dst);
-      out.user_pixel_stride = static_cast<int32_t>(sizeof(float));
-      out.user_line_stride = static_cast<int32_t>(sizeof(float)) * nx;
-      out.user_bytes_per_element = static_cast<int16_t>(sizeof(float));
-      out.user_data_type = EXR_PIXEL_FLOAT;
+      vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+        for (vtkIdType k = begin; k < end; ++k)
+        {
+          EncodeChunk(ctx.H, part, channels, byName, nx, ny, jobs[static_cast<size_t>(k)]);
+        }
+      });
+      for (int k = 0; rv == EXR_ERR_SUCCESS && k < count; ++k)
+      {
+        ChunkJob& job = jobs[static_cast<size_t>(k)];
+        rv = job.Result;
+        if (rv == EXR_ERR_SUCCESS)
+        {
+          rv = exr_write_scanline_chunk(
+            ctx.H, part, job.Info.start_y, job.Bytes.data(), job.Bytes.size());
+        }
+        else
+        {
+          chunkMessage = job.Message;
+        }
+      }
+      this->UpdateProgress(static_cast<double>(first + count) / chunkCount);
     }
-    if (rv == EXR_ERR_SUCCESS && !routinesChosen)
-    {
-      rv = exr_encoding_choose_default_routines(ctx.H, part, &encoder);
-      routinesChosen = rv == EXR_ERR_SUCCESS;
-    }
-    if (rv == EXR_ERR_SUCCESS)
-    {
-      rv = exr_encoding_run(ctx.H, part, &encoder);
-    }
-    this->UpdateProgress(static_cast<double>(std::min(ny, y + linesPerChunk)) / ny);
-  }
-  if (initialized)
-  {
-    exr_encoding_destroy(ctx.H, &encoder);
-  }
+  });
+  jobs.clear();
   if (rv != EXR_ERR_SUCCESS)
   {
-    vtkErrorMacro(<< "OpenEXR failed writing '" << path << "': " << trap.Message(rv));
+    vtkErrorMacro(<< "OpenEXR failed writing '" << path
+                  << "': " << (chunkMessage.empty() ? trap.Message(rv) : chunkMessage));
     return; // ~ContextHandle discards the temporary file
   }
 
@@ -567,6 +659,7 @@ void vtkApertureEXRWriter::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "PixelType: " << this->GetPixelTypeAsString() << "\n";
   os << indent << "Compression: " << this->GetCompressionAsString() << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "Metadata: " << this->Impl->Metadata.size() << " items\n";
   for (const auto& kv : this->Impl->Metadata)
   {

@@ -27,7 +27,8 @@
  * NaN (Aperture's nodata) is written as NaN in both.
  *
  * Compression: lossless only, ZIP (default; 16 scanlines per block), ZIPS (1), RLE (1),
- * PIZ (32) or NONE; set it with the enum or its name.
+ * PIZ (32) or NONE; set it with the enum or its name. Blocks are converted and compressed on
+ * NumberOfThreads threads and written in order (the file's bytes do not depend on it).
  *
  * Header attributes (all of OpenEXR type string):
  * - AddMetadata(key, value): provenance and other free text, written as given (a later value
@@ -147,6 +148,13 @@ public:
   ///@}
 
   ///@{
+  /** Threads converting and compressing chunks of scanlines (through vtkSMPTools): 0 (default)
+   *  = all cores, 1 = on the writing thread alone. The file's bytes do not depend on it. */
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
   /** String attributes of the header (key = value), written with the file. Keys are non-empty,
    *  at most 255 characters, and must not name one of OpenEXR's own attributes (channels,
    *  compression, dataWindow, ...). */
@@ -167,6 +175,7 @@ protected:
   char* ColorArrayName;
   int PixelType;
   int Compression;
+  int NumberOfThreads;
 
 private:
   vtkApertureEXRWriter(const vtkApertureEXRWriter&) = delete;

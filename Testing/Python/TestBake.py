@@ -130,18 +130,23 @@ class TestBake(unittest.TestCase):
         self.assertEqual(r.GetMetadataValue("aperture:directions"), "360")
 
     def test_threads_do_not_matter(self):
-        outs, files = [], []
+        outs, files, exrs = [], [], []
         for t in (1, 2):
-            out = self.path("t%d.tif" % t)
-            status, _, err = run("bake", self.dem, out, "--threads", t, "--radius", "900")
+            out, exr = self.path("t%d.tif" % t), self.path("t%d.exr" % t)
+            status, _, err = run("bake", self.dem, out, "--threads", t, "--radius", "900",
+                                 "--exr", exr)
             self.assertEqual(status, 0, err)
             outs.append(bands(out)[0])
             with open(out, "rb") as f:
                 files.append(f.read())
+            with open(exr, "rb") as f:
+                exrs.append(f.read())
         for name in outs[0]:
             np.testing.assert_array_equal(outs[0][name][0], outs[1][name][0])
-        # the tiles are compressed on --threads threads too: the same file, byte for byte
+        # GeoTIFF tiles and EXR chunks are compressed on --threads threads too: the same
+        # files, byte for byte
         self.assertEqual(files[0], files[1])
+        self.assertEqual(exrs[0], exrs[1])
 
     def test_compress_level(self):
         # the level changes the file's bytes, never its values

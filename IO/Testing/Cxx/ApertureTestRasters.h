@@ -135,6 +135,23 @@ inline bool WriteText(const std::string& path, const std::string& text)
   const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
   return std::fclose(f) == 0 && ok;
 }
+/** The whole content of a file ("" when it cannot be read): for byte-for-byte comparisons. */
+inline std::string ReadFileBytes(const std::string& path)
+{
+  std::string bytes;
+  if (FILE* f = std::fopen(path.c_str(), "rb"))
+  {
+    char buf[65536];
+    size_t n;
+    while ((n = std::fread(buf, 1, sizeof(buf), f)) > 0)
+    {
+      bytes.append(buf, n);
+    }
+    std::fclose(f);
+  }
+  return bytes;
+}
+
 } // namespace aptest
 
 #endif

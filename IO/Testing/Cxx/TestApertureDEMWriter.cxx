@@ -193,22 +193,6 @@ void TestSelectionAndTypes()
   }
 }
 
-std::string ReadBytes(const std::string& path)
-{
-  std::string bytes;
-  if (FILE* f = std::fopen(path.c_str(), "rb"))
-  {
-    char buf[65536];
-    size_t n;
-    while ((n = std::fread(buf, 1, sizeof(buf), f)) > 0)
-    {
-      bytes.append(buf, n);
-    }
-    std::fclose(f);
-  }
-  return bytes;
-}
-
 // An image of 3 x 3 tiles (600 x 520) with values that do not compress to nothing:
 // Elevation(i, j) = i + noise below 17, in EPSG:32633.
 vtkSmartPointer<vtkImageData> MakeNoisyImage()
@@ -254,7 +238,8 @@ void TestThreadsSameBytes()
     writer->SetFileName(files[t].c_str());
     writer->Write();
   }
-  const std::string one = ReadBytes(files[0]), three = ReadBytes(files[1]);
+  const std::string one = aptest::ReadFileBytes(files[0]);
+  const std::string three = aptest::ReadFileBytes(files[1]);
   AP_CHECK(one.size() > 100000); // compressed, but not to nothing (~1.2 MB of samples)
   AP_CHECK(one == three);
   GDALDatasetH ds = GDALOpen(files[1].c_str(), GA_ReadOnly);
@@ -289,18 +274,19 @@ void TestCompressionLevels()
   AP_CHECK(defaults->GetCompressionLevel() == 1);
   const std::string d1 = write("DEFLATE", 1), d6 = write("DEFLATE", 6),
                     dgdal = write("DEFLATE", -1), d9 = write("deflate", 9);
-  const std::string b1 = ReadBytes(d1), b6 = ReadBytes(d6), bgdal = ReadBytes(dgdal),
-                    b9 = ReadBytes(d9);
+  const std::string b1 = aptest::ReadFileBytes(d1), b6 = aptest::ReadFileBytes(d6);
+  const std::string bgdal = aptest::ReadFileBytes(dgdal), b9 = aptest::ReadFileBytes(d9);
   AP_CHECK(b1.size() > 100000);
   AP_CHECK(bgdal == b6);
   AP_CHECK(b1 != b6);
   AP_CHECK(b9.size() < b1.size()); // the slowest level packs tighter than the fastest
-  const std::string z1 = ReadBytes(write("ZSTD", 1)), zgdal = ReadBytes(write("ZSTD", -1)),
-                    z9 = ReadBytes(write("ZSTD", 9));
+  const std::string z1 = aptest::ReadFileBytes(write("ZSTD", 1));
+  const std::string zgdal = aptest::ReadFileBytes(write("ZSTD", -1));
+  const std::string z9 = aptest::ReadFileBytes(write("ZSTD", 9));
   AP_CHECK(z1.size() > 100000);
   AP_CHECK(zgdal == z9);
   AP_CHECK(z1 != z9);
-  AP_CHECK(ReadBytes(write("LZW", 50)).size() > 100000); // no levels: ignored
+  AP_CHECK(aptest::ReadFileBytes(write("LZW", 50)).size() > 100000); // no levels: ignored
   vtkFloatArray* z = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Elevation"));
   for (const std::string& path : { d1, d9 })
   {

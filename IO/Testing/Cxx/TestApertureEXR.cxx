@@ -767,6 +767,60 @@ void TestCompressions()
 }
 
 //------------------------------------------------------------------------------
+// Chunks are compressed on NumberOfThreads threads and written in order: the same file, byte
+// for byte, for 1 and 3 threads, holding the image; 1030 one-scanline ZIPS chunks cross the
+// writer's batches of 256, and 65 ZIP chunks of 16 end with a short one.
+void TestThreadsSameBytes()
+{
+  const int nx = 97, ny = 1030;
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(nx, ny, 1);
+  vtkNew<vtkFloatArray> noise;
+  noise->SetName("Noise");
+  noise->SetNumberOfTuples(static_cast<vtkIdType>(nx) * ny);
+  unsigned state = 2024u;
+  for (vtkIdType k = 0; k < noise->GetNumberOfTuples(); ++k)
+  {
+    state = state * 1664525u + 1013904223u; // Numerical Recipes' LCG
+    noise->SetValue(k, static_cast<float>(k % nx) + static_cast<float>(state >> 8) * 1e-7f);
+  }
+  image->GetPointData()->SetScalars(noise);
+  for (const char* compression : { "ZIPS", "ZIP", "NONE" })
+  {
+    std::string bytes[2];
+    const int threads[2] = { 1, 3 };
+    for (int t = 0; t < 2; ++t)
+    {
+      const std::string path =
+        tmp + "/threads_" + compression + std::to_string(threads[t]) + ".exr";
+      vtkNew<vtkApertureEXRWriter> writer;
+      AP_CHECK(writer->GetNumberOfThreads() == 0); // default: all cores
+      writer->SetNumberOfThreads(threads[t]);
+      writer->SetInputData(image);
+      writer->SetFileName(path.c_str());
+      writer->SetCompression(compression);
+      writer->Write();
+      bytes[t] = aptest::ReadFileBytes(path);
+      if (t == 1)
+      {
+        const RawImage raw = ReadRaw(path);
+        AP_CHECK(raw.Ok && raw.Width == nx && raw.Height == ny);
+        for (int y = 0; raw.Ok && y < ny; y += 73)
+        {
+          for (int x = 0; x < nx; x += 11)
+          {
+            const vtkIdType k = static_cast<vtkIdType>(ny - 1 - y) * nx + x;
+            AP_CHECK(raw.At("Noise", x, y) == noise->GetValue(k));
+          }
+        }
+      }
+    }
+    AP_CHECK(bytes[0].size() > 100000); // (97 x 1030 floats that do not compress away)
+    AP_CHECK(bytes[0] == bytes[1]);
+  }
+}
+
+//------------------------------------------------------------------------------
 // The reader on a file written with the C API: RGBA grouped in R, G, B, A order, a layer
 // grouped with its suffixes as component names, a lone dotted channel kept whole, a group
 // whose prefix is also a channel name (V, V.x, V.y) kept as separate arrays, HALF and UINT
@@ -1029,6 +1083,7 @@ int TestApertureEXR(int argc, char* argv[])
   TestColor();
   TestMetadataAndPlainPicture();
   TestCompressions();
+  TestThreadsSameBytes();
   TestReaderGrouping();
   TestWriterErrors();
   TestReaderErrors();

@@ -518,6 +518,7 @@ def cmd_bake(args):
         exr = watcher.watch(vtkApertureEXRWriter())
         exr.SetInputData(image)
         exr.SetFileName(args.exr)
+        exr.SetNumberOfThreads(args.threads)  # chunks compressed in parallel; same bytes
         for key, value in provenance.items():
             exr.AddMetadata("aperture:" + key.lower(), value)
         for name in products:
@@ -793,8 +794,8 @@ def build_parser():
     p.add_argument("--refraction", type=float, default=0.13, metavar="K",
                    help="refraction coefficient (default 0.13)")
     p.add_argument("--threads", type=int, default=0, metavar="N",
-                   help="threads for the sweep and for compressing the GeoTIFF (default 0: all "
-                        "cores); results and file contents do not depend on it")
+                   help="threads for the sweep and for compressing the GeoTIFF and EXR "
+                        "(default 0: all cores); results and file contents do not depend on it")
     p.add_argument("--products", metavar="LIST",
                    help="comma-separated products: %s; 'all' adds HorizonAngles (default: all "
                         "but HorizonAngles)" % ", ".join(n for n, *_ in PRODUCTS))
