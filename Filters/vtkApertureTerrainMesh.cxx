@@ -280,22 +280,24 @@ int vtkApertureTerrainMesh::RequestData(
           {
             frame.Forward(lat, lon, parkHeight, stored[0], stored[1], stored[2]);
           }
+          if (bent)
+          {
+            std::fill(bent + 3 * k, bent + 3 * k + 3, std::numeric_limits<float>::quiet_NaN());
+          }
         }
         else
         {
           frame.Forward(lat, lon, exaggeration * z[k], p[0], p[1], p[2], rotation);
           std::copy(p, p + 3, stored);
-        }
-        if (bent)
-        {
-          double v[3];
-          bentIn->GetTuple(static_cast<vtkIdType>(k), v);
-          for (int r = 0; r < 3; ++r)
+          if (bent)
           {
-            bent[3 * k + r] = std::isnan(z[k])
-              ? std::numeric_limits<float>::quiet_NaN()
-              : static_cast<float>(rotation[3 * r] * v[0] + rotation[3 * r + 1] * v[1] +
-                  rotation[3 * r + 2] * v[2]);
+            double v[3];
+            bentIn->GetTuple(static_cast<vtkIdType>(k), v);
+            for (int r = 0; r < 3; ++r)
+            {
+              bent[3 * k + r] = static_cast<float>(
+                rotation[3 * r] * v[0] + rotation[3 * r + 1] * v[1] + rotation[3 * r + 2] * v[2]);
+            }
           }
         }
         if (outFloat)
