@@ -135,6 +135,21 @@ inline bool WriteText(const std::string& path, const std::string& text)
   const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
   return std::fclose(f) == 0 && ok;
 }
+/** Samples of an nx-wide grid, row by row, that compress but not to nothing: the column index
+ * plus noise in [0, 2^24 scale) from Numerical Recipes' LCG started at seed. */
+inline std::vector<float> NoisyRamp(int nx, int ny, unsigned seed, float scale)
+{
+  std::vector<float> values(static_cast<size_t>(nx) * static_cast<size_t>(ny));
+  unsigned state = seed;
+  for (size_t k = 0; k < values.size(); ++k)
+  {
+    state = state * 1664525u + 1013904223u;
+    values[k] = static_cast<float>(k % static_cast<size_t>(nx)) +
+      static_cast<float>(state >> 8) * scale;
+  }
+  return values;
+}
+
 /** The whole content of a file ("" when it cannot be read): for byte-for-byte comparisons. */
 inline std::string ReadFileBytes(const std::string& path)
 {

@@ -22,9 +22,11 @@
 #include <cpl_conv.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -204,13 +206,9 @@ vtkSmartPointer<vtkImageData> MakeNoisyImage()
   image->SetSpacing(30.0, 30.0, 1.0);
   vtkNew<vtkFloatArray> z;
   z->SetName("Elevation");
-  z->SetNumberOfTuples(static_cast<vtkIdType>(nx) * ny);
-  unsigned state = 12345u;
-  for (vtkIdType k = 0; k < z->GetNumberOfTuples(); ++k)
-  {
-    state = state * 1664525u + 1013904223u; // Numerical Recipes' LCG
-    z->SetValue(k, static_cast<float>(k % nx) + static_cast<float>(state >> 8) * 1e-6f);
-  }
+  const std::vector<float> values = aptest::NoisyRamp(nx, ny, 12345u, 1e-6f);
+  z->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  std::copy(values.begin(), values.end(), z->GetPointer(0));
   image->GetPointData()->SetScalars(z);
   vtkNew<vtkApertureGeoreference> geo;
   geo->SetCRS("EPSG:32633");

@@ -31,6 +31,7 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -777,13 +778,9 @@ void TestThreadsSameBytes()
   image->SetDimensions(nx, ny, 1);
   vtkNew<vtkFloatArray> noise;
   noise->SetName("Noise");
-  noise->SetNumberOfTuples(static_cast<vtkIdType>(nx) * ny);
-  unsigned state = 2024u;
-  for (vtkIdType k = 0; k < noise->GetNumberOfTuples(); ++k)
-  {
-    state = state * 1664525u + 1013904223u; // Numerical Recipes' LCG
-    noise->SetValue(k, static_cast<float>(k % nx) + static_cast<float>(state >> 8) * 1e-7f);
-  }
+  const std::vector<float> values = aptest::NoisyRamp(nx, ny, 2024u, 1e-7f);
+  noise->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  std::copy(values.begin(), values.end(), noise->GetPointer(0));
   image->GetPointData()->SetScalars(noise);
   for (const char* compression : { "ZIPS", "ZIP", "NONE" })
   {
