@@ -604,7 +604,8 @@ struct ap_horizon {
   pattern *pats;
   size_t npats, cappats;
   int *pat_of;
-  double tmax_near;       /* near-field length (m) for the current sector */
+  int march;              /* the search distance lies within march_columns: the near field
+                           * covers it all and the sweep has nothing to do */
 };
 
 /* Cell sizes of row j. */
@@ -636,6 +637,7 @@ void ap_horizon_params_init(ap_horizon_params *p)
   p->radius_meridian = 6371000.0;
   p->radius_normal = 6371000.0;
   p->near_field = 8;
+  p->march_columns = 64;
 }
 
 ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params *p)
@@ -656,7 +658,7 @@ ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params 
   if (p->directions < 4 || p->directions > 360 || !(p->max_distance > 0.0) ||
       !(p->refraction >= 0.0 && p->refraction < 1.0) || !positive_finite(p->radius_meridian) ||
       !positive_finite(p->radius_normal) || p->near_field < 1 || p->near_field > 64 ||
-      !isfinite(p->azimuth_offset)) {
+      p->march_columns < 0 || p->march_columns > 64 || !isfinite(p->azimuth_offset)) {
     return AP_ERR_INVALID_ARGUMENT;
   }
   if ((!g->dx && !positive_finite(g->dx0)) || (!g->dy && !positive_finite(g->dy0))) {
@@ -953,12 +955,22 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
       hz->cum_len[p + 1] = hz->cum_len[p] + 0.5 * (hz->len_row[a] + hz->len_row[b]);
     }
   }
+  /* Short search distances: march every ray exactly to the distance when it spans at most
+   * march_columns view steps (a step is never shorter than the shortest row's). */
+  {
+    double shortest = INFINITY;
+    for (j = 0; j < hz->ny; ++j) {
+      shortest = fmin(shortest, hz->len_row[j]);
+    }
+    hz->march = isfinite(hz->p.max_distance) &&
+                hz->p.max_distance <= (double)hz->p.march_columns * shortest;
+  }
   /* Near-field patterns. */
   {
-    const double tol = 1e-3 / (double)hz->p.near_field; /* rows of drift over the near field */
+    /* rows of drift allowed over the near field */
+    const double tol = 1e-3 / (double)(hz->march ? hz->p.march_columns : hz->p.near_field);
     const size_t npos = hz->xmajor ? hz->ns : hz->np;
     size_t q;
-    hz->tmax_near = 0.0;
     hz->pat_of = (int *)malloc(npos * sizeof(int));
     if (!hz->pat_of) {
       free_sector(hz);
@@ -973,7 +985,8 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
         m = view_step(hz->cum_m, hz->np, q);
         len = view_step(hz->cum_len, hz->np, q);
       }
-      tmax = fmin(hz->p.max_distance, (double)hz->p.near_field * len);
+      tmax = hz->march ? hz->p.max_distance
+                       : fmin(hz->p.max_distance, (double)hz->p.near_field * len);
       if (q == 0 || fabs(m - hz->pats[hz->npats - 1].m) > tol ||
           fabs(len - hz->pats[hz->npats - 1].len) > 1e-4 * len) {
         if (!build_pattern(hz, m, len, tmax)) {
@@ -1251,6 +1264,34 @@ static void far_point_column(const ap_horizon *hz, const pattern *pt, size_t p, 
   }
 }
 
+/* When the near field covers the whole search (hz->march), it also finishes cells [sa, sb) of
+ * view column p as the sweep would: nodata cells get NaN, and the edge flag says whether the
+ * cell's own ray (pattern pt: m view rows and len metres per column) leaves the grid before
+ * the search limit (the distance, and with curvature sqrt((zmax - z)/c)). */
+static void march_finish(const ap_horizon *hz, const pattern *pt, size_t p, long sa, long sb,
+                         const float *col, float *best, unsigned char *edge)
+{
+  const double L = hz->p.max_distance, c = hz->c, zmax = (double)hz->zmax;
+  const double ahead = (double)(hz->np - 1 - p); /* columns left before the far edge */
+  long s;
+  for (s = sa; s < sb; ++s) {
+    const double zq = col[s];
+    double steps = ahead, reach;
+    if (isnan(zq)) {
+      best[s] = NAN;
+      edge[s] = 0;
+      continue;
+    }
+    if (pt->m > 0.0) {
+      steps = fmin(steps, ((double)hz->ns - 1.0 - (double)s) / pt->m);
+    } else if (pt->m < 0.0) {
+      steps = fmin(steps, (double)s / -pt->m);
+    }
+    reach = steps * pt->len;
+    edge[s] = reach < L && (c <= 0.0 || reach * reach * c < zmax - zq);
+  }
+}
+
 /* The near field of every cell of view columns [c0, c1) into the slope scratch. */
 ap_status ap_horizon_near_field(const ap_horizon *hz, size_t c0, size_t c1)
 {
@@ -1268,7 +1309,7 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t c0, size_t c1)
     /* in row-major views, whether the point at the search distance lies beyond the near field
      * is the same for the whole column; x-major views check each row */
     const int far_point =
-      isfinite(hz->p.max_distance) &&
+      !hz->march && isfinite(hz->p.max_distance) &&
       (hz->xmajor || hz->p.max_distance > (double)hz->p.near_field *
                                              view_step(hz->cum_len, hz->np, p));
     long run, s;
@@ -1290,6 +1331,10 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t c0, size_t c1)
       near_column(hz, &hz->pats[pat], p, run, run_end, col, hz->c, best);
       if (far_point) {
         far_point_column(hz, &hz->pats[pat], p, run, run_end, col, best);
+      }
+      if (hz->march) {
+        march_finish(hz, &hz->pats[pat], p, run, run_end, col, best,
+                     hz->edge + scratch_index(hz, p, 0));
       }
       run = run_end;
     }
@@ -1320,6 +1365,9 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
   }
   if (hz->d < 0) {
     return AP_ERR_INVALID_ARGUMENT;
+  }
+  if (hz->march) {
+    return AP_OK; /* the near field did it all */
   }
   K = hz->p.near_field;
   limited = isfinite(hz->p.max_distance);

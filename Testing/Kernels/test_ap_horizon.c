@@ -472,7 +472,7 @@ static int cmp_double(const void *a, const void *b)
  * force: mean absolute error <= 0.05 deg and 99th percentile <= 0.5 deg (the issue's targets;
  * the sweep samples the piecewise-linear surface along grid lines, the reference bilinear
  * patches, which differ by a fraction of the local relief inside one cell). */
-static void compare_brute_force(const terrain *t, const ap_horizon_params *p, const char *what)
+static double compare_brute_force(const terrain *t, const ap_horizon_params *p, const char *what)
 {
   results r = compute(t, p);
   const int D = p->directions;
@@ -500,6 +500,7 @@ static void compare_brute_force(const terrain *t, const ap_horizon_params *p, co
   AP_CHECK(p99 <= 0.5);
   free(err);
   release(&r);
+  return p99;
 }
 
 static void test_brute_force(void)
@@ -514,8 +515,22 @@ static void test_brute_force(void)
   }
   p.radius_meridian = p.radius_normal = 6371000.0;
   compare_brute_force(&t, &p, "rough, unlimited");
+  /* 900 m is 30 columns: the rays are marched exactly to the distance (march_columns), so the
+   * far field matches the reference (what remains are the cells whose horizon is the surface's
+   * own slope at the node, as in every mode: p99 0.12 deg); the same radius through the hulls,
+   * and 2500 m (83 columns, beyond march_columns), must meet the issue's bounds, and the march
+   * be clearly the more accurate (p99 0.25 deg through the hulls). */
   p.max_distance = 900.0;
-  compare_brute_force(&t, &p, "rough, 900 m radius");
+  {
+    const double march = compare_brute_force(&t, &p, "rough, 900 m radius, marched");
+    double swept;
+    p.march_columns = 0;
+    swept = compare_brute_force(&t, &p, "rough, 900 m radius, swept");
+    p.march_columns = 64;
+    AP_CHECK(march < 0.6 * swept);
+  }
+  p.max_distance = 2500.0;
+  compare_brute_force(&t, &p, "rough, 2500 m radius");
   p.max_distance = INFINITY;
   p.directions = 7 * 4 + 1; /* odd sector counts: azimuths off every grid diagonal */
   compare_brute_force(&t, &p, "rough, 29 sectors");
@@ -550,8 +565,9 @@ static void test_latlon_rows(void)
   drop(&t);
 }
 
-/* Results are bitwise the same however the brackets and rows are split (threads). */
-static void test_split_invariance(void)
+/* Results are bitwise the same however the brackets and rows are split (threads), through the
+ * hulls and with marched rays. */
+static void test_split_invariance_mode(int march_columns)
 {
   terrain t = make(70, 50, 30.0);
   ap_horizon_params p = params(16, 1);
@@ -567,6 +583,7 @@ static void test_split_invariance(void)
   }
   t.z[5 * t.nx + 7] = NAN;
   p.max_distance = 600.0;
+  p.march_columns = march_columns;
   for (run = 0; run < 2; ++run) {
     ap_horizon_grid g = grid_of(&t);
     ap_sky_products o;
@@ -609,6 +626,62 @@ static void test_split_invariance(void)
     for (d = 0; d < 3; ++d) {
       free(a[run][d]);
     }
+  }
+  drop(&t);
+}
+
+static void test_split_invariance(void)
+{
+  test_split_invariance_mode(0);
+  test_split_invariance_mode(64);
+}
+
+/* The edge flag, closed form on a flat grid without curvature in the four axis sectors: a cell
+ * is flagged when it lies within the search distance of an edge, whether the search runs
+ * through the hulls or marches the rays (600 m = 20 columns of 30 m); horizons are 0 where the
+ * ray stays on the grid. (march_columns 20: the distance is exactly at the limit.) */
+static void test_edge_flags(void)
+{
+  terrain t = make(60, 45, 30.0);
+  ap_horizon_params p = params(4, 0);
+  int mode;
+  size_t i, j;
+  for (j = 0; j < t.ny; ++j) {
+    for (i = 0; i < t.nx; ++i) {
+      t.z[j * t.nx + i] = 250.0f;
+    }
+  }
+  p.max_distance = 600.0;
+  for (mode = 0; mode < 2; ++mode) {
+    results r;
+    size_t wrong = 0, wrong_h = 0;
+    p.march_columns = mode ? 20 : 0;
+    r = compute(&t, &p);
+    for (j = 0; j < t.ny; ++j) {
+      for (i = 0; i < t.nx; ++i) {
+        const size_t e1 = i < t.nx - 1 - i ? i : t.nx - 1 - i;
+        const size_t e2 = j < t.ny - 1 - j ? j : t.ny - 1 - j;
+        const size_t nearest = e1 < e2 ? e1 : e2;
+        const int d = (int)(j * t.nx + i);
+        int k;
+        wrong += r.edge[d] != (nearest * 30 < 600);
+        /* north, east, south, west: a ray leaving the grid at once sees nothing (-pi/2); one
+         * from an inner cell stays on the grid and sees the horizontal. (A ray running along
+         * the boundary row or column has no bilinear patch to march through.) */
+        for (k = 0; k < 4; ++k) {
+          const int leaves = k == 0 ? j == t.ny - 1 : k == 1 ? i == t.nx - 1 : k == 2 ? j == 0 : i == 0;
+          const int inner = i > 0 && j > 0 && i + 1 < t.nx && j + 1 < t.ny;
+          if (leaves || inner) {
+            wrong_h += fabs(r.h[(size_t)d * 4 + (size_t)k] - (leaves ? -PI / 2 : 0.0)) > 1e-6;
+          }
+        }
+      }
+    }
+    fprintf(stderr, "edge flags, %s: %zu wrong flags, %zu wrong horizons\n",
+            mode ? "marched" : "swept", wrong, wrong_h);
+    AP_CHECK_EQ_INT((int)wrong, 0);
+    AP_CHECK_EQ_INT((int)wrong_h, 0);
+    release(&r);
   }
   drop(&t);
 }
@@ -656,6 +729,13 @@ static void test_errors(void)
   p.refraction = -0.1;
   AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
   p.refraction = 0.13;
+  p.march_columns = -1;
+  AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+  p.march_columns = 65;
+  AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+  p.march_columns = 0;
+  AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_OK);
+  p.march_columns = 64;
   g.dx0 = 0.0;
   AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
   g.dx0 = 30.0;
@@ -732,6 +812,7 @@ int main(void)
   test_brute_force();
   test_latlon_rows();
   test_split_invariance();
+  test_edge_flags();
   test_nodata_transparent();
   test_errors();
   AP_TEST_MAIN_END();
