@@ -66,7 +66,9 @@ def brute_force_latlon(z, lon0, lat0, cell, i, j, azimuths, k=0.13):
     """Horizon elevation angles (rad) of cell (i, j) of a lat/lon DEM (row 0 south, cell
     centres at lon0 + i cell, lat0 + j cell, degrees) by marching constant-azimuth rays on the
     ellipsoid: steps of 1/16 cell, and geometrically shorter ones near the observer (on a
-    bilinear patch the angle is often largest as the distance tends to 0)."""
+    bilinear patch the angle is often largest as the distance tends to 0); also the points
+    where the ray crosses a grid line (kinks of the surface, often peaks along the ray), the
+    last of them on the DEM's edge, between the steps around them."""
     ny, nx = z.shape
     lat_c = math.radians(lat0 + (ny - 1) / 2 * cell)
     M0, N0 = radii(lat_c)
@@ -91,7 +93,20 @@ def brute_force_latlon(z, lon0, lat0, cell, i, j, azimuths, k=0.13):
         cj = (np.degrees(lats) - lat0) / cell
         inside = (ci >= 0) & (cj >= 0) & (ci <= nx - 1) & (cj <= ny - 1)
         stop = np.argmin(inside) if not inside.all() else len(inside)
-        ci, cj, d = ci[:stop], cj[:stop], dists[:stop]
+        # grid-line crossings between steps idx and idx + 1 (idx < stop: up to the exit)
+        extra = []
+        for q in (ci, cj):
+            idx = np.nonzero(np.floor(q[:-1]) != np.floor(q[1:]))[0]
+            idx = idx[idx < stop]
+            line = np.maximum(np.floor(q[idx]), np.floor(q[idx + 1]))
+            w = (line - q[idx]) / (q[idx + 1] - q[idx])
+            extra.append((idx, w))
+        idx = np.concatenate([e[0] for e in extra])
+        w = np.concatenate([e[1] for e in extra])
+        xi = np.clip(ci[idx] + w * (ci[idx + 1] - ci[idx]), 0, nx - 1)
+        xj = np.clip(cj[idx] + w * (cj[idx + 1] - cj[idx]), 0, ny - 1)
+        ci, cj = np.concatenate([ci[:stop], xi]), np.concatenate([cj[:stop], xj])
+        d = np.concatenate([dists[:stop], dists[idx] + w * (dists[idx + 1] - dists[idx])])
         if len(d) == 0:
             out.append(-math.pi / 2)
             continue
