@@ -75,7 +75,9 @@ public:
   ///@}
 
   ///@{
-  /** Search distance in metres; 0 (default) = unlimited. Negative values are an error. */
+  /** Search distance in metres; 0 (default) = unlimited. Negative values are an error. A
+   *  distance of at most 64 steps of a sector (1.9 km on a 30 m grid) is searched by marching
+   *  every cell's ray exactly (faster there than the hull sweep; ap_horizon.h). */
   vtkSetMacro(MaximumDistance, double);
   vtkGetMacro(MaximumDistance, double);
   ///@}

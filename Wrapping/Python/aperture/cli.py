@@ -414,7 +414,9 @@ def _provenance(args, products):
         "SOURCE_DEM": os.path.abspath(args.dem),
         "ALGORITHM": "convex-hull line sweep (Timonen & Westerholm 2010) of the terrain horizon "
                      "in every azimuth sector, each cell's own ray exact on the bilinear surface "
-                     "for the first %d columns; sector sums of ALGORITHMS.md 2.2" % args.near_field,
+                     "for the first %d columns; in sectors where the search distance spans at "
+                     "most 64 columns, every cell's ray marched exactly to it instead (no hulls); "
+                     "sector sums of ALGORITHMS.md 2.2" % args.near_field,
         "DIRECTIONS": str(args.directions),
         "SECTORS": "sector d centred on true azimuth 360 d / %d degrees, clockwise from north"
                    % args.directions,
