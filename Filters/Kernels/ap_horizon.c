@@ -1091,7 +1091,9 @@ static int push_rec(ap_horizon *hz, const patch_rec *r)
  * recording every patch it crosses up to distance tmax. */
 static int build_pattern(ap_horizon *hz, double m, double len, double tmax)
 {
-  const double a = 1.0 / len, b = m / len;
+  /* a ray that drifts by less than 1e-9 rows over the pattern runs along its row (the axis
+   * sectors: cos(pi/2) is 6e-17, not 0), entering every patch at its lower edge */
+  const double a = 1.0 / len, b = fabs(m) * tmax / len < 1e-9 ? 0.0 : m / len;
   long P = 0, S = b >= 0.0 ? 0 : -1;
   double t1 = 0.0;
   pattern pt;
@@ -1152,6 +1154,35 @@ static int build_pattern(ap_horizon *hz, double m, double len, double tmax)
   return 1;
 }
 
+/* The largest slope from a cell at height zq along its ray over one patch (rec) with corners
+ * z00, z10 (column p, p + 1 at the lower row) and z01, z11 (the upper row): the near field's
+ * body, in single precision and branch-free so that the loop over cells vectorises. */
+AP_INLINE float patch_slope(const patch_rec *rec, float cf, float zq, float z00, float z10,
+                          float z01, float z11)
+{
+  const float d00 = z00 - zq, e = z10 - z00, f = z01 - z00, g = (z11 - z10) - f;
+  const float a1 = d00 + rec->u1 * e + rec->v1 * f + rec->u1v1 * g; /* A1 - zq */
+  const float B1 = rec->wa * e + rec->wb * f + rec->wk * g;
+  const float C = rec->wab * g;
+  const float f2 = (a1 + (B1 + C * rec->dt) * rec->dt) * rec->inv_t2 - cf * rec->t2;
+  /* In absolute distance t the slope is f(t) = alpha/t + B + gamma t with
+   * alpha = A1 - zq - B1 t1 + C t1^2, B = B1 - 2 C t1, gamma = C - c. An interior maximum
+   * needs alpha < 0 and gamma < 0 (f'' = 2 alpha / t^3 < 0); it lies in the segment iff
+   * t1^2 <= alpha/gamma <= t2^2, i.e. gamma t2^2 <= alpha <= gamma t1^2, and there
+   * f(t*) = B - 2 sqrt(alpha gamma): no division. Those two bounds alone imply
+   * gamma <= 0 (t2 > t1) and so alpha <= 0; where one is 0, sqrt gives 0 and B is then
+   * the supremum of f on the segment, so the sign tests are not needed. */
+  const float alpha = a1 - (B1 - C * rec->t1) * rec->t1;
+  const float gamma = C - cf;
+  const int inside =
+    (alpha >= gamma * rec->t2 * rec->t2) & (alpha <= gamma * rec->t1 * rec->t1);
+  const float fi = inside ? (B1 - C * rec->t1x2) - 2.0f * sqrtf(alpha * gamma) : f2;
+  const float f1 = rec->first ? B1 : a1 * rec->inv_t1 - cf * rec->t1;
+  float v = f1 > f2 ? f1 : f2;
+  v = fi > v ? fi : v;
+  return v;
+}
+
 /* Largest near-field slope of cells [sa, sb) of view column p into best[] (max-merged).
  * Compiled twice where the compiler supports it (GCC function multi-versioning): with AVX2
  * (eight cells per instruction) and for the baseline; the CPU picks at run time. Both make the
@@ -1187,29 +1218,18 @@ static void near_column(const ap_horizon *hz, const pattern *pt, size_t p, long 
      * the ray leaves the cell's own node (A1 = zq) and the slope tends to B1. (A patch's start
      * is the previous patch's end, but that one gives NaN when one of its corners is nodata.) */
     for (s = lo; s < hi; ++s) {
-      const float zq = col[s];
-      const float z00 = c0[s], z10 = c1[s], z01 = c0[s + 1], z11 = c1[s + 1];
-      const float d00 = z00 - zq, e = z10 - z00, f = z01 - z00, g = (z11 - z10) - f;
-      const float a1 = d00 + rec->u1 * e + rec->v1 * f + rec->u1v1 * g; /* A1 - zq */
-      const float B1 = rec->wa * e + rec->wb * f + rec->wk * g;
-      const float C = rec->wab * g;
-      const float f2 = (a1 + (B1 + C * rec->dt) * rec->dt) * rec->inv_t2 - cf * rec->t2;
-      /* In absolute distance t the slope is f(t) = alpha/t + B + gamma t with
-       * alpha = A1 - zq - B1 t1 + C t1^2, B = B1 - 2 C t1, gamma = C - c. An interior maximum
-       * needs alpha < 0 and gamma < 0 (f'' = 2 alpha / t^3 < 0); it lies in the segment iff
-       * t1^2 <= alpha/gamma <= t2^2, i.e. gamma t2^2 <= alpha <= gamma t1^2, and there
-       * f(t*) = B - 2 sqrt(alpha gamma): no division. Those two bounds alone imply
-       * gamma <= 0 (t2 > t1) and so alpha <= 0; where one is 0, sqrt gives 0 and B is then
-       * the supremum of f on the segment, so the sign tests are not needed. */
-      const float alpha = a1 - (B1 - C * rec->t1) * rec->t1;
-      const float gamma = C - cf;
-      const int inside =
-        (alpha >= gamma * rec->t2 * rec->t2) & (alpha <= gamma * rec->t1 * rec->t1);
-      const float fi = inside ? (B1 - C * rec->t1x2) - 2.0f * sqrtf(alpha * gamma) : f2;
-      const float f1 = rec->first ? B1 : a1 * rec->inv_t1 - cf * rec->t1;
-      float v = f1 > f2 ? f1 : f2;
-      v = fi > v ? fi : v;
+      const float v = patch_slope(rec, cf, col[s], c0[s], c1[s], c0[s + 1], c1[s + 1]);
       best[s] = v > best[s] ? v : best[s]; /* NaN (nodata corner) never wins */
+    }
+    /* A ray along a row of the view (no lateral shift: every patch entered at its lower
+     * edge) on the last row has no patch above it; the upper row's weights are zero there, so
+     * the row itself stands in for it. */
+    if (rec->wb == 0.0f && rec->v1 == 0.0f) {
+      s = ns - 1 - rec->ds;
+      if (s >= sa && s < sb) {
+        const float v = patch_slope(rec, cf, col[s], c0[s], c1[s], c0[s], c1[s]);
+        best[s] = v > best[s] ? v : best[s];
+      }
     }
   }
 }

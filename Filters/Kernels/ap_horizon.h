@@ -26,9 +26,7 @@
  *  march_columns steps of a sector (64 by default: 1.9 km on a 30 m grid) is instead marched
  *  exactly along every cell's own ray on the bilinear surface, without hulls: cost O(distance)
  *  per cell, below the sweep's up to there, and more accurate (the edge flag is then whether
- *  that ray leaves the grid before the limit). A ray running exactly along the DEM's boundary
- *  row or column crosses no bilinear patch and sees nothing there, in the march as in the near
- *  field.
+ *  that ray leaves the grid before the limit).
  *
  *  Geometry: cell sizes are given per row in metres, so lat/lon DEMs are exact (the lines
  *  follow constant ground azimuth — rhumb lines — and bend in index space as the east-west
