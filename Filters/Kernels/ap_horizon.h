@@ -26,7 +26,11 @@
  *  march_columns steps of a sector (64 by default: 1.9 km on a 30 m grid) is instead marched
  *  exactly along every cell's own ray on the bilinear surface, without hulls: cost O(distance)
  *  per cell, below the sweep's up to there, and more accurate (the edge flag is then whether
- *  that ray leaves the grid before the limit).
+ *  that ray leaves the grid before the limit). Like the near field, the march follows a line
+ *  straight in index space with the direction of the cell's row: on lat/lon grids the rhumb
+ *  line bends away from it as the east-west cell size changes, by about tan(lat) x (latitude
+ *  span) x (columns) / 2 columns at the limit (0.05 of a cell at 60 N over 64 diagonal steps
+ *  of a 3-arc-second grid).
  *
  *  Geometry: cell sizes are given per row in metres, so lat/lon DEMs are exact (the lines
  *  follow constant ground azimuth — rhumb lines — and bend in index space as the east-west
