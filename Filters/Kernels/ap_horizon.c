@@ -1097,10 +1097,10 @@ static int build_pattern(ap_horizon *hz, double m, double len, double tmax)
   long P = 0, S = b >= 0.0 ? 0 : -1;
   double t1 = 0.0;
   pattern pt;
-  pt.m = m;
+  pt.m = b == 0.0 ? 0.0 : m; /* 0 for a ray along its row */
   pt.len = len;
   pt.lp = hz->p.max_distance / len;
-  pt.ls = m * hz->p.max_distance / len;
+  pt.ls = pt.m * hz->p.max_distance / len;
   pt.first = hz->nrecs;
   while (t1 < tmax) {
     const double tp = (double)(P + 1) / a;
