@@ -130,10 +130,16 @@ class TestBake(unittest.TestCase):
         self.assertEqual(r.GetMetadataValue("aperture:directions"), "360")
 
     def test_threads_do_not_matter(self):
+        # 900 m (30 columns) is marched ray by ray, 2000 m (67) swept through the hulls
+        for radius in ("900", "2000"):
+            self.check_threads_do_not_matter(radius)
+
+    def check_threads_do_not_matter(self, radius):
         outs, files, exrs = [], [], []
         for t in (1, 2):
-            out, exr = self.path("t%d.tif" % t), self.path("t%d.exr" % t)
-            status, _, err = run("bake", self.dem, out, "--threads", t, "--radius", "900",
+            out = self.path("t%d_r%s.tif" % (t, radius))
+            exr = self.path("t%d_r%s.exr" % (t, radius))
+            status, _, err = run("bake", self.dem, out, "--threads", t, "--radius", radius,
                                  "--exr", exr)
             self.assertEqual(status, 0, err)
             outs.append(bands(out)[0])

@@ -223,23 +223,30 @@ class TestSkyVisibility(Testing.vtkTest):
             self.assertLess(np.abs(ua - gb).mean(), 0.005, "BentNormal_" + comp)
 
     def testThreadsAndPieces(self):
+        # 600 m on 25 m cells (24 columns) is marched ray by ray; 2000 m (80 columns) is swept
+        self.check_threads_and_piece((90, 110), 600.0, (40, 69, 30, 59), exact=True)
+        self.check_threads_and_piece((250, 250), 2000.0, (100, 129, 100, 129), exact=False)
+
+    def check_threads_and_piece(self, shape, distance, piece_extent, exact):
+        ny, nx = shape
         rng = np.random.default_rng(3)
-        z = (np.cumsum(np.cumsum(rng.normal(size=(90, 110)), 0), 1) * 3.0).astype(np.float32)
+        z = (np.cumsum(np.cumsum(rng.normal(size=shape), 0), 1) * 3.0).astype(np.float32)
         z[40, 50] = np.nan
         image = make_image(z, 400000, 5000000, 25, 25, "EPSG:32633")
         names = ("SkyViewFactor", "BentNormal", "HorizonAngles", "EdgeTruncated")
-        runs = [sky(image, NumberOfThreads=t, MaximumDistance=600.0, ComputeHorizonAngles=True)
+        runs = [sky(image, NumberOfThreads=t, MaximumDistance=distance, ComputeHorizonAngles=True)
                 .GetOutput() for t in (1, 2, 0)]
         for name in names:
             for other in runs[1:]:
                 np.testing.assert_array_equal(array(runs[0], name), array(other, name))
-        self.assertTrue(np.isnan(array(runs[0], "SkyViewFactor")[40 * 110 + 50]))
-        self.assertTrue(np.isfinite(array(runs[0], "SkyViewFactor")[40 * 110 + 49]))
+        self.assertTrue(np.isnan(array(runs[0], "SkyViewFactor")[40 * nx + 50]))
+        self.assertTrue(np.isfinite(array(runs[0], "SkyViewFactor")[40 * nx + 49]))
         # A sub-extent (streaming): the filter reads only the region grown by the search
-        # distance, and gives the whole run's values there up to where the sweep lines fall
-        # (they start from the piece's edge, so far-field samples sit at other lateral
-        # offsets; the exact near field is identical): on this very rough terrain at most
-        # 0.005 in SVF for a cell, 1e-4 on average.
+        # distance, and gives the whole run's values there: exactly where the rays are marched;
+        # through the sweep up to where its lines fall (they start from the piece's edge, so
+        # far-field samples sit at other lateral offsets; the exact near field is identical):
+        # on this very rough terrain at most 0.005 in SVF for a cell, 3e-4 on average.
+        x0, x1, y0, y1 = piece_extent
         f = aperture.vtkApertureSkyVisibility()
         reader_like = aperture.vtkApertureDEMWriter()  # (write the DEM to read it back)
         import tempfile, os
@@ -251,19 +258,23 @@ class TestSkyVisibility(Testing.vtkTest):
             reader = aperture.vtkApertureDEMReader()
             reader.SetFileName(path)
             f.SetInputConnection(reader.GetOutputPort())
-            f.SetMaximumDistance(600.0)
+            f.SetMaximumDistance(distance)
             f.UpdateInformation()
-            f.UpdateExtent((40, 69, 30, 59, 0, 0))
+            f.UpdateExtent((x0, x1, y0, y1, 0, 0))
             piece = f.GetOutput()
             read = reader.GetOutput().GetExtent()
-        self.assertEqual(piece.GetExtent(), (40, 69, 30, 59, 0, 0))
-        halo = math.ceil(600 / 25) + 2
-        self.assertEqual(read, (40 - halo, 69 + halo, 30 - halo, 59 + halo, 0, 0))
-        whole = array(runs[0], "SkyViewFactor").reshape(90, 110)[30:60, 40:70]
-        got = array(piece, "SkyViewFactor").reshape(30, 30)
-        np.testing.assert_array_equal(np.isnan(got), np.isnan(whole))
-        self.assertLess(np.nanmax(np.abs(got - whole)), 5e-3)
-        self.assertLess(np.nanmean(np.abs(got - whole)), 1e-4)
+        self.assertEqual(piece.GetExtent(), (x0, x1, y0, y1, 0, 0))
+        halo = math.ceil(distance / 25) + 2
+        self.assertEqual(read, (x0 - halo, x1 + halo, y0 - halo, y1 + halo, 0, 0))
+        for name in ("SkyViewFactor", "EdgeTruncated"):
+            whole = array(runs[0], name).reshape(ny, nx)[y0:y1 + 1, x0:x1 + 1]
+            got = array(piece, name).reshape(y1 - y0 + 1, x1 - x0 + 1)
+            np.testing.assert_array_equal(np.isnan(got), np.isnan(whole))
+            if exact or name == "EdgeTruncated":
+                np.testing.assert_array_equal(got, whole)
+            else:
+                self.assertLess(np.nanmax(np.abs(got - whole)), 5e-3)
+                self.assertLess(np.nanmean(np.abs(got - whole)), 3e-4)
 
     def testProgressEvents(self):
         # VTK's contract: StartEvent, ProgressEvents rising from 0 to 1, EndEvent.
