@@ -790,7 +790,9 @@ def build_parser():
     p.add_argument("--directions", "-d", type=int, default=32, metavar="D",
                    help="azimuth sectors, 4..360 (default 32)")
     p.add_argument("--radius", type=float, metavar="METRES",
-                   help="search distance in metres (default: unlimited)")
+                   help="search distance in metres (default: unlimited); up to 64 cells "
+                        "(1.9 km on a 30 m grid) every cell's ray is marched exactly, beyond "
+                        "that the horizon sweep takes over")
     p.add_argument("--no-curvature", action="store_true",
                    help="flat Earth (default: curvature with refraction)")
     p.add_argument("--refraction", type=float, default=0.13, metavar="K",
