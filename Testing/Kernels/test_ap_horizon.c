@@ -743,6 +743,17 @@ static void test_nodata_transparent(void)
   AP_CHECK_NEAR(r.h[(2 * t.nx + 0) * 4 + 1], atan(300.0 / 400.0), 1e-6);
   AP_CHECK(isnan(r.svf[2 * t.nx + 10]));
   release(&r);
+  /* the same through the marched rays (45 and 35 columns): the peak 400 m away is seen past
+   * the nodata, and not beyond the search distance */
+  p.max_distance = 450.0;
+  r = compute(&t, &p);
+  AP_CHECK_NEAR(r.h[(2 * t.nx + 0) * 4 + 1], atan(300.0 / 400.0), 1e-6);
+  AP_CHECK(isnan(r.svf[2 * t.nx + 10]));
+  release(&r);
+  p.max_distance = 350.0;
+  r = compute(&t, &p);
+  AP_CHECK_NEAR(r.h[(2 * t.nx + 0) * 4 + 1], 0.0, 1e-6);
+  release(&r);
   drop(&t);
 }
 
