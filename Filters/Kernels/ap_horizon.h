@@ -176,7 +176,8 @@ size_t ap_horizon_column_count(const ap_horizon *hz);
 
 /** The near field (the first K − 1 samples of every cell's ray, exactly on the bilinear
  *  surface) of view columns [c0, c1) of the prepared sector. Every column must be done before
- *  any ap_horizon_sweep of the sector, which reads these results. */
+ *  any ap_horizon_sweep of the sector, which reads these results. In a sector whose search
+ *  distance is within march_columns it is the whole search, edge flags included. */
 ap_status ap_horizon_near_field(const ap_horizon *hz, size_t c0, size_t c1);
 
 /** Brackets per ap_horizon_sweep call that perform best, as ap_horizon_run and the VTK filter
@@ -190,7 +191,8 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t c0, size_t c1);
 size_t ap_horizon_bracket_count(const ap_horizon *hz);
 
 /** Sweep brackets [b0, b1) of the prepared sector after its near field: computes the horizon
- *  and edge flag of every cell between those lines. Allocates and frees its own hull stacks;
+ *  and edge flag of every cell between those lines (nothing to do, AP_OK, in a sector whose
+ *  search distance is within march_columns). Allocates and frees its own hull stacks;
  *  returns AP_ERR_OUT_OF_MEMORY if that fails (the products are then incomplete). */
 ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1);
 
