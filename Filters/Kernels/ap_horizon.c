@@ -1831,7 +1831,10 @@ void ap_horizon_finish(const ap_horizon *hz, size_t j0, size_t j1)
         if (o->diffuse_sky_factor) {
           const double gx = hz->grad[2 * k], gy = hz->grad[2 * k + 1];
           const double inv = 1.0 / sqrt(1.0 + gx * gx + gy * gy);
-          o->diffuse_sky_factor[k] = (float)((-gx * bx - gy * by + bz) * inv / AP_PI);
+          /* in [0, 1] by construction (the visible sky lies above the tangent plane and the
+           * horizontal); clamped against rounding, which on walls of 1e37 m left -1e-26 */
+          const double v = (-gx * bx - gy * by + bz) * inv / AP_PI;
+          o->diffuse_sky_factor[k] = (float)fmin(1.0, fmax(0.0, v));
         }
         if (o->bent_normal) {
           const double len = sqrt(bx * bx + by * by + bz * bz);

@@ -727,6 +727,30 @@ static void test_edge_flags(void)
   drop(&t);
 }
 
+/* Extreme terrain keeps every product in its documented range: cells of +-3e37 m at random
+ * (walls at the float range's end) gave 134 cells a DiffuseSkyFactor near -1e-26 before it was
+ * clamped. */
+static void test_extreme_ranges(void)
+{
+  terrain t = make(30, 30, 30.0);
+  ap_horizon_params p = params(32, 1);
+  results r;
+  size_t k, bad = 0;
+  for (k = 0; k < t.nx * t.ny; ++k) {
+    unsigned h = (unsigned)k * 2654435761u;
+    h ^= h >> 15;
+    t.z[k] = (h & 4u) ? 3e37f : -3e37f;
+  }
+  r = compute(&t, &p);
+  for (k = 0; k < t.nx * t.ny; ++k) {
+    bad += !(r.vd[k] >= 0.0f && r.vd[k] <= 1.0f) || !(r.svf[k] >= 0.0f && r.svf[k] <= 1.0f) ||
+           !(r.A[k] >= 0.0f && r.A[k] <= (float)(2 * PI));
+  }
+  AP_CHECK_EQ_INT((int)bad, 0);
+  release(&r);
+  drop(&t);
+}
+
 /* Nodata never occludes: a NaN wall between the observer and a peak leaves the peak visible. */
 static void test_nodata_transparent(void)
 {
@@ -865,6 +889,7 @@ int main(void)
   test_latlon_rows();
   test_split_invariance();
   test_edge_flags();
+  test_extreme_ranges();
   test_nodata_transparent();
   test_errors();
   AP_TEST_MAIN_END();
