@@ -177,28 +177,27 @@ std::vector<std::string> GeoTIFFCodecs(GDALDriverH driver)
 //------------------------------------------------------------------------------
 bool vtkApertureDEMWriter::CheckCompression()
 {
+  std::string codec;
+  const char* levelOption = nullptr;
+  return this->CheckCompression(codec, levelOption) != nullptr;
+}
+
+//------------------------------------------------------------------------------
+void* vtkApertureDEMWriter::CheckCompression(std::string& codec, const char*& levelOption)
+{
   GDALAllRegister();
   GDALDriverH driver = GDALGetDriverByName("GTiff");
   if (!driver)
   {
     vtkErrorMacro(<< "GDAL has no GeoTIFF driver");
-    return false;
+    return nullptr;
   }
-  std::string codec;
-  const char* levelOption = nullptr;
-  return this->CheckCompression(driver, codec, levelOption);
-}
-
-//------------------------------------------------------------------------------
-bool vtkApertureDEMWriter::CheckCompression(
-  void* driver, std::string& codec, const char*& levelOption)
-{
   codec = this->Compression && *this->Compression ? this->Compression : "NONE";
   for (char& ch : codec)
   {
     ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
   }
-  const std::vector<std::string> codecs = GeoTIFFCodecs(static_cast<GDALDriverH>(driver));
+  const std::vector<std::string> codecs = GeoTIFFCodecs(driver);
   if (std::find(codecs.begin(), codecs.end(), codec) == codecs.end())
   {
     std::string known;
@@ -208,7 +207,7 @@ bool vtkApertureDEMWriter::CheckCompression(
     }
     vtkErrorMacro(<< "unknown GeoTIFF compression '" << (this->Compression ? this->Compression : "")
                   << "' (GDAL offers " << known << ")");
-    return false;
+    return nullptr;
   }
   const CompressionLevelOption* level = nullptr;
   for (const CompressionLevelOption& lo : levelOptions)
@@ -221,10 +220,10 @@ bool vtkApertureDEMWriter::CheckCompression(
     vtkErrorMacro(<< "compression level " << this->CompressionLevel << " is outside "
                   << level->Codec << "'s range " << level->Lowest << "-" << level->Highest
                   << " (-1: GDAL's default)");
-    return false;
+    return nullptr;
   }
   levelOption = level && this->CompressionLevel != -1 ? level->Option : nullptr;
-  return true;
+  return driver;
 }
 
 //------------------------------------------------------------------------------
@@ -329,17 +328,11 @@ void vtkApertureDEMWriter::WriteData()
   }
 
   // 3. Create the file.
-  GDALAllRegister();
   vtkApertureGDALErrorTrap trap;
-  GDALDriverH driver = GDALGetDriverByName("GTiff");
-  if (!driver)
-  {
-    vtkErrorMacro(<< "GDAL has no GeoTIFF driver");
-    return;
-  }
   std::string compression;
   const char* levelOption = nullptr;
-  if (!this->CheckCompression(driver, compression, levelOption))
+  GDALDriverH driver = static_cast<GDALDriverH>(this->CheckCompression(compression, levelOption));
+  if (!driver)
   {
     return; // (reported)
   }

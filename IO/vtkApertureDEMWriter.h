@@ -102,9 +102,10 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   void WriteData() override;
 
-  /** CheckCompression with GDAL's GTiff driver (a GDALDriverH); on success the codec in upper
-   * case and the creation option of its level (nullptr: none to set). */
-  bool CheckCompression(void* driver, std::string& codec, const char*& levelOption);
+  /** CheckCompression, returning GDAL's GTiff driver (a GDALDriverH; nullptr on failure,
+   * reported) with the codec in upper case and the creation option of its level (nullptr: none
+   * to set). */
+  void* CheckCompression(std::string& codec, const char*& levelOption);
 
   char* FileName;
   char* Compression;
