@@ -32,6 +32,19 @@ vtkStandardNewMacro(vtkApertureSkyVisibility);
 
 namespace
 {
+// Name and size an output array; std::bad_alloc when VTK could not allocate it (VTK reports
+// that too; RequestData then says what the whole run needs).
+void Allocate(vtkDataArray* a, const char* name, int components, vtkIdType tuples)
+{
+  a->SetName(name);
+  a->SetNumberOfComponents(components);
+  a->SetNumberOfTuples(tuples);
+  if (a->GetNumberOfTuples() != tuples)
+  {
+    throw std::bad_alloc();
+  }
+}
+
 // Copy the block `sub` of an array laid out on extent `ext` (nc components) into `out`.
 template <typename T>
 void CopyBlock(const T* in, const int ext[6], const int sub[6], int nc, T* out)
@@ -339,13 +352,7 @@ int vtkApertureSkyVisibility::Execute(
     {
       pr.Full = vtkSmartPointer<vtkFloatArray>::New();
     }
-    pr.Full->SetName(pr.Name);
-    pr.Full->SetNumberOfComponents(pr.Components);
-    pr.Full->SetNumberOfTuples(static_cast<vtkIdType>(n));
-    if (pr.Full->GetNumberOfTuples() != static_cast<vtkIdType>(n))
-    {
-      throw std::bad_alloc(); // (VTK reported it too; RequestData says what was asked for)
-    }
+    Allocate(pr.Full, pr.Name, pr.Components, static_cast<vtkIdType>(n));
   }
   auto fptr = [&](int k) {
     return products[k].Full ? static_cast<vtkFloatArray*>(products[k].Full.Get())->GetPointer(0)
@@ -503,15 +510,8 @@ int vtkApertureSkyVisibility::Execute(
     if (!whole)
     {
       arr.TakeReference(pr.Full->NewInstance());
-      arr->SetName(pr.Name);
-      arr->SetNumberOfComponents(pr.Components);
-      const vtkIdType outCells =
-        static_cast<vtkIdType>(outExt[1] - outExt[0] + 1) * (outExt[3] - outExt[2] + 1);
-      arr->SetNumberOfTuples(outCells);
-      if (arr->GetNumberOfTuples() != outCells)
-      {
-        throw std::bad_alloc();
-      }
+      Allocate(arr, pr.Name, pr.Components,
+        static_cast<vtkIdType>(outExt[1] - outExt[0] + 1) * (outExt[3] - outExt[2] + 1));
       if (auto* f = vtkFloatArray::SafeDownCast(arr))
       {
         CopyBlock(static_cast<vtkFloatArray*>(pr.Full.Get())->GetPointer(0), inExt, outExt,
