@@ -595,7 +595,8 @@ struct ap_horizon {
   double *cum_m, *cum_len; /* row-major views: prefix sums over p of the step shift / length */
   const float **colp;     /* view column p as a contiguous array of ns elevations */
   int parallel;           /* all lines shift alike at each p (no per-row bending) */
-  long kmin;              /* line k = kmin + index starts at s = k on p = np - 1 */
+  long kmin;              /* line k = kmin + index starts at s = k + phase on p = np - 1 */
+  double phase;           /* in [0, 1): puts the lines on the lattice of the larger DEM */
   size_t nlines;
   /* near-field patch patterns (see build_pattern): a pool of records, the patterns, and which
    * pattern serves each view position (indexed by p for row-major views, s for x-major) */
@@ -638,6 +639,8 @@ void ap_horizon_params_init(ap_horizon_params *p)
   p->radius_normal = 6371000.0;
   p->near_field = 8;
   p->march_columns = 64;
+  p->origin_col = 0;
+  p->origin_row = 0;
 }
 
 ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params *p)
@@ -658,7 +661,8 @@ ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params 
   if (p->directions < 4 || p->directions > 360 || !(p->max_distance > 0.0) ||
       !(p->refraction >= 0.0 && p->refraction < 1.0) || !positive_finite(p->radius_meridian) ||
       !positive_finite(p->radius_normal) || p->near_field < 1 || p->near_field > 64 ||
-      p->march_columns < 0 || p->march_columns > 64 || !isfinite(p->azimuth_offset)) {
+      p->march_columns < 0 || p->march_columns > 64 || !isfinite(p->azimuth_offset) ||
+      labs(p->origin_col) > 1000000000L || labs(p->origin_row) > 1000000000L) {
     return AP_ERR_INVALID_ARGUMENT;
   }
   if ((!g->dx && !positive_finite(g->dx0)) || (!g->dy && !positive_finite(g->dy0))) {
@@ -1007,6 +1011,22 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
     const long kmax = (long)ceil((double)(hz->ns - 1) + hi) + 2;
     hz->kmin = kmin;
     hz->nlines = (size_t)(kmax - kmin + 1);
+  }
+  /* The larger DEM's lines (p.origin_col, p.origin_row) pass through whole s at its view
+   * column of grid index 0 and, as s grows by m per view step (p grows towards the
+   * occluders), lie at s = integer + sign m q on the column of grid index q (sign -1 for
+   * flipped views). On this grid's last view column, grid index q_last, offset by the
+   * origin, that is this grid's s = k + phase. A phase below 1 keeps the margin of the
+   * extra lines above. With per-row cell sizes m is the centre row's: approximate. */
+  {
+    const long q0 = hz->xmajor ? hz->p.origin_col : hz->p.origin_row;
+    const double m = hz->m_row[hz->ny / 2];
+    const double span = (double)((long)prim_index(hz, hz->np - 1) + q0);
+    const double t = (hz->flip ? -m : m) * span;
+    hz->phase = t - floor(t);
+    if (!(hz->phase < 1.0)) {
+      hz->phase = 0.0; /* (t - floor(t) rounds up to 1 for t just below a whole number) */
+    }
   }
   return AP_OK;
 }
@@ -1378,7 +1398,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
   size_t np, ns, nl, l, pp;
   line_state *lines = NULL;
   sample *ring = NULL; /* per line, K pending samples (u NaN: none) */
-  double shift, xc, k0, smax;
+  double shift, xc, k0, phase, smax;
   ap_status st = AP_OK;
   if (!hz) {
     return AP_ERR_NULL_POINTER;
@@ -1421,7 +1441,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
   }
   for (l = 0; l < nl; ++l) {
     int r;
-    lines[l].s = (double)(hz->kmin + (long)(b0 + l));
+    lines[l].s = (double)(hz->kmin + (long)(b0 + l)) + hz->phase;
     /* Distances are measured from the middle of the line so that c x^2 stays modest. */
     lines[l].x = 0.5 * (double)(np - 1) * hz->len_row[hz->ny / 2];
     lines[l].xend = NAN;
@@ -1432,10 +1452,12 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
     }
   }
 
-  /* Parallel lines: line l sits at s = k0 + l - shift with shift and distance xc shared. */
+  /* Parallel lines: line l sits at s = (k0 + l + phase) - shift with shift and distance xc
+   * shared (k0 + l is the line's whole number, so its position does not depend on b0). */
   shift = 0.0;
   xc = lines[0].x;
   k0 = (double)(hz->kmin + (long)b0);
+  phase = hz->phase;
 
   for (pp = np; pp-- > 0;) {
     const size_t p = pp;
@@ -1447,7 +1469,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
      * so fetch a few columns ahead. */
     if (p >= AP_PREFETCH_COLUMNS) {
       const size_t pf = p - AP_PREFETCH_COLUMNS;
-      const double s_first = hz->parallel ? k0 - shift : lines[0].s;
+      const double s_first = hz->parallel ? k0 + phase - shift : lines[0].s;
       /* the band's first and last cells, kept inside the column (a band can lie wholly
        * beside the grid at this column, and a pointer past the column is not to be formed) */
       const size_t sa =
@@ -1473,14 +1495,16 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
           xc -= hz->cum_len[p + 1] - hz->cum_len[p];
         }
       }
-      /* line l is at s = k0 + l - shift, inside for 0 <= s <= ns - 1 */
+      /* line l is at s = k0 + l + phase - shift, inside for 0 <= s <= ns - 1 */
       for (l = 0; l < nl; ++l) {
-        lines[l].s = k0 + (double)(long)l - shift; /* (long): a one-instruction conversion */
+        /* ((long): a one-instruction conversion) */
+        lines[l].s = (k0 + (double)(long)l + phase) - shift;
         lines[l].x = xc;
         lines[l].avail = isnan(lines[l].xend) ? 0.0 : lines[l].xend - xc;
       }
       {
-        const double lo = ceil(shift - k0), hi = floor((double)(ns - 1) + shift - k0);
+        const double lo = ceil(shift - k0 - phase);
+        const double hi = floor((double)(ns - 1) + shift - k0 - phase);
         const size_t la = lo > 0.0 ? (size_t)lo : 0;
         const size_t lb = hi < 0.0 ? 0 : (hi + 1.0 < (double)nl ? (size_t)hi + 1 : nl);
         for (l = la; l < lb; ++l) {

@@ -123,6 +123,14 @@ typedef struct ap_horizon_params {
                                exactly to max_distance and the hulls are skipped: exact on
                                the bilinear surface, and 2-4x faster than the sweep for such
                                short distances; 0..64, 0 = always sweep (default 64) */
+  long origin_col;        /**< the grid is a piece of a larger DEM whose cell (origin_col,
+                               origin_row) is the grid's cell (0, 0), |values| <= 10^9; the
+                               sweep's lines lie on that DEM's lattice of lines, so a piece
+                               cut with a margin of max_distance around a region gets the
+                               larger DEM's results there (the same values with constant
+                               cell sizes; with per-row sizes the bending lines still start
+                               from the piece's edge: close, not equal). Default 0, 0 */
+  long origin_row;
 } ap_horizon_params;
 
 /** Output arrays, caller-owned, nx * ny cells in grid order (cell (i, j) at j * nx + i);
