@@ -267,12 +267,38 @@ int vtkApertureSkyVisibility::Execute(
   {
     z[k] = static_cast<float>(elevation->GetComponent(static_cast<vtkIdType>(k), 0));
   }
-  std::vector<double> dx(static_cast<size_t>(ny)), dy(static_cast<size_t>(ny));
-  double centre[2], ellipsoid[2];
-  if (!geo->GetRowCellSizesMetres(dx.data(), dy.data()) || !geo->GetCentreLonLat(centre) ||
-    !geo->GetEllipsoid(ellipsoid))
+  // What depends on the DEM as a whole (its centre's cell size, curvature radii and meridian
+  // convergence, and the lattice of the sweep's lines) comes from the whole extent, so that a
+  // streamed piece gets the whole run's values (the piece starts at its column pieceI, row pieceJ).
+  int wholeExt[6];
+  std::copy(inExt, inExt + 6, wholeExt);
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
   {
-    vtkErrorMacro(<< "no metric cell size: " << geo->GetErrorMessage());
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExt);
+    if (wholeExt[0] > inExt[0] || wholeExt[1] < inExt[1] || wholeExt[2] > inExt[2] ||
+      wholeExt[3] < inExt[3])
+    {
+      std::copy(inExt, inExt + 6, wholeExt); // (not a sub-extent: use the data's own)
+    }
+  }
+  const int nyWhole = wholeExt[3] - wholeExt[2] + 1;
+  const int pieceI = inExt[0] - wholeExt[0], pieceJ = inExt[2] - wholeExt[2];
+  vtkNew<vtkApertureGeoreference> geoWhole;
+  {
+    double spacing[3], origin[3];
+    input->GetSpacing(spacing);
+    input->GetOrigin(origin);
+    geoWhole->SetCRS(geo->GetCRS());
+    geoWhole->SetGrid(origin[0] + wholeExt[0] * spacing[0], origin[1] + wholeExt[2] * spacing[1],
+      spacing[0], spacing[1], wholeExt[1] - wholeExt[0] + 1, nyWhole);
+  }
+  std::vector<double> dx(static_cast<size_t>(nyWhole)), dy(static_cast<size_t>(nyWhole));
+  double centre[2], ellipsoid[2];
+  if (!geoWhole->GetRowCellSizesMetres(dx.data(), dy.data()) ||
+    !geoWhole->GetCentreLonLat(centre) || !geoWhole->GetEllipsoid(ellipsoid))
+  {
+    vtkErrorMacro(<< "no metric cell size: " << geoWhole->GetErrorMessage());
     return 0;
   }
   const bool geographic = geo->IsGeographic();
@@ -280,10 +306,10 @@ int vtkApertureSkyVisibility::Execute(
   grid.z = ap_grid_view_make(z.data(), static_cast<size_t>(nx), static_cast<size_t>(ny));
   // Lat/lon grids get their cell size row by row; projected grids are metric to within the
   // projection's scale factor, taken at the centre.
-  grid.dx = geographic ? dx.data() : nullptr;
-  grid.dy = geographic ? dy.data() : nullptr;
-  grid.dx0 = dx[static_cast<size_t>(ny) / 2];
-  grid.dy0 = dy[static_cast<size_t>(ny) / 2];
+  grid.dx = geographic ? dx.data() + pieceJ : nullptr;
+  grid.dy = geographic ? dy.data() + pieceJ : nullptr;
+  grid.dx0 = dx[static_cast<size_t>(nyWhole) / 2];
+  grid.dy0 = dy[static_cast<size_t>(nyWhole) / 2];
 
   ap_horizon_params params;
   ap_horizon_params_init(&params);
@@ -293,6 +319,8 @@ int vtkApertureSkyVisibility::Execute(
   params.curvature = this->EarthCurvature ? 1 : 0;
   params.refraction = this->RefractionCoefficient;
   params.near_field = this->NearField;
+  params.origin_col = pieceI;
+  params.origin_row = pieceJ;
   {
     // Radii of curvature of the ellipsoid at the DEM centre.
     const double a = ellipsoid[0], f = ellipsoid[1], e2 = f * (2 - f);
@@ -300,10 +328,11 @@ int vtkApertureSkyVisibility::Execute(
     params.radius_normal = a / std::sqrt(w2);
     params.radius_meridian = a * (1 - e2) / (w2 * std::sqrt(w2));
   }
-  const double gammaCentre = geographic ? 0.0 : geo->ComputeMeridianConvergence(centre[0], centre[1]);
+  const double gammaCentre =
+    geographic ? 0.0 : geoWhole->ComputeMeridianConvergence(centre[0], centre[1]);
   if (std::isnan(gammaCentre))
   {
-    vtkErrorMacro(<< "meridian convergence: " << geo->GetErrorMessage());
+    vtkErrorMacro(<< "meridian convergence: " << geoWhole->GetErrorMessage());
     return 0;
   }
   params.azimuth_offset = gammaCentre * M_PI / 180.0;
@@ -438,10 +467,12 @@ int vtkApertureSkyVisibility::Execute(
   }
 
   // 5. Bent normals into each cell's true East-North-Up: the sweep ran in the grid frame;
-  //    the meridian convergence γ (from a coarse lattice, bilinear between) rotates them.
+  //    the meridian convergence γ (from a coarse lattice over the whole extent, bilinear
+  //    between) rotates them.
   if (out.bent_normal && !geographic)
   {
-    const int lx = std::min(nx, 33), ly = std::min(ny, 33);
+    const int nxWhole = wholeExt[1] - wholeExt[0] + 1;
+    const int lx = std::min(nxWhole, 33), ly = std::min(nyWhole, 33);
     std::vector<double> gamma(static_cast<size_t>(lx * ly));
     double origin[3], spacing[3];
     input->GetOrigin(origin);
@@ -450,8 +481,8 @@ int vtkApertureSkyVisibility::Execute(
     {
       for (int a = 0; a < lx; ++a)
       {
-        const double i = inExt[0] + (nx - 1) * (lx > 1 ? a / (lx - 1.0) : 0.0);
-        const double j = inExt[2] + (ny - 1) * (ly > 1 ? b / (ly - 1.0) : 0.0);
+        const double i = wholeExt[0] + (nxWhole - 1) * (lx > 1 ? a / (lx - 1.0) : 0.0);
+        const double j = wholeExt[2] + (nyWhole - 1) * (ly > 1 ? b / (ly - 1.0) : 0.0);
         double ll[2];
         double g = gammaCentre;
         if (geo->CRSToLonLat(origin[0] + i * spacing[0], origin[1] + j * spacing[1], ll))
@@ -465,12 +496,12 @@ int vtkApertureSkyVisibility::Execute(
     vtkSMPTools::For(0, ny, 64, [&](vtkIdType j0, vtkIdType j1) {
       for (vtkIdType j = j0; j < j1; ++j)
       {
-        const double fb = ly > 1 ? j * (ly - 1.0) / (ny - 1.0) : 0.0;
+        const double fb = ly > 1 ? (j + pieceJ) * (ly - 1.0) / (nyWhole - 1.0) : 0.0;
         const int b0 = std::min(static_cast<int>(fb), ly - 1), b1 = std::min(b0 + 1, ly - 1);
         const double tb = fb - b0;
         for (int i = 0; i < nx; ++i)
         {
-          const double fa = lx > 1 ? i * (lx - 1.0) / (nx - 1.0) : 0.0;
+          const double fa = lx > 1 ? (i + pieceI) * (lx - 1.0) / (nxWhole - 1.0) : 0.0;
           const int a0 = std::min(static_cast<int>(fa), lx - 1), a1 = std::min(a0 + 1, lx - 1);
           const double ta = fa - a0;
           const double g = (1 - tb) * ((1 - ta) * gamma[b0 * lx + a0] + ta * gamma[b0 * lx + a1]) +
