@@ -43,11 +43,10 @@
  * vtkApertureDEMReader it is). Inside the region the results are the whole-DEM run's: what
  * depends on the DEM as a whole (its centre's cell size, curvature radii and meridian
  * convergence, the lattice of the sweep's lines) is taken from the whole extent, so on
- * projected DEMs a piece is bit-identical to the whole run. On lat/lon DEMs the sweep's lines
- * bend with the cell size and still start from the piece's edge, and the marched rays'
- * patterns are chosen from the piece's rows: single cells may differ by up to about 1e-3 in
- * SkyViewFactor through the sweep and 2e-5 when marched (means 5e-6 and 3e-6 on a rough
- * test DEM at 45 N).
+ * projected DEMs a piece is bit-identical to the whole run, and on lat/lon DEMs too where
+ * the rays are marched (a distance of at most 64 cells). Through the sweep, on lat/lon DEMs
+ * the lines bend with the cell size and still start from the piece's edge: single cells may
+ * differ by up to about 1e-3 in SkyViewFactor (mean 2e-6 on a rough test DEM at 45 N).
  *
  * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, no CRS
  * or no metric cell size, every cell nodata, NumberOfDirections outside 4..360, a negative

@@ -969,11 +969,17 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
     hz->march = isfinite(hz->p.max_distance) &&
                 hz->p.max_distance <= (double)hz->p.march_columns * shortest;
   }
-  /* Near-field patterns. */
+  /* Near-field patterns. With constant cell sizes all positions share one pattern of the
+   * exact step. With per-row sizes a position takes the pattern of its step rounded to a
+   * lattice, tol in m and 1e-4 in log(len): a function of that position's own rows, so a piece
+   * of a DEM (p.origin_*) uses the whole DEM's patterns, each within tol / 2 rows of drift
+   * over the near field and 5e-5 of length of the exact step. */
   {
     /* rows of drift allowed over the near field */
     const double tol = 1e-3 / (double)(hz->march ? hz->p.march_columns : hz->p.near_field);
     const size_t npos = hz->xmajor ? hz->ns : hz->np;
+    const int per_row = hz->g.dx != NULL || hz->g.dy != NULL;
+    double key_m = 0.0, key_len = 0.0;
     size_t q;
     hz->pat_of = (int *)malloc(npos * sizeof(int));
     if (!hz->pat_of) {
@@ -981,7 +987,8 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
       return AP_ERR_OUT_OF_MEMORY;
     }
     for (q = 0; q < npos; ++q) {
-      double m, len, tmax;
+      double m, len;
+      int fresh = q == 0;
       if (hz->xmajor) {
         m = hz->m_row[q];
         len = hz->len_row[q];
@@ -989,10 +996,17 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
         m = view_step(hz->cum_m, hz->np, q);
         len = view_step(hz->cum_len, hz->np, q);
       }
-      tmax = hz->march ? hz->p.max_distance
-                       : fmin(hz->p.max_distance, (double)hz->p.near_field * len);
-      if (q == 0 || fabs(m - hz->pats[hz->npats - 1].m) > tol ||
-          fabs(len - hz->pats[hz->npats - 1].len) > 1e-4 * len) {
+      if (per_row) {
+        const double km = floor(m / tol + 0.5), kl = floor(log(len) / 1e-4 + 0.5);
+        fresh = fresh || km != key_m || kl != key_len;
+        key_m = km;
+        key_len = kl;
+        m = km * tol;
+        len = exp(kl * 1e-4);
+      }
+      if (fresh) {
+        const double tmax = hz->march ? hz->p.max_distance
+                                      : fmin(hz->p.max_distance, (double)hz->p.near_field * len);
         if (!build_pattern(hz, m, len, tmax)) {
           free_sector(hz);
           return AP_ERR_OUT_OF_MEMORY;

@@ -128,8 +128,9 @@ typedef struct ap_horizon_params {
                                sweep's lines lie on that DEM's lattice of lines, so a piece
                                cut with a margin of max_distance around a region gets the
                                larger DEM's results there (the same values with constant
-                               cell sizes; with per-row sizes the bending lines still start
-                               from the piece's edge: close, not equal). Default 0, 0 */
+                               cell sizes, and with per-row sizes where rays are marched;
+                               swept with per-row sizes, the bending lines still start from
+                               the piece's edge: close, not equal). Default 0, 0 */
   long origin_row;
 } ap_horizon_params;
 

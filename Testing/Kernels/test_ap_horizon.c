@@ -45,6 +45,21 @@ static void drop(terrain *t)
   free(t->dy);
 }
 
+/* Per-row cell sizes of a lat/lon grid on a sphere of radius R: rows from lat0 (radians)
+ * northwards, dlat by dlon radians. */
+static void latlon_rows(terrain *t, double R, double lat0, double dlat, double dlon)
+{
+  size_t j;
+  t->dx = (double *)malloc(t->ny * sizeof(double));
+  t->dy = (double *)malloc(t->ny * sizeof(double));
+  for (j = 0; j < t->ny; ++j) {
+    t->dx[j] = R * cos(lat0 + (double)j * dlat) * dlon;
+    t->dy[j] = R * dlat;
+  }
+  t->dx0 = t->dx[0];
+  t->dy0 = t->dy[0];
+}
+
 static ap_horizon_grid grid_of(const terrain *t)
 {
   ap_horizon_grid g;
@@ -585,12 +600,9 @@ static void test_latlon_rows(void)
   ap_horizon_params p = params(32, 1);
   const double R = 6371000.0, dlat = 0.2 * DEG, dlon = 0.3 * DEG;
   size_t i, j;
-  t.dx = (double *)malloc(t.ny * sizeof(double));
-  t.dy = (double *)malloc(t.ny * sizeof(double));
+  latlon_rows(&t, R, 40 * DEG, dlat, dlon);
   for (j = 0; j < t.ny; ++j) {
     const double lat = 40 * DEG + (double)j * dlat;
-    t.dx[j] = R * cos(lat) * dlon;
-    t.dy[j] = R * dlat;
     for (i = 0; i < t.nx; ++i) {
       /* terrain on the sphere: heights from ground coordinates (km-scale relief) */
       const double east = (double)i * dlon * R * cos(lat), north = (double)j * dlat * R;
@@ -598,8 +610,6 @@ static void test_latlon_rows(void)
                                   1500 * sin(east / 23000 + north / 31000));
     }
   }
-  t.dx0 = t.dx[0];
-  t.dy0 = t.dy[0];
   p.radius_meridian = p.radius_normal = R;
   compare_brute_force(&t, &p, "lat/lon 40-60 N");
   /* 8 to 9 columns: marched along straight index-space lines, which the rhumb lines of these
@@ -856,6 +866,12 @@ static double piece_difference(const terrain *whole, const results *w, const ap_
   for (j = 0; j < ny; ++j) {
     memcpy(t.z + j * nx, whole->z + (j + j0) * whole->nx + i0, nx * sizeof(float));
   }
+  if (whole->dx) {
+    t.dx = (double *)malloc(ny * sizeof(double));
+    t.dy = (double *)malloc(ny * sizeof(double));
+    memcpy(t.dx, whole->dx + j0, ny * sizeof(double));
+    memcpy(t.dy, whole->dy + j0, ny * sizeof(double));
+  }
   q.origin_col = with_origin ? (long)i0 : 0;
   q.origin_row = with_origin ? (long)j0 : 0;
   r = compute(&t, &q);
@@ -907,6 +923,36 @@ static void test_pieces(void)
     release(&w);
   }
   drop(&t);
+  /* Per-row cell sizes (0.002 x 0.003 degree rows from 50 N), 5 km (marched, 23 to 26
+   * columns): each row's ray pattern depends on its own sizes only, so the piece's rays are
+   * the whole DEM's. */
+  {
+    terrain u = make(200, 180, 0.0);
+    const double R = 6371000.0, dlat = 0.002 * DEG, dlon = 0.003 * DEG;
+    size_t piece[4] = { 80, 99, 70, 89 };
+    size_t mi, mj;
+    results w;
+    double aligned;
+    latlon_rows(&u, R, 50 * DEG, dlat, dlon);
+    for (j = 0; j < u.ny; ++j) {
+      for (i = 0; i < u.nx; ++i) {
+        u.z[j * u.nx + i] = (float)rough((double)i * 214.0, (double)j * 222.0);
+      }
+    }
+    p = params(32, 1);
+    p.max_distance = 5000.0;
+    w = compute(&u, &p);
+    mi = (size_t)ceil(5000.0 / u.dx[u.ny - 1]) + 3;
+    mj = (size_t)ceil(5000.0 / u.dy[0]) + 3;
+    aligned = piece_difference(&u, &w, &p, piece[0] - mi, piece[2] - mj,
+                               piece[1] - piece[0] + 1 + 2 * mi, piece[3] - piece[2] + 1 + 2 * mj,
+                               piece, 1);
+    printf("piece of a %zu x %zu lat/lon-like DEM, marched: largest difference %.3g\n", u.nx,
+           u.ny, aligned);
+    AP_CHECK(aligned == 0.0);
+    release(&w);
+    drop(&u);
+  }
 }
 
 /* Relative error of ap_atanf at x > 0; infinite for a NaN result (fmax would drop a NaN). */
