@@ -415,7 +415,11 @@ int vtkApertureSkyVisibility::Execute(
     }
   };
   bool aborted = false;
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ this->NumberOfThreads }, [&]() {
+  // More threads than the backend has cores only make TBB print a warning (and be ignored).
+  const int threads = this->NumberOfThreads > 0
+    ? std::min(this->NumberOfThreads, vtkSMPTools::GetEstimatedNumberOfThreads())
+    : 0;
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads }, [&]() {
     for (int d = 0; d < D && failure == AP_OK; ++d)
     {
       ap_status ps = ap_horizon_prepare(hz, d);

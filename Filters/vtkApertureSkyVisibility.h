@@ -103,7 +103,8 @@ public:
   ///@}
 
   ///@{
-  /** Threads; 0 (default) = as many as vtkSMPTools offers. Results do not depend on it. */
+  /** Threads; 0 (default) = as many as vtkSMPTools offers, which also caps larger values.
+   *  Results do not depend on it. */
   vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfThreads, int);
   ///@}

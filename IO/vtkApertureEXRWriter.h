@@ -149,7 +149,8 @@ public:
 
   ///@{
   /** Threads converting and compressing chunks of scanlines (through vtkSMPTools): 0 (default)
-   *  = all cores, 1 = on the writing thread alone. The file's bytes do not depend on it. */
+   *  = all cores (which also cap larger values), 1 = on the writing thread alone. The file's
+   *  bytes do not depend on it. */
   vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
