@@ -60,6 +60,15 @@ void CopyBlock(const T* in, const int ext[6], const int sub[6], int nc, T* out)
   }
 }
 
+// Describe the grid of the whole extent `whole` of an image with this origin and spacing
+// (RequestUpdateExtent sizes the halo on it, RequestData takes the DEM-wide values from it).
+void SetWholeGrid(
+  vtkApertureGeoreference* geo, const double origin[3], const double spacing[3], const int whole[6])
+{
+  geo->SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1], spacing[0],
+    spacing[1], whole[1] - whole[0] + 1, whole[3] - whole[2] + 1);
+}
+
 // Halo (in cells along i and j) that a search distance needs, from the smallest metric
 // cell sizes of the grid; -1 when it cannot be known.
 bool HaloCells(vtkApertureGeoreference* geo, double distance, int halo[2])
@@ -135,8 +144,7 @@ int vtkApertureSkyVisibility::RequestUpdateExtent(
     int halo[2];
     if (geo->SetCRS(crs))
     {
-      geo->SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],
-        spacing[0], spacing[1], whole[1] - whole[0] + 1, whole[3] - whole[2] + 1);
+      SetWholeGrid(geo, origin, spacing, whole);
       if (HaloCells(geo, this->MaximumDistance, halo))
       {
         in[0] = std::max(whole[0], ext[0] - halo[0]);
@@ -284,21 +292,19 @@ int vtkApertureSkyVisibility::Execute(
   }
   const int nyWhole = wholeExt[3] - wholeExt[2] + 1;
   const int pieceI = inExt[0] - wholeExt[0], pieceJ = inExt[2] - wholeExt[2];
-  vtkNew<vtkApertureGeoreference> geoWhole;
   {
+    // (from here on geo describes the whole grid; AttachToImage below uses only its CRS)
     double spacing[3], origin[3];
     input->GetSpacing(spacing);
     input->GetOrigin(origin);
-    geoWhole->SetCRS(geo->GetCRS());
-    geoWhole->SetGrid(origin[0] + wholeExt[0] * spacing[0], origin[1] + wholeExt[2] * spacing[1],
-      spacing[0], spacing[1], wholeExt[1] - wholeExt[0] + 1, nyWhole);
+    SetWholeGrid(geo, origin, spacing, wholeExt);
   }
   std::vector<double> dx(static_cast<size_t>(nyWhole)), dy(static_cast<size_t>(nyWhole));
   double centre[2], ellipsoid[2];
-  if (!geoWhole->GetRowCellSizesMetres(dx.data(), dy.data()) ||
-    !geoWhole->GetCentreLonLat(centre) || !geoWhole->GetEllipsoid(ellipsoid))
+  if (!geo->GetRowCellSizesMetres(dx.data(), dy.data()) || !geo->GetCentreLonLat(centre) ||
+    !geo->GetEllipsoid(ellipsoid))
   {
-    vtkErrorMacro(<< "no metric cell size: " << geoWhole->GetErrorMessage());
+    vtkErrorMacro(<< "no metric cell size: " << geo->GetErrorMessage());
     return 0;
   }
   const bool geographic = geo->IsGeographic();
@@ -329,10 +335,10 @@ int vtkApertureSkyVisibility::Execute(
     params.radius_meridian = a * (1 - e2) / (w2 * std::sqrt(w2));
   }
   const double gammaCentre =
-    geographic ? 0.0 : geoWhole->ComputeMeridianConvergence(centre[0], centre[1]);
+    geographic ? 0.0 : geo->ComputeMeridianConvergence(centre[0], centre[1]);
   if (std::isnan(gammaCentre))
   {
-    vtkErrorMacro(<< "meridian convergence: " << geoWhole->GetErrorMessage());
+    vtkErrorMacro(<< "meridian convergence: " << geo->GetErrorMessage());
     return 0;
   }
   params.azimuth_offset = gammaCentre * M_PI / 180.0;

@@ -605,6 +605,7 @@ struct ap_horizon {
   pattern *pats;
   size_t npats, cappats;
   int *pat_of;
+  double shortest;        /* the shortest view step (m): len_row's minimum */
   int march;              /* the search distance lies within march_columns: the near field
                            * covers it all and the sweep has nothing to do */
 };
@@ -961,14 +962,12 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
   }
   /* Short search distances: march every ray exactly to the distance when it spans at most
    * march_columns view steps (a step is never shorter than the shortest row's). */
-  {
-    double shortest = INFINITY;
-    for (j = 0; j < hz->ny; ++j) {
-      shortest = fmin(shortest, hz->len_row[j]);
-    }
-    hz->march = isfinite(hz->p.max_distance) &&
-                hz->p.max_distance <= (double)hz->p.march_columns * shortest;
+  hz->shortest = INFINITY;
+  for (j = 0; j < hz->ny; ++j) {
+    hz->shortest = fmin(hz->shortest, hz->len_row[j]);
   }
+  hz->march = isfinite(hz->p.max_distance) &&
+              hz->p.max_distance <= (double)hz->p.march_columns * hz->shortest;
   /* Near-field patterns. With constant cell sizes all positions share one pattern of the
    * exact step. With per-row sizes a position takes the pattern of its step rounded to a
    * lattice, tol in m and 1e-4 in log(len): a function of that position's own rows, so a piece
@@ -1432,14 +1431,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
   smax = (double)(ns - 1);
   /* A window holds the samples of at most L / (shortest step) + 1 columns, plus the K - 1
    * pending ones; a ring a little longer never overwrites a sample still in use. */
-  {
-    double shortest = INFINITY;
-    size_t j;
-    for (j = 0; j < hz->ny; ++j) {
-      shortest = fmin(shortest, hz->len_row[j]);
-    }
-    W = limited ? (int)fmin((double)np + 2.0, ceil(L / shortest) + (double)K + 4.0) : 0;
-  }
+  W = limited ? (int)fmin((double)np + 2.0, ceil(L / hz->shortest) + (double)K + 4.0) : 0;
   if (b1 > ap_horizon_bracket_count(hz)) {
     b1 = ap_horizon_bracket_count(hz);
   }
