@@ -2,6 +2,7 @@
 #include "vtkApertureSkyVisibility.h"
 
 #include "vtkApertureGeoreference.h"
+#include "vtkApertureSMPThreads.h"
 
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -421,11 +422,8 @@ int vtkApertureSkyVisibility::Execute(
     }
   };
   bool aborted = false;
-  // More threads than the backend has cores only make TBB print a warning (and be ignored).
-  const int threads = this->NumberOfThreads > 0
-    ? std::min(this->NumberOfThreads, vtkSMPTools::GetEstimatedNumberOfThreads())
-    : 0;
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads }, [&]() {
+  const vtkSMPTools::Config threads{ vtkApertureSMPThreads(this->NumberOfThreads) };
+  vtkSMPTools::LocalScope(threads, [&]() {
     for (int d = 0; d < D && failure == AP_OK; ++d)
     {
       ap_status ps = ap_horizon_prepare(hz, d);

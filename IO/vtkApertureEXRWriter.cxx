@@ -2,6 +2,7 @@
 #include "vtkApertureEXRWriter.h"
 
 #include "vtkApertureGeoreference.h"
+#include "vtkApertureSMPThreads.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -591,11 +592,8 @@ void vtkApertureEXRWriter::WriteData()
     static_cast<int>(std::max<size_t>(1, std::min<size_t>(256, batchBytes / (2 * chunkBytes))));
   std::vector<ChunkJob> jobs;
   std::string chunkMessage; // a worker's OpenEXR message for a failed chunk
-  // More threads than the backend has cores only make TBB print a warning (and be ignored).
-  const int threads = this->NumberOfThreads > 0
-    ? std::min(this->NumberOfThreads, vtkSMPTools::GetEstimatedNumberOfThreads())
-    : 0;
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads }, [&]() {
+  const vtkSMPTools::Config threads{ vtkApertureSMPThreads(this->NumberOfThreads) };
+  vtkSMPTools::LocalScope(threads, [&]() {
     for (int first = 0; rv == EXR_ERR_SUCCESS && first < chunkCount; first += batch)
     {
       const int count = std::min(batch, chunkCount - first);
