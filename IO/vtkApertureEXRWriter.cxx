@@ -195,14 +195,17 @@ void EncodeChunk(exr_context_t ctx, int part, const std::vector<Channel>& channe
   exr_result_t rv = exr_encoding_initialize(ctx, part, &job.Info, &encoder);
   const bool initialized = rv == EXR_ERR_SUCCESS;
   std::vector<float> scratch;
-  try
+  if (initialized)
   {
-    scratch.resize(static_cast<size_t>(job.Info.height) * static_cast<size_t>(nx) *
-      channels.size());
-  }
-  catch (const std::bad_alloc&)
-  {
-    rv = initialized ? EXR_ERR_OUT_OF_MEMORY : rv;
+    try
+    {
+      scratch.resize(static_cast<size_t>(job.Info.height) * static_cast<size_t>(nx) *
+        channels.size());
+    }
+    catch (const std::bad_alloc&)
+    {
+      rv = EXR_ERR_OUT_OF_MEMORY;
+    }
   }
   const size_t chunkValues = static_cast<size_t>(job.Info.height) * static_cast<size_t>(nx);
   for (int c = 0; rv == EXR_ERR_SUCCESS && c < encoder.channel_count; ++c)
