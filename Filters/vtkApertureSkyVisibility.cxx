@@ -121,6 +121,14 @@ vtkApertureSkyVisibility::~vtkApertureSkyVisibility()
 }
 
 //------------------------------------------------------------------------------
+int vtkApertureSkyVisibility::GetMarchColumns()
+{
+  ap_horizon_params p;
+  ap_horizon_params_init(&p);
+  return p.march_columns;
+}
+
+//------------------------------------------------------------------------------
 int vtkApertureSkyVisibility::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {

@@ -79,11 +79,16 @@ public:
 
   ///@{
   /** Search distance in metres; 0 (default) = unlimited. Negative values are an error. A
-   *  distance of at most 64 steps of a sector (1.9 km on a 30 m grid) is searched by marching
-   *  every cell's ray exactly (faster there than the hull sweep; ap_horizon.h). */
+   *  distance of at most GetMarchColumns() (64) steps of a sector (1.9 km on a 30 m grid) is
+   *  searched by marching every cell's ray exactly (faster there than the hull sweep;
+   *  ap_horizon.h). */
   vtkSetMacro(MaximumDistance, double);
   vtkGetMacro(MaximumDistance, double);
   ///@}
+
+  /** Steps of a sector up to which a MaximumDistance is marched ray by ray instead of swept
+   *  (the kernel's march_columns). */
+  static int GetMarchColumns();
 
   ///@{
   /** Earth curvature with refraction (default on) and the refraction coefficient k

@@ -109,6 +109,8 @@ class TestBake(unittest.TestCase):
                            ("EARTH_CURVATURE", "off"), ("ANGLE_UNIT", "degree")):
             self.assertEqual(meta[key], value)
         self.assertIn("Timonen", meta["ALGORITHM"])
+        # the kernel's march_columns (documented default 64), read from it, not restated
+        self.assertIn("at most 64 columns", meta["ALGORITHM"])
         self.assertTrue(meta["APERTURE_VERSION"])
         # same georeference as the DEM
         _, _, gt_dem, srs_dem = bands(self.dem)

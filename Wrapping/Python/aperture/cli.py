@@ -407,7 +407,7 @@ def _parse_products(text):
 
 
 def _provenance(args, products):
-    from aperture import __version__
+    from aperture import __version__, vtkApertureSkyVisibility
     return {
         "APERTURE_VERSION": __version__,
         "APERTURE_COMMAND": "aperture bake",
@@ -415,8 +415,9 @@ def _provenance(args, products):
         "ALGORITHM": "convex-hull line sweep (Timonen & Westerholm 2010) of the terrain horizon "
                      "in every azimuth sector, each cell's own ray exact on the bilinear surface "
                      "for the first %d columns; in sectors where the search distance spans at "
-                     "most 64 columns, every cell's ray marched exactly to it instead (no hulls); "
-                     "sector sums of ALGORITHMS.md 2.2" % args.near_field,
+                     "most %d columns, every cell's ray marched exactly to it instead (no hulls); "
+                     "sector sums of ALGORITHMS.md 2.2"
+                     % (args.near_field, vtkApertureSkyVisibility.GetMarchColumns()),
         "DIRECTIONS": str(args.directions),
         "SECTORS": "sector d centred on true azimuth 360 d / %d degrees, clockwise from north"
                    % args.directions,
