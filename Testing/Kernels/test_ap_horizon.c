@@ -852,11 +852,13 @@ static void test_errors(void)
  * own ray either way, and the sweep's lines lie on the DEM's lattice, so every hull holds the
  * same samples within the distance. Only rounding differs (distances along the lines are
  * measured from the piece's middle). Without the origin the lines fall elsewhere: that is the
- * difference the test must see shrink. Rough terrain, swept (83 columns), curvature on. */
+ * difference the test must see shrink. The piece is region (i0, i1, j0, j1) grown by mi
+ * columns and mj rows; returns the largest difference of A, SVF and the horizons there. */
 static double piece_difference(const terrain *whole, const results *w, const ap_horizon_params *p,
-                               size_t i0, size_t j0, size_t nx, size_t ny, size_t region[4],
-                               int with_origin)
+                               const size_t region[4], size_t mi, size_t mj, int with_origin)
 {
+  const size_t i0 = region[0] - mi, j0 = region[2] - mj;
+  const size_t nx = region[1] - region[0] + 1 + 2 * mi, ny = region[3] - region[2] + 1 + 2 * mj;
   terrain t = make(nx, ny, whole->dx0);
   ap_horizon_params q = *p;
   results r;
@@ -892,11 +894,12 @@ static double piece_difference(const terrain *whole, const results *w, const ap_
   return worst;
 }
 
+/* Rough terrain, swept (2500 m: 83 columns), curvature on; then per-row sizes, marched. */
 static void test_pieces(void)
 {
   terrain t = make(250, 230, 30.0);
   ap_horizon_params p = params(32, 1);
-  size_t region[4] = { 110, 129, 100, 119 }; /* i0, i1, j0, j1 */
+  const size_t region[4] = { 110, 129, 100, 119 }; /* i0, i1, j0, j1 */
   const size_t margin = 2500 / 30 + 3;
   size_t i, j, k;
   for (j = 0; j < t.ny; ++j) {
@@ -910,12 +913,8 @@ static void test_pieces(void)
     double aligned, unaligned;
     p.directions = k == 0 ? 32 : 29;
     w = compute(&t, &p);
-    aligned = piece_difference(&t, &w, &p, region[0] - margin, region[2] - margin,
-                               region[1] - region[0] + 1 + 2 * margin,
-                               region[3] - region[2] + 1 + 2 * margin, region, 1);
-    unaligned = piece_difference(&t, &w, &p, region[0] - margin, region[2] - margin,
-                                 region[1] - region[0] + 1 + 2 * margin,
-                                 region[3] - region[2] + 1 + 2 * margin, region, 0);
+    aligned = piece_difference(&t, &w, &p, region, margin, margin, 1);
+    unaligned = piece_difference(&t, &w, &p, region, margin, margin, 0);
     printf("piece of a %zu x %zu DEM, D = %d: largest difference %.3g aligned, %.3g not\n",
            t.nx, t.ny, p.directions, aligned, unaligned);
     AP_CHECK(aligned <= 1e-5);
@@ -929,7 +928,7 @@ static void test_pieces(void)
   {
     terrain u = make(200, 180, 0.0);
     const double R = 6371000.0, dlat = 0.002 * DEG, dlon = 0.003 * DEG;
-    size_t piece[4] = { 80, 99, 70, 89 };
+    const size_t piece[4] = { 80, 99, 70, 89 };
     size_t mi, mj;
     results w;
     double aligned;
@@ -944,9 +943,7 @@ static void test_pieces(void)
     w = compute(&u, &p);
     mi = (size_t)ceil(5000.0 / u.dx[u.ny - 1]) + 3;
     mj = (size_t)ceil(5000.0 / u.dy[0]) + 3;
-    aligned = piece_difference(&u, &w, &p, piece[0] - mi, piece[2] - mj,
-                               piece[1] - piece[0] + 1 + 2 * mi, piece[3] - piece[2] + 1 + 2 * mj,
-                               piece, 1);
+    aligned = piece_difference(&u, &w, &p, piece, mi, mj, 1);
     printf("piece of a %zu x %zu lat/lon-like DEM, marched: largest difference %.3g\n", u.nx,
            u.ny, aligned);
     AP_CHECK(aligned == 0.0);
