@@ -1317,6 +1317,15 @@ static void far_point_column(const ap_horizon *hz, const pattern *pt, size_t p, 
   }
 }
 
+/* The edge flag of a cell at height zq whose search reaches `reach` metres before the DEM
+ * ends: truncated when that is short of the search limit, the distance L and, with curvature c,
+ * sqrt((zmax - zq) / c), beyond which terrain no higher than the DEM's highest cell stays below
+ * the cell's horizontal (compared squared: reach^2 c < zmax - zq). */
+AP_INLINE unsigned char search_truncated(double reach, double L, double c, double zmax, double zq)
+{
+  return reach < L && (c <= 0.0 || reach * reach * c < zmax - zq);
+}
+
 /* When the near field covers the whole search (hz->march), it also finishes cells [sa, sb) of
  * view column p as the sweep would: nodata cells get NaN, and the edge flag says whether the
  * cell's own ray (pattern pt: m view rows and len metres per column) leaves the grid before
@@ -1341,7 +1350,7 @@ static void march_finish(const ap_horizon *hz, const pattern *pt, size_t p, long
       steps = fmin(steps, (double)s / -pt->m);
     }
     reach = steps * pt->len;
-    edge[s] = reach < L && (c <= 0.0 || reach * reach * c < zmax - zq);
+    edge[s] = search_truncated(reach, L, c, zmax, zq);
   }
 }
 
@@ -1630,9 +1639,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
           avail = bl[0]->avail < bl[1]->avail ? bl[0]->avail : bl[1]->avail;
         }
         slope_out[cell] = (float)(near > far ? near : far);
-        /* Truncated when the DEM ends before the search limit: L, and with curvature
-         * sqrt((zmax - z)/c) (compared squared: avail^2 c < zmax - z). */
-        edge_out[cell] = avail < L && (c <= 0.0 || avail * avail * c < zmax - zq);
+        edge_out[cell] = search_truncated(avail, L, c, zmax, zq);
       }
     }
 
