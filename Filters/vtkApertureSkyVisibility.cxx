@@ -299,15 +299,13 @@ int vtkApertureSkyVisibility::Execute(
       std::copy(inExt, inExt + 6, wholeExt); // (not a sub-extent: use the data's own)
     }
   }
-  const int nyWhole = wholeExt[3] - wholeExt[2] + 1;
+  const int nxWhole = wholeExt[1] - wholeExt[0] + 1, nyWhole = wholeExt[3] - wholeExt[2] + 1;
   const int pieceI = inExt[0] - wholeExt[0], pieceJ = inExt[2] - wholeExt[2];
-  {
-    // (from here on geo describes the whole grid; AttachToImage below uses only its CRS)
-    double spacing[3], origin[3];
-    input->GetSpacing(spacing);
-    input->GetOrigin(origin);
-    SetWholeGrid(geo, origin, spacing, wholeExt);
-  }
+  double origin[3], spacing[3];
+  input->GetOrigin(origin);
+  input->GetSpacing(spacing);
+  // (from here on geo describes the whole grid; AttachToImage below uses only its CRS)
+  SetWholeGrid(geo, origin, spacing, wholeExt);
   std::vector<double> dx(static_cast<size_t>(nyWhole)), dy(static_cast<size_t>(nyWhole));
   double centre[2], ellipsoid[2];
   if (!geo->GetRowCellSizesMetres(dx.data(), dy.data()) || !geo->GetCentreLonLat(centre) ||
@@ -487,12 +485,8 @@ int vtkApertureSkyVisibility::Execute(
   //    between) rotates them.
   if (out.bent_normal && !geographic)
   {
-    const int nxWhole = wholeExt[1] - wholeExt[0] + 1;
     const int lx = std::min(nxWhole, 33), ly = std::min(nyWhole, 33);
     std::vector<double> gamma(static_cast<size_t>(lx * ly));
-    double origin[3], spacing[3];
-    input->GetOrigin(origin);
-    input->GetSpacing(spacing);
     for (int b = 0; b < ly; ++b)
     {
       for (int a = 0; a < lx; ++a)
