@@ -111,6 +111,11 @@ class TestBake(unittest.TestCase):
         self.assertIn("Timonen", meta["ALGORITHM"])
         # the kernel's march_columns (documented default 64), read from it, not restated
         self.assertIn("at most 64 columns", meta["ALGORITHM"])
+        # the --radius help states it in words (the parser is built before the VTK modules
+        # load): it must say the same
+        status, out, err = run("bake", "--help")
+        self.assertEqual(status, 0, err)
+        self.assertIn("up to 64 cells", " ".join(out.split()))
         self.assertTrue(meta["APERTURE_VERSION"])
         # same georeference as the DEM
         _, _, gt_dem, srs_dem = bands(self.dem)
