@@ -233,6 +233,28 @@ class TestBake(unittest.TestCase):
         status, _, err = run("bake", self.dem)
         self.assertEqual(status, 2)
 
+    def test_does_not_overwrite(self):
+        # An output that is the input DEM, or two outputs in one file, are refused before any
+        # work: the EXR would silently replace the GeoTIFF, the bands the DEM.
+        dem = self.path("mine.tif")
+        shutil.copy(self.dem, dem)
+        before = open(dem, "rb").read()
+        link = self.path("link.tif")
+        os.link(dem, link)
+        same = self.path("same.tif")
+        for args, expected in (
+                ((dem, dem), "OUT.tif %s is the same file as the DEM" % dem),
+                ((dem, link), "OUT.tif %s is the same file as the DEM" % link),
+                ((dem, os.path.join(self.tmp, ".", "mine.tif")), "is the same file as the DEM"),
+                ((dem, same, "--exr", same), "--exr %s is the same file as OUT.tif" % same),
+                ((dem, same, "--exr", dem), "--exr %s is the same file as the DEM" % dem)):
+            status, _, err = run("bake", *args)
+            self.assertEqual(status, 1, err)
+            self.assertEqual(len(err.strip().splitlines()), 1, err)
+            self.assertIn(expected, err)
+        self.assertEqual(open(dem, "rb").read(), before)
+        self.assertFalse(os.path.exists(same))
+
     def test_mesh_carries_products(self):
         import aperture
         from vtkmodules.util.numpy_support import vtk_to_numpy

@@ -291,6 +291,21 @@ class TestBadInput(CommandLineTest):
         env.pop("DISPLAY", None)
         self.assert_error("needs an X display", "render", "-o", self.path("x.png"), env=env)
 
+    def test_render_does_not_overwrite(self):
+        # checked before anything is read or rendered, so no display is needed
+        env = dict(os.environ)
+        env.pop("DISPLAY", None)
+        png = self.path("same.png")
+        self.assert_error("--exr %s is the same file as --output" % png,
+                          "render", "-o", png, "--exr", png, env=env)
+        dem = self.path("keep.tif")
+        make_raster(dem, [[1.0, 2.0], [3.0, 4.0]], (500000, 30, 0, 4000000, 0, -30))
+        before = open(dem, "rb").read()
+        self.assert_error("--output %s is the same file as the DEM" % dem,
+                          "render", dem, "-o", dem, env=env)
+        self.assertEqual(open(dem, "rb").read(), before)
+        self.assertFalse(os.path.exists(png))
+
 
 if __name__ == "__main__":
     if not os.path.exists(APERTURE):

@@ -49,6 +49,26 @@ def _add_read_options(parser, dem_required=False):
                    help="use this CRS instead of the file's (EPSG:xxxx, WKT or PROJ string)")
 
 
+def _same_file(a, b):
+    if os.path.exists(a) and os.path.exists(b):
+        return os.path.samefile(a, b)  # hard links too
+    return os.path.realpath(a) == os.path.realpath(b)
+
+
+def _check_outputs(outputs, inputs):
+    """Refuse to overwrite an input, or to write two outputs to one file (the second would
+    silently replace the first). outputs, inputs: (option, path) pairs; empty paths skipped."""
+    taken = [(name, path) for name, path in inputs if path]
+    for name, path in outputs:
+        if not path:
+            continue
+        for other, other_path in taken:
+            if _same_file(path, other_path):
+                raise ApertureError("%s %s is the same file as %s; choose another name"
+                                    % (name, path, other))
+        taken.append((name, path))
+
+
 def _dem_path(args):
     if args.dem:
         return args.dem
@@ -234,6 +254,9 @@ def cmd_render(args):
     from aperture import vtkApertureSkyVisibility, vtkApertureTerrainMesh
     from aperture import scene
 
+    _check_outputs([("--output", args.output), ("--exr", args.exr)],
+                   [("the DEM", _dem_path(args)), ("--baked", args.baked),
+                    ("--albedo", args.albedo)])
     if not os.environ.get("DISPLAY"):
         raise ApertureError("rendering needs an X display (VTK on Debian renders through GLX); "
                             "run under xvfb-run -a")
@@ -481,6 +504,7 @@ def cmd_bake(args):
         folder = os.path.dirname(os.path.abspath(path))
         if not os.path.isdir(folder):
             raise ApertureError("the output folder %s does not exist" % folder)
+    _check_outputs([("OUT.tif", args.output), ("--exr", args.exr)], [("the DEM", _dem_path(args))])
 
     start = time.perf_counter()
     watcher = Watcher(on_warning=_warn)
