@@ -1857,10 +1857,17 @@ void ap_horizon_finish(const ap_horizon *hz, size_t j0, size_t j1)
         }
         continue;
       }
+      /* The single-precision sums can end an ulp or two outside a product's range (a full
+       * sky summed to 2pi + 1.4e-6 sr, an ApertureRadius of 90.00001 degrees; a spike's
+       * PositiveOpenness 180.00003): A, rp, SkyViewFactor and PositiveOpenness are clamped. */
+      if (o->visible_solid_angle) {
+        o->visible_solid_angle[k] =
+          fminf((float)(2.0 * AP_PI), fmaxf(0.0f, o->visible_solid_angle[k]));
+      }
       if (o->aperture_radius) {
         /* rp = acos(1 - A/2pi) in the half-angle form: 1 - cos r = 2 sin^2(r/2). */
         const double A = o->visible_solid_angle ? o->visible_solid_angle[k] : o->aperture_radius[k];
-        const double s = sqrt(fmin(1.0, fmax(0.0, A / (4.0 * AP_PI))));
+        const double s = sqrt(fmin(0.5, fmax(0.0, A / (4.0 * AP_PI))));
         o->aperture_radius[k] = (float)(2.0 * asin(s));
       }
       if (B) {
@@ -1886,10 +1893,10 @@ void ap_horizon_finish(const ap_horizon *hz, size_t j0, size_t j1)
         }
       }
       if (o->sky_view_factor) {
-        o->sky_view_factor[k] = (float)(1.0 - o->sky_view_factor[k] / D);
+        o->sky_view_factor[k] = (float)fmax(0.0, 1.0 - o->sky_view_factor[k] / D);
       }
       if (o->positive_openness) {
-        o->positive_openness[k] = (float)(o->positive_openness[k] / D);
+        o->positive_openness[k] = (float)fmin(AP_PI, fmax(0.0, o->positive_openness[k] / D));
       }
     }
   }

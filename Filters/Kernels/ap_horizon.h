@@ -142,7 +142,7 @@ typedef struct ap_sky_products {
   float *bent_normal;           /**< 3 per cell, unit vector in the grid frame */
   float *sky_view_factor;       /**< Zakšek SVF, [0, 1] */
   float *diffuse_sky_factor;    /**< Dozier–Frew V_d, [0, 1] */
-  float *positive_openness;     /**< radians */
+  float *positive_openness;     /**< radians, [0, π] */
   unsigned char *edge_truncated; /**< 0 or 1 */
   float *horizon_angles;        /**< D per cell, sector d at [cell * D + d] (rad) */
 } ap_sky_products;
