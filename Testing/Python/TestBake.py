@@ -254,6 +254,17 @@ class TestBake(unittest.TestCase):
             self.assertIn(expected, err)
         self.assertEqual(open(dem, "rb").read(), before)
         self.assertFalse(os.path.exists(same))
+        # the main output is always a GeoTIFF: an .exr name is refused, others get a warning
+        status, _, err = run("bake", dem, self.path("p.exr"))
+        self.assertEqual(status, 1, err)
+        self.assertIn("p.exr is written as a GeoTIFF; name it .tif and give --exr", err)
+        self.assertFalse(os.path.exists(self.path("p.exr")))
+        status, _, err = run("bake", dem, self.path("p.img"), "--products", "SkyViewFactor")
+        self.assertEqual(status, 0, err)
+        self.assertIn("warning: %s is written as a GeoTIFF" % self.path("p.img"), err)
+        ds = gdal.Open(self.path("p.img"))
+        self.assertEqual(ds.GetDriver().ShortName, "GTiff")
+        ds = None
 
     def test_mesh_carries_products(self):
         import aperture

@@ -505,6 +505,12 @@ def cmd_bake(args):
         if not os.path.isdir(folder):
             raise ApertureError("the output folder %s does not exist" % folder)
     _check_outputs([("OUT.tif", args.output), ("--exr", args.exr)], [("the DEM", _dem_path(args))])
+    ext = os.path.splitext(args.output)[1].lower()
+    if ext == ".exr":
+        raise ApertureError("OUT.tif %s is written as a GeoTIFF; name it .tif and give --exr %s "
+                            "for the EXR" % (args.output, args.output))
+    if ext not in (".tif", ".tiff", ".gtiff"):
+        _warn("%s is written as a GeoTIFF" % args.output)
 
     start = time.perf_counter()
     watcher = Watcher(on_warning=_warn)
