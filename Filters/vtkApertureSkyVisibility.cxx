@@ -472,7 +472,8 @@ int vtkApertureSkyVisibility::Execute(
   ap_horizon_destroy(hz);
   if (failure != AP_OK)
   {
-    vtkErrorMacro(<< "horizon computation: " << ap_status_string(static_cast<ap_status>(failure.load())));
+    vtkErrorMacro(<< "horizon computation: "
+                  << ap_status_string(static_cast<ap_status>(failure.load())));
     return 0;
   }
   if (aborted)

@@ -1845,7 +1845,9 @@ void ap_horizon_finish(const ap_horizon *hz, size_t j0, size_t j1)
       if (isnan(zat(hz, i, j))) {
         if (o->visible_solid_angle) o->visible_solid_angle[k] = NAN;
         if (o->aperture_radius) o->aperture_radius[k] = NAN;
-        if (o->bent_normal) o->bent_normal[3 * k] = o->bent_normal[3 * k + 1] = o->bent_normal[3 * k + 2] = NAN;
+        if (o->bent_normal) {
+          o->bent_normal[3 * k] = o->bent_normal[3 * k + 1] = o->bent_normal[3 * k + 2] = NAN;
+        }
         if (o->sky_view_factor) o->sky_view_factor[k] = NAN;
         if (o->diffuse_sky_factor) o->diffuse_sky_factor[k] = NAN;
         if (o->positive_openness) o->positive_openness[k] = NAN;
