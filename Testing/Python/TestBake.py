@@ -266,6 +266,32 @@ class TestBake(unittest.TestCase):
         self.assertEqual(ds.GetDriver().ShortName, "GTiff")
         ds = None
 
+    def test_progress_on_a_terminal(self):
+        # As gdaldem: GDAL's progress line on stderr when it is a terminal, none with -q or
+        # when it is not (every other test here reads stderr through a pipe: nothing there).
+        import pty
+        out = self.path("progress.tif")
+        for quiet in (False, True):
+            master, slave = pty.openpty()
+            p = subprocess.run([APERTURE, "bake", self.dem, out] + (["-q"] if quiet else []),
+                               stdout=subprocess.PIPE, stderr=slave, text=True, timeout=300)
+            os.close(slave)
+            seen = b""
+            while True:
+                try:
+                    chunk = os.read(master, 4096)
+                except OSError:  # EIO: the child's end is closed
+                    break
+                if not chunk:
+                    break
+                seen += chunk
+            os.close(master)
+            self.assertEqual(p.returncode, 0)
+            self.assertIn("wrote", p.stdout)
+            expected = "" if quiet else \
+                "0...10...20...30...40...50...60...70...80...90...100 - done.\r\n"
+            self.assertEqual(seen.decode(), expected)
+
     def test_mesh_carries_products(self):
         import aperture
         from vtkmodules.util.numpy_support import vtk_to_numpy

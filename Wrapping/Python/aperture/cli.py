@@ -49,6 +49,32 @@ def _add_read_options(parser, dem_required=False):
                    help="use this CRS instead of the file's (EPSG:xxxx, WKT or PROJ string)")
 
 
+class _TermProgress:
+    """Progress on a terminal as GDAL's tools print it: 0...10...20...30 ... 90...100 - done.
+    Call with the fraction done; a dot per 2.5 %, the percentage every 10 %."""
+
+    def __init__(self, stream):
+        self._stream = stream
+        self._ticks = -1  # steps of 2.5 % printed; -1: none yet
+
+    @property
+    def open(self):
+        """Started and not finished (an error message then needs a new line first)."""
+        return 0 <= self._ticks < 40
+
+    def __call__(self, fraction):
+        target = int(40 * min(1.0, max(0.0, fraction)))
+        out = []
+        while self._ticks < target:
+            self._ticks += 1
+            out.append(str(self._ticks // 4 * 10) if self._ticks % 4 == 0 else ".")
+        if out:
+            if self._ticks == 40:
+                out.append(" - done.\n")
+            self._stream.write("".join(out))
+            self._stream.flush()
+
+
 def _same_file(a, b):
     if os.path.exists(a) and os.path.exists(b):
         return os.path.samefile(a, b)  # hard links too
@@ -486,9 +512,6 @@ def _product_image(sky, products):
 
 
 def cmd_bake(args):
-    import time
-    from aperture import vtkApertureDEMWriter, vtkApertureEXRWriter, vtkApertureSkyVisibility
-
     products = _parse_products(args.products)
     if not 4 <= args.directions <= 360:
         raise ApertureError("--directions must be within 4..360")
@@ -512,6 +535,19 @@ def cmd_bake(args):
     if ext not in (".tif", ".tiff", ".gtiff"):
         _warn("%s is written as a GeoTIFF" % args.output)
 
+    progress = None if args.quiet or not sys.stderr.isatty() else _TermProgress(sys.stderr)
+    try:
+        return _bake(args, products, progress)
+    except ApertureError:
+        if progress and progress.open:
+            sys.stderr.write("\n")
+        raise
+
+
+def _bake(args, products, progress):
+    import time
+    from aperture import vtkApertureDEMWriter, vtkApertureEXRWriter, vtkApertureSkyVisibility
+
     start = time.perf_counter()
     watcher = Watcher(on_warning=_warn)
     writer = watcher.watch(vtkApertureDEMWriter())
@@ -530,6 +566,10 @@ def cmd_bake(args):
     sky.SetNearField(args.near_field)
     for name in DERIVED + ["HorizonAngles"]:
         getattr(sky, "SetCompute" + name)(name in products)
+    if progress:
+        # the sweep is nearly all of the time; the rest shows as the step to 100 after writing
+        progress(0.0)
+        sky.AddObserver("ProgressEvent", lambda obj, _: progress(0.95 * obj.GetProgress()))
     sweep_start = time.perf_counter()
     result = watcher.update(sky, "bake")  # the reader has run: this is the sky filter alone
     sweep_seconds = time.perf_counter() - sweep_start
@@ -558,6 +598,8 @@ def cmd_bake(args):
             exr.AddMetadata("aperture:unit:" + name, definitions[name][0])
         watcher.write(exr, "writing %s" % args.exr)
         written.append(os.path.abspath(args.exr))
+    if progress:
+        progress(1.0)
     nx, ny, _ = image.GetDimensions()
     print("wrote %s: %s for %d x %d cells, %d directions, in %.1f s (sky filter %.2f s)"
           % (" and ".join(written), ", ".join(products), nx, ny, args.directions,
@@ -843,6 +885,8 @@ def build_parser():
                         "(default 1, the fastest: float bands shrink under 1%% more at 6)")
     p.add_argument("--near-field", type=int, default=8, metavar="K",
                    help="columns of each cell's ray evaluated exactly (default 8)")
+    p.add_argument("--quiet", "-q", action="store_true",
+                   help="no progress display (shown, as by gdaldem, when stderr is a terminal)")
     p.set_defaults(func=cmd_bake)
 
     p = sub.add_parser("sun", help="where the sun is for a time and place; sunrise and sunset",
