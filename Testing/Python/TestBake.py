@@ -254,6 +254,12 @@ class TestBake(unittest.TestCase):
             self.assertIn(expected, err)
         self.assertEqual(open(dem, "rb").read(), before)
         self.assertFalse(os.path.exists(same))
+        missing = os.path.join(self.tmp, "no-such-folder")
+        for args in ((dem, os.path.join(missing, "o.tif")),
+                     (dem, same, "--exr", os.path.join(missing, "o.exr"))):
+            status, _, err = run("bake", *args)
+            self.assertEqual(status, 1, err)
+            self.assertIn("the output folder %s does not exist" % missing, err)
         # the main output is always a GeoTIFF: an .exr name is refused, others get a warning
         status, _, err = run("bake", dem, self.path("p.exr"))
         self.assertEqual(status, 1, err)

@@ -305,6 +305,9 @@ class TestBadInput(CommandLineTest):
                           "render", dem, "-o", dem, env=env)
         self.assertEqual(open(dem, "rb").read(), before)
         self.assertFalse(os.path.exists(png))
+        missing = self.path("no-such-folder")
+        self.assert_error("the output folder %s does not exist" % missing,
+                          "render", "-o", png, "--exr", os.path.join(missing, "x.exr"), env=env)
 
 
 if __name__ == "__main__":

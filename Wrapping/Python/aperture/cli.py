@@ -82,12 +82,16 @@ def _same_file(a, b):
 
 
 def _check_outputs(outputs, inputs):
-    """Refuse to overwrite an input, or to write two outputs to one file (the second would
-    silently replace the first). outputs, inputs: (option, path) pairs; empty paths skipped."""
+    """Refuse an output whose folder does not exist, one that would overwrite an input, or two
+    outputs in one file (the second would silently replace the first). outputs, inputs:
+    (option, path) pairs; empty paths skipped."""
     taken = [(name, path) for name, path in inputs if path]
     for name, path in outputs:
         if not path:
             continue
+        folder = os.path.dirname(os.path.abspath(path))
+        if not os.path.isdir(folder):
+            raise ApertureError("the output folder %s does not exist" % folder)
         for other, other_path in taken:
             if _same_file(path, other_path):
                 raise ApertureError("%s %s is the same file as %s; choose another name"
@@ -294,11 +298,6 @@ def cmd_render(args):
         raise ApertureError("--sun-scale must be a positive factor")
     if args.exposure is not None and not math.isfinite(args.exposure):
         raise ApertureError("--exposure must be a number of EV")
-    out_dir = os.path.dirname(os.path.abspath(args.output))
-    if not os.path.isdir(out_dir):
-        raise ApertureError("the output folder %s does not exist" % out_dir)
-    if args.exr and not os.path.isdir(os.path.dirname(os.path.abspath(args.exr))):
-        raise ApertureError("the output folder of %s does not exist" % args.exr)
     if args.albedo and not os.path.isfile(args.albedo):
         raise ApertureError("the albedo image %s does not exist" % args.albedo)
     watcher = Watcher(on_warning=_warn)
@@ -523,10 +522,6 @@ def cmd_bake(args):
         raise ApertureError("--threads must be 0 (all cores) or more")
     if not 1 <= args.near_field <= 64:
         raise ApertureError("--near-field must be within 1..64")
-    for path in [args.output] + ([args.exr] if args.exr else []):
-        folder = os.path.dirname(os.path.abspath(path))
-        if not os.path.isdir(folder):
-            raise ApertureError("the output folder %s does not exist" % folder)
     _check_outputs([("OUT.tif", args.output), ("--exr", args.exr)], [("the DEM", _dem_path(args))])
     ext = os.path.splitext(args.output)[1].lower()
     if ext == ".exr":
