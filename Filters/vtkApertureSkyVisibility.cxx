@@ -177,7 +177,8 @@ int vtkApertureSkyVisibility::RequestData(
   }
   catch (const std::bad_alloc&)
   {
-    // (VTK's arrays and std::vector throw; the C kernel reports AP_ERR_OUT_OF_MEMORY itself)
+    // (VTK's arrays and std::vector throw; Execute throws on the kernel's
+    // AP_ERR_OUT_OF_MEMORY)
     vtkImageData* input = vtkImageData::GetData(inputVector[0]);
     int dims[3] = { 0, 0, 0 };
     if (input)
@@ -207,9 +208,10 @@ double vtkApertureSkyVisibility::EstimateBytes(double n) const
   perCell += this->ComputeBentNormal ? 12.0 : 0.0;
   perCell += this->ComputeEdgeTruncated ? 1.0 : 0.0;
   perCell += this->ComputeHorizonAngles ? 4.0 * this->NumberOfDirections : 0.0;
-  // the elevations' float copy, and the sweep's transposed elevations, gradients, sector
-  // scratch and bent-normal sums (ap_horizon_create)
-  perCell += 4.0 + 4.0 + 8.0 + 5.0 + 12.0;
+  // the elevations' float copy, and the sweep's own state
+  perCell += 4.0 +
+    static_cast<double>(ap_horizon_state_bytes_per_cell(
+      this->ComputeDiffuseSkyFactor ? 1 : 0, this->ComputeBentNormal ? 1 : 0));
   return perCell * n;
 }
 
@@ -415,6 +417,10 @@ int vtkApertureSkyVisibility::Execute(
   // 4. The sweep, sector by sector; each sector's lines and rows in parallel.
   ap_horizon* hz = nullptr;
   st = ap_horizon_create(&grid, &params, &out, &hz);
+  if (st == AP_ERR_OUT_OF_MEMORY)
+  {
+    throw std::bad_alloc(); // (RequestData names the size needed)
+  }
   if (st != AP_OK)
   {
     vtkErrorMacro(<< "horizon computation: " << ap_status_string(st));
@@ -470,6 +476,10 @@ int vtkApertureSkyVisibility::Execute(
     }
   });
   ap_horizon_destroy(hz);
+  if (failure == AP_ERR_OUT_OF_MEMORY)
+  {
+    throw std::bad_alloc();
+  }
   if (failure != AP_OK)
   {
     vtkErrorMacro(<< "horizon computation: "

@@ -771,6 +771,16 @@ void ap_horizon_destroy(ap_horizon *hz)
   free(hz);
 }
 
+/* Keep in step with the allocations of ap_horizon_create below. */
+size_t ap_horizon_state_bytes_per_cell(int diffuse_sky_factor, int bent_normal)
+{
+  const size_t state = sizeof(float)   /* zt */
+                       + 2 * sizeof(float) /* grad */
+                       + sizeof(float)     /* slope: one sector's horizons */
+                       + 1;                /* edge */
+  return state + (diffuse_sky_factor && !bent_normal ? 3 * sizeof(float) : 0); /* bsum */
+}
+
 ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p,
                             const ap_sky_products *out, ap_horizon **result)
 {

@@ -166,6 +166,12 @@ ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params 
 ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p,
                             const ap_sky_products *out, ap_horizon **hz);
 
+/** Bytes per cell that ap_horizon_create allocates for the state above, for callers that
+ *  estimate a run's memory: 17, plus 12 when the diffuse sky factor is wanted without the
+ *  bent normal (both flags 0 or 1). The per-sector and per-thread buffers, O(nx + ny) each,
+ *  and the caller's outputs are not counted. */
+size_t ap_horizon_state_bytes_per_cell(int diffuse_sky_factor, int bent_normal);
+
 /** Free everything ap_horizon_create allocated (NULL is fine). */
 void ap_horizon_destroy(ap_horizon *hz);
 

@@ -346,11 +346,31 @@ class TestSkyVisibility(Testing.vtkTest):
         self.assertIn("at least 2 x 2", self.error(make_image(np.ones((1, 5)), 0, 0, 30, 30, "EPSG:32633")))
 
     def testOutOfMemory(self):
-        # A child process whose address space leaves 256 MiB above what it holds once the DEM
-        # is built: the 360 MiB of HorizonAngles (512 x 512 cells x 360 directions x 4 bytes)
-        # cannot be allocated, which must be an error naming the size, not an abort. The size
-        # named: 1506 bytes per cell (1440 of horizon angles, 33 of the seven derived products,
-        # 33 of elevations and sweep buffers) x 262144 cells = 376.5 MiB.
+        # Child processes whose address space leaves some MiB above what they hold once the
+        # DEM is built, so that an allocation fails: an error naming the size, not an abort.
+        # Bytes per cell named (vtkApertureSkyVisibility.h, ap_horizon_create): each output
+        # (4 per float, 12 for BentNormal, 1 for EdgeTruncated, 4 per HorizonAngles sector),
+        # the filter's float copy of the elevations (4) and the sweep's state (17, plus 12
+        # when DiffuseSkyFactor is wanted without BentNormal).
+        # 1. The 360 MiB of HorizonAngles (512 x 512 cells x 360 directions) fail in VTK:
+        #    1440 + 33 of the seven derived products + 4 + 17 = 1494 bytes x 262144 cells
+        #    = 373.5 MiB.
+        self.assertIn("out of memory: a 512 x 512 DEM with these products needs about 374 MiB "
+                      "(HorizonAngles take 4 bytes per cell and direction)",
+                      self.out_of_memory(512, 256, "f.SetNumberOfDirections(360)\n"
+                                         "f.SetComputeHorizonAngles(True)\n"))
+        # 2. Only SkyViewFactor on 4096 x 4096 cells: its 64 MiB and the filter's 64 MiB copy
+        #    fit in 200 MiB, the sweep's 272 MiB of state do not, and the C kernel's failure
+        #    gets the same message: 4 + 4 + 17 = 25 bytes x 16 Mi cells = 400 MiB.
+        only_svf = "".join("f.SetCompute%s(False)\n" % name for name in (
+            "VisibleSolidAngle", "ApertureRadius", "BentNormal", "DiffuseSkyFactor",
+            "PositiveOpenness", "EdgeTruncated"))
+        message = self.out_of_memory(4096, 200, only_svf)
+        self.assertIn("out of memory: a 4096 x 4096 DEM with these products needs about "
+                      "400 MiB", message)
+        self.assertNotIn("HorizonAngles", message)
+
+    def out_of_memory(self, size, headroom_mib, setup):
         import subprocess
         script = """
 import resource
@@ -360,9 +380,9 @@ from vtkmodules.vtkCommonDataModel import vtkImageData
 import aperture
 from aperture.errors import Watcher
 image = vtkImageData()
-image.SetDimensions(512, 512, 1)
+image.SetDimensions(%(size)d, %(size)d, 1)
 image.SetSpacing(30, 30, 1)
-values = numpy_to_vtk(np.zeros(512 * 512, dtype=np.float32), deep=1)
+values = numpy_to_vtk(np.zeros(%(size)d * %(size)d, dtype=np.float32), deep=1)
 values.SetName("Elevation")
 image.GetPointData().SetScalars(values)
 geo = aperture.vtkApertureGeoreference()
@@ -371,20 +391,17 @@ geo.AttachToImage(image)
 w = Watcher()
 f = w.watch(aperture.vtkApertureSkyVisibility())
 f.SetInputData(image)
-f.SetNumberOfDirections(360)
-f.SetComputeHorizonAngles(True)
-f.SetNumberOfThreads(1)
+%(setup)sf.SetNumberOfThreads(1)
 with open("/proc/self/status") as status:
     vm = next(int(line.split()[1]) for line in status if line.startswith("VmSize:"))
-resource.setrlimit(resource.RLIMIT_AS, ((vm + 256 * 1024) * 1024, resource.RLIM_INFINITY))
+resource.setrlimit(resource.RLIMIT_AS, ((vm + %(headroom)d * 1024) * 1024, resource.RLIM_INFINITY))
 f.Update()
 print(w.errors[0] if w.errors else "no error")
-"""
+""" % dict(size=size, headroom=headroom_mib, setup=setup)
         p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                            timeout=120)
         self.assertEqual(p.returncode, 0, p.stderr[-2000:])
-        self.assertIn("out of memory: a 512 x 512 DEM with these products needs about 377 MiB "
-                      "(HorizonAngles take 4 bytes per cell and direction)", p.stdout)
+        return p.stdout
 
     def error(self, image, **options):
         from aperture.errors import Watcher
