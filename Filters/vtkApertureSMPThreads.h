@@ -1,18 +1,53 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Internal (not installed, not wrapped): the thread count for a vtkSMPTools::LocalScope from a
-// filter's or writer's NumberOfThreads property.
+// Internal (not installed, not wrapped): the vtkSMPTools::LocalScope configuration for a
+// filter's or writer's NumberOfThreads property, and a tally of the threads that ran.
 #ifndef vtkApertureSMPThreads_h
 #define vtkApertureSMPThreads_h
 
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <mutex>
+#include <set>
+#include <thread>
 
-/** 0 (the backend's default) stays 0; a larger count than the backend offers is capped at
- *  what it offers: TBB ignores the excess anyway and prints a warning on stderr for it. */
-inline int vtkApertureSMPThreads(int requested)
+/** Cores of this machine (at least 1). */
+inline int vtkApertureCores()
 {
-  return requested > 0 ? std::min(requested, vtkSMPTools::GetEstimatedNumberOfThreads()) : 0;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 }
+
+/** A LocalScope configuration that runs on `requested` threads: 0 = all cores, larger counts
+ *  capped at the cores. Always on vtkSMPTools' STDThread backend, whatever the default: the
+ *  TBB backend of Debian's VTK 9.1 honours a LocalScope's thread count only when it differs
+ *  from the previous scope's (a second LocalScope(1) in a process runs on every core), and
+ *  its GetEstimatedNumberOfThreads() then reports that count, not the cores. */
+inline vtkSMPTools::Config vtkApertureSMPConfig(int requested)
+{
+  const int cores = vtkApertureCores();
+  const int n = requested > 0 ? std::min(requested, cores) : cores;
+  return vtkSMPTools::Config{ n, "STDThread", false };
+}
+
+/** The distinct threads that ran an operation's parallel chunks: Note() at the start of each
+ *  chunk (a lock per chunk), Count() afterwards. */
+class vtkApertureThreadTally
+{
+public:
+  void Note()
+  {
+    const std::lock_guard<std::mutex> lock(this->Mutex);
+    this->Ids.insert(std::this_thread::get_id());
+  }
+  int Count()
+  {
+    const std::lock_guard<std::mutex> lock(this->Mutex);
+    return static_cast<int>(this->Ids.size());
+  }
+
+private:
+  std::mutex Mutex;
+  std::set<std::thread::id> Ids;
+};
 
 #endif

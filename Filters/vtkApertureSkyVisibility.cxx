@@ -101,6 +101,7 @@ vtkApertureSkyVisibility::vtkApertureSkyVisibility()
   , RefractionCoefficient(0.13)
   , NearField(8)
   , NumberOfThreads(0)
+  , NumberOfThreadsUsed(0)
   , ComputeVisibleSolidAngle(true)
   , ComputeApertureRadius(true)
   , ComputeBentNormal(true)
@@ -222,6 +223,7 @@ int vtkApertureSkyVisibility::Execute(
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outputVector);
+  this->NumberOfThreadsUsed = 0;
   if (!input || input->GetNumberOfPoints() == 0)
   {
     return 1;
@@ -434,8 +436,8 @@ int vtkApertureSkyVisibility::Execute(
     }
   };
   bool aborted = false;
-  const vtkSMPTools::Config threads{ vtkApertureSMPThreads(this->NumberOfThreads) };
-  vtkSMPTools::LocalScope(threads, [&]() {
+  vtkApertureThreadTally tally;
+  vtkSMPTools::LocalScope(vtkApertureSMPConfig(this->NumberOfThreads), [&]() {
     for (int d = 0; d < D && failure == AP_OK; ++d)
     {
       ap_status ps = ap_horizon_prepare(hz, d);
@@ -446,15 +448,18 @@ int vtkApertureSkyVisibility::Execute(
       }
       const vtkIdType columns = static_cast<vtkIdType>(ap_horizon_column_count(hz));
       vtkSMPTools::For(0, columns, 16, [&](vtkIdType c0, vtkIdType c1) {
+        tally.Note();
         record(ap_horizon_near_field(hz, static_cast<size_t>(c0), static_cast<size_t>(c1)));
       });
       const vtkIdType brackets = static_cast<vtkIdType>(ap_horizon_bracket_count(hz));
       // Small chunks of lines (ap_horizon.h): their hulls and windows stay in cache, and no
       // thread idles long at the end of a direction. Results do not depend on the chunks.
       vtkSMPTools::For(0, brackets, AP_HORIZON_SWEEP_BAND, [&](vtkIdType b0, vtkIdType b1) {
+        tally.Note();
         record(ap_horizon_sweep(hz, static_cast<size_t>(b0), static_cast<size_t>(b1)));
       });
       vtkSMPTools::For(0, ny, 64, [&](vtkIdType j0, vtkIdType j1) {
+        tally.Note();
         record(ap_horizon_accumulate(hz, static_cast<size_t>(j0), static_cast<size_t>(j1)));
       });
       if (failure != AP_OK)
@@ -471,11 +476,13 @@ int vtkApertureSkyVisibility::Execute(
     if (failure == AP_OK && !aborted)
     {
       vtkSMPTools::For(0, ny, 64, [&](vtkIdType j0, vtkIdType j1) {
+        tally.Note();
         ap_horizon_finish(hz, static_cast<size_t>(j0), static_cast<size_t>(j1));
       });
     }
   });
   ap_horizon_destroy(hz);
+  this->NumberOfThreadsUsed = tally.Count();
   if (failure == AP_ERR_OUT_OF_MEMORY)
   {
     throw std::bad_alloc();
@@ -514,26 +521,31 @@ int vtkApertureSkyVisibility::Execute(
         gamma[static_cast<size_t>(b * lx + a)] = g * M_PI / 180.0;
       }
     }
-    vtkSMPTools::For(0, ny, 64, [&](vtkIdType j0, vtkIdType j1) {
-      for (vtkIdType j = j0; j < j1; ++j)
-      {
-        const double fb = ly > 1 ? (j + pieceJ) * (ly - 1.0) / (nyWhole - 1.0) : 0.0;
-        const int b0 = std::min(static_cast<int>(fb), ly - 1), b1 = std::min(b0 + 1, ly - 1);
-        const double tb = fb - b0;
-        for (int i = 0; i < nx; ++i)
+    vtkSMPTools::LocalScope(vtkApertureSMPConfig(this->NumberOfThreads), [&]() {
+      vtkSMPTools::For(0, ny, 64, [&](vtkIdType j0, vtkIdType j1) {
+        tally.Note();
+        for (vtkIdType j = j0; j < j1; ++j)
         {
-          const double fa = lx > 1 ? (i + pieceI) * (lx - 1.0) / (nxWhole - 1.0) : 0.0;
-          const int a0 = std::min(static_cast<int>(fa), lx - 1), a1 = std::min(a0 + 1, lx - 1);
-          const double ta = fa - a0;
-          const double g = (1 - tb) * ((1 - ta) * gamma[b0 * lx + a0] + ta * gamma[b0 * lx + a1]) +
-            tb * ((1 - ta) * gamma[b1 * lx + a0] + ta * gamma[b1 * lx + a1]);
-          float* v = out.bent_normal + 3 * (static_cast<size_t>(j) * nx + i);
-          const double e = v[0], nn = v[1];
-          v[0] = static_cast<float>(e * std::cos(g) + nn * std::sin(g));
-          v[1] = static_cast<float>(-e * std::sin(g) + nn * std::cos(g));
+          const double fb = ly > 1 ? (j + pieceJ) * (ly - 1.0) / (nyWhole - 1.0) : 0.0;
+          const int b0 = std::min(static_cast<int>(fb), ly - 1), b1 = std::min(b0 + 1, ly - 1);
+          const double tb = fb - b0;
+          for (int i = 0; i < nx; ++i)
+          {
+            const double fa = lx > 1 ? (i + pieceI) * (lx - 1.0) / (nxWhole - 1.0) : 0.0;
+            const int a0 = std::min(static_cast<int>(fa), lx - 1), a1 = std::min(a0 + 1, lx - 1);
+            const double ta = fa - a0;
+            const double g =
+              (1 - tb) * ((1 - ta) * gamma[b0 * lx + a0] + ta * gamma[b0 * lx + a1]) +
+              tb * ((1 - ta) * gamma[b1 * lx + a0] + ta * gamma[b1 * lx + a1]);
+            float* v = out.bent_normal + 3 * (static_cast<size_t>(j) * nx + i);
+            const double e = v[0], nn = v[1];
+            v[0] = static_cast<float>(e * std::cos(g) + nn * std::sin(g));
+            v[1] = static_cast<float>(-e * std::sin(g) + nn * std::cos(g));
+          }
         }
-      }
+      });
     });
+    this->NumberOfThreadsUsed = tally.Count();
   }
 
   // 6. The output: the input's arrays and geometry over the requested extent, plus ours.
@@ -605,6 +617,7 @@ void vtkApertureSkyVisibility::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RefractionCoefficient: " << this->RefractionCoefficient << "\n";
   os << indent << "NearField: " << this->NearField << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "NumberOfThreadsUsed: " << this->NumberOfThreadsUsed << "\n";
   os << indent << "ComputeVisibleSolidAngle: " << this->ComputeVisibleSolidAngle << "\n";
   os << indent << "ComputeApertureRadius: " << this->ComputeApertureRadius << "\n";
   os << indent << "ComputeBentNormal: " << this->ComputeBentNormal << "\n";

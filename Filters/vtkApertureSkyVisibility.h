@@ -54,8 +54,8 @@
  * and the sweep (the message gives the estimated need; HorizonAngles take 4 bytes per cell
  * and direction).
  *
- * @warning Threads: NumberOfThreads (default all cores, through vtkSMPTools); the results are
- * bit-identical for any thread count.
+ * @warning Threads: NumberOfThreads (default all cores, through vtkSMPTools' STDThread
+ * backend); the results are bit-identical for any thread count.
  * @sa vtkApertureDEMReader vtkApertureTerrainMesh
  */
 #ifndef vtkApertureSkyVisibility_h
@@ -108,11 +108,16 @@ public:
   ///@}
 
   ///@{
-  /** Threads; 0 (default) = as many as vtkSMPTools offers, which also caps larger values.
-   *  Results do not depend on it. */
+  /** Threads; 0 (default) = all cores, which also cap larger values. Results do not depend
+   *  on it. They run on vtkSMPTools' STDThread backend whatever VTK's default backend is
+   *  (Debian's VTK 9.1 TBB backend ignores a scope's thread count every other time). */
   vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
+
+  /** Threads that ran the last update's sweep (0 before any; at most NumberOfThreads when
+   *  that is set). */
+  vtkGetMacro(NumberOfThreadsUsed, int);
 
   ///@{
   /** Which products to add. All derived products default on; HorizonAngles off. */
@@ -167,6 +172,7 @@ protected:
   double RefractionCoefficient;
   int NearField;
   int NumberOfThreads;
+  int NumberOfThreadsUsed;
   bool ComputeVisibleSolidAngle;
   bool ComputeApertureRadius;
   bool ComputeBentNormal;

@@ -261,6 +261,7 @@ vtkApertureEXRWriter::vtkApertureEXRWriter()
   , PixelType(FLOAT)
   , Compression(ZIP)
   , NumberOfThreads(0)
+  , NumberOfThreadsUsed(0)
   , Impl(new Internals)
 {
 }
@@ -370,6 +371,7 @@ int vtkApertureEXRWriter::FillInputPortInformation(int, vtkInformation* info)
 //------------------------------------------------------------------------------
 void vtkApertureEXRWriter::WriteData()
 {
+  this->NumberOfThreadsUsed = 0;
   vtkImageData* input = this->GetInput();
   if (!this->FileName || !*this->FileName)
   {
@@ -595,8 +597,8 @@ void vtkApertureEXRWriter::WriteData()
     static_cast<int>(std::max<size_t>(1, std::min<size_t>(256, batchBytes / (2 * chunkBytes))));
   std::vector<ChunkJob> jobs;
   std::string chunkMessage; // a worker's OpenEXR message for a failed chunk
-  const vtkSMPTools::Config threads{ vtkApertureSMPThreads(this->NumberOfThreads) };
-  vtkSMPTools::LocalScope(threads, [&]() {
+  vtkApertureThreadTally tally;
+  vtkSMPTools::LocalScope(vtkApertureSMPConfig(this->NumberOfThreads), [&]() {
     for (int first = 0; rv == EXR_ERR_SUCCESS && first < chunkCount; first += batch)
     {
       const int count = std::min(batch, chunkCount - first);
@@ -611,6 +613,7 @@ void vtkApertureEXRWriter::WriteData()
         break;
       }
       vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+        tally.Note();
         for (vtkIdType k = begin; k < end; ++k)
         {
           EncodeChunk(ctx.H, part, channels, byName, nx, ny, jobs[static_cast<size_t>(k)]);
@@ -633,6 +636,7 @@ void vtkApertureEXRWriter::WriteData()
       this->UpdateProgress(static_cast<double>(first + count) / chunkCount);
     }
   });
+  this->NumberOfThreadsUsed = tally.Count();
   jobs.clear();
   if (rv != EXR_ERR_SUCCESS)
   {
@@ -665,6 +669,7 @@ void vtkApertureEXRWriter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PixelType: " << this->GetPixelTypeAsString() << "\n";
   os << indent << "Compression: " << this->GetCompressionAsString() << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "NumberOfThreadsUsed: " << this->NumberOfThreadsUsed << "\n";
   os << indent << "Metadata: " << this->Impl->Metadata.size() << " items\n";
   for (const auto& kv : this->Impl->Metadata)
   {

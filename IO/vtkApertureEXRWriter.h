@@ -148,12 +148,15 @@ public:
   ///@}
 
   ///@{
-  /** Threads converting and compressing chunks of scanlines (through vtkSMPTools): 0 (default)
-   *  = all cores (which also cap larger values), 1 = on the writing thread alone. The file's
-   *  bytes do not depend on it. */
+  /** Threads converting and compressing chunks of scanlines (vtkSMPTools' STDThread backend,
+   *  as in vtkApertureSkyVisibility): 0 (default) = all cores (which also cap larger values).
+   *  The file's bytes do not depend on it. */
   vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
+
+  /** Threads that converted and compressed the last write's chunks (0 before any). */
+  vtkGetMacro(NumberOfThreadsUsed, int);
 
   ///@{
   /** String attributes of the header (key = value), written with the file. Keys are non-empty,
@@ -177,6 +180,7 @@ protected:
   int PixelType;
   int Compression;
   int NumberOfThreads;
+  int NumberOfThreadsUsed;
 
 private:
   vtkApertureEXRWriter(const vtkApertureEXRWriter&) = delete;

@@ -11,6 +11,7 @@
 - every documented error.
 """
 import math
+import os
 import sys
 
 import numpy as np
@@ -272,8 +273,19 @@ class TestSkyVisibility(Testing.vtkTest):
             image = make_image(z, 400000, 5000000, 25, 25, "EPSG:32633")
             cell = (25.0, 25.0)
         names = ("SkyViewFactor", "BentNormal", "HorizonAngles", "EdgeTruncated")
-        runs = [sky(image, NumberOfThreads=t, MaximumDistance=distance, ComputeHorizonAngles=True)
-                .GetOutput() for t in (1, 2, 0)]
+        # The thread count is honoured on every update, not only the first in the process
+        # (Debian's VTK 9.1 TBB backend ran a second LocalScope(1) on every core).
+        counts = (1, 2, 0, 1)
+        filters = [sky(image, NumberOfThreads=t, MaximumDistance=distance,
+                       ComputeHorizonAngles=True) for t in counts]
+        cores = os.cpu_count() or 1
+        used = [f.GetNumberOfThreadsUsed() for f in filters]
+        for t, u in zip(counts, used):
+            self.assertGreaterEqual(u, 1)
+            self.assertLessEqual(u, min(t, cores) if t else cores, (counts, used))
+        if cores > 1:
+            self.assertGreater(max(used), 1, used)  # so that the comparison below means something
+        runs = [f.GetOutput() for f in filters]
         for name in names:
             for other in runs[1:]:
                 np.testing.assert_array_equal(array(runs[0], name), array(other, name))
@@ -288,7 +300,7 @@ class TestSkyVisibility(Testing.vtkTest):
         x0, x1, y0, y1 = piece_extent
         f = aperture.vtkApertureSkyVisibility()
         reader_like = aperture.vtkApertureDEMWriter()  # (write the DEM to read it back)
-        import tempfile, os
+        import tempfile
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "dem.tif")
             reader_like.SetInputData(image)
