@@ -446,10 +446,10 @@ int vtkApertureSkyVisibility::Execute(
         failure = ps;
         break;
       }
-      const vtkIdType columns = static_cast<vtkIdType>(ap_horizon_column_count(hz));
-      vtkSMPTools::For(0, columns, 16, [&](vtkIdType c0, vtkIdType c1) {
+      const vtkIdType units = static_cast<vtkIdType>(ap_horizon_near_field_count(hz));
+      vtkSMPTools::For(0, units, 16, [&](vtkIdType u0, vtkIdType u1) {
         tally.Note();
-        record(ap_horizon_near_field(hz, static_cast<size_t>(c0), static_cast<size_t>(c1)));
+        record(ap_horizon_near_field(hz, static_cast<size_t>(u0), static_cast<size_t>(u1)));
       });
       const vtkIdType brackets = static_cast<vtkIdType>(ap_horizon_bracket_count(hz));
       // Small chunks of lines (ap_horizon.h): their hulls and windows stay in cache, and no

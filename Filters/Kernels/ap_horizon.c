@@ -606,6 +606,8 @@ struct ap_horizon {
   size_t npats, cappats;
   int *pat_of;
   double shortest;        /* the shortest view step (m): len_row's minimum */
+  int by_rows;            /* x-major view whose rows take different patterns (per-row cell
+                           * sizes): the near field runs row by row (see near_rows) */
   int march;              /* the search distance lies within march_columns: the near field
                            * covers it all and the sweep has nothing to do */
 };
@@ -1023,6 +1025,7 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
       }
       hz->pat_of[q] = (int)(hz->npats - 1);
     }
+    hz->by_rows = hz->xmajor && hz->npats > 1;
   }
   /* Lines k in [kmin, kmax] cover s in [0, ns - 1] at every p: line k is at s = k on the last
    * column and drifts by at most m_lo..m_hi per step on the way back. Two extra lines on each
@@ -1059,9 +1062,12 @@ size_t ap_horizon_bracket_count(const ap_horizon *hz)
   return (hz && hz->d >= 0 && hz->nlines > 1) ? hz->nlines - 1 : 0;
 }
 
-size_t ap_horizon_column_count(const ap_horizon *hz)
+size_t ap_horizon_near_field_count(const ap_horizon *hz)
 {
-  return (hz && hz->d >= 0) ? hz->np : 0;
+  if (!hz || hz->d < 0) {
+    return 0;
+  }
+  return hz->by_rows ? hz->ns : hz->np;
 }
 
 /* View column p as a contiguous array of ns elevations. */
@@ -1113,7 +1119,10 @@ static size_t scratch_index(const ap_horizon *hz, size_t p, size_t s)
  * there a band of 16 lines spans 16 cells of a column, too short a loop for vectors (the near
  * field took twice the instructions inside the sweep). Where the cell size varies by row
  * (lat/lon DEMs), rows (x-major) or columns (row-major) whose rays differ by less than a
- * thousandth of a row over the near field share a pattern. */
+ * thousandth of a row over the near field share a pattern. In x-major views those runs of rows
+ * are a few cells long, so there the near field runs row by row instead (near_row), each
+ * record over a whole grid row. (An 1800^2 SRTM grid at 50 N, unlimited distance, one
+ * thread: 122 ns per cell and direction as lat/lon against 73 as UTM before, 88 against 84.) */
 
 static int push_rec(ap_horizon *hz, const patch_rec *r)
 {
@@ -1336,36 +1345,189 @@ AP_INLINE unsigned char search_truncated(double reach, double L, double c, doubl
   return reach < L && (c <= 0.0 || reach * reach * c < zmax - zq);
 }
 
+/* The edge flag of view cell (p, s) at height zq when the near field covers the whole search
+ * (hz->march): whether its own ray (pattern pt: m view rows and len metres per column) leaves
+ * the grid before the search limit (the distance, and with curvature sqrt((zmax - z)/c)). */
+AP_INLINE unsigned char march_edge(const ap_horizon *hz, const pattern *pt, size_t p, long s,
+                                   double zq)
+{
+  double steps = (double)(hz->np - 1 - p); /* columns left before the far edge */
+  if (pt->m > 0.0) {
+    steps = fmin(steps, ((double)hz->ns - 1.0 - (double)s) / pt->m);
+  } else if (pt->m < 0.0) {
+    steps = fmin(steps, (double)s / -pt->m);
+  }
+  return search_truncated(steps * pt->len, hz->p.max_distance, hz->c, (double)hz->zmax, zq);
+}
+
 /* When the near field covers the whole search (hz->march), it also finishes cells [sa, sb) of
- * view column p as the sweep would: nodata cells get NaN, and the edge flag says whether the
- * cell's own ray (pattern pt: m view rows and len metres per column) leaves the grid before
- * the search limit (the distance, and with curvature sqrt((zmax - z)/c)). */
+ * view column p as the sweep would: nodata cells get NaN, the others their edge flag. */
 static void march_finish(const ap_horizon *hz, const pattern *pt, size_t p, long sa, long sb,
                          const float *col, float *best, unsigned char *edge)
 {
-  const double L = hz->p.max_distance, c = hz->c, zmax = (double)hz->zmax;
-  const double ahead = (double)(hz->np - 1 - p); /* columns left before the far edge */
   long s;
   for (s = sa; s < sb; ++s) {
     const double zq = col[s];
-    double steps = ahead, reach;
     if (isnan(zq)) {
       best[s] = NAN;
       edge[s] = 0;
       continue;
     }
-    if (pt->m > 0.0) {
-      steps = fmin(steps, ((double)hz->ns - 1.0 - (double)s) / pt->m);
-    } else if (pt->m < 0.0) {
-      steps = fmin(steps, (double)s / -pt->m);
-    }
-    reach = steps * pt->len;
-    edge[s] = search_truncated(reach, L, c, zmax, zq);
+    edge[s] = march_edge(hz, pt, p, s, zq);
   }
 }
 
-/* The near field of every cell of view columns [c0, c1) into the slope scratch. */
-ap_status ap_horizon_near_field(const ap_horizon *hz, size_t c0, size_t c1)
+/* Row by row (hz->by_rows: x-major views of grids with per-row cell sizes, whose rows take
+ * their own patterns in runs of a few rows, too short for near_column's vectors): the same
+ * operations for every cell in the same order, so the same results bit for bit, but each
+ * record applied to a whole view row, whose cells lie along a grid row: contiguous in grid
+ * column q (view column p = q, or nx - 1 - q in flipped views). best[] is indexed by q. */
+static const float *grid_row(const ap_horizon *hz, long j)
+{
+  return hz->g.z.z + (ptrdiff_t)j * hz->g.z.row_stride;
+}
+
+AP_MULTIVERSION
+static void near_row(const ap_horizon *hz, const pattern *pt, long s, const float *zrow,
+                     float *best)
+{
+  const long ns = (long)hz->ns, nx = (long)hz->np;
+  const float cf = (float)hz->c;
+  size_t r;
+  for (r = 0; r < pt->n; ++r) {
+    const patch_rec *rec = &hz->recs[pt->first + r];
+    const long dp = rec->dp, ds = rec->ds;
+    const float *lo_row, *hi_row;
+    long a0, a1, qlo, qhi, q;
+    if (dp + 1 >= nx) {
+      break; /* (near_column: off the grid for every view column from here on) */
+    }
+    if (s + ds >= 0 && s < ns - 1 - ds) {
+      lo_row = grid_row(hz, s + ds);
+      hi_row = grid_row(hz, s + ds + 1);
+    } else if (rec->wb == 0.0f && rec->v1 == 0.0f && s == ns - 1 - ds) {
+      lo_row = hi_row = grid_row(hz, s + ds); /* (near_column's last-row case) */
+    } else {
+      continue;
+    }
+    /* the cells with p + dp + 1 < np; the corners' grid columns q + a0 and q + a1 */
+    if (hz->flip) {
+      a0 = -dp;
+      a1 = -dp - 1;
+      qlo = dp + 1;
+      qhi = nx;
+    } else {
+      a0 = dp;
+      a1 = dp + 1;
+      qlo = 0;
+      qhi = nx - dp - 1;
+    }
+    for (q = qlo; q < qhi; ++q) {
+      const float v = patch_slope(rec, cf, zrow[q], lo_row[q + a0], lo_row[q + a1],
+                                  hi_row[q + a0], hi_row[q + a1]);
+      best[q] = v > best[q] ? v : best[q];
+    }
+  }
+}
+
+/* far_point_column for view row s (x-major views). */
+static void far_point_row(const ap_horizon *hz, const pattern *pt, long s, const float *zrow,
+                          float *best)
+{
+  const double L = hz->p.max_distance, c = hz->c, K = (double)hz->p.near_field;
+  const double cl = c * L;
+  const long ns = (long)hz->ns;
+  const size_t np = hz->np;
+  const double ls = fabs(pt->ls - nearbyint(pt->ls)) < 1e-9 ? nearbyint(pt->ls) : pt->ls;
+  const double of = floor(ls), t = ls - of;
+  const float *r0, *r1;
+  long o, up;
+  size_t p;
+  if (!(fabs(of) < (double)ns) || !(L > K * hz->len_row[s])) {
+    return;
+  }
+  o = (long)of;
+  up = t == 0.0 ? 0 : 1;
+  if (s < -o || s >= ns - o - up) {
+    return;
+  }
+  r0 = grid_row(hz, s + o);
+  r1 = grid_row(hz, s + o + up);
+  for (p = 0; p < np; ++p) {
+    const double pf = (double)p + pt->lp;
+    const size_t qp = prim_index(hz, p);
+    size_t p0, q0, q1;
+    double tp, a0, a1, b0, b1, i0, i1, zl, sl;
+    if (!(pf >= 0.0) || pf > (double)(np - 1)) {
+      continue;
+    }
+    p0 = (size_t)pf;
+    tp = pf - (double)p0;
+    q0 = prim_index(hz, p0);
+    q1 = tp == 0.0 ? q0 : prim_index(hz, p0 + 1);
+    a0 = r0[q0];
+    a1 = r1[q0];
+    b0 = r0[q1];
+    b1 = r1[q1];
+    i0 = a0 + t * (a1 - a0);
+    i1 = b0 + t * (b1 - b0);
+    zl = (1.0 - tp) * i0 + tp * i1;
+    sl = (zl - (double)zrow[qp]) / L - cl;
+    best[qp] = sl > (double)best[qp] ? (float)sl : best[qp];
+  }
+}
+
+/* march_finish for view row s (x-major views). */
+static void march_finish_row(const ap_horizon *hz, const pattern *pt, long s, const float *zrow,
+                             float *best)
+{
+  size_t p;
+  for (p = 0; p < hz->np; ++p) {
+    const size_t q = prim_index(hz, p);
+    const double zq = zrow[q];
+    unsigned char *edge = hz->edge + q * hz->ny + (size_t)s;
+    if (isnan(zq)) {
+      best[q] = NAN;
+      *edge = 0;
+      continue;
+    }
+    *edge = march_edge(hz, pt, p, s, zq);
+  }
+}
+
+static ap_status near_field_rows(const ap_horizon *hz, size_t r0, size_t r1)
+{
+  const size_t nx = hz->np;
+  const int far_point = !hz->march && isfinite(hz->p.max_distance);
+  float *best = (float *)malloc(nx * sizeof(float));
+  size_t s, q;
+  if (!best) {
+    return AP_ERR_OUT_OF_MEMORY;
+  }
+  for (s = r0; s < r1 && s < hz->ns; ++s) {
+    const pattern *pt = &hz->pats[hz->pat_of[s]];
+    const float *zrow = grid_row(hz, (long)s);
+    for (q = 0; q < nx; ++q) {
+      best[q] = -INFINITY;
+    }
+    near_row(hz, pt, (long)s, zrow, best);
+    if (far_point) {
+      far_point_row(hz, pt, (long)s, zrow, best);
+    }
+    if (hz->march) {
+      march_finish_row(hz, pt, (long)s, zrow, best);
+    }
+    for (q = 0; q < nx; ++q) {
+      hz->slope[q * hz->ny + s] = best[q]; /* (scratch_index of x-major views) */
+    }
+  }
+  free(best);
+  return AP_OK;
+}
+
+/* The near field of units [u0, u1) into the slope scratch: view columns, or view rows when
+ * hz->by_rows. */
+ap_status ap_horizon_near_field(const ap_horizon *hz, size_t u0, size_t u1)
 {
   size_t p;
   if (!hz) {
@@ -1374,7 +1536,10 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t c0, size_t c1)
   if (hz->d < 0) {
     return AP_ERR_INVALID_ARGUMENT;
   }
-  for (p = c0; p < c1 && p < hz->np; ++p) {
+  if (hz->by_rows) {
+    return near_field_rows(hz, u0, u1);
+  }
+  for (p = u0; p < u1 && p < hz->np; ++p) {
     const float *col = view_column(hz, p);
     float *best = hz->slope + scratch_index(hz, p, 0);
     const long ns = (long)hz->ns;
@@ -1926,7 +2091,7 @@ ap_status ap_horizon_run(const ap_horizon_grid *g, const ap_horizon_params *p,
   for (d = 0; d < p->directions && st == AP_OK; ++d) {
     st = ap_horizon_prepare(hz, d);
     if (st == AP_OK) {
-      st = ap_horizon_near_field(hz, 0, ap_horizon_column_count(hz));
+      st = ap_horizon_near_field(hz, 0, ap_horizon_near_field_count(hz));
     }
     if (st == AP_OK) {
       const size_t nb = ap_horizon_bracket_count(hz), band = AP_HORIZON_SWEEP_BAND;

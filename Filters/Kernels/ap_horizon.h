@@ -75,7 +75,7 @@
  *      ap_horizon_create(&grid, &p, &products, &hz);          (validates once, allocates)
  *      for d in 0..D-1:
  *          ap_horizon_prepare(hz, d);
- *          split [0, ap_horizon_column_count(hz)) into ranges;  ap_horizon_near_field() each
+ *          split [0, ap_horizon_near_field_count(hz)) into ranges; ap_horizon_near_field() each
  *          split [0, ap_horizon_bracket_count(hz)) into ranges; ap_horizon_sweep() each
  *          split [0, ny) into row ranges;                      ap_horizon_accumulate() each
  *      split [0, ny) into row ranges;                          ap_horizon_finish() each
@@ -185,15 +185,18 @@ double ap_horizon_azimuth(const ap_horizon *hz, int d);
  *  parallel phases). */
 ap_status ap_horizon_prepare(ap_horizon *hz, int d);
 
-/** Number of view columns of the prepared sector (the DEM's columns or rows, whichever the
- *  sector's direction crosses faster). */
-size_t ap_horizon_column_count(const ap_horizon *hz);
+/** Number of units the prepared sector's near field splits into: its view columns (the DEM's
+ *  columns or rows, whichever the sector's direction crosses faster), or the DEM's rows when
+ *  its rows cross columns and their cell sizes differ (lat/lon DEMs), so that each unit's
+ *  loops run along a grid row. */
+size_t ap_horizon_near_field_count(const ap_horizon *hz);
 
 /** The near field (the first K − 1 samples of every cell's ray, exactly on the bilinear
- *  surface) of view columns [c0, c1) of the prepared sector. Every column must be done before
- *  any ap_horizon_sweep of the sector, which reads these results. In a sector whose search
- *  distance is within march_columns it is the whole search, edge flags included. */
-ap_status ap_horizon_near_field(const ap_horizon *hz, size_t c0, size_t c1);
+ *  surface) of units [u0, u1) of the prepared sector. Every unit must be done before any
+ *  ap_horizon_sweep of the sector, which reads these results. In a sector whose search
+ *  distance is within march_columns it is the whole search, edge flags included. Returns
+ *  AP_ERR_OUT_OF_MEMORY if a row's buffer cannot be allocated. */
+ap_status ap_horizon_near_field(const ap_horizon *hz, size_t u0, size_t u1);
 
 /** Brackets per ap_horizon_sweep call that perform best, as ap_horizon_run and the VTK filter
  *  split them (the filter as its threads' grain): a band's hulls and windows stay in cache. One

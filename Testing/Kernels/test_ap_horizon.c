@@ -623,8 +623,9 @@ static void test_latlon_rows(void)
 }
 
 /* Results are bitwise the same however the brackets and rows are split (threads), through the
- * hulls and with marched rays. */
-static void test_split_invariance_mode(int march_columns)
+ * hulls and with marched rays, with constant and with per-row (lat/lon) cell sizes, whose
+ * x-major sectors split the near field by rows. */
+static void test_split_invariance_mode(int march_columns, int latlon)
 {
   terrain t = make(70, 50, 30.0);
   ap_horizon_params p = params(16, 1);
@@ -639,6 +640,11 @@ static void test_split_invariance_mode(int march_columns)
     }
   }
   t.z[5 * t.nx + 7] = NAN;
+  if (latlon) {
+    /* about 23 x 33 m cells at 60 N; rows 0.0003 degrees (the per-row patterns change every
+     * few rows) */
+    latlon_rows(&t, 6371000.0, 60.0 * DEG, 0.0003 * DEG, 0.0004 * DEG);
+  }
   p.max_distance = 600.0;
   p.march_columns = march_columns;
   for (run = 0; run < 2; ++run) {
@@ -654,7 +660,7 @@ static void test_split_invariance_mode(int march_columns)
     AP_CHECK_EQ_INT(ap_horizon_create(&g, &p, &o, &hz[run]), AP_OK);
     for (d = 0; d < 16; ++d) {
       const size_t nb = (ap_horizon_prepare(hz[run], d), ap_horizon_bracket_count(hz[run]));
-      const size_t nc = ap_horizon_column_count(hz[run]);
+      const size_t nc = ap_horizon_near_field_count(hz[run]);
       if (run == 0) {
         AP_CHECK_EQ_INT(ap_horizon_near_field(hz[run], 0, nc), AP_OK);
         AP_CHECK_EQ_INT(ap_horizon_sweep(hz[run], 0, nb), AP_OK);
@@ -689,8 +695,10 @@ static void test_split_invariance_mode(int march_columns)
 
 static void test_split_invariance(void)
 {
-  test_split_invariance_mode(0);
-  test_split_invariance_mode(64);
+  test_split_invariance_mode(0, 0);
+  test_split_invariance_mode(64, 0);
+  test_split_invariance_mode(0, 1);
+  test_split_invariance_mode(64, 1);
 }
 
 /* The edge flag, closed form on a flat grid without curvature in the four axis sectors: a cell
