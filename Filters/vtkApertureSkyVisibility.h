@@ -109,14 +109,15 @@ public:
 
   ///@{
   /** Threads; 0 (default) = all cores, which also cap larger values. Results do not depend
-   *  on it. They run on vtkSMPTools' STDThread backend whatever VTK's default backend is
-   *  (Debian's VTK 9.1 TBB backend ignores a scope's thread count every other time). */
+   *  on it. They run on vtkSMPTools' STDThread backend whatever VTK's default backend is: the
+   *  TBB backend of Debian's VTK 9.1 applies a scope's thread count only when it differs from
+   *  the previous scope's (a second update on one thread ran on every core). */
   vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
-  /** Threads that ran the last update's sweep (0 before any; at most NumberOfThreads when
-   *  that is set). */
+  /** Threads that ran the last update's parallel work (0 before any; at most
+   *  NumberOfThreads when that is set). */
   vtkGetMacro(NumberOfThreadsUsed, int);
 
   ///@{
