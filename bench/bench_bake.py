@@ -34,12 +34,15 @@ DEMs (made once in --workdir, reused by later runs):
 Missing peers (Debian packages saga, grass-core) and GNU time are installed with apt-get
 first (as root, or through sudo) unless --no-install.
 
-Then ours alone (skippable): on 2048^2 and 4096^2 synthetic DEMs (scaling with cells), on the
-2048^2 one at radius 1 km, 10 km and unlimited (no --radius), and with --threads 1 vs the
-default (parallel speed-up; then --thread-pairs more such pairs, each run right after the other,
-reported with their median, since this is the number VM noise moves most). Peers are not run on
-those large DEMs unless --peers-on-scaling: on 2 cores SAGA took 381 s and GRASS 428 s on
-2048^2, and 4096^2 (4x the cells) would come close to the default 1800 s timeout.
+Then ours alone (skippable): on ../shared/data/dem/white_mountains_N44W072_srtm3_geo.tif when
+present (lat/lon, 1201 x 1201) and on the same elevations relabelled as UTM with the same
+metric cell sizes (the cost of the lat/lon code path); on 2048^2 and 4096^2 synthetic DEMs
+(scaling with cells), on the 2048^2 one at radius 1 km, 10 km and unlimited (no --radius),
+and with --threads 1 vs the default (parallel speed-up; then --thread-pairs more such pairs,
+each run right after the other, reported with their median, since this is the number VM noise
+moves most). Peers are not run on those large DEMs unless --peers-on-scaling: on 2 cores SAGA
+took 381 s and GRASS 428 s on 2048^2, and 4096^2 (4x the cells) would come close to the
+default 1800 s timeout.
 
 Writes a Markdown table (stdout and --output) with, per DEM and contender: cells, parameters,
 wall seconds, peak RSS in MiB, cell-directions per second (cells x directions / wall), and our
@@ -70,6 +73,7 @@ REPO = os.path.dirname(HERE)
 GNU_TIME = "/usr/bin/time"
 DEFAULT_OURS = "{aperture} bake {dem} {out} --directions {directions} {radius_opt} {threads_opt}"
 BIGTUJUNGA = os.path.join(REPO, "..", "shared", "data", "dem", "bigtujunga_srtm1_utm11n_30m.tif")
+LATLON = os.path.join(REPO, "..", "shared", "data", "dem", "white_mountains_N44W072_srtm3_geo.tif")
 UTM16N = 32616
 # messages that mean "this CLI has no such command/option yet", as opposed to a failed run
 NOT_AVAILABLE = ("invalid choice", "unrecognized arguments", "No such file or directory",
@@ -131,6 +135,46 @@ def warp_to_utm(src, dst, epsg, cell):
                   xRes=cell, yRes=cell, targetAlignedPixels=True, resampleAlg="bilinear",
                   dstNodata=-9999, outputType=gdal.GDT_Float32)
         os.replace(dst + ".part.tif", dst)
+    return dst
+
+
+def same_cells_as_utm(src, dst):
+    """The elevations of a lat/lon DEM relabelled as a UTM DEM (the zone of its centre, placed
+    at its centre) whose cells have the lat/lon cells' metric size at the centre (WGS 84): the
+    same terrain through the projected code path, to price the lat/lon one."""
+    if os.path.exists(dst):
+        return dst
+    ds = gdal.Open(src)
+    x0, gx, _, y0, _, gy = ds.GetGeoTransform()
+    lon = x0 + gx * ds.RasterXSize / 2.0
+    lat = y0 + gy * ds.RasterYSize / 2.0
+    a, f = 6378137.0, 1 / 298.257223563
+    e2 = f * (2 - f)
+    w = 1 - e2 * numpy.sin(numpy.radians(lat)) ** 2
+    n_radius, m_radius = a / numpy.sqrt(w), a * (1 - e2) / w ** 1.5
+    dx = n_radius * numpy.cos(numpy.radians(lat)) * numpy.radians(abs(gx))
+    dy = m_radius * numpy.radians(abs(gy))
+    zone = int((lon + 180) // 6) + 1
+    epsg = (32600 if lat >= 0 else 32700) + zone
+    utm = osr.SpatialReference()
+    utm.ImportFromEPSG(epsg)
+    geo = osr.SpatialReference()
+    geo.ImportFromEPSG(4326)
+    geo.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+    utm.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+    cx, cy, _ = osr.CoordinateTransformation(geo, utm).TransformPoint(lon, lat)
+    band = ds.GetRasterBand(1)
+    out = gdal.GetDriverByName("GTiff").Create(dst + ".part.tif", ds.RasterXSize,
+                                              ds.RasterYSize, 1, band.DataType)
+    out.SetProjection(utm.ExportToWkt())
+    out.SetGeoTransform((cx - dx * ds.RasterXSize / 2.0, dx, 0.0,
+                         cy + dy * ds.RasterYSize / 2.0, 0.0, -dy))
+    if band.GetNoDataValue() is not None:
+        out.GetRasterBand(1).SetNoDataValue(band.GetNoDataValue())
+    out.GetRasterBand(1).WriteArray(band.ReadAsArray())
+    out = None
+    ds = None
+    os.replace(dst + ".part.tif", dst)
     return dst
 
 
@@ -527,6 +571,12 @@ def scaling_notes(rows):
                      + ", ".join("%s: %.2f s" % ("%g m" % r["radius"] if r["radius"]
                                                  else "unlimited", secs(r)) for r in radius)
                      + ".")
+    latlon = [r for r in ours if "latlon" in r["series"]]
+    if len(latlon) == 2:
+        ns = lambda r: secs(r) * r["threads"] / (r["nx"] * r["ny"] * r["directions"]) * 1e9
+        notes.append("Ours, lat/lon against projected on the same elevations and cell sizes "
+                     "(sky filter ns per cell-direction per core): %s %.1f, %s %.1f." % (
+                         latlon[0]["dem"], ns(latlon[0]), latlon[1]["dem"], ns(latlon[1])))
     threads = {r["threads"]: secs(r) for r in ours if "threads" in r["series"]}
     if 1 in threads and len(threads) > 1:
         best = max(threads)
@@ -575,6 +625,8 @@ def main():
     parser.add_argument("--no-cell-scaling", action="store_true",
                         help="skip ours on the --scaling-sizes DEMs")
     parser.add_argument("--no-radius-scaling", action="store_true")
+    parser.add_argument("--no-latlon", action="store_true",
+                        help="skip ours on the lat/lon DEM and its projected twin")
     parser.add_argument("--no-thread-scaling", action="store_true")
     parser.add_argument("--thread-pairs", type=int, default=3,
                         help="extra interleaved 1-thread / all-threads pairs (default 3)")
@@ -656,7 +708,7 @@ def main():
             res = run_ours(dem, tag_of(dem, "r%g" % (radius or 0), "t%s" % threads), args,
                            radius, threads)
             done[key] = record(dem, "ours", "ours (aperture bake)", res, threads=threads,
-                               radius=radius, series=set(),
+                               radius=radius, series=set(), directions=args.directions,
                                reference=radius == args.radius and threads == args.threads)
         # a run shared by several series (2048^2 at 10 km) is run and listed once
         row = done[key]
@@ -678,6 +730,15 @@ def main():
         if not args.no_ours:
             ours(dem, args.radius, args.threads,
                  series="cells" if dem == synthetic and scaling_sizes else None)
+
+    if not args.quick and not args.no_ours and not args.no_latlon and os.path.exists(LATLON):
+        print("lat/lon", flush=True)
+        latlon = os.path.abspath(LATLON)
+        projected = same_cells_as_utm(latlon, os.path.join(
+            args.workdir, os.path.splitext(os.path.basename(LATLON))[0] + "_as_utm.tif"))
+        for dem in (latlon, projected):
+            print(os.path.basename(dem), flush=True)
+            ours(dem, args.radius, args.threads, "latlon")
 
     if scaling_sizes and (args.peers_on_scaling or not args.ours_unavailable):
         print("scaling", flush=True)
