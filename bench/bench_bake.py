@@ -31,6 +31,10 @@ DEMs (made once in --workdir, reused by later runs):
 - ../shared/data/dem/bigtujunga_srtm1_utm11n_30m.tif when present (1197 x 643, 30 m);
 - any --dem given.
 
+On each of these DEMs the contenders run in the order ours, SAGA, GRASS, GRASS, SAGA, ours
+(--comparison-repeats 2, the default), so that a drift of the VM's speed during the comparison
+weighs on all of them alike; the table gives each contender's mean and a note every run.
+
 Missing peers (Debian packages saga, grass-core) and GNU time are installed with apt-get
 first (as root, or through sudo) unless --no-install.
 
@@ -420,6 +424,20 @@ def run_ours(dem, tag, args, radius, threads):
     return res
 
 
+def merge_runs(runs):
+    """One result for repeated runs of a contender: the mean wall and compute seconds, the
+    largest peak memory, and every run's wall seconds (walls); a failed run's result if any
+    failed."""
+    failed = [r for r in runs if r["status"] != "ok"]
+    if failed or len(runs) == 1:
+        return dict(failed[0] if failed else runs[0], walls=[r["wall"] for r in runs])
+    computes = [r["compute"] for r in runs]
+    return dict(runs[0], wall=statistics.mean(r["wall"] for r in runs),
+                compute=statistics.mean(computes) if None not in computes else None,
+                rss=max(r["rss"] for r in runs if r["rss"] is not None),
+                walls=[r["wall"] for r in runs])
+
+
 # ---------------------------------------------------------------------------------------------
 # machine and versions
 
@@ -492,7 +510,7 @@ def report(rows, args, header, baseline_rss=None, thread_pairs=()):
                                              "%.0f"),
             fmt(rate if row["status"] == "ok" else None, "%.1f"), fmt(per_core, "%.1f"),
             speedup, row["status"]))
-    notes = (scaling_notes(rows) + pair_notes(thread_pairs, args.threads)
+    notes = (repeat_notes(rows) + scaling_notes(rows) + pair_notes(thread_pairs, args.threads)
              + memory_notes(rows, baseline_rss))
     if notes:
         lines.append("")
@@ -553,6 +571,16 @@ def pair_notes(pairs, threads):
                 len(pairs), threads,
                 ", ".join("%.2f/%.2f s = %.2f" % (one, many, one / many) for one, many in pairs),
                 statistics.median(ratios))]
+
+
+def repeat_notes(rows):
+    """Every run of the contenders compared more than once (their table rows give the means)."""
+    parts = ["%s %s: %s" % (r["dem"], r["contender"], ", ".join(fmt(w, "%.2f") for w in r["walls"]))
+             for r in rows if len(r.get("walls") or []) > 1]
+    if not parts:
+        return []
+    return ["Comparison runs in the order ours, peers, peers, ours on each DEM; the table gives "
+            "each contender's mean; wall seconds of each run: " + "; ".join(parts) + "."]
 
 
 def scaling_notes(rows):
@@ -625,6 +653,9 @@ def main():
     parser.add_argument("--no-cell-scaling", action="store_true",
                         help="skip ours on the --scaling-sizes DEMs")
     parser.add_argument("--no-radius-scaling", action="store_true")
+    parser.add_argument("--comparison-repeats", type=int, choices=(1, 2), default=2,
+                        help="2 (default): run the comparison's contenders again in the "
+                             "mirror order and report their means; 1: once each")
     parser.add_argument("--no-latlon", action="store_true",
                         help="skip ours on the lat/lon DEM and its projected twin")
     parser.add_argument("--no-thread-scaling", action="store_true")
@@ -725,11 +756,34 @@ def main():
     print("comparison: %d directions, radius %g m" % (args.directions, args.radius), flush=True)
     for dem in [] if args.scaling_only else dems:
         print(os.path.basename(dem), flush=True)
+        # ours, the peers, then (--comparison-repeats 2) the peers and ours again in the mirror
+        # order, so that a drift of the machine's speed during the comparison weighs on every
+        # contender alike; each is reported with the mean of its runs
+        contenders = ([] if args.no_ours else [("ours", None, None)]) + peers
+        order = contenders + (contenders[::-1] if args.comparison_repeats > 1 else [])
+        runs = {}
+        for k, (name, label, fn) in enumerate(order):
+            n = len(runs.setdefault(name, []))
+            tag = tag_of(dem, *(["rep%d" % (n + 1)] if n else []))
+            if name == "ours":
+                res = run_ours(dem, tag_of(dem, "r%g" % args.radius, "t%s" % args.threads,
+                                           *(["rep%d" % (n + 1)] if n else [])),
+                               args, args.radius, args.threads)
+            else:
+                res = fn(dem, tag, args)
+            print("  %-22s run %d: %s %s" % (label or "ours", n + 1,
+                                              fmt(res["wall"], "%.2f s"), res["status"]),
+                  flush=True)
+            runs[name].append(res)
         for name, label, fn in peers:
-            record(dem, name, label, fn(dem, tag_of(dem), args))
+            record(dem, name, label, merge_runs(runs[name]))
         if not args.no_ours:
-            ours(dem, args.radius, args.threads,
-                 series="cells" if dem == synthetic and scaling_sizes else None)
+            key = (dem, args.radius, args.threads)
+            done[key] = record(dem, "ours", "ours (aperture bake)", merge_runs(runs["ours"]),
+                               threads=args.threads, radius=args.radius, series=set(),
+                               directions=args.directions, reference=True)
+            if dem == synthetic and scaling_sizes:
+                done[key]["series"].add("cells")
 
     if not args.quick and not args.no_ours and not args.no_latlon and os.path.exists(LATLON):
         print("lat/lon", flush=True)
