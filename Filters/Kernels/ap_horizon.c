@@ -683,9 +683,15 @@ ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params 
   return stats.valid == 0 ? AP_ERR_ALL_NODATA : AP_OK;
 }
 
+/* Grid row j of the elevations (row_stride may be negative). */
+static const float *grid_row(const ap_horizon *hz, long j)
+{
+  return hz->g.z.z + (ptrdiff_t)j * hz->g.z.row_stride;
+}
+
 static float zat(const ap_horizon *hz, size_t i, size_t j)
 {
-  return hz->g.z.z[(ptrdiff_t)j * hz->g.z.row_stride + (ptrdiff_t)i];
+  return grid_row(hz, (long)j)[i];
 }
 
 /* One difference along a row or column of the 3 x 3 window: (after - before) / (2 h) with both
@@ -1286,6 +1292,26 @@ static void near_column(const ap_horizon *hz, const pattern *pt, size_t p, long 
   }
 }
 
+/* The far point's lateral offset in rows, ls (pattern pt): an offset within 1e-9 of a whole
+ * cell is that cell, so that a nodata neighbour with a weight of rounding noise does not void
+ * the point. */
+AP_INLINE double far_offset(const pattern *pt)
+{
+  return fabs(pt->ls - nearbyint(pt->ls)) < 1e-9 ? nearbyint(pt->ls) : pt->ls;
+}
+
+/* The slope to the far point from a cell at height zq: bilinear in the corners a0, a1 (its
+ * lower view column, rows s + o and s + o + up) and b0, b1 (the column above), weights t
+ * (rows) and tp (columns); L the distance, cl = c L. Both layouts (far_point_column,
+ * far_point_row) use it, so their results agree bit for bit. */
+AP_INLINE double far_slope(double a0, double a1, double b0, double b1, double t, double tp,
+                           double zq, double L, double cl)
+{
+  const double i0 = a0 + t * (a1 - a0), i1 = b0 + t * (b1 - b0);
+  const double zl = (1.0 - tp) * i0 + tp * i1;
+  return (zl - zq) / L - cl;
+}
+
 /* The point exactly at the search distance L on the rays of cells [sa, sb) of view column p
  * (pattern pt), max-merged into best[]: rising terrain peaks there, between the column samples
  * the hulls hold. Only where that point lies beyond the near field: always in row-major views
@@ -1305,9 +1331,7 @@ static void far_point_column(const ap_horizon *hz, const pattern *pt, size_t p, 
   const long ns = (long)hz->ns;
   const int xmajor = hz->xmajor;
   const double *len_row = hz->len_row;
-  /* an offset within 1e-9 of a whole cell is that cell, so that a nodata neighbour with a
-   * weight of rounding noise does not void the point */
-  const double ls = fabs(pt->ls - nearbyint(pt->ls)) < 1e-9 ? nearbyint(pt->ls) : pt->ls;
+  const double ls = far_offset(pt);
   const double of = floor(ls), t = ls - of;
   long o, up, s, lo, hi;
   size_t p0;
@@ -1327,10 +1351,7 @@ static void far_point_column(const ap_horizon *hz, const pattern *pt, size_t p, 
   hi = sb < ns - o - up ? sb : ns - o - up;
   for (s = lo; s < hi; ++s) {
     const long s1 = s + o + up;
-    const double a0 = z0[s + o], a1 = z0[s1], b0 = z1[s + o], b1 = z1[s1];
-    const double i0 = a0 + t * (a1 - a0), i1 = b0 + t * (b1 - b0);
-    const double zl = (1.0 - tp) * i0 + tp * i1;
-    const double sl = (zl - (double)col[s]) / L - cl;
+    const double sl = far_slope(z0[s + o], z0[s1], z1[s + o], z1[s1], t, tp, col[s], L, cl);
     const int use = xmajor ? L > K * len_row[s] : 1; /* (len_row has ny entries) */
     best[s] = (use & (sl > (double)best[s])) ? (float)sl : best[s];
   }
@@ -1382,11 +1403,6 @@ static void march_finish(const ap_horizon *hz, const pattern *pt, size_t p, long
  * operations for every cell in the same order, so the same results bit for bit, but each
  * record applied to a whole view row, whose cells lie along a grid row: contiguous in grid
  * column q (view column p = q, or nx - 1 - q in flipped views). best[] is indexed by q. */
-static const float *grid_row(const ap_horizon *hz, long j)
-{
-  return hz->g.z.z + (ptrdiff_t)j * hz->g.z.row_stride;
-}
-
 AP_MULTIVERSION
 static void near_row(const ap_horizon *hz, const pattern *pt, long s, const float *zrow,
                      float *best)
@@ -1438,7 +1454,7 @@ static void far_point_row(const ap_horizon *hz, const pattern *pt, long s, const
   const double cl = c * L;
   const long ns = (long)hz->ns;
   const size_t np = hz->np;
-  const double ls = fabs(pt->ls - nearbyint(pt->ls)) < 1e-9 ? nearbyint(pt->ls) : pt->ls;
+  const double ls = far_offset(pt);
   const double of = floor(ls), t = ls - of;
   const float *r0, *r1;
   long o, up;
@@ -1457,7 +1473,7 @@ static void far_point_row(const ap_horizon *hz, const pattern *pt, long s, const
     const double pf = (double)p + pt->lp;
     const size_t qp = prim_index(hz, p);
     size_t p0, q0, q1;
-    double tp, a0, a1, b0, b1, i0, i1, zl, sl;
+    double tp, sl;
     if (!(pf >= 0.0) || pf > (double)(np - 1)) {
       continue;
     }
@@ -1465,14 +1481,7 @@ static void far_point_row(const ap_horizon *hz, const pattern *pt, long s, const
     tp = pf - (double)p0;
     q0 = prim_index(hz, p0);
     q1 = tp == 0.0 ? q0 : prim_index(hz, p0 + 1);
-    a0 = r0[q0];
-    a1 = r1[q0];
-    b0 = r0[q1];
-    b1 = r1[q1];
-    i0 = a0 + t * (a1 - a0);
-    i1 = b0 + t * (b1 - b0);
-    zl = (1.0 - tp) * i0 + tp * i1;
-    sl = (zl - (double)zrow[qp]) / L - cl;
+    sl = far_slope(r0[q0], r1[q0], r0[q1], r1[q1], t, tp, zrow[qp], L, cl);
     best[qp] = sl > (double)best[qp] ? (float)sl : best[qp];
   }
 }
@@ -1485,7 +1494,7 @@ static void march_finish_row(const ap_horizon *hz, const pattern *pt, long s, co
   for (p = 0; p < hz->np; ++p) {
     const size_t q = prim_index(hz, p);
     const double zq = zrow[q];
-    unsigned char *edge = hz->edge + q * hz->ny + (size_t)s;
+    unsigned char *edge = hz->edge + scratch_index(hz, p, (size_t)s);
     if (isnan(zq)) {
       best[q] = NAN;
       *edge = 0;
