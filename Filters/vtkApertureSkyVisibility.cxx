@@ -437,7 +437,8 @@ int vtkApertureSkyVisibility::Execute(
   };
   bool aborted = false;
   vtkApertureThreadTally tally;
-  vtkSMPTools::LocalScope(vtkApertureSMPConfig(this->NumberOfThreads), [&]() {
+  const vtkSMPTools::Config threads = vtkApertureSMPConfig(this->NumberOfThreads);
+  vtkSMPTools::LocalScope(threads, [&]() {
     for (int d = 0; d < D && failure == AP_OK; ++d)
     {
       ap_status ps = ap_horizon_prepare(hz, d);
@@ -521,7 +522,7 @@ int vtkApertureSkyVisibility::Execute(
         gamma[static_cast<size_t>(b * lx + a)] = g * M_PI / 180.0;
       }
     }
-    vtkSMPTools::LocalScope(vtkApertureSMPConfig(this->NumberOfThreads), [&]() {
+    vtkSMPTools::LocalScope(threads, [&]() {
       vtkSMPTools::For(0, ny, 64, [&](vtkIdType j0, vtkIdType j1) {
         tally.Note();
         for (vtkIdType j = j0; j < j1; ++j)

@@ -733,11 +733,17 @@ def main():
 
     done = {}
 
-    def ours(dem, radius, threads, series=None):
+    def ours_tag(dem, radius, threads, repeat=0):
+        return tag_of(dem, "r%g" % (radius or 0), "t%s" % threads,
+                      *(["rep%d" % (repeat + 1)] if repeat else []))
+
+    def ours(dem, radius, threads, series=None, runs=None):
+        """Our row for (dem, radius, threads): from the given runs (their mean), else a run of
+        its own, made once and shared by every series that asks for it."""
         key = (dem, radius, threads)
         if key not in done:
-            res = run_ours(dem, tag_of(dem, "r%g" % (radius or 0), "t%s" % threads), args,
-                           radius, threads)
+            res = (merge_runs(runs) if runs else
+                   run_ours(dem, ours_tag(dem, radius, threads), args, radius, threads))
             done[key] = record(dem, "ours", "ours (aperture bake)", res, threads=threads,
                                radius=radius, series=set(), directions=args.directions,
                                reference=radius == args.radius and threads == args.threads)
@@ -762,15 +768,13 @@ def main():
         contenders = ([] if args.no_ours else [("ours", None, None)]) + peers
         order = contenders + (contenders[::-1] if args.comparison_repeats > 1 else [])
         runs = {}
-        for k, (name, label, fn) in enumerate(order):
+        for name, label, fn in order:
             n = len(runs.setdefault(name, []))
-            tag = tag_of(dem, *(["rep%d" % (n + 1)] if n else []))
             if name == "ours":
-                res = run_ours(dem, tag_of(dem, "r%g" % args.radius, "t%s" % args.threads,
-                                           *(["rep%d" % (n + 1)] if n else [])),
-                               args, args.radius, args.threads)
+                res = run_ours(dem, ours_tag(dem, args.radius, args.threads, n), args,
+                               args.radius, args.threads)
             else:
-                res = fn(dem, tag, args)
+                res = fn(dem, tag_of(dem, *(["rep%d" % (n + 1)] if n else [])), args)
             print("  %-22s run %d: %s %s" % (label or "ours", n + 1,
                                               fmt(res["wall"], "%.2f s"), res["status"]),
                   flush=True)
@@ -778,12 +782,9 @@ def main():
         for name, label, fn in peers:
             record(dem, name, label, merge_runs(runs[name]))
         if not args.no_ours:
-            key = (dem, args.radius, args.threads)
-            done[key] = record(dem, "ours", "ours (aperture bake)", merge_runs(runs["ours"]),
-                               threads=args.threads, radius=args.radius, series=set(),
-                               directions=args.directions, reference=True)
-            if dem == synthetic and scaling_sizes:
-                done[key]["series"].add("cells")
+            ours(dem, args.radius, args.threads,
+                 series="cells" if dem == synthetic and scaling_sizes else None,
+                 runs=runs["ours"])
 
     if not args.quick and not args.no_ours and not args.no_latlon and os.path.exists(LATLON):
         print("lat/lon", flush=True)

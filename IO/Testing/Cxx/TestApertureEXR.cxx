@@ -770,8 +770,9 @@ void TestCompressions()
 
 //------------------------------------------------------------------------------
 // Chunks are compressed on NumberOfThreads threads and written in order: the same file, byte
-// for byte, for 1, 3 and again 1 thread (each honoured), holding the image; 1030 one-scanline ZIPS chunks cross the
-// writer's batches of 256, and 65 ZIP chunks of 16 end with a short one.
+// for byte, for 1, 3 and again 1 thread (each honoured), holding the image; 1030
+// one-scanline ZIPS chunks cross the writer's batches of 256, and 65 ZIP chunks of 16 end with
+// a short one.
 void TestThreadsSameBytes()
 {
   const int nx = 97, ny = 1030;
