@@ -338,6 +338,13 @@ int vtkApertureSkyVisibility::Execute(
   params.near_field = this->NearField;
   params.origin_col = pieceI;
   params.origin_row = pieceJ;
+  if (geographic)
+  {
+    // the sweep's lines bend with the rows' cell sizes: their lattice is the whole DEM's rows'
+    params.whole_dx = dx.data();
+    params.whole_dy = dy.data();
+    params.whole_rows = static_cast<size_t>(nyWhole);
+  }
   {
     // Radii of curvature of the ellipsoid at the DEM centre.
     const double a = ellipsoid[0], f = ellipsoid[1], e2 = f * (2 - f);

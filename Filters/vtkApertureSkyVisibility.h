@@ -42,11 +42,11 @@
  * distance is unlimited, or when the CRS is not known before data flows: directly behind
  * vtkApertureDEMReader it is). Inside the region the results are the whole-DEM run's: what
  * depends on the DEM as a whole (its centre's cell size, curvature radii and meridian
- * convergence, the lattice of the sweep's lines) is taken from the whole extent, so on
- * projected DEMs a piece is bit-identical to the whole run, and on lat/lon DEMs too where
- * the rays are marched (a distance of at most 64 cells). Through the sweep, on lat/lon DEMs
- * the lines bend with the cell size and still start from the piece's edge: single cells may
- * differ by up to about 1e-3 in SkyViewFactor (mean 2e-6 on a rough test DEM at 45 N).
+ * convergence, and the lattice of the sweep's lines, on lat/lon DEMs laid out by the whole
+ * DEM's rows) is taken from the whole extent, so a piece is bit-identical to the whole run
+ * there, projected or lat/lon, swept or marched (the tests compare every bit; only the
+ * distances along the sweep's lines are summed from the piece's own edge, which could in
+ * principle round a last bit differently).
  *
  * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, no CRS
  * or no metric cell size, every cell nodata, NumberOfDirections outside 4..360, a negative

@@ -585,6 +585,16 @@ struct ap_horizon {
   float *bsum;          /* bent-normal sums when out.bent_normal is NULL */
   float zmax;
 
+  /* per-row cell sizes: the lattice of lines of the larger DEM (p.whole_*, or the grid's own
+   * rows), see ap_horizon_prepare */
+  int lattice;            /* the grid has per-row cell sizes */
+  double *psi;            /* nw values: Ψ at the larger DEM's rows, the sum of dy/dx */
+  double *psi_inv;        /* nw - 1 values: 1 / (psi[j + 1] - psi[j]) */
+  size_t nw;
+  long ocol, orow;        /* this grid's cell (0, 0) in the larger DEM */
+  double wdx_c, wdy_c;    /* the larger DEM's centre row cell sizes (m) */
+  double wdx_min, wdy_min; /* its smallest */
+
   /* the prepared sector */
   int d;
   double phi;             /* grid azimuth (rad) */
@@ -595,8 +605,13 @@ struct ap_horizon {
   double *cum_m, *cum_len; /* row-major views: prefix sums over p of the step shift / length */
   const float **colp;     /* view column p as a contiguous array of ns elevations */
   int parallel;           /* all lines shift alike at each p (no per-row bending) */
-  long kmin;              /* line k = kmin + index starts at s = k + phase on p = np - 1 */
+  long kmin;              /* line k = kmin + index starts at s = k + phase on p = np - 1
+                           * (per-row sizes: see lat_off) */
   double phase;           /* in [0, 1): puts the lines on the lattice of the larger DEM */
+  double *lat_off;        /* per-row sizes, per view position p: line k lies at column
+                           * k + lat_off[p] of the larger DEM (row-major views) or at the row
+                           * where Ψ = sigma k + lat_off[p] (x-major views) */
+  double sigma;           /* x-major, per-row sizes: Psi between neighbouring lines */
   size_t nlines;
   /* near-field patch patterns (see build_pattern): a pool of records, the patterns, and which
    * pattern serves each view position (indexed by p for row-major views, s for x-major) */
@@ -644,6 +659,9 @@ void ap_horizon_params_init(ap_horizon_params *p)
   p->march_columns = 64;
   p->origin_col = 0;
   p->origin_row = 0;
+  p->whole_dx = NULL;
+  p->whole_dy = NULL;
+  p->whole_rows = 0;
 }
 
 ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params *p)
@@ -674,6 +692,20 @@ ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params 
   for (j = 0; j < g->z.ny; ++j) {
     if (!positive_finite(row_dx(g, j)) || !positive_finite(row_dy(g, j))) {
       return AP_ERR_INVALID_ARGUMENT;
+    }
+  }
+  if ((p->whole_dx == NULL) != (p->whole_dy == NULL)) {
+    return AP_ERR_INVALID_ARGUMENT;
+  }
+  if (p->whole_dx && (g->dx || g->dy)) {
+    if (p->origin_row < 0 || p->whole_rows < g->z.ny ||
+        (size_t)p->origin_row > p->whole_rows - g->z.ny) {
+      return AP_ERR_INVALID_ARGUMENT;
+    }
+    for (j = 0; j < p->whole_rows; ++j) {
+      if (!positive_finite(p->whole_dx[j]) || !positive_finite(p->whole_dy[j])) {
+        return AP_ERR_INVALID_ARGUMENT;
+      }
     }
   }
   st = ap_grid_stats_compute(&g->z, &stats);
@@ -751,6 +783,8 @@ static void free_sector(ap_horizon *hz)
   free(hz->len_row);
   free(hz->cum_m);
   free(hz->cum_len);
+  free(hz->lat_off);
+  hz->lat_off = NULL;
   free((void *)hz->colp);
   hz->colp = NULL;
   free(hz->recs);
@@ -771,12 +805,45 @@ void ap_horizon_destroy(ap_horizon *hz)
   free_sector(hz);
   free(hz->dxr);
   free(hz->dyr);
+  free(hz->psi);
+  free(hz->psi_inv);
   free(hz->zt);
   free(hz->grad);
   free(hz->slope);
   free(hz->edge);
   free(hz->bsum);
   free(hz);
+}
+
+/* Per-row cell sizes: Ψ at the rows of the larger DEM (p.whole_*, else the grid's own), its
+ * centre row's and smallest cell sizes, and where the grid sits in it. 0 when out of memory. */
+static int lattice_init(ap_horizon *hz)
+{
+  const int whole = hz->p.whole_dx != NULL;
+  const double *wdx = whole ? hz->p.whole_dx : hz->dxr, *wdy = whole ? hz->p.whole_dy : hz->dyr;
+  size_t j;
+  hz->nw = whole ? hz->p.whole_rows : hz->ny;
+  hz->ocol = whole ? hz->p.origin_col : 0;
+  hz->orow = whole ? hz->p.origin_row : 0;
+  hz->psi = (double *)malloc(hz->nw * sizeof(double));
+  hz->psi_inv = (double *)malloc((hz->nw - 1) * sizeof(double));
+  if (!hz->psi || !hz->psi_inv) {
+    return 0;
+  }
+  hz->psi[0] = 0.0;
+  hz->wdx_min = wdx[0];
+  hz->wdy_min = wdy[0];
+  for (j = 1; j < hz->nw; ++j) {
+    hz->psi[j] = hz->psi[j - 1] + 0.5 * (wdy[j - 1] / wdx[j - 1] + wdy[j] / wdx[j]);
+    hz->wdx_min = fmin(hz->wdx_min, wdx[j]);
+    hz->wdy_min = fmin(hz->wdy_min, wdy[j]);
+  }
+  for (j = 0; j + 1 < hz->nw; ++j) {
+    hz->psi_inv[j] = 1.0 / (hz->psi[j + 1] - hz->psi[j]);
+  }
+  hz->wdx_c = wdx[hz->nw / 2];
+  hz->wdy_c = wdy[hz->nw / 2];
+  return 1;
 }
 
 /* Keep in step with the allocations of ap_horizon_create below. */
@@ -845,6 +912,11 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
       horn_gradient(hz, i, j, hz->grad + 2 * (j * hz->nx + i));
     }
   }
+  hz->lattice = g->dx != NULL || g->dy != NULL;
+  if (hz->lattice && !lattice_init(hz)) {
+    ap_horizon_destroy(hz);
+    return AP_ERR_OUT_OF_MEMORY;
+  }
   /* The outputs are the accumulators until ap_horizon_finish. */
   if (out->visible_solid_angle) memset(out->visible_solid_angle, 0, n * sizeof(float));
   if (out->aperture_radius) memset(out->aperture_radius, 0, n * sizeof(float));
@@ -898,6 +970,72 @@ static double row_value(const double *table, size_t ny, double r)
   return table[r0] + t * (table[r0 + 1] - table[r0]);
 }
 
+/* The segment of the larger DEM's rows holding Psi = T: the j in [0, nw - 2] with
+ * psi[j] <= T < psi[j + 1], 0 below psi[0], nw - 2 from psi[nw - 1] up; j is a hint (-1: none).
+ * The answer depends on T alone. */
+static long lattice_seek(const ap_horizon *hz, double T, long j)
+{
+  const double *psi = hz->psi;
+  const long last = (long)hz->nw - 2;
+  if (j < 0 || j > last) {
+    long lo = 0, hi = last; /* the last j in [0, last] with psi[j] <= T, else 0 */
+    while (lo < hi) {
+      const long mid = lo + (hi - lo + 1) / 2;
+      if (psi[mid] <= T) {
+        lo = mid;
+      } else {
+        hi = mid - 1;
+      }
+    }
+    return lo;
+  }
+  while (j < last && psi[j + 1] <= T) {
+    ++j;
+  }
+  while (j > 0 && psi[j] > T) {
+    --j;
+  }
+  return j;
+}
+
+/* Per-row cell sizes: the sector's lines on the larger DEM's lattice. A rhumb line at grid
+ * azimuth phi moves tan(phi) dy/dx columns per row, so in a row-major view line k lies at
+ * column k + tan(phi) Psi(row) of the larger DEM, and in an x-major view at the row where
+ * Psi = sigma k + cot(phi) column. Both are functions of the larger DEM's rows and columns
+ * alone, computed the same way in every piece; subtracting the piece's origin (a whole number)
+ * from a position inside the piece is exact. Lines kmin..kmin + nlines - 1 cover the grid with
+ * two to spare on each side. 0 when out of memory. */
+static int lattice_lines(ap_horizon *hz, double sphi, double cphi)
+{
+  double lo = INFINITY, hi = -INFINITY, first, last;
+  size_t p;
+  hz->lat_off = (double *)malloc(hz->np * sizeof(double));
+  if (!hz->lat_off) {
+    return 0;
+  }
+  hz->phase = 0.0;
+  hz->sigma = hz->wdy_c / hz->wdx_c;
+  for (p = 0; p < hz->np; ++p) {
+    const long q = (long)prim_index(hz, p);
+    const double off = hz->xmajor ? (cphi / sphi) * (double)(q + hz->ocol)
+                                  : (sphi / cphi) * hz->psi[q + hz->orow];
+    hz->lat_off[p] = off;
+    lo = fmin(lo, off);
+    hi = fmax(hi, off);
+  }
+  if (hz->xmajor) {
+    /* rows orow .. orow + ny - 1 at every column: Psi - lat_off from first - hi to last - lo */
+    first = (hz->psi[hz->orow] - hi) / hz->sigma;
+    last = (hz->psi[hz->orow + (long)hz->ny - 1] - lo) / hz->sigma;
+  } else {
+    first = (double)hz->ocol - hi;
+    last = (double)(hz->ocol + (long)hz->nx - 1) - lo;
+  }
+  hz->kmin = (long)floor(first) - 2;
+  hz->nlines = (size_t)((long)ceil(last) + 2 - hz->kmin + 1);
+  return 1;
+}
+
 ap_status ap_horizon_prepare(ap_horizon *hz, int d)
 {
   double sphi, cphi, m_lo = INFINITY, m_hi = -INFINITY, R;
@@ -913,22 +1051,17 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
   hz->phi = ap_horizon_azimuth(hz, d) - hz->p.azimuth_offset;
   sphi = sin(hz->phi);
   cphi = cos(hz->phi);
-  /* Index-space speed of the ground direction at the centre row decides the view. */
-  {
+  /* Index-space speed of the ground direction at the centre row (of the larger DEM, with
+   * per-row sizes) decides the view. */
+  if (hz->lattice) {
+    hz->xmajor = fabs(sphi) / hz->wdx_c >= fabs(cphi) / hz->wdy_c;
+  } else {
     const size_t jc = hz->ny / 2;
     hz->xmajor = fabs(sphi) / hz->dxr[jc] >= fabs(cphi) / hz->dyr[jc];
   }
   hz->flip = hz->xmajor ? (sphi < 0.0) : (cphi < 0.0);
   /* Lines bend only in column-major views of grids whose cell size varies by row. */
-  hz->parallel = 1;
-  if (hz->xmajor) {
-    for (j = 1; j < hz->ny; ++j) {
-      if (hz->dxr[j] != hz->dxr[0] || hz->dyr[j] != hz->dyr[0]) {
-        hz->parallel = 0;
-        break;
-      }
-    }
-  }
+  hz->parallel = hz->lattice ? !hz->xmajor : 1;
   hz->np = hz->xmajor ? hz->nx : hz->ny;
   hz->ns = hz->xmajor ? hz->ny : hz->nx;
   hz->colp = (const float **)malloc(hz->np * sizeof(*hz->colp));
@@ -984,8 +1117,17 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
   for (j = 0; j < hz->ny; ++j) {
     hz->shortest = fmin(hz->shortest, hz->len_row[j]);
   }
-  hz->march = isfinite(hz->p.max_distance) &&
-              hz->p.max_distance <= (double)hz->p.march_columns * hz->shortest;
+  {
+    /* (with per-row sizes the larger DEM's shortest step decides, so that its pieces march
+     * where it does; the window's capacity below takes the shorter of the two) */
+    double decides = hz->shortest;
+    if (hz->lattice) {
+      decides = hz->xmajor ? hz->wdx_min / fabs(sphi) : hz->wdy_min / fabs(cphi);
+      hz->shortest = fmin(hz->shortest, decides);
+    }
+    hz->march = isfinite(hz->p.max_distance) &&
+                hz->p.max_distance <= (double)hz->p.march_columns * decides;
+  }
   /* Near-field patterns. With constant cell sizes all positions share one pattern of the
    * exact step. With per-row sizes a position takes the pattern of its step rounded to a
    * lattice, tol in m and 1e-4 in log(len): a function of that position's own rows, so a piece
@@ -995,7 +1137,6 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
     /* rows of drift allowed over the near field */
     const double tol = 1e-3 / (double)(hz->march ? hz->p.march_columns : hz->p.near_field);
     const size_t npos = hz->xmajor ? hz->ns : hz->np;
-    const int per_row = hz->g.dx != NULL || hz->g.dy != NULL;
     double key_m = 0.0, key_len = 0.0;
     size_t q;
     hz->pat_of = (int *)malloc(npos * sizeof(int));
@@ -1013,7 +1154,7 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
         m = view_step(hz->cum_m, hz->np, q);
         len = view_step(hz->cum_len, hz->np, q);
       }
-      if (per_row) {
+      if (hz->lattice) {
         const double km = floor(m / tol + 0.5), kl = floor(log(len) / 1e-4 + 0.5);
         fresh = fresh || km != key_m || kl != key_len;
         key_m = km;
@@ -1033,6 +1174,13 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
     }
     hz->by_rows = hz->xmajor && hz->npats > 1;
   }
+  if (hz->lattice) {
+    if (!lattice_lines(hz, sphi, cphi)) {
+      free_sector(hz);
+      return AP_ERR_OUT_OF_MEMORY;
+    }
+    return AP_OK;
+  }
   /* Lines k in [kmin, kmax] cover s in [0, ns - 1] at every p: line k is at s = k on the last
    * column and drifts by at most m_lo..m_hi per step on the way back. Two extra lines on each
    * side keep every cell strictly bracketed. */
@@ -1049,7 +1197,7 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
    * occluders), lie at s = integer + sign m q on the column of grid index q (sign -1 for
    * flipped views). On this grid's last view column, grid index q_last, offset by the
    * origin, that is this grid's s = k + phase. A phase below 1 keeps the margin of the
-   * extra lines above. With per-row cell sizes m is the centre row's: approximate. */
+   * extra lines above. */
   {
     const long q0 = hz->xmajor ? hz->p.origin_col : hz->p.origin_row;
     const double m = hz->m_row[hz->ny / 2];
@@ -1605,6 +1753,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
   line_state *lines = NULL;
   sample *ring = NULL; /* per line, K pending samples (u NaN: none) */
   double shift, xc, k0, phase, smax;
+  long jfirst = -1; /* per-row sizes, x-major: the first line's segment of rows (lattice_seek) */
   ap_status st = AP_OK;
   if (!hz) {
     return AP_ERR_NULL_POINTER;
@@ -1668,7 +1817,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
      * so fetch a few columns ahead. */
     if (p >= AP_PREFETCH_COLUMNS) {
       const size_t pf = p - AP_PREFETCH_COLUMNS;
-      const double s_first = hz->parallel ? k0 + phase - shift : lines[0].s;
+      const double s_first = hz->parallel && !hz->lattice ? k0 + phase - shift : lines[0].s;
       /* the band's first and last cells, kept inside the column (a band can lie wholly
        * beside the grid at this column, and a pointer past the column is not to be formed) */
       const size_t sa =
@@ -1682,50 +1831,33 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
     }
     /* 1. Move the lines to column p and take the samples of those inside the grid (delayed
      *    into the hulls by K - 1 columns through the ring; a slot remembers its column). With
-     *    parallel lines every line has the same shift and distance, so only those inside are
-     *    touched; bending lines all advance. */
-    if (hz->parallel) {
-      if (p + 1 < np) {
-        if (hz->xmajor) {
-          shift += hz->m_row[0];
-          xc -= hz->len_row[0];
-        } else {
-          shift += hz->cum_m[p + 1] - hz->cum_m[p];
-          xc -= hz->cum_len[p + 1] - hz->cum_len[p];
-        }
-      }
-      /* line l is at s = k0 + l + phase - shift, inside for 0 <= s <= ns - 1 */
-      for (l = 0; l < nl; ++l) {
-        /* ((long): a one-instruction conversion) */
-        lines[l].s = (k0 + (double)(long)l + phase) - shift;
-        lines[l].x = xc;
-        lines[l].avail = isnan(lines[l].xend) ? 0.0 : lines[l].xend - xc;
-      }
-      {
-        const double lo = ceil(shift - k0 - phase);
-        const double hi = floor((double)(ns - 1) + shift - k0 - phase);
-        const size_t la = lo > 0.0 ? (size_t)lo : 0;
-        const size_t lb = hi < 0.0 ? 0 : (hi + 1.0 < (double)nl ? (size_t)hi + 1 : nl);
-        for (l = la; l < lb; ++l) {
-          line_state *ln = &lines[l];
-          sample *q = &ring[l * (size_t)K + (size_t)slot];
-          if (isnan(ln->xend)) {
-            ln->xend = xc; /* avail stays 0 */
-          }
-          q->x = xc;
-          q->u = interp(col, smax, ln->s) - c * xc * xc; /* NaN on nodata */
-          q->s = ln->s;
-          q->col = (long)p;
-        }
-      }
-    } else {
+     *    constant cell sizes every line has the same shift and distance, so only those inside
+     *    are touched. */
+    if (!hz->parallel) {
+      /* Per-row sizes, x-major: the lines bend; each one's row from the lattice (see
+       * lattice_lines), its distance stepped with the length of the step it ends. (What the
+       * loop reads of hz in locals: the stores below might alias hz for the compiler.) */
+      const double off = hz->lat_off[p], sigma = hz->sigma, orow = (double)hz->orow;
+      const double *const psi = hz->psi, *const psi_inv = hz->psi_inv;
+      const long last = (long)hz->nw - 2, kfirst = hz->kmin + (long)b0;
+      long j = 0;
       for (l = 0; l < nl; ++l) {
         line_state *ln = &lines[l];
+        const double T = sigma * (double)(kfirst + (long)l) + off;
         if (p + 1 < np) {
-          const double r = ln->s; /* column-major view: the grid row is s itself */
-          ln->x -= row_value(hz->len_row, hz->ny, r);
-          ln->s -= row_value(hz->m_row, hz->ny, r);
+          ln->x -= row_value(hz->len_row, hz->ny, ln->s);
         }
+        if (l == 0) {
+          /* the band's first line: from its segment on the previous column */
+          j = jfirst = lattice_seek(hz, T, jfirst);
+        } else {
+          /* the next ones lie higher, about a row apart: walk up (one step, mostly) */
+          while (j < last && psi[j + 1] <= T) {
+            ++j;
+          }
+        }
+        /* the larger DEM's row where Psi = T (linear on segment j), in this grid's rows */
+        ln->s = ((double)j + (T - psi[j]) * psi_inv[j]) - orow;
         if (ln->s >= 0.0 && ln->s <= smax) {
           sample *q = &ring[l * (size_t)K + (size_t)slot];
           if (isnan(ln->xend)) {
@@ -1737,6 +1869,58 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
           q->col = (long)p;
         }
         ln->avail = isnan(ln->xend) ? 0.0 : ln->xend - ln->x;
+      }
+    } else {
+      /* Parallel lines: every line has the same shift and distance, so only those inside are
+       * touched. */
+      if (p + 1 < np) {
+        if (hz->xmajor) {
+          shift += hz->m_row[0];
+          xc -= hz->len_row[0];
+        } else {
+          shift += hz->cum_m[p + 1] - hz->cum_m[p];
+          xc -= hz->cum_len[p + 1] - hz->cum_len[p];
+        }
+      }
+      if (hz->lattice) {
+        /* per-row sizes, row-major: line k at column k + lat_off[p] of the larger DEM */
+        const double off = hz->lat_off[p], oc = (double)hz->ocol;
+        for (l = 0; l < nl; ++l) {
+          lines[l].s = ((double)(hz->kmin + (long)(b0 + l)) + off) - oc;
+        }
+      } else {
+        /* line l is at s = k0 + l + phase - shift */
+        for (l = 0; l < nl; ++l) {
+          /* ((long): a one-instruction conversion) */
+          lines[l].s = (k0 + (double)(long)l + phase) - shift;
+        }
+      }
+      for (l = 0; l < nl; ++l) {
+        lines[l].x = xc;
+        lines[l].avail = isnan(lines[l].xend) ? 0.0 : lines[l].xend - xc;
+      }
+      {
+        /* the lines inside, 0 <= s <= ns - 1: s = l - a (with per-row
+         * sizes up to rounding: the bounds one wider, each line tested) */
+        const int wide = hz->lattice;
+        const double a = wide ? (double)hz->ocol - hz->lat_off[p] - k0 : shift - k0 - phase;
+        const double lo = ceil(a) - (double)wide, hi = floor((double)(ns - 1) + a) + (double)wide;
+        const size_t la = lo > 0.0 ? (size_t)lo : 0;
+        const size_t lb = hi < 0.0 ? 0 : (hi + 1.0 < (double)nl ? (size_t)hi + 1 : nl);
+        for (l = la; l < lb; ++l) {
+          line_state *ln = &lines[l];
+          sample *q = &ring[l * (size_t)K + (size_t)slot];
+          if (wide && !(ln->s >= 0.0 && ln->s <= smax)) {
+            continue;
+          }
+          if (isnan(ln->xend)) {
+            ln->xend = xc; /* avail stays 0 */
+          }
+          q->x = xc;
+          q->u = interp(col, smax, ln->s) - c * xc * xc; /* NaN on nodata */
+          q->s = ln->s;
+          q->col = (long)p;
+        }
       }
     }
 

@@ -32,9 +32,15 @@
  *  span) x (columns) / 2 columns at the limit (0.05 of a cell at 60 N over 64 diagonal steps
  *  of a 3-arc-second grid).
  *
- *  Geometry: cell sizes are given per row in metres, so lat/lon DEMs are exact (the lines
- *  follow constant ground azimuth — rhumb lines — and bend in index space as the east-west
- *  cell size changes with latitude). Sector d is centred on true azimuth φ_d = 2π d / D
+ *  Geometry: cell sizes are given per row in metres, so lat/lon DEMs are exact: the lines
+ *  follow constant ground azimuth (rhumb lines) and bend in index space as the east-west cell
+ *  size changes with latitude. With Ψ(r) the sum of dy/dx over the rows up to row r (whole rows
+ *  by trapezoids, linear between them: the isometric latitude in columns), a rhumb line at
+ *  grid azimuth φ keeps Ψ(row) − cot φ · column constant; the sweep's lines are the levels
+ *  σ k of it (whole k), σ = dy/dx of the DEM's centre row, so they lie a row apart there and
+ *  dx / dx(centre) rows apart elsewhere (sectors that cross rows faster than columns: line k
+ *  at column k + tan φ · Ψ(row)). They depend on the DEM's rows alone, not on where a piece
+ *  of it starts (whole_dx, origin_row). Sector d is centred on true azimuth φ_d = 2π d / D
  *  (clockwise from north, d = 0 north); with a projected DEM, pass the meridian convergence γ
  *  at the DEM centre as azimuth_offset and the sweep runs at grid azimuth φ_d − γ.
  *
@@ -127,11 +133,25 @@ typedef struct ap_horizon_params {
                                origin_row) is the grid's cell (0, 0), |values| <= 10^9; the
                                sweep's lines lie on that DEM's lattice of lines, so a piece
                                cut with a margin of max_distance around a region gets the
-                               larger DEM's results there (the same values with constant
-                               cell sizes, and with per-row sizes where rays are marched;
-                               swept with per-row sizes, the bending lines still start from
-                               the piece's edge: close, not equal). Default 0, 0 */
+                               larger DEM's results there (the same values up to rounding of
+                               the distances along the lines). With per-row cell sizes the
+                               lattice is defined by the larger DEM's rows: pass them as
+                               whole_dx / whole_dy, else the grid is taken as the whole DEM
+                               (origin 0, 0) for the sweep. Default 0, 0 */
   long origin_row;
+  const double *whole_dx; /**< with per-row cell sizes (grid dx or dy set): the larger DEM's
+                               east-west cell sizes (m) for its whole_rows rows, of which
+                               this grid's rows are rows origin_row.. origin_row + ny − 1;
+                               they set the sweep's lattice of lines and the choices that
+                               depend on the whole DEM (which sectors cross columns faster
+                               than rows, at its centre row; whether a distance is marched,
+                               by its shortest row). Caller-owned, read by
+                               ap_horizon_create only. NULL (default): the grid's own rows.
+                               Ignored with constant cell sizes */
+  const double *whole_dy; /**< the larger DEM's south-north cell sizes (m), as whole_dx;
+                               both NULL or both set, else AP_ERR_INVALID_ARGUMENT, as for
+                               too few rows or a size not positive and finite */
+  size_t whole_rows;      /**< rows of whole_dx / whole_dy (default 0) */
 } ap_horizon_params;
 
 /** Output arrays, caller-owned, nx * ny cells in grid order (cell (i, j) at j * nx + i);

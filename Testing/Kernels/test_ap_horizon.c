@@ -850,6 +850,39 @@ static void test_errors(void)
   p.origin_row = 1000000001L;
   AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
   p.origin_row = 0;
+  {
+    /* the larger DEM's rows (per-row sizes): both tables, enough rows below and above the
+     * piece, sizes positive and finite; ignored with constant sizes */
+    double wdx[14], wdy[14], rdx[10];
+    size_t k;
+    for (k = 0; k < 14; ++k) {
+      wdx[k] = 20.0 + (double)k;
+      wdy[k] = 30.0;
+    }
+    p.whole_dx = wdx;
+    p.whole_dy = NULL;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+    p.whole_dy = wdy;
+    p.whole_rows = 14;
+    p.origin_row = 5; /* rows 5..14: one more than the 14 */
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_OK); /* (constant sizes: not read) */
+    memcpy(rdx, wdx + 4, sizeof(rdx));
+    g.dx = rdx;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+    p.origin_row = -1;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+    p.origin_row = 4;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_OK);
+    p.whole_rows = 9; /* fewer than the grid's */
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+    p.whole_rows = 14;
+    wdy[13] = NAN;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+    g.dx = NULL;
+    p.whole_dx = p.whole_dy = NULL;
+    p.whole_rows = 0;
+    p.origin_row = 0;
+  }
   g.dx0 = 0.0;
   AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
   g.dx0 = 30.0;
@@ -866,10 +899,10 @@ static void test_errors(void)
 }
 
 /* A piece cut from a larger DEM with a margin of the search distance around a region, told
- * its origin in that DEM, gets the DEM's results in the region: the near field is each cell's
- * own ray either way, and the sweep's lines lie on the DEM's lattice, so every hull holds the
- * same samples within the distance. Only rounding differs (distances along the lines are
- * measured from the piece's middle). Without the origin the lines fall elsewhere: that is the
+ * its origin in that DEM (and with per-row sizes that DEM's rows), gets the DEM's results in
+ * the region: the near field is each cell's own ray either way, and the sweep's lines lie on
+ * the DEM's lattice, so every hull holds the same samples within the distance. Only rounding
+ * differs (distances along the lines are measured from the piece's middle). Without the origin the lines fall elsewhere: that is the
  * difference the test must see shrink. The piece is region (i0, i1, j0, j1) grown by mi
  * columns and mj rows; returns the largest difference of A, SVF and the horizons there. */
 static double piece_difference(const terrain *whole, const results *w, const ap_horizon_params *p,
@@ -894,6 +927,12 @@ static double piece_difference(const terrain *whole, const results *w, const ap_
   }
   q.origin_col = with_origin ? (long)i0 : 0;
   q.origin_row = with_origin ? (long)j0 : 0;
+  if (whole->dx && with_origin) {
+    /* per-row sizes: the lattice comes from the larger DEM's rows */
+    q.whole_dx = whole->dx;
+    q.whole_dy = whole->dy;
+    q.whole_rows = whole->ny;
+  }
   r = compute(&t, &q);
   for (j = region[2]; j <= region[3]; ++j) {
     for (i = region[0]; i <= region[1]; ++i) {
@@ -966,6 +1005,22 @@ static void test_pieces(void)
            u.ny, aligned);
     AP_CHECK(aligned == 0.0);
     release(&w);
+    /* Swept (march_columns 0), with curvature: the bending lines lie on the whole DEM's
+     * lattice of rhumb lines when the piece has the DEM's rows; without them the piece is a
+     * DEM of its own, its lines elsewhere. In D = 29 no sector is row- or column-aligned. */
+    for (k = 0; k < 2; ++k) {
+      double unaligned;
+      p.directions = k == 0 ? 32 : 29;
+      p.march_columns = 0;
+      w = compute(&u, &p);
+      aligned = piece_difference(&u, &w, &p, piece, mi, mj, 1);
+      unaligned = piece_difference(&u, &w, &p, piece, mi, mj, 0);
+      printf("piece of a %zu x %zu lat/lon-like DEM, swept, D = %d: largest difference %.3g "
+             "aligned, %.3g not\n", u.nx, u.ny, p.directions, aligned, unaligned);
+      AP_CHECK(aligned <= 1e-5);
+      AP_CHECK(unaligned > 1e-3);
+      release(&w);
+    }
     drop(&u);
   }
 }
