@@ -1506,17 +1506,18 @@ static void far_point_column(const ap_horizon *hz, const pattern *pt, size_t p, 
 }
 
 /* The edge flag of a cell at height zq whose search reaches `reach` metres before the DEM
- * ends: truncated when that is short of the search limit, the distance L and, with curvature c,
- * sqrt((zmax - zq) / c), beyond which terrain no higher than the DEM's highest cell stays below
- * the cell's horizontal (compared squared: reach^2 c < zmax - zq). */
+ * ends: truncated when that is short of the search limit, the distance L, or without one, with
+ * curvature c, sqrt((zmax - zq) / c), beyond which terrain no higher than the DEM's highest
+ * cell stays below the cell's horizontal (compared squared: reach^2 c < zmax - zq). (Not with a
+ * distance: a piece of a DEM knows only its own highest cell, and would flag fewer cells.) */
 AP_INLINE unsigned char search_truncated(double reach, double L, double c, double zmax, double zq)
 {
-  return reach < L && (c <= 0.0 || reach * reach * c < zmax - zq);
+  return reach < L && (L < INFINITY || c <= 0.0 || reach * reach * c < zmax - zq);
 }
 
 /* The edge flag of view cell (p, s) at height zq when the near field covers the whole search
  * (hz->march): whether its own ray (pattern pt: m view rows and len metres per column) leaves
- * the grid before the search limit (the distance, and with curvature sqrt((zmax - z)/c)). */
+ * the grid before the search limit (search_truncated). */
 AP_INLINE unsigned char march_edge(const ap_horizon *hz, const pattern *pt, size_t p, long s,
                                    double zq)
 {

@@ -66,14 +66,16 @@
  *                         it ignores the cell's own slope — not the same as DiffuseSkyFactor)
  *      PositiveOpenness   (1/D) Σ (π/2 − h_t)    (Yokoyama et al. 2002, radians)
  *      EdgeTruncated      1 where, in some sector, the DEM ends closer than the search limit:
- *                         max_distance, and with curvature on at most sqrt((z_max − z)/c),
+ *                         max_distance; without one, with curvature on, sqrt((z_max − z)/c),
  *                         beyond which terrain no higher than the DEM's highest cell stays
- *                         below the cell's horizontal. So it guards the products clipped at
- *                         the horizontal (A, rp, B, DiffuseSkyFactor, SkyViewFactor), not
- *                         PositiveOpenness and h_t below the horizontal, which terrain beyond
- *                         the edge could raise on unflagged cells (on a plain with curvature
- *                         no cell is flagged, yet an edge cell's openness is 132° at D = 32:
- *                         the sectors leaving the DEM at once count −π/2).
+ *                         below the cell's horizontal (without curvature every cell is
+ *                         flagged). So it guards the products clipped at the horizontal (A,
+ *                         rp, B, DiffuseSkyFactor, SkyViewFactor), not PositiveOpenness and
+ *                         h_t below the horizontal, which terrain beyond the edge could raise
+ *                         on unflagged cells (on an endless plain with curvature no cell is
+ *                         flagged, yet an edge cell's openness is 132° at D = 32: the sectors
+ *                         leaving the DEM at once count −π/2). With a max_distance the flag
+ *                         does not use z_max, which a piece of a DEM would not know.
  *  The sums converge as O(1/D²) to the continuous integrals.
  *
  *  ## Use and threads

@@ -154,6 +154,14 @@ static sector_sums sums(int D, const double *ht, const double *hs)
   return s;
 }
 
+/* Cells from cell (i, j) to the nearest edge of the grid along a row or column. */
+static size_t cells_from_edge(const terrain *t, size_t i, size_t j)
+{
+  const size_t ei = i < t->nx - 1 - i ? i : t->nx - 1 - i;
+  const size_t ej = j < t->ny - 1 - j ? j : t->ny - 1 - j;
+  return ei < ej ? ei : ej;
+}
+
 /* Check fix for nothing in particular: a flat plane without curvature sees the whole upper
  * hemisphere from every interior cell (A = 2 pi, rp = 90 deg, SVF = V_d = 1, zenith bent
  * normal, horizon 0 and openness 90 deg). */
@@ -163,7 +171,7 @@ static void test_flat(void)
   ap_horizon_params p = params(32, 0);
   results r = compute(&t, &p);
   size_t i, j;
-  int d;
+  int d, mode;
   for (j = 2; j + 2 < t.ny; ++j) {
     for (i = 2; i + 2 < t.nx; ++i) {
       const size_t k = j * t.nx + i;
@@ -199,6 +207,22 @@ static void test_flat(void)
     AP_CHECK_NEAR(r.open[k], (15 * PI + 17 * PI / 2) / 32, 1e-4);
   }
   release(&r);
+  /* With a search distance the flag is the distance's alone, as without curvature
+   * (test_edge_flags; a piece of a DEM would not know the DEM's highest cell): on the plain,
+   * cells within 55 m (5.5 columns) of an edge are flagged, the others not, marched or swept. */
+  p.max_distance = 55.0;
+  for (mode = 0; mode < 2; ++mode) {
+    size_t wrong = 0;
+    p.march_columns = mode ? 64 : 0;
+    r = compute(&t, &p);
+    for (j = 0; j < t.ny; ++j) {
+      for (i = 0; i < t.nx; ++i) {
+        wrong += r.edge[j * t.nx + i] != (cells_from_edge(&t, i, j) * 10 < 55);
+      }
+    }
+    AP_CHECK_EQ_INT((int)wrong, 0);
+    release(&r);
+  }
   drop(&t);
 }
 
@@ -724,12 +748,9 @@ static void test_edge_flags(void)
     r = compute(&t, &p);
     for (j = 0; j < t.ny; ++j) {
       for (i = 0; i < t.nx; ++i) {
-        const size_t e1 = i < t.nx - 1 - i ? i : t.nx - 1 - i;
-        const size_t e2 = j < t.ny - 1 - j ? j : t.ny - 1 - j;
-        const size_t nearest = e1 < e2 ? e1 : e2;
         const int d = (int)(j * t.nx + i);
         int k;
-        wrong += r.edge[d] != (nearest * 30 < 600);
+        wrong += r.edge[d] != (cells_from_edge(&t, i, j) * 30 < 600);
         /* north, east, south, west: a ray leaving the grid at once sees nothing (-pi/2); any
          * other stays on the grid, if only along its boundary row or column, and sees the
          * horizontal */
