@@ -424,9 +424,9 @@ PRODUCTS = [
     ("PositiveOpenness", "degree", True,
      "Yokoyama et al. 2002: mean zenith angle of the terrain horizon"),
     ("EdgeTruncated", "1", False,
-     "1 where in some sector the DEM ends closer than the search limit (with curvature: "
-     "where terrain beyond could rise above the horizontal); PositiveOpenness may also "
-     "differ near the edge on unflagged cells"),
+     "1 where in some sector the DEM ends closer than the search limit (the radius; without "
+     "one, with curvature, where terrain no higher than the DEM's top could rise above the "
+     "horizontal); PositiveOpenness may also differ near the edge on unflagged cells"),
     ("HorizonAngles", "degree", True,
      "terrain horizon elevation per azimuth sector (band name: true azimuth of the sector "
      "centre, clockwise from north)"),
