@@ -44,9 +44,9 @@
  * depends on the DEM as a whole (its centre's cell size, curvature radii and meridian
  * convergence, and the lattice of the sweep's lines, on lat/lon DEMs laid out by the whole
  * DEM's rows) is taken from the whole extent, so a piece is bit-identical to the whole run
- * there, projected or lat/lon, swept or marched (the tests compare every bit; only the
- * distances along the sweep's lines are summed from the piece's own edge, which could in
- * principle round a last bit differently).
+ * there, projected or lat/lon, swept or marched (the tests compare every bit; the sweep
+ * measures distances along its lines from the piece's own edge, so a horizon may round its
+ * last bit differently: 2 of 5,500 random pieces in a stress test, by 4e-8 rad).
  *
  * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, no CRS
  * or no metric cell size, every cell nodata, NumberOfDirections outside 4..360, a negative

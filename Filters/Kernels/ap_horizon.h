@@ -135,8 +135,8 @@ typedef struct ap_horizon_params {
                                origin_row) is the grid's cell (0, 0), |values| <= 10^9; the
                                sweep's lines lie on that DEM's lattice of lines, so a piece
                                cut with a margin of max_distance around a region gets the
-                               larger DEM's results there (the same values up to rounding of
-                               the distances along the lines). With per-row cell sizes the
+                               larger DEM's results there (up to the rounding of a last bit:
+                               distances along the lines run from the piece's edge). With per-row cell sizes the
                                lattice is defined by the larger DEM's rows: pass them as
                                whole_dx / whole_dy, else the grid is taken as the whole DEM
                                (origin 0, 0) for the sweep. Default 0, 0 */

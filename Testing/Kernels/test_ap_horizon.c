@@ -923,16 +923,20 @@ static void test_errors(void)
  * its origin in that DEM (and with per-row sizes that DEM's rows), gets the DEM's results in
  * the region: the near field is each cell's own ray either way, and the sweep's lines lie on
  * the DEM's lattice, so every hull holds the same samples within the distance. Only rounding
- * differs (distances along the lines are measured from the piece's middle). Without the origin the lines fall elsewhere: that is the
- * difference the test must see shrink. The piece is region (i0, i1, j0, j1) grown by mi
- * columns and mj rows; returns the largest difference of A, SVF and the horizons there. */
+ * differs (distances along the lines are measured from the piece's middle). Without the
+ * origin the lines fall elsewhere: that is the difference the test must see shrink. The piece
+ * is region (i0, i1, j0, j1) grown by mi columns and mj rows, cut at the DEM's edges; returns
+ * the largest difference of A, SVF and the horizons there. */
 static double piece_difference(const terrain *whole, const results *w, const ap_horizon_params *p,
                                const size_t region[4], size_t mi, size_t mj, int with_origin)
 {
-  const size_t i0 = region[0] - mi, j0 = region[2] - mj;
-  const size_t nx = region[1] - region[0] + 1 + 2 * mi, ny = region[3] - region[2] + 1 + 2 * mj;
+  const size_t i0 = region[0] > mi ? region[0] - mi : 0, j0 = region[2] > mj ? region[2] - mj : 0;
+  const size_t i1 = region[1] + mi < whole->nx ? region[1] + mi : whole->nx - 1;
+  const size_t j1 = region[3] + mj < whole->ny ? region[3] + mj : whole->ny - 1;
+  const size_t nx = i1 - i0 + 1, ny = j1 - j0 + 1;
   terrain t = make(nx, ny, whole->dx0);
   ap_horizon_params q = *p;
+  t.dy0 = whole->dy0;
   results r;
   size_t i, j;
   int d;
@@ -1046,6 +1050,71 @@ static void test_pieces(void)
   }
 }
 
+/* A uniform number in [0, 1) from a xorshift state (deterministic, the same on every
+ * platform). */
+static double next_uniform(unsigned long long *state)
+{
+  *state ^= *state << 13;
+  *state ^= *state >> 7;
+  *state ^= *state << 17;
+  return (double)(*state >> 11) / 9007199254740992.0;
+}
+
+/* Pieces of random DEMs: shapes from 2 cells to 45, lat/lon rows from 89 S to 89 N or constant
+ * cell sizes, 4 to 43 sectors, distances of 2 to 20 cells, swept or marched, curvature on or
+ * off, a nodata cell now and then, regions anywhere (at the DEM's edges too). Each region of a
+ * piece grown by the distance must give the whole run's horizons, products and edge flags;
+ * only a last-bit rounding may differ (the sweep measures distances along its lines from the
+ * piece's edge; a stress run of 5,500 such pieces found two horizons 4e-8 rad apart). Before
+ * the lat/lon lines lay on the whole DEM's lattice, or the edge flag with a distance ignored
+ * the DEM's highest cell, such pieces differed by up to 1e-2 and in flags. */
+static void test_random_pieces(void)
+{
+  unsigned long long state = 88172645463325252ULL;
+  double worst = 0.0;
+  int it, latlon_runs = 0;
+  for (it = 0; it < 120; ++it) {
+    const size_t nx = 5 + (size_t)(next_uniform(&state) * 40);
+    const size_t ny = 5 + (size_t)(next_uniform(&state) * 40);
+    const int latlon = next_uniform(&state) < 0.7;
+    const double dlat = (0.0003 + 0.01 * next_uniform(&state)) * DEG;
+    const double dlon = (0.0003 + 0.01 * next_uniform(&state)) * DEG;
+    double lat0 = (-89.0 + 170.0 * next_uniform(&state)) * DEG, shortest;
+    terrain t = make(nx, ny, 30.0);
+    ap_horizon_params p = params(4 + (int)(next_uniform(&state) * 40), next_uniform(&state) < 0.5);
+    size_t region[4], margin, k;
+    results w;
+    if (latlon) {
+      lat0 = fmin(lat0, 89.9 * DEG - dlat * (double)ny);
+      latlon_rows(&t, 6371000.0, lat0, dlat, dlon);
+      ++latlon_runs;
+    }
+    shortest = t.dx0;
+    for (k = 0; k < ny; ++k) {
+      shortest = fmin(shortest, fmin(t.dx ? t.dx[k] : t.dx0, t.dy ? t.dy[k] : t.dy0));
+    }
+    for (k = 0; k < nx * ny; ++k) {
+      t.z[k] = (float)(300.0 * next_uniform(&state));
+    }
+    if (next_uniform(&state) < 0.3) {
+      t.z[(size_t)(next_uniform(&state) * (double)(nx * ny))] = NAN;
+    }
+    p.max_distance = (2.0 + 18.0 * next_uniform(&state)) * shortest;
+    p.march_columns = next_uniform(&state) < 0.5 ? 0 : 64;
+    margin = (size_t)ceil(p.max_distance / shortest) + 2;
+    region[0] = (size_t)(next_uniform(&state) * (double)nx);
+    region[1] = region[0] + (size_t)(next_uniform(&state) * (double)(nx - region[0]));
+    region[2] = (size_t)(next_uniform(&state) * (double)ny);
+    region[3] = region[2] + (size_t)(next_uniform(&state) * (double)(ny - region[2]));
+    w = compute(&t, &p);
+    worst = fmax(worst, piece_difference(&t, &w, &p, region, margin, margin, 1));
+    release(&w);
+    drop(&t);
+  }
+  printf("120 random pieces (%d lat/lon): largest difference %.3g\n", latlon_runs, worst);
+  AP_CHECK(worst <= 1e-6);
+}
+
 /* Relative error of ap_atanf at x > 0; infinite for a NaN result (fmax would drop a NaN). */
 static double atanf_error(float x)
 {
@@ -1108,6 +1177,7 @@ int main(void)
   test_latlon_rows();
   test_split_invariance();
   test_pieces();
+  test_random_pieces();
   test_edge_flags();
   test_extreme_ranges();
   test_nodata_transparent();
