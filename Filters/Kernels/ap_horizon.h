@@ -136,10 +136,10 @@ typedef struct ap_horizon_params {
                                sweep's lines lie on that DEM's lattice of lines, so a piece
                                cut with a margin of max_distance around a region gets the
                                larger DEM's results there (up to the rounding of a last bit:
-                               distances along the lines run from the piece's edge). With per-row cell sizes the
-                               lattice is defined by the larger DEM's rows: pass them as
-                               whole_dx / whole_dy, else the grid is taken as the whole DEM
-                               (origin 0, 0) for the sweep. Default 0, 0 */
+                               distances along the lines run from the piece's edge). With
+                               per-row cell sizes the lattice is defined by the larger DEM's
+                               rows: pass them as whole_dx / whole_dy, else the grid is taken
+                               as the whole DEM (origin 0, 0) for the sweep. Default 0, 0 */
   long origin_row;
   const double *whole_dx; /**< with per-row cell sizes (grid dx or dy set): the larger DEM's
                                east-west cell sizes (m) for its whole_rows rows, of which

@@ -347,10 +347,12 @@ class TestSkyVisibility(Testing.vtkTest):
                  (dict(RefractionCoefficient=1.0), "RefractionCoefficient must be within")]
         for options, message in cases:
             self.assertIn(message, self.error(image, **options))
-        self.assertIn("no metric cell size", self.error(make_image(np.ones((5, 5)), 0, 0, 1, 1, None)))
+        self.assertIn("no metric cell size",
+                      self.error(make_image(np.ones((5, 5)), 0, 0, 1, 1, None)))
         self.assertIn("every cell of the DEM is nodata",
                       self.error(make_image(np.full((5, 5), np.nan), 0, 0, 30, 30, "EPSG:32633")))
-        self.assertIn("at least 2 x 2", self.error(make_image(np.ones((1, 5)), 0, 0, 30, 30, "EPSG:32633")))
+        self.assertIn("at least 2 x 2",
+                      self.error(make_image(np.ones((1, 5)), 0, 0, 30, 30, "EPSG:32633")))
 
     def testOutOfMemory(self):
         # Child processes whose address space leaves some MiB above what they hold once the
