@@ -707,6 +707,12 @@ ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params 
         return AP_ERR_INVALID_ARGUMENT;
       }
     }
+    for (j = 0; j < g->z.ny; ++j) { /* the grid's rows are those of the larger DEM */
+      if (row_dx(g, j) != p->whole_dx[(size_t)p->origin_row + j] ||
+          row_dy(g, j) != p->whole_dy[(size_t)p->origin_row + j]) {
+        return AP_ERR_INVALID_ARGUMENT;
+      }
+    }
   }
   st = ap_grid_stats_compute(&g->z, &stats);
   if (st != AP_OK) {

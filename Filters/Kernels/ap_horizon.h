@@ -152,7 +152,8 @@ typedef struct ap_horizon_params {
                                Ignored with constant cell sizes */
   const double *whole_dy; /**< the larger DEM's south-north cell sizes (m), as whole_dx;
                                both NULL or both set, else AP_ERR_INVALID_ARGUMENT, as for
-                               too few rows or a size not positive and finite */
+                               too few rows, a size not positive and finite, or rows
+                               origin_row.. that differ from the grid's own */
   size_t whole_rows;      /**< rows of whole_dx / whole_dy (default 0) */
 } ap_horizon_params;
 

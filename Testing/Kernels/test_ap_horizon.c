@@ -894,6 +894,9 @@ static void test_errors(void)
     AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
     p.origin_row = 4;
     AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_OK);
+    p.origin_row = 3; /* rows 3..12: not the grid's */
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+    p.origin_row = 4;
     p.whole_rows = 9; /* fewer than the grid's */
     AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
     p.whole_rows = 14;
