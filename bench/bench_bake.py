@@ -57,6 +57,7 @@ recorded and the run goes on.
 import argparse
 import datetime
 import importlib.util
+import json
 import os
 import re
 import shlex
@@ -142,22 +143,18 @@ def warp_to_utm(src, dst, epsg, cell):
     return dst
 
 
-def same_cells_as_utm(src, dst):
+def same_cells_as_utm(src, dst, aperture):
     """The elevations of a lat/lon DEM relabelled as a UTM DEM (the zone of its centre, placed
-    at its centre) whose cells have the lat/lon cells' metric size at the centre (WGS 84): the
-    same terrain through the projected code path, to price the lat/lon one."""
+    at its centre) whose cells have the lat/lon cells' metric size at the centre (as
+    `aperture info` measures it): the same terrain through the projected code path, to price
+    the lat/lon one."""
     if os.path.exists(dst):
         return dst
+    info = json.loads(subprocess.run([aperture, "info", src, "--json"], stdout=subprocess.PIPE,
+                                     text=True, check=True, timeout=120).stdout)
+    lon, lat = info["centre_lonlat"]
+    dx, dy = info["cell_size_m"]
     ds = gdal.Open(src)
-    x0, gx, _, y0, _, gy = ds.GetGeoTransform()
-    lon = x0 + gx * ds.RasterXSize / 2.0
-    lat = y0 + gy * ds.RasterYSize / 2.0
-    a, f = 6378137.0, 1 / 298.257223563
-    e2 = f * (2 - f)
-    w = 1 - e2 * numpy.sin(numpy.radians(lat)) ** 2
-    n_radius, m_radius = a / numpy.sqrt(w), a * (1 - e2) / w ** 1.5
-    dx = n_radius * numpy.cos(numpy.radians(lat)) * numpy.radians(abs(gx))
-    dy = m_radius * numpy.radians(abs(gy))
     zone = int((lon + 180) // 6) + 1
     epsg = (32600 if lat >= 0 else 32700) + zone
     utm = osr.SpatialReference()
@@ -790,7 +787,8 @@ def main():
         print("lat/lon", flush=True)
         latlon = os.path.abspath(LATLON)
         projected = same_cells_as_utm(latlon, os.path.join(
-            args.workdir, os.path.splitext(os.path.basename(LATLON))[0] + "_as_utm.tif"))
+            args.workdir, os.path.splitext(os.path.basename(LATLON))[0] + "_as_utm.tif"),
+            args.aperture)
         for dem in (latlon, projected):
             print(os.path.basename(dem), flush=True)
             ours(dem, args.radius, args.threads, "latlon")
