@@ -1837,9 +1837,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
       AP_PREFETCH(hz->edge + scratch_index(hz, pf, sa));
     }
     /* 1. Move the lines to column p and take the samples of those inside the grid (delayed
-     *    into the hulls by K - 1 columns through the ring; a slot remembers its column). With
-     *    constant cell sizes every line has the same shift and distance, so only those inside
-     *    are touched. */
+     *    into the hulls by K - 1 columns through the ring; a slot remembers its column). */
     if (!hz->parallel) {
       /* Per-row sizes, x-major: the lines bend; each one's row from the lattice (see
        * lattice_lines), its distance stepped with the length of the step it ends. (What the
@@ -1907,8 +1905,8 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
         lines[l].avail = isnan(lines[l].xend) ? 0.0 : lines[l].xend - xc;
       }
       {
-        /* the lines inside, 0 <= s <= ns - 1: s = l - a (with per-row
-         * sizes up to rounding: the bounds one wider, each line tested) */
+        /* the lines inside, 0 <= s <= ns - 1: s = l - a (with per-row sizes up to rounding:
+         * the bounds one wider, each line tested) */
         const int wide = hz->lattice;
         const double a = wide ? (double)hz->ocol - hz->lat_off[p] - k0 : shift - k0 - phase;
         const double lo = ceil(a) - (double)wide, hi = floor((double)(ns - 1) + a) + (double)wide;
