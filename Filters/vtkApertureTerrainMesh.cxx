@@ -36,6 +36,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <new>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -95,6 +96,40 @@ int vtkApertureTerrainMesh::RequestUpdateExtent(
 //------------------------------------------------------------------------------
 int vtkApertureTerrainMesh::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  try
+  {
+    return this->Execute(inputVector, outputVector);
+  }
+  catch (const std::bad_alloc&)
+  {
+    // (VTK's arrays, std::vector and new throw; a process limit such as ulimit -v makes them)
+    vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+    int dims[3] = { 0, 0, 0 };
+    if (input)
+    {
+      input->GetDimensions(dims);
+    }
+    const double n = double(dims[0]) * dims[1];
+    const double pointBytes = this->OutputPointsPrecision == DOUBLE_PRECISION ? 24.0 : 12.0;
+    // elevations, ENU scratch, points, normals, texture coordinates; two triangles a cell of
+    // three 32-bit ids and an offset (64-bit ids above 2^31 take twice that)
+    const double bytes = n * (4.0 + 24.0 + pointBytes + 12.0 + 8.0) + n * 2.0 * 4.0 * 4.0;
+    vtkPolyData* output = vtkPolyData::GetData(outputVector);
+    if (output)
+    {
+      output->Initialize(); // no half-built mesh
+    }
+    vtkErrorMacro(<< "out of memory: a mesh of " << dims[0] << " x " << dims[1]
+                  << " points needs about " << std::ceil(bytes / 1048576.0)
+                  << " MiB; decimate the DEM");
+    return 0;
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureTerrainMesh::Execute(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
@@ -214,6 +249,10 @@ int vtkApertureTerrainMesh::RequestData(
   vtkNew<vtkPoints> points;
   points->SetDataType(this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT);
   points->SetNumberOfPoints(n);
+  if (points->GetNumberOfPoints() != n)
+  {
+    throw std::bad_alloc();
+  }
   vtkDataArray* pointData = points->GetData();
   float* outFloat = this->OutputPointsPrecision == DOUBLE_PRECISION
     ? nullptr
@@ -230,6 +269,10 @@ int vtkApertureTerrainMesh::RequestData(
     bentOut->SetName("BentNormal");
     bentOut->SetNumberOfComponents(3);
     bentOut->SetNumberOfTuples(n);
+    if (bentOut->GetNumberOfTuples() != n)
+    {
+      throw std::bad_alloc();
+    }
   }
   float* bent = bentOut ? bentOut->GetPointer(0) : nullptr;
   vtkSMPThreadLocalObject<vtkApertureGeoreference> transformers;
@@ -413,6 +456,10 @@ int vtkApertureTerrainMesh::RequestData(
     normals->SetName("Normals");
     normals->SetNumberOfComponents(3);
     normals->SetNumberOfTuples(n);
+    if (normals->GetNumberOfTuples() != n)
+    {
+      throw std::bad_alloc();
+    }
     float* nptr = normals->GetPointer(0);
     st = ap_mesh_normals_validate(enu, nx, ny, nptr);
     if (st != AP_OK)
@@ -431,6 +478,10 @@ int vtkApertureTerrainMesh::RequestData(
     tcoords->SetName("TextureCoordinates");
     tcoords->SetNumberOfComponents(2);
     tcoords->SetNumberOfTuples(n);
+    if (tcoords->GetNumberOfTuples() != n)
+    {
+      throw std::bad_alloc();
+    }
     const double wnx = whole[1] - whole[0] + 1, wny = whole[3] - whole[2] + 1;
     float* t = tcoords->GetPointer(0);
     for (size_t j = 0; j < ny; ++j)

@@ -38,8 +38,8 @@
  *
  * Errors (vtkErrorMacro and a failed update): no elevation array or one that is not a
  * one-component float/double array, a whole DEM smaller than 2 x 2 (a streamed piece that thin
- * just gives an empty mesh), no CRS or one without geographic coordinates, or every point
- * nodata.
+ * just gives an empty mesh), no CRS or one without geographic coordinates, every point
+ * nodata, or a mesh the process cannot allocate (out of memory; the message gives the size).
  *
  * @warning Heights are used as given (usually orthometric, above the geoid) as heights above
  * the ellipsoid; over one DEM the geoid separation is nearly constant and shifts the whole mesh
@@ -102,6 +102,8 @@ protected:
     vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
+  /** RequestData's work; RequestData turns a failed allocation in it into an error. */
+  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
   char* ElevationArrayName;
   double VerticalExaggeration;

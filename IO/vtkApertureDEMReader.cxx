@@ -3,6 +3,7 @@
 
 #include "vtkApertureGDALErrorTrap.h"
 #include "vtkApertureGeoreference.h"
+#include "vtkAperturePhysicalMemory.h"
 
 #include "vtkDataObject.h"
 #include "vtkFloatArray.h"
@@ -21,12 +22,12 @@
 #include <ogr_srs_api.h>
 
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <new>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -87,17 +88,6 @@ double MetresPerUnit(const char* unitType)
   }
   return 0.0;
 }
-
-vtkTypeInt64 PhysicalMemory()
-{
-  const long pages = sysconf(_SC_PHYS_PAGES);
-  const long pageSize = sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || pageSize <= 0)
-  {
-    return VTK_TYPE_INT64_MAX;
-  }
-  return static_cast<vtkTypeInt64>(pages) * static_cast<vtkTypeInt64>(pageSize);
-}
 } // namespace
 
 // What RequestInformation resolved from the file and the options; RequestData reuses it.
@@ -118,6 +108,7 @@ struct vtkApertureDEMReader::Internals
   double Scale = 1.0, Offset = 0.0; // includes the unit conversion to metres
   bool UseMask = false;
   bool Valid = false;
+  int Reading[2] = { 0, 0 }; // columns, rows of the request being read (for messages)
 
   // Open the file with a clear message on failure.
   static bool Open(const char* fileName, DatasetHandle& ds, std::string& error)
@@ -381,6 +372,27 @@ int vtkApertureDEMReader::RequestInformation(
 int vtkApertureDEMReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  this->Impl->Reading[0] = this->Impl->Reading[1] = 0;
+  try
+  {
+    return this->Execute(outputVector);
+  }
+  catch (const std::bad_alloc&)
+  {
+    // The size check below compares with the machine's memory; a process limit (ulimit -v),
+    // other allocations or fragmentation can still make VTK's array or a strip fail.
+    const Internals& d = *this->Impl;
+    vtkErrorMacro(<< "out of memory reading " << d.Reading[0] << " x " << d.Reading[1]
+                  << " cells of '" << this->FileName << "' (the elevations alone take "
+                  << HumanBytes(4.0 * d.Reading[0] * d.Reading[1])
+                  << " as float32); read a SubWindow, or use Decimation or an OverviewLevel");
+    return 0;
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureDEMReader::Execute(vtkInformationVector* outputVector)
+{
   Internals& d = *this->Impl;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);
@@ -403,10 +415,13 @@ int vtkApertureDEMReader::RequestData(
   const size_t ncols = static_cast<size_t>(ext[1] - ext[0] + 1);
   const size_t nrows = static_cast<size_t>(ext[3] - ext[2] + 1);
   const size_t f = static_cast<size_t>(d.Factor);
+  d.Reading[0] = static_cast<int>(ncols);
+  d.Reading[1] = static_cast<int>(nrows);
 
   // Memory: refuse before allocating anything large.
   size_t cells = 0, bytes = 0;
-  const vtkTypeInt64 limit = this->MemoryLimit > 0 ? this->MemoryLimit : PhysicalMemory();
+  const vtkTypeInt64 limit =
+    this->MemoryLimit > 0 ? this->MemoryLimit : vtkAperturePhysicalMemory();
   if (ap_size_mul(ncols, nrows, &cells) != AP_OK ||
     ap_size_mul(cells, sizeof(float), &bytes) != AP_OK ||
     bytes > static_cast<size_t>(limit))
@@ -441,6 +456,10 @@ int vtkApertureDEMReader::RequestData(
   vtkNew<vtkFloatArray> elevation;
   elevation->SetName("Elevation");
   elevation->SetNumberOfTuples(static_cast<vtkIdType>(cells));
+  if (elevation->GetNumberOfTuples() != static_cast<vtkIdType>(cells))
+  {
+    throw std::bad_alloc(); // (VTK reported it without throwing)
+  }
   float* out = elevation->GetPointer(0);
 
   // Read strips of whole output rows, top (file order) to bottom, each at most ~32 MiB of

@@ -31,7 +31,8 @@
  * Errors (vtkErrorMacro, failed update, empty output): a missing file, a file GDAL cannot
  * open, a band that does not exist, no georeference (no geotransform, or ground control points
  * only), a rotated or mirrored geotransform, no CRS (without OverrideCRS), fewer than 2 x 2
- * output cells, a whole raster of nodata, and an output larger than MemoryLimit.
+ * output cells, a whole raster of nodata, an output larger than MemoryLimit, and an output the
+ * process cannot allocate (out of memory, e.g. under `ulimit -v`).
  *
  * @sa vtkApertureDEMWriter vtkApertureGeoreference vtkApertureTerrainMesh
  */
@@ -110,6 +111,8 @@ protected:
     vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
+  /** RequestData's work; RequestData turns a failed allocation in it into an error. */
+  int Execute(vtkInformationVector* outputVector);
 
   char* FileName;
   int BandIndex;

@@ -2,6 +2,7 @@
 #include "vtkApertureEXRReader.h"
 
 #include "vtkApertureGeoreference.h"
+#include "vtkAperturePhysicalMemory.h"
 
 #include "vtkDataObject.h"
 #include "vtkFloatArray.h"
@@ -25,6 +26,7 @@
 #include <cstring>
 #include <locale>
 #include <map>
+#include <new>
 #include <set>
 #include <sstream>
 #include <string>
@@ -304,6 +306,18 @@ int vtkApertureEXRReader::RequestInformation(
                   << " channels, data window " << d.Size[0] << " x " << d.Size[1] << ")");
     return 0;
   }
+  // Every channel is read as float: refuse a window no machine of this size can hold (a huge
+  // image, or a damaged header) before allocating anything.
+  const double bytes = 4.0 * d.Size[0] * d.Size[1] * channels->num_channels;
+  if (bytes > static_cast<double>(vtkAperturePhysicalMemory()) ||
+    static_cast<double>(d.Size[0]) * d.Size[1] > static_cast<double>(VTK_ID_MAX))
+  {
+    vtkErrorMacro(<< "'" << name << "' has a data window of " << d.Size[0] << " x "
+                  << d.Size[1] << " pixels of " << channels->num_channels
+                  << " channels, " << std::ceil(bytes / 1048576.0)
+                  << " MiB as float: more than this machine's memory (or a damaged header)");
+    return 0;
+  }
 
   // 2. Channels -> arrays. Every channel must have a sample at every pixel.
   std::set<std::string> byName;
@@ -466,6 +480,31 @@ int vtkApertureEXRReader::RequestInformation(
 int vtkApertureEXRReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  try
+  {
+    return this->Execute(outputVector);
+  }
+  catch (const std::bad_alloc&)
+  {
+    // (a header may promise more pixels than memory holds: a huge image, or a corrupt one)
+    const Internals& d = *this->Impl;
+    double channels = 0.0;
+    for (const Internals::ArraySpec& spec : d.Arrays)
+    {
+      channels += static_cast<double>(spec.Channels.size());
+    }
+    vtkErrorMacro(<< "out of memory reading '" << (this->FileName ? this->FileName : "")
+                  << "': its header gives " << d.Size[0] << " x " << d.Size[1] << " pixels of "
+                  << channels << " channels, "
+                  << std::ceil(4.0 * d.Size[0] * d.Size[1] * channels / 1048576.0)
+                  << " MiB as float");
+    return 0;
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureEXRReader::Execute(vtkInformationVector* outputVector)
+{
   Internals& d = *this->Impl;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);
@@ -515,6 +554,10 @@ int vtkApertureEXRReader::RequestData(
       array->SetComponentName(static_cast<vtkIdType>(c), spec.ComponentNames[c].c_str());
     }
     array->SetNumberOfTuples(points);
+    if (array->GetNumberOfTuples() != points)
+    {
+      throw std::bad_alloc();
+    }
     for (int c = 0; c < nc; ++c)
     {
       channelIndex[spec.Channels[static_cast<size_t>(c)]] = targets.size();

@@ -233,6 +233,58 @@ class TestBake(unittest.TestCase):
         status, _, err = run("bake", self.dem)
         self.assertEqual(status, 2)
 
+    def test_out_of_memory(self):
+        # A DEM that fits the machine's memory but not the process's address space (ulimit -v):
+        # a one-line error naming the size and what to do, not an abort on std::bad_alloc
+        # (the reader, and the terrain mesh behind a reader that succeeded, used to abort).
+        import resource
+        if os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") < 8 << 30:
+            self.skipTest("the reader refuses 3.4 GiB on this machine before allocating")
+        limit = 3 << 30
+
+        def capped():
+            resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+
+        def vrt(name, n):  # n x n float32 cells of 30 m, no sources: zeros, nothing on disk
+            path = self.path(name)
+            ds = gdal.GetDriverByName("VRT").Create(path, n, n, 1, gdal.GDT_Float32)
+            ds.SetGeoTransform((500000, 30, 0, 4000000, 0, -30))
+            srs = osr.SpatialReference()
+            srs.ImportFromEPSG(32611)
+            ds.SetSpatialRef(srs)
+            ds = None
+            return path
+
+        big = vrt("big.vrt", 30000)  # 3.35 GiB of elevations
+        out = self.path("big-out.tif")
+        for args in (("info", big), ("bake", big, out)):
+            p = subprocess.run([APERTURE] + list(args), capture_output=True, text=True,
+                               timeout=300, preexec_fn=capped)
+            self.assertEqual(p.returncode, 1, p.stderr)
+            self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
+            self.assertIn("out of memory reading 30000 x 30000 cells of '%s' (the elevations "
+                          "alone take 3.353 GiB as float32); read a part with --srcwin, or use "
+                          "--decimate or --overview" % big, p.stderr)
+        self.assertFalse(os.path.exists(out))
+        # 12000^2: the reader's 0.54 GiB fits, the mesh's points, normals and triangles do not
+        script = ("import aperture, sys\n"
+                  "from aperture.errors import Watcher, ApertureError\n"
+                  "w = Watcher()\n"
+                  "r = w.watch(aperture.vtkApertureDEMReader())\n"
+                  "r.SetFileName(sys.argv[1])\n"
+                  "m = w.watch(aperture.vtkApertureTerrainMesh())\n"
+                  "m.SetInputConnection(r.GetOutputPort())\n"
+                  "try:\n"
+                  "    w.update(m)\n"
+                  "except ApertureError as e:\n"
+                  "    print(e, m.GetOutput().GetNumberOfPoints())\n")
+        python = os.path.join(BUILD, "bin", "aperture-python")
+        p = subprocess.run([python, "-c", script, vrt("mesh.vrt", 12000)], capture_output=True,
+                           text=True, timeout=300, preexec_fn=capped)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertIn("out of memory: a mesh of 12000 x 12000 points needs about", p.stdout)
+        self.assertTrue(p.stdout.strip().endswith("MiB; decimate the DEM 0"), p.stdout)
+
     def test_does_not_overwrite(self):
         # An output that is the input DEM, or two outputs in one file, are refused before any
         # work: the EXR would silently replace the GeoTIFF, the bands the DEM.

@@ -166,6 +166,7 @@ RawImage ReadRaw(const std::string& path)
 // Files of kinds the writer never makes, written with OpenEXR's C API.
 enum class RawKind
 {
+  Plain,      // one FLOAT channel Z, 4 x 4 scanlines (a file the reader accepts)
   Tiled,      // one 4 x 4 tile
   Deep,       // deep scanline, no samples
   MultiPart,  // two scanline parts
@@ -1032,6 +1033,25 @@ void TestReaderErrors()
     AP_CHECK(WriteRaw(path, c.Kind));
     ExpectReaderError(path, "'" + path + "' ");
     ExpectReaderError(path, c.Message);
+  }
+
+  // A damaged data window that promises 2^20 x 2^20 pixels (4 TiB as float) in a file of a few
+  // hundred bytes: refused from the header, before anything is allocated (this aborted on an
+  // uncaught std::bad_alloc before).
+  const std::string huge = tmp + "/huge-window.exr";
+  AP_CHECK(WriteRaw(huge, RawKind::Plain));
+  std::string bytes = aptest::ReadFileBytes(huge);
+  const std::string key("dataWindow\0box2i\0", 17);
+  const size_t at = bytes.find(key);
+  AP_CHECK(at != std::string::npos && at + key.size() + 4 + 16 <= bytes.size());
+  if (at != std::string::npos && at + key.size() + 4 + 16 <= bytes.size())
+  {
+    const int32_t window[4] = { 0, 0, (1 << 20) - 1, (1 << 20) - 1 }; // little-endian x86
+    std::memcpy(&bytes[at + key.size() + 4], window, sizeof(window));
+    AP_CHECK(aptest::WriteText(huge, bytes));
+    ExpectReaderError(huge,
+      "'" + huge + "' has a data window of 1048576 x 1048576 pixels of 1 channels, ");
+    ExpectReaderError(huge, "more than this machine's memory (or a damaged header)");
   }
 }
 

@@ -109,6 +109,9 @@ def _dem_path(args):
         raise ApertureError(str(e))
 
 
+_SMALLER_READ = "read a part with --srcwin, or use --decimate or --overview"
+
+
 def read_dem(args, watcher):
     """Read the DEM the arguments name; returns (reader, image)."""
     from aperture import vtkApertureDEMReader
@@ -129,7 +132,12 @@ def read_dem(args, watcher):
     reader.SetDecimation(args.decimate)
     if args.srs:
         reader.SetOverrideCRS(args.srs)
-    image = watcher.update(reader)
+    try:
+        image = watcher.update(reader)
+    except ApertureError as e:
+        # the reader's advice names its properties; here they are options
+        raise ApertureError(str(e).replace(
+            "read a SubWindow, or use Decimation or an OverviewLevel", _SMALLER_READ))
     return reader, image
 
 
@@ -1006,6 +1014,10 @@ def main(argv=None):
         return args.func(args)
     except ApertureError as e:
         print("%s: error: %s" % (PROG, e), file=sys.stderr)
+        return 1
+    except MemoryError:
+        # numpy's conversions of the products: the filters name their own sizes
+        print("%s: error: out of memory; %s" % (PROG, _SMALLER_READ), file=sys.stderr)
         return 1
     except KeyboardInterrupt:
         return 130
