@@ -157,6 +157,52 @@ class TestCommandLineRender(unittest.TestCase):
         self.assertNotAlmostEqual(halves["180,35"][0] - halves["180,35"][1],
                                   halves["0,35"][0] - halves["0,35"][1], delta=3.0)
 
+    def test_baked(self):
+        # A bake of this DEM lights it as the render's own bake does (the GeoTIFF keeps the
+        # aperture radius in degrees as float32: a level at most); a bake of another grid of
+        # the same size, or in another CRS, is refused instead of lighting the wrong terrain.
+        import numpy as np
+        from osgeo import gdal
+        gdal.UseExceptions()
+        sys.path.insert(0, os.path.join(BUILD, "lib", "python3.11", "dist-packages"))
+        import aperture
+        dem = aperture.default_dem()
+        pictures = {}
+        with tempfile.TemporaryDirectory() as tmp:
+            baked = os.path.join(tmp, "baked.tif")
+            status, _, stderr = run("bake", dem, baked, "-q")
+            self.assertEqual(status, 0, stderr)
+            for name, extra in (("own", ()), ("baked", ("--baked", baked))):
+                out = os.path.join(tmp, name + ".png")
+                status, _, stderr = run("render", "-o", out, "--size", "200x120", "--sun-az",
+                                        "225", "--sun-el", "20", *extra)
+                self.assertEqual(status, 0, stderr)
+                reader = vtkPNGReader()
+                reader.SetFileName(out)
+                reader.Update()
+                pictures[name] = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())
+            diff = np.abs(pictures["baked"][:, :3].astype(int) - pictures["own"][:, :3])
+            self.assertLessEqual(diff.max(), 1)
+            self.assertLess(diff.mean(), 0.01)
+
+            src = gdal.Open(dem)
+            gt = list(src.GetGeoTransform())
+            for name, change, expected in (
+                    ("shifted.tif", lambda ds: ds.SetGeoTransform([gt[0] + 10 * gt[1]] + gt[1:]),
+                     "covers another grid than the DEM"),
+                    ("nad83.tif", lambda ds: ds.SetProjection("EPSG:4269"),
+                     "is in another CRS (NAD83) than the DEM (WGS 84)")):
+                other = os.path.join(tmp, name)
+                ds = gdal.GetDriverByName("GTiff").CreateCopy(other, gdal.Open(baked))
+                change(ds)
+                ds = None
+                status, _, stderr = run("render", "-o", os.path.join(tmp, "x.png"), "--size",
+                                        "200x120", "--baked", other)
+                self.assertEqual(status, 1, stderr)
+                self.assertEqual(len(stderr.strip().splitlines()), 1, stderr)
+                self.assertIn(expected, stderr)
+            src = None
+
 
 if __name__ == "__main__":
     sys.exit(0 if unittest.main(exit=False).result.wasSuccessful() else 1)

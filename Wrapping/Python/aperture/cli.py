@@ -230,6 +230,10 @@ def _parse_size(text):
     return w, h
 
 
+def _gt_text(gt):
+    return "none" if gt is None else "(%s)" % ", ".join("%.10g" % v for v in gt)
+
+
 def _attach_baked(image, path):
     """Put BentNormal and ApertureRadius (radians) from a GeoTIFF of `aperture bake` onto the
     DEM image; the two grids must be the same."""
@@ -251,6 +255,27 @@ def _attach_baked(image, path):
     if (ds.RasterXSize, ds.RasterYSize) != (nx, ny):
         raise ApertureError("%s is %d x %d cells, the DEM %d x %d: bake this DEM"
                             % (path, ds.RasterXSize, ds.RasterYSize, nx, ny))
+    # the same size is not the same grid: a bake of another DEM (or of another --srcwin,
+    # --decimate) would light this one with the wrong sky
+    from osgeo import osr
+    fd = image.GetFieldData()
+    gt_array, crs_array = fd.GetArray("GeoTransform"), fd.GetAbstractArray("CRS")
+    if gt_array is not None and crs_array is not None:
+        dem_gt = [gt_array.GetValue(i) for i in range(6)]
+        baked_gt = ds.GetGeoTransform(can_return_null=True)
+        cell = max(abs(dem_gt[1]), abs(dem_gt[5]))
+        if baked_gt is None or any(abs(a - b) > 1e-3 * cell for a, b in zip(baked_gt, dem_gt)):
+            raise ApertureError("%s covers another grid than the DEM (geotransform %s, the DEM "
+                                "%s): bake this DEM with the same reading options"
+                                % (path, _gt_text(baked_gt), _gt_text(dem_gt)))
+        dem_srs = osr.SpatialReference()
+        dem_srs.ImportFromWkt(crs_array.GetValue(0))
+        baked_srs = ds.GetSpatialRef()
+        if baked_srs is None or not baked_srs.IsSame(
+                dem_srs, ["IGNORE_DATA_AXIS_TO_SRS_AXIS_MAPPING=YES"]):
+            raise ApertureError("%s is in another CRS (%s) than the DEM (%s): bake this DEM"
+                                % (path, baked_srs.GetName() if baked_srs else "none",
+                                   dem_srs.GetName()))
     # file rows run north to south, image rows south to north
     read = lambda name: ds.GetRasterBand(bands[name]).ReadAsArray().astype(np.float32)[::-1]
     bent = np.stack([read("BentNormal_E"), read("BentNormal_N"), read("BentNormal_U")], -1)
@@ -946,7 +971,7 @@ def build_parser():
                    help="PNG to write (default: aperture.png)")
     p.add_argument("--baked", metavar="BAKED.tif",
                    help="reuse the BentNormal and ApertureRadius bands of 'aperture bake' "
-                        "output for this DEM instead of baking")
+                        "output for this DEM (the same grid and CRS) instead of baking")
     p.add_argument("--at", metavar="ISO", help="time of the sun, as for 'aperture sun'")
     p.add_argument("--tz", metavar="ZONE", help="IANA time zone for a local --at")
     p.add_argument("--sun-az", "--light-az", dest="sun_az", type=float, metavar="DEG",
