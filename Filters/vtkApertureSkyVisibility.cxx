@@ -2,6 +2,7 @@
 #include "vtkApertureSkyVisibility.h"
 
 #include "vtkApertureGeoreference.h"
+#include "vtkApertureMemory.h"
 #include "vtkApertureSMPThreads.h"
 
 #include "vtkDataArray.h"
@@ -33,19 +34,6 @@ vtkStandardNewMacro(vtkApertureSkyVisibility);
 
 namespace
 {
-// Name and size an output array; std::bad_alloc when VTK could not allocate it (VTK reports
-// that too; RequestData then says what the whole run needs).
-void Allocate(vtkDataArray* a, const char* name, int components, vtkIdType tuples)
-{
-  a->SetName(name);
-  a->SetNumberOfComponents(components);
-  a->SetNumberOfTuples(tuples);
-  if (a->GetNumberOfTuples() != tuples)
-  {
-    throw std::bad_alloc();
-  }
-}
-
 // Copy the block `sub` of an array laid out on extent `ext` (nc components) into `out`.
 template <typename T>
 void CopyBlock(const T* in, const int ext[6], const int sub[6], int nc, T* out)
@@ -405,7 +393,7 @@ int vtkApertureSkyVisibility::Execute(
     {
       pr.Full = vtkSmartPointer<vtkFloatArray>::New();
     }
-    Allocate(pr.Full, pr.Name, pr.Components, static_cast<vtkIdType>(n));
+    vtkApertureAllocate(pr.Full, pr.Name, pr.Components, static_cast<vtkIdType>(n));
   }
   auto fptr = [&](int k) {
     return products[k].Full ? static_cast<vtkFloatArray*>(products[k].Full.Get())->GetPointer(0)
@@ -582,7 +570,7 @@ int vtkApertureSkyVisibility::Execute(
     if (!whole)
     {
       arr.TakeReference(pr.Full->NewInstance());
-      Allocate(arr, pr.Name, pr.Components,
+      vtkApertureAllocate(arr, pr.Name, pr.Components,
         static_cast<vtkIdType>(outExt[1] - outExt[0] + 1) * (outExt[3] - outExt[2] + 1));
       if (auto* f = vtkFloatArray::SafeDownCast(arr))
       {

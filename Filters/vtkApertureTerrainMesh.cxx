@@ -2,6 +2,7 @@
 #include "vtkApertureTerrainMesh.h"
 
 #include "vtkApertureGeoreference.h"
+#include "vtkApertureMemory.h"
 
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
@@ -248,11 +249,7 @@ int vtkApertureTerrainMesh::Execute(
   double* enu = enuBuffer.get();
   vtkNew<vtkPoints> points;
   points->SetDataType(this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT);
-  points->SetNumberOfPoints(n);
-  if (points->GetNumberOfPoints() != n)
-  {
-    throw std::bad_alloc();
-  }
+  vtkApertureAllocate(points->GetData(), "Points", 3, n);
   vtkDataArray* pointData = points->GetData();
   float* outFloat = this->OutputPointsPrecision == DOUBLE_PRECISION
     ? nullptr
@@ -266,13 +263,7 @@ int vtkApertureTerrainMesh::Execute(
   if (bentIn && bentIn->GetNumberOfComponents() == 3 && bentIn->GetNumberOfTuples() == n)
   {
     bentOut = vtkSmartPointer<vtkFloatArray>::New();
-    bentOut->SetName("BentNormal");
-    bentOut->SetNumberOfComponents(3);
-    bentOut->SetNumberOfTuples(n);
-    if (bentOut->GetNumberOfTuples() != n)
-    {
-      throw std::bad_alloc();
-    }
+    vtkApertureAllocate(bentOut, "BentNormal", 3, n);
   }
   float* bent = bentOut ? bentOut->GetPointer(0) : nullptr;
   vtkSMPThreadLocalObject<vtkApertureGeoreference> transformers;
@@ -453,13 +444,7 @@ int vtkApertureTerrainMesh::Execute(
   if (this->ComputeNormals)
   {
     vtkNew<vtkFloatArray> normals;
-    normals->SetName("Normals");
-    normals->SetNumberOfComponents(3);
-    normals->SetNumberOfTuples(n);
-    if (normals->GetNumberOfTuples() != n)
-    {
-      throw std::bad_alloc();
-    }
+    vtkApertureAllocate(normals, "Normals", 3, n);
     float* nptr = normals->GetPointer(0);
     st = ap_mesh_normals_validate(enu, nx, ny, nptr);
     if (st != AP_OK)
@@ -475,13 +460,7 @@ int vtkApertureTerrainMesh::Execute(
   if (this->GenerateTextureCoordinates)
   {
     vtkNew<vtkFloatArray> tcoords;
-    tcoords->SetName("TextureCoordinates");
-    tcoords->SetNumberOfComponents(2);
-    tcoords->SetNumberOfTuples(n);
-    if (tcoords->GetNumberOfTuples() != n)
-    {
-      throw std::bad_alloc();
-    }
+    vtkApertureAllocate(tcoords, "TextureCoordinates", 2, n);
     const double wnx = whole[1] - whole[0] + 1, wny = whole[3] - whole[2] + 1;
     float* t = tcoords->GetPointer(0);
     for (size_t j = 0; j < ny; ++j)

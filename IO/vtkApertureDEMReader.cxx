@@ -3,7 +3,7 @@
 
 #include "vtkApertureGDALErrorTrap.h"
 #include "vtkApertureGeoreference.h"
-#include "vtkAperturePhysicalMemory.h"
+#include "vtkApertureMemory.h"
 
 #include "vtkDataObject.h"
 #include "vtkFloatArray.h"
@@ -454,12 +454,7 @@ int vtkApertureDEMReader::Execute(vtkInformationVector* outputVector)
   GDALRasterBandH mask = d.UseMask ? GDALGetMaskBand(band) : nullptr;
 
   vtkNew<vtkFloatArray> elevation;
-  elevation->SetName("Elevation");
-  elevation->SetNumberOfTuples(static_cast<vtkIdType>(cells));
-  if (elevation->GetNumberOfTuples() != static_cast<vtkIdType>(cells))
-  {
-    throw std::bad_alloc(); // (VTK reported it without throwing)
-  }
+  vtkApertureAllocate(elevation, "Elevation", 1, static_cast<vtkIdType>(cells));
   float* out = elevation->GetPointer(0);
 
   // Read strips of whole output rows, top (file order) to bottom, each at most ~32 MiB of

@@ -2,7 +2,7 @@
 #include "vtkApertureEXRReader.h"
 
 #include "vtkApertureGeoreference.h"
-#include "vtkAperturePhysicalMemory.h"
+#include "vtkApertureMemory.h"
 
 #include "vtkDataObject.h"
 #include "vtkFloatArray.h"
@@ -149,12 +149,23 @@ struct vtkApertureEXRReader::Internals
   };
   std::vector<std::pair<std::string, std::string>> Metadata; // sorted by key
   int Size[2] = { 0, 0 };                                    // columns, rows
+  int Channels = 0;                                          // all of them, each read
   std::vector<ArraySpec> Arrays;
   size_t Scalars = 0; // index of the active scalars in Arrays
   double Origin[2] = { 0.0, 0.0 };
   double Spacing[2] = { 1.0, 1.0 };
   std::string CRS; // WKT; empty = none
   bool Valid = false;
+
+  // Bytes of every channel as float, and the header's size in words for messages.
+  double FloatBytes() const { return 4.0 * this->Size[0] * this->Size[1] * this->Channels; }
+  std::string SizeText() const
+  {
+    std::ostringstream s;
+    s << this->Size[0] << " x " << this->Size[1] << " pixels of " << this->Channels
+      << " channels, " << std::ceil(this->FloatBytes() / 1048576.0) << " MiB as float";
+    return s.str();
+  }
 
   // Open the file for reading with a clear message on failure.
   static bool Open(const char* fileName, ContextHandle& ctx, ErrorTrap& trap, std::string& error)
@@ -308,14 +319,12 @@ int vtkApertureEXRReader::RequestInformation(
   }
   // Every channel is read as float: refuse a window no machine of this size can hold (a huge
   // image, or a damaged header) before allocating anything.
-  const double bytes = 4.0 * d.Size[0] * d.Size[1] * channels->num_channels;
-  if (bytes > static_cast<double>(vtkAperturePhysicalMemory()) ||
+  d.Channels = channels->num_channels;
+  if (d.FloatBytes() > static_cast<double>(vtkAperturePhysicalMemory()) ||
     static_cast<double>(d.Size[0]) * d.Size[1] > static_cast<double>(VTK_ID_MAX))
   {
-    vtkErrorMacro(<< "'" << name << "' has a data window of " << d.Size[0] << " x "
-                  << d.Size[1] << " pixels of " << channels->num_channels
-                  << " channels, " << std::ceil(bytes / 1048576.0)
-                  << " MiB as float: more than this machine's memory (or a damaged header)");
+    vtkErrorMacro(<< "'" << name << "' has a data window of " << d.SizeText()
+                  << ": more than this machine's memory (or a damaged header)");
     return 0;
   }
 
@@ -487,17 +496,8 @@ int vtkApertureEXRReader::RequestData(
   catch (const std::bad_alloc&)
   {
     // (a header may promise more pixels than memory holds: a huge image, or a corrupt one)
-    const Internals& d = *this->Impl;
-    double channels = 0.0;
-    for (const Internals::ArraySpec& spec : d.Arrays)
-    {
-      channels += static_cast<double>(spec.Channels.size());
-    }
     vtkErrorMacro(<< "out of memory reading '" << (this->FileName ? this->FileName : "")
-                  << "': its header gives " << d.Size[0] << " x " << d.Size[1] << " pixels of "
-                  << channels << " channels, "
-                  << std::ceil(4.0 * d.Size[0] * d.Size[1] * channels / 1048576.0)
-                  << " MiB as float");
+                  << "': its header gives " << this->Impl->SizeText());
     return 0;
   }
 }
@@ -546,17 +546,11 @@ int vtkApertureEXRReader::Execute(vtkInformationVector* outputVector)
   for (const Internals::ArraySpec& spec : d.Arrays)
   {
     auto array = vtkSmartPointer<vtkFloatArray>::New();
-    array->SetName(spec.Name.c_str());
     const int nc = static_cast<int>(spec.Channels.size());
-    array->SetNumberOfComponents(nc);
+    vtkApertureAllocate(array, spec.Name.c_str(), nc, points);
     for (size_t c = 0; c < spec.ComponentNames.size(); ++c)
     {
       array->SetComponentName(static_cast<vtkIdType>(c), spec.ComponentNames[c].c_str());
-    }
-    array->SetNumberOfTuples(points);
-    if (array->GetNumberOfTuples() != points)
-    {
-      throw std::bad_alloc();
     }
     for (int c = 0; c < nc; ++c)
     {

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Internal (not installed, not wrapped): sizing arrays so that a failed allocation can be
+// reported, and the machine's physical memory, the readers' default size limit.
+#ifndef vtkApertureMemory_h
+#define vtkApertureMemory_h
+
+#include "vtkDataArray.h"
+#include "vtkType.h"
+
+#include <unistd.h>
+
+#include <new>
+
+// Name and size an array; std::bad_alloc when VTK could not allocate it (VTK reports that and
+// leaves the array short), for RequestData to turn into an error naming the size needed.
+inline void vtkApertureAllocate(
+  vtkDataArray* a, const char* name, int components, vtkIdType tuples)
+{
+  a->SetName(name);
+  a->SetNumberOfComponents(components);
+  a->SetNumberOfTuples(tuples);
+  if (a->GetNumberOfTuples() != tuples)
+  {
+    throw std::bad_alloc();
+  }
+}
+
+// Bytes of physical memory (sysconf); VTK_TYPE_INT64_MAX when the system does not say.
+inline vtkTypeInt64 vtkAperturePhysicalMemory()
+{
+  const long pages = sysconf(_SC_PHYS_PAGES);
+  const long pageSize = sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || pageSize <= 0)
+  {
+    return VTK_TYPE_INT64_MAX;
+  }
+  return static_cast<vtkTypeInt64>(pages) * static_cast<vtkTypeInt64>(pageSize);
+}
+
+#endif
