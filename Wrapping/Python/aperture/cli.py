@@ -258,10 +258,11 @@ def _attach_baked(image, path):
     # the same size is not the same grid: a bake of another DEM (or of another --srcwin,
     # --decimate) would light this one with the wrong sky
     from osgeo import osr
-    fd = image.GetFieldData()
-    gt_array, crs_array = fd.GetArray("GeoTransform"), fd.GetAbstractArray("CRS")
-    if gt_array is not None and crs_array is not None:
-        dem_gt = [gt_array.GetValue(i) for i in range(6)]
+    from aperture import vtkApertureGeoreference
+    geo = vtkApertureGeoreference()
+    if geo.SetFromImage(image):  # (the reader's images always carry it)
+        dem_gt = [0.0] * 6
+        geo.GetGeoTransform(dem_gt)
         baked_gt = ds.GetGeoTransform(can_return_null=True)
         cell = max(abs(dem_gt[1]), abs(dem_gt[5]))
         if baked_gt is None or any(abs(a - b) > 1e-3 * cell for a, b in zip(baked_gt, dem_gt)):
@@ -269,7 +270,7 @@ def _attach_baked(image, path):
                                 "%s): bake this DEM with the same reading options"
                                 % (path, _gt_text(baked_gt), _gt_text(dem_gt)))
         dem_srs = osr.SpatialReference()
-        dem_srs.ImportFromWkt(crs_array.GetValue(0))
+        dem_srs.ImportFromWkt(geo.GetCRS())
         baked_srs = ds.GetSpatialRef()
         if baked_srs is None or not baked_srs.IsSame(
                 dem_srs, ["IGNORE_DATA_AXIS_TO_SRS_AXIS_MAPPING=YES"]):
