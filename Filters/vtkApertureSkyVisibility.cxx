@@ -34,6 +34,11 @@ vtkStandardNewMacro(vtkApertureSkyVisibility);
 
 namespace
 {
+// The range of the Earth's surface with a margin (m): Challenger Deep about -10,935 m, Everest
+// 8,849 m, orthometric or ellipsoidal (the geoid stays within about 110 m of the ellipsoid).
+constexpr float EarthLowest = -11100.0f;
+constexpr float EarthHighest = 9000.0f;
+
 // Copy the block `sub` of an array laid out on extent `ext` (nc components) into `out`.
 template <typename T>
 void CopyBlock(const T* in, const int ext[6], const int sub[6], int nc, T* out)
@@ -271,10 +276,23 @@ int vtkApertureSkyVisibility::Execute(
     return 0;
   }
   const size_t n = static_cast<size_t>(nx) * static_cast<size_t>(ny);
+  // Non-finite elevations (also doubles beyond the float range) are nodata, as the reader
+  // makes them; finite ones beyond any on Earth are kept but named in a warning.
   std::vector<float> z(n);
+  float zlo = std::numeric_limits<float>::infinity(), zhi = -zlo;
   for (size_t k = 0; k < n; ++k)
   {
-    z[k] = static_cast<float>(elevation->GetComponent(static_cast<vtkIdType>(k), 0));
+    const float v = static_cast<float>(elevation->GetComponent(static_cast<vtkIdType>(k), 0));
+    z[k] = std::isfinite(v) ? v : std::numeric_limits<float>::quiet_NaN();
+    zlo = std::isfinite(v) ? std::min(zlo, v) : zlo;
+    zhi = std::isfinite(v) ? std::max(zhi, v) : zhi;
+  }
+  if (zlo <= zhi && (zlo < EarthLowest || zhi > EarthHighest))
+  {
+    vtkWarningMacro(<< "elevations range from " << zlo << " to " << zhi
+                    << " m, beyond any on Earth (" << EarthLowest << " to " << EarthHighest
+                    << " m): a nodata value the DEM does not declare, or heights not in "
+                       "metres? The sky products near such cells are meaningless");
   }
   // What depends on the DEM as a whole (its centre's cell size, curvature radii and meridian
   // convergence, and the lattice of the sweep's lines) comes from the whole extent, so that a

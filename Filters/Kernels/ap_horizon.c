@@ -718,7 +718,10 @@ ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params 
   if (st != AP_OK) {
     return st;
   }
-  return stats.valid == 0 ? AP_ERR_ALL_NODATA : AP_OK;
+  if (stats.valid == 0) {
+    return AP_ERR_ALL_NODATA;
+  }
+  return isfinite(stats.min) && isfinite(stats.max) ? AP_OK : AP_ERR_OUT_OF_RANGE;
 }
 
 /* Grid row j of the elevations (row_stride may be negative). */

@@ -107,7 +107,7 @@ extern "C" {
 
 /** A DEM with metric cell sizes. Rows run south to north (row 0 south). */
 typedef struct ap_horizon_grid {
-  ap_grid_view z;   /**< elevations (m), NaN = nodata; at least 2 x 2 */
+  ap_grid_view z;   /**< elevations (m), finite or NaN (= nodata); at least 2 x 2 */
   const double *dx; /**< ny east-west cell sizes (m) per row, > 0; NULL: all rows dx0 */
   const double *dy; /**< ny south-north cell sizes (m) per row, > 0; NULL: all rows dy0 */
   double dx0, dy0;  /**< cell sizes (m) used when dx / dy are NULL */
@@ -178,7 +178,8 @@ void ap_horizon_params_init(ap_horizon_params *p);
 
 /** Check a grid and options without allocating: AP_OK or the first problem
  *  (AP_ERR_INVALID_ARGUMENT for an option out of range or a cell size that is not positive
- *  and finite, AP_ERR_GRID_TOO_SMALL, AP_ERR_ALL_NODATA, ...). */
+ *  and finite, AP_ERR_GRID_TOO_SMALL, AP_ERR_ALL_NODATA, AP_ERR_OUT_OF_RANGE for an
+ *  infinite elevation, ...). */
 ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params *p);
 
 /** Validate, then allocate the state: a transposed copy of the elevations (4 bytes per

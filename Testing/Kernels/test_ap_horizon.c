@@ -910,6 +910,12 @@ static void test_errors(void)
   g.dx0 = 0.0;
   AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
   g.dx0 = 30.0;
+  t.z[37] = INFINITY; /* an infinity is not an elevation (NaN is nodata) */
+  AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_OUT_OF_RANGE);
+  t.z[37] = -INFINITY;
+  AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_OUT_OF_RANGE);
+  t.z[37] = NAN;
+  AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_OK);
   {
     size_t k;
     for (k = 0; k < 100; ++k) t.z[k] = NAN;

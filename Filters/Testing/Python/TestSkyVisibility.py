@@ -354,6 +354,49 @@ class TestSkyVisibility(Testing.vtkTest):
         self.assertIn("at least 2 x 2",
                       self.error(make_image(np.ones((1, 5)), 0, 0, 30, 30, "EPSG:32633")))
 
+    def testNonFiniteAndImplausibleElevations(self):
+        # Infinities are nodata, as the reader makes them: the same products bit for bit as
+        # with NaN there (NaN at the cell, transparent to its neighbours).
+        from aperture.errors import Watcher
+        rng = np.random.default_rng(5)
+        z = rng.uniform(200.0, 400.0, (30, 40))
+
+        def run(values):
+            w = Watcher()
+            f = w.watch(aperture.vtkApertureSkyVisibility())
+            f.SetInputData(make_image(values, 400000, 5000000, 30, 30, "EPSG:32633"))
+            f.Update()
+            self.assertEqual(w.errors, [])
+            return {name: array(f.GetOutput(), name) for name in
+                    ("SkyViewFactor", "VisibleSolidAngle", "BentNormal")}, w.warnings
+
+        holes = z.copy()
+        holes[12, 17] = holes[3, 0] = np.nan
+        expected, warnings = run(holes)
+        self.assertEqual(warnings, [])
+        self.assertTrue(np.isnan(expected["SkyViewFactor"][12 * 40 + 17]))
+        for big in (np.inf, -np.inf):
+            infinite = z.copy()
+            infinite[12, 17], infinite[3, 0] = big, -big
+            got, warnings = run(infinite)
+            self.assertEqual(warnings, [])
+            for name in expected:
+                np.testing.assert_array_equal(got[name], expected[name], err_msg=name)
+        # Finite but beyond any elevation on Earth: computed, with a warning naming the range
+        # (an undeclared nodata value of -32768; 1e30 m).
+        for fill, text in ((-32768.0, "elevations range from -32768 to "),
+                           (1e30, "elevations range from ")):
+            odd = z.copy()
+            odd[12, 17] = fill
+            got, warnings = run(odd)
+            self.assertEqual(len(warnings), 1, warnings)
+            self.assertIn(text, warnings[0])
+            self.assertIn("beyond any on Earth (-11100 to 9000 m)", warnings[0])
+            self.assertFalse(np.isnan(got["SkyViewFactor"][12 * 40 + 17]))
+        # the highest and lowest places on Earth are not warned about
+        _, warnings = run(np.where(z > 300.0, 8848.9, -10935.0))
+        self.assertEqual(warnings, [])
+
     def testOutOfMemory(self):
         # Child processes whose address space leaves some MiB above what they hold once the
         # DEM is built, so that an allocation fails: an error naming the size, not an abort.
