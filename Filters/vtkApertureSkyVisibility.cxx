@@ -136,6 +136,12 @@ int vtkApertureSkyVisibility::RequestUpdateExtent(
   // pipeline information), needs the whole extent.
   int in[6];
   std::copy(whole, whole + 6, in);
+  if (ext[1] < ext[0] || ext[3] < ext[2] || ext[5] < ext[4])
+  {
+    // an empty request (VTK's way to ask for nothing) asks nothing of the input either
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext, 6);
+    return 1;
+  }
   const char* crs = inInfo->Get(vtkApertureGeoreference::CRS_KEY());
   if (this->MaximumDistance > 0 && crs && inInfo->Has(vtkDataObject::SPACING()) &&
     inInfo->Has(vtkDataObject::ORIGIN()))
@@ -250,6 +256,10 @@ int vtkApertureSkyVisibility::Execute(
   {
     outExt[2 * k] = std::max(outExt[2 * k], inExt[2 * k]);
     outExt[2 * k + 1] = std::min(outExt[2 * k + 1], inExt[2 * k + 1]);
+  }
+  if (outExt[1] < outExt[0] || outExt[3] < outExt[2] || outExt[5] < outExt[4])
+  {
+    return 1; // an empty request, or one outside the DEM: an empty output
   }
   if (inExt[4] != inExt[5])
   {

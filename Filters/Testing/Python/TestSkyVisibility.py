@@ -323,6 +323,35 @@ class TestSkyVisibility(Testing.vtkTest):
             got = array(piece, name).reshape(y1 - y0 + 1, x1 - x0 + 1, -1)
             np.testing.assert_array_equal(got, whole, name)
 
+    def testEmptyRequest(self):
+        # An empty update extent (max < min: VTK's request for nothing) gives an empty output
+        # and reads nothing; it used to copy a block of negative width (a crash) once the halo
+        # had grown the input's request into a real region.
+        from aperture.errors import Watcher
+        z = np.add.outer(np.arange(50.0), np.arange(60.0)).astype(np.float32)
+        image = make_image(z, 400000, 5000000, 30, 30, "EPSG:32633")
+        for source in ("reader", image):
+            for distance in (2000.0, 0.0):
+                reader = aperture.vtkApertureDEMReader()
+                reader.SetFileName(aperture.default_dem())
+                w = Watcher()
+                f = w.watch(aperture.vtkApertureSkyVisibility())
+                w.watch(f.GetExecutive())
+                if source == "reader":
+                    f.SetInputConnection(reader.GetOutputPort())
+                else:
+                    f.SetInputData(image)
+                f.SetMaximumDistance(distance)
+                f.UpdateInformation()
+                f.UpdateExtent((10, 5, 0, 10, 0, 0))
+                self.assertEqual(w.errors, [])
+                self.assertEqual(f.GetOutput().GetNumberOfPoints(), 0)
+                if source == "reader":
+                    self.assertEqual(reader.GetOutput().GetNumberOfPoints(), 0)
+                f.UpdateExtent((3, 4, 5, 5, 0, 0))  # and the next request is served
+                self.assertEqual(f.GetOutput().GetExtent(), (3, 4, 5, 5, 0, 0))
+                self.assertTrue(np.all(np.isfinite(array(f.GetOutput(), "SkyViewFactor"))))
+
     def testProgressEvents(self):
         # VTK's contract: StartEvent, ProgressEvents rising from 0 to 1, EndEvent.
         z = np.add.outer(np.arange(60.0), np.arange(70.0)).astype(np.float32)
