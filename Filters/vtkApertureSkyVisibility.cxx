@@ -302,7 +302,7 @@ int vtkApertureSkyVisibility::Execute(
     vtkWarningMacro(<< "elevations range from " << zlo << " to " << zhi
                     << " m, beyond any on Earth (" << EarthLowest << " to " << EarthHighest
                     << " m): a nodata value the DEM does not declare, or heights not in "
-                       "metres? The sky products near such cells are meaningless");
+                       "metres? Sky products computed from them are meaningless");
   }
   // What depends on the DEM as a whole (its centre's cell size, curvature radii and meridian
   // convergence, and the lattice of the sweep's lines) comes from the whole extent, so that a
