@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Internal (not installed, not wrapped): sizing arrays so that a failed allocation can be
-// reported, and the machine's physical memory, the readers' default size limit.
+// reported, the size of the input behind a failed update, and the machine's physical memory,
+// the readers' default size limit.
 #ifndef vtkApertureMemory_h
 #define vtkApertureMemory_h
 
 #include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkInformationVector.h"
 #include "vtkType.h"
 
 #include <unistd.h>
@@ -22,6 +25,17 @@ inline void vtkApertureAllocate(
   if (a->GetNumberOfTuples() != tuples)
   {
     throw std::bad_alloc();
+  }
+}
+
+// Dimensions of the input image of a failed update, for RequestData's out-of-memory message;
+// 0 x 0 x 0 when there is none.
+inline void vtkApertureInputDimensions(vtkInformationVector* inputs, int dims[3])
+{
+  dims[0] = dims[1] = dims[2] = 0;
+  if (vtkImageData* input = vtkImageData::GetData(inputs))
+  {
+    input->GetDimensions(dims);
   }
 }
 

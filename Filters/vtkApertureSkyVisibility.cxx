@@ -179,12 +179,8 @@ int vtkApertureSkyVisibility::RequestData(
   {
     // (VTK's arrays and std::vector throw; Execute throws on the kernel's
     // AP_ERR_OUT_OF_MEMORY)
-    vtkImageData* input = vtkImageData::GetData(inputVector[0]);
-    int dims[3] = { 0, 0, 0 };
-    if (input)
-    {
-      input->GetDimensions(dims);
-    }
+    int dims[3];
+    vtkApertureInputDimensions(inputVector[0], dims);
     const double mib = std::ceil(this->EstimateBytes(double(dims[0]) * dims[1]) / 1048576.0);
     vtkErrorMacro(<< "out of memory: a " << dims[0] << " x " << dims[1]
                   << " DEM with these products needs about " << mib << " MiB"

@@ -105,12 +105,8 @@ int vtkApertureTerrainMesh::RequestData(
   catch (const std::bad_alloc&)
   {
     // (VTK's arrays, std::vector and new throw; a process limit such as ulimit -v makes them)
-    vtkImageData* input = vtkImageData::GetData(inputVector[0]);
-    int dims[3] = { 0, 0, 0 };
-    if (input)
-    {
-      input->GetDimensions(dims);
-    }
+    int dims[3];
+    vtkApertureInputDimensions(inputVector[0], dims);
     const double n = double(dims[0]) * dims[1];
     const double pointBytes = this->OutputPointsPrecision == DOUBLE_PRECISION ? 24.0 : 12.0;
     // elevations, ENU scratch, points, normals, texture coordinates; two triangles a cell of
