@@ -17,6 +17,7 @@
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStructuredData.h"
 #include "vtkUnsignedCharArray.h"
 
 #include "ap_horizon.h"
@@ -136,7 +137,7 @@ int vtkApertureSkyVisibility::RequestUpdateExtent(
   // pipeline information), needs the whole extent.
   int in[6];
   std::copy(whole, whole + 6, in);
-  if (ext[1] < ext[0] || ext[3] < ext[2] || ext[5] < ext[4])
+  if (vtkStructuredData::GetDataDescriptionFromExtent(ext) == VTK_EMPTY)
   {
     // an empty request (VTK's way to ask for nothing) asks nothing of the input either
     inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext, 6);
@@ -253,7 +254,7 @@ int vtkApertureSkyVisibility::Execute(
     outExt[2 * k] = std::max(outExt[2 * k], inExt[2 * k]);
     outExt[2 * k + 1] = std::min(outExt[2 * k + 1], inExt[2 * k + 1]);
   }
-  if (outExt[1] < outExt[0] || outExt[3] < outExt[2] || outExt[5] < outExt[4])
+  if (vtkStructuredData::GetDataDescriptionFromExtent(outExt) == VTK_EMPTY)
   {
     return 1; // an empty request, or one outside the DEM: an empty output
   }
@@ -285,17 +286,18 @@ int vtkApertureSkyVisibility::Execute(
   // Non-finite elevations (also doubles beyond the float range) are nodata, as the reader
   // makes them; finite ones beyond any on Earth are kept but named in a warning.
   std::vector<float> z(n);
-  float zlo = std::numeric_limits<float>::infinity(), zhi = -zlo;
   for (size_t k = 0; k < n; ++k)
   {
     const float v = static_cast<float>(elevation->GetComponent(static_cast<vtkIdType>(k), 0));
     z[k] = std::isfinite(v) ? v : std::numeric_limits<float>::quiet_NaN();
-    zlo = std::isfinite(v) ? std::min(zlo, v) : zlo;
-    zhi = std::isfinite(v) ? std::max(zhi, v) : zhi;
   }
-  if (zlo <= zhi && (zlo < EarthLowest || zhi > EarthHighest))
+  const ap_grid_view zview =
+    ap_grid_view_make(z.data(), static_cast<size_t>(nx), static_cast<size_t>(ny));
+  ap_grid_stats range;
+  if (ap_grid_stats_compute(&zview, &range) == AP_OK && range.valid > 0 &&
+    (range.min < EarthLowest || range.max > EarthHighest))
   {
-    vtkWarningMacro(<< "elevations range from " << zlo << " to " << zhi
+    vtkWarningMacro(<< "elevations range from " << range.min << " to " << range.max
                     << " m, beyond any on Earth (" << EarthLowest << " to " << EarthHighest
                     << " m): a nodata value the DEM does not declare, or heights not in "
                        "metres? Sky products computed from them are meaningless");
@@ -332,7 +334,7 @@ int vtkApertureSkyVisibility::Execute(
   }
   const bool geographic = geo->IsGeographic();
   ap_horizon_grid grid;
-  grid.z = ap_grid_view_make(z.data(), static_cast<size_t>(nx), static_cast<size_t>(ny));
+  grid.z = zview;
   // Lat/lon grids get their cell size row by row; projected grids are metric to within the
   // projection's scale factor, taken at the centre.
   grid.dx = geographic ? dx.data() + pieceJ : nullptr;
