@@ -124,6 +124,14 @@ int vtkApertureSkyVisibility::GetMarchColumns()
 }
 
 //------------------------------------------------------------------------------
+int vtkApertureSkyVisibility::GetFarMarchColumns()
+{
+  ap_horizon_params p;
+  ap_horizon_params_init(&p);
+  return p.far_march_columns;
+}
+
+//------------------------------------------------------------------------------
 int vtkApertureSkyVisibility::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {

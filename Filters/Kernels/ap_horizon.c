@@ -568,6 +568,8 @@ typedef struct pattern {
 /* State */
 
 static int build_pattern(ap_horizon *hz, double m, double len, double tmax);
+static int fm_tiles_init(ap_horizon *hz);
+static int fm_steps_init(ap_horizon *hz);
 
 
 struct ap_horizon {
@@ -624,7 +626,18 @@ struct ap_horizon {
   int by_rows;            /* x-major view whose rows take different patterns (per-row cell
                            * sizes): the near field runs row by row (see near_rows) */
   int march;              /* the search distance lies within march_columns: the near field
-                           * covers it all and the sweep has nothing to do */
+                           * covers it all and the sweep has nothing to do; far_march below
+                           * likewise */
+  /* the far march (see far_march_column): per-sector steps 0..fm_kmax, and the elevations'
+   * tile maxima (grid order, NaN ignored, -inf for a tile without data) of fm_tile[0]
+   * (AP_FM_FINE cells square) and fm_tile[1] (AP_FM_COARSE), made once by ap_horizon_create
+   * when a far march can happen */
+  int far_march;
+  struct fm_step *fm;
+  long fm_kmax;
+  float *fm_tile[2];
+  size_t fm_tnx[2];
+  float fm_eps;           /* added to a tile maximum: covers the interpolation's rounding */
 };
 
 /* Cell sizes of row j. */
@@ -657,6 +670,7 @@ void ap_horizon_params_init(ap_horizon_params *p)
   p->radius_normal = 6371000.0;
   p->near_field = 8;
   p->march_columns = 64;
+  p->far_march_columns = 1024;
   p->origin_col = 0;
   p->origin_row = 0;
   p->whole_dx = NULL;
@@ -682,7 +696,8 @@ ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params 
   if (p->directions < 4 || p->directions > 360 || !(p->max_distance > 0.0) ||
       !(p->refraction >= 0.0 && p->refraction < 1.0) || !positive_finite(p->radius_meridian) ||
       !positive_finite(p->radius_normal) || p->near_field < 1 || p->near_field > 64 ||
-      p->march_columns < 0 || p->march_columns > 64 || !isfinite(p->azimuth_offset) ||
+      p->march_columns < 0 || p->march_columns > 64 || p->far_march_columns < 0 ||
+      p->far_march_columns > 65536 || !isfinite(p->azimuth_offset) ||
       labs(p->origin_col) > 1000000000L || labs(p->origin_row) > 1000000000L) {
     return AP_ERR_INVALID_ARGUMENT;
   }
@@ -799,6 +814,9 @@ static void free_sector(ap_horizon *hz)
   free(hz->recs);
   free(hz->pats);
   free(hz->pat_of);
+  free(hz->fm);
+  hz->fm = NULL;
+  hz->far_march = 0;
   hz->m_row = hz->len_row = hz->cum_m = hz->cum_len = NULL;
   hz->recs = NULL;
   hz->pats = NULL;
@@ -821,6 +839,8 @@ void ap_horizon_destroy(ap_horizon *hz)
   free(hz->slope);
   free(hz->edge);
   free(hz->bsum);
+  free(hz->fm_tile[0]);
+  free(hz->fm_tile[1]);
   free(hz);
 }
 
@@ -923,6 +943,11 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
   }
   hz->lattice = g->dx != NULL || g->dy != NULL;
   if (hz->lattice && !lattice_init(hz)) {
+    ap_horizon_destroy(hz);
+    return AP_ERR_OUT_OF_MEMORY;
+  }
+  if (!hz->lattice && isfinite(p->max_distance) && p->far_march_columns > 0 &&
+      !fm_tiles_init(hz)) {
     ap_horizon_destroy(hz);
     return AP_ERR_OUT_OF_MEMORY;
   }
@@ -1136,6 +1161,12 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
     }
     hz->march = isfinite(hz->p.max_distance) &&
                 hz->p.max_distance <= (double)hz->p.march_columns * decides;
+    hz->far_march = !hz->march && hz->fm_tile[0] &&
+                    hz->p.max_distance <= (double)hz->p.far_march_columns * decides;
+  }
+  if (hz->far_march && !fm_steps_init(hz)) {
+    free_sector(hz);
+    return AP_ERR_OUT_OF_MEMORY;
   }
   /* Near-field patterns. With constant cell sizes all positions share one pattern of the
    * exact step. With per-row sizes a position takes the pattern of its step rounded to a
@@ -1556,6 +1587,379 @@ static void march_finish(const ap_horizon *hz, const pattern *pt, size_t p, long
   }
 }
 
+/* ---------------------------------------------------------------------------------------- */
+/* The far march: constant cell sizes and a search distance of more than march_columns but at
+ * most far_march_columns view steps. Every cell's own ray is sampled where it crosses view
+ * columns K..fm_kmax (linear between the column's two cells, as the hulls' samples are), and
+ * the largest slope (z - zq)/t - c t is max-merged into the near field's. That is what the
+ * sweep's hulls approximate (the sweep evaluates the cell's own ray only at the columns where
+ * its two bracketing lines' hulls are tangent), at O(distance) instead of O(1) per cell and
+ * direction; but it has no data-dependent branches, runs 16 cells of a view column as one
+ * vector loop, and skips most of its work: a stretch of steps whose terrain, bounded by the
+ * maxima of fixed tiles of the elevations, cannot rise above the slope a cell has found so far
+ * is skipped for all 16 (tested on 64 steps, then on 16). The bound holds in the rounded
+ * arithmetic too (every operation below is monotonic in the elevation and in the step, and
+ * the tile maximum is raised by fm_eps for the interpolation's rounding), so skipping never
+ * changes a result: it equals the full march bit for bit, and so does not depend on the split
+ * into threads or on where a piece of a DEM starts. (The whole kernel on Big Tujunga at 10 km,
+ * one core, 32 sectors: 47 against the sweep's 75 ns per cell and direction; 49 against 101 on
+ * a 2048^2 fractal DEM; bench/bake-notes.md.) */
+
+#define AP_FM_LANES 16  /* cells of a view column marched together */
+#define AP_FM_FINE 16   /* steps (and tile size) of the fine test */
+#define AP_FM_COARSE 64 /* of the coarse test */
+#define AP_FM_CHUNK 256 /* cells of a view column marched before the next unit's (a multiple
+                         * of AP_FM_LANES) */
+
+typedef struct fm_step {
+  long o;   /* view rows from the cell to the lower of the two cells the ray passes between */
+  float f;  /* the upper cell's weight; 0 where the ray meets the lower cell's centre */
+  float it; /* 1 / t, t = k len the distance (m) */
+  float ct; /* c t */
+} fm_step;
+
+/* The tile maxima of the elevations (NaN ignored; -inf for a tile of nodata). 0 when out of
+ * memory. */
+static int fm_tiles_init(ap_horizon *hz)
+{
+  const size_t F = AP_FM_FINE, r = AP_FM_COARSE / AP_FM_FINE;
+  const size_t fnx = (hz->nx + F - 1) / F, fny = (hz->ny + F - 1) / F;
+  const size_t cnx = (fnx + r - 1) / r, cny = (fny + r - 1) / r;
+  float zabs = 0.0f, *fine, *coarse;
+  size_t i, j;
+  hz->fm_tile[0] = fine = (float *)malloc(fnx * fny * sizeof(float));
+  hz->fm_tile[1] = coarse = (float *)malloc(cnx * cny * sizeof(float));
+  if (!fine || !coarse) {
+    return 0;
+  }
+  hz->fm_tnx[0] = fnx;
+  hz->fm_tnx[1] = cnx;
+  for (i = 0; i < fnx * fny; ++i) {
+    fine[i] = -INFINITY;
+  }
+  for (i = 0; i < cnx * cny; ++i) {
+    coarse[i] = -INFINITY;
+  }
+  for (i = 0; i < hz->nx; ++i) { /* (the transposed copy, in its memory order) */
+    const float *zcol = hz->zt + i * hz->ny;
+    float *tcol = fine + i / F;
+    for (j = 0; j < hz->ny; ++j) {
+      const float z = zcol[j];
+      tcol[(j / F) * fnx] = z > tcol[(j / F) * fnx] ? z : tcol[(j / F) * fnx];
+      zabs = fabsf(z) > zabs ? fabsf(z) : zabs;
+    }
+  }
+  for (j = 0; j < fny; ++j) { /* a coarse tile is r x r fine ones (AP_FM_COARSE divides) */
+    for (i = 0; i < fnx; ++i) {
+      float *t = coarse + (j / r) * cnx + i / r;
+      *t = fine[j * fnx + i] > *t ? fine[j * fnx + i] : *t;
+    }
+  }
+  /* a + f (b - a) rounds to at most a few units in the last place of the largest |z| above
+   * max(a, b); 2^-18 of it is a margin of 32 such units (4 mm at 1000 m) */
+  hz->fm_eps = zabs * (1.0f / 262144.0f);
+  return 1;
+}
+
+/* The prepared sector's steps 0..fm_kmax (the samples within the distance). 0 when out of
+ * memory. */
+static int fm_steps_init(ap_horizon *hz)
+{
+  const double len = hz->len_row[0], L = hz->p.max_distance;
+  double m = hz->m_row[0];
+  long k;
+  hz->fm_kmax = (long)floor(L / len);
+  if (fabs(m) * (double)hz->fm_kmax < 1e-9) {
+    m = 0.0; /* a ray along its row (cos(pi/2) is 6e-17, not 0), as build_pattern */
+  }
+  hz->fm = (fm_step *)malloc((size_t)(hz->fm_kmax + 1) * sizeof(fm_step));
+  if (!hz->fm) {
+    return 0;
+  }
+  for (k = 0; k <= hz->fm_kmax; ++k) {
+    const double sh = m * (double)k, r = nearbyint(sh), t = (double)k * len;
+    fm_step *st = &hz->fm[k];
+    if (fabs(sh - r) < 1e-9) { /* within 1e-9 of a cell: that cell (as far_offset) */
+      st->o = (long)r;
+      st->f = 0.0f;
+    } else {
+      st->o = (long)floor(sh);
+      st->f = (float)(sh - floor(sh));
+    }
+    st->it = k > 0 ? (float)(1.0 / t) : 0.0f;
+    st->ct = (float)(hz->c * t);
+  }
+  return 1;
+}
+
+/* The lowest and one past the highest view row a ray from row 0 reads at step k. */
+AP_INLINE long fm_lo(const fm_step *st)
+{
+  return st->o;
+}
+
+AP_INLINE long fm_hi(const fm_step *st)
+{
+  return st->o + (st->f != 0.0f ? 2 : 1);
+}
+
+/* The last step in [k0 - 1, kend] up to which a ray from view row s stays on the grid (its
+ * offsets move one way, so the steps on the grid are a prefix); k0 - 1 when none. */
+static long fm_last_on_grid(const ap_horizon *hz, long s, long k0, long kend)
+{
+  const long ns = (long)hz->ns;
+  long lo = k0 - 1, hi = kend; /* invariant: steps up to lo are on the grid */
+  while (lo < hi) {
+    const long mid = lo + (hi - lo + 1) / 2;
+    const fm_step *st = &hz->fm[mid];
+    if (s + fm_lo(st) >= 0 && s + fm_hi(st) <= ns) {
+      lo = mid;
+    } else {
+      hi = mid - 1;
+    }
+  }
+  return lo;
+}
+
+/* The box of tile maxima (level l) around every sample that cells [s0, s0 + n) of view column p
+ * read at steps [ka, kb], raised by fm_eps: at least every elevation those samples interpolate
+ * (-inf when the box holds no data). */
+AP_INLINE float fm_box_max(const ap_horizon *hz, int l, size_t p, long s0, long n, long ka,
+                           long kb)
+{
+  const size_t B = l ? AP_FM_COARSE : AP_FM_FINE, tnx = hz->fm_tnx[l];
+  const float *tile = hz->fm_tile[l];
+  const fm_step *sa = &hz->fm[ka], *sb = &hz->fm[kb];
+  const long ns = (long)hz->ns;
+  long r0 = s0 + (fm_lo(sa) < fm_lo(sb) ? fm_lo(sa) : fm_lo(sb));
+  long r1 = s0 + n - 1 + (fm_hi(sa) > fm_hi(sb) ? fm_hi(sa) : fm_hi(sb)) - 1;
+  size_t q0 = prim_index(hz, p + (size_t)ka), q1 = prim_index(hz, p + (size_t)kb), i0, i1, j0,
+         j1, i, j;
+  float Z = -INFINITY;
+  if (q0 > q1) {
+    const size_t t = q0;
+    q0 = q1;
+    q1 = t;
+  }
+  r0 = r0 < 0 ? 0 : r0;
+  r1 = r1 > ns - 1 ? ns - 1 : r1;
+  if (hz->xmajor) { /* view p = grid column, s = grid row */
+    i0 = q0 / B;
+    i1 = q1 / B;
+    j0 = (size_t)r0 / B;
+    j1 = (size_t)r1 / B;
+  } else {
+    i0 = (size_t)r0 / B;
+    i1 = (size_t)r1 / B;
+    j0 = q0 / B;
+    j1 = q1 / B;
+  }
+  for (j = j0; j <= j1; ++j) {
+    for (i = i0; i <= i1; ++i) {
+      const float t = tile[j * tnx + i];
+      Z = t > Z ? t : Z;
+    }
+  }
+  return Z + hz->fm_eps;
+}
+
+/* Whether a cell at height zq whose slope so far is b could find a larger one at steps
+ * [ka, kb] from heights up to Z: a slope at t in [ta, tb] is at most the larger of
+ * (Z - zq)/ta and (Z - zq)/tb (by the sign of Z - zq) less c ta. Never for a NaN zq (nodata)
+ * or Z = -inf (no data). Each operation is monotonic, so this holds rounded too. */
+#define AP_FM_RISES(Z, zq, sa, sb, b)                                                          \
+  (((((Z) - (zq)) * (sa)->it > ((Z) - (zq)) * (sb)->it ? ((Z) - (zq)) * (sa)->it              \
+                                                        : ((Z) - (zq)) * (sb)->it) -          \
+    (sa)->ct) > (b))
+
+/* One sample of a ray at step st from a cell at height zq: the slope to the point between
+ * z[0] and z[1] (f the weight of z[1]). */
+#define AP_FM_SLOPE(z0, z1, f, zq, st) ((((z0) + (f) * ((z1) - (z0))) - (zq)) * (st)->it - (st)->ct)
+
+#if defined(__GNUC__)
+/* 16 cells as two vectors of 8 (GCC/Clang vector extensions: AVX2 in the avx2 clone, pairs of
+ * SSE2 operations in the default one; the same IEEE operations per cell as the scalar code). */
+typedef float fm_v8 __attribute__((vector_size(32)));
+typedef int fm_i8 __attribute__((vector_size(32)));
+
+typedef long long fm_l4 __attribute__((vector_size(32)));
+
+/* (Macros, not functions: vectors passed or returned by value would change the default
+ * clone's calling convention, which GCC warns about.) */
+#define AP_FM_LOAD(v, z) memcpy(&(v), (z), sizeof(v))
+/* b becomes v where v > b: NaN never wins */
+#define AP_FM_MAX(b, v) ((b) = (fm_v8)(((fm_i8)(v) & ((v) > (b))) | ((fm_i8)(b) & ~((v) > (b)))))
+/* whether any lane of the mask m is set */
+#define AP_FM_ANY(m)                                                                           \
+  ((((fm_l4)(m))[0] | ((fm_l4)(m))[1]) != 0 || (((fm_l4)(m))[2] | ((fm_l4)(m))[3]) != 0)
+
+typedef struct fm_lanes {
+  fm_v8 zq[2], b[2];
+} fm_lanes;
+
+AP_INLINE void fm_lanes_get(fm_lanes *g, const float *zq, const float *b)
+{
+  AP_FM_LOAD(g->zq[0], zq);
+  AP_FM_LOAD(g->zq[1], zq + 8);
+  AP_FM_LOAD(g->b[0], b);
+  AP_FM_LOAD(g->b[1], b + 8);
+}
+
+AP_INLINE void fm_lanes_put(const fm_lanes *g, float *b)
+{
+  memcpy(b, &g->b[0], sizeof g->b[0]);
+  memcpy(b + 8, &g->b[1], sizeof g->b[1]);
+}
+
+AP_INLINE int fm_lanes_rise(const fm_lanes *g, float Z, const fm_step *sa, const fm_step *sb)
+{
+  const float ita = sa->it, itb = sb->it, ct = sa->ct;
+  const fm_v8 dz0 = Z - g->zq[0], dz1 = Z - g->zq[1];
+  fm_v8 q0 = dz0 * itb, q1 = dz1 * itb; /* the larger of the two quotients, less c ta */
+  fm_i8 any;
+  AP_FM_MAX(q0, dz0 * ita);
+  AP_FM_MAX(q1, dz1 * ita);
+  any = ((q0 - ct) > g->b[0]) | ((q1 - ct) > g->b[1]);
+  return AP_FM_ANY(any);
+}
+
+AP_INLINE void fm_lanes_march(const ap_horizon *hz, size_t p, long s0, long ka, long kb,
+                              fm_lanes *g)
+{
+  long k;
+  for (k = ka; k <= kb; ++k) {
+    const fm_step *st = &hz->fm[k];
+    const float *z = view_column(hz, p + (size_t)k) + s0 + st->o;
+    const float it = st->it, ct = st->ct, f = st->f; /* (scalars: broadcast by the compiler) */
+    int h;
+    for (h = 0; h < 2; ++h) {
+      fm_v8 z0, v;
+      AP_FM_LOAD(z0, z + 8 * h);
+      if (f != 0.0f) {
+        fm_v8 z1;
+        AP_FM_LOAD(z1, z + 8 * h + 1);
+        v = ((z0 + f * (z1 - z0)) - g->zq[h]) * it - ct;
+      } else {
+        v = (z0 - g->zq[h]) * it - ct;
+      }
+      AP_FM_MAX(g->b[h], v);
+    }
+  }
+}
+#else
+typedef struct fm_lanes {
+  float zq[AP_FM_LANES], b[AP_FM_LANES];
+} fm_lanes;
+
+AP_INLINE void fm_lanes_get(fm_lanes *g, const float *zq, const float *b)
+{
+  memcpy(g->zq, zq, sizeof g->zq);
+  memcpy(g->b, b, sizeof g->b);
+}
+
+AP_INLINE void fm_lanes_put(const fm_lanes *g, float *b)
+{
+  memcpy(b, g->b, sizeof g->b);
+}
+
+AP_INLINE int fm_lanes_rise(const fm_lanes *g, float Z, const fm_step *sa, const fm_step *sb)
+{
+  int c, any = 0;
+  for (c = 0; c < AP_FM_LANES; ++c) {
+    any |= AP_FM_RISES(Z, g->zq[c], sa, sb, g->b[c]);
+  }
+  return any;
+}
+
+AP_INLINE void fm_lanes_march(const ap_horizon *hz, size_t p, long s0, long ka, long kb,
+                              fm_lanes *g)
+{
+  long k;
+  int c;
+  for (k = ka; k <= kb; ++k) {
+    const fm_step *st = &hz->fm[k];
+    const float *z = view_column(hz, p + (size_t)k) + s0 + st->o;
+    for (c = 0; c < AP_FM_LANES; ++c) {
+      const float v = st->f != 0.0f ? AP_FM_SLOPE(z[c], z[c + 1], st->f, g->zq[c], st)
+                                    : (z[c] - g->zq[c]) * st->it - st->ct;
+      g->b[c] = v > g->b[c] ? v : g->b[c];
+    }
+  }
+}
+#endif
+
+/* Steps [ka, kb] of one cell (view row s) at height zq, slope so far *b: the same operations
+ * as for 16 cells. */
+static void fm_march_one(const ap_horizon *hz, size_t p, long s, long ka, long kb, float zq,
+                         float *b)
+{
+  long k;
+  for (k = ka; k <= kb; ++k) {
+    const fm_step *st = &hz->fm[k];
+    const float *z = view_column(hz, p + (size_t)k) + s + st->o;
+    const float v = st->f != 0.0f ? AP_FM_SLOPE(z[0], z[1], st->f, zq, st)
+                                  : (z[0] - zq) * st->it - st->ct;
+    *b = v > *b ? v : *b;
+  }
+}
+
+/* The far march of cells [sa, sb) of view column p into best[] (max-merged). */
+AP_MULTIVERSION
+static void far_march_column(const ap_horizon *hz, size_t p, long sa, long sb, const float *col,
+                             float *best)
+{
+  const long K = hz->p.near_field;
+  long kend = hz->fm_kmax, s0;
+  if ((long)(hz->np - 1 - p) < kend) {
+    kend = (long)(hz->np - 1 - p); /* the columns left */
+  }
+  if (kend < K) {
+    return;
+  }
+  for (s0 = sa; s0 < sb; s0 += AP_FM_LANES) {
+    const long n = sb - s0 < AP_FM_LANES ? sb - s0 : AP_FM_LANES;
+    long kvec = K - 1, k, c;
+    if (n == AP_FM_LANES) {
+      /* the steps on which all 16 rays stay on the grid: those of both outer cells */
+      const long lo = fm_last_on_grid(hz, s0, K, kend);
+      const long hi = fm_last_on_grid(hz, s0 + n - 1, K, kend);
+      fm_lanes g;
+      kvec = lo < hi ? lo : hi;
+      fm_lanes_get(&g, col + s0, best + s0);
+      for (k = K; k <= kvec;) {
+        long k1 = k + AP_FM_COARSE - 1 < kvec ? k + AP_FM_COARSE - 1 : kvec;
+        if (!fm_lanes_rise(&g, fm_box_max(hz, 1, p, s0, n, k, k1), &hz->fm[k], &hz->fm[k1])) {
+          k = k1 + 1;
+          continue;
+        }
+        k1 = k + AP_FM_FINE - 1 < kvec ? k + AP_FM_FINE - 1 : kvec;
+        if (fm_lanes_rise(&g, fm_box_max(hz, 0, p, s0, n, k, k1), &hz->fm[k], &hz->fm[k1])) {
+          fm_lanes_march(hz, p, s0, k, k1, &g);
+        }
+        k = k1 + 1;
+      }
+      fm_lanes_put(&g, best + s0);
+    }
+    if (kvec >= kend) {
+      continue;
+    }
+    /* the rest cell by cell: a short group's cells, and the steps after some of the 16 rays
+     * left the grid */
+    for (c = 0; c < n; ++c) {
+      const long last = fm_last_on_grid(hz, s0 + c, kvec + 1, kend);
+      const float zq = col[s0 + c];
+      for (k = kvec + 1; k <= last;) {
+        const long k1 = k + AP_FM_FINE - 1 < last ? k + AP_FM_FINE - 1 : last;
+        const float Z = fm_box_max(hz, 0, p, s0 + c, 1, k, k1);
+        if (AP_FM_RISES(Z, zq, &hz->fm[k], &hz->fm[k1], best[s0 + c])) {
+          fm_march_one(hz, p, s0 + c, k, k1, zq, best + s0 + c);
+        }
+        k = k1 + 1;
+      }
+    }
+  }
+}
+
 /* Row by row (hz->by_rows: x-major views of grids with per-row cell sizes, whose rows take
  * their own patterns in runs of a few rows, too short for near_column's vectors): the same
  * operations for every cell in the same order, so the same results bit for bit, but each
@@ -1743,6 +2147,23 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t u0, size_t u1)
       run = run_end;
     }
   }
+  if (hz->far_march) {
+    /* (constant cell sizes: one pattern) By chunks of AP_FM_CHUNK cells across the units'
+     * columns, so that the view columns their rays cross stay in cache from one unit to the
+     * next (on a 4096^2 grid at 10 km, 45 instead of 70 ns per cell and direction). */
+    const long ns = (long)hz->ns;
+    long s0;
+    for (s0 = 0; s0 < ns; s0 += AP_FM_CHUNK) {
+      const long s1 = s0 + AP_FM_CHUNK < ns ? s0 + AP_FM_CHUNK : ns;
+      for (p = u0; p < u1 && p < hz->np; ++p) {
+        far_march_column(hz, p, s0, s1, view_column(hz, p), hz->slope + scratch_index(hz, p, 0));
+      }
+    }
+    for (p = u0; p < u1 && p < hz->np; ++p) {
+      march_finish(hz, &hz->pats[0], p, 0, ns, view_column(hz, p),
+                   hz->slope + scratch_index(hz, p, 0), hz->edge + scratch_index(hz, p, 0));
+    }
+  }
   return AP_OK;
 }
 
@@ -1771,7 +2192,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
   if (hz->d < 0) {
     return AP_ERR_INVALID_ARGUMENT;
   }
-  if (hz->march) {
+  if (hz->march || hz->far_march) {
     return AP_OK; /* the near field did it all */
   }
   K = hz->p.near_field;

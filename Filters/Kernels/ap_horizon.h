@@ -30,7 +30,16 @@
  *  straight in index space with the direction of the cell's row: on lat/lon grids the rhumb
  *  line bends away from it as the east-west cell size changes, by about tan(lat) x (latitude
  *  span) x (columns) / 2 columns at the limit (0.05 of a cell at 60 N over 64 diagonal steps
- *  of a 3-arc-second grid).
+ *  of a 3-arc-second grid). With constant cell sizes, a search distance of at most
+ *  far_march_columns steps (1024 by default: 30 km on a 30 m grid) is searched by the far
+ *  march instead of the hulls: beyond the near field, every cell's own ray is sampled where it
+ *  crosses each view column up to the distance, linearly between the column's two cells (the
+ *  samples the hulls hold), and the largest slope taken; stretches whose elevations, bounded
+ *  by tile maxima, cannot beat the slope found so far are skipped without changing a bit.
+ *  O(distance) per cell and direction at worst (a bowl rising all the way out), yet faster
+ *  than the sweep's sliding windows up to that limit on every DEM measured, and exact on the
+ *  cell's own ray where the sweep evaluates it only at its lines' tangent columns (the rough
+ *  DEM of the tests at 2500 m: p99 0.18 against 0.31 degree from the brute force).
  *
  *  Geometry: cell sizes are given per row in metres, so lat/lon DEMs are exact: the lines
  *  follow constant ground azimuth (rhumb lines) and bend in index space as the east-west cell
@@ -125,12 +134,24 @@ typedef struct ap_horizon_params {
                                (default 6371000) */
   double radius_normal;   /**< N: prime-vertical radius of curvature (m) (default 6371000) */
   int near_field;         /**< K: samples 1..K-1 along each cell's own ray are marched
-                               exactly before the hulls take over; 1..64 (default 8) */
+                               exactly before the hulls (or the far march) take over;
+                               1..64 (default 8) */
   int march_columns;      /**< when max_distance spans at most this many view columns of a
                                sector (steps of the shortest row), every ray is marched
                                exactly to max_distance and the hulls are skipped: exact on
                                the bilinear surface, and 2-4x faster than the sweep for such
                                short distances; 0..64, 0 = always sweep (default 64) */
+  int far_march_columns;  /**< with constant cell sizes, when max_distance spans more than
+                               march_columns but at most this many view columns, the
+                               columns from K on are marched along every cell's own ray
+                               instead of swept (the far march: the largest slope over the
+                               ray's crossings of the view columns, as the hulls hold them;
+                               a conservative bound from tile maxima skips the stretches
+                               that cannot rise above the slope found so far, so results
+                               equal the full march bit for bit). Cost O(distance) at worst,
+                               yet 2-3x below the sweep's at 10 km on 30 m grids; beyond
+                               this limit, and on lat/lon grids, the sweep runs.
+                               0..65536, 0 = never (default 1024) */
   long origin_col;        /**< the grid is a piece of a larger DEM whose cell (origin_col,
                                origin_row) is the grid's cell (0, 0), |values| <= 10^9; the
                                sweep's lines lie on that DEM's lattice of lines, so a piece
@@ -193,7 +214,8 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
 /** Bytes per cell that ap_horizon_create allocates for the state above, for callers that
  *  estimate a run's memory: 17, plus 12 when the diffuse sky factor is wanted without the
  *  bent normal (both flags 0 or 1). The per-sector and per-thread buffers, O(nx + ny) each,
- *  and the caller's outputs are not counted. */
+ *  the far march's tile maxima (under 0.02 bytes per cell) and the caller's outputs are not
+ *  counted. */
 size_t ap_horizon_state_bytes_per_cell(int diffuse_sky_factor, int bent_normal);
 
 /** Free everything ap_horizon_create allocated (NULL is fine). */
@@ -218,7 +240,9 @@ size_t ap_horizon_near_field_count(const ap_horizon *hz);
 /** The near field (the first K − 1 samples of every cell's ray, exactly on the bilinear
  *  surface) of units [u0, u1) of the prepared sector. Every unit must be done before any
  *  ap_horizon_sweep of the sector, which reads these results. In a sector whose search
- *  distance is within march_columns it is the whole search, edge flags included. Returns
+ *  distance is within march_columns, or far_march_columns with constant cell sizes, it is the
+ *  whole search, edge flags included (and a call should then span a few units: the far march
+ *  goes through them in chunks of cells, which keeps the columns it reads in cache). Returns
  *  AP_ERR_OUT_OF_MEMORY if a row's buffer cannot be allocated. */
 ap_status ap_horizon_near_field(const ap_horizon *hz, size_t u0, size_t u1);
 
@@ -234,7 +258,8 @@ size_t ap_horizon_bracket_count(const ap_horizon *hz);
 
 /** Sweep brackets [b0, b1) of the prepared sector after its near field: computes the horizon
  *  and edge flag of every cell between those lines (nothing to do, AP_OK, in a sector whose
- *  search distance is within march_columns). Allocates and frees its own hull stacks;
+ *  search distance the near field covered: within march_columns, or far_march_columns with
+ *  constant cell sizes). Allocates and frees its own hull stacks;
  *  returns AP_ERR_OUT_OF_MEMORY if that fails (the products are then incomplete). */
 ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1);
 

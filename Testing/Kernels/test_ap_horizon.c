@@ -123,6 +123,18 @@ static ap_horizon_params params(int directions, int curvature)
   return p;
 }
 
+/* How a search distance of a few dozen columns is searched: every ray marched on the bilinear
+ * surface (up to march_columns), every ray marched across the view columns (the far march, up
+ * to far_march_columns, constant cell sizes only), or swept through the hulls. */
+enum { MARCHED, FAR_MARCHED, SWEPT, SEARCH_MODES };
+static const char *const mode_name[SEARCH_MODES] = {"marched", "far-marched", "swept"};
+
+static void set_mode(ap_horizon_params *p, int mode, int march_columns)
+{
+  p->march_columns = mode == MARCHED ? march_columns : 0;
+  p->far_march_columns = mode == SWEPT ? 0 : 1024;
+}
+
 /* The sector sums of ap_horizon.h for a horizon h_t(phi) and a tangent-plane elevation
  * h_s(phi) given per sector (a direct transcription, independent of the kernel's loops). */
 typedef struct sector_sums {
@@ -209,11 +221,11 @@ static void test_flat(void)
   release(&r);
   /* With a search distance the flag is the distance's alone, as without curvature
    * (test_edge_flags; a piece of a DEM would not know the DEM's highest cell): on the plain,
-   * cells within 55 m (5.5 columns) of an edge are flagged, the others not, marched or swept. */
+   * cells within 55 m (5.5 columns) of an edge are flagged, the others not, in every mode. */
   p.max_distance = 55.0;
-  for (mode = 0; mode < 2; ++mode) {
+  for (mode = 0; mode < SEARCH_MODES; ++mode) {
     size_t wrong = 0;
-    p.march_columns = mode ? 64 : 0;
+    set_mode(&p, mode, 64);
     r = compute(&t, &p);
     for (j = 0; j < t.ny; ++j) {
       for (i = 0; i < t.nx; ++i) {
@@ -596,20 +608,32 @@ static void test_brute_force(void)
   compare_brute_force(&t, &p, "rough, unlimited");
   /* 900 m is 30 columns: the rays are marched exactly to the distance (march_columns), on the
    * reference's own bilinear surface, so they must match it to its step (p99 0.0008 deg, max
-   * 0.007 measured); the same radius through the hulls (p99 0.21 deg), and 2500 m (83 columns,
-   * beyond march_columns), must meet the issue's bounds. */
+   * 0.007 measured); the same radius through the far march (samples where each ray crosses the
+   * view columns, as the hulls hold them: p99 0.13 deg) and through the hulls (0.13-0.21 deg),
+   * and 2500 m (83 columns, beyond march_columns) both ways, must meet the issue's bounds. */
   p.max_distance = 900.0;
   {
-    const double march = compare_brute_force(&t, &p, "rough, 900 m radius, marched");
-    double swept;
-    p.march_columns = 0;
-    swept = compare_brute_force(&t, &p, "rough, 900 m radius, swept");
-    p.march_columns = 64;
-    AP_CHECK(march <= 0.005);
-    AP_CHECK(march < swept);
+    double p99[SEARCH_MODES];
+    int mode;
+    char what[64];
+    for (mode = 0; mode < SEARCH_MODES; ++mode) {
+      set_mode(&p, mode, 64);
+      snprintf(what, sizeof what, "rough, 900 m radius, %s", mode_name[mode]);
+      p99[mode] = compare_brute_force(&t, &p, what);
+    }
+    AP_CHECK(p99[MARCHED] <= 0.005);
+    AP_CHECK(p99[MARCHED] < p99[FAR_MARCHED]);
+    AP_CHECK(p99[MARCHED] < p99[SWEPT]);
+    AP_CHECK(p99[FAR_MARCHED] <= p99[SWEPT]);
+    p.max_distance = 2500.0;
+    for (mode = FAR_MARCHED; mode <= SWEPT; ++mode) {
+      set_mode(&p, mode, 64);
+      snprintf(what, sizeof what, "rough, 2500 m radius, %s", mode_name[mode]);
+      p99[mode] = compare_brute_force(&t, &p, what);
+    }
+    AP_CHECK(p99[FAR_MARCHED] <= p99[SWEPT]); /* (0.18 and 0.31 deg) */
+    set_mode(&p, MARCHED, 64);
   }
-  p.max_distance = 2500.0;
-  compare_brute_force(&t, &p, "rough, 2500 m radius");
   p.max_distance = INFINITY;
   p.directions = 7 * 4 + 1; /* odd sector counts: azimuths off every grid diagonal */
   compare_brute_force(&t, &p, "rough, 29 sectors");
@@ -647,9 +671,10 @@ static void test_latlon_rows(void)
 }
 
 /* Results are bitwise the same however the brackets and rows are split (threads), through the
- * hulls and with marched rays, with constant and with per-row (lat/lon) cell sizes, whose
- * x-major sectors split the near field by rows. */
-static void test_split_invariance_mode(int march_columns, int latlon)
+ * hulls and with marched rays (on the bilinear surface, and across the view columns), with
+ * constant and with per-row (lat/lon) cell sizes, whose x-major sectors split the near field by
+ * rows. */
+static void test_split_invariance_mode(int mode, int latlon)
 {
   terrain t = make(70, 50, 30.0);
   ap_horizon_params p = params(16, 1);
@@ -670,7 +695,7 @@ static void test_split_invariance_mode(int march_columns, int latlon)
     latlon_rows(&t, 6371000.0, 60.0 * DEG, 0.0003 * DEG, 0.0004 * DEG);
   }
   p.max_distance = 600.0;
-  p.march_columns = march_columns;
+  set_mode(&p, mode, 64);
   for (run = 0; run < 2; ++run) {
     ap_horizon_grid g = grid_of(&t);
     ap_sky_products o;
@@ -719,10 +744,11 @@ static void test_split_invariance_mode(int march_columns, int latlon)
 
 static void test_split_invariance(void)
 {
-  test_split_invariance_mode(0, 0);
-  test_split_invariance_mode(64, 0);
-  test_split_invariance_mode(0, 1);
-  test_split_invariance_mode(64, 1);
+  test_split_invariance_mode(SWEPT, 0);
+  test_split_invariance_mode(MARCHED, 0);
+  test_split_invariance_mode(FAR_MARCHED, 0);
+  test_split_invariance_mode(SWEPT, 1);
+  test_split_invariance_mode(MARCHED, 1);
 }
 
 /* The edge flag, closed form on a flat grid without curvature in the four axis sectors: a cell
@@ -741,10 +767,10 @@ static void test_edge_flags(void)
     }
   }
   p.max_distance = 600.0;
-  for (mode = 0; mode < 2; ++mode) {
+  for (mode = 0; mode < SEARCH_MODES; ++mode) {
     results r;
     size_t wrong = 0, wrong_h = 0;
-    p.march_columns = mode ? 20 : 0;
+    set_mode(&p, mode, 20);
     r = compute(&t, &p);
     for (j = 0; j < t.ny; ++j) {
       for (i = 0; i < t.nx; ++i) {
@@ -761,8 +787,8 @@ static void test_edge_flags(void)
         }
       }
     }
-    fprintf(stderr, "edge flags, %s: %zu wrong flags, %zu wrong horizons\n",
-            mode ? "marched" : "swept", wrong, wrong_h);
+    fprintf(stderr, "edge flags, %s: %zu wrong flags, %zu wrong horizons\n", mode_name[mode],
+            wrong, wrong_h);
     AP_CHECK_EQ_INT((int)wrong, 0);
     AP_CHECK_EQ_INT((int)wrong_h, 0);
     release(&r);
@@ -811,6 +837,7 @@ static void test_nodata_transparent(void)
   ap_horizon_params p = params(4, 0);
   results r;
   size_t j;
+  int mode;
   for (j = 0; j < t.ny; ++j) {
     t.z[j * t.nx + 10] = NAN;
     t.z[j * t.nx + 11] = NAN;
@@ -820,18 +847,37 @@ static void test_nodata_transparent(void)
   AP_CHECK_NEAR(r.h[(2 * t.nx + 0) * 4 + 1], atan(300.0 / 400.0), 1e-6);
   AP_CHECK(isnan(r.svf[2 * t.nx + 10]));
   release(&r);
-  /* the same through the marched rays (45 and 35 columns): the peak 400 m away is seen past
-   * the nodata, and not beyond the search distance */
-  p.max_distance = 450.0;
-  r = compute(&t, &p);
-  AP_CHECK_NEAR(r.h[(2 * t.nx + 0) * 4 + 1], atan(300.0 / 400.0), 1e-6);
-  AP_CHECK(isnan(r.svf[2 * t.nx + 10]));
-  release(&r);
-  p.max_distance = 350.0;
-  r = compute(&t, &p);
-  AP_CHECK_NEAR(r.h[(2 * t.nx + 0) * 4 + 1], 0.0, 1e-6);
-  release(&r);
+  /* the same with a search distance (45 and 35 columns) in every mode: the peak 400 m away is
+   * seen past the nodata, and not beyond the search distance */
+  for (mode = 0; mode < SEARCH_MODES; ++mode) {
+    set_mode(&p, mode, 64);
+    p.max_distance = 450.0;
+    r = compute(&t, &p);
+    AP_CHECK_NEAR(r.h[(2 * t.nx + 0) * 4 + 1], atan(300.0 / 400.0), 1e-6);
+    AP_CHECK(isnan(r.svf[2 * t.nx + 10]));
+    release(&r);
+    p.max_distance = 350.0;
+    r = compute(&t, &p);
+    AP_CHECK_NEAR(r.h[(2 * t.nx + 0) * 4 + 1], 0.0, 1e-6);
+    release(&r);
+  }
   drop(&t);
+}
+
+/* An integer option accepts exactly [lo, hi] (then restored). */
+static void check_int_option(const ap_horizon_grid *g, ap_horizon_params *p, int *option, int lo,
+                             int hi)
+{
+  const int keep = *option;
+  *option = lo - 1;
+  AP_CHECK_EQ_INT(ap_horizon_validate(g, p), AP_ERR_INVALID_ARGUMENT);
+  *option = hi + 1;
+  AP_CHECK_EQ_INT(ap_horizon_validate(g, p), AP_ERR_INVALID_ARGUMENT);
+  *option = lo;
+  AP_CHECK_EQ_INT(ap_horizon_validate(g, p), AP_OK);
+  *option = hi;
+  AP_CHECK_EQ_INT(ap_horizon_validate(g, p), AP_OK);
+  *option = keep;
 }
 
 static void test_errors(void)
@@ -843,11 +889,7 @@ static void test_errors(void)
   ap_horizon *hz = (ap_horizon *)&t; /* must be reset to NULL on failure */
   memset(&o, 0, sizeof(o));
   AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_OK);
-  p.directions = 3;
-  AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
-  p.directions = 361;
-  AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
-  p.directions = 32;
+  check_int_option(&g, &p, &p.directions, 4, 360);
   p.max_distance = -5;
   AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
   p.max_distance = NAN;
@@ -858,13 +900,9 @@ static void test_errors(void)
   p.refraction = -0.1;
   AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
   p.refraction = 0.13;
-  p.march_columns = -1;
-  AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
-  p.march_columns = 65;
-  AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
-  p.march_columns = 0;
-  AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_OK);
-  p.march_columns = 64;
+  check_int_option(&g, &p, &p.near_field, 1, 64);
+  check_int_option(&g, &p, &p.march_columns, 0, 64);
+  check_int_option(&g, &p, &p.far_march_columns, 0, 65536);
   p.origin_col = -1000000001L;
   AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
   p.origin_col = 0;
@@ -985,7 +1023,8 @@ static double piece_difference(const terrain *whole, const results *w, const ap_
   return worst;
 }
 
-/* Rough terrain, swept (2500 m: 83 columns), curvature on; then per-row sizes, marched. */
+/* Rough terrain, swept and far-marched (2500 m: 83 columns), curvature on; then per-row sizes,
+ * marched and swept. */
 static void test_pieces(void)
 {
   terrain t = make(250, 230, 30.0);
@@ -999,17 +1038,26 @@ static void test_pieces(void)
     }
   }
   p.max_distance = 2500.0;
-  for (k = 0; k < 2; ++k) {
+  for (k = 0; k < 4; ++k) {
+    /* swept: the lines lie on the whole DEM's lattice only where the piece says where it
+     * starts; far-marched: every ray is the cell's own, wherever the piece starts */
+    const int mode = k < 2 ? SWEPT : FAR_MARCHED;
     results w;
     double aligned, unaligned;
-    p.directions = k == 0 ? 32 : 29;
+    p.directions = k % 2 == 0 ? 32 : 29;
+    set_mode(&p, mode, 64);
     w = compute(&t, &p);
     aligned = piece_difference(&t, &w, &p, region, margin, margin, 1);
     unaligned = piece_difference(&t, &w, &p, region, margin, margin, 0);
-    printf("piece of a %zu x %zu DEM, D = %d: largest difference %.3g aligned, %.3g not\n",
-           t.nx, t.ny, p.directions, aligned, unaligned);
-    AP_CHECK(aligned <= 1e-5);
-    AP_CHECK(unaligned > 1e-3);
+    printf("piece of a %zu x %zu DEM, %s, D = %d: largest difference %.3g aligned, %.3g not\n",
+           t.nx, t.ny, mode_name[mode], p.directions, aligned, unaligned);
+    if (mode == SWEPT) {
+      AP_CHECK(aligned <= 1e-5);
+      AP_CHECK(unaligned > 1e-3);
+    } else {
+      AP_CHECK(aligned == 0.0);
+      AP_CHECK(unaligned == 0.0);
+    }
     release(&w);
   }
   drop(&t);
@@ -1069,14 +1117,135 @@ static double next_uniform(unsigned long long *state)
   return (double)(*state >> 11) / 9007199254740992.0;
 }
 
+/* Cell-directions of t whose far-marched horizon (3000 m, curvature on, D = 29) lies below the
+ * samples' reference by more than the float rounding; prints the count checked. */
+static size_t far_march_below(const terrain *t, size_t stride, const char *what)
+{
+  ap_horizon_params p = params(29, 1);
+  const double L = 3000.0, c = (1 - p.refraction) / (2 * 6371000.0);
+  results r;
+  size_t i, j, checked = 0, below = 0;
+  double worst = 0.0;
+  int d;
+  p.max_distance = L;
+  set_mode(&p, FAR_MARCHED, 64);
+  r = compute(t, &p);
+  for (j = 0; j < t->ny; j += stride) {
+    for (i = 0; i < t->nx; i += stride) {
+      const double zq = t->z[j * t->nx + i];
+      if (isnan(zq)) {
+        continue;
+      }
+      for (d = 0; d < p.directions; ++d) {
+        const double phi = 2 * PI * d / p.directions, sx = sin(phi), cy = cos(phi);
+        const int xmajor = fabs(sx) >= fabs(cy); /* (square cells) */
+        const double m = xmajor ? cy / fabs(sx) : sx / fabs(cy);
+        const double len = 30.0 / (xmajor ? fabs(sx) : fabs(cy));
+        const long si = sx > 0 ? 1 : -1, sj = cy > 0 ? 1 : -1;
+        double best = -INFINITY, got;
+        long step;
+        for (step = p.near_field;; ++step) {
+          /* the point at distance t = step len, or at L on the last partial step */
+          const double tt = fmin((double)step * len, L), q = tt / len;
+          const double lat = m * q; /* rows (x-major) or columns moved sideways */
+          double x = xmajor ? (double)i + (double)si * q : (double)i + lat;
+          double y = xmajor ? (double)j + lat : (double)j + (double)sj * q;
+          double z;
+          if (x < -1e-9 || y < -1e-9 || x > (double)(t->nx - 1) + 1e-9 ||
+              y > (double)(t->ny - 1) + 1e-9) {
+            break;
+          }
+          x = fmin(fmax(x, 0.0), (double)(t->nx - 1));
+          y = fmin(fmax(y, 0.0), (double)(t->ny - 1));
+          {
+            const size_t x0 = (size_t)x, y0 = (size_t)y;
+            const size_t x1 = x0 + 1 < t->nx ? x0 + 1 : x0, y1 = y0 + 1 < t->ny ? y0 + 1 : y0;
+            const double fx = x - (double)x0, fy = y - (double)y0;
+            const double a = t->z[y0 * t->nx + x0], b = t->z[y0 * t->nx + x1];
+            const double e = t->z[y1 * t->nx + x0], g = t->z[y1 * t->nx + x1];
+            if (fx == 0.0 && fy == 0.0) {
+              z = a; /* (a nodata neighbour of weight 0 does not matter) */
+            } else if (fx == 0.0) {
+              z = (1 - fy) * a + fy * e;
+            } else if (fy == 0.0) {
+              z = (1 - fx) * a + fx * b;
+            } else {
+              z = (1 - fy) * ((1 - fx) * a + fx * b) + fy * ((1 - fx) * e + fx * g);
+            }
+          }
+          if (!isnan(z)) {
+            best = fmax(best, (z - zq) / tt - c * tt);
+          }
+          if (tt >= L) {
+            break;
+          }
+        }
+        if (best == -INFINITY) {
+          continue;
+        }
+        got = r.h[(j * t->nx + i) * (size_t)p.directions + (size_t)d];
+        ++checked;
+        worst = fmax(worst, atan(best) - got);
+        below += atan(best) - got > 2e-6;
+      }
+    }
+  }
+  fprintf(stderr, "far march against its samples, %s: %zu cell-directions, %zu below, by at "
+          "most %.2g rad\n", what, checked, below, worst);
+  AP_CHECK(checked > 100000);
+  release(&r);
+  return below;
+}
+
+/* The far march skips stretches of a ray whose tile maxima bound them below the slope found so
+ * far; a skip must never lose the maximum. Against an independent march of the same samples in
+ * double precision (every crossing of a view column from the K-th (the near field's end) within
+ * the distance, linear between the column's two cells, and the point at the distance): the
+ * kernel's horizon is never below it by more than the float rounding (it may lie above: the
+ * near field before those samples). 3000 m is 100 columns, so both tests of the skipping (64
+ * and 16 steps) run. On rough terrain with 600 single-cell spikes 150-400 m high (so that tile
+ * maxima matter) and nodata cells; and on a plain with spikes on the tiles' first and last
+ * rows and columns, which every cell's rays pass at every offset, so that a box one row or
+ * column short of the samples it bounds would lose some. */
+static void test_far_march_skips(void)
+{
+  terrain t = make(160, 140, 30.0);
+  unsigned long long state = 2463534242ULL;
+  size_t i, j;
+  int k;
+  for (j = 0; j < t.ny; ++j) {
+    for (i = 0; i < t.nx; ++i) {
+      t.z[j * t.nx + i] = (float)rough((double)i * 30.0, (double)j * 30.0);
+    }
+  }
+  for (k = 0; k < 600; ++k) {
+    const size_t at = (size_t)(next_uniform(&state) * (double)(t.nx * t.ny));
+    t.z[at] += (float)(150.0 + 250.0 * next_uniform(&state));
+  }
+  for (k = 0; k < 10; ++k) {
+    t.z[(size_t)(next_uniform(&state) * (double)(t.nx * t.ny))] = NAN;
+  }
+  AP_CHECK_EQ_INT((int)far_march_below(&t, 2, "rough with spikes"), 0);
+  drop(&t);
+  t = make(112, 100, 30.0);
+  for (j = 0; j < t.ny; ++j) {
+    for (i = 0; i < t.nx; ++i) {
+      const int edge_i = i % 16 == 0 || i % 16 == 15, edge_j = j % 16 == 0 || j % 16 == 15;
+      t.z[j * t.nx + i] = (edge_i && edge_j && (i / 16 + j / 16) % 3 == 0) ? 60.0f : 0.0f;
+    }
+  }
+  AP_CHECK_EQ_INT((int)far_march_below(&t, 1, "plain with spikes at tile edges"), 0);
+  drop(&t);
+}
+
 /* Pieces of random DEMs: shapes from 2 cells to 45, lat/lon rows from 89 S to 89 N or constant
- * cell sizes, 4 to 43 sectors, distances of 2 to 20 cells, swept or marched, curvature on or
- * off, a nodata cell now and then, regions anywhere (at the DEM's edges too). Each region of a
- * piece grown by the distance must give the whole run's horizons, products and edge flags;
- * only a last-bit rounding may differ (the sweep measures distances along its lines from the
- * piece's edge; a stress run of 5,500 such pieces found two horizons 4e-8 rad apart). Before
- * the lat/lon lines lay on the whole DEM's lattice, or the edge flag with a distance ignored
- * the DEM's highest cell, such pieces differed by up to 1e-2 and in flags. */
+ * cell sizes, 4 to 43 sectors, distances of 2 to 20 cells, swept, marched or far-marched,
+ * curvature on or off, a nodata cell now and then, regions anywhere (at the DEM's edges too).
+ * Each region of a piece grown by the distance must give the whole run's horizons, products and
+ * edge flags; only a last-bit rounding may differ (the sweep measures distances along its lines
+ * from the piece's edge; a stress run of 5,500 such pieces found two horizons 4e-8 rad apart).
+ * Before the lat/lon lines lay on the whole DEM's lattice, or the edge flag with a distance
+ * ignored the DEM's highest cell, such pieces differed by up to 1e-2 and in flags. */
 static void test_random_pieces(void)
 {
   unsigned long long state = 88172645463325252ULL;
@@ -1110,6 +1279,7 @@ static void test_random_pieces(void)
     }
     p.max_distance = (2.0 + 18.0 * next_uniform(&state)) * shortest;
     p.march_columns = next_uniform(&state) < 0.5 ? 0 : 64;
+    p.far_march_columns = next_uniform(&state) < 0.5 ? 0 : 1024;
     margin = (size_t)ceil(p.max_distance / shortest) + 2;
     region[0] = (size_t)(next_uniform(&state) * (double)nx);
     region[1] = region[0] + (size_t)(next_uniform(&state) * (double)(nx - region[0]));
@@ -1185,6 +1355,7 @@ int main(void)
   test_brute_force();
   test_latlon_rows();
   test_split_invariance();
+  test_far_march_skips();
   test_pieces();
   test_random_pieces();
   test_edge_flags();

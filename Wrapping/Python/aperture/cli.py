@@ -498,8 +498,11 @@ def _provenance(args, products):
                      "in every azimuth sector, each cell's own ray exact on the bilinear surface "
                      "for the first %d columns; in sectors where the search distance spans at "
                      "most %d columns, every cell's ray marched exactly to it instead (no hulls); "
-                     "sector sums of ALGORITHMS.md 2.2"
-                     % (args.near_field, vtkApertureSkyVisibility.GetMarchColumns()),
+                     "where it spans at most %d columns of a DEM with constant cell sizes, every "
+                     "cell's ray sampled where it crosses the grid's columns (the far march, no "
+                     "hulls); sector sums of ALGORITHMS.md 2.2"
+                     % (args.near_field, vtkApertureSkyVisibility.GetMarchColumns(),
+                        vtkApertureSkyVisibility.GetFarMarchColumns()),
         "DIRECTIONS": str(args.directions),
         "SECTORS": "sector d centred on true azimuth 360 d / %d degrees, clockwise from north"
                    % args.directions,
@@ -893,8 +896,9 @@ def build_parser():
                    help="azimuth sectors, 4..360 (default 32)")
     p.add_argument("--radius", type=float, metavar="METRES",
                    help="search distance in metres (default: unlimited); up to 64 cells "
-                        "(1.9 km on a 30 m grid) every cell's ray is marched exactly, beyond "
-                        "that the horizon sweep takes over")
+                        "(1.9 km on a 30 m grid) every cell's ray is marched exactly, on "
+                        "projected DEMs up to 1024 cells (30 km) sampled at every grid column "
+                        "it crosses, beyond that the horizon sweep takes over")
     p.add_argument("--no-curvature", action="store_true",
                    help="flat Earth (default: curvature with refraction)")
     p.add_argument("--refraction", type=float, default=0.13, metavar="K",
