@@ -805,13 +805,16 @@ static void test_extreme_ranges(void)
   terrain t = make(30, 30, 30.0);
   ap_horizon_params p = params(32, 1);
   int pass;
-  for (pass = 0; pass < 2; ++pass) {
+  /* without a distance (swept), then 600 m (20 columns) in every mode */
+  for (pass = 0; pass < 2 * (1 + SEARCH_MODES); ++pass) {
     results r;
     size_t k, bad = 0;
+    p.max_distance = pass < 2 ? INFINITY : 600.0;
+    set_mode(&p, pass < 2 ? SWEPT : pass / 2 - 1, 64);
     for (k = 0; k < t.nx * t.ny; ++k) {
       unsigned h = (unsigned)k * 2654435761u;
       h ^= h >> 15;
-      t.z[k] = pass == 0 ? ((h & 4u) ? 3e37f : -3e37f) : (k == 15 * t.nx + 15 ? 1e30f : 0.0f);
+      t.z[k] = pass % 2 == 0 ? ((h & 4u) ? 3e37f : -3e37f) : (k == 15 * t.nx + 15 ? 1e30f : 0.0f);
     }
     r = compute(&t, &p);
     for (k = 0; k < t.nx * t.ny; ++k) {
@@ -820,7 +823,7 @@ static void test_extreme_ranges(void)
              !(r.rp[k] >= 0.0f && r.rp[k] <= (float)(PI / 2)) ||
              !(r.open[k] >= 0.0f && r.open[k] <= (float)PI);
     }
-    if (pass == 1) {
+    if (pass % 2 == 1) {
       AP_CHECK_NEAR(r.open[15 * t.nx + 15], PI, 1e-6);
       AP_CHECK_NEAR(r.svf[15 * t.nx + 15], 1.0, 1e-6);
     }
