@@ -149,7 +149,7 @@ typedef struct ap_horizon_params {
                                a conservative bound from tile maxima skips the stretches
                                that cannot rise above the slope found so far, so results
                                equal the full march bit for bit). Cost O(distance) at worst,
-                               yet 2-3x below the sweep's at 10 km on 30 m grids; beyond
+                               yet 1.6-2x below the sweep's at 10 km on 30 m grids; beyond
                                this limit, and on lat/lon grids, the sweep runs.
                                0..65536, 0 = never (default 1024) */
   long origin_col;        /**< the grid is a piece of a larger DEM whose cell (origin_col,
