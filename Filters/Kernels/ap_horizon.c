@@ -586,6 +586,9 @@ struct ap_horizon {
   unsigned char *edge;  /* prepared sector: 1 where the search reached the DEM edge */
   float *bsum;          /* bent-normal sums when out.bent_normal is NULL */
   float zmax;
+  int first;            /* the prepared sector is the first: its ap_horizon_accumulate
+                         * computes grad and starts the sums (create leaves both unwritten,
+                         * so that their memory is first touched by the parallel phase) */
 
   /* per-row cell sizes: the lattice of lines of the larger DEM (p.whole_*, or the grid's own
    * rows), see ap_horizon_prepare */
@@ -678,11 +681,12 @@ void ap_horizon_params_init(ap_horizon_params *p)
   p->whole_rows = 0;
 }
 
-ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params *p)
+/* ap_horizon_validate, also giving the elevations' statistics when AP_OK. */
+static ap_status validate(const ap_horizon_grid *g, const ap_horizon_params *p,
+                          ap_grid_stats *stats)
 {
   ap_status st;
   size_t j, cells;
-  ap_grid_stats stats;
   if (!g || !p) {
     return AP_ERR_NULL_POINTER;
   }
@@ -729,14 +733,20 @@ ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params 
       }
     }
   }
-  st = ap_grid_stats_compute(&g->z, &stats);
+  st = ap_grid_stats_compute(&g->z, stats);
   if (st != AP_OK) {
     return st;
   }
-  if (stats.valid == 0) {
+  if (stats->valid == 0) {
     return AP_ERR_ALL_NODATA;
   }
-  return isfinite(stats.min) && isfinite(stats.max) ? AP_OK : AP_ERR_OUT_OF_RANGE;
+  return isfinite(stats->min) && isfinite(stats->max) ? AP_OK : AP_ERR_OUT_OF_RANGE;
+}
+
+ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params *p)
+{
+  ap_grid_stats stats;
+  return validate(g, p, &stats);
 }
 
 /* Grid row j of the elevations (row_stride may be negative). */
@@ -799,6 +809,26 @@ static void horn_gradient(const ap_horizon *hz, size_t i, size_t j, float out[2]
   }
   out[0] = wx > 0.0 ? (float)(sx / wx) : 0.0f;
   out[1] = wy > 0.0 ? (float)(sy / wy) : 0.0f;
+}
+
+/* zt, the transposed elevations, in blocks of 32 x 32 cells (a column at a time would write
+ * each cache line 16 times, a whole column apart). */
+static void transpose(ap_horizon *hz)
+{
+  enum { B = 32 };
+  size_t i0, j0, i, j;
+  for (j0 = 0; j0 < hz->ny; j0 += B) {
+    const size_t j1 = hz->ny - j0 < B ? hz->ny : j0 + B;
+    for (i0 = 0; i0 < hz->nx; i0 += B) {
+      const size_t i1 = hz->nx - i0 < B ? hz->nx : i0 + B;
+      for (j = j0; j < j1; ++j) {
+        const float *row = grid_row(hz, (long)j);
+        for (i = i0; i < i1; ++i) {
+          hz->zt[i * hz->ny + j] = row[i];
+        }
+      }
+    }
+  }
 }
 
 static void free_sector(ap_horizon *hz)
@@ -889,13 +919,14 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
                             const ap_sky_products *out, ap_horizon **result)
 {
   ap_horizon *hz;
-  size_t i, j, n;
+  size_t j, n;
+  ap_grid_stats stats;
   ap_status st;
   if (!result || !out) {
     return AP_ERR_NULL_POINTER;
   }
   *result = NULL;
-  st = ap_horizon_validate(g, p);
+  st = validate(g, p, &stats);
   if (st != AP_OK) {
     return st;
   }
@@ -924,23 +955,12 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
     ap_horizon_destroy(hz);
     return AP_ERR_OUT_OF_MEMORY;
   }
-  hz->zmax = -INFINITY;
+  hz->zmax = (float)stats.max; /* (the largest of floats: exact) */
   for (j = 0; j < hz->ny; ++j) {
     hz->dxr[j] = row_dx(g, j);
     hz->dyr[j] = row_dy(g, j);
-    for (i = 0; i < hz->nx; ++i) {
-      const float z = zat(hz, i, j);
-      hz->zt[i * hz->ny + j] = z;
-      if (z > hz->zmax) {
-        hz->zmax = z;
-      }
-    }
   }
-  for (j = 0; j < hz->ny; ++j) {
-    for (i = 0; i < hz->nx; ++i) {
-      horn_gradient(hz, i, j, hz->grad + 2 * (j * hz->nx + i));
-    }
-  }
+  transpose(hz);
   hz->lattice = g->dx != NULL || g->dy != NULL;
   if (hz->lattice && !lattice_init(hz)) {
     ap_horizon_destroy(hz);
@@ -951,15 +971,8 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
     ap_horizon_destroy(hz);
     return AP_ERR_OUT_OF_MEMORY;
   }
-  /* The outputs are the accumulators until ap_horizon_finish. */
-  if (out->visible_solid_angle) memset(out->visible_solid_angle, 0, n * sizeof(float));
-  if (out->aperture_radius) memset(out->aperture_radius, 0, n * sizeof(float));
-  if (out->bent_normal) memset(out->bent_normal, 0, 3 * n * sizeof(float));
-  if (hz->bsum) memset(hz->bsum, 0, 3 * n * sizeof(float));
-  if (out->sky_view_factor) memset(out->sky_view_factor, 0, n * sizeof(float));
-  if (out->diffuse_sky_factor) memset(out->diffuse_sky_factor, 0, n * sizeof(float));
-  if (out->positive_openness) memset(out->positive_openness, 0, n * sizeof(float));
-  if (out->edge_truncated) memset(out->edge_truncated, 0, n);
+  /* The outputs are the accumulators until ap_horizon_finish; the first sector's
+   * ap_horizon_accumulate starts them (see first). */
   *result = hz;
   return AP_OK;
 }
@@ -1081,6 +1094,7 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
     return AP_ERR_INVALID_ARGUMENT;
   }
   free_sector(hz);
+  hz->first = hz->d < 0;
   hz->d = d;
   hz->phi = ap_horizon_azimuth(hz, d) - hz->p.azimuth_offset;
   sphi = sin(hz->phi);
@@ -2556,6 +2570,20 @@ static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned cha
   }
 }
 
+/* The first sector's part of ap_horizon_accumulate, before its terms of the n cells from c0
+ * are added: zero their sums. */
+static void start_sums(const ap_horizon *hz, size_t c0, size_t n)
+{
+  const ap_sky_products *o = &hz->out;
+  float *A = o->visible_solid_angle ? o->visible_solid_angle : o->aperture_radius;
+  float *B = o->bent_normal ? o->bent_normal : hz->bsum;
+  if (A) memset(A + c0, 0, n * sizeof(float));
+  if (B) memset(B + 3 * c0, 0, 3 * n * sizeof(float));
+  if (o->sky_view_factor) memset(o->sky_view_factor + c0, 0, n * sizeof(float));
+  if (o->positive_openness) memset(o->positive_openness + c0, 0, n * sizeof(float));
+  if (o->edge_truncated) memset(o->edge_truncated + c0, 0, n);
+}
+
 ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
 {
   /* Cells in blocks of BLOCK along a row, row after row. An x-major sector's scratch is
@@ -2594,6 +2622,13 @@ ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
   }
   for (j = j0; j < j1; j += ROWS) {
     const size_t nr = j1 - j < ROWS ? j1 - j : ROWS;
+    if (hz->first) {
+      for (r = 0; r < nr; ++r) {
+        for (k = 0; k < hz->nx; ++k) {
+          horn_gradient(hz, k, j + r, hz->grad + 2 * ((j + r) * hz->nx + k));
+        }
+      }
+    }
     if (hz->xmajor) {
       for (k = 0; k < hz->nx; ++k) {
         const float *sl = hz->slope + k * hz->ny + j;
@@ -2612,6 +2647,9 @@ ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
         const unsigned char *edge = hz->xmajor ? etile + r * hz->nx + i0 : hz->edge + c0;
         sector_terms(n, slope, hz->grad + 2 * c0, (float)sphi, (float)cphi, want_ht, ce, se,
                      he, ht);
+        if (hz->first) {
+          start_sums(hz, c0, n);
+        }
         accumulate_terms(hz, c0, edge, n, ce, se, he, ht, slope, sphi, cphi);
       }
     }

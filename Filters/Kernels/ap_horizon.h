@@ -206,8 +206,10 @@ ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params 
 /** Validate, then allocate the state: a transposed copy of the elevations (4 bytes per
  *  cell), the gradients (8), one direction's horizons and edge flags (5), and accumulators
  *  for the bent-normal sums when bent_normal is NULL but the diffuse sky factor is wanted
- *  (12). Zeroes the requested outputs, which serve as accumulators until ap_horizon_finish.
- *  The grid's and the outputs' memory must stay valid until ap_horizon_destroy. */
+ *  (12). Writes only the transposed copy: the gradients and the requested outputs (the
+ *  accumulators until ap_horizon_finish) are started by the first sector's
+ *  ap_horizon_accumulate, in the caller's parallel phase. The grid's and the outputs' memory
+ *  must stay valid until ap_horizon_destroy. */
 ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p,
                             const ap_sky_products *out, ap_horizon **hz);
 
@@ -263,9 +265,11 @@ size_t ap_horizon_bracket_count(const ap_horizon *hz);
  *  returns AP_ERR_OUT_OF_MEMORY if that fails (the products are then incomplete). */
 ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1);
 
-/** Add the prepared sector's horizons of rows [j0, j1) to the products, after its sweep.
- *  Allocates a tile of 16 rows (80 bytes per column) for x-major sectors; returns
- *  AP_ERR_OUT_OF_MEMORY if that fails (nothing is then added). */
+/** Add the prepared sector's horizons of rows [j0, j1) to the products, after its sweep
+ *  (for the first sector prepared: compute those rows' gradients and start their sums, so
+ *  every row must be accumulated for each sector before the next is prepared, as the sequence
+ *  above does). Allocates a tile of 16 rows (80 bytes per column) for x-major sectors;
+ *  returns AP_ERR_OUT_OF_MEMORY if that fails (nothing is then added). */
 ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1);
 
 /** After the last sector: turn the sums of rows [j0, j1) into the products. */
