@@ -610,6 +610,9 @@ struct ap_horizon {
   double *cum_m, *cum_len; /* row-major views: prefix sums over p of the step shift / length */
   const float **colp;     /* view column p as a contiguous array of ns elevations */
   int parallel;           /* all lines shift alike at each p (no per-row bending) */
+  int side;               /* parallel lines: the sign of their shift with p (0: none), the
+                           * side rays leave the grid through (s < 0 or s > ns - 1) */
+  size_t side_cols;       /* then the columns over which a ray crosses one view row, plus 1 */
   long kmin;              /* line k = kmin + index starts at s = k + phase on p = np - 1
                            * (per-row sizes: see lat_off) */
   double phase;           /* in [0, 1): puts the lines on the lattice of the larger DEM */
@@ -1140,8 +1143,19 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
       hz->m_row[j] = dy * sphi / (dx * fabs(cphi));
       hz->len_row[j] = dy / fabs(cphi);
     }
+    if (fabs(hz->m_row[j]) < 1e-12) {
+      /* along a grid axis: cos(pi/2) is 6e-17, not 0, and lines a rounding error off the
+       * DEM's side would take no samples there (a fixed bound: the same for any piece) */
+      hz->m_row[j] = 0.0;
+    }
     if (hz->m_row[j] < m_lo) m_lo = hz->m_row[j];
     if (hz->m_row[j] > m_hi) m_hi = hz->m_row[j];
+  }
+  hz->side = !hz->parallel ? 0 : (m_hi > 0.0 ? 1 : (m_lo < 0.0 ? -1 : 0));
+  if (hz->side != 0) {
+    /* (the smallest |m| of the rows: m_row has one sign) */
+    const double cols = ceil(1.0 / fmin(fabs(m_lo), fabs(m_hi))) + 1.0;
+    hz->side_cols = cols < (double)hz->np ? (size_t)cols : hz->np;
   }
   if (!hz->xmajor) {
     /* Row-major view: the step from p to p + 1 shifts every line by the same amount, the mean
@@ -2172,9 +2186,66 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t u0, size_t u1)
   return AP_OK;
 }
 
+/* Parallel lines (hz->parallel): how far every line moves sideways (view rows) from view column
+ * p to q > p, and how far along (m). */
+AP_INLINE double par_shift(const ap_horizon *hz, size_t p, size_t q)
+{
+  if (hz->xmajor) {
+    return (double)(q - p) * hz->m_row[0];
+  }
+  return hz->lattice ? hz->lat_off[q] - hz->lat_off[p] : hz->cum_m[q] - hz->cum_m[p];
+}
+
+AP_INLINE double par_dist(const ap_horizon *hz, size_t p, size_t q)
+{
+  return hz->xmajor ? (double)(q - p) * hz->len_row[0] : hz->cum_len[q] - hz->cum_len[p];
+}
+
+/* Parallel lines: the last view column on which the ray of view cell (p, sq) is on the grid
+ * (the ray moves one way: a binary search). */
+static size_t ray_end(const ap_horizon *hz, size_t p, double sq)
+{
+  const double smax = (double)(hz->ns - 1);
+  size_t lo = p, hi = hz->np - 1; /* the ray is on the grid up to lo */
+  while (lo < hi) {
+    const size_t mid = lo + (hi - lo + 1) / 2;
+    const double sn = sq + par_shift(hz, p, mid);
+    if (sn >= 0.0 && sn <= smax) {
+      lo = mid;
+    } else {
+      hi = mid - 1;
+    }
+  }
+  return lo;
+}
+
+/* Parallel lines: the largest slope of view cell (p, sq) at height zq on its own ray from view
+ * column g on, as long as the ray stays on the grid and within the distance, sampled as the
+ * hulls' samples are (-inf when none). See the sweep's use near a side of the DEM. */
+static double ray_march(const ap_horizon *hz, size_t p, double sq, double zq, size_t g)
+{
+  const double smax = (double)(hz->ns - 1), L = hz->p.max_distance, c = hz->c;
+  double best = -INFINITY;
+  size_t q;
+  for (q = g; q < hz->np; ++q) {
+    const double sn = sq + par_shift(hz, p, q), dn = par_dist(hz, p, q);
+    double zn;
+    if (!(sn >= 0.0 && sn <= smax) || dn > L) {
+      break;
+    }
+    zn = interp(view_column(hz, q), smax, sn);
+    if (!isnan(zn) && dn > 0.0) {
+      const double slope = (zn - zq) / dn - c * dn;
+      best = slope > best ? slope : best;
+    }
+  }
+  return best;
+}
+
 typedef struct line_state {
   double s, x;   /* position on the current column; distance along the line (m) */
   double xend;   /* distance of the farthest sample position inside the grid; NAN: none yet */
+  size_t pend;   /* its column */
   double avail;  /* xend - x on the current column (0 when none): how far the line sees */
   hull h;        /* unlimited search: the hull of the samples at least K columns away */
   int hint[2];   /* the last tangent index of h for the cell below (0) and above (1) */
@@ -2334,21 +2405,23 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
         lines[l].avail = isnan(lines[l].xend) ? 0.0 : lines[l].xend - xc;
       }
       {
-        /* the lines inside, 0 <= s <= ns - 1: s = l - a (with per-row sizes up to rounding:
-         * the bounds one wider, each line tested) */
-        const int wide = hz->lattice;
-        const double a = wide ? (double)hz->ocol - hz->lat_off[p] - k0 : shift - k0 - phase;
-        const double lo = ceil(a) - (double)wide, hi = floor((double)(ns - 1) + a) + (double)wide;
+        /* the lines inside, 0 <= s <= ns - 1: s = l - a up to rounding, so the bounds one
+         * wider and each line's own s tested (a depends on the band's first line, s does not:
+         * which lines are inside, and where each line ends (pend), must not depend on the
+         * split into bands) */
+        const double a = hz->lattice ? (double)hz->ocol - hz->lat_off[p] - k0 : shift - k0 - phase;
+        const double lo = ceil(a) - 1.0, hi = floor((double)(ns - 1) + a) + 1.0;
         const size_t la = lo > 0.0 ? (size_t)lo : 0;
         const size_t lb = hi < 0.0 ? 0 : (hi + 1.0 < (double)nl ? (size_t)hi + 1 : nl);
         for (l = la; l < lb; ++l) {
           line_state *ln = &lines[l];
           sample *q = &ring[l * (size_t)K + (size_t)slot];
-          if (wide && !(ln->s >= 0.0 && ln->s <= smax)) {
+          if (!(ln->s >= 0.0 && ln->s <= smax)) {
             continue;
           }
           if (isnan(ln->xend)) {
             ln->xend = xc; /* avail stays 0 */
+            ln->pend = p;
           }
           q->x = xc;
           q->u = interp(col, smax, ln->s) - c * xc * xc; /* NaN on nodata */
@@ -2393,7 +2466,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
         {
           line_state *bl[2];
           long done = -1; /* the column the cell's ray was evaluated on */
-          int e;
+          int e, lost = 0; /* a line's tangent lay where the cell's ray is off the grid */
           bl[0] = &lines[l];
           bl[1] = &lines[l + 1];
           AP_UNROLL_2
@@ -2428,6 +2501,10 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
             }
             done = v->col;
             sn = sq + (v->s - ln->s);
+            if (parallel && !(sn >= 0.0 && sn <= smax)) {
+              lost = 1;
+              continue;
+            }
             zn = interp(colp[v->col], smax, sn);
             dn = v->x - ln->x;
             if (isnan(zn) || !(dn > 0.0)) {
@@ -2436,6 +2513,34 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
             slope = (zn - zq) / dn - c * dn;
             if (slope > far) {
               far = slope;
+            }
+          }
+          if (parallel && hz->side != 0) {
+            /* Near a side of the DEM. Rays leave through the side s = 0 (side -1) or
+             * s = ns - 1, and the bracketing line on that side leaves first, at its column
+             * pend (or has left at p already): the hulls hold nothing of the cell's ray after
+             * that (one line has ended, the other passes beside it). And where the other
+             * line's tangent lies beyond the end of the cell's ray (lost), its terrain along
+             * the side is out of the cell's reach, but the cell's ray passes within a cell of
+             * it over its last side_cols columns. A bowl's rim seen along a side was missed by
+             * up to 4.5 degrees 20 cells from the edge, 33 on the edge row. So the cell's own
+             * ray is sampled over those stretches (at most side_cols columns), unless the
+             * DEM's highest cell there could not raise its slope. */
+            const line_state *in = bl[hz->side < 0 ? 0 : 1];
+            size_t g = (!isnan(in->xend) && in->s >= 0.0 && in->s <= smax) ? in->pend + 1 : p + 1;
+            if (lost) {
+              const size_t end = ray_end(hz, p, sq);
+              const size_t back = end > hz->side_cols ? end - hz->side_cols : 0;
+              g = back < g ? back : g;
+            }
+            g = g > p + (size_t)K ? g : p + (size_t)K;
+            if (g < np) {
+              const double d0 = par_dist(hz, p, g), best = near > far ? near : far;
+              const double bound = (zmax > zq ? (zmax - zq) / d0 : 0.0) - c * d0;
+              if (d0 <= L && bound > best) {
+                const double gs = ray_march(hz, p, sq, zq, g);
+                far = gs > far ? gs : far;
+              }
             }
           }
           avail = bl[0]->avail < bl[1]->avail ? bl[0]->avail : bl[1]->avail;

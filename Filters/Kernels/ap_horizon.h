@@ -53,6 +53,12 @@
  *  (clockwise from north, d = 0 north); with a projected DEM, pass the meridian convergence γ
  *  at the DEM centre as azimuth_offset and the sweep runs at grid azimuth φ_d − γ.
  *
+ *  Near a side of the DEM, where a cell's ray still runs on the grid after the bracketing
+ *  line on that side has left it, the sweep samples the cell's own ray over that last stretch
+ *  (at most 1/|shift per column| + 1 columns; only where the DEM's highest cell could raise
+ *  the slope): the hulls hold nothing of it. Except in the x-major sectors of lat/lon grids,
+ *  whose lines bend: there that stretch is still missed.
+ *
  *  Terrain beyond the DEM edge is invisible (it does not exist for the sweep). Nodata (NaN)
  *  never occludes; nodata cells get NaN products. A direction with no terrain sample at all
  *  (the ray leaves the DEM at once) has horizon −π/2.

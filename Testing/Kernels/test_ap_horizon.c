@@ -504,9 +504,11 @@ static double brute_force(const terrain *t, size_t i0, size_t j0, double phi, do
   /* near the observer: geometric distances, positions from the cell's own row sizes */
   for (tiny = 1e-6 * cell; tiny < ds; tiny *= 1.5) {
     const double dxr = t->dx ? t->dx[j0] : t->dx0, dyr = t->dy ? t->dy[j0] : t->dy0;
-    const double s = (height_at(t, ci + tiny * sin(phi) / dxr, cj + tiny * cos(phi) / dyr) - z0) /
-                     tiny - c * tiny;
-    if (s > best) best = s;
+    const double ti = ci + tiny * sin(phi) / dxr, tj = cj + tiny * cos(phi) / dyr;
+    if (inside(t, ti, tj)) { /* (not beyond an edge cell) */
+      const double s = (height_at(t, ti, tj) - z0) / tiny - c * tiny;
+      if (s > best) best = s;
+    }
   }
   for (;;) {
     const size_t jr = cj < 0 ? 0 : (cj > (double)(t->ny - 1) ? t->ny - 1 : (size_t)cj);
@@ -668,6 +670,109 @@ static void test_latlon_rows(void)
   p.march_columns = 0;
   compare_brute_force(&t, &p, "lat/lon 40-60 N, 200 km, swept");
   drop(&t);
+}
+
+/* The largest error (degrees) of the swept horizons against a reference over the cells from
+ * `from` to `band` - 1 cells of the grid's edges, every sector (for lat/lon grids only the
+ * row-major ones, whose lines do not bend): the far march's (ref: the same samples of each
+ * cell's own ray, all of them) or else the brute force's (bilinear; not on the edge rows,
+ * where its steps along a row leave the grid by a rounding error). */
+static double edge_band_error(const terrain *t, const ap_horizon_params *p, const results *ref,
+                              size_t from, size_t band, const char *what)
+{
+  results r = compute(t, p);
+  const int D = p->directions;
+  double worst = 0.0, sum = 0.0;
+  size_t i, j, n = 0, wi = 0, wj = 0;
+  int d, wd = 0;
+  for (j = 0; j < t->ny; ++j) {
+    for (i = 0; i < t->nx; ++i) {
+      const size_t e_cells = cells_from_edge(t, i, j);
+      if (e_cells < from || e_cells >= band) {
+        continue;
+      }
+      for (d = 0; d < D; ++d) {
+        const double phi = 2 * PI * d / D;
+        const size_t jc = t->ny / 2, k = (j * t->nx + i) * (size_t)D + (size_t)d;
+        double e;
+        if (t->dx && fabs(sin(phi)) / t->dx[jc] >= fabs(cos(phi)) / t->dy[jc]) {
+          continue; /* x-major on a lat/lon grid */
+        }
+        e = fabs(r.h[k] - (ref ? ref->h[k] : brute_force(t, i, j, phi, 0.0, p->max_distance))) /
+            DEG;
+        sum += e;
+        ++n;
+        if (e > worst) {
+          worst = e;
+          wi = i;
+          wj = j;
+          wd = d;
+        }
+      }
+    }
+  }
+  fprintf(stderr, "%s: %zu cell-directions %zu to %zu cells from an edge, MAE %.4f deg, max %.3f "
+          "deg (cell %zu, %zu, sector %d)\n", what, n, from, band - 1, sum / (double)n, worst, wi,
+          wj, wd);
+  release(&r);
+  return worst;
+}
+
+/* A bowl whose rim is the DEM's edge, seen along the sides: rays that leave the grid sideways
+ * run, over their last stretch, where one of the two lines bracketing them has already left
+ * and the other's hull is tangent beyond the ray's end. The sweep used to lose that stretch
+ * (33 degrees low on an edge row, 4.5 twenty cells in, on a 1024^2 bowl); its cells now sample
+ * their own rays there. Against the far march, which takes every sample of every ray (no
+ * curvature: a distance beyond the grid is unlimited), and with lat/lon rows against the
+ * brute force, at unlimited and limited distance, D = 32 (sectors along the axes, whose lines
+ * used to lie a rounding error off the edge) and D = 29. The bowl is smooth: 0.25 deg leaves
+ * room for the sweep's sampling (its tangent columns) and, against the brute force, for the
+ * piecewise-linear surface against the bilinear one. */
+static void test_side_edges(void)
+{
+  const int Ds[2] = {32, 29};
+  int latlon, k, limited;
+  for (latlon = 0; latlon < 2; ++latlon) {
+    terrain t = make(48, 40, 30.0);
+    size_t i, j;
+    if (latlon) {
+      latlon_rows(&t, 6371000.0, 45 * DEG, 1.0 / 1200 * DEG, 1.0 / 1200 * DEG);
+    }
+    for (j = 0; j < t.ny; ++j) {
+      for (i = 0; i < t.nx; ++i) {
+        const double x = (double)i - 0.5 * (double)(t.nx - 1), y = (double)j - 0.4 * (double)t.ny;
+        t.z[j * t.nx + i] = (float)(0.9 * (x * x + y * y) + 20.0 * sin(0.3 * x) * cos(0.2 * y));
+      }
+    }
+    for (k = 0; k < 2; ++k) {
+      for (limited = 0; limited < 2; ++limited) {
+        ap_horizon_params p = params(Ds[k], 0);
+        char what[96];
+        snprintf(what, sizeof what, "%s bowl, D = %d, %s, swept", latlon ? "lat/lon" : "projected",
+                 Ds[k], limited ? "700 m" : "unlimited");
+        if (latlon) {
+          p.max_distance = limited ? 700.0 : INFINITY;
+          p.march_columns = 0;
+          /* no worse than the interior: unlimited, the lat/lon sweep itself is up to 0.9 deg
+           * off this steep bowl's brute force everywhere (0.002 at 700 m; not a side effect,
+           * and not understood yet) */
+          const double inner = edge_band_error(&t, &p, NULL, 12, 30, "  its interior");
+          AP_CHECK(edge_band_error(&t, &p, NULL, 1, 12, what) <= fmax(0.25, inner + 0.1));
+        } else {
+          results ref;
+          p.max_distance = limited ? 700.0 : 1e6;
+          p.march_columns = 0;
+          p.far_march_columns = 65536;
+          ref = compute(&t, &p);
+          p.max_distance = limited ? 700.0 : INFINITY;
+          p.far_march_columns = 0;
+          AP_CHECK(edge_band_error(&t, &p, &ref, 0, 12, what) <= 0.25);
+          release(&ref);
+        }
+      }
+    }
+    drop(&t);
+  }
 }
 
 /* Results are bitwise the same however the brackets and rows are split (threads), through the
@@ -1357,6 +1462,7 @@ int main(void)
   test_curvature();
   test_brute_force();
   test_latlon_rows();
+  test_side_edges();
   test_split_invariance();
   test_far_march_skips();
   test_pieces();
