@@ -2634,6 +2634,13 @@ static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned cha
   float *B = o->bent_normal ? o->bent_normal : hz->bsum;
   const int D = hz->p.directions, d = hz->d;
   size_t k;
+  if (hz->first) { /* the first sector starts the sums (create leaves them unwritten) */
+    if (A) memset(A + c0, 0, n * sizeof(float));
+    if (B) memset(B + 3 * c0, 0, 3 * n * sizeof(float));
+    if (o->sky_view_factor) memset(o->sky_view_factor + c0, 0, n * sizeof(float));
+    if (o->positive_openness) memset(o->positive_openness + c0, 0, n * sizeof(float));
+    if (o->edge_truncated) memset(o->edge_truncated + c0, 0, n);
+  }
   if (A) {
     float *a = A + c0;
     for (k = 0; k < n; ++k) {
@@ -2673,20 +2680,6 @@ static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned cha
       o->horizon_angles[(c0 + k) * (size_t)D + (size_t)d] = ht[k];
     }
   }
-}
-
-/* The first sector's part of ap_horizon_accumulate, before its terms of the n cells from c0
- * are added: zero their sums. */
-static void start_sums(const ap_horizon *hz, size_t c0, size_t n)
-{
-  const ap_sky_products *o = &hz->out;
-  float *A = o->visible_solid_angle ? o->visible_solid_angle : o->aperture_radius;
-  float *B = o->bent_normal ? o->bent_normal : hz->bsum;
-  if (A) memset(A + c0, 0, n * sizeof(float));
-  if (B) memset(B + 3 * c0, 0, 3 * n * sizeof(float));
-  if (o->sky_view_factor) memset(o->sky_view_factor + c0, 0, n * sizeof(float));
-  if (o->positive_openness) memset(o->positive_openness + c0, 0, n * sizeof(float));
-  if (o->edge_truncated) memset(o->edge_truncated + c0, 0, n);
 }
 
 ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
@@ -2752,9 +2745,6 @@ ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
         const unsigned char *edge = hz->xmajor ? etile + r * hz->nx + i0 : hz->edge + c0;
         sector_terms(n, slope, hz->grad + 2 * c0, (float)sphi, (float)cphi, want_ht, ce, se,
                      he, ht);
-        if (hz->first) {
-          start_sums(hz, c0, n);
-        }
         accumulate_terms(hz, c0, edge, n, ce, se, he, ht, slope, sphi, cphi);
       }
     }
