@@ -56,8 +56,11 @@
  *  Near a side of the DEM, where a cell's ray still runs on the grid after the bracketing
  *  line on that side has left it, the sweep samples the cell's own ray over that last stretch
  *  (at most 1/|shift per column| + 1 columns; only where the DEM's highest cell could raise
- *  the slope): the hulls hold nothing of it. Except in the x-major sectors of lat/lon grids,
- *  whose lines bend: there that stretch is still missed.
+ *  the slope): the hulls hold nothing of it. It and the far march also take the point where
+ *  the ray leaves the grid through a side between two view columns (linear along the edge
+ *  row), up to a column beyond the last column crossing: in a bowl rising to the DEM's edge
+ *  the horizon lies there (up to 3 degrees low without it). Except in the x-major sectors of
+ *  lat/lon grids, whose lines bend: there that stretch and that point are still missed.
  *
  *  Terrain beyond the DEM edge is invisible (it does not exist for the sweep). Nodata (NaN)
  *  never occludes; nodata cells get NaN products. A direction with no terrain sample at all
