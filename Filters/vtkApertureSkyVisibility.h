@@ -83,11 +83,11 @@ public:
   ///@{
   /** Search distance in metres; 0 (default) = unlimited. Negative values are an error. A
    *  distance of at most GetMarchColumns() (64) steps of a sector (1.9 km on a 30 m grid) is
-   *  searched by marching every cell's ray exactly; on a DEM with constant cell sizes one of
-   *  at most GetFarMarchColumns() (1024) steps (30 km) by sampling every cell's ray where it
-   *  crosses the grid's columns (the far march); both are faster there than the hull sweep,
-   *  which searches longer distances, lat/lon DEMs beyond 64 steps, and no limit
-   *  (ap_horizon.h). */
+   *  searched by marching every cell's ray exactly; one of at most GetFarMarchColumns()
+   *  (1024) steps (30 km) by sampling every cell's ray where it crosses the grid's columns
+   *  (the far march); both are faster there than the hull sweep, which searches longer
+   *  distances, no limit, and on lat/lon DEMs the directions that cross columns faster than
+   *  rows beyond 64 steps (ap_horizon.h). */
   vtkSetMacro(MaximumDistance, double);
   vtkGetMacro(MaximumDistance, double);
   ///@}
@@ -96,8 +96,9 @@ public:
    *  (the kernel's march_columns). */
   static int GetMarchColumns();
 
-  /** Steps of a sector up to which a MaximumDistance on a DEM with constant cell sizes is
-   *  far-marched instead of swept (the kernel's far_march_columns). */
+  /** Steps of a sector up to which a MaximumDistance is far-marched instead of swept (the
+   *  kernel's far_march_columns; on lat/lon DEMs in the directions that cross rows faster
+   *  than columns). */
   static int GetFarMarchColumns();
 
   ///@{

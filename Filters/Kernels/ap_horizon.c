@@ -570,6 +570,7 @@ typedef struct pattern {
 static int build_pattern(ap_horizon *hz, double m, double len, double tmax);
 static int fm_tiles_init(ap_horizon *hz);
 static int fm_steps_init(ap_horizon *hz);
+static void fm_side_max_init(ap_horizon *hz);
 
 
 struct ap_horizon {
@@ -970,8 +971,7 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
     ap_horizon_destroy(hz);
     return AP_ERR_OUT_OF_MEMORY;
   }
-  if (!hz->lattice && isfinite(p->max_distance) && p->far_march_columns > 0 &&
-      !fm_tiles_init(hz)) {
+  if (isfinite(p->max_distance) && p->far_march_columns > 0 && !fm_tiles_init(hz)) {
     ap_horizon_destroy(hz);
     return AP_ERR_OUT_OF_MEMORY;
   }
@@ -1191,11 +1191,17 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
     hz->march = isfinite(hz->p.max_distance) &&
                 hz->p.max_distance <= (double)hz->p.march_columns * decides;
     hz->far_march = !hz->march && hz->fm_tile[0] &&
-                    hz->p.max_distance <= (double)hz->p.far_march_columns * decides;
+                    hz->p.max_distance <= (double)hz->p.far_march_columns * decides &&
+                    (!hz->lattice || !hz->xmajor);
   }
-  if (hz->far_march && !fm_steps_init(hz)) {
+  if (hz->far_march && !hz->lattice && !fm_steps_init(hz)) {
     free_sector(hz);
     return AP_ERR_OUT_OF_MEMORY;
+  }
+  if (hz->far_march && hz->lattice) {
+    /* the columns' own steps (lattice_steps_col): at most this many within the distance */
+    hz->fm_kmax = (long)floor(hz->p.max_distance / hz->shortest) + 1;
+    fm_side_max_init(hz);
   }
   /* Near-field patterns. With constant cell sizes all positions share one pattern of the
    * exact step. With per-row sizes a position takes the pattern of its step rounded to a
@@ -1712,6 +1718,22 @@ static int fm_tiles_init(ap_horizon *hz)
   return 1;
 }
 
+/* The highest cell of the view's side the prepared sector's rays leave through (by the sign of
+ * the rows' shift: one sign in every row), -inf when they leave through none. */
+static void fm_side_max_init(ap_horizon *hz)
+{
+  const double m = hz->m_row[0];
+  hz->fm_side_max = -INFINITY;
+  if (m != 0.0) {
+    const size_t e = m > 0.0 ? hz->ns - 1 : 0;
+    size_t q;
+    for (q = 0; q < hz->np; ++q) {
+      const float z = view_column(hz, q)[e];
+      hz->fm_side_max = z > hz->fm_side_max ? z : hz->fm_side_max; /* (NaN ignored) */
+    }
+  }
+}
+
 /* The prepared sector's steps 0..fm_kmax (the samples within the distance). 0 when out of
  * memory. */
 static int fm_steps_init(ap_horizon *hz)
@@ -1740,14 +1762,10 @@ static int fm_steps_init(ap_horizon *hz)
     st->it = k > 0 ? (float)(1.0 / t) : 0.0f;
     st->ct = (float)(hz->c * t);
   }
-  hz->fm_side_max = -INFINITY;
   if (m != 0.0) {
-    const size_t e = m > 0.0 ? hz->ns - 1 : 0;
-    size_t q;
-    for (q = 0; q < hz->np; ++q) {
-      const float z = view_column(hz, q)[e];
-      hz->fm_side_max = z > hz->fm_side_max ? z : hz->fm_side_max; /* (NaN ignored) */
-    }
+    fm_side_max_init(hz);
+  } else {
+    hz->fm_side_max = -INFINITY;
   }
   return 1;
 }
@@ -1765,13 +1783,13 @@ AP_INLINE long fm_hi(const fm_step *st)
 
 /* The last step in [k0 - 1, kend] up to which a ray from view row s stays on the grid (its
  * offsets move one way, so the steps on the grid are a prefix); k0 - 1 when none. */
-static long fm_last_on_grid(const ap_horizon *hz, long s, long k0, long kend)
+static long fm_last_on_grid(const ap_horizon *hz, const fm_step *fm, long s, long k0, long kend)
 {
   const long ns = (long)hz->ns;
   long lo = k0 - 1, hi = kend; /* invariant: steps up to lo are on the grid */
   while (lo < hi) {
     const long mid = lo + (hi - lo + 1) / 2;
-    const fm_step *st = &hz->fm[mid];
+    const fm_step *st = &fm[mid];
     if (s + fm_lo(st) >= 0 && s + fm_hi(st) <= ns) {
       lo = mid;
     } else {
@@ -1784,12 +1802,12 @@ static long fm_last_on_grid(const ap_horizon *hz, long s, long k0, long kend)
 /* The box of tile maxima (level l) around every sample that cells [s0, s0 + n) of view column p
  * read at steps [ka, kb], raised by fm_eps: at least every elevation those samples interpolate
  * (-inf when the box holds no data). */
-AP_INLINE float fm_box_max(const ap_horizon *hz, int l, size_t p, long s0, long n, long ka,
-                           long kb)
+AP_INLINE float fm_box_max(const ap_horizon *hz, const fm_step *fm, int l, size_t p, long s0,
+                           long n, long ka, long kb)
 {
   const size_t B = l ? AP_FM_COARSE : AP_FM_FINE, tnx = hz->fm_tnx[l];
   const float *tile = hz->fm_tile[l];
-  const fm_step *sa = &hz->fm[ka], *sb = &hz->fm[kb];
+  const fm_step *sa = &fm[ka], *sb = &fm[kb];
   const long ns = (long)hz->ns;
   long r0 = s0 + (fm_lo(sa) < fm_lo(sb) ? fm_lo(sa) : fm_lo(sb));
   long r1 = s0 + n - 1 + (fm_hi(sa) > fm_hi(sb) ? fm_hi(sa) : fm_hi(sb)) - 1;
@@ -1879,12 +1897,12 @@ AP_INLINE int fm_lanes_rise(const fm_lanes *g, float Z, const fm_step *sa, const
   return AP_FM_ANY(any);
 }
 
-AP_INLINE void fm_lanes_march(const ap_horizon *hz, size_t p, long s0, long ka, long kb,
-                              fm_lanes *g)
+AP_INLINE void fm_lanes_march(const ap_horizon *hz, const fm_step *fm, size_t p, long s0,
+                              long ka, long kb, fm_lanes *g)
 {
   long k;
   for (k = ka; k <= kb; ++k) {
-    const fm_step *st = &hz->fm[k];
+    const fm_step *st = &fm[k];
     const float *z = view_column(hz, p + (size_t)k) + s0 + st->o;
     const float it = st->it, ct = st->ct, f = st->f; /* (scalars: broadcast by the compiler) */
     int h;
@@ -1931,12 +1949,12 @@ AP_INLINE int fm_lanes_rise(const fm_lanes *g, float Z, const fm_step *sa, const
 
 /* Steps [ka, kb] of one cell (view row s) at height zq, slope so far *b: the same operations
  * as for 16 cells. */
-static void fm_march_one(const ap_horizon *hz, size_t p, long s, long ka, long kb, float zq,
-                         float *b)
+static void fm_march_one(const ap_horizon *hz, const fm_step *fm, size_t p, long s, long ka,
+                         long kb, float zq, float *b)
 {
   long k;
   for (k = ka; k <= kb; ++k) {
-    const fm_step *st = &hz->fm[k];
+    const fm_step *st = &fm[k];
     const float *z = view_column(hz, p + (size_t)k) + s + st->o;
     /* the slope to the point between z[0] and z[1] (f the weight of z[1]) */
     const float v = st->f != 0.0f ? ((z[0] + st->f * (z[1] - z[0])) - zq) * st->it - st->ct
@@ -1946,15 +1964,104 @@ static void fm_march_one(const ap_horizon *hz, size_t p, long s, long ka, long k
 }
 
 #if !defined(__GNUC__)
-AP_INLINE void fm_lanes_march(const ap_horizon *hz, size_t p, long s0, long ka, long kb,
-                              fm_lanes *g)
+AP_INLINE void fm_lanes_march(const ap_horizon *hz, const fm_step *fm, size_t p, long s0,
+                              long ka, long kb, fm_lanes *g)
 {
   int c;
   for (c = 0; c < AP_FM_LANES; ++c) {
-    fm_march_one(hz, p, s0 + c, ka, kb, g->zq[c], &g->b[c]);
+    fm_march_one(hz, fm, p, s0 + c, ka, kb, g->zq[c], &g->b[c]);
   }
 }
 #endif
+
+/* An fm_step for a shift of sh view rows at distance t (m): the two cells the ray passes
+ * between, within 1e-9 of a cell that cell alone (as far_offset). */
+static void fm_step_set(fm_step *st, double sh, double t, double c)
+{
+  const double r = nearbyint(sh);
+  if (fabs(sh - r) < 1e-9) {
+    st->o = (long)r;
+    st->f = 0.0f;
+  } else {
+    st->o = (long)floor(sh);
+    st->f = (float)(sh - floor(sh));
+  }
+  st->it = t > 0.0 ? (float)(1.0 / t) : 0.0f;
+  st->ct = (float)(c * t);
+}
+
+/* Per-row cell sizes, row-major view: the steps of the rays of view column p (grid row
+ * prim_index(p)) to the view columns p + k, into fm[k] and their distances into t[k], from
+ * k = 0 until the first beyond the search distance or the far edge, whichever comes first:
+ * returns that last k; *kmax is the last within the distance. The shift is the rhumb line's,
+ * tan(phi) (Psi(row) - Psi(row of p)) columns, as the sweep's lines (lat_off), and the distance
+ * sums the rows' step lengths from p on: both depend on the rows alone, not on where a piece of
+ * the DEM starts. Holds at most hz->fm_kmax + 1 steps (the distance over the shortest step). */
+static long lattice_steps_col(const ap_horizon *hz, size_t p, fm_step *fm, double *t, long *kmax)
+{
+  const double L = hz->p.max_distance;
+  double dist = 0.0;
+  long k;
+  *kmax = 0;
+  for (k = 0; k <= hz->fm_kmax && p + (size_t)k < hz->np; ++k) {
+    if (k > 0) {
+      const size_t a = prim_index(hz, p + (size_t)k - 1), b = prim_index(hz, p + (size_t)k);
+      dist += 0.5 * (hz->len_row[a] + hz->len_row[b]);
+    }
+    fm_step_set(&fm[k], hz->lat_off[p + (size_t)k] - hz->lat_off[p], dist, hz->c);
+    t[k] = dist;
+    if (!(dist <= L)) {
+      return k;
+    }
+    *kmax = k;
+  }
+  return k - 1;
+}
+
+/* Per-row cell sizes, after the far march of view column p along its steps fm[0..kt] (t: their
+ * distances; lattice_steps_col): each cell's edge flag from where its own ray leaves the grid
+ * (march_edge's extrapolated pattern would be off by the rows' change over the distance), and
+ * the point where it leaves through a side beyond the near field and within the distance
+ * (side_exit_slope, here between the steps' distances), unless the side's highest cell could
+ * not raise its slope. */
+static void lattice_finish_col(const ap_horizon *hz, const fm_step *fm, const double *t, long kt,
+                               size_t p, const float *col, float *best, unsigned char *edge)
+{
+  const long ns = (long)hz->ns, F = (long)(hz->np - 1 - p), kend = kt < F ? kt : F;
+  const double L = hz->p.max_distance, c = hz->c, K1 = (double)(hz->p.near_field - 1);
+  const double side_max = (double)hz->fm_side_max + (double)hz->fm_eps;
+  long s;
+  for (s = 0; s < ns; ++s) {
+    const double zq = col[s];
+    double reach = INFINITY;
+    long kl = kend;
+    if (isnan(zq)) {
+      continue; /* (march_finish made it NaN, edge 0) */
+    }
+    if (!(s + fm_lo(&fm[kend]) >= 0 && s + fm_hi(&fm[kend]) <= ns)) {
+      kl = fm_last_on_grid(hz, fm, s, 1, kend);
+    }
+    if (kl < kend) {
+      /* it leaves through a side between steps kl and kl + 1 */
+      const double a = (double)s + (double)fm[kl].o + (double)fm[kl].f;
+      const double b = (double)s + (double)fm[kl + 1].o + (double)fm[kl + 1].f;
+      const long e = b < 0.0 ? 0 : ns - 1;
+      const double fr = b != a ? ((double)e - a) / (b - a) : 0.0;
+      const double te = t[kl] + fr * (t[kl + 1] - t[kl]);
+      reach = te;
+      if (te <= L && te > 0.0 && (double)kl + fr > K1 &&
+          (side_max - zq) / te - c * te > (double)best[s]) {
+        const double za = view_column(hz, p + (size_t)kl)[e];
+        const double zb = view_column(hz, p + (size_t)kl + 1)[e];
+        const double sl = ((za + fr * (zb - za)) - zq) / te - c * te;
+        best[s] = sl > (double)best[s] ? (float)sl : best[s];
+      }
+    } else if (kend == F) {
+      reach = t[F]; /* the far edge */
+    }
+    edge[s] = search_truncated(reach, L, c, (double)hz->zmax, zq);
+  }
+}
 
 /* After the far march of cells [sa, sb) of view column p: the point where a ray leaves
  * through a side beyond the near field, within the distance and before the far edge
@@ -2006,13 +2113,14 @@ static void far_side_exits(const ap_horizon *hz, size_t p, long sa, long sb, con
   }
 }
 
-/* The far march of cells [sa, sb) of view column p into best[] (max-merged). */
+/* The far march of cells [sa, sb) of view column p into best[] (max-merged), along the steps
+ * fm[0..kmax] (hz->fm, or with per-row cell sizes the column's own: lattice_steps_col). */
 AP_MULTIVERSION
-static void far_march_column(const ap_horizon *hz, size_t p, long sa, long sb, const float *col,
-                             float *best)
+static void far_march_column(const ap_horizon *hz, const fm_step *fm, long kmax, size_t p,
+                             long sa, long sb, const float *col, float *best)
 {
   const long K = hz->p.near_field;
-  long kend = hz->fm_kmax, s0;
+  long kend = kmax, s0;
   if ((long)(hz->np - 1 - p) < kend) {
     kend = (long)(hz->np - 1 - p); /* the columns left */
   }
@@ -2024,20 +2132,20 @@ static void far_march_column(const ap_horizon *hz, size_t p, long sa, long sb, c
     long kvec = K - 1, k, c;
     if (n == AP_FM_LANES) {
       /* the steps on which all 16 rays stay on the grid: those of both outer cells */
-      const long lo = fm_last_on_grid(hz, s0, K, kend);
-      const long hi = fm_last_on_grid(hz, s0 + n - 1, K, kend);
+      const long lo = fm_last_on_grid(hz, fm, s0, K, kend);
+      const long hi = fm_last_on_grid(hz, fm, s0 + n - 1, K, kend);
       fm_lanes g;
       kvec = lo < hi ? lo : hi;
       fm_lanes_get(&g, col + s0, best + s0);
       for (k = K; k <= kvec;) {
         long k1 = k + AP_FM_COARSE - 1 < kvec ? k + AP_FM_COARSE - 1 : kvec;
-        if (!fm_lanes_rise(&g, fm_box_max(hz, 1, p, s0, n, k, k1), &hz->fm[k], &hz->fm[k1])) {
+        if (!fm_lanes_rise(&g, fm_box_max(hz, fm, 1, p, s0, n, k, k1), &fm[k], &fm[k1])) {
           k = k1 + 1;
           continue;
         }
         k1 = k + AP_FM_FINE - 1 < kvec ? k + AP_FM_FINE - 1 : kvec;
-        if (fm_lanes_rise(&g, fm_box_max(hz, 0, p, s0, n, k, k1), &hz->fm[k], &hz->fm[k1])) {
-          fm_lanes_march(hz, p, s0, k, k1, &g);
+        if (fm_lanes_rise(&g, fm_box_max(hz, fm, 0, p, s0, n, k, k1), &fm[k], &fm[k1])) {
+          fm_lanes_march(hz, fm, p, s0, k, k1, &g);
         }
         k = k1 + 1;
       }
@@ -2049,19 +2157,18 @@ static void far_march_column(const ap_horizon *hz, size_t p, long sa, long sb, c
     /* the rest cell by cell: a short group's cells, and the steps after some of the 16 rays
      * left the grid */
     for (c = 0; c < n; ++c) {
-      const long last = fm_last_on_grid(hz, s0 + c, kvec + 1, kend);
+      const long last = fm_last_on_grid(hz, fm, s0 + c, kvec + 1, kend);
       const float zq = col[s0 + c];
       for (k = kvec + 1; k <= last;) {
         const long k1 = k + AP_FM_FINE - 1 < last ? k + AP_FM_FINE - 1 : last;
-        const float Z = fm_box_max(hz, 0, p, s0 + c, 1, k, k1);
-        if (AP_FM_RISES(Z, zq, &hz->fm[k], &hz->fm[k1], best[s0 + c])) {
-          fm_march_one(hz, p, s0 + c, k, k1, zq, best + s0 + c);
+        const float Z = fm_box_max(hz, fm, 0, p, s0 + c, 1, k, k1);
+        if (AP_FM_RISES(Z, zq, &fm[k], &fm[k1], best[s0 + c])) {
+          fm_march_one(hz, fm, p, s0 + c, k, k1, zq, best + s0 + c);
         }
         k = k1 + 1;
       }
     }
   }
-  far_side_exits(hz, p, sa, sb, col, best);
 }
 
 /* Row by row (hz->by_rows: x-major views of grids with per-row cell sizes, whose rows take
@@ -2258,10 +2365,35 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t u0, size_t u1)
      * 49-50 instead of 54-55 ns per cell and direction; no gain measured on 4096^2). */
     const long ns = (long)hz->ns;
     long s0;
+    if (hz->lattice) {
+      /* per-row cell sizes (row-major views; x-major ones go by rows): each view column's
+       * rays take their own steps, so a column at a time */
+      const size_t cap = (size_t)hz->fm_kmax + 1;
+      fm_step *fm = (fm_step *)malloc(cap * sizeof(fm_step));
+      double *t = (double *)malloc(cap * sizeof(double));
+      if (!fm || !t) {
+        free(fm);
+        free(t);
+        return AP_ERR_OUT_OF_MEMORY;
+      }
+      for (p = u0; p < u1 && p < hz->np; ++p) {
+        long kmax;
+        const long kt = lattice_steps_col(hz, p, fm, t, &kmax);
+        float *best = hz->slope + scratch_index(hz, p, 0);
+        far_march_column(hz, fm, kmax, p, 0, ns, view_column(hz, p), best);
+        lattice_finish_col(hz, fm, t, kt, p, view_column(hz, p), best,
+                           hz->edge + scratch_index(hz, p, 0));
+      }
+      free(fm);
+      free(t);
+      return AP_OK;
+    }
     for (s0 = 0; s0 < ns; s0 += AP_FM_CHUNK) {
       const long s1 = s0 + AP_FM_CHUNK < ns ? s0 + AP_FM_CHUNK : ns;
       for (p = u0; p < u1 && p < hz->np; ++p) {
-        far_march_column(hz, p, s0, s1, view_column(hz, p), hz->slope + scratch_index(hz, p, 0));
+        float *best = hz->slope + scratch_index(hz, p, 0);
+        far_march_column(hz, hz->fm, hz->fm_kmax, p, s0, s1, view_column(hz, p), best);
+        far_side_exits(hz, p, s0, s1, view_column(hz, p), best);
       }
     }
   }

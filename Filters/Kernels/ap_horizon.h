@@ -30,9 +30,11 @@
  *  straight in index space with the direction of the cell's row: on lat/lon grids the rhumb
  *  line bends away from it as the east-west cell size changes, by about tan(lat) x (latitude
  *  span) x (columns) / 2 columns at the limit (0.05 of a cell at 60 N over 64 diagonal steps
- *  of a 3-arc-second grid). With constant cell sizes, a search distance of at most
- *  far_march_columns steps (1024 by default: 30 km on a 30 m grid) is searched by the far
- *  march instead of the hulls: beyond the near field, every cell's own ray is sampled where it
+ *  of a 3-arc-second grid). A search distance of at most far_march_columns steps (1024 by
+ *  default: 30 km on a 30 m grid) is searched by the far march instead of the hulls (with
+ *  per-row cell sizes only in the row-major sectors, whose rays cross the rows: there each
+ *  view column's rays follow their rhumb line, shifted and measured row by row from that
+ *  column): beyond the near field, every cell's own ray is sampled where it
  *  crosses each view column up to the distance, linearly between the column's two cells (the
  *  samples the hulls hold), and the largest slope taken; stretches whose elevations, bounded
  *  by tile maxima, cannot beat the slope found so far are skipped without changing a bit.
@@ -150,7 +152,7 @@ typedef struct ap_horizon_params {
                                exactly to max_distance and the hulls are skipped: exact on
                                the bilinear surface, and 2-4x faster than the sweep for such
                                short distances; 0..64, 0 = always sweep (default 64) */
-  int far_march_columns;  /**< with constant cell sizes, when max_distance spans more than
+  int far_march_columns;  /**< when max_distance spans more than
                                march_columns but at most this many view columns, the
                                columns from K on are marched along every cell's own ray
                                instead of swept (the far march: the largest slope over the
@@ -158,8 +160,10 @@ typedef struct ap_horizon_params {
                                a conservative bound from tile maxima skips the stretches
                                that cannot rise above the slope found so far, so results
                                equal the full march bit for bit). Cost O(distance) at worst,
-                               yet 1.6-2x below the sweep's at 10 km on 30 m grids; beyond
-                               this limit, and on lat/lon grids, the sweep runs.
+                               yet 1.6-2x below the sweep's at 10 km on 30 m grids (3x in
+                               the row-major sectors of a 3-arc-second lat/lon tile); beyond
+                               this limit, and in the x-major sectors of grids with per-row
+                               cell sizes, the sweep runs.
                                0..65536, 0 = never (default 1024) */
   long origin_col;        /**< the grid is a piece of a larger DEM whose cell (origin_col,
                                origin_row) is the grid's cell (0, 0), |values| <= 10^9; the
@@ -251,7 +255,7 @@ size_t ap_horizon_near_field_count(const ap_horizon *hz);
 /** The near field (the first K − 1 samples of every cell's ray, exactly on the bilinear
  *  surface) of units [u0, u1) of the prepared sector. Every unit must be done before any
  *  ap_horizon_sweep of the sector, which reads these results. In a sector whose search
- *  distance is within march_columns, or far_march_columns with constant cell sizes, it is the
+ *  distance is within march_columns, or far_march_columns where the far march runs, it is the
  *  whole search, edge flags included (and a call should then span a few units: the far march
  *  goes through them in chunks of cells, which keeps the columns it reads in cache). Returns
  *  AP_ERR_OUT_OF_MEMORY if a row's buffer cannot be allocated. */
@@ -269,8 +273,8 @@ size_t ap_horizon_bracket_count(const ap_horizon *hz);
 
 /** Sweep brackets [b0, b1) of the prepared sector after its near field: computes the horizon
  *  and edge flag of every cell between those lines (nothing to do, AP_OK, in a sector whose
- *  search distance the near field covered: within march_columns, or far_march_columns with
- *  constant cell sizes). Allocates and frees its own hull stacks;
+ *  search distance the near field covered: within march_columns, or far_march_columns where
+ *  the far march runs). Allocates and frees its own hull stacks;
  *  returns AP_ERR_OUT_OF_MEMORY if that fails (the products are then incomplete). */
 ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1);
 

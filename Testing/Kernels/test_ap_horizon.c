@@ -125,7 +125,8 @@ static ap_horizon_params params(int directions, int curvature)
 
 /* How a search distance of a few dozen columns is searched: every ray marched on the bilinear
  * surface (up to march_columns), every ray marched across the view columns (the far march, up
- * to far_march_columns, constant cell sizes only), or swept through the hulls. */
+ * to far_march_columns; with per-row cell sizes only in row-major sectors), or swept through
+ * the hulls. */
 enum { MARCHED, FAR_MARCHED, SWEPT, SEARCH_MODES };
 static const char *const mode_name[SEARCH_MODES] = {"marched", "far-marched", "swept"};
 
@@ -668,8 +669,35 @@ static void test_latlon_rows(void)
   p.max_distance = 200000.0;
   compare_brute_force(&t, &p, "lat/lon 40-60 N, 200 km, marched");
   p.march_columns = 0;
+  compare_brute_force(&t, &p, "lat/lon 40-60 N, 200 km, far-marched");
+  p.far_march_columns = 0;
   compare_brute_force(&t, &p, "lat/lon 40-60 N, 200 km, swept");
   drop(&t);
+  /* Rough terrain on rows of 0.0004 x 0.0006 degrees from 50 N (about 44 x 43 m), 3 km: 68 to
+   * 70 steps, beyond march_columns, so the row-major sectors far-march along their rhumb lines
+   * (steps summed row by row) and the others sweep; then all sweep. Both within the bounds,
+   * the far march no less accurate than the sweep. */
+  {
+    terrain u = make(130, 120, 0.0);
+    const double dlat2 = 0.0004 * DEG, dlon2 = 0.0006 * DEG;
+    double p99_far, p99_swept;
+    latlon_rows(&u, R, 50 * DEG, dlat2, dlon2);
+    for (j = 0; j < u.ny; ++j) {
+      const double lat = 50 * DEG + (double)j * dlat2;
+      for (i = 0; i < u.nx; ++i) {
+        const double east = (double)i * dlon2 * R * cos(lat), north = (double)j * dlat2 * R;
+        u.z[j * u.nx + i] = (float)rough(east, north);
+      }
+    }
+    p = params(32, 1);
+    p.radius_meridian = p.radius_normal = R;
+    p.max_distance = 3000.0;
+    p99_far = compare_brute_force(&u, &p, "lat/lon rough 50 N, 3 km, row-major far-marched");
+    p.far_march_columns = 0;
+    p99_swept = compare_brute_force(&u, &p, "lat/lon rough 50 N, 3 km, swept");
+    AP_CHECK(p99_far <= p99_swept + 0.01);
+    drop(&u);
+  }
 }
 
 /* The largest error (degrees) of the swept horizons against a reference over the cells from
@@ -761,7 +789,14 @@ static void test_side_edges(void)
         p.march_columns = 0;
         p.far_march_columns = 0;
         AP_CHECK(edge_band_error(&t, &p, NULL, 1, 30, what) <= 0.02);
-        if (!latlon) {
+        if (latlon) {
+          /* the row-major sectors far-marched (edge_band_error checks only those) */
+          p.far_march_columns = 1024;
+          snprintf(what, sizeof what, "%s bowl, D = %d, %s, far march", frame, Ds[k],
+                   limited ? "700 m" : "100 km");
+          p.max_distance = limited ? 700.0 : 1e5;
+          AP_CHECK(edge_band_error(&t, &p, NULL, 1, 30, what) <= 0.02);
+        } else {
           results ref;
           p.max_distance = limited ? 700.0 : 1e6;
           p.far_march_columns = 65536;
@@ -861,6 +896,7 @@ static void test_split_invariance(void)
   test_split_invariance_mode(FAR_MARCHED, 0);
   test_split_invariance_mode(SWEPT, 1);
   test_split_invariance_mode(MARCHED, 1);
+  test_split_invariance_mode(FAR_MARCHED, 1);
 }
 
 /* The edge flag, closed form on a flat grid without curvature in the four axis sectors: a cell
@@ -1202,19 +1238,24 @@ static void test_pieces(void)
            u.ny, aligned);
     AP_CHECK(aligned == 0.0);
     release(&w);
-    /* Swept (march_columns 0), with curvature: the bending lines lie on the whole DEM's
-     * lattice of rhumb lines when the piece has the DEM's rows; without them the piece is a
-     * DEM of its own, its lines elsewhere. In D = 29 no sector is row- or column-aligned. */
-    for (k = 0; k < 2; ++k) {
+    /* Swept (march_columns and far_march_columns 0), with curvature: the bending lines lie on
+     * the whole DEM's lattice of rhumb lines when the piece has the DEM's rows; without them
+     * the piece is a DEM of its own, its lines elsewhere. In D = 29 no sector is row- or
+     * column-aligned. Far-marched (march_columns 0): the row-major sectors' rays are each
+     * cell's own, their steps summed from the cell's row, so the piece with the DEM's rows
+     * gets the same bits. */
+    for (k = 0; k < 4; ++k) {
       double unaligned;
-      p.directions = k == 0 ? 32 : 29;
+      p.directions = k % 2 == 0 ? 32 : 29;
       p.march_columns = 0;
+      p.far_march_columns = k < 2 ? 0 : 1024;
       w = compute(&u, &p);
       aligned = piece_difference(&u, &w, &p, piece, mi, mj, 1);
       unaligned = piece_difference(&u, &w, &p, piece, mi, mj, 0);
-      printf("piece of a %zu x %zu lat/lon-like DEM, swept, D = %d: largest difference %.3g "
-             "aligned, %.3g not\n", u.nx, u.ny, p.directions, aligned, unaligned);
-      AP_CHECK(aligned <= 1e-5);
+      printf("piece of a %zu x %zu lat/lon-like DEM, %s, D = %d: largest difference %.3g "
+             "aligned, %.3g not\n", u.nx, u.ny, k < 2 ? "swept" : "far-marched", p.directions,
+             aligned, unaligned);
+      AP_CHECK(k < 2 ? aligned <= 1e-5 : aligned == 0.0);
       AP_CHECK(unaligned > 1e-3);
       release(&w);
     }

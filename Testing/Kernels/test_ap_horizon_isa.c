@@ -6,8 +6,8 @@
  * AP_HORIZON_NO_MULTIVERSION (the baseline alone). The test Kernels-isa-equality
  * (isa_equality.cmake) runs both and requires the same lines: the clones make the same IEEE
  * operations in the same order, so the results must not depend on the CPU. The configurations
- * cover every search path: the exact march (short radius), the far march (projected, 10 km),
- * the sweep (unlimited; lat/lon rows), x-major and y-major sectors, D not a multiple of 4. */
+ * cover every search path: the exact march (short radius), the far march (4 km; projected and
+ * lat/lon rows), the sweep (unlimited), x-major and y-major sectors, D not a multiple of 4. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -83,14 +83,15 @@ int main(void)
     dx[j] = 30.87 * cos((44.0 + j / 3600.0) * 3.14159265358979 / 180.0);
     dy[j] = 30.87;
   }
-  for (c = 0; c < 6; ++c) {
-    static const char *const what[6] = {
+  for (c = 0; c < 7; ++c) {
+    static const char *const what[7] = {
       "projected, 32 sectors, 1500 m (exact march)",
       "projected, 32 sectors, 4000 m (far march)",
       "projected, 29 sectors, 4000 m (far march)",
       "projected, 32 sectors, unlimited (sweep)",
       "lat/lon rows, 32 sectors, unlimited (sweep)",
-      "lat/lon rows, 29 sectors, 1500 m (exact march)"};
+      "lat/lon rows, 29 sectors, 1500 m (exact march)",
+      "lat/lon rows, 32 sectors, 4000 m (far march)"};
     ap_status status;
     uint64_t h;
     memset(&g, 0, sizeof g);
@@ -103,7 +104,7 @@ int main(void)
     }
     ap_horizon_params_init(&p);
     p.directions = (c == 2 || c == 5) ? 29 : 32;
-    p.max_distance = (c == 0 || c == 5) ? 1500.0 : (c <= 2 ? 4000.0 : INFINITY);
+    p.max_distance = (c == 0 || c == 5) ? 1500.0 : ((c <= 2 || c == 6) ? 4000.0 : INFINITY);
     p.azimuth_offset = c == 1 ? 0.0123 : 0.0;
     h = run(&g, &p, &status);
     if (status != AP_OK) {
