@@ -85,9 +85,8 @@ public:
    *  distance of at most GetMarchColumns() (64) steps of a sector (1.9 km on a 30 m grid) is
    *  searched by marching every cell's ray exactly; one of at most GetFarMarchColumns()
    *  (1024) steps (30 km) by sampling every cell's ray where it crosses the grid's columns
-   *  (the far march); both are faster there than the hull sweep, which searches longer
-   *  distances, no limit, and on lat/lon DEMs the directions that cross columns faster than
-   *  rows beyond 64 steps (ap_horizon.h). */
+   *  (the far march; on lat/lon DEMs along each ray's rhumb line); both are faster there
+   *  than the hull sweep, which searches longer distances and no limit (ap_horizon.h). */
   vtkSetMacro(MaximumDistance, double);
   vtkGetMacro(MaximumDistance, double);
   ///@}
@@ -97,8 +96,7 @@ public:
   static int GetMarchColumns();
 
   /** Steps of a sector up to which a MaximumDistance is far-marched instead of swept (the
-   *  kernel's far_march_columns; on lat/lon DEMs in the directions that cross rows faster
-   *  than columns). */
+   *  kernel's far_march_columns). */
   static int GetFarMarchColumns();
 
   ///@{

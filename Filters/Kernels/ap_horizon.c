@@ -1191,8 +1191,7 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
     hz->march = isfinite(hz->p.max_distance) &&
                 hz->p.max_distance <= (double)hz->p.march_columns * decides;
     hz->far_march = !hz->march && hz->fm_tile[0] &&
-                    hz->p.max_distance <= (double)hz->p.far_march_columns * decides &&
-                    (!hz->lattice || !hz->xmajor);
+                    hz->p.max_distance <= (double)hz->p.far_march_columns * decides;
   }
   if (hz->far_march && !hz->lattice && !fm_steps_init(hz)) {
     free_sector(hz);
@@ -1247,7 +1246,8 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
       }
       hz->pat_of[q] = (int)(hz->npats - 1);
     }
-    hz->by_rows = hz->xmajor && hz->npats > 1;
+    /* (per-row sizes far-march x-major views by rows, whatever their patterns) */
+    hz->by_rows = hz->xmajor && (hz->npats > 1 || (hz->lattice && hz->far_march));
   }
   if (hz->lattice) {
     if (!lattice_lines(hz, sphi, cphi)) {
@@ -1645,8 +1645,8 @@ static void march_finish(const ap_horizon *hz, const pattern *pt, size_t p, long
 }
 
 /* ---------------------------------------------------------------------------------------- */
-/* The far march: constant cell sizes and a search distance of more than march_columns but at
- * most far_march_columns view steps. Every cell's own ray is sampled where it crosses view
+/* The far march: a search distance of more than march_columns but at most far_march_columns
+ * view steps. Every cell's own ray is sampled where it crosses view
  * columns K..fm_kmax (linear between the column's two cells, as the hulls' samples are), and
  * the largest slope (z - zq)/t - c t is max-merged into the near field's. That is what the
  * sweep's hulls approximate (the sweep evaluates the cell's own ray only at the columns where
@@ -1660,7 +1660,11 @@ static void march_finish(const ap_horizon *hz, const pattern *pt, size_t p, long
  * changes a result: it equals the full march bit for bit, and so does not depend on the split
  * into threads or on where a piece of a DEM starts. (The whole kernel on Big Tujunga at 10 km,
  * one core, 32 sectors: 47 against the sweep's 75 ns per cell and direction; 49 against 101 on
- * a 2048^2 fractal DEM; bench/bake-notes.md.) */
+ * a 2048^2 fractal DEM; bench/bake-notes.md.) With constant cell sizes every ray of the sector
+ * takes the same steps (hz->fm); with per-row sizes (lat/lon) the rays of one grid row do:
+ * a view column's in row-major views (lattice_steps_col, far_march_column), a grid row's in
+ * x-major ones, marched 16 neighbouring cells of the row at a time (lattice_steps_row,
+ * far_march_row). */
 
 #define AP_FM_LANES 16  /* cells of a view column marched together */
 #define AP_FM_FINE 16   /* steps (and tile size) of the fine test */
@@ -2063,6 +2067,86 @@ static void lattice_finish_col(const ap_horizon *hz, const fm_step *fm, const do
   }
 }
 
+/* Per-row cell sizes, x-major view: the steps of the rays of grid row s to the view columns
+ * p + k, into fm[k], distances into t[k], as lattice_steps_col (the same end and *kmax; also
+ * ending one step off the grid's rows). The rhumb line keeps Psi - cot(phi) column constant:
+ * at step k it is at the row where Psi = Psi(s) + k cos(phi) / |sin(phi)| on the larger DEM's
+ * lattice (as the sweep's lines), and the distance sums the step lengths at the rows it
+ * passes (trapezoids of len_row, linear between rows), both functions of the rows alone. */
+static long lattice_steps_row(const ap_horizon *hz, long s, fm_step *fm, double *t, long *kmax)
+{
+  const double L = hz->p.max_distance, cot = cos(hz->phi) / fabs(sin(hz->phi));
+  const double T0 = hz->psi[s + hz->orow], orow = (double)hz->orow;
+  double dist = 0.0, len_prev = hz->len_row[s], y = (double)s;
+  long k, j = s + hz->orow;
+  *kmax = 0;
+  for (k = 0; k <= hz->fm_kmax && (size_t)k < hz->np; ++k) {
+    if (k > 0) {
+      const double T = T0 + (double)k * cot;
+      double len;
+      j = lattice_seek(hz, T, j);
+      y = ((double)j + (T - hz->psi[j]) * hz->psi_inv[j]) - orow;
+      len = row_value(hz->len_row, hz->ny, y);
+      dist += 0.5 * (len_prev + len);
+      len_prev = len;
+    }
+    fm_step_set(&fm[k], y - (double)s, dist, hz->c);
+    t[k] = dist;
+    if (!(dist <= L)) {
+      return k;
+    }
+    *kmax = k;
+    if (y < -1.0 || y > (double)hz->ny) {
+      return k; /* off the rows: so is every later step */
+    }
+  }
+  return k - 1;
+}
+
+/* lattice_finish_col for grid row s of an x-major view after far_march_row: every cell's ray
+ * leaves through a side (rows 0 or ny - 1) at the same step and fraction, unless its far edge
+ * comes first. */
+static void lattice_finish_row(const ap_horizon *hz, const fm_step *fm, const double *t, long kt,
+                               long s, const float *zrow, float *best)
+{
+  const long nx = (long)hz->np, ny = (long)hz->ny, dir = hz->flip ? -1 : 1;
+  const double L = hz->p.max_distance, c = hz->c, K1 = (double)(hz->p.near_field - 1);
+  const double side_max = (double)hz->fm_side_max + (double)hz->fm_eps;
+  const long kl = fm_last_on_grid(hz, fm, s, 1, kt);
+  double fr = 0.0, te = INFINITY;
+  long e = 0, q;
+  if (kl < kt) {
+    const double a = (double)s + (double)fm[kl].o + (double)fm[kl].f;
+    const double b = (double)s + (double)fm[kl + 1].o + (double)fm[kl + 1].f;
+    e = b < 0.0 ? 0 : ny - 1;
+    fr = b != a ? ((double)e - a) / (b - a) : 0.0;
+    te = t[kl] + fr * (t[kl + 1] - t[kl]);
+  }
+  for (q = 0; q < nx; ++q) {
+    const double zq = zrow[q];
+    const long F = dir > 0 ? nx - 1 - q : q, kend = kt < F ? kt : F;
+    const size_t pv = (size_t)(dir > 0 ? q : nx - 1 - q);
+    double reach = INFINITY;
+    if (isnan(zq)) {
+      continue; /* (march_finish_row made it NaN, edge 0) */
+    }
+    if (kl < kend) {
+      reach = te;
+      if (te <= L && te > 0.0 && (double)kl + fr > K1 &&
+          (side_max - zq) / te - c * te > (double)best[q]) {
+        const float *edge_row = grid_row(hz, e);
+        const double za = edge_row[q + dir * kl], zb = edge_row[q + dir * (kl + 1)];
+        const double sl = ((za + fr * (zb - za)) - zq) / te - c * te;
+        best[q] = sl > (double)best[q] ? (float)sl : best[q];
+      }
+    } else if (kend == F) {
+      reach = t[F];
+    }
+    hz->edge[scratch_index(hz, pv, (size_t)s)] =
+      search_truncated(reach, L, c, (double)hz->zmax, zq);
+  }
+}
+
 /* After the far march of cells [sa, sb) of view column p: the point where a ray leaves
  * through a side beyond the near field, within the distance and before the far edge
  * (side_exit_slope; the near field reaches it when closer), unless the side's highest cell,
@@ -2164,6 +2248,153 @@ static void far_march_column(const ap_horizon *hz, const fm_step *fm, long kmax,
         const float Z = fm_box_max(hz, fm, 0, p, s0 + c, 1, k, k1);
         if (AP_FM_RISES(Z, zq, &fm[k], &fm[k1], best[s0 + c])) {
           fm_march_one(hz, fm, p, s0 + c, k, k1, zq, best + s0 + c);
+        }
+        k = k1 + 1;
+      }
+    }
+  }
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* The far march by rows: x-major sectors of grids with per-row cell sizes. The rays of the
+ * cells of one grid row s follow the same rhumb line, moved by a column from cell to cell
+ * (the row's steps, lattice_steps_row: rows s + o .. s + o + 1 at step k), so 16 neighbouring
+ * cells of the row march together, reading 16 contiguous cells of each of the two grid rows
+ * at columns q0 + dir k (dir = -1 in flipped views), with the same operations per cell as
+ * fm_march_one. best[] and zrow[] are indexed by grid column, as in near_row. */
+
+/* The box of tile maxima (level l) around every sample that the cells of columns
+ * [q0, q0 + n) of grid row s read at steps [ka, kb], raised by fm_eps. */
+AP_INLINE float fm_box_max_rows(const ap_horizon *hz, const fm_step *fm, int l, long s, long q0,
+                                long n, long dir, long ka, long kb)
+{
+  const size_t B = l ? AP_FM_COARSE : AP_FM_FINE, tnx = hz->fm_tnx[l];
+  const float *tile = hz->fm_tile[l];
+  const fm_step *sa = &fm[ka], *sb = &fm[kb];
+  const long ny = (long)hz->ny, nx = (long)hz->nx;
+  long r0 = s + (fm_lo(sa) < fm_lo(sb) ? fm_lo(sa) : fm_lo(sb));
+  long r1 = s + (fm_hi(sa) > fm_hi(sb) ? fm_hi(sa) : fm_hi(sb)) - 1;
+  long c0 = dir > 0 ? q0 + ka : q0 - kb, c1 = dir > 0 ? q0 + n - 1 + kb : q0 + n - 1 - ka;
+  size_t i, j;
+  float Z = -INFINITY;
+  r0 = r0 < 0 ? 0 : r0;
+  r1 = r1 > ny - 1 ? ny - 1 : r1;
+  c0 = c0 < 0 ? 0 : c0;
+  c1 = c1 > nx - 1 ? nx - 1 : c1;
+  for (j = (size_t)r0 / B; j <= (size_t)r1 / B; ++j) {
+    for (i = (size_t)c0 / B; i <= (size_t)c1 / B; ++i) {
+      const float t = tile[j * tnx + i];
+      Z = t > Z ? t : Z;
+    }
+  }
+  return Z + hz->fm_eps;
+}
+
+/* Steps [ka, kb] of the cell of grid column q in row s at height zq, slope so far *b. */
+static void fm_march_one_rows(const ap_horizon *hz, const fm_step *fm, long s, long q, long dir,
+                              long ka, long kb, float zq, float *b)
+{
+  long k;
+  for (k = ka; k <= kb; ++k) {
+    const fm_step *st = &fm[k];
+    const long col = q + dir * k;
+    const float z0 = grid_row(hz, s + st->o)[col];
+    const float v = st->f != 0.0f
+                      ? ((z0 + st->f * (grid_row(hz, s + st->o + 1)[col] - z0)) - zq) * st->it -
+                          st->ct
+                      : (z0 - zq) * st->it - st->ct;
+    *b = v > *b ? v : *b;
+  }
+}
+
+#if defined(__GNUC__)
+AP_INLINE void fm_lanes_march_rows(const ap_horizon *hz, const fm_step *fm, long s, long q0,
+                                   long dir, long ka, long kb, fm_lanes *g)
+{
+  long k;
+  for (k = ka; k <= kb; ++k) {
+    const fm_step *st = &fm[k];
+    const float *z = grid_row(hz, s + st->o) + q0 + dir * k;
+    const float it = st->it, ct = st->ct, f = st->f;
+    int h;
+    if (f != 0.0f) {
+      const float *z1 = grid_row(hz, s + st->o + 1) + q0 + dir * k;
+      for (h = 0; h < 2; ++h) {
+        fm_v8 a, b, v;
+        AP_FM_LOAD(a, z + 8 * h);
+        AP_FM_LOAD(b, z1 + 8 * h);
+        v = ((a + f * (b - a)) - g->zq[h]) * it - ct;
+        AP_FM_MAX(g->b[h], v);
+      }
+    } else {
+      for (h = 0; h < 2; ++h) {
+        fm_v8 a, v;
+        AP_FM_LOAD(a, z + 8 * h);
+        v = (a - g->zq[h]) * it - ct;
+        AP_FM_MAX(g->b[h], v);
+      }
+    }
+  }
+}
+#else
+AP_INLINE void fm_lanes_march_rows(const ap_horizon *hz, const fm_step *fm, long s, long q0,
+                                   long dir, long ka, long kb, fm_lanes *g)
+{
+  int c;
+  for (c = 0; c < AP_FM_LANES; ++c) {
+    fm_march_one_rows(hz, fm, s, q0 + c, dir, ka, kb, g->zq[c], &g->b[c]);
+  }
+}
+#endif
+
+/* The far march of grid row s (every column) along the row's steps fm[0..kmax], max-merged
+ * into best[] (indexed by grid column). */
+AP_MULTIVERSION
+static void far_march_row(const ap_horizon *hz, const fm_step *fm, long kmax, long s,
+                          const float *zrow, float *best)
+{
+  const long K = hz->p.near_field, nx = (long)hz->np, dir = hz->flip ? -1 : 1;
+  long side, q0, k, c;
+  if (kmax < K) {
+    return;
+  }
+  side = fm_last_on_grid(hz, fm, s, K, kmax); /* the steps between the sides */
+  for (q0 = 0; q0 < nx; q0 += AP_FM_LANES) {
+    const long n = nx - q0 < AP_FM_LANES ? nx - q0 : AP_FM_LANES;
+    long kvec = K - 1;
+    if (n == AP_FM_LANES) {
+      /* the steps on which all 16 rays stay on the grid: the lane nearest the far edge ends
+       * first */
+      const long fe = dir > 0 ? nx - 1 - (q0 + n - 1) : q0;
+      fm_lanes g;
+      kvec = side < fe ? side : fe;
+      fm_lanes_get(&g, zrow + q0, best + q0);
+      for (k = K; k <= kvec;) {
+        long k1 = k + AP_FM_COARSE - 1 < kvec ? k + AP_FM_COARSE - 1 : kvec;
+        if (!fm_lanes_rise(&g, fm_box_max_rows(hz, fm, 1, s, q0, n, dir, k, k1), &fm[k],
+                           &fm[k1])) {
+          k = k1 + 1;
+          continue;
+        }
+        k1 = k + AP_FM_FINE - 1 < kvec ? k + AP_FM_FINE - 1 : kvec;
+        if (fm_lanes_rise(&g, fm_box_max_rows(hz, fm, 0, s, q0, n, dir, k, k1), &fm[k],
+                          &fm[k1])) {
+          fm_lanes_march_rows(hz, fm, s, q0, dir, k, k1, &g);
+        }
+        k = k1 + 1;
+      }
+      fm_lanes_put(&g, best + q0);
+    }
+    /* the rest cell by cell: a short group's cells, and the steps after the first far edge */
+    for (c = 0; c < n; ++c) {
+      const long q = q0 + c, fe = dir > 0 ? nx - 1 - q : q;
+      const long last = side < fe ? side : fe;
+      const float zq = zrow[q];
+      for (k = kvec + 1 > K ? kvec + 1 : K; k <= last;) {
+        const long k1 = k + AP_FM_FINE - 1 < last ? k + AP_FM_FINE - 1 : last;
+        const float Z = fm_box_max_rows(hz, fm, 0, s, q, 1, dir, k, k1);
+        if (AP_FM_RISES(Z, zq, &fm[k], &fm[k1], best[q])) {
+          fm_march_one_rows(hz, fm, s, q, dir, k, k1, zq, best + q);
         }
         k = k1 + 1;
       }
@@ -2281,9 +2512,15 @@ static ap_status near_field_rows(const ap_horizon *hz, size_t r0, size_t r1)
 {
   const size_t nx = hz->np;
   const int far_point = !hz->march && isfinite(hz->p.max_distance);
+  const size_t cap = hz->far_march ? (size_t)hz->fm_kmax + 1 : 1;
   float *best = (float *)malloc(nx * sizeof(float));
+  fm_step *fm = (fm_step *)malloc(cap * sizeof(fm_step));
+  double *t = (double *)malloc(cap * sizeof(double));
   size_t s, q;
-  if (!best) {
+  if (!best || !fm || !t) {
+    free(best);
+    free(fm);
+    free(t);
     return AP_ERR_OUT_OF_MEMORY;
   }
   for (s = r0; s < r1 && s < hz->ns; ++s) {
@@ -2296,14 +2533,23 @@ static ap_status near_field_rows(const ap_horizon *hz, size_t r0, size_t r1)
     if (far_point) {
       far_point_row(hz, pt, (long)s, zrow, best);
     }
-    if (hz->march) {
+    if (hz->march || hz->far_march) {
       march_finish_row(hz, pt, (long)s, zrow, best);
+    }
+    if (hz->far_march) {
+      /* (per-row cell sizes: the far march of constant ones runs by columns) */
+      long kmax;
+      const long kt = lattice_steps_row(hz, (long)s, fm, t, &kmax);
+      far_march_row(hz, fm, kmax, (long)s, zrow, best);
+      lattice_finish_row(hz, fm, t, kt, (long)s, zrow, best);
     }
     for (q = 0; q < nx; ++q) {
       hz->slope[q * hz->ny + s] = best[q]; /* (scratch_index of x-major views) */
     }
   }
   free(best);
+  free(fm);
+  free(t);
   return AP_OK;
 }
 

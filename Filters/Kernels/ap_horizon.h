@@ -32,9 +32,9 @@
  *  span) x (columns) / 2 columns at the limit (0.05 of a cell at 60 N over 64 diagonal steps
  *  of a 3-arc-second grid). A search distance of at most far_march_columns steps (1024 by
  *  default: 30 km on a 30 m grid) is searched by the far march instead of the hulls (with
- *  per-row cell sizes only in the row-major sectors, whose rays cross the rows: there each
- *  view column's rays follow their rhumb line, shifted and measured row by row from that
- *  column): beyond the near field, every cell's own ray is sampled where it
+ *  per-row cell sizes along each ray's rhumb line, the same for every cell of a grid row:
+ *  shifted and measured from that row on, as the sweep's lines lie): beyond the near field,
+ *  every cell's own ray is sampled where it
  *  crosses each view column up to the distance, linearly between the column's two cells (the
  *  samples the hulls hold), and the largest slope taken; stretches whose elevations, bounded
  *  by tile maxima, cannot beat the slope found so far are skipped without changing a bit.
@@ -61,8 +61,9 @@
  *  the slope): the hulls hold nothing of it. It and the far march also take the point where
  *  the ray leaves the grid through a side between two view columns (linear along the edge
  *  row), up to a column beyond the last column crossing: in a bowl rising to the DEM's edge
- *  the horizon lies there (up to 3 degrees low without it). Except in the x-major sectors of
- *  lat/lon grids, whose lines bend: there that stretch and that point are still missed.
+ *  the horizon lies there (up to 3 degrees low without it). Except in the sweep of the x-major
+ *  sectors of lat/lon grids, whose lines bend: there that stretch and that point are still
+ *  missed (the far march takes that point in every sector).
  *
  *  Terrain beyond the DEM edge is invisible (it does not exist for the sweep). Nodata (NaN)
  *  never occludes; nodata cells get NaN products. A direction with no terrain sample at all
@@ -160,10 +161,9 @@ typedef struct ap_horizon_params {
                                a conservative bound from tile maxima skips the stretches
                                that cannot rise above the slope found so far, so results
                                equal the full march bit for bit). Cost O(distance) at worst,
-                               yet 1.6-2x below the sweep's at 10 km on 30 m grids (3x in
-                               the row-major sectors of a 3-arc-second lat/lon tile); beyond
-                               this limit, and in the x-major sectors of grids with per-row
-                               cell sizes, the sweep runs.
+                               yet 1.6-2x below the sweep's at 10 km on 30 m grids (2.6x
+                               on a 3-arc-second lat/lon tile); beyond this limit the sweep
+                               runs.
                                0..65536, 0 = never (default 1024) */
   long origin_col;        /**< the grid is a piece of a larger DEM whose cell (origin_col,
                                origin_row) is the grid's cell (0, 0), |values| <= 10^9; the

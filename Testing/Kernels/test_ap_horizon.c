@@ -674,9 +674,9 @@ static void test_latlon_rows(void)
   compare_brute_force(&t, &p, "lat/lon 40-60 N, 200 km, swept");
   drop(&t);
   /* Rough terrain on rows of 0.0004 x 0.0006 degrees from 50 N (about 44 x 43 m), 3 km: 68 to
-   * 70 steps, beyond march_columns, so the row-major sectors far-march along their rhumb lines
-   * (steps summed row by row) and the others sweep; then all sweep. Both within the bounds,
-   * the far march no less accurate than the sweep. */
+   * 70 steps, beyond march_columns, so every ray far-marches along its rhumb line (steps from
+   * the cell's row on: p99 0.0096 deg, max 0.18 measured); then the sweep (p99 0.042, max
+   * 3.7). Both within the bounds, the far march no less accurate than the sweep. */
   {
     terrain u = make(130, 120, 0.0);
     const double dlat2 = 0.0004 * DEG, dlon2 = 0.0006 * DEG;
@@ -692,7 +692,7 @@ static void test_latlon_rows(void)
     p = params(32, 1);
     p.radius_meridian = p.radius_normal = R;
     p.max_distance = 3000.0;
-    p99_far = compare_brute_force(&u, &p, "lat/lon rough 50 N, 3 km, row-major far-marched");
+    p99_far = compare_brute_force(&u, &p, "lat/lon rough 50 N, 3 km, far-marched");
     p.far_march_columns = 0;
     p99_swept = compare_brute_force(&u, &p, "lat/lon rough 50 N, 3 km, swept");
     AP_CHECK(p99_far <= p99_swept + 0.01);
@@ -790,7 +790,7 @@ static void test_side_edges(void)
         p.far_march_columns = 0;
         AP_CHECK(edge_band_error(&t, &p, NULL, 1, 30, what) <= 0.02);
         if (latlon) {
-          /* the row-major sectors far-marched (edge_band_error checks only those) */
+          /* far-marched (edge_band_error checks the row-major sectors) */
           p.far_march_columns = 1024;
           snprintf(what, sizeof what, "%s bowl, D = %d, %s, far march", frame, Ds[k],
                    limited ? "700 m" : "100 km");
@@ -1241,9 +1241,9 @@ static void test_pieces(void)
     /* Swept (march_columns and far_march_columns 0), with curvature: the bending lines lie on
      * the whole DEM's lattice of rhumb lines when the piece has the DEM's rows; without them
      * the piece is a DEM of its own, its lines elsewhere. In D = 29 no sector is row- or
-     * column-aligned. Far-marched (march_columns 0): the row-major sectors' rays are each
-     * cell's own, their steps summed from the cell's row, so the piece with the DEM's rows
-     * gets the same bits. */
+     * column-aligned. Far-marched (march_columns 0): every ray is the cell's own, its steps
+     * taken from the cell's row on, so the piece with the DEM's rows gets the same bits, and
+     * without them (Psi counted from its own first row) the same up to rounding. */
     for (k = 0; k < 4; ++k) {
       double unaligned;
       p.directions = k % 2 == 0 ? 32 : 29;
@@ -1256,7 +1256,7 @@ static void test_pieces(void)
              "aligned, %.3g not\n", u.nx, u.ny, k < 2 ? "swept" : "far-marched", p.directions,
              aligned, unaligned);
       AP_CHECK(k < 2 ? aligned <= 1e-5 : aligned == 0.0);
-      AP_CHECK(unaligned > 1e-3);
+      AP_CHECK(k < 2 ? unaligned > 1e-3 : unaligned <= 1e-5);
       release(&w);
     }
     drop(&u);
