@@ -61,9 +61,9 @@
  *  the slope): the hulls hold nothing of it. It and the far march also take the point where
  *  the ray leaves the grid through a side between two view columns (linear along the edge
  *  row), up to a column beyond the last column crossing: in a bowl rising to the DEM's edge
- *  the horizon lies there (up to 3 degrees low without it). Except in the sweep of the x-major
- *  sectors of lat/lon grids, whose lines bend: there that stretch and that point are still
- *  missed (the far march takes that point in every sector).
+ *  the horizon lies there (up to 3 degrees low without it). In the x-major sectors of lat/lon
+ *  grids, whose lines bend, ap_horizon_accumulate samples that stretch and that point for the
+ *  rows it adds, before adding them (a bowl rising to the edge was up to 7.8 degrees low).
  *
  *  Terrain beyond the DEM edge is invisible (it does not exist for the sweep). Nodata (NaN)
  *  never occludes; nodata cells get NaN products. A direction with no terrain sample at all
@@ -281,8 +281,10 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1);
 /** Add the prepared sector's horizons of rows [j0, j1) to the products, after its sweep
  *  (for the first sector prepared: compute those rows' gradients and start their sums, so
  *  every row must be accumulated for each sector before the next is prepared, as the sequence
- *  above does). Allocates a tile of 16 rows (80 bytes per column) for x-major sectors;
- *  returns AP_ERR_OUT_OF_MEMORY if that fails (nothing is then added). */
+ *  above does; in swept x-major sectors of grids with per-row cell sizes it first samples
+ *  those rows' rays near the side they leave through, see above). Allocates a tile of 16
+ *  rows (80 bytes per column) for x-major sectors, and 3 doubles per column and one per row
+ *  for that sampling; returns AP_ERR_OUT_OF_MEMORY if that fails (nothing is then added). */
 ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1);
 
 /** After the last sector: turn the sums of rows [j0, j1) into the products. */
