@@ -571,6 +571,8 @@ static int build_pattern(ap_horizon *hz, double m, double len, double tmax);
 static int fm_tiles_init(ap_horizon *hz);
 static int fm_steps_init(ap_horizon *hz);
 static void fm_side_max_init(ap_horizon *hz);
+struct fm_step;
+static void fm_step_set(struct fm_step *st, double sh, double t, double c);
 
 
 struct ap_horizon {
@@ -1754,17 +1756,7 @@ static int fm_steps_init(ap_horizon *hz)
     return 0;
   }
   for (k = 0; k <= hz->fm_kmax; ++k) {
-    const double sh = m * (double)k, r = nearbyint(sh), t = (double)k * len;
-    fm_step *st = &hz->fm[k];
-    if (fabs(sh - r) < 1e-9) { /* within 1e-9 of a cell: that cell (as far_offset) */
-      st->o = (long)r;
-      st->f = 0.0f;
-    } else {
-      st->o = (long)floor(sh);
-      st->f = (float)(sh - floor(sh));
-    }
-    st->it = k > 0 ? (float)(1.0 / t) : 0.0f;
-    st->ct = (float)(hz->c * t);
+    fm_step_set(&hz->fm[k], m * (double)k, (double)k * len, hz->c);
   }
   if (m != 0.0) {
     fm_side_max_init(hz);
