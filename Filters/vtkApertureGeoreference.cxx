@@ -475,10 +475,37 @@ bool vtkApertureGeoreference::GetCentreLonLat(double lonlat[2])
 }
 
 //------------------------------------------------------------------------------
-bool vtkApertureGeoreference::GetBoundsLonLat(double bounds[4])
+bool vtkApertureGeoreference::CheckLongitudeSpan()
 {
   Internals& d = *this->Impl;
   if (!d.EnsureGeographic())
+  {
+    return false;
+  }
+  d.Error.clear();
+  if (!OSRIsGeographic(d.CRS))
+  {
+    return true;
+  }
+  // 1e-9 degrees of slack: a global grid of 0.05 degree cells may sum to 360 plus rounding.
+  const double span = this->GridSize[0] * this->GridSpacing[0] * d.UnitToDegrees;
+  if (span > 360.0 + 1e-9)
+  {
+    std::ostringstream msg;
+    msg << "the grid spans " << span << " degrees of longitude (" << this->GridSize[0]
+        << " columns of " << this->GridSpacing[0] * d.UnitToDegrees
+        << " degrees), more than the 360 around the Earth: a wrong cell size or unit?";
+    d.Error = msg.str();
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::GetBoundsLonLat(double bounds[4])
+{
+  Internals& d = *this->Impl;
+  if (!this->CheckLongitudeSpan())
   {
     return false;
   }
@@ -575,7 +602,7 @@ double vtkApertureGeoreference::ComputeMeridianConvergence(double lon, double la
 bool vtkApertureGeoreference::GetRowCellSizesMetres(double* dx, double* dy)
 {
   double ell[2];
-  if (!this->GetEllipsoid(ell))
+  if (!this->CheckLongitudeSpan() || !this->GetEllipsoid(ell))
   {
     return false;
   }

@@ -127,6 +127,14 @@ public:
    */
   VTK_WRAPEXCLUDE bool CRSToLonLatPoints(vtkIdType n, const double* xy, double* lonlat);
 
+  /**
+   * False (with GetErrorMessage giving the span) when the CRS is geographic and the grid spans
+   * more than 360 degrees of longitude, so that its columns would cover the same ground twice
+   * (a wrong cell size or unit); true otherwise, and for every projected CRS. GetBoundsLonLat
+   * and GetRowCellSizesMetres check it first.
+   */
+  bool CheckLongitudeSpan();
+
   /** Longitude and latitude (degrees) of the grid centre (the centre of its outer bounds). */
   bool GetCentreLonLat(double lonlat[2]);
 

@@ -182,7 +182,7 @@ int vtkApertureTerrainMesh::Execute(
   const vtkIdType n = static_cast<vtkIdType>(nx * ny);
 
   vtkNew<vtkApertureGeoreference> geo;
-  if (!geo->SetFromImage(input))
+  if (!geo->SetFromImage(input) || !geo->CheckLongitudeSpan())
   {
     vtkErrorMacro(<< geo->GetErrorMessage());
     return 0;

@@ -234,6 +234,32 @@ void TestRowSizesAtPole()
   AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
     "row 39 of the grid reaches latitude 90.025, beyond the pole");
 }
+
+// A geographic grid may go once around the Earth (360 degrees plus rounding), not more: 40
+// columns of 20 degrees would put every cell on the ground of another. The span is counted in
+// degrees whatever the CRS's unit (400 grads are 360 degrees); projected grids are not limited.
+void TestLongitudeSpan()
+{
+  vtkNew<vtkApertureGeoreference> geo;
+  AP_CHECK(geo->SetCRS("EPSG:4326"));
+  double dx[20], dy[20], bounds[4];
+  geo->SetGrid(-179.975, -9.975, 0.05, 0.05, 7200, 20); // the whole globe, 0.05 degree cells
+  AP_CHECK(geo->CheckLongitudeSpan() && geo->GetRowCellSizesMetres(dx, dy));
+  geo->SetGrid(-170.0, -9.5, 20.0, 1.0, 40, 20);
+  AP_CHECK(!geo->CheckLongitudeSpan());
+  AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
+    "the grid spans 800 degrees of longitude (40 columns of 20 degrees), more than the 360");
+  AP_CHECK(!geo->GetRowCellSizesMetres(dx, dy) && !geo->GetBoundsLonLat(bounds));
+  AP_CHECK(geo->SetCRS("EPSG:4807")); // NTF (Paris), grads
+  geo->SetGrid(-199.5, 0.5, 1.0, 1.0, 400, 20);
+  AP_CHECK(geo->CheckLongitudeSpan());
+  geo->SetGrid(-199.5, 0.5, 1.0, 1.0, 401, 20);
+  AP_CHECK(!geo->CheckLongitudeSpan());
+  AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()), "spans 360.9 degrees");
+  AP_CHECK(geo->SetCRS("EPSG:32616"));
+  geo->SetGrid(0.0, 0.0, 1e6, 1e6, 400, 2); // 400 000 km: nonsense, but not a longitude span
+  AP_CHECK(geo->CheckLongitudeSpan());
+}
 } // namespace
 
 int TestApertureGeoreference(int, char*[])
@@ -246,5 +272,6 @@ int TestApertureGeoreference(int, char*[])
   TestConvergence();
   TestRowSizes();
   TestRowSizesAtPole();
+  TestLongitudeSpan();
   return aptest::Result();
 }
