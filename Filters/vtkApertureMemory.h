@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Internal (not installed, not wrapped): sizing arrays so that a failed allocation can be
-// reported, the size of the input behind a failed update, and the machine's physical memory,
-// the readers' default size limit.
+// reported, the size of the input behind a failed update, the machine's physical memory (the
+// readers' and the sky filter's default size limit) and byte counts for messages.
 #ifndef vtkApertureMemory_h
 #define vtkApertureMemory_h
 
@@ -13,6 +13,8 @@
 #include <unistd.h>
 
 #include <new>
+#include <sstream>
+#include <string>
 
 // Name and size an array; std::bad_alloc when VTK could not allocate it (VTK reports that and
 // leaves the array short), for RequestData to turn into an error naming the size needed.
@@ -49,6 +51,22 @@ inline vtkTypeInt64 vtkAperturePhysicalMemory()
     return VTK_TYPE_INT64_MAX;
   }
   return static_cast<vtkTypeInt64>(pages) * static_cast<vtkTypeInt64>(pageSize);
+}
+
+// A byte count for messages: "512 bytes", "1.500 KiB", ... "3.353 GiB".
+inline std::string vtkApertureHumanBytes(double bytes)
+{
+  const char* units[] = { "bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB" };
+  int u = 0;
+  while (bytes >= 1024.0 && u < 6)
+  {
+    bytes /= 1024.0;
+    ++u;
+  }
+  std::ostringstream s;
+  s.precision(u == 0 ? 0 : 3);
+  s << std::fixed << bytes << " " << units[u];
+  return s.str();
 }
 
 #endif

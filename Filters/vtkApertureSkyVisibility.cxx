@@ -96,6 +96,7 @@ vtkApertureSkyVisibility::vtkApertureSkyVisibility()
   , NearField(8)
   , NumberOfThreads(0)
   , NumberOfThreadsUsed(0)
+  , MemoryLimit(0)
   , ComputeVisibleSolidAngle(true)
   , ComputeApertureRadius(true)
   , ComputeBentNormal(true)
@@ -203,6 +204,16 @@ int vtkApertureSkyVisibility::RequestData(
 //------------------------------------------------------------------------------
 double vtkApertureSkyVisibility::EstimateBytes(double n) const
 {
+  // the outputs, the elevations' float copy, and the sweep's own state
+  return (this->OutputBytesPerCell() + 4.0 +
+           static_cast<double>(ap_horizon_state_bytes_per_cell(
+             this->ComputeDiffuseSkyFactor ? 1 : 0, this->ComputeBentNormal ? 1 : 0))) *
+    n;
+}
+
+//------------------------------------------------------------------------------
+double vtkApertureSkyVisibility::OutputBytesPerCell() const
+{
   const bool floats[] = { this->ComputeVisibleSolidAngle, this->ComputeApertureRadius,
     this->ComputeSkyViewFactor, this->ComputeDiffuseSkyFactor, this->ComputePositiveOpenness };
   double perCell = 0.0;
@@ -213,11 +224,7 @@ double vtkApertureSkyVisibility::EstimateBytes(double n) const
   perCell += this->ComputeBentNormal ? 12.0 : 0.0;
   perCell += this->ComputeEdgeTruncated ? 1.0 : 0.0;
   perCell += this->ComputeHorizonAngles ? 4.0 * this->NumberOfDirections : 0.0;
-  // the elevations' float copy, and the sweep's own state
-  perCell += 4.0 +
-    static_cast<double>(ap_horizon_state_bytes_per_cell(
-      this->ComputeDiffuseSkyFactor ? 1 : 0, this->ComputeBentNormal ? 1 : 0));
-  return perCell * n;
+  return perCell;
 }
 
 //------------------------------------------------------------------------------
@@ -284,6 +291,13 @@ int vtkApertureSkyVisibility::Execute(
     vtkErrorMacro(<< "the DEM has " << nx << " x " << ny << " cells; at least 2 x 2 are needed");
     return 0;
   }
+  if (elevation->GetNumberOfTuples() != static_cast<vtkIdType>(nx) * ny)
+  {
+    vtkErrorMacro(<< "the elevation array '" << name << "' has "
+                  << elevation->GetNumberOfTuples() << " values for the " << nx << " x " << ny
+                  << " points of the input's extent");
+    return 0;
+  }
   vtkNew<vtkApertureGeoreference> geo;
   if (!geo->SetFromImage(input))
   {
@@ -291,6 +305,36 @@ int vtkApertureSkyVisibility::Execute(
     return 0;
   }
   const size_t n = static_cast<size_t>(nx) * static_cast<size_t>(ny);
+  // Memory: refuse before allocating what cannot fit. Linux overcommits, so past physical
+  // memory an allocation does not fail: the process is killed later, mid-sweep.
+  {
+    const double outCells =
+      static_cast<double>(outExt[1] - outExt[0] + 1) * (outExt[3] - outExt[2] + 1);
+    const bool whole = std::equal(inExt, inExt + 6, outExt);
+    // a sub-extent's outputs and passed input arrays are copies beside the whole ones
+    const double need = this->EstimateBytes(static_cast<double>(n)) +
+      (whole ? 0.0 : (this->OutputBytesPerCell() + 4.0) * outCells);
+    const double held = 1024.0 * static_cast<double>(input->GetActualMemorySize());
+    const double limit = this->MemoryLimit > 0
+      ? static_cast<double>(this->MemoryLimit)
+      : static_cast<double>(vtkAperturePhysicalMemory()) - held;
+    if (need > limit)
+    {
+      vtkErrorMacro(<< "a " << nx << " x " << ny << " DEM with these products needs about "
+                    << vtkApertureHumanBytes(need)
+                    << (this->ComputeHorizonAngles
+                           ? " (HorizonAngles take 4 bytes per cell and direction)"
+                           : "")
+                    << ", more than the "
+                    << (this->MemoryLimit > 0
+                           ? vtkApertureHumanBytes(limit) + " MemoryLimit"
+                           : vtkApertureHumanBytes(std::max(limit, 0.0)) +
+                             " of memory this machine has beside the DEM's " +
+                             vtkApertureHumanBytes(held))
+                    << "; bake a part of the DEM, a decimated one, or fewer products");
+      return 0;
+    }
+  }
   // Non-finite elevations (also doubles beyond the float range) are nodata, as the reader
   // makes them; finite ones beyond any on Earth are kept but named in a warning.
   std::vector<float> z(n);
@@ -648,6 +692,7 @@ void vtkApertureSkyVisibility::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NearField: " << this->NearField << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "NumberOfThreadsUsed: " << this->NumberOfThreadsUsed << "\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
   os << indent << "ComputeVisibleSolidAngle: " << this->ComputeVisibleSolidAngle << "\n";
   os << indent << "ComputeApertureRadius: " << this->ComputeApertureRadius << "\n";
   os << indent << "ComputeBentNormal: " << this->ComputeBentNormal << "\n";

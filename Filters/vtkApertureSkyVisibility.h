@@ -53,9 +53,11 @@
  *
  * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, no CRS
  * or no metric cell size, every cell nodata, NumberOfDirections outside 4..360, a negative
- * MaximumDistance, a refraction coefficient outside [0, 1), not enough memory for the outputs
- * and the sweep (the message gives the estimated need; HorizonAngles take 4 bytes per cell
- * and direction).
+ * MaximumDistance, a refraction coefficient outside [0, 1), and not enough memory for the
+ * outputs and the sweep: refused before allocating when the estimate exceeds MemoryLimit
+ * (default: the physical memory beside the input image, since past it Linux kills the process
+ * rather than fail an allocation), or an allocation that fails (e.g. under `ulimit -v`); the
+ * message gives the estimated need (HorizonAngles take 4 bytes per cell and direction).
  *
  * @warning Threads: NumberOfThreads (default all cores, through vtkSMPTools' STDThread
  * backend); the results are bit-identical for any thread count.
@@ -125,6 +127,20 @@ public:
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
+  ///@{
+  /** Most bytes one update may allocate for its outputs and the sweep's state (estimated as
+   *  the error message gives them); 0 (default) = the machine's physical memory less the
+   *  input image's size. */
+  vtkSetClampMacro(MemoryLimit, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
+  vtkGetMacro(MemoryLimit, vtkTypeInt64);
+  ///@}
+
+  /** Bytes an update over n input cells allocates with the current products and
+   *  NumberOfDirections: the outputs, the filter's float copy of the elevations and the
+   *  sweep's state (ap_horizon_state_bytes_per_cell); the estimate MemoryLimit is compared
+   *  with, for callers that check before reading a DEM. */
+  double EstimateBytes(double n) const;
+
   /** Threads that ran the last update's parallel work (0 before any; at most
    *  NumberOfThreads when that is set). */
   vtkGetMacro(NumberOfThreadsUsed, int);
@@ -173,8 +189,8 @@ protected:
     vtkInformationVector* outputVector) override;
   /** RequestData's work; RequestData turns a failed allocation in it into an error. */
   int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
-  /** Bytes the outputs and the sweep's buffers take for n cells (an estimate for messages). */
-  double EstimateBytes(double n) const;
+  /** Bytes of the requested outputs per cell. */
+  double OutputBytesPerCell() const;
 
   int NumberOfDirections;
   double MaximumDistance;
@@ -183,6 +199,7 @@ protected:
   int NearField;
   int NumberOfThreads;
   int NumberOfThreadsUsed;
+  vtkTypeInt64 MemoryLimit;
   bool ComputeVisibleSolidAngle;
   bool ComputeApertureRadius;
   bool ComputeBentNormal;

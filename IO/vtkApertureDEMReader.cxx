@@ -52,21 +52,6 @@ struct DatasetHandle
   }
 };
 
-std::string HumanBytes(double bytes)
-{
-  const char* units[] = { "bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB" };
-  int u = 0;
-  while (bytes >= 1024.0 && u < 6)
-  {
-    bytes /= 1024.0;
-    ++u;
-  }
-  std::ostringstream s;
-  s.precision(u == 0 ? 0 : 3);
-  s << std::fixed << bytes << " " << units[u];
-  return s.str();
-}
-
 // Metres per unit of a band's vertical unit string; 0 when unknown.
 double MetresPerUnit(const char* unitType)
 {
@@ -384,7 +369,7 @@ int vtkApertureDEMReader::RequestData(
     const Internals& d = *this->Impl;
     vtkErrorMacro(<< "out of memory reading " << d.Reading[0] << " x " << d.Reading[1]
                   << " cells of '" << this->FileName << "' (the elevations alone take "
-                  << HumanBytes(4.0 * d.Reading[0] * d.Reading[1])
+                  << vtkApertureHumanBytes(4.0 * d.Reading[0] * d.Reading[1])
                   << " as float32); read a SubWindow, or use Decimation or an OverviewLevel");
     return 0;
   }
@@ -427,8 +412,8 @@ int vtkApertureDEMReader::Execute(vtkInformationVector* outputVector)
     bytes > static_cast<size_t>(limit))
   {
     vtkErrorMacro(<< "reading " << ncols << " x " << nrows << " cells of '" << this->FileName
-                  << "' needs " << HumanBytes(static_cast<double>(ncols) * nrows * 4.0)
-                  << " as float32, more than the " << HumanBytes(static_cast<double>(limit))
+                  << "' needs " << vtkApertureHumanBytes(static_cast<double>(ncols) * nrows * 4.0)
+                  << " as float32, more than the " << vtkApertureHumanBytes(static_cast<double>(limit))
                   << (this->MemoryLimit > 0 ? " MemoryLimit" : " of memory on this machine")
                   << "; read a SubWindow, or use Decimation or an OverviewLevel");
     return 0;

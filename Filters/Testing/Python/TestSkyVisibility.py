@@ -426,6 +426,47 @@ class TestSkyVisibility(Testing.vtkTest):
         _, warnings = run(np.where(z > 300.0, 8848.9, -10935.0))
         self.assertEqual(warnings, [])
 
+    def testMemoryLimit(self):
+        # Refused before allocating when the estimate exceeds MemoryLimit: bytes per cell of
+        # the default products 33 (five floats, BentNormal 12, EdgeTruncated 1), the float
+        # copy 4, the sweep's state 17: 54 x 20 x 20 = 21600 bytes = 21.094 KiB.
+        image = make_image(np.ones((20, 20)), 400000, 5000000, 30, 30, "EPSG:32633")
+        self.assertEqual(self.error(image, MemoryLimit=21599),
+                         "a 20 x 20 DEM with these products needs about 21.094 KiB, more "
+                         "than the 21.093 KiB MemoryLimit; bake a part of the DEM, a "
+                         "decimated one, or fewer products")
+        f = sky(image, MemoryLimit=21600)
+        self.assertEqual(f.EstimateBytes(400.0), 21600.0)
+        self.assertTrue(np.all(array(f.GetOutput(), "SkyViewFactor") == 1.0))
+        # A sub-extent's outputs and passed elevations are copies beside the whole ones:
+        # 5 x 5 more cells of 33 + 4 bytes = 925.
+        f = aperture.vtkApertureSkyVisibility()
+        f.SetInputData(image)
+        f.SetMemoryLimit(21600 + 925)
+        f.UpdateExtent((0, 4, 0, 4, 0, 0))
+        self.assertEqual(f.GetOutput().GetDimensions(), (5, 5, 1))
+        self.assertIn("needs about 21.997 KiB, more than the 21.996 KiB MemoryLimit",
+                      self.error(image, MemoryLimit=21600 + 924, UpdateExtent=(0, 4, 0, 4, 0, 0)))
+        # The default limit is the physical memory less the input's size: 360 directions of
+        # HorizonAngles (1494 bytes a cell) on a grid of a little more cells than that allows.
+        memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+        side = int(math.sqrt(memory / 1494.0 * 1.02)) + 1
+        if side * side * 4 > 1 << 30:
+            self.skipTest("more than 1 GiB of elevations to exceed this machine's memory")
+        big = make_image(np.zeros((side, side), dtype=np.float32), 400000, 5000000, 30, 30,
+                         "EPSG:32633")
+        message = self.error(big, NumberOfDirections=360, ComputeHorizonAngles=True)
+        self.assertTrue(message.startswith(
+            "a %d x %d DEM with these products needs about " % (side, side)), message)
+        self.assertIn("(HorizonAngles take 4 bytes per cell and direction), more than the ",
+                      message)
+        self.assertIn(" of memory this machine has beside the DEM's ", message)
+        # the elevation array must have a value for every point
+        short = make_image(np.ones((4, 5)), 400000, 5000000, 30, 30, "EPSG:32633")
+        short.GetPointData().GetArray("Elevation").SetNumberOfTuples(19)
+        self.assertEqual(self.error(short), "the elevation array 'Elevation' has 19 values "
+                         "for the 5 x 4 points of the input's extent")
+
     def testOutOfMemory(self):
         # Child processes whose address space leaves some MiB above what they hold once the
         # DEM is built, so that an allocation fails: an error naming the size, not an abort.
@@ -490,9 +531,13 @@ print(w.errors[0] if w.errors else "no error")
         f = w.watch(aperture.vtkApertureSkyVisibility())
         w.watch(f.GetExecutive())
         f.SetInputData(image)
+        extent = options.pop("UpdateExtent", None)
         for key, value in options.items():
             getattr(f, "Set" + key)(value)
-        f.Update()
+        if extent:
+            f.UpdateExtent(extent)
+        else:
+            f.Update()
         self.assertTrue(w.errors, "expected an error for %r" % (options,))
         return w.errors[0]
 

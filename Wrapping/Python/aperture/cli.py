@@ -112,8 +112,20 @@ def _dem_path(args):
 _SMALLER_READ = "read a part with --srcwin, or use --decimate or --overview"
 
 
-def read_dem(args, watcher):
-    """Read the DEM the arguments name; returns (reader, image)."""
+def _human_bytes(count):
+    """A byte count as the C++ messages give it: "512 bytes", "1.500 KiB", "3.353 GiB"."""
+    units = ("bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB")
+    u = 0
+    while count >= 1024.0 and u < len(units) - 1:
+        count /= 1024.0
+        u += 1
+    return "%.0f bytes" % count if u == 0 else "%.3f %s" % (count, units[u])
+
+
+def read_dem(args, watcher, check_size=None):
+    """Read the DEM the arguments name; returns (reader, image). check_size(nx, ny), when
+    given, sees the size of the grid to be read before anything is read, and may raise."""
+    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
     from aperture import vtkApertureDEMReader
     if args.band < 0:
         raise ApertureError("--band must be 1 or more")
@@ -133,6 +145,11 @@ def read_dem(args, watcher):
     if args.srs:
         reader.SetOverrideCRS(args.srs)
     try:
+        if check_size:
+            watcher.update_information(reader)
+            whole = reader.GetOutputInformation(0).Get(
+                vtkStreamingDemandDrivenPipeline.WHOLE_EXTENT())
+            check_size(whole[1] - whole[0] + 1, whole[3] - whole[2] + 1)
         image = watcher.update(reader)
     except ApertureError as e:
         # the reader's advice names its properties; here they are options
@@ -587,9 +604,7 @@ def _bake(args, products, progress):
     writer.SetCompressionLevel(args.compress_level)
     writer.CheckCompression()  # before the sweep, not after it
     watcher.check("--compress %s --compress-level %d" % (args.compress, args.compress_level))
-    reader, _ = read_dem(args, watcher)
     sky = watcher.watch(vtkApertureSkyVisibility())
-    sky.SetInputConnection(reader.GetOutputPort())
     sky.SetNumberOfDirections(args.directions)
     sky.SetMaximumDistance(args.radius or 0.0)
     sky.SetEarthCurvature(not args.no_curvature)
@@ -598,6 +613,23 @@ def _bake(args, products, progress):
     sky.SetNearField(args.near_field)
     for name in DERIVED + ["HorizonAngles"]:
         getattr(sky, "SetCompute" + name)(name in products)
+
+    def check_size(nx, ny):
+        # Refuse before reading (which may take minutes) what the sky filter would refuse
+        # after it: the elevations (4 bytes a cell) and the filter's estimate must fit in
+        # physical memory; past it Linux kills the process instead of failing an allocation.
+        need = 4.0 * nx * ny + sky.EstimateBytes(float(nx) * ny)
+        memory = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+        if need > memory:
+            raise ApertureError(
+                "baking %d x %d cells with these products needs about %s, more than the %s "
+                "of memory on this machine%s; %s, or bake fewer --products"
+                % (nx, ny, _human_bytes(need), _human_bytes(memory),
+                   " (HorizonAngles take 4 bytes per cell and direction)"
+                   if "HorizonAngles" in products else "", _SMALLER_READ))
+
+    reader, _ = read_dem(args, watcher, check_size)
+    sky.SetInputConnection(reader.GetOutputPort())
     if progress:
         # the sweep is nearly all of the time; the rest shows as the step to 100 after writing
         progress(0.0)

@@ -71,6 +71,11 @@ class Watcher:
         self.check(what)
         return algorithm.GetOutputDataObject(0)
 
+    def update_information(self, algorithm, what=None):
+        """algorithm.UpdateInformation(), then raise on any reported error."""
+        algorithm.UpdateInformation()
+        self.check(what)
+
     def write(self, writer, what=None):
         """writer.Write(), then raise on any reported error."""
         writer.Write()
