@@ -115,10 +115,15 @@ def brute_force_latlon(z, lon0, lat0, cell, i, j, azimuths, k=0.13, maxd=math.in
             extra.append((idx, w))
         idx = np.concatenate([e[0] for e in extra])
         w = np.concatenate([e[1] for e in extra])
-        xi = np.clip(ci[idx] + w * (ci[idx + 1] - ci[idx]), 0, nx - 1)
-        xj = np.clip(cj[idx] + w * (cj[idx + 1] - cj[idx]), 0, ny - 1)
+        xi = ci[idx] + w * (ci[idx + 1] - ci[idx])
+        xj = cj[idx] + w * (cj[idx + 1] - cj[idx])
+        xd = dists[idx] + w * (dists[idx + 1] - dists[idx])
+        # a crossing between the last step on the grid and the first off it may lie beyond
+        # the edge (a row crossed after the ray left through a column): not on the terrain
+        on = ((xi >= -1e-9) & (xj >= -1e-9) & (xi <= nx - 1 + 1e-9) & (xj <= ny - 1 + 1e-9))
+        xi, xj, xd = np.clip(xi[on], 0, nx - 1), np.clip(xj[on], 0, ny - 1), xd[on]
         ci, cj = np.concatenate([ci[:stop], xi]), np.concatenate([cj[:stop], xj])
-        d = np.concatenate([dists[:stop], dists[idx] + w * (dists[idx + 1] - dists[idx])])
+        d = np.concatenate([dists[:stop], xd])
         keep = d <= maxd
         ci, cj, d = ci[keep], cj[keep], d[keep]
         if len(d) == 0:
