@@ -93,7 +93,7 @@ vtkApertureSkyVisibility::vtkApertureSkyVisibility()
   , MaximumDistance(0.0)
   , EarthCurvature(true)
   , RefractionCoefficient(0.13)
-  , NearField(8)
+  , NearField(0)
   , NumberOfThreads(0)
   , NumberOfThreadsUsed(0)
   , MemoryLimit(0)
@@ -130,6 +130,18 @@ int vtkApertureSkyVisibility::GetFarMarchColumns()
   ap_horizon_params p;
   ap_horizon_params_init(&p);
   return p.far_march_columns;
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureSkyVisibility::GetSweptNearField()
+{
+  return AP_HORIZON_NEAR_FIELD_SWEPT;
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureSkyVisibility::GetMarchedNearField()
+{
+  return AP_HORIZON_NEAR_FIELD_MARCHED;
 }
 
 //------------------------------------------------------------------------------

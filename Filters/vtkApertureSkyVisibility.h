@@ -101,6 +101,10 @@ public:
    *  kernel's far_march_columns). */
   static int GetFarMarchColumns();
 
+  /** The automatic NearField (0) of swept sectors (32) and of far-marched ones (8). */
+  static int GetSweptNearField();
+  static int GetMarchedNearField();
+
   ///@{
   /** Earth curvature with refraction (default on) and the refraction coefficient k
    *  (default 0.13, the usual value for visible light; [0, 1)). */
@@ -113,8 +117,9 @@ public:
 
   ///@{
   /** Columns of each cell's own ray evaluated exactly on the bilinear surface before the
-   *  hulls take over (1..64; default 8; see ap_horizon.h for the accuracy it buys). */
-  vtkSetClampMacro(NearField, int, 1, 64);
+   *  hulls or the far march take over: 1..64, or 0 (default) for 32 in the sectors the hulls
+   *  search and 8 where the far march runs (ap_horizon.h gives the accuracy it buys). */
+  vtkSetClampMacro(NearField, int, 0, 64);
   vtkGetMacro(NearField, int);
   ///@}
 

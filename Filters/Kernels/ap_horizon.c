@@ -642,6 +642,7 @@ struct ap_horizon {
    * (AP_FM_FINE cells square) and fm_tile[1] (AP_FM_COARSE), made once by ap_horizon_create
    * when a far march can happen */
   int far_march;
+  int near_field_asked;   /* the caller's near_field (0: per sector, see prepare) */
   struct fm_step *fm;
   long fm_kmax;
   float *fm_tile[2];
@@ -678,7 +679,7 @@ void ap_horizon_params_init(ap_horizon_params *p)
   p->refraction = 0.13;
   p->radius_meridian = 6371000.0;
   p->radius_normal = 6371000.0;
-  p->near_field = 8;
+  p->near_field = 0;
   p->march_columns = 64;
   p->far_march_columns = 1024;
   p->origin_col = 0;
@@ -706,7 +707,7 @@ static ap_status validate(const ap_horizon_grid *g, const ap_horizon_params *p,
   }
   if (p->directions < 4 || p->directions > 360 || !(p->max_distance > 0.0) ||
       !(p->refraction >= 0.0 && p->refraction < 1.0) || !positive_finite(p->radius_meridian) ||
-      !positive_finite(p->radius_normal) || p->near_field < 1 || p->near_field > 64 ||
+      !positive_finite(p->radius_normal) || p->near_field < 0 || p->near_field > 64 ||
       p->march_columns < 0 || p->march_columns > 64 || p->far_march_columns < 0 ||
       p->far_march_columns > 65536 || !isfinite(p->azimuth_offset) ||
       labs(p->origin_col) > 1000000000L || labs(p->origin_row) > 1000000000L) {
@@ -942,7 +943,8 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
     return AP_ERR_OUT_OF_MEMORY;
   }
   hz->g = *g;
-  hz->p = *p;
+  hz->p = *p; /* (p.near_field: the sector's K, set by ap_horizon_prepare) */
+  hz->near_field_asked = p->near_field;
   hz->out = *out;
   hz->nx = g->z.nx;
   hz->ny = g->z.ny;
@@ -1195,6 +1197,9 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
     hz->far_march = !hz->march && hz->fm_tile[0] &&
                     hz->p.max_distance <= (double)hz->p.far_march_columns * decides;
   }
+  hz->p.near_field = hz->near_field_asked ? hz->near_field_asked
+                     : hz->march || hz->far_march ? AP_HORIZON_NEAR_FIELD_MARCHED
+                                                  : AP_HORIZON_NEAR_FIELD_SWEPT;
   if (hz->far_march && !hz->lattice && !fm_steps_init(hz)) {
     free_sector(hz);
     return AP_ERR_OUT_OF_MEMORY;

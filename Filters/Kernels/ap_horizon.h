@@ -134,6 +134,16 @@ typedef struct ap_horizon_grid {
   double dx0, dy0;  /**< cell sizes (m) used when dx / dy are NULL */
 } ap_horizon_grid;
 
+/** The near field K of ap_horizon_params.near_field = 0, per sector. The hulls sample a
+ *  cell's ray only where its two bracketing lines' hulls are tangent, which misses most near
+ *  the cell, where a metre of height is the largest angle: on the embedded DEM (and the same
+ *  relabelled to 75 N), unlimited, K = 8 left a 99th percentile of 0.10 (0.16) deg and a
+ *  largest error of 0.6 (3.0) deg against the brute force, K = 32 leaves 0.024 (0.046) and
+ *  0.14 (0.31), for 10-15% more time. The far march samples every column crossing beyond K,
+ *  so there a longer exact stretch buys little: K = 8. */
+#define AP_HORIZON_NEAR_FIELD_SWEPT 32
+#define AP_HORIZON_NEAR_FIELD_MARCHED 8
+
 /** Options; always start from ap_horizon_params_init(). */
 typedef struct ap_horizon_params {
   int directions;         /**< D azimuth sectors, 4..360 (default 32) */
@@ -147,7 +157,9 @@ typedef struct ap_horizon_params {
   double radius_normal;   /**< N: prime-vertical radius of curvature (m) (default 6371000) */
   int near_field;         /**< K: samples 1..K-1 along each cell's own ray are marched
                                exactly before the hulls (or the far march) take over;
-                               1..64 (default 8) */
+                               1..64, or 0 (default): per sector, AP_HORIZON_NEAR_FIELD_SWEPT
+                               where the hulls search and AP_HORIZON_NEAR_FIELD_MARCHED where
+                               the far march does (see those) */
   int march_columns;      /**< when max_distance spans at most this many view columns of a
                                sector (steps of the shortest row), every ray is marched
                                exactly to max_distance and the hulls are skipped: exact on

@@ -109,16 +109,20 @@ class TestBake(unittest.TestCase):
                            ("EARTH_CURVATURE", "off"), ("ANGLE_UNIT", "degree")):
             self.assertEqual(meta[key], value)
         self.assertIn("Timonen", meta["ALGORITHM"])
-        # the kernel's march_columns and far_march_columns (documented defaults 64 and 1024),
-        # read from it, not restated
+        # the kernel's march_columns, far_march_columns and automatic near fields (documented
+        # defaults 64, 1024, 32 and 8), read from it, not restated
         self.assertIn("at most 64 columns", meta["ALGORITHM"])
-        self.assertIn("at most 1024 columns of a DEM with constant cell sizes", meta["ALGORITHM"])
-        # the --radius help states them in words (the parser is built before the VTK modules
-        # load): it must say the same
+        self.assertIn("at most 1024 columns, every cell's ray sampled", meta["ALGORITHM"])
+        self.assertIn("for the first 32 (swept sectors) or 8 (far-marched sectors) columns",
+                      meta["ALGORITHM"])
+        # the help states them in words (the parser is built before the VTK modules load): it
+        # must say the same
         status, out, err = run("bake", "--help")
         self.assertEqual(status, 0, err)
         self.assertIn("up to 64 cells", " ".join(out.split()))
         self.assertIn("up to 1024 cells", " ".join(out.split()))
+        self.assertIn("(default 0: 32 where the horizon sweep runs, 8 where rays are sampled",
+                      " ".join(out.split()))
         self.assertTrue(meta["APERTURE_VERSION"])
         # same georeference as the DEM
         _, _, gt_dem, srs_dem = bands(self.dem)

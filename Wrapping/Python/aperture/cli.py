@@ -513,12 +513,16 @@ def _provenance(args, products):
         "SOURCE_DEM": os.path.abspath(args.dem),
         "ALGORITHM": "convex-hull line sweep (Timonen & Westerholm 2010) of the terrain horizon "
                      "in every azimuth sector, each cell's own ray exact on the bilinear surface "
-                     "for the first %d columns; in sectors where the search distance spans at "
+                     "for the first %s columns; in sectors where the search distance spans at "
                      "most %d columns, every cell's ray marched exactly to it instead (no hulls); "
-                     "where it spans at most %d columns of a DEM with constant cell sizes, every "
-                     "cell's ray sampled where it crosses the grid's columns (the far march, no "
-                     "hulls); sector sums of ALGORITHMS.md 2.2"
-                     % (args.near_field, vtkApertureSkyVisibility.GetMarchColumns(),
+                     "where it spans at most %d columns, every cell's ray sampled where it "
+                     "crosses the grid's columns (the far march, no hulls; along rhumb lines on "
+                     "lat/lon DEMs); sector sums of ALGORITHMS.md 2.2"
+                     % ("%d (swept sectors) or %d (far-marched sectors)"
+                        % (vtkApertureSkyVisibility.GetSweptNearField(),
+                           vtkApertureSkyVisibility.GetMarchedNearField())
+                        if not args.near_field else str(args.near_field),
+                        vtkApertureSkyVisibility.GetMarchColumns(),
                         vtkApertureSkyVisibility.GetFarMarchColumns()),
         "DIRECTIONS": str(args.directions),
         "SECTORS": "sector d centred on true azimuth 360 d / %d degrees, clockwise from north"
@@ -574,8 +578,8 @@ def cmd_bake(args):
         raise ApertureError("--refraction must be within [0, 1)")
     if args.threads < 0:
         raise ApertureError("--threads must be 0 (all cores) or more")
-    if not 1 <= args.near_field <= 64:
-        raise ApertureError("--near-field must be within 1..64")
+    if not 0 <= args.near_field <= 64:
+        raise ApertureError("--near-field must be within 1..64, or 0 (automatic)")
     _check_outputs([("OUT.tif", args.output), ("--exr", args.exr)], [("the DEM", _dem_path(args))])
     ext = os.path.splitext(args.output)[1].lower()
     if ext == ".exr":
@@ -928,9 +932,9 @@ def build_parser():
                    help="azimuth sectors, 4..360 (default 32)")
     p.add_argument("--radius", type=float, metavar="METRES",
                    help="search distance in metres (default: unlimited); up to 64 cells "
-                        "(1.9 km on a 30 m grid) every cell's ray is marched exactly, on "
-                        "projected DEMs up to 1024 cells (30 km) sampled at every grid column "
-                        "it crosses, beyond that the horizon sweep takes over")
+                        "(1.9 km on a 30 m grid) every cell's ray is marched exactly, up to "
+                        "1024 cells (30 km) sampled at every grid column it crosses, beyond "
+                        "that the horizon sweep takes over")
     p.add_argument("--no-curvature", action="store_true",
                    help="flat Earth (default: curvature with refraction)")
     p.add_argument("--refraction", type=float, default=0.13, metavar="K",
@@ -948,8 +952,10 @@ def build_parser():
     p.add_argument("--compress-level", type=int, default=1, metavar="N",
                    help="compression level: DEFLATE 1-12, ZSTD 1-22; -1: GDAL's default "
                         "(default 1, the fastest: float bands shrink under 1%% more at 6)")
-    p.add_argument("--near-field", type=int, default=8, metavar="K",
-                   help="columns of each cell's ray evaluated exactly (default 8)")
+    p.add_argument("--near-field", type=int, default=0, metavar="K",
+                   help="columns of each cell's ray evaluated exactly, 1..64 (default 0: 32 "
+                        "where the horizon sweep runs, 8 where rays are sampled at every "
+                        "column)")
     p.add_argument("--quiet", "-q", action="store_true",
                    help="no progress display (shown, as by gdaldem, when stderr is a terminal)")
     p.set_defaults(func=cmd_bake)
