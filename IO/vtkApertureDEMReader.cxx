@@ -96,7 +96,10 @@ struct vtkApertureDEMReader::Internals
   int Reading[2] = { 0, 0 }; // columns, rows of the request being read (for messages)
 
   // Open the file with a clear message on failure.
-  static bool Open(const char* fileName, DatasetHandle& ds, std::string& error)
+  // Opens the file; *warning (when given) gets GDAL's last warning while opening, if any
+  // (a GeoTIFF's unreadable keys, for instance).
+  static bool Open(
+    const char* fileName, DatasetHandle& ds, std::string& error, std::string* warning = nullptr)
   {
     if (!fileName || !*fileName)
     {
@@ -118,6 +121,10 @@ struct vtkApertureDEMReader::Internals
       error = "GDAL cannot open '" + name + "' as a raster: " +
         trap.Message("not a raster format GDAL recognises");
       return false;
+    }
+    if (warning)
+    {
+      *warning = trap.Message();
     }
     return true;
   }
@@ -162,9 +169,9 @@ int vtkApertureDEMReader::RequestInformation(
 {
   Internals& d = *this->Impl;
   d.Valid = false;
-  std::string error;
+  std::string error, openWarning;
   DatasetHandle ds;
-  if (!Internals::Open(this->FileName, ds, error))
+  if (!Internals::Open(this->FileName, ds, error, &openWarning))
   {
     vtkErrorMacro(<< error);
     return 0;
@@ -197,7 +204,10 @@ int vtkApertureDEMReader::RequestInformation(
   this->BandRead = d.Band;
   GDALRasterBandH base = GDALGetRasterBand(ds.H, d.Band);
 
-  // Georeference: a north-up or south-up geotransform and a CRS.
+  // Georeference: a north-up or south-up geotransform and a CRS. (A damaged GeoTIFF's
+  // unreadable keys are a GDAL warning while it opens or its georeference loads: named in the
+  // no-CRS error below.)
+  vtkApertureGDALErrorTrap trap;
   double gt[6];
   if (GDALGetGeoTransform(ds.H, gt) != CE_None)
   {
@@ -244,9 +254,11 @@ int vtkApertureDEMReader::RequestInformation(
     if (!srs || OSRExportToWktEx(srs, &wkt, options) != OGRERR_NONE || !wkt || !*wkt)
     {
       CPLFree(wkt);
-      vtkErrorMacro(<< "'" << name
-                    << "' has no coordinate reference system; set OverrideCRS "
-                       "(aperture: --srs EPSG:xxxx)");
+      const std::string why = trap.Message(openWarning.c_str());
+      vtkErrorMacro(<< "'" << name << "' has no coordinate reference system"
+                    << (why.empty() ? std::string()
+                                    : " (GDAL: " + why + "; is the file damaged?)")
+                    << "; set OverrideCRS (aperture: --srs EPSG:xxxx)");
       return 0;
     }
     const bool ok = geo->SetCRS(wkt);

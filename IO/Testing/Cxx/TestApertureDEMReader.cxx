@@ -18,6 +18,7 @@
 #include "vtkTestErrorObserver.h"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace
@@ -341,6 +342,46 @@ void TestBadInput()
   }
   ExpectError(tmp + "/nocrs.tif", "GDAL cannot parse the CRS",
     [](vtkApertureDEMReader* r) { r->SetOverrideCRS("EPSG:999999999"); });
+  {
+    // A GeoTIFF cut short where its GeoKeyDirectory's values begin (the first IFD, little
+    // endian, read here by hand): GDAL opens it but cannot read the keys, and says so in a
+    // warning that the message carries instead of printing it on its own.
+    aptest::RasterSpec whole;
+    std::remove((tmp + "/damaged.tif").c_str()); // (GDAL's Create would open the last one)
+    AP_CHECK(aptest::WriteRaster(tmp + "/damaged.tif", whole));
+    std::string bytes;
+    if (FILE* f = std::fopen((tmp + "/damaged.tif").c_str(), "rb"))
+    {
+      char buf[4096];
+      size_t got;
+      while ((got = std::fread(buf, 1, sizeof buf, f)) > 0)
+      {
+        bytes.append(buf, got);
+      }
+      std::fclose(f);
+    }
+    auto u16 = [&](size_t at) { return static_cast<unsigned>(static_cast<unsigned char>(bytes[at]) |
+                                  static_cast<unsigned char>(bytes[at + 1]) << 8); };
+    auto u32 = [&](size_t at) { return u16(at) | u16(at + 2) << 16; };
+    size_t cut = 0;
+    if (bytes.size() > 8 && bytes.compare(0, 2, "II") == 0)
+    {
+      const size_t ifd = u32(4);
+      for (unsigned e = 0; ifd + 2 + 12 * (e + 1) <= bytes.size() && e < u16(ifd); ++e)
+      {
+        const size_t entry = ifd + 2 + 12 * e;
+        if (u16(entry) == 34735 && u32(entry + 4) > 2) // GeoKeyDirectoryTag, SHORT values
+        {
+          cut = u32(entry + 8);
+        }
+      }
+    }
+    AP_CHECK(cut > 8 && cut < bytes.size());
+    AP_CHECK(aptest::WriteText(tmp + "/damaged.tif", bytes.substr(0, cut)));
+    ExpectError(tmp + "/damaged.tif", "has no coordinate reference system (GDAL: ");
+    ExpectError(tmp + "/damaged.tif", "TIFFFetchNormalTag:IO error during reading of \"Geo");
+    ExpectError(tmp + "/damaged.tif", "tag ignored; is the file damaged?); set OverrideCRS");
+  }
 
   aptest::RasterSpec empty;
   empty.hasNoData = true;
