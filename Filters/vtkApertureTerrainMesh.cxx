@@ -91,6 +91,11 @@ int vtkApertureTerrainMesh::RequestUpdateExtent(
       piece, pieces, 0, whole, ext, vtkExtentTranslator::BLOCK_MODE, 0);
   }
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext, 6);
+  // The request is this extent, not a piece: the pipeline copies the piece request upstream,
+  // and a reader that produces sub-extents would intersect it with its own split (a quarter
+  // of the DEM for the first of two pieces).
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
   return 1;
 }
 
