@@ -145,6 +145,18 @@ int vtkApertureSkyVisibility::GetMarchedNearField()
 }
 
 //------------------------------------------------------------------------------
+int vtkApertureSkyVisibility::RequestInformation(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestInformation(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
 int vtkApertureSkyVisibility::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -186,6 +198,10 @@ int vtkApertureSkyVisibility::RequestUpdateExtent(
     }
   }
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), in, 6);
+  // The request is this extent, not a piece: the pipeline copies a piece request upstream, and
+  // a source that produces sub-extents would turn it into its own, halo-less extent.
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
   return 1;
 }
 

@@ -188,6 +188,10 @@ protected:
   vtkApertureSkyVisibility();
   ~vtkApertureSkyVisibility() override;
 
+  /** Marks the output as able to produce any sub-extent, so that the pipeline turns piece
+   *  requests (UpdatePiece, ParaView's ranks) into extents; RequestUpdateExtent adds the halo. */
+  int RequestInformation(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,

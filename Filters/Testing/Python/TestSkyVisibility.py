@@ -328,6 +328,43 @@ class TestSkyVisibility(Testing.vtkTest):
             got = array(piece, name).reshape(y1 - y0 + 1, x1 - x0 + 1, -1)
             np.testing.assert_array_equal(got, whole, name)
 
+    def testPieceRequests(self):
+        # UpdatePiece (ParaView's ranks, vtkPStreaming...) becomes a sub-extent of the output,
+        # which RequestUpdateExtent grows by the halo: each piece is its block of the whole
+        # run, bit for bit, and the pieces cover the DEM. Projected with a radius, and the
+        # embedded lat/lon DEM through its reader, unlimited (the whole DEM as the halo).
+        z = np.random.default_rng(4).uniform(0, 300, (50, 70))
+        projected = make_image(z, 400000, 5000000, 30, 30, "EPSG:32633")
+        reader = aperture.vtkApertureDEMReader()
+        try:
+            reader.SetFileName(aperture.default_dem())
+        except FileNotFoundError:
+            reader = None
+        cases = [(projected, 600.0, 4), (projected, 600.0, 7)]
+        if reader:
+            cases.append((reader.GetOutputPort(), 0.0, 3))
+        for source, distance, pieces in cases:
+            whole = sky(source, MaximumDistance=distance)
+            nx, ny, _ = whole.GetOutput().GetDimensions()
+            expected = {name: array(whole.GetOutput(), name).reshape(ny, nx, -1)
+                        for name in ("SkyViewFactor", "BentNormal", "EdgeTruncated")}
+            covered = np.zeros((ny, nx), dtype=bool)
+            for piece in range(pieces):
+                f = aperture.vtkApertureSkyVisibility()
+                if isinstance(source, vtkImageData):
+                    f.SetInputData(source)
+                else:
+                    f.SetInputConnection(source)
+                f.SetMaximumDistance(distance)
+                f.UpdatePiece(piece, pieces, 0)
+                e = f.GetOutput().GetExtent()
+                self.assertLess((e[1] - e[0] + 1) * (e[3] - e[2] + 1), nx * ny)
+                for name, values in expected.items():
+                    got = array(f.GetOutput(), name).reshape(e[3] - e[2] + 1, e[1] - e[0] + 1, -1)
+                    np.testing.assert_array_equal(got, values[e[2]:e[3] + 1, e[0]:e[1] + 1])
+                covered[e[2]:e[3] + 1, e[0]:e[1] + 1] = True
+            self.assertTrue(covered.all())
+
     def testEmptyRequest(self):
         # An empty update extent (max < min: VTK's request for nothing) gives an empty output
         # and reads nothing; it used to copy a block of negative width (a crash) once the halo
