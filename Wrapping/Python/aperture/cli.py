@@ -568,6 +568,36 @@ def _product_image(sky, products):
     return image
 
 
+class _abort_on_interrupt:
+    """Ctrl-C during a long filter: Python runs its signal handler only when it gets control,
+    which a VTK update gives it only through observers. An observer of the filter's progress
+    (every azimuth sector for the sky filter) lets the handler run; it sets AbortExecute, the
+    filter stops after the sector, and KeyboardInterrupt follows the update (exit 130, nothing
+    written) instead of the whole computation first."""
+
+    def __init__(self, algorithm):
+        self.algorithm = algorithm
+        self.interrupted = False
+
+    def _handler(self, signum, frame):
+        self.interrupted = True
+        self.algorithm.SetAbortExecute(1)
+
+    def __enter__(self):
+        import signal
+        self.observer = self.algorithm.AddObserver("ProgressEvent", lambda obj, _: None)
+        self.previous = signal.signal(signal.SIGINT, self._handler)
+        return self
+
+    def __exit__(self, kind, value, traceback):
+        import signal
+        signal.signal(signal.SIGINT, self.previous)
+        self.algorithm.RemoveObserver(self.observer)
+        if self.interrupted:
+            raise KeyboardInterrupt
+        return False
+
+
 def cmd_bake(args):
     products = _parse_products(args.products)
     if not 4 <= args.directions <= 360:
@@ -639,7 +669,8 @@ def _bake(args, products, progress):
         progress(0.0)
         sky.AddObserver("ProgressEvent", lambda obj, _: progress(0.95 * obj.GetProgress()))
     sweep_start = time.perf_counter()
-    result = watcher.update(sky, "bake")  # the reader has run: this is the sky filter alone
+    with _abort_on_interrupt(sky):
+        result = watcher.update(sky, "bake")  # the reader has run: the sky filter alone
     sweep_seconds = time.perf_counter() - sweep_start
     image = _product_image(result, products)
     provenance = _provenance(args, products)
