@@ -364,7 +364,8 @@ def cmd_render(args):
             sky.SetInputData(image)
             for name in DERIVED + ["HorizonAngles"]:
                 getattr(sky, "SetCompute" + name)(name in ("BentNormal", "ApertureRadius"))
-            source = watcher.update(sky, "bake")
+            with _abort_on_interrupt(sky):
+                source = watcher.update(sky, "bake")
     else:
         source = image
     mesher = watcher.watch(vtkApertureTerrainMesh())
