@@ -150,7 +150,8 @@ def read_dem(args, watcher, check_size=None):
             whole = reader.GetOutputInformation(0).Get(
                 vtkStreamingDemandDrivenPipeline.WHOLE_EXTENT())
             check_size(whole[1] - whole[0] + 1, whole[3] - whole[2] + 1)
-        image = watcher.update(reader)
+        with _abort_on_interrupt(reader):  # (a large DEM can take minutes to read)
+            image = watcher.update(reader)
     except ApertureError as e:
         # the reader's advice names its properties; here they are options
         raise ApertureError(str(e).replace(
