@@ -88,6 +88,41 @@ class TestPipelineBehaviour(Testing.vtkTest):
             self.assertTrue(covered.all(), "%d pieces miss %d cells"
                             % (pieces, np.count_nonzero(~covered)))
 
+    def testStreamingSkyProductsOntoMesh(self):
+        # reader -> sky visibility (2 km) -> mesh, piece by piece: the mesh asks the sky filter
+        # for its block, which reads the block and its halo; every piece's SkyViewFactor and
+        # BentNormal on the mesh are the whole run's at the same points, bit for bit.
+        def pipeline():
+            r = aperture.vtkApertureDEMReader()
+            r.SetFileName(self.path)
+            sky = aperture.vtkApertureSkyVisibility()
+            sky.SetInputConnection(r.GetOutputPort())
+            sky.SetMaximumDistance(2000.0)
+            m = aperture.vtkApertureTerrainMesh()
+            m.SetInputConnection(sky.GetOutputPort())
+            return r, sky, m
+
+        _, _, whole = pipeline()
+        whole.Update()
+        names = ("SkyViewFactor", "BentNormal")
+        full = {n: vtk_to_numpy(whole.GetOutput().GetPointData().GetArray(n)).reshape(344, 403, -1)
+                for n in names}
+        covered = np.zeros((344, 403), dtype=bool)
+        for piece in range(2):
+            r, sky, m = pipeline()
+            m.UpdatePiece(piece, 2, 0)
+            ext = sky.GetOutput().GetExtent()
+            self.assertLess(ext[1] - ext[0] + 1, 403)  # a piece, not the whole
+            rext = r.GetOutput().GetExtent()
+            self.assertTrue(rext[0] <= ext[0] and rext[1] >= ext[1])  # the halo was read
+            for n in names:
+                got = vtk_to_numpy(m.GetOutput().GetPointData().GetArray(n))
+                np.testing.assert_array_equal(
+                    got.reshape(ext[3] - ext[2] + 1, ext[1] - ext[0] + 1, -1),
+                    full[n][ext[2]:ext[3] + 1, ext[0]:ext[1] + 1])
+            covered[ext[2]:ext[3] + 1, ext[0]:ext[1] + 1] = True
+        self.assertTrue(covered.all())
+
 
 if __name__ == "__main__":
     Testing.main([(TestPipelineBehaviour, "test")])
