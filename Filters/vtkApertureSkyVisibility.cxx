@@ -105,6 +105,8 @@ vtkApertureSkyVisibility::vtkApertureSkyVisibility()
   , ComputePositiveOpenness(true)
   , ComputeEdgeTruncated(true)
   , ComputeHorizonAngles(false)
+  , AnglesInDegrees(false)
+  , FloatEdgeTruncated(false)
   , ElevationArrayName(nullptr)
 {
   this->SetElevationArrayName("Elevation");
@@ -250,7 +252,8 @@ double vtkApertureSkyVisibility::OutputBytesPerCell() const
     perCell += f ? 4.0 : 0.0;
   }
   perCell += this->ComputeBentNormal ? 12.0 : 0.0;
-  perCell += this->ComputeEdgeTruncated ? 1.0 : 0.0;
+  // (as float: 4 bytes, and the kernel's byte flags beside them)
+  perCell += this->ComputeEdgeTruncated ? (this->FloatEdgeTruncated ? 5.0 : 1.0) : 0.0;
   perCell += this->ComputeHorizonAngles ? 4.0 * this->NumberOfDirections : 0.0;
   return perCell;
 }
@@ -491,7 +494,7 @@ int vtkApertureSkyVisibility::Execute(
     {
       continue;
     }
-    if (std::string(pr.Name) == "EdgeTruncated")
+    if (std::string(pr.Name) == "EdgeTruncated" && !this->FloatEdgeTruncated)
     {
       pr.Full = vtkSmartPointer<vtkUnsignedCharArray>::New();
     }
@@ -512,9 +515,12 @@ int vtkApertureSkyVisibility::Execute(
   out.sky_view_factor = fptr(3);
   out.diffuse_sky_factor = fptr(4);
   out.positive_openness = fptr(5);
-  out.edge_truncated = products[6].Full
-    ? static_cast<vtkUnsignedCharArray*>(products[6].Full.Get())->GetPointer(0)
-    : nullptr;
+  // (float EdgeTruncated: the kernel's flags go to bytes here, converted in step 6)
+  std::vector<unsigned char> edgeBytes(products[6].Full && this->FloatEdgeTruncated ? n : 0);
+  out.edge_truncated = !products[6].Full ? nullptr
+    : this->FloatEdgeTruncated
+    ? edgeBytes.data()
+    : static_cast<vtkUnsignedCharArray*>(products[6].Full.Get())->GetPointer(0);
   out.horizon_angles = fptr(7);
 
   // 4. The sweep, sector by sector; each sector's lines and rows in parallel.
@@ -650,7 +656,34 @@ int vtkApertureSkyVisibility::Execute(
     this->NumberOfThreadsUsed = tally.Count();
   }
 
-  // 6. The output: the input's arrays and geometry over the requested extent, plus ours.
+  // 6. Units for files (AnglesInDegrees, FloatEdgeTruncated): elementwise.
+  float* edgeFloat = this->FloatEdgeTruncated ? fptr(6) : nullptr;
+  if (this->AnglesInDegrees || edgeFloat)
+  {
+    const double toDegrees = 180.0 / M_PI; // (in double: the float nearest the product)
+    float* const angles[3] = { out.aperture_radius, out.positive_openness, out.horizon_angles };
+    const size_t components[3] = { 1, 1, static_cast<size_t>(D) };
+    const bool degrees = this->AnglesInDegrees;
+    vtkSMPTools::LocalScope(threads, [&]() {
+      vtkSMPTools::For(0, static_cast<vtkIdType>(n), 4096, [&](vtkIdType k0, vtkIdType k1) {
+        for (int a = 0; a < 3 && degrees; ++a)
+        {
+          for (size_t k = k0 * components[a]; angles[a] && k < k1 * components[a]; ++k)
+          {
+            angles[a][k] = static_cast<float>(angles[a][k] * toDegrees);
+          }
+        }
+        for (vtkIdType k = k0; edgeFloat && k < k1; ++k)
+        {
+          edgeFloat[k] = std::isnan(z[static_cast<size_t>(k)])
+            ? std::numeric_limits<float>::quiet_NaN()
+            : static_cast<float>(edgeBytes[static_cast<size_t>(k)]);
+        }
+      });
+    });
+  }
+
+  // 7. The output: the input's arrays and geometry over the requested extent, plus ours.
   output->SetExtent(outExt);
   output->SetOrigin(input->GetOrigin());
   output->SetSpacing(input->GetSpacing());
@@ -729,6 +762,8 @@ void vtkApertureSkyVisibility::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputePositiveOpenness: " << this->ComputePositiveOpenness << "\n";
   os << indent << "ComputeEdgeTruncated: " << this->ComputeEdgeTruncated << "\n";
   os << indent << "ComputeHorizonAngles: " << this->ComputeHorizonAngles << "\n";
+  os << indent << "AnglesInDegrees: " << this->AnglesInDegrees << "\n";
+  os << indent << "FloatEdgeTruncated: " << this->FloatEdgeTruncated << "\n";
   os << indent << "ElevationArrayName: "
      << (this->ElevationArrayName ? this->ElevationArrayName : "(none)") << "\n";
 }

@@ -179,6 +179,19 @@ public:
   ///@}
 
   ///@{
+  /** For files whose bands share one unit and sample type (what `aperture bake` writes):
+   *  AnglesInDegrees puts ApertureRadius, PositiveOpenness and HorizonAngles in degrees
+   *  instead of radians; FloatEdgeTruncated makes EdgeTruncated a float array, 0 or 1 and NaN
+   *  on nodata cells, instead of unsigned char 0 or 1 (0 on nodata). Both default off. */
+  vtkSetMacro(AnglesInDegrees, bool);
+  vtkGetMacro(AnglesInDegrees, bool);
+  vtkBooleanMacro(AnglesInDegrees, bool);
+  vtkSetMacro(FloatEdgeTruncated, bool);
+  vtkGetMacro(FloatEdgeTruncated, bool);
+  vtkBooleanMacro(FloatEdgeTruncated, bool);
+  ///@}
+
+  ///@{
   /** Name of the input elevation array (metres). Default "Elevation". */
   vtkSetStringMacro(ElevationArrayName);
   vtkGetStringMacro(ElevationArrayName);
@@ -217,6 +230,8 @@ protected:
   bool ComputePositiveOpenness;
   bool ComputeEdgeTruncated;
   bool ComputeHorizonAngles;
+  bool AnglesInDegrees;
+  bool FloatEdgeTruncated;
   char* ElevationArrayName;
 
 private:

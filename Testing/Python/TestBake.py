@@ -298,8 +298,9 @@ class TestBake(unittest.TestCase):
         # A bake that needs more than the machine's physical memory is refused before the DEM
         # is read (under Linux's overcommit it would be killed mid-sweep, not fail to
         # allocate): 30000^2 cells with HorizonAngles at 360 directions need 4 bytes a cell
-        # for the elevations and 1494 in the sky filter (1440 of horizons, 33 of the other
-        # products, its float copy 4 and the sweep's state 17): 1.348e12 bytes = 1.226 TiB.
+        # for the elevations and 1498 in the sky filter (1440 of horizons, 37 of the other
+        # products with EdgeTruncated as float beside its byte flags, its float copy 4 and the
+        # sweep's state 17): 1.3518e12 bytes = 1.229 TiB.
         memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
         if memory > 1.3e12:
             self.skipTest("this machine has more than 1.3 TB of memory")
@@ -309,7 +310,7 @@ class TestBake(unittest.TestCase):
                            capture_output=True, text=True, timeout=300)
         self.assertEqual(p.returncode, 1, p.stderr)
         self.assertEqual(p.stderr.strip(), "aperture: error: baking 30000 x 30000 cells with "
-                         "these products needs about 1.226 TiB, more than the %.3f %s of "
+                         "these products needs about 1.229 TiB, more than the %.3f %s of "
                          "memory on this machine (HorizonAngles take 4 bytes per cell and "
                          "direction); read a part with --srcwin, or use --decimate or "
                          "--overview, or bake fewer --products" % (memory / 1024.0 ** u,

@@ -328,6 +328,37 @@ class TestSkyVisibility(Testing.vtkTest):
             got = array(piece, name).reshape(y1 - y0 + 1, x1 - x0 + 1, -1)
             np.testing.assert_array_equal(got, whole, name)
 
+    def testFileUnits(self):
+        # AnglesInDegrees and FloatEdgeTruncated (what aperture bake writes): the angles are
+        # the radians times 180/pi rounded once to float, EdgeTruncated the same flags as float
+        # with NaN on nodata, every other array the same bits; the memory estimate counts the
+        # float flags (4 bytes) beside the kernel's byte flags (1).
+        z = np.random.default_rng(9).uniform(0, 300, (40, 50))
+        z[7, 9] = z[30, 41] = np.nan
+        image = make_image(z, 400000, 5000000, 30, 30, "EPSG:32633")
+        options = dict(ComputeHorizonAngles=True, NumberOfDirections=12, MaximumDistance=900.0)
+        plain = sky(image, **options)
+        files = sky(image, AnglesInDegrees=True, FloatEdgeTruncated=True, **options)
+        for name in ("ApertureRadius", "PositiveOpenness", "HorizonAngles"):
+            radians = array(plain.GetOutput(), name)
+            got = array(files.GetOutput(), name)
+            np.testing.assert_array_equal(got, np.float32(radians * (180.0 / math.pi)))
+            self.assertGreater(np.nanmax(np.abs(got)), 1.0)  # degrees, not radians
+        for name in ("VisibleSolidAngle", "BentNormal", "SkyViewFactor", "DiffuseSkyFactor"):
+            np.testing.assert_array_equal(array(files.GetOutput(), name),
+                                          array(plain.GetOutput(), name))
+        flags = files.GetOutput().GetPointData().GetArray("EdgeTruncated")
+        self.assertEqual(flags.GetDataTypeAsString(), "float")
+        self.assertEqual(plain.GetOutput().GetPointData().GetArray("EdgeTruncated")
+                         .GetDataTypeAsString(), "unsigned char")
+        got, expected = array(files.GetOutput(), "EdgeTruncated"), array(plain.GetOutput(),
+                                                                          "EdgeTruncated")
+        nodata = np.isnan(z.ravel())
+        self.assertTrue(np.isnan(got[nodata]).all())
+        np.testing.assert_array_equal(got[~nodata], expected[~nodata])
+        self.assertTrue(0 < expected.sum() < expected.size)  # both flag values occur
+        self.assertEqual(files.EstimateBytes(1.0) - plain.EstimateBytes(1.0), 4.0)
+
     def testPieceRequests(self):
         # UpdatePiece (ParaView's ranks, vtkPStreaming...) becomes a sub-extent of the output,
         # which RequestUpdateExtent grows by the halo: each piece is its block of the whole

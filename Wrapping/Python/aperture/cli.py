@@ -539,34 +539,20 @@ def _provenance(args, products):
 
 
 def _product_image(sky, products):
-    """An image sharing the filter's arrays of the chosen products (no copies: the filter's
-    output is converted in place, and not used again), with angles in degrees, EdgeTruncated
-    as float (NaN on nodata), and HorizonAngles bands named by azimuth."""
-    import numpy as np
-    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    """An image sharing the filter's arrays of the chosen products (no copies; the filter ran
+    with AnglesInDegrees and FloatEdgeTruncated: angles in degrees, EdgeTruncated as float,
+    NaN on nodata; HorizonAngles' components named by azimuth). No numpy: its import alone
+    took 0.09 s of a 1.5 s bake."""
     from vtkmodules.vtkCommonDataModel import vtkImageData
 
     image = vtkImageData()
     image.CopyStructure(sky)
     image.GetFieldData().PassData(sky.GetFieldData())
-    units = {name: (unit, degrees) for name, unit, degrees, _ in PRODUCTS}
     for name in products:
-        src = sky.GetPointData().GetArray(name)
-        values = vtk_to_numpy(src)
-        if name == "EdgeTruncated":
-            # one new float32 array (uint8 and float32 make float32), shared with VTK, which
-            # keeps a reference to it: no further copies of a band
-            nodata = np.isnan(vtk_to_numpy(sky.GetPointData().GetArray("Elevation")))
-            values = np.where(nodata, np.float32(np.nan), values).astype(np.float32, copy=False)
-            array = numpy_to_vtk(values, deep=0)
-            array.SetName(name)
-            image.GetPointData().AddArray(array)
-            continue
-        if values.dtype != np.float32:
-            raise ApertureError("internal: %s is %s, not float32" % (name, values.dtype))
-        if units[name][1]:
-            np.degrees(values, out=values)
-        image.GetPointData().AddArray(src)
+        array = sky.GetPointData().GetArray(name)
+        if array is None or array.GetDataTypeAsString() != "float":
+            raise ApertureError("internal: %s is not a float array" % name)
+        image.GetPointData().AddArray(array)
     return image
 
 
@@ -649,6 +635,8 @@ def _bake(args, products, progress):
     sky.SetNearField(args.near_field)
     for name in DERIVED + ["HorizonAngles"]:
         getattr(sky, "SetCompute" + name)(name in products)
+    sky.SetAnglesInDegrees(True)  # the files' unit
+    sky.SetFloatEdgeTruncated(True)  # one sample type for every band, NaN on nodata
 
     def check_size(nx, ny):
         # Refuse before reading (which may take minutes) what the sky filter would refuse
