@@ -28,6 +28,7 @@
 #include <cstdio>
 #include <limits>
 #include <new>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,16 @@ void CopyBlock(const T* in, const int ext[6], const int sub[6], int nc, T* out)
     std::copy(row, row + w, out + o);
     o += w;
   }
+}
+
+// The start of both out-of-memory messages: "a NX x NY DEM with these products needs about
+// SIZE", and what HorizonAngles cost when they are asked for.
+std::string NeedsText(int nx, int ny, const std::string& size, bool horizonAngles)
+{
+  std::ostringstream s;
+  s << "a " << nx << " x " << ny << " DEM with these products needs about " << size
+    << (horizonAngles ? " (HorizonAngles take 4 bytes per cell and direction)" : "");
+  return s.str();
 }
 
 // Describe the grid of the whole extent `whole` of an image with this origin and spacing
@@ -222,11 +233,10 @@ int vtkApertureSkyVisibility::RequestData(
     int dims[3];
     vtkApertureInputDimensions(inputVector[0], dims);
     const double mib = std::ceil(this->EstimateBytes(double(dims[0]) * dims[1]) / 1048576.0);
-    vtkErrorMacro(<< "out of memory: a " << dims[0] << " x " << dims[1]
-                  << " DEM with these products needs about " << mib << " MiB"
-                  << (this->ComputeHorizonAngles
-                         ? " (HorizonAngles take 4 bytes per cell and direction)"
-                         : ""));
+    std::ostringstream size;
+    size << mib << " MiB";
+    vtkErrorMacro(<< "out of memory: "
+                  << NeedsText(dims[0], dims[1], size.str(), this->ComputeHorizonAngles));
     return 0;
   }
 }
@@ -336,12 +346,13 @@ int vtkApertureSkyVisibility::Execute(
     return 0;
   }
   const size_t n = static_cast<size_t>(nx) * static_cast<size_t>(ny);
+  // the output is the input's extent (no halo): products go straight into the output
+  const bool whole = std::equal(inExt, inExt + 6, outExt);
   // Memory: refuse before allocating what cannot fit. Linux overcommits, so past physical
   // memory an allocation does not fail: the process is killed later, mid-sweep.
   {
     const double outCells =
       static_cast<double>(outExt[1] - outExt[0] + 1) * (outExt[3] - outExt[2] + 1);
-    const bool whole = std::equal(inExt, inExt + 6, outExt);
     // a sub-extent's outputs and passed input arrays are copies beside the whole ones
     const double need = this->EstimateBytes(static_cast<double>(n)) +
       (whole ? 0.0 : (this->OutputBytesPerCell() + 4.0) * outCells);
@@ -351,11 +362,7 @@ int vtkApertureSkyVisibility::Execute(
       : static_cast<double>(vtkAperturePhysicalMemory()) - held;
     if (need > limit)
     {
-      vtkErrorMacro(<< "a " << nx << " x " << ny << " DEM with these products needs about "
-                    << vtkApertureHumanBytes(need)
-                    << (this->ComputeHorizonAngles
-                           ? " (HorizonAngles take 4 bytes per cell and direction)"
-                           : "")
+      vtkErrorMacro(<< NeedsText(nx, ny, vtkApertureHumanBytes(need), this->ComputeHorizonAngles)
                     << ", more than the "
                     << (this->MemoryLimit > 0
                            ? vtkApertureHumanBytes(limit) + " MemoryLimit"
@@ -469,9 +476,8 @@ int vtkApertureSkyVisibility::Execute(
     return 0;
   }
 
-  // 3. Outputs: straight into the output arrays when the output is the input's extent,
-  //    else into full-size buffers that are cropped below.
-  const bool whole = std::equal(inExt, inExt + 6, outExt);
+  // 3. Outputs: straight into the output arrays when the output is the input's extent
+  //    (whole), else into full-size buffers that are cropped below.
   const int D = this->NumberOfDirections;
   struct Product
   {
@@ -666,9 +672,13 @@ int vtkApertureSkyVisibility::Execute(
     const bool degrees = this->AnglesInDegrees;
     vtkSMPTools::LocalScope(threads, [&]() {
       vtkSMPTools::For(0, static_cast<vtkIdType>(n), 4096, [&](vtkIdType k0, vtkIdType k1) {
-        for (int a = 0; a < 3 && degrees; ++a)
+        for (int a = 0; a < 3; ++a)
         {
-          for (size_t k = k0 * components[a]; angles[a] && k < k1 * components[a]; ++k)
+          if (!degrees || !angles[a])
+          {
+            continue;
+          }
+          for (size_t k = k0 * components[a]; k < k1 * components[a]; ++k)
           {
             angles[a][k] = static_cast<float>(angles[a][k] * toDegrees);
           }

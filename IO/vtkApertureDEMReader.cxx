@@ -95,9 +95,8 @@ struct vtkApertureDEMReader::Internals
   bool Valid = false;
   int Reading[2] = { 0, 0 }; // columns, rows of the request being read (for messages)
 
-  // Open the file with a clear message on failure.
-  // Opens the file; *warning (when given) gets GDAL's last warning while opening, if any
-  // (a GeoTIFF's unreadable keys, for instance).
+  // Open the file with a clear message on failure; *warning (when given) gets GDAL's last
+  // warning while opening, if any (a GeoTIFF's unreadable keys, for instance).
   static bool Open(
     const char* fileName, DatasetHandle& ds, std::string& error, std::string* warning = nullptr)
   {
@@ -424,8 +423,10 @@ int vtkApertureDEMReader::Execute(vtkInformationVector* outputVector)
     bytes > static_cast<size_t>(limit))
   {
     vtkErrorMacro(<< "reading " << ncols << " x " << nrows << " cells of '" << this->FileName
-                  << "' needs " << vtkApertureHumanBytes(static_cast<double>(ncols) * nrows * 4.0)
-                  << " as float32, more than the " << vtkApertureHumanBytes(static_cast<double>(limit))
+                  << "' needs "
+                  << vtkApertureHumanBytes(static_cast<double>(ncols) * nrows * 4.0)
+                  << " as float32, more than the "
+                  << vtkApertureHumanBytes(static_cast<double>(limit))
                   << (this->MemoryLimit > 0 ? " MemoryLimit" : " of memory on this machine")
                   << "; read a SubWindow, or use Decimation or an OverviewLevel");
     return 0;

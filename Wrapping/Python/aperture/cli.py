@@ -457,30 +457,30 @@ def _write_linear_exr(args, window, mapper, sun, watcher):
 # ---------------------------------------------------------------------------------------------
 # bake
 
-# Products of vtkApertureSkyVisibility, in band order: (name, unit in the files, degrees?,
-# definition written into each band's metadata).
+# Products of vtkApertureSkyVisibility, in band order: (name, unit in the files: the filter's
+# AnglesInDegrees makes the angles degrees, definition written into each band's metadata).
 PRODUCTS = [
-    ("VisibleSolidAngle", "sr", False,
+    ("VisibleSolidAngle", "sr",
      "solid angle of the sky visible above the horizontal, the terrain horizon and the cell's "
      "own tangent plane"),
-    ("ApertureRadius", "degree", True,
+    ("ApertureRadius", "degree",
      "angular radius of the spherical cap with the visible solid angle's area, "
      "acos(1 - A / 2 pi) (Oat & Sander 2007)"),
-    ("BentNormal", "1", False,
+    ("BentNormal", "1",
      "unit mean direction of the visible sky, East-North-Up at the cell (bands _E, _N, _U)"),
-    ("SkyViewFactor", "1", False,
+    ("SkyViewFactor", "1",
      "Zaksek et al. 2011: 1 - mean sin(max(horizon, 0)); share of the upper hemisphere visible "
      "over a horizontal plane, ignoring the cell's slope"),
-    ("DiffuseSkyFactor", "1", False,
+    ("DiffuseSkyFactor", "1",
      "Dozier & Frew 1990 (with Dozier 2022 self-shadowing): isotropic sky irradiance on the "
      "tilted cell relative to an unobstructed horizontal surface, cosine-weighted"),
-    ("PositiveOpenness", "degree", True,
+    ("PositiveOpenness", "degree",
      "Yokoyama et al. 2002: mean zenith angle of the terrain horizon"),
-    ("EdgeTruncated", "1", False,
+    ("EdgeTruncated", "1",
      "1 where in some sector the DEM ends closer than the search limit (the radius; without "
      "one, with curvature, where terrain no higher than the DEM's top could rise above the "
      "horizontal); PositiveOpenness may also differ near the edge on unflagged cells"),
-    ("HorizonAngles", "degree", True,
+    ("HorizonAngles", "degree",
      "terrain horizon elevation per azimuth sector (band name: true azimuth of the sector "
      "centre, clockwise from north)"),
 ]
@@ -664,7 +664,7 @@ def _bake(args, products, progress):
     sweep_seconds = time.perf_counter() - sweep_start
     image = _product_image(result, products)
     provenance = _provenance(args, products)
-    definitions = {name: (unit, text) for name, unit, _, text in PRODUCTS}
+    definitions = {name: (unit, text) for name, unit, text in PRODUCTS}
 
     writer.SetInputData(image)
     writer.SetFileName(args.output)
