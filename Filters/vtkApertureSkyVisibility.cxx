@@ -41,21 +41,6 @@ namespace
 constexpr float EarthLowest = -11100.0f;
 constexpr float EarthHighest = 9000.0f;
 
-// Copy the block `sub` of an array laid out on extent `ext` (nc components) into `out`.
-template <typename T>
-void CopyBlock(const T* in, const int ext[6], const int sub[6], int nc, T* out)
-{
-  const vtkIdType nx = ext[1] - ext[0] + 1;
-  const vtkIdType w = (sub[1] - sub[0] + 1) * nc;
-  vtkIdType o = 0;
-  for (int j = sub[2]; j <= sub[3]; ++j)
-  {
-    const T* row = in + ((j - ext[2]) * nx + (sub[0] - ext[0])) * nc;
-    std::copy(row, row + w, out + o);
-    o += w;
-  }
-}
-
 // The start of both out-of-memory messages: "a NX x NY DEM with these products needs about
 // SIZE", and what HorizonAngles cost when they are asked for.
 std::string NeedsText(int nx, int ny, const std::string& size, bool horizonAngles)
@@ -346,16 +331,17 @@ int vtkApertureSkyVisibility::Execute(
     return 0;
   }
   const size_t n = static_cast<size_t>(nx) * static_cast<size_t>(ny);
-  // the output is the input's extent (no halo): products go straight into the output
+  // the output is the input's extent (no halo), else the kernel computes the output's region
+  // of the input (the rest is the halo's terrain); products go straight into the output
   const bool whole = std::equal(inExt, inExt + 6, outExt);
+  const int onx = outExt[1] - outExt[0] + 1, ony = outExt[3] - outExt[2] + 1;
+  const size_t outN = static_cast<size_t>(onx) * static_cast<size_t>(ony);
   // Memory: refuse before allocating what cannot fit. Linux overcommits, so past physical
   // memory an allocation does not fail: the process is killed later, mid-sweep.
   {
-    const double outCells =
-      static_cast<double>(outExt[1] - outExt[0] + 1) * (outExt[3] - outExt[2] + 1);
-    // a sub-extent's outputs and passed input arrays are copies beside the whole ones
-    const double need = this->EstimateBytes(static_cast<double>(n)) +
-      (whole ? 0.0 : (this->OutputBytesPerCell() + 4.0) * outCells);
+    // a sub-extent's outputs cover it alone; the input arrays passed are copied to it
+    const double need = this->EstimateBytes(static_cast<double>(n)) -
+      (whole ? 0.0 : this->OutputBytesPerCell() * static_cast<double>(n - outN) - 4.0 * outN);
     const double held = 1024.0 * static_cast<double>(input->GetActualMemorySize());
     const double limit = this->MemoryLimit > 0
       ? static_cast<double>(this->MemoryLimit)
@@ -442,6 +428,10 @@ int vtkApertureSkyVisibility::Execute(
   params.near_field = this->NearField;
   params.origin_col = pieceI;
   params.origin_row = pieceJ;
+  params.region_i0 = static_cast<size_t>(outExt[0] - inExt[0]);
+  params.region_j0 = static_cast<size_t>(outExt[2] - inExt[2]);
+  params.region_nx = static_cast<size_t>(onx);
+  params.region_ny = static_cast<size_t>(ony);
   if (geographic)
   {
     // the sweep's lines bend with the rows' cell sizes: their lattice is the whole DEM's rows'
@@ -476,15 +466,14 @@ int vtkApertureSkyVisibility::Execute(
     return 0;
   }
 
-  // 3. Outputs: straight into the output arrays when the output is the input's extent
-  //    (whole), else into full-size buffers that are cropped below.
+  // 3. Outputs: the output's arrays, over its extent.
   const int D = this->NumberOfDirections;
   struct Product
   {
     const char* Name;
     bool Wanted;
     int Components;
-    vtkSmartPointer<vtkDataArray> Full;
+    vtkSmartPointer<vtkDataArray> Array;
   };
   Product products[8] = { { "VisibleSolidAngle", this->ComputeVisibleSolidAngle, 1, nullptr },
     { "ApertureRadius", this->ComputeApertureRadius, 1, nullptr },
@@ -502,16 +491,16 @@ int vtkApertureSkyVisibility::Execute(
     }
     if (std::string(pr.Name) == "EdgeTruncated" && !this->FloatEdgeTruncated)
     {
-      pr.Full = vtkSmartPointer<vtkUnsignedCharArray>::New();
+      pr.Array = vtkSmartPointer<vtkUnsignedCharArray>::New();
     }
     else
     {
-      pr.Full = vtkSmartPointer<vtkFloatArray>::New();
+      pr.Array = vtkSmartPointer<vtkFloatArray>::New();
     }
-    vtkApertureAllocate(pr.Full, pr.Name, pr.Components, static_cast<vtkIdType>(n));
+    vtkApertureAllocate(pr.Array, pr.Name, pr.Components, static_cast<vtkIdType>(outN));
   }
   auto fptr = [&](int k) {
-    return products[k].Full ? static_cast<vtkFloatArray*>(products[k].Full.Get())->GetPointer(0)
+    return products[k].Array ? static_cast<vtkFloatArray*>(products[k].Array.Get())->GetPointer(0)
                             : nullptr;
   };
   ap_sky_products out;
@@ -522,11 +511,11 @@ int vtkApertureSkyVisibility::Execute(
   out.diffuse_sky_factor = fptr(4);
   out.positive_openness = fptr(5);
   // (float EdgeTruncated: the kernel's flags go to bytes here, converted in step 6)
-  std::vector<unsigned char> edgeBytes(products[6].Full && this->FloatEdgeTruncated ? n : 0);
-  out.edge_truncated = !products[6].Full ? nullptr
+  std::vector<unsigned char> edgeBytes(products[6].Array && this->FloatEdgeTruncated ? outN : 0);
+  out.edge_truncated = !products[6].Array ? nullptr
     : this->FloatEdgeTruncated
     ? edgeBytes.data()
-    : static_cast<vtkUnsignedCharArray*>(products[6].Full.Get())->GetPointer(0);
+    : static_cast<vtkUnsignedCharArray*>(products[6].Array.Get())->GetPointer(0);
   out.horizon_angles = fptr(7);
 
   // 4. The sweep, sector by sector; each sector's lines and rows in parallel.
@@ -636,22 +625,24 @@ int vtkApertureSkyVisibility::Execute(
       }
     }
     vtkSMPTools::LocalScope(threads, [&]() {
-      vtkSMPTools::For(0, ny, 64, [&](vtkIdType j0, vtkIdType j1) {
+      // (output rows and columns; the output's cell (0, 0) is the whole DEM's (oi, oj))
+      const int oi = outExt[0] - wholeExt[0], oj = outExt[2] - wholeExt[2];
+      vtkSMPTools::For(0, ony, 64, [&](vtkIdType j0, vtkIdType j1) {
         tally.Note();
         for (vtkIdType j = j0; j < j1; ++j)
         {
-          const double fb = ly > 1 ? (j + pieceJ) * (ly - 1.0) / (nyWhole - 1.0) : 0.0;
+          const double fb = ly > 1 ? (j + oj) * (ly - 1.0) / (nyWhole - 1.0) : 0.0;
           const int b0 = std::min(static_cast<int>(fb), ly - 1), b1 = std::min(b0 + 1, ly - 1);
           const double tb = fb - b0;
-          for (int i = 0; i < nx; ++i)
+          for (int i = 0; i < onx; ++i)
           {
-            const double fa = lx > 1 ? (i + pieceI) * (lx - 1.0) / (nxWhole - 1.0) : 0.0;
+            const double fa = lx > 1 ? (i + oi) * (lx - 1.0) / (nxWhole - 1.0) : 0.0;
             const int a0 = std::min(static_cast<int>(fa), lx - 1), a1 = std::min(a0 + 1, lx - 1);
             const double ta = fa - a0;
             const double g =
               (1 - tb) * ((1 - ta) * gamma[b0 * lx + a0] + ta * gamma[b0 * lx + a1]) +
               tb * ((1 - ta) * gamma[b1 * lx + a0] + ta * gamma[b1 * lx + a1]);
-            float* v = out.bent_normal + 3 * (static_cast<size_t>(j) * nx + i);
+            float* v = out.bent_normal + 3 * (static_cast<size_t>(j) * onx + i);
             const double e = v[0], nn = v[1];
             v[0] = static_cast<float>(e * std::cos(g) + nn * std::sin(g));
             v[1] = static_cast<float>(-e * std::sin(g) + nn * std::cos(g));
@@ -671,7 +662,7 @@ int vtkApertureSkyVisibility::Execute(
     const size_t components[3] = { 1, 1, static_cast<size_t>(D) };
     const bool degrees = this->AnglesInDegrees;
     vtkSMPTools::LocalScope(threads, [&]() {
-      vtkSMPTools::For(0, static_cast<vtkIdType>(n), 4096, [&](vtkIdType k0, vtkIdType k1) {
+      vtkSMPTools::For(0, static_cast<vtkIdType>(outN), 4096, [&](vtkIdType k0, vtkIdType k1) {
         for (int a = 0; a < 3; ++a)
         {
           if (!degrees || !angles[a])
@@ -685,7 +676,10 @@ int vtkApertureSkyVisibility::Execute(
         }
         for (vtkIdType k = k0; edgeFloat && k < k1; ++k)
         {
-          edgeFloat[k] = std::isnan(z[static_cast<size_t>(k)])
+          // (the cell's elevation: output cell k in the input's grid)
+          const size_t zk = (static_cast<size_t>(k / onx) + params.region_j0) * nx +
+            static_cast<size_t>(k % onx) + params.region_i0;
+          edgeFloat[k] = std::isnan(z[zk])
             ? std::numeric_limits<float>::quiet_NaN()
             : static_cast<float>(edgeBytes[static_cast<size_t>(k)]);
         }
@@ -711,27 +705,11 @@ int vtkApertureSkyVisibility::Execute(
   geo->AttachToImage(output); // the GeoTransform of the output's extent
   for (Product& pr : products)
   {
-    if (!pr.Full)
+    if (!pr.Array)
     {
       continue;
     }
-    vtkSmartPointer<vtkDataArray> arr = pr.Full;
-    if (!whole)
-    {
-      arr.TakeReference(pr.Full->NewInstance());
-      vtkApertureAllocate(arr, pr.Name, pr.Components,
-        static_cast<vtkIdType>(outExt[1] - outExt[0] + 1) * (outExt[3] - outExt[2] + 1));
-      if (auto* f = vtkFloatArray::SafeDownCast(arr))
-      {
-        CopyBlock(static_cast<vtkFloatArray*>(pr.Full.Get())->GetPointer(0), inExt, outExt,
-          pr.Components, f->GetPointer(0));
-      }
-      else
-      {
-        CopyBlock(static_cast<vtkUnsignedCharArray*>(pr.Full.Get())->GetPointer(0), inExt,
-          outExt, pr.Components, static_cast<vtkUnsignedCharArray*>(arr.Get())->GetPointer(0));
-      }
-    }
+    vtkDataArray* arr = pr.Array;
     if (std::string(pr.Name) == "BentNormal")
     {
       arr->SetComponentName(0, "E");

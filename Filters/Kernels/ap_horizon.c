@@ -582,13 +582,15 @@ struct ap_horizon {
   size_t nx, ny;
   double *dxr, *dyr;    /* per-row cell sizes (m) */
   float *zt;            /* transposed elevations: zt[i * ny + j] = z(i, j) */
-  float *grad;          /* Horn gradient (dz/dx east, dz/dy north) per cell */
+  float *grad;          /* Horn gradient (dz/dx east, dz/dy north) per cell of the region,
+                         * in the outputs' order */
   float *slope;         /* prepared sector, per cell: the near field's slope (tangent of the
                          * elevation angle) after ap_horizon_near_field, the terrain horizon's
                          * after ap_horizon_sweep */
   unsigned char *edge;  /* prepared sector: 1 where the search reached the DEM edge */
-  float *bsum;          /* bent-normal sums when out.bent_normal is NULL */
+  float *bsum;          /* bent-normal sums when out.bent_normal is NULL (region cells) */
   float zmax;
+  size_t ri0, ri1, rj0, rj1, rnx; /* the region: grid columns [ri0, ri1), rows [rj0, rj1) */
   int first;            /* the prepared sector is the first: its ap_horizon_accumulate
                          * computes grad and starts the sums (create leaves both unwritten,
                          * so that their memory is first touched by the parallel phase) */
@@ -608,6 +610,7 @@ struct ap_horizon {
   double phi;             /* grid azimuth (rad) */
   int xmajor, flip;       /* view: p along columns (xmajor) or rows; p reversed (flip) */
   size_t np, ns;          /* view sizes */
+  size_t vp0, vp1, vs0, vs1; /* the region in the view: p in [vp0, vp1), s in [vs0, vs1) */
   double c;               /* curvature coefficient (1/m) */
   double *m_row, *len_row; /* per grid row: lateral shift per p step, ground length per step */
   double *cum_m, *cum_len; /* row-major views: prefix sums over p of the step shift / length */
@@ -687,6 +690,7 @@ void ap_horizon_params_init(ap_horizon_params *p)
   p->whole_dx = NULL;
   p->whole_dy = NULL;
   p->whole_rows = 0;
+  p->region_i0 = p->region_j0 = p->region_nx = p->region_ny = 0;
 }
 
 /* ap_horizon_validate, also giving the elevations' statistics when AP_OK. */
@@ -715,6 +719,13 @@ static ap_status validate(const ap_horizon_grid *g, const ap_horizon_params *p,
   }
   if ((!g->dx && !positive_finite(g->dx0)) || (!g->dy && !positive_finite(g->dy0))) {
     return AP_ERR_INVALID_ARGUMENT;
+  }
+  if (p->region_i0 || p->region_j0 || p->region_nx || p->region_ny) {
+    if (p->region_nx == 0 || p->region_ny == 0 || p->region_i0 >= g->z.nx ||
+        p->region_nx > g->z.nx - p->region_i0 || p->region_j0 >= g->z.ny ||
+        p->region_ny > g->z.ny - p->region_j0) {
+      return AP_ERR_INVALID_ARGUMENT;
+    }
   }
   for (j = 0; j < g->z.ny; ++j) {
     if (!positive_finite(row_dx(g, j)) || !positive_finite(row_dy(g, j))) {
@@ -927,7 +938,7 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
                             const ap_sky_products *out, ap_horizon **result)
 {
   ap_horizon *hz;
-  size_t j, n;
+  size_t j, n, nr;
   ap_grid_stats stats;
   ap_status st;
   if (!result || !out) {
@@ -950,14 +961,26 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
   hz->ny = g->z.ny;
   hz->d = -1;
   n = hz->nx * hz->ny;
+  if (p->region_nx > 0) {
+    hz->ri0 = p->region_i0;
+    hz->rj0 = p->region_j0;
+    hz->rnx = p->region_nx;
+    hz->ri1 = p->region_i0 + p->region_nx;
+    hz->rj1 = p->region_j0 + p->region_ny;
+  } else {
+    hz->ri0 = hz->rj0 = 0;
+    hz->ri1 = hz->rnx = hz->nx;
+    hz->rj1 = hz->ny;
+  }
+  nr = hz->rnx * (hz->rj1 - hz->rj0);
   hz->dxr = (double *)malloc(hz->ny * sizeof(double));
   hz->dyr = (double *)malloc(hz->ny * sizeof(double));
   hz->zt = (float *)malloc(n * sizeof(float));
-  hz->grad = (float *)malloc(2 * n * sizeof(float));
+  hz->grad = (float *)malloc(2 * nr * sizeof(float));
   hz->slope = (float *)malloc(n * sizeof(float));
   hz->edge = (unsigned char *)malloc(n);
   if (out->diffuse_sky_factor && !out->bent_normal) {
-    hz->bsum = (float *)malloc(3 * n * sizeof(float));
+    hz->bsum = (float *)malloc(3 * nr * sizeof(float));
   }
   if (!hz->dxr || !hz->dyr || !hz->zt || !hz->grad || !hz->slope || !hz->edge ||
       (out->diffuse_sky_factor && !out->bent_normal && !hz->bsum)) {
@@ -1120,6 +1143,15 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
   hz->parallel = hz->lattice ? !hz->xmajor : 1;
   hz->np = hz->xmajor ? hz->nx : hz->ny;
   hz->ns = hz->xmajor ? hz->ny : hz->nx;
+  {
+    /* the region in the view: p runs along the grid's columns (x-major) or rows, reversed
+     * when flipped; s along the other axis */
+    const size_t a0 = hz->xmajor ? hz->ri0 : hz->rj0, a1 = hz->xmajor ? hz->ri1 : hz->rj1;
+    hz->vp0 = hz->flip ? hz->np - a1 : a0;
+    hz->vp1 = hz->flip ? hz->np - a0 : a1;
+    hz->vs0 = hz->xmajor ? hz->rj0 : hz->ri0;
+    hz->vs1 = hz->xmajor ? hz->rj1 : hz->ri1;
+  }
   hz->colp = (const float **)malloc(hz->np * sizeof(*hz->colp));
   if (!hz->colp) {
     free_sector(hz);
@@ -2026,13 +2058,14 @@ static long lattice_steps_col(const ap_horizon *hz, size_t p, fm_step *fm, doubl
  * (side_exit_slope, here between the steps' distances), unless the side's highest cell could
  * not raise its slope. */
 static void lattice_finish_col(const ap_horizon *hz, const fm_step *fm, const double *t, long kt,
-                               size_t p, const float *col, float *best, unsigned char *edge)
+                               size_t p, long sa, long sb, const float *col, float *best,
+                               unsigned char *edge)
 {
   const long ns = (long)hz->ns, F = (long)(hz->np - 1 - p), kend = kt < F ? kt : F;
   const double L = hz->p.max_distance, c = hz->c, K1 = (double)(hz->p.near_field - 1);
   const double side_max = (double)hz->fm_side_max + (double)hz->fm_eps;
   long s;
-  for (s = 0; s < ns; ++s) {
+  for (s = sa; s < sb; ++s) {
     const double zq = col[s];
     double reach = INFINITY;
     long kl = kend;
@@ -2520,7 +2553,8 @@ static ap_status near_field_rows(const ap_horizon *hz, size_t r0, size_t r1)
     free(t);
     return AP_ERR_OUT_OF_MEMORY;
   }
-  for (s = r0; s < r1 && s < hz->ns; ++s) {
+  /* (the region's rows: a row's cells march together, so all of them) */
+  for (s = r0 > hz->vs0 ? r0 : hz->vs0; s < r1 && s < hz->vs1; ++s) {
     const pattern *pt = &hz->pats[hz->pat_of[s]];
     const float *zrow = grid_row(hz, (long)s);
     for (q = 0; q < nx; ++q) {
@@ -2564,10 +2598,17 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t u0, size_t u1)
   if (hz->by_rows) {
     return near_field_rows(hz, u0, u1);
   }
-  for (p = u0; p < u1 && p < hz->np; ++p) {
+  /* the region's view columns, and its cells of them: [vs0, vs1) */
+  if (u0 < hz->vp0) {
+    u0 = hz->vp0;
+  }
+  if (u1 > hz->vp1) {
+    u1 = hz->vp1;
+  }
+  for (p = u0; p < u1; ++p) {
     const float *col = view_column(hz, p);
     float *best = hz->slope + scratch_index(hz, p, 0);
-    const long ns = (long)hz->ns;
+    const long vs0 = (long)hz->vs0, ns = (long)hz->vs1;
     /* in row-major views, whether the point at the search distance lies beyond the near field
      * is the same for the whole column; x-major views check each row */
     const int far_point =
@@ -2575,10 +2616,10 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t u0, size_t u1)
       (hz->xmajor || hz->p.max_distance > (double)hz->p.near_field *
                                              view_step(hz->cum_len, hz->np, p));
     long run, s;
-    for (s = 0; s < ns; ++s) {
+    for (s = vs0; s < ns; ++s) {
       best[s] = -INFINITY;
     }
-    for (run = 0; run < ns;) {
+    for (run = vs0; run < ns;) {
       long run_end = ns;
       int pat;
       if (hz->xmajor) {
@@ -2606,7 +2647,7 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t u0, size_t u1)
     /* By chunks of AP_FM_CHUNK cells across the units' columns, so that the view columns their
      * rays cross stay in cache from one unit to the next (a 2048^2 grid at 10 km, one core:
      * 49-50 instead of 54-55 ns per cell and direction; no gain measured on 4096^2). */
-    const long ns = (long)hz->ns;
+    const long vs0 = (long)hz->vs0, ns = (long)hz->vs1;
     long s0;
     if (hz->lattice) {
       /* per-row cell sizes (row-major views; x-major ones go by rows): each view column's
@@ -2619,21 +2660,21 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t u0, size_t u1)
         free(t);
         return AP_ERR_OUT_OF_MEMORY;
       }
-      for (p = u0; p < u1 && p < hz->np; ++p) {
+      for (p = u0; p < u1; ++p) {
         long kmax;
         const long kt = lattice_steps_col(hz, p, fm, t, &kmax);
         float *best = hz->slope + scratch_index(hz, p, 0);
-        far_march_column(hz, fm, kmax, p, 0, ns, view_column(hz, p), best);
-        lattice_finish_col(hz, fm, t, kt, p, view_column(hz, p), best,
+        far_march_column(hz, fm, kmax, p, vs0, ns, view_column(hz, p), best);
+        lattice_finish_col(hz, fm, t, kt, p, vs0, ns, view_column(hz, p), best,
                            hz->edge + scratch_index(hz, p, 0));
       }
       free(fm);
       free(t);
       return AP_OK;
     }
-    for (s0 = 0; s0 < ns; s0 += AP_FM_CHUNK) {
+    for (s0 = vs0; s0 < ns; s0 += AP_FM_CHUNK) {
       const long s1 = s0 + AP_FM_CHUNK < ns ? s0 + AP_FM_CHUNK : ns;
-      for (p = u0; p < u1 && p < hz->np; ++p) {
+      for (p = u0; p < u1; ++p) {
         float *best = hz->slope + scratch_index(hz, p, 0);
         far_march_column(hz, hz->fm, hz->fm_kmax, p, s0, s1, view_column(hz, p), best);
         far_side_exits(hz, p, s0, s1, view_column(hz, p), best);
@@ -2729,6 +2770,35 @@ typedef struct line_state {
   window w;      /* limited search: the window of those samples within the distance */
 } line_state;
 
+/* Parallel lines: whether the band of nl lines from bracket b0 brackets a cell of the region
+ * at some view column of it (the lines' positions as ap_horizon_sweep moves them, with a
+ * margin of two cells for their rounding). A band that does not has nothing to compute. */
+static int band_meets_region(const ap_horizon *hz, size_t b0, size_t nl)
+{
+  const double k0 = (double)(hz->kmin + (long)b0);
+  const double lo = (double)hz->vs0 - 2.0, hi = (double)hz->vs1 + 1.0;
+  double shift = 0.0;
+  size_t pp;
+  if (hz->vs0 == 0 && hz->vs1 == hz->ns) {
+    return 1; /* (every band brackets some cell of every view column) */
+  }
+  for (pp = hz->np; pp-- > hz->vp0;) {
+    const size_t p = pp;
+    double a;
+    if (p + 1 < hz->np) {
+      shift += hz->xmajor ? hz->m_row[0] : hz->cum_m[p + 1] - hz->cum_m[p];
+    }
+    if (p >= hz->vp1) {
+      continue;
+    }
+    a = hz->lattice ? (k0 + hz->lat_off[p]) - (double)hz->ocol : (k0 + hz->phase) - shift;
+    if (a + (double)(nl - 1) >= lo && a <= hi) {
+      return 1;
+    }
+  }
+  return 0;
+}
+
 ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
 {
   int K, limited, W;
@@ -2765,6 +2835,9 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
     return AP_OK;
   }
   nl = b1 - b0 + 1; /* brackets b0..b1-1 need lines b0..b1 */
+  if (hz->parallel && !band_meets_region(hz, b0, nl)) {
+    return AP_OK; /* (with a region: its cells lie beside this band's lines) */
+  }
   lines = (line_state *)calloc(nl, sizeof(line_state));
   ring = (sample *)malloc(nl * (size_t)K * sizeof(sample));
   if (!lines || !ring) {
@@ -2796,6 +2869,9 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
     const float *col = view_column(hz, p);
     const int slot = (int)(p % (size_t)K);
     long cell;
+    if (p < hz->vp0) {
+      break; /* past the region: nothing more to query */
+    }
     /* A band touches a cache line or two of each column's elevations and scratch, one page
      * (4 KiB or more) apart from the previous column's: no hardware prefetcher follows that,
      * so fetch a few columns ahead. */
@@ -2908,9 +2984,9 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
       }
     }
 
-    /* 2. Every cell of column p bracketed by this band's lines. */
+    /* 2. Every cell of column p bracketed by this band's lines (in the region). */
     l = 0;
-    {
+    if (p < hz->vp1) {
       /* the sector scratch of this column (contiguous there) and what the loop reads of hz, in
        * locals */
       const size_t out_base = scratch_index(hz, p, 0);
@@ -2920,8 +2996,10 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
       const double zmax = (double)hz->zmax;
       const int parallel = hz->parallel;
       const double first = lines[0].s, last = lines[nl - 1].s;
-      const long s_begin = first <= 0.0 ? 0 : (long)ceil(first);
-      const long s_end = last > (double)ns ? (long)ns : (long)ceil(last);
+      const long vs0 = (long)hz->vs0, vs1 = (long)hz->vs1;
+      const long s_first = first <= 0.0 ? 0 : (long)ceil(first);
+      const long s_last = last > (double)ns ? (long)ns : (long)ceil(last);
+      const long s_begin = s_first > vs0 ? s_first : vs0, s_end = s_last < vs1 ? s_last : vs1;
       for (cell = s_begin; cell < s_end; ++cell) {
         const double sq = (double)cell;
         const double zq = col[cell];
@@ -3095,8 +3173,8 @@ static void sector_terms(size_t n, const float *tt_in, const float *grad,
   }
 }
 
-/* Add one sector's terms for the n cells from c0 (their edge flags contiguous at e, their terrain
- * horizon tangents at tt) to the sums. Its own function so that the loops vectorise in the AVX2
+/* Add one sector's terms for the n cells from output index c0 (their edge flags contiguous at
+ * e, their terrain horizon tangents at tt) to the sums. Its own function so that the loops vectorise in the AVX2
  * clone (the same operations in the same order: no result depends on the clone). */
 AP_MULTIVERSION
 static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned char *restrict e,
@@ -3239,7 +3317,7 @@ static ap_status sweep_side_rows(const ap_horizon *hz, size_t j0, size_t j1)
       z0 = rows >= 0.0 && rows < (double)SIDE_ROWS ? (double)near_side[(int)rows] : zmax;
       zbs[k] = z0 + 1e-9 * (fabs(z0) + 1.0); /* (the interpolation's rounding) */
     }
-    for (q = 0; q < nx; ++q) {
+    for (q = (long)hz->ri0; q < (long)hz->ri1; ++q) { /* (the region's columns) */
       const long F = dir > 0 ? nx - 1 - q : q; /* steps to the far edge */
       const size_t pv = (size_t)(dir > 0 ? q : nx - 1 - q);
       float *slope = hz->slope + scratch_index(hz, pv, (size_t)j);
@@ -3321,8 +3399,12 @@ ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
   sphi = sin(hz->phi);
   cphi = cos(hz->phi);
   want_ht = hz->out.positive_openness || hz->out.horizon_angles;
-  if (j1 > hz->ny) {
-    j1 = hz->ny;
+  /* the region's rows, and its columns [ri0, ri1) of them */
+  if (j0 < hz->rj0) {
+    j0 = hz->rj0;
+  }
+  if (j1 > hz->rj1) {
+    j1 = hz->rj1;
   }
   if (j0 >= j1) {
     return AP_OK;
@@ -3334,8 +3416,8 @@ ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
     }
   }
   if (hz->xmajor) {
-    tile = (float *)malloc(ROWS * hz->nx * sizeof(float));
-    etile = (unsigned char *)malloc(ROWS * hz->nx);
+    tile = (float *)malloc(ROWS * hz->rnx * sizeof(float));
+    etile = (unsigned char *)malloc(ROWS * hz->rnx);
     if (!tile || !etile) {
       free(tile);
       free(etile);
@@ -3344,32 +3426,34 @@ ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
   }
   for (j = j0; j < j1; j += ROWS) {
     const size_t nr = j1 - j < ROWS ? j1 - j : ROWS;
+    const size_t rnx = hz->rnx, ri0 = hz->ri0;
     if (hz->first) {
       for (r = 0; r < nr; ++r) {
-        for (k = 0; k < hz->nx; ++k) {
-          horn_gradient(hz, k, j + r, hz->grad + 2 * ((j + r) * hz->nx + k));
+        for (k = 0; k < rnx; ++k) {
+          horn_gradient(hz, ri0 + k, j + r, hz->grad + 2 * ((j + r - hz->rj0) * rnx + k));
         }
       }
     }
     if (hz->xmajor) {
-      for (k = 0; k < hz->nx; ++k) {
-        const float *sl = hz->slope + k * hz->ny + j;
-        const unsigned char *ed = hz->edge + k * hz->ny + j;
+      for (k = 0; k < rnx; ++k) {
+        const float *sl = hz->slope + (ri0 + k) * hz->ny + j;
+        const unsigned char *ed = hz->edge + (ri0 + k) * hz->ny + j;
         for (r = 0; r < nr; ++r) {
-          tile[r * hz->nx + k] = sl[r];
-          etile[r * hz->nx + k] = ed[r];
+          tile[r * rnx + k] = sl[r];
+          etile[r * rnx + k] = ed[r];
         }
       }
     }
     for (r = 0; r < nr; ++r) {
-      for (i0 = 0; i0 < hz->nx; i0 += BLOCK) {
-        const size_t n = hz->nx - i0 < BLOCK ? hz->nx - i0 : BLOCK;
-        const size_t c0 = (j + r) * hz->nx + i0; /* the first cell */
-        const float *slope = hz->xmajor ? tile + r * hz->nx + i0 : hz->slope + c0;
-        const unsigned char *edge = hz->xmajor ? etile + r * hz->nx + i0 : hz->edge + c0;
-        sector_terms(n, slope, hz->grad + 2 * c0, (float)sphi, (float)cphi, want_ht, ce, se,
+      for (i0 = 0; i0 < rnx; i0 += BLOCK) {
+        const size_t n = rnx - i0 < BLOCK ? rnx - i0 : BLOCK;
+        const size_t c0 = (j + r) * hz->nx + ri0 + i0;   /* the first cell, in the grid */
+        const size_t o0 = (j + r - hz->rj0) * rnx + i0; /* and in the outputs */
+        const float *slope = hz->xmajor ? tile + r * rnx + i0 : hz->slope + c0;
+        const unsigned char *edge = hz->xmajor ? etile + r * rnx + i0 : hz->edge + c0;
+        sector_terms(n, slope, hz->grad + 2 * o0, (float)sphi, (float)cphi, want_ht, ce, se,
                      he, ht);
-        accumulate_terms(hz, c0, edge, n, ce, se, he, ht, slope, sphi, cphi);
+        accumulate_terms(hz, o0, edge, n, ce, se, he, ht, slope, sphi, cphi);
       }
     }
   }
@@ -3384,9 +3468,9 @@ void ap_horizon_finish(const ap_horizon *hz, size_t j0, size_t j1)
   const double D = (double)hz->p.directions;
   float *B = o->bent_normal ? o->bent_normal : hz->bsum;
   size_t i, j;
-  for (j = j0; j < j1 && j < hz->ny; ++j) {
-    for (i = 0; i < hz->nx; ++i) {
-      const size_t k = j * hz->nx + i;
+  for (j = j0 > hz->rj0 ? j0 : hz->rj0; j < j1 && j < hz->rj1; ++j) {
+    for (i = hz->ri0; i < hz->ri1; ++i) {
+      const size_t k = (j - hz->rj0) * hz->rnx + (i - hz->ri0); /* the output's index */
       if (isnan(zat(hz, i, j))) {
         if (o->visible_solid_angle) o->visible_solid_angle[k] = NAN;
         if (o->aperture_radius) o->aperture_radius[k] = NAN;

@@ -201,10 +201,25 @@ typedef struct ap_horizon_params {
                                too few rows, a size not positive and finite, or rows
                                origin_row.. that differ from the grid's own */
   size_t whole_rows;      /**< rows of whole_dx / whole_dy (default 0) */
+  size_t region_i0;       /**< the cells to compute: columns region_i0 ..
+                               region_i0 + region_nx − 1 and rows region_j0 ..
+                               region_j0 + region_ny − 1 of the grid, inside it; the rest of
+                               the grid is terrain only (the halo of a piece). Each cell gets
+                               the value a run over the whole grid gives it, bit for bit, and
+                               costs only what the region needs: marched sectors march the
+                               region's cells alone, swept ones query the hulls only there
+                               (their lines still cross the grid up to the region) and stop
+                               past it. All four 0 (default): every cell. A region not inside
+                               the grid, or with one size 0, is AP_ERR_INVALID_ARGUMENT */
+  size_t region_j0;
+  size_t region_nx;
+  size_t region_ny;
 } ap_horizon_params;
 
-/** Output arrays, caller-owned, nx * ny cells in grid order (cell (i, j) at j * nx + i);
- *  each may be NULL when not wanted. Angles in radians. */
+/** Output arrays, caller-owned, one value per cell of the region (ap_horizon_params; by
+ *  default the whole grid, nx * ny cells) in grid order: cell (i, j) at
+ *  (j − region_j0) * region_nx + (i − region_i0), so j * nx + i for the whole grid. Each may
+ *  be NULL when not wanted. Angles in radians. */
 typedef struct ap_sky_products {
   float *visible_solid_angle;   /**< A (sr), [0, 2π] */
   float *aperture_radius;       /**< rp (rad), [0, π/2] */
@@ -229,9 +244,9 @@ void ap_horizon_params_init(ap_horizon_params *p);
 ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params *p);
 
 /** Validate, then allocate the state: a transposed copy of the elevations (4 bytes per
- *  cell), the gradients (8), one direction's horizons and edge flags (5), and accumulators
- *  for the bent-normal sums when bent_normal is NULL but the diffuse sky factor is wanted
- *  (12). Writes only the transposed copy: the gradients and the requested outputs (the
+ *  cell), the gradients (8 per cell of the region), one direction's horizons and edge flags
+ *  (5), and accumulators for the bent-normal sums when bent_normal is NULL but the diffuse sky
+ *  factor is wanted (12 per cell of the region). Writes only the transposed copy: the gradients and the requested outputs (the
  *  accumulators until ap_horizon_finish) are started by the first sector's
  *  ap_horizon_accumulate, in the caller's parallel phase. The grid's and the outputs' memory
  *  must stay valid until ap_horizon_destroy. */
@@ -240,7 +255,8 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
 
 /** Bytes per cell that ap_horizon_create allocates for the state above, for callers that
  *  estimate a run's memory: 17, plus 12 when the diffuse sky factor is wanted without the
- *  bent normal (both flags 0 or 1). The per-sector and per-thread buffers, O(nx + ny) each,
+ *  bent normal (both flags 0 or 1); with a region, the gradients and those accumulators are
+ *  per cell of the region, so this bounds the state from above. The per-sector and per-thread buffers, O(nx + ny) each,
  *  the far march's tile maxima (under 0.02 bytes per cell) and the caller's outputs are not
  *  counted. */
 size_t ap_horizon_state_bytes_per_cell(int diffuse_sky_factor, int bent_normal);
@@ -290,7 +306,8 @@ size_t ap_horizon_bracket_count(const ap_horizon *hz);
  *  returns AP_ERR_OUT_OF_MEMORY if that fails (the products are then incomplete). */
 ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1);
 
-/** Add the prepared sector's horizons of rows [j0, j1) to the products, after its sweep
+/** Add the prepared sector's horizons of grid rows [j0, j1) to the products (only the
+ *  region's cells of them: rows outside it have nothing to do), after its sweep
  *  (for the first sector prepared: compute those rows' gradients and start their sums, so
  *  every row must be accumulated for each sector before the next is prepared, as the sequence
  *  above does; in swept x-major sectors of grids with per-row cell sizes it first samples
@@ -299,7 +316,8 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1);
  *  for that sampling; returns AP_ERR_OUT_OF_MEMORY if that fails (nothing is then added). */
 ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1);
 
-/** After the last sector: turn the sums of rows [j0, j1) into the products. */
+/** After the last sector: turn the sums of grid rows [j0, j1) (the region's cells of them)
+ *  into the products. */
 void ap_horizon_finish(const ap_horizon *hz, size_t j0, size_t j1);
 
 /** Everything on the calling thread: create, every sector, finish, destroy. */

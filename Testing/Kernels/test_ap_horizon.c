@@ -76,9 +76,10 @@ typedef struct results {
   unsigned char *edge;
 } results;
 
+/* Every product of the grid, or of p's region (region_nx * region_ny cells) when it has one. */
 static results compute(const terrain *t, const ap_horizon_params *p)
 {
-  const size_t n = t->nx * t->ny;
+  const size_t n = p->region_nx ? p->region_nx * p->region_ny : t->nx * t->ny;
   ap_horizon_grid g = grid_of(t);
   ap_sky_products o;
   results r;
@@ -1088,6 +1089,26 @@ static void test_errors(void)
   AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
   p.origin_row = 0;
   {
+    /* the region: inside the 10 x 10 grid, both sizes or neither */
+    static const size_t bad[][4] = { { 0, 0, 0, 5 }, { 0, 0, 5, 0 }, { 3, 0, 0, 0 },
+                                     { 6, 0, 5, 5 }, { 0, 10, 1, 1 }, { 0, 0, 11, 1 },
+                                     { 1, 1, (size_t)-1, 2 } };
+    size_t k;
+    for (k = 0; k < sizeof(bad) / sizeof(bad[0]); ++k) {
+      p.region_i0 = bad[k][0];
+      p.region_j0 = bad[k][1];
+      p.region_nx = bad[k][2];
+      p.region_ny = bad[k][3];
+      AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+    }
+    p.region_i0 = 5;
+    p.region_j0 = 9;
+    p.region_nx = 5;
+    p.region_ny = 1;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_OK);
+    p.region_i0 = p.region_j0 = p.region_nx = p.region_ny = 0;
+  }
+  {
     /* the larger DEM's rows (per-row sizes): both tables, enough rows below and above the
      * piece, sizes positive and finite; ignored with constant sizes */
     double wdx[14], wdy[14], rdx[10];
@@ -1480,6 +1501,110 @@ static void test_random_pieces(void)
   AP_CHECK(worst <= 1e-6);
 }
 
+/* A region of the grid (ap_horizon_params.region_*) gets the whole run's values bit for bit,
+ * in every search mode, projected and lat/lon, unlimited or not: regions at the corners and
+ * edges (whose rays leave at once or run across the grid), a single row, a single column, a
+ * single cell, the interior, and the whole grid named explicitly; nodata inside and outside;
+ * also the diffuse sky factor without the bent normal (the kernel's own accumulators). */
+static int same_in_region(const terrain *t, const results *w, const results *r,
+                          const ap_horizon_params *p)
+{
+  const size_t D = (size_t)p->directions, rnx = p->region_nx;
+  size_t i, j, d;
+  int same = 1;
+  for (j = 0; j < p->region_ny; ++j) {
+    for (i = 0; i < rnx; ++i) {
+      const size_t a = (j + p->region_j0) * t->nx + (i + p->region_i0), b = j * rnx + i;
+#define SAME(x, y) (memcmp(&(x), &(y), sizeof(x)) == 0)
+      same = same && SAME(w->A[a], r->A[b]) && SAME(w->rp[a], r->rp[b]) &&
+             SAME(w->svf[a], r->svf[b]) && SAME(w->vd[a], r->vd[b]) &&
+             SAME(w->open[a], r->open[b]) && w->edge[a] == r->edge[b];
+      for (d = 0; d < 3; ++d) {
+        same = same && SAME(w->bn[3 * a + d], r->bn[3 * b + d]);
+      }
+      for (d = 0; d < D; ++d) {
+        same = same && SAME(w->h[a * D + d], r->h[b * D + d]);
+      }
+#undef SAME
+    }
+  }
+  return same;
+}
+
+static void test_regions(void)
+{
+  /* i0, j0, nx, ny on a 61 x 47 grid */
+  static const size_t regions[][4] = { { 0, 0, 9, 7 },    { 50, 40, 11, 7 }, { 0, 30, 61, 1 },
+                                       { 33, 0, 1, 47 },  { 20, 15, 17, 13 }, { 60, 46, 1, 1 },
+                                       { 0, 0, 61, 47 },  { 5, 44, 30, 3 } };
+  const size_t nreg = sizeof(regions) / sizeof(regions[0]);
+  int latlon, mode, failures = 0, runs = 0;
+  for (latlon = 0; latlon < 2; ++latlon) {
+    for (mode = 0; mode <= SEARCH_MODES; ++mode) {
+      terrain t = make(61, 47, 30.0);
+      ap_horizon_params p = params(16, 1);
+      results w;
+      size_t i, j, k;
+      for (j = 0; j < t.ny; ++j) {
+        for (i = 0; i < t.nx; ++i) {
+          t.z[j * t.nx + i] = (float)rough((double)i * 30.0, (double)j * 30.0);
+        }
+      }
+      t.z[3 * t.nx + 4] = NAN;   /* in the first region */
+      t.z[40 * t.nx + 10] = NAN; /* outside every region but the whole */
+      if (latlon) {
+        latlon_rows(&t, 6371000.0, 60.0 * DEG, 0.0003 * DEG, 0.0004 * DEG);
+      }
+      if (mode == SEARCH_MODES) {
+        p.max_distance = INFINITY; /* the sweep's unlimited hulls, the automatic near field */
+      } else {
+        p.max_distance = mode == MARCHED ? 500.0 : 1500.0;
+        set_mode(&p, mode, 64);
+      }
+      w = compute(&t, &p);
+      for (k = 0; k < nreg; ++k) {
+        ap_horizon_params q = p;
+        results r;
+        q.region_i0 = regions[k][0];
+        q.region_j0 = regions[k][1];
+        q.region_nx = regions[k][2];
+        q.region_ny = regions[k][3];
+        r = compute(&t, &q);
+        if (!same_in_region(&t, &w, &r, &q)) {
+          printf("region %zu,%zu %zux%zu differs (%s, %s)\n", q.region_i0, q.region_j0,
+                 q.region_nx, q.region_ny, latlon ? "lat/lon" : "projected",
+                 mode == SEARCH_MODES ? "unlimited" : mode_name[mode]);
+          ++failures;
+        }
+        ++runs;
+        if (k == 4) {
+          /* DiffuseSkyFactor alone: the bent-normal sums in the kernel's own buffer */
+          ap_horizon_grid g = grid_of(&t);
+          ap_sky_products o;
+          float *vd = (float *)malloc(q.region_nx * q.region_ny * sizeof(float));
+          size_t a;
+          memset(&o, 0, sizeof(o));
+          o.diffuse_sky_factor = vd;
+          AP_CHECK_EQ_INT(ap_horizon_run(&g, &q, &o), AP_OK);
+          for (j = 0; j < q.region_ny; ++j) {
+            for (i = 0; i < q.region_nx; ++i) {
+              a = (j + q.region_j0) * t.nx + i + q.region_i0;
+              AP_CHECK(memcmp(&vd[j * q.region_nx + i], &w.vd[a], sizeof(float)) == 0);
+            }
+          }
+          free(vd);
+        }
+        release(&r);
+      }
+      AP_CHECK(isnan(w.svf[3 * t.nx + 4]));
+      release(&w);
+      drop(&t);
+    }
+  }
+  printf("%d regions, %d differ from the whole run\n", runs, failures);
+  AP_CHECK(failures == 0);
+}
+
 /* Relative error of ap_atanf at x > 0; infinite for a NaN result (fmax would drop a NaN). */
 static double atanf_error(float x)
 {
@@ -1545,6 +1670,7 @@ int main(void)
   test_far_march_skips();
   test_pieces();
   test_random_pieces();
+  test_regions();
   test_edge_flags();
   test_extreme_ranges();
   test_nodata_transparent();

@@ -511,15 +511,15 @@ class TestSkyVisibility(Testing.vtkTest):
         f = sky(image, MemoryLimit=21600)
         self.assertEqual(f.EstimateBytes(400.0), 21600.0)
         self.assertTrue(np.all(array(f.GetOutput(), "SkyViewFactor") == 1.0))
-        # A sub-extent's outputs and passed elevations are copies beside the whole ones:
-        # 5 x 5 more cells of 33 + 4 bytes = 925.
+        # A sub-extent's outputs cover it alone (5 x 5 cells of 33 bytes, not 20 x 20), and the
+        # elevations passed on are copied to it (4 bytes a cell): 21600 - 375 x 33 + 25 x 4.
         f = aperture.vtkApertureSkyVisibility()
         f.SetInputData(image)
-        f.SetMemoryLimit(21600 + 925)
+        f.SetMemoryLimit(9325)
         f.UpdateExtent((0, 4, 0, 4, 0, 0))
         self.assertEqual(f.GetOutput().GetDimensions(), (5, 5, 1))
-        self.assertIn("needs about 21.997 KiB, more than the 21.996 KiB MemoryLimit",
-                      self.error(image, MemoryLimit=21600 + 924, UpdateExtent=(0, 4, 0, 4, 0, 0)))
+        self.assertIn("needs about 9.106 KiB, more than the 9.105 KiB MemoryLimit",
+                      self.error(image, MemoryLimit=9324, UpdateExtent=(0, 4, 0, 4, 0, 0)))
         # The default limit is the physical memory less the input's size: 360 directions of
         # HorizonAngles (1494 bytes a cell) on a grid of a little more cells than that allows.
         memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
