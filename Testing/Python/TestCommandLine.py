@@ -195,7 +195,7 @@ class TestInfo(CommandLineTest):
         rows = np.arange(6 * 8, dtype=float).reshape(6, 8)
         p = make_raster(self.path("bands.tif"), rows, (500000, 30, 0, 4000000, 0, -30), bands=3)
         d, err = self.info(p)
-        self.assertIn("has 3 bands; reading band 1", err)
+        self.assertIn("has 3 bands; reading band 1 as elevation (choose one with --band)", err)
         self.assertEqual(len(err.strip().splitlines()), 1)
         self.assertEqual(d["elevation_range"], [0.0, 47.0])
         d, err = self.info(p, "--band", 3)
@@ -203,6 +203,9 @@ class TestInfo(CommandLineTest):
         self.assertEqual(d["elevation_range"], [2000.0, 2047.0])
         d, _ = self.info(p, "--band", 1, "--srcwin", 2, 1, 3, 4)
         self.assertEqual(d["size"], [3, 4])
+        # the reader's complaint in the command line's words
+        self.assert_error("--srcwin 6 1 3 4 is not inside the 8 x 6 raster",
+                          "info", p, "--band", 1, "--srcwin", 6, 1, 3, 4)
         self.assertEqual(d["elevation_range"], [10.0, 36.0])
         d, _ = self.info(p, "--band", 1, "--decimate", 2)
         self.assertEqual(d["size"], [4, 3])
@@ -213,7 +216,8 @@ class TestInfo(CommandLineTest):
     def test_srs_override(self):
         rows = np.ones((4, 4))
         p = make_raster(self.path("nocrs.tif"), rows, (500000, 30, 0, 4000000, 0, -30), srs=None)
-        self.assert_error("has no coordinate reference system", "info", p)
+        self.assert_error("has no coordinate reference system; give one with --srs EPSG:xxxx",
+                          "info", p)
         d, _ = self.info(p, "--srs", "EPSG:32611")
         self.assertEqual(d["crs"], "WGS 84 / UTM zone 11N")
 
@@ -284,7 +288,8 @@ class TestBadInput(CommandLineTest):
 
     def test_bad_options(self):
         self.assert_error("--decimate must be 1 or more", "info", "--decimate", "0")
-        self.assert_error("cannot parse the CRS", "info", "--srs", "EPSG:999999999")
+        self.assert_error("error: --srs: GDAL cannot parse the CRS", "info", "--srs",
+                          "EPSG:999999999")
 
     def test_render_without_display(self):
         env = dict(os.environ)

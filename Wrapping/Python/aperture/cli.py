@@ -14,6 +14,7 @@ import argparse
 import json
 import math
 import os
+import re
 import sys
 
 from aperture.errors import ApertureError, Watcher, quiet_vtk_output
@@ -22,7 +23,7 @@ PROG = "aperture"
 
 
 def _warn(message):
-    print("%s: warning: %s" % (PROG, message), file=sys.stderr)
+    print("%s: warning: %s" % (PROG, _as_options(message)), file=sys.stderr)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -111,6 +112,22 @@ def _dem_path(args):
 
 _SMALLER_READ = "read a part with --srcwin, or use --decimate or --overview"
 
+# The DEM reader's messages name its VTK properties; here they are options.
+_READER_PHRASES = (
+    (re.compile(r"read a SubWindow, or use Decimation or an OverviewLevel"), _SMALLER_READ),
+    (re.compile(r"SubWindow \((-?\d+), (-?\d+), (-?\d+), (-?\d+)\)"), r"--srcwin \1 \2 \3 \4"),
+    (re.compile(r"set BandIndex to choose"), "choose one with --band"),
+    (re.compile(r"^OverrideCRS: "), "--srs: "),
+    (re.compile(r"set OverrideCRS \(aperture: (--srs EPSG:xxxx)\)"), r"give one with \1"),
+)
+
+
+def _as_options(message):
+    """A reader message in the command line's words (other messages pass unchanged)."""
+    for pattern, words in _READER_PHRASES:
+        message = pattern.sub(words, message)
+    return message
+
 
 def _human_bytes(count):
     """A byte count as the C++ messages give it: "512 bytes", "1.500 KiB", "3.353 GiB"."""
@@ -153,9 +170,7 @@ def read_dem(args, watcher, check_size=None):
         with _abort_on_interrupt(reader):  # (a large DEM can take minutes to read)
             image = watcher.update(reader)
     except ApertureError as e:
-        # the reader's advice names its properties; here they are options
-        raise ApertureError(str(e).replace(
-            "read a SubWindow, or use Decimation or an OverviewLevel", _SMALLER_READ))
+        raise ApertureError(_as_options(str(e)))
     return reader, image
 
 
