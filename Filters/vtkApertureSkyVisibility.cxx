@@ -237,6 +237,30 @@ double vtkApertureSkyVisibility::EstimateBytes(double n) const
 }
 
 //------------------------------------------------------------------------------
+std::string vtkApertureSkyVisibility::CheckMemory(int nx, int ny, double held) const
+{
+  return this->MemoryProblem(nx, ny, this->EstimateBytes(static_cast<double>(nx) * ny), held);
+}
+
+//------------------------------------------------------------------------------
+std::string vtkApertureSkyVisibility::MemoryProblem(
+  int nx, int ny, double need, double held) const
+{
+  const double limit = this->MemoryLimit > 0
+    ? static_cast<double>(this->MemoryLimit)
+    : static_cast<double>(vtkAperturePhysicalMemory()) - held;
+  if (need <= limit)
+  {
+    return std::string();
+  }
+  return NeedsText(nx, ny, vtkApertureHumanBytes(need), this->ComputeHorizonAngles) +
+    ", more than the " +
+    (this->MemoryLimit > 0 ? vtkApertureHumanBytes(limit) + " MemoryLimit"
+                           : vtkApertureHumanBytes(std::max(limit, 0.0)) +
+         " of memory this machine has beside the DEM's " + vtkApertureHumanBytes(held));
+}
+
+//------------------------------------------------------------------------------
 double vtkApertureSkyVisibility::OutputBytesPerCell() const
 {
   const bool floats[] = { this->ComputeVisibleSolidAngle, this->ComputeApertureRadius,
@@ -342,20 +366,11 @@ int vtkApertureSkyVisibility::Execute(
     // a sub-extent's outputs cover it alone; the input arrays passed are copied to it
     const double need = this->EstimateBytes(static_cast<double>(n)) -
       (whole ? 0.0 : this->OutputBytesPerCell() * static_cast<double>(n - outN) - 4.0 * outN);
-    const double held = 1024.0 * static_cast<double>(input->GetActualMemorySize());
-    const double limit = this->MemoryLimit > 0
-      ? static_cast<double>(this->MemoryLimit)
-      : static_cast<double>(vtkAperturePhysicalMemory()) - held;
-    if (need > limit)
+    const std::string problem = this->MemoryProblem(
+      nx, ny, need, 1024.0 * static_cast<double>(input->GetActualMemorySize()));
+    if (!problem.empty())
     {
-      vtkErrorMacro(<< NeedsText(nx, ny, vtkApertureHumanBytes(need), this->ComputeHorizonAngles)
-                    << ", more than the "
-                    << (this->MemoryLimit > 0
-                           ? vtkApertureHumanBytes(limit) + " MemoryLimit"
-                           : vtkApertureHumanBytes(std::max(limit, 0.0)) +
-                             " of memory this machine has beside the DEM's " +
-                             vtkApertureHumanBytes(held))
-                    << "; bake a part of the DEM, a decimated one, or fewer products");
+      vtkErrorMacro(<< problem << "; bake a part of the DEM, a decimated one, or fewer products");
       return 0;
     }
   }

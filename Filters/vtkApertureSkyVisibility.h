@@ -73,6 +73,8 @@
 #include "ApertureFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
 
+#include <string> // for CheckMemory
+
 class APERTUREFILTERS_EXPORT vtkApertureSkyVisibility : public vtkImageAlgorithm
 {
 public:
@@ -150,6 +152,13 @@ public:
    *  with, for callers that check before reading a DEM. */
   double EstimateBytes(double n) const;
 
+  /** Why an update over an nx x ny input would be refused for memory, or "" when it fits:
+   *  EstimateBytes(nx * ny) against MemoryLimit, or (MemoryLimit 0) against the physical
+   *  memory less `held` bytes, what the input occupies (4 x nx x ny for float elevations not
+   *  yet read). The update refuses with this text and advice; a caller can ask before reading
+   *  a DEM and add its own advice. */
+  std::string CheckMemory(int nx, int ny, double held) const;
+
   /** Threads that ran the last update's parallel work (0 before any; at most
    *  NumberOfThreads when that is set). */
   vtkGetMacro(NumberOfThreadsUsed, int);
@@ -217,6 +226,8 @@ protected:
   int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
   /** Bytes of the requested outputs per cell. */
   double OutputBytesPerCell() const;
+  /** CheckMemory's text for `need` bytes. */
+  std::string MemoryProblem(int nx, int ny, double need, double held) const;
 
   int NumberOfDirections;
   double MaximumDistance;

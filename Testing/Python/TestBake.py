@@ -297,24 +297,25 @@ class TestBake(unittest.TestCase):
                       "--decimate or --overview" % big, p.stderr)
         # A bake that needs more than the machine's physical memory is refused before the DEM
         # is read (under Linux's overcommit it would be killed mid-sweep, not fail to
-        # allocate): 30000^2 cells with HorizonAngles at 360 directions need 4 bytes a cell
-        # for the elevations and 1498 in the sky filter (1440 of horizons, 37 of the other
-        # products with EdgeTruncated as float beside its byte flags, its float copy 4 and the
-        # sweep's state 17): 1.3518e12 bytes = 1.229 TiB.
+        # allocate): 30000^2 cells with HorizonAngles at 360 directions need 1498 bytes a cell
+        # in the sky filter (1440 of horizons, 37 of the other products with EdgeTruncated as
+        # float beside its byte flags, its float copy 4 and the sweep's state 17):
+        # 1.3482e12 bytes = 1.226 TiB, beside the elevations' 4 bytes a cell, 3.353 GiB.
         memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
         if memory > 1.3e12:
             self.skipTest("this machine has more than 1.3 TB of memory")
         units = ("bytes", "KiB", "MiB", "GiB", "TiB")
-        u = max(k for k in range(5) if memory >= 1024 ** k)
+        left = memory - 4.0 * 30000 ** 2
+        u = max(k for k in range(5) if left >= 1024 ** k)
         p = subprocess.run([APERTURE, "bake", big, out, "-d", "360", "--products", "all"],
                            capture_output=True, text=True, timeout=300)
         self.assertEqual(p.returncode, 1, p.stderr)
-        self.assertEqual(p.stderr.strip(), "aperture: error: baking 30000 x 30000 cells with "
-                         "these products needs about 1.229 TiB, more than the %.3f %s of "
-                         "memory on this machine (HorizonAngles take 4 bytes per cell and "
-                         "direction); read a part with --srcwin, or use --decimate or "
-                         "--overview, or bake fewer --products" % (memory / 1024.0 ** u,
-                                                                  units[u]))
+        self.assertEqual(p.stderr.strip(), "aperture: error: a 30000 x 30000 DEM with these "
+                         "products needs about 1.226 TiB (HorizonAngles take 4 bytes per cell "
+                         "and direction), more than the %.3f %s of memory this machine has "
+                         "beside the DEM's 3.353 GiB; read a part with --srcwin, or use "
+                         "--decimate or --overview, or bake fewer --products"
+                         % (left / 1024.0 ** u, units[u]))
         self.assertFalse(os.path.exists(out))
         # 12000^2: the reader's 0.54 GiB fits, the mesh's points, normals and triangles do not
         script = ("import aperture, sys\n"

@@ -510,6 +510,16 @@ class TestSkyVisibility(Testing.vtkTest):
                          "decimated one, or fewer products")
         f = sky(image, MemoryLimit=21600)
         self.assertEqual(f.EstimateBytes(400.0), 21600.0)
+        # the same check before reading: the update's text without its advice
+        self.assertEqual(f.CheckMemory(20, 20, 0.0), "")
+        f.SetMemoryLimit(21599)
+        self.assertEqual(f.CheckMemory(20, 20, 0.0), "a 20 x 20 DEM with these products needs "
+                         "about 21.094 KiB, more than the 21.093 KiB MemoryLimit")
+        f.SetMemoryLimit(0)  # the machine's memory beside what the input holds
+        memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+        self.assertEqual(f.CheckMemory(20, 20, memory - 21600.0), "")
+        self.assertIn("needs about 21.094 KiB, more than the 21.092 KiB of memory this machine "
+                      "has beside the DEM's ", f.CheckMemory(20, 20, memory - 21598.0))
         self.assertTrue(np.all(array(f.GetOutput(), "SkyViewFactor") == 1.0))
         # A sub-extent's outputs cover it alone (5 x 5 cells of 33 bytes, not 20 x 20), and the
         # elevations passed on are copied to it (4 bytes a cell): 21600 - 375 x 33 + 25 x 4.

@@ -129,16 +129,6 @@ def _as_options(message):
     return message
 
 
-def _human_bytes(count):
-    """A byte count as the C++ messages give it: "512 bytes", "1.500 KiB", "3.353 GiB"."""
-    units = ("bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB")
-    u = 0
-    while count >= 1024.0 and u < len(units) - 1:
-        count /= 1024.0
-        u += 1
-    return "%.0f bytes" % count if u == 0 else "%.3f %s" % (count, units[u])
-
-
 def read_dem(args, watcher, check_size=None):
     """Read the DEM the arguments name; returns (reader, image). check_size(nx, ny), when
     given, sees the size of the grid to be read before anything is read, and may raise."""
@@ -655,17 +645,11 @@ def _bake(args, products, progress):
 
     def check_size(nx, ny):
         # Refuse before reading (which may take minutes) what the sky filter would refuse
-        # after it: the elevations (4 bytes a cell) and the filter's estimate must fit in
-        # physical memory; past it Linux kills the process instead of failing an allocation.
-        need = 4.0 * nx * ny + sky.EstimateBytes(float(nx) * ny)
-        memory = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
-        if need > memory:
-            raise ApertureError(
-                "baking %d x %d cells with these products needs about %s, more than the %s "
-                "of memory on this machine%s; %s, or bake fewer --products"
-                % (nx, ny, _human_bytes(need), _human_bytes(memory),
-                   " (HorizonAngles take 4 bytes per cell and direction)"
-                   if "HorizonAngles" in products else "", _SMALLER_READ))
+        # after it, beside the elevations it will hold (4 bytes a cell): past physical memory
+        # Linux kills the process instead of failing an allocation.
+        problem = sky.CheckMemory(nx, ny, 4.0 * nx * ny)
+        if problem:
+            raise ApertureError("%s; %s, or bake fewer --products" % (problem, _SMALLER_READ))
 
     reader, _ = read_dem(args, watcher, check_size)
     sky.SetInputConnection(reader.GetOutputPort())
