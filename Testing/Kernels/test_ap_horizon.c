@@ -1453,11 +1453,37 @@ static void test_far_march_skips(void)
  * from the piece's edge; a stress run of 5,500 such pieces found two horizons 4e-8 rad apart).
  * Before the lat/lon lines lay on the whole DEM's lattice, or the edge flag with a distance
  * ignored the DEM's highest cell, such pieces differed by up to 1e-2 and in flags. */
+/* Whether r (computed for p's region) holds w's values (a whole run) there, bit for bit. */
+static int same_in_region(const terrain *t, const results *w, const results *r,
+                          const ap_horizon_params *p)
+{
+  const size_t D = (size_t)p->directions, rnx = p->region_nx;
+  size_t i, j, d;
+  int same = 1;
+  for (j = 0; j < p->region_ny; ++j) {
+    for (i = 0; i < rnx; ++i) {
+      const size_t a = (j + p->region_j0) * t->nx + (i + p->region_i0), b = j * rnx + i;
+#define SAME(x, y) (memcmp(&(x), &(y), sizeof(x)) == 0)
+      same = same && SAME(w->A[a], r->A[b]) && SAME(w->rp[a], r->rp[b]) &&
+             SAME(w->svf[a], r->svf[b]) && SAME(w->vd[a], r->vd[b]) &&
+             SAME(w->open[a], r->open[b]) && w->edge[a] == r->edge[b];
+      for (d = 0; d < 3; ++d) {
+        same = same && SAME(w->bn[3 * a + d], r->bn[3 * b + d]);
+      }
+      for (d = 0; d < D; ++d) {
+        same = same && SAME(w->h[a * D + d], r->h[b * D + d]);
+      }
+#undef SAME
+    }
+  }
+  return same;
+}
+
 static void test_random_pieces(void)
 {
   unsigned long long state = 88172645463325252ULL;
   double worst = 0.0;
-  int it, latlon_runs = 0;
+  int it, latlon_runs = 0, regions_differ = 0;
   for (it = 0; it < 120; ++it) {
     const size_t nx = 5 + (size_t)(next_uniform(&state) * 40);
     const size_t ny = 5 + (size_t)(next_uniform(&state) * 40);
@@ -1494,11 +1520,25 @@ static void test_random_pieces(void)
     region[3] = region[2] + (size_t)(next_uniform(&state) * (double)(ny - region[2]));
     w = compute(&t, &p);
     worst = fmax(worst, piece_difference(&t, &w, &p, region, margin, margin, 1));
+    {
+      /* the same region computed on the whole grid: the whole run's bits */
+      ap_horizon_params q = p;
+      results r;
+      q.region_i0 = region[0];
+      q.region_j0 = region[2];
+      q.region_nx = region[1] - region[0] + 1;
+      q.region_ny = region[3] - region[2] + 1;
+      r = compute(&t, &q);
+      regions_differ += !same_in_region(&t, &w, &r, &q);
+      release(&r);
+    }
     release(&w);
     drop(&t);
   }
-  printf("120 random pieces (%d lat/lon): largest difference %.3g\n", latlon_runs, worst);
+  printf("120 random pieces (%d lat/lon): largest difference %.3g; as regions, %d differ\n",
+         latlon_runs, worst, regions_differ);
   AP_CHECK(worst <= 1e-6);
+  AP_CHECK(regions_differ == 0);
 }
 
 /* A region of the grid (ap_horizon_params.region_*) gets the whole run's values bit for bit,
@@ -1506,31 +1546,6 @@ static void test_random_pieces(void)
  * edges (whose rays leave at once or run across the grid), a single row, a single column, a
  * single cell, the interior, and the whole grid named explicitly; nodata inside and outside;
  * also the diffuse sky factor without the bent normal (the kernel's own accumulators). */
-static int same_in_region(const terrain *t, const results *w, const results *r,
-                          const ap_horizon_params *p)
-{
-  const size_t D = (size_t)p->directions, rnx = p->region_nx;
-  size_t i, j, d;
-  int same = 1;
-  for (j = 0; j < p->region_ny; ++j) {
-    for (i = 0; i < rnx; ++i) {
-      const size_t a = (j + p->region_j0) * t->nx + (i + p->region_i0), b = j * rnx + i;
-#define SAME(x, y) (memcmp(&(x), &(y), sizeof(x)) == 0)
-      same = same && SAME(w->A[a], r->A[b]) && SAME(w->rp[a], r->rp[b]) &&
-             SAME(w->svf[a], r->svf[b]) && SAME(w->vd[a], r->vd[b]) &&
-             SAME(w->open[a], r->open[b]) && w->edge[a] == r->edge[b];
-      for (d = 0; d < 3; ++d) {
-        same = same && SAME(w->bn[3 * a + d], r->bn[3 * b + d]);
-      }
-      for (d = 0; d < D; ++d) {
-        same = same && SAME(w->h[a * D + d], r->h[b * D + d]);
-      }
-#undef SAME
-    }
-  }
-  return same;
-}
-
 static void test_regions(void)
 {
   /* i0, j0, nx, ny on a 61 x 47 grid */
