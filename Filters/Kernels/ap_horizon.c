@@ -575,6 +575,8 @@ struct fm_step;
 static void fm_step_set(struct fm_step *st, double sh, double t, double c);
 
 
+#define AP_SIDE_ROWS 8 /* rows next to a side with their own bound (sweep_side_rows) */
+
 struct ap_horizon {
   ap_horizon_grid g;
   ap_horizon_params p;
@@ -604,6 +606,9 @@ struct ap_horizon {
   long ocol, orow;        /* this grid's cell (0, 0) in the larger DEM */
   double wdx_c, wdy_c;    /* the larger DEM's centre row cell sizes (m) */
   double wdx_min, wdy_min; /* its smallest */
+  double *ycum;           /* ny values: the grid's south-north distance (m) from row 0 */
+  float side_max[2][AP_SIDE_ROWS]; /* the highest cell (NaN ignored) at most d rows from
+                                    * row 0 ([0][d]) and from row ny - 1 ([1][d]) */
 
   /* the prepared sector */
   int d;
@@ -883,6 +888,7 @@ void ap_horizon_destroy(ap_horizon *hz)
   free(hz->dyr);
   free(hz->psi);
   free(hz->psi_inv);
+  free(hz->ycum);
   free(hz->zt);
   free(hz->grad);
   free(hz->slope);
@@ -907,6 +913,29 @@ static int lattice_init(ap_horizon *hz)
   hz->psi_inv = (double *)malloc((hz->nw - 1) * sizeof(double));
   if (!hz->psi || !hz->psi_inv) {
     return 0;
+  }
+  /* (for sweep_side_rows: distances along the rows, and the highest cells near each side) */
+  hz->ycum = (double *)malloc(hz->ny * sizeof(double));
+  if (!hz->ycum) {
+    return 0;
+  }
+  hz->ycum[0] = 0.0;
+  for (j = 1; j < hz->ny; ++j) {
+    hz->ycum[j] = hz->ycum[j - 1] + 0.5 * (hz->dyr[j - 1] + hz->dyr[j]);
+  }
+  for (j = 0; j < AP_SIDE_ROWS; ++j) {
+    int side;
+    for (side = 0; side < 2; ++side) {
+      float *m = &hz->side_max[side][j];
+      *m = j > 0 ? m[-1] : -INFINITY;
+      if (j < hz->ny) {
+        const float *zr = grid_row(hz, side ? (long)(hz->ny - 1 - j) : (long)j);
+        size_t q;
+        for (q = 0; q < hz->nx; ++q) {
+          *m = zr[q] > *m ? zr[q] : *m;
+        }
+      }
+    }
   }
   hz->psi[0] = 0.0;
   hz->wdx_min = wdx[0];
@@ -3260,41 +3289,23 @@ static ap_status sweep_side_rows(const ap_horizon *hz, size_t j0, size_t j1)
   const double zmax = (double)hz->zmax, orow = (double)hz->orow;
   const long ny = (long)hz->ny, nx = (long)hz->np, dir = hz->flip ? -1 : 1;
   const long e = cot > 0.0 ? ny - 1 : 0; /* the side row */
-  enum { SIDE_ROWS = 8 };
-  float near_side[SIDE_ROWS];
-  double *Y, *ys, *ts, *zbs;
+  /* the highest cell at most d rows from the side (NaN ignored): the bound for a stretch
+   * that starts there, tighter than zmax; and the distances along the rows */
+  const float *near_side = hz->side_max[cot > 0.0 ? 1 : 0];
+  const double *Y = hz->ycum;
+  double *ys, *ts, *zbs;
   long W, j;
   if (hz->m_row[0] == 0.0 || !(fabs(cphi) > 1e-12)) {
     return AP_OK; /* along the rows: no ray leaves through a side */
   }
   /* (from the whole DEM's lattice alone; the table below holds at most nx steps) */
   W = (long)fmin(ceil(hz->sigma / fabs(cot)) + 2.0, 1e9);
-  Y = (double *)malloc((size_t)ny * sizeof(double));
   ys = (double *)malloc(3 * (size_t)nx * sizeof(double));
-  if (!Y || !ys) {
-    free(Y);
-    free(ys);
+  if (!ys) {
     return AP_ERR_OUT_OF_MEMORY;
   }
   ts = ys + nx;  /* per step of a row: the distance, */
   zbs = ts + nx; /* and the bound on the elevations from there to the side */
-  Y[0] = 0.0;
-  for (j = 1; j < ny; ++j) {
-    Y[j] = Y[j - 1] + 0.5 * (hz->dyr[j - 1] + hz->dyr[j]);
-  }
-  /* the highest cell within d rows of the side (NaN ignored): the bound for a stretch that
-   * starts there, tighter than zmax */
-  for (j = 0; j < SIDE_ROWS; ++j) {
-    const long r = cot > 0.0 ? e - j : e + j;
-    long q;
-    near_side[j] = j > 0 ? near_side[j - 1] : -INFINITY;
-    if (r >= 0 && r < ny) {
-      const float *zr = grid_row(hz, r);
-      for (q = 0; q < nx; ++q) {
-        near_side[j] = zr[q] > near_side[j] ? zr[q] : near_side[j];
-      }
-    }
-  }
   for (j = (long)j0; j < (long)j1; ++j) {
     /* the step where the rays of row j leave: Psi(side) = Psi(j) + k cot(phi) */
     const double kx = (hz->psi[e + hz->orow] - hz->psi[j + hz->orow]) / cot;
@@ -3314,7 +3325,7 @@ static ap_status sweep_side_rows(const ap_horizon *hz, size_t j0, size_t j1)
       ts[k] = fabs(row_value(Y, (size_t)ny, ys[k]) - Y[j]) / fabs(cphi);
       /* rows from this step to the side bound the elevations of the stretch from here */
       rows = cot > 0.0 ? (double)e - floor(ys[k]) : ceil(ys[k]) - (double)e;
-      z0 = rows >= 0.0 && rows < (double)SIDE_ROWS ? (double)near_side[(int)rows] : zmax;
+      z0 = rows >= 0.0 && rows < (double)AP_SIDE_ROWS ? (double)near_side[(int)rows] : zmax;
       zbs[k] = z0 + 1e-9 * (fabs(z0) + 1.0); /* (the interpolation's rounding) */
     }
     for (q = (long)hz->ri0; q < (long)hz->ri1; ++q) { /* (the region's columns) */
@@ -3373,7 +3384,6 @@ static ap_status sweep_side_rows(const ap_horizon *hz, size_t j0, size_t j1)
       *slope = best > (double)*slope ? (float)best : *slope;
     }
   }
-  free(Y);
   free(ys);
   return AP_OK;
 }
