@@ -246,19 +246,19 @@ ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params 
 /** Validate, then allocate the state: a transposed copy of the elevations (4 bytes per
  *  cell), the gradients (8 per cell of the region), one direction's horizons and edge flags
  *  (5), and accumulators for the bent-normal sums when bent_normal is NULL but the diffuse sky
- *  factor is wanted (12 per cell of the region). Writes only the transposed copy: the gradients and the requested outputs (the
- *  accumulators until ap_horizon_finish) are started by the first sector's
- *  ap_horizon_accumulate, in the caller's parallel phase. The grid's and the outputs' memory
- *  must stay valid until ap_horizon_destroy. */
+ *  factor is wanted (12 per cell of the region). Writes only the transposed copy: the
+ *  gradients and the requested outputs (the accumulators until ap_horizon_finish) are started
+ *  by the first sector's ap_horizon_accumulate, in the caller's parallel phase. The grid's and
+ *  the outputs' memory must stay valid until ap_horizon_destroy. */
 ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p,
                             const ap_sky_products *out, ap_horizon **hz);
 
 /** Bytes per cell that ap_horizon_create allocates for the state above, for callers that
  *  estimate a run's memory: 17, plus 12 when the diffuse sky factor is wanted without the
  *  bent normal (both flags 0 or 1); with a region, the gradients and those accumulators are
- *  per cell of the region, so this bounds the state from above. The per-sector and per-thread buffers, O(nx + ny) each,
- *  the far march's tile maxima (under 0.02 bytes per cell) and the caller's outputs are not
- *  counted. */
+ *  per cell of the region, so this bounds the state from above. The per-sector and
+ *  per-thread buffers, O(nx + ny) each, the far march's tile maxima (under 0.02 bytes per
+ *  cell) and the caller's outputs are not counted. */
 size_t ap_horizon_state_bytes_per_cell(int diffuse_sky_factor, int bent_normal);
 
 /** Free everything ap_horizon_create allocated (NULL is fine). */
