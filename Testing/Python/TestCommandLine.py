@@ -226,6 +226,14 @@ class TestBadInput(CommandLineTest):
     def test_missing_file(self):
         self.assert_error("does not exist", "info", self.path("nowhere.tif"))
 
+    def test_empty_path(self):
+        # an empty DEM argument (an unset variable in a script) is not the embedded DEM
+        self.assert_error("the DEM path is empty", "info", "")
+        self.assert_error("the DEM path is empty", "bake", "", self.path("out.tif"))
+        self.assertFalse(os.path.exists(self.path("out.tif")))
+        self.assert_error("the DEM path is empty", "sun", "--dem", "", "--at",
+                          "2026-06-21T12:00:00Z")
+
     def test_not_a_raster(self):
         p = self.path("readme.tif")
         with open(p, "w") as f:

@@ -101,7 +101,10 @@ def _check_outputs(outputs, inputs):
 
 
 def _dem_path(args):
-    if args.dem:
+    if args.dem is not None:
+        if not args.dem:
+            # (not the default DEM: an empty variable in a script is a mistake, not a choice)
+            raise ApertureError("the DEM path is empty")
         return args.dem
     from aperture import default_dem
     try:
