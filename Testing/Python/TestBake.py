@@ -124,6 +124,11 @@ class TestBake(unittest.TestCase):
         self.assertIn("(default 0: 32 where the horizon sweep runs, 8 where rays are sampled",
                       " ".join(out.split()))
         self.assertTrue(meta["APERTURE_VERSION"])
+        # what was read of the DEM: band 1 of the whole grid
+        self.assertEqual(meta["SOURCE_BAND"], "1")
+        for key in ("SOURCE_WINDOW", "SOURCE_OVERVIEW", "SOURCE_DECIMATION",
+                    "SOURCE_CRS_OVERRIDE"):
+            self.assertNotIn(key, meta)
         # same georeference as the DEM
         _, _, gt_dem, srs_dem = bands(self.dem)
         self.assertEqual(gt, gt_dem)
@@ -142,6 +147,22 @@ class TestBake(unittest.TestCase):
         np.testing.assert_array_equal(np.flipud(svf_exr), b["SkyViewFactor"][0].astype(np.float32))
         self.assertEqual(pd.GetArray("BentNormal").GetNumberOfComponents(), 3)
         self.assertEqual(r.GetMetadataValue("aperture:directions"), "360")
+
+    def test_read_provenance(self):
+        # a product of a window, a decimated grid or an overridden CRS records what was read
+        out = self.path("window.tif")
+        status, _, err = run("bake", self.dem, out, "--products", "SkyViewFactor", "-d", "8",
+                             "--radius", "600", "--srcwin", 4, 6, 60, 40, "--decimate", 2,
+                             "--srs", "EPSG:32611", "--band", 1)
+        self.assertEqual(status, 0, err)
+        b, meta, gt, _ = bands(out)
+        self.assertEqual(b["SkyViewFactor"][0].shape, (20, 30))
+        self.assertEqual(gt[1], 60.0)
+        self.assertEqual(meta["SOURCE_BAND"], "1")
+        self.assertEqual(meta["SOURCE_WINDOW"], "4 6 60 40 (xoff yoff xsize ysize)")
+        self.assertEqual(meta["SOURCE_DECIMATION"], "2 x 2 blocks averaged")
+        self.assertEqual(meta["SOURCE_CRS_OVERRIDE"], "EPSG:32611")
+        self.assertNotIn("SOURCE_OVERVIEW", meta)
 
     def test_threads_do_not_matter(self):
         # 900 m (30 columns) is marched ray by ray, 2000 m (67) swept through the hulls

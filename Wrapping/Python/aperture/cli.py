@@ -543,7 +543,22 @@ def _provenance(args, products):
         "ANGLE_UNIT": "degree",
         "EDGES": "terrain beyond the DEM edge is treated as invisible; see EdgeTruncated",
         "PRODUCTS": ",".join(products),
+        # what of the DEM was read: a product of a window or a decimated grid says so
+        **_read_provenance(args),
     }
+
+
+def _read_provenance(args):
+    record = {"SOURCE_BAND": str(args.band or 1)}
+    if args.srcwin:
+        record["SOURCE_WINDOW"] = "%d %d %d %d (xoff yoff xsize ysize)" % tuple(args.srcwin)
+    if args.overview >= 0:
+        record["SOURCE_OVERVIEW"] = str(args.overview)
+    if args.decimate > 1:
+        record["SOURCE_DECIMATION"] = "%d x %d blocks averaged" % (args.decimate, args.decimate)
+    if args.srs:
+        record["SOURCE_CRS_OVERRIDE"] = args.srs
+    return record
 
 
 def _product_image(sky, products):
