@@ -650,7 +650,8 @@ struct ap_horizon {
    * (AP_FM_FINE cells square) and fm_tile[1] (AP_FM_COARSE), made once by ap_horizon_create
    * when a far march can happen */
   int far_march;
-  int near_field_asked;   /* the caller's near_field (0: per sector, see prepare) */
+  int near_field;         /* the prepared sector's K: p.near_field, or when that is 0 the
+                           * automatic value for the sector's search (see prepare) */
   struct fm_step *fm;
   long fm_kmax;
   float *fm_tile[2];
@@ -983,8 +984,7 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
     return AP_ERR_OUT_OF_MEMORY;
   }
   hz->g = *g;
-  hz->p = *p; /* (p.near_field: the sector's K, set by ap_horizon_prepare) */
-  hz->near_field_asked = p->near_field;
+  hz->p = *p;
   hz->out = *out;
   hz->nx = g->z.nx;
   hz->ny = g->z.ny;
@@ -1258,9 +1258,9 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
     hz->far_march = !hz->march && hz->fm_tile[0] &&
                     hz->p.max_distance <= (double)hz->p.far_march_columns * decides;
   }
-  hz->p.near_field = hz->near_field_asked ? hz->near_field_asked
-                     : hz->march || hz->far_march ? AP_HORIZON_NEAR_FIELD_MARCHED
-                                                  : AP_HORIZON_NEAR_FIELD_SWEPT;
+  hz->near_field = hz->p.near_field ? hz->p.near_field
+                   : hz->march || hz->far_march ? AP_HORIZON_NEAR_FIELD_MARCHED
+                                                : AP_HORIZON_NEAR_FIELD_SWEPT;
   if (hz->far_march && !hz->lattice && !fm_steps_init(hz)) {
     free_sector(hz);
     return AP_ERR_OUT_OF_MEMORY;
@@ -1277,7 +1277,7 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
    * over the near field and 5e-5 of length of the exact step. */
   {
     /* rows of drift allowed over the near field */
-    const double tol = 1e-3 / (double)(hz->march ? hz->p.march_columns : hz->p.near_field);
+    const double tol = 1e-3 / (double)(hz->march ? hz->p.march_columns : hz->near_field);
     const size_t npos = hz->xmajor ? hz->ns : hz->np;
     double key_m = 0.0, key_len = 0.0;
     size_t q;
@@ -1306,7 +1306,7 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
       }
       if (fresh) {
         const double tmax = hz->march ? hz->p.max_distance
-                                      : fmin(hz->p.max_distance, (double)hz->p.near_field * len);
+                                      : fmin(hz->p.max_distance, (double)hz->near_field * len);
         if (!build_pattern(hz, m, len, tmax)) {
           free_sector(hz);
           return AP_ERR_OUT_OF_MEMORY;
@@ -1621,7 +1621,7 @@ AP_MULTIVERSION
 static void far_point_column(const ap_horizon *hz, const pattern *pt, size_t p, long sa,
                              long sb, const float *col, float *best)
 {
-  const double L = hz->p.max_distance, c = hz->c, K = (double)hz->p.near_field;
+  const double L = hz->p.max_distance, c = hz->c, K = (double)hz->near_field;
   const double pf = (double)p + pt->lp, cl = c * L;
   const long ns = (long)hz->ns;
   const int xmajor = hz->xmajor;
@@ -2091,7 +2091,7 @@ static void lattice_finish_col(const ap_horizon *hz, const fm_step *fm, const do
                                unsigned char *edge)
 {
   const long ns = (long)hz->ns, F = (long)(hz->np - 1 - p), kend = kt < F ? kt : F;
-  const double L = hz->p.max_distance, c = hz->c, K1 = (double)(hz->p.near_field - 1);
+  const double L = hz->p.max_distance, c = hz->c, K1 = (double)(hz->near_field - 1);
   const double side_max = (double)hz->fm_side_max + (double)hz->fm_eps;
   long s;
   for (s = sa; s < sb; ++s) {
@@ -2169,7 +2169,7 @@ static void lattice_finish_row(const ap_horizon *hz, const fm_step *fm, const do
                                long s, const float *zrow, float *best)
 {
   const long nx = (long)hz->np, ny = (long)hz->ny, dir = hz->flip ? -1 : 1;
-  const double L = hz->p.max_distance, c = hz->c, K1 = (double)(hz->p.near_field - 1);
+  const double L = hz->p.max_distance, c = hz->c, K1 = (double)(hz->near_field - 1);
   const double side_max = (double)hz->fm_side_max + (double)hz->fm_eps;
   const long kl = fm_last_on_grid(hz, fm, s, 1, kt);
   double fr = 0.0, te = INFINITY;
@@ -2215,7 +2215,7 @@ static void far_side_exits(const ap_horizon *hz, size_t p, long sa, long sb, con
                            float *best)
 {
   const double m = hz->m_row[0], len = hz->len_row[0];
-  const long K = hz->p.near_field;
+  const long K = hz->near_field;
   if (m != 0.0) {
     const double K1 = (double)(K - 1), L = hz->p.max_distance, c = hz->c;
     const double far_end = (double)(hz->np - 1 - p);
@@ -2262,7 +2262,7 @@ AP_MULTIVERSION
 static void far_march_column(const ap_horizon *hz, const fm_step *fm, long kmax, size_t p,
                              long sa, long sb, const float *col, float *best)
 {
-  const long K = hz->p.near_field;
+  const long K = hz->near_field;
   long kend = kmax, s0;
   if ((long)(hz->np - 1 - p) < kend) {
     kend = (long)(hz->np - 1 - p); /* the columns left */
@@ -2412,7 +2412,7 @@ AP_MULTIVERSION
 static void far_march_row(const ap_horizon *hz, const fm_step *fm, long kmax, long s,
                           const float *zrow, float *best)
 {
-  const long K = hz->p.near_field, nx = (long)hz->np, dir = hz->flip ? -1 : 1;
+  const long K = hz->near_field, nx = (long)hz->np, dir = hz->flip ? -1 : 1;
   long side, q0, k, c;
   if (kmax < K) {
     return;
@@ -2513,7 +2513,7 @@ static void near_row(const ap_horizon *hz, const pattern *pt, long s, const floa
 static void far_point_row(const ap_horizon *hz, const pattern *pt, long s, const float *zrow,
                           float *best)
 {
-  const double L = hz->p.max_distance, c = hz->c, K = (double)hz->p.near_field;
+  const double L = hz->p.max_distance, c = hz->c, K = (double)hz->near_field;
   const double cl = c * L;
   const long ns = (long)hz->ns;
   const size_t np = hz->np;
@@ -2642,7 +2642,7 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t u0, size_t u1)
      * is the same for the whole column; x-major views check each row */
     const int far_point =
       !hz->march && isfinite(hz->p.max_distance) &&
-      (hz->xmajor || hz->p.max_distance > (double)hz->p.near_field *
+      (hz->xmajor || hz->p.max_distance > (double)hz->near_field *
                                              view_step(hz->cum_len, hz->np, p));
     long run, s;
     for (s = vs0; s < ns; ++s) {
@@ -2847,7 +2847,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
   if (hz->march || hz->far_march) {
     return AP_OK; /* the near field did it all */
   }
-  K = hz->p.near_field;
+  K = hz->near_field;
   limited = isfinite(hz->p.max_distance);
   L = hz->p.max_distance;
   c = hz->c;
