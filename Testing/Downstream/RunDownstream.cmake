@@ -26,4 +26,6 @@ if (WRAP_PYTHON)
     "PYTHONPATH=${prefix}/${PYTHON_DESTINATION}"
     "${PYTHON}" -c "import aperture, os; p = aperture.__file__; assert p.startswith('${prefix}'), p; r = aperture.vtkApertureDEMReader(); r.SetFileName(aperture.default_dem()); r.Update(); assert r.GetOutput().GetNumberOfPoints() == 403 * 344; print('import ok', p)")
   run("installed command line" "${prefix}/bin/aperture" info --json)
+  # byte-compiled by the install (checked without importing, which could write it itself)
+  run("byte-compiled at install" "${PYTHON}" -c "import importlib.util, os; p = importlib.util.cache_from_source('${prefix}/${PYTHON_DESTINATION}/aperture/cli.py'); assert os.path.exists(p), p; print(p)")
 endif ()
