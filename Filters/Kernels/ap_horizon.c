@@ -2800,27 +2800,20 @@ typedef struct line_state {
 } line_state;
 
 /* Parallel lines: whether the band of nl lines from bracket b0 brackets a cell of the region
- * at some view column of it (the lines' positions as ap_horizon_sweep moves them, with a
- * margin of two cells for their rounding). A band that does not has nothing to compute. */
+ * at some view column of it (the first line where ap_horizon_sweep puts it: moved by
+ * par_shift from the last column, or on the lattice; a margin of two cells covers the
+ * rounding of the sweep's running sum). A band that does not has nothing to compute. */
 static int band_meets_region(const ap_horizon *hz, size_t b0, size_t nl)
 {
   const double k0 = (double)(hz->kmin + (long)b0);
   const double lo = (double)hz->vs0 - 2.0, hi = (double)hz->vs1 + 1.0;
-  double shift = 0.0;
-  size_t pp;
+  size_t p;
   if (hz->vs0 == 0 && hz->vs1 == hz->ns) {
     return 1; /* (every band brackets some cell of every view column) */
   }
-  for (pp = hz->np; pp-- > hz->vp0;) {
-    const size_t p = pp;
-    double a;
-    if (p + 1 < hz->np) {
-      shift += hz->xmajor ? hz->m_row[0] : hz->cum_m[p + 1] - hz->cum_m[p];
-    }
-    if (p >= hz->vp1) {
-      continue;
-    }
-    a = hz->lattice ? (k0 + hz->lat_off[p]) - (double)hz->ocol : (k0 + hz->phase) - shift;
+  for (p = hz->vp0; p < hz->vp1; ++p) {
+    const double a = hz->lattice ? (k0 + hz->lat_off[p]) - (double)hz->ocol
+                                 : (k0 + hz->phase) - par_shift(hz, p, hz->np - 1);
     if (a + (double)(nl - 1) >= lo && a <= hi) {
       return 1;
     }

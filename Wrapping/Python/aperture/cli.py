@@ -515,7 +515,7 @@ def _parse_products(text):
     return [name for name, *_ in PRODUCTS if name in chosen]  # band order, no duplicates
 
 
-def _provenance(args, products):
+def _provenance(args, products, band):
     from aperture import __version__, vtkApertureSkyVisibility
     return {
         "APERTURE_VERSION": __version__,
@@ -544,12 +544,13 @@ def _provenance(args, products):
         "EDGES": "terrain beyond the DEM edge is treated as invisible; see EdgeTruncated",
         "PRODUCTS": ",".join(products),
         # what of the DEM was read: a product of a window or a decimated grid says so
-        **_read_provenance(args),
+        **_read_provenance(args, band),
     }
 
 
-def _read_provenance(args):
-    record = {"SOURCE_BAND": str(args.band or 1)}
+def _read_provenance(args, band):
+    """What of the DEM was read; band: the reader's GetBandRead()."""
+    record = {"SOURCE_BAND": str(band)}
     if args.srcwin:
         record["SOURCE_WINDOW"] = "%d %d %d %d (xoff yoff xsize ysize)" % tuple(args.srcwin)
     if args.overview >= 0:
@@ -680,7 +681,7 @@ def _bake(args, products, progress):
         result = watcher.update(sky, "bake")  # the reader has run: the sky filter alone
     sweep_seconds = time.perf_counter() - sweep_start
     image = _product_image(result, products)
-    provenance = _provenance(args, products)
+    provenance = _provenance(args, products, reader.GetBandRead())
     definitions = {name: (unit, text) for name, unit, text in PRODUCTS}
 
     writer.SetInputData(image)
