@@ -43,11 +43,21 @@ constexpr float EarthHighest = 9000.0f;
 
 // The start of both out-of-memory messages: "a NX x NY DEM with these products needs about
 // SIZE", and what HorizonAngles cost when they are asked for.
-std::string NeedsText(int nx, int ny, const std::string& size, bool horizonAngles)
+// (an output of onx x ony cells smaller than the nx x ny input is a sub-extent and its halo)
+std::string NeedsText(
+  int nx, int ny, int onx, int ony, const std::string& size, bool horizonAngles)
 {
   std::ostringstream s;
-  s << "a " << nx << " x " << ny << " DEM with these products needs about " << size
-    << (horizonAngles ? " (HorizonAngles take 4 bytes per cell and direction)" : "");
+  if (static_cast<double>(onx) * ony < static_cast<double>(nx) * ny)
+  {
+    s << "the products of " << onx << " x " << ony << " cells, with the " << nx << " x " << ny
+      << " cells of DEM around them, need about " << size;
+  }
+  else
+  {
+    s << "a " << nx << " x " << ny << " DEM with these products needs about " << size;
+  }
+  s << (horizonAngles ? " (HorizonAngles take 4 bytes per cell and direction)" : "");
   return s.str();
 }
 
@@ -215,13 +225,18 @@ int vtkApertureSkyVisibility::RequestData(
   {
     // (VTK's arrays and std::vector throw; Execute throws on the kernel's
     // AP_ERR_OUT_OF_MEMORY)
-    int dims[3];
+    int dims[3], ext[6];
     vtkApertureInputDimensions(inputVector[0], dims);
-    const double mib = std::ceil(this->EstimateBytes(double(dims[0]) * dims[1]) / 1048576.0);
+    outputVector->GetInformationObject(0)->Get(
+      vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+    const int onx = ext[1] - ext[0] + 1, ony = ext[3] - ext[2] + 1;
+    const double mib = std::ceil(this->EstimateBytes(
+                                   double(dims[0]) * dims[1], double(onx) * ony) / 1048576.0);
     std::ostringstream size;
     size << mib << " MiB";
     vtkErrorMacro(<< "out of memory: "
-                  << NeedsText(dims[0], dims[1], size.str(), this->ComputeHorizonAngles));
+                  << NeedsText(
+                       dims[0], dims[1], onx, ony, size.str(), this->ComputeHorizonAngles));
     return 0;
   }
 }
@@ -237,14 +252,30 @@ double vtkApertureSkyVisibility::EstimateBytes(double n) const
 }
 
 //------------------------------------------------------------------------------
+double vtkApertureSkyVisibility::EstimateBytes(double n, double outN) const
+{
+  // a sub-extent's outputs cover it alone; the input arrays passed are copied to it
+  return outN < n ? this->EstimateBytes(n) - this->OutputBytesPerCell() * (n - outN) + 4.0 * outN
+                  : this->EstimateBytes(n);
+}
+
+//------------------------------------------------------------------------------
 std::string vtkApertureSkyVisibility::CheckMemory(int nx, int ny, double held) const
 {
-  return this->MemoryProblem(nx, ny, this->EstimateBytes(static_cast<double>(nx) * ny), held);
+  return this->CheckMemory(nx, ny, nx, ny, held);
+}
+
+//------------------------------------------------------------------------------
+std::string vtkApertureSkyVisibility::CheckMemory(
+  int nx, int ny, int outNx, int outNy, double held) const
+{
+  const double n = static_cast<double>(nx) * ny, outN = static_cast<double>(outNx) * outNy;
+  return this->MemoryProblem(nx, ny, outNx, outNy, this->EstimateBytes(n, outN), held);
 }
 
 //------------------------------------------------------------------------------
 std::string vtkApertureSkyVisibility::MemoryProblem(
-  int nx, int ny, double need, double held) const
+  int nx, int ny, int outNx, int outNy, double need, double held) const
 {
   const double limit = this->MemoryLimit > 0
     ? static_cast<double>(this->MemoryLimit)
@@ -253,7 +284,7 @@ std::string vtkApertureSkyVisibility::MemoryProblem(
   {
     return std::string();
   }
-  return NeedsText(nx, ny, vtkApertureHumanBytes(need), this->ComputeHorizonAngles) +
+  return NeedsText(nx, ny, outNx, outNy, vtkApertureHumanBytes(need), this->ComputeHorizonAngles) +
     ", more than the " +
     (this->MemoryLimit > 0 ? vtkApertureHumanBytes(limit) + " MemoryLimit"
                            : vtkApertureHumanBytes(std::max(limit, 0.0)) +
@@ -363,11 +394,8 @@ int vtkApertureSkyVisibility::Execute(
   // Memory: refuse before allocating what cannot fit. Linux overcommits, so past physical
   // memory an allocation does not fail: the process is killed later, mid-sweep.
   {
-    // a sub-extent's outputs cover it alone; the input arrays passed are copied to it
-    const double need = this->EstimateBytes(static_cast<double>(n)) -
-      (whole ? 0.0 : this->OutputBytesPerCell() * static_cast<double>(n - outN) - 4.0 * outN);
-    const std::string problem = this->MemoryProblem(
-      nx, ny, need, 1024.0 * static_cast<double>(input->GetActualMemorySize()));
+    const std::string problem = this->CheckMemory(
+      nx, ny, onx, ony, 1024.0 * static_cast<double>(input->GetActualMemorySize()));
     if (!problem.empty())
     {
       vtkErrorMacro(<< problem << "; bake a part of the DEM, a decimated one, or fewer products");

@@ -152,12 +152,21 @@ public:
    *  with, for callers that check before reading a DEM. */
   double EstimateBytes(double n) const;
 
+  /** The same for an update of a sub-extent of outN cells whose input, the sub-extent and its
+   *  halo, has n: the outputs cover the sub-extent alone (and it gets a copy of the input's
+   *  arrays, 4 bytes a cell). EstimateBytes(n, n) = EstimateBytes(n). */
+  double EstimateBytes(double n, double outN) const;
+
   /** Why an update over an nx x ny input would be refused for memory, or "" when it fits:
    *  EstimateBytes(nx * ny) against MemoryLimit, or (MemoryLimit 0) against the physical
    *  memory less `held` bytes, what the input occupies (4 x nx x ny for float elevations not
    *  yet read). The update refuses with this text and advice; a caller can ask before reading
    *  a DEM and add its own advice. */
   std::string CheckMemory(int nx, int ny, double held) const;
+
+  /** The same for an update extent of outNx x outNy cells whose input (the extent with its
+   *  halo: the input's update extent once the request has been propagated) is nx x ny. */
+  std::string CheckMemory(int nx, int ny, int outNx, int outNy, double held) const;
 
   /** Threads that ran the last update's parallel work (0 before any; at most
    *  NumberOfThreads when that is set). */
@@ -227,7 +236,7 @@ protected:
   /** Bytes of the requested outputs per cell. */
   double OutputBytesPerCell() const;
   /** CheckMemory's text for `need` bytes. */
-  std::string MemoryProblem(int nx, int ny, double need, double held) const;
+  std::string MemoryProblem(int nx, int ny, int outNx, int outNy, double need, double held) const;
 
   int NumberOfDirections;
   double MaximumDistance;

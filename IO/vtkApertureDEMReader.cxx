@@ -73,6 +73,32 @@ double MetresPerUnit(const char* unitType)
   }
   return 0.0;
 }
+
+// Why a window (x offset, y offset, columns, rows; 0 columns or rows: to the edge) of full-
+// resolution pixels is not inside a raster of `size`, or "" when it is.
+std::string WindowProblem(const char* what, const int w[4], const int size[2])
+{
+  if (w[0] < 0 || w[1] < 0 || w[2] < 0 || w[3] < 0 || w[0] >= size[0] || w[1] >= size[1] ||
+    w[0] + static_cast<vtkTypeInt64>(w[2]) > size[0] ||
+    w[1] + static_cast<vtkTypeInt64>(w[3]) > size[1])
+  {
+    std::ostringstream s;
+    s << what << " (" << w[0] << ", " << w[1] << ", " << w[2] << ", " << w[3]
+      << ") is not inside the " << size[0] << " x " << size[1] << " raster";
+    return s.str();
+  }
+  return std::string();
+}
+
+// The pixels [first, first + count) of a level of `level` pixels that cover the pixels
+// [w, w + size) (size 0: to the edge) of the full resolution's `full` (along one axis).
+void LevelSpan(int w, int size, int full, int level, int& first, int& count)
+{
+  const double scale = static_cast<double>(full) / level;
+  const int end = size ? w + size : full;
+  first = static_cast<int>(std::floor(w / scale));
+  count = std::min(level, static_cast<int>(std::ceil(end / scale))) - first;
+}
 } // namespace
 
 // What RequestInformation resolved from the file and the options; RequestData reuses it.
@@ -82,6 +108,7 @@ struct vtkApertureDEMReader::Internals
   int Band = 1;
   int Level = -1;               // -1: full resolution, else overview index
   int Window[4] = { 0, 0, 0, 0 }; // x0, y0, columns, rows in pixels of the level
+  int LevelSize[2] = { 0, 0 };  // columns, rows of the level read
   int Factor = 1;               // decimation
   int Out[2] = { 0, 0 };        // output columns, rows
   bool SouthUp = false;         // the file's first row is its southern row
@@ -288,24 +315,17 @@ int vtkApertureDEMReader::RequestInformation(
   const double sx = static_cast<double>(this->RasterSize[0]) / levelX;
   const double sy = static_cast<double>(this->RasterSize[1]) / levelY;
   const int* w = this->SubWindow;
-  if (w[0] < 0 || w[1] < 0 || w[2] < 0 || w[3] < 0 || w[0] >= this->RasterSize[0] ||
-    w[1] >= this->RasterSize[1] || w[0] + static_cast<vtkTypeInt64>(w[2]) > this->RasterSize[0] ||
-    w[1] + static_cast<vtkTypeInt64>(w[3]) > this->RasterSize[1])
+  const std::string outside = WindowProblem("SubWindow", w, this->RasterSize);
+  if (!outside.empty())
   {
-    vtkErrorMacro(<< "SubWindow (" << w[0] << ", " << w[1] << ", " << w[2] << ", " << w[3]
-                  << ") is not inside the " << this->RasterSize[0] << " x "
-                  << this->RasterSize[1] << " raster");
+    vtkErrorMacro(<< outside);
     return 0;
   }
-  const int wx = w[2] ? w[2] : this->RasterSize[0] - w[0];
-  const int wy = w[3] ? w[3] : this->RasterSize[1] - w[1];
   // Window in level pixels: the level pixels that cover the full-resolution window.
-  d.Window[0] = static_cast<int>(std::floor(w[0] / sx));
-  d.Window[1] = static_cast<int>(std::floor(w[1] / sy));
-  d.Window[2] =
-    std::min(levelX, static_cast<int>(std::ceil((w[0] + wx) / sx))) - d.Window[0];
-  d.Window[3] =
-    std::min(levelY, static_cast<int>(std::ceil((w[1] + wy) / sy))) - d.Window[1];
+  LevelSpan(w[0], w[2], this->RasterSize[0], levelX, d.Window[0], d.Window[2]);
+  LevelSpan(w[1], w[3], this->RasterSize[1], levelY, d.Window[1], d.Window[3]);
+  d.LevelSize[0] = levelX;
+  d.LevelSize[1] = levelY;
   d.Factor = this->Decimation;
   d.Out[0] = d.Window[2] / d.Factor;
   d.Out[1] = d.Window[3] / d.Factor;
@@ -362,6 +382,57 @@ int vtkApertureDEMReader::RequestInformation(
   outInfo->Set(vtkApertureGeoreference::CRS_KEY(), d.CRS.c_str());
   d.Valid = true;
   return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureDEMReader::GetWindowExtent(
+  int xoff, int yoff, int xsize, int ysize, int extent[6])
+{
+  const Internals& d = *this->Impl;
+  if (!d.Valid)
+  {
+    vtkErrorMacro(<< "no valid raster information (call UpdateInformation first, or see the "
+                     "previous error)");
+    return false;
+  }
+  const int w[4] = { xoff, yoff, xsize, ysize };
+  const std::string outside = WindowProblem("the window", w, this->RasterSize);
+  if (!outside.empty())
+  {
+    vtkErrorMacro(<< outside);
+    return false;
+  }
+  // level pixels covering the window, then the grid's blocks covering those (in the file's
+  // row order), clipped to the grid
+  int first[2], count[2], lo[2], hi[2];
+  LevelSpan(xoff, xsize, this->RasterSize[0], d.LevelSize[0], first[0], count[0]);
+  LevelSpan(yoff, ysize, this->RasterSize[1], d.LevelSize[1], first[1], count[1]);
+  for (int a = 0; a < 2; ++a)
+  {
+    const double f = d.Factor;
+    lo[a] = std::max(0, static_cast<int>(std::floor((first[a] - d.Window[a]) / f)));
+    hi[a] = std::min(
+      d.Out[a] - 1, static_cast<int>(std::ceil((first[a] + count[a] - d.Window[a]) / f)) - 1);
+    if (hi[a] < lo[a])
+    {
+      const int* sub = this->SubWindow;
+      const bool cropped = sub[0] || sub[1] || sub[2] || sub[3];
+      vtkErrorMacro(<< "the window (" << xoff << ", " << yoff << ", " << xsize << ", " << ysize
+                    << ") covers no cell of the " << d.Out[0] << " x " << d.Out[1]
+                    << " grid read"
+                    << (cropped ? " (it is outside the SubWindow)"
+                                : " (decimation drops the partial blocks at the east and "
+                                  "south edges)"));
+      return false;
+    }
+  }
+  // output rows run south to north
+  extent[0] = lo[0];
+  extent[1] = hi[0];
+  extent[2] = d.SouthUp ? lo[1] : d.Out[1] - 1 - hi[1];
+  extent[3] = d.SouthUp ? hi[1] : d.Out[1] - 1 - lo[1];
+  extent[4] = extent[5] = 0;
+  return true;
 }
 
 //------------------------------------------------------------------------------

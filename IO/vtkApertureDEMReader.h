@@ -68,6 +68,16 @@ public:
   vtkGetVector4Macro(SubWindow, int);
   ///@}
 
+  /** The extent of the output grid's cells that cover a window (x offset, y offset, columns,
+   *  rows; 0 columns or rows: to the edge) of full-resolution pixels, as SubWindow gives one,
+   *  after UpdateInformation: for asking a filter downstream for a window of a grid read whole
+   *  (vtkApertureSkyVisibility then reads the window and its halo and computes the window's
+   *  cells). Decimation's blocks align to the grid read (its SubWindow or the raster), so the
+   *  windows of one raster tile one grid, and a window covers every block it touches; the
+   *  partial blocks the grid drops at its east and south edges are left out. False, with an
+   *  error, when the window is not inside the raster or covers no cell of the grid. */
+  bool GetWindowExtent(int xoff, int yoff, int xsize, int ysize, int extent[6]);
+
   ///@{
   /** GDAL overview level to read (0-based); -1 (default) = full resolution. */
   vtkSetClampMacro(OverviewLevel, int, -1, VTK_INT_MAX);

@@ -40,6 +40,17 @@ def bands(path):
     return out, meta, gt, srs
 
 
+def zeros_vrt(path, n):
+    """n x n float32 cells of 30 m in UTM 11N, no sources: zeros, nothing on disk."""
+    ds = gdal.GetDriverByName("VRT").Create(path, n, n, 1, gdal.GDT_Float32)
+    ds.SetGeoTransform((500000, 30, 0, 4000000, 0, -30))
+    srs = osr.SpatialReference()
+    srs.ImportFromEPSG(32611)
+    ds.SetSpatialRef(srs)
+    ds = None
+    return path
+
+
 def make_dem(path, z, gt, epsg):
     ds = gdal.GetDriverByName("GTiff").Create(path, z.shape[1], z.shape[0], 1, gdal.GDT_Float32)
     ds.SetGeoTransform(gt)
@@ -159,10 +170,132 @@ class TestBake(unittest.TestCase):
         self.assertEqual(b["SkyViewFactor"][0].shape, (20, 30))
         self.assertEqual(gt[1], 60.0)
         self.assertEqual(meta["SOURCE_BAND"], "1")
-        self.assertEqual(meta["SOURCE_WINDOW"], "4 6 60 40 (xoff yoff xsize ysize)")
+        self.assertEqual(meta["SOURCE_WINDOW"],
+                         "4 6 60 40 (xoff yoff xsize ysize; its horizons see the DEM around it)")
         self.assertEqual(meta["SOURCE_DECIMATION"], "2 x 2 blocks averaged")
         self.assertEqual(meta["SOURCE_CRS_OVERRIDE"], "EPSG:32611")
         self.assertNotIn("SOURCE_OVERVIEW", meta)
+
+    def test_windows_tile_the_whole_bake(self):
+        # --srcwin bakes the window's cells with horizons that see the DEM around it (the sky
+        # filter reads the window and a halo as wide as --radius, all of the DEM without one),
+        # so windows baked one by one are the whole bake's cells, bit for bit, with the
+        # georeference of their place in it; a window alone would truncate horizons at its
+        # edges. Rough terrain with nodata in UTM; the embedded lat/lon DEM; a decimated grid
+        # (blocks aligned to the raster, a window covering every block it touches).
+        rng = np.random.default_rng(5)
+        z = np.cumsum(np.cumsum(rng.normal(0, 1, (170, 200)), 0), 1).astype(np.float32)
+        z[60:64, 90:97] = -9999
+        rough = self.path("rough.tif")
+        make_dem(rough, z, (500000, 30, 0, 4000000, 0, -30), 32611)
+        import aperture
+        jacksboro = aperture.default_dem()
+
+        def bake(dem, name, *options):
+            out = self.path(name)
+            status, _, err = run("bake", dem, out, "-q", *options)
+            self.assertEqual(status, 0, err)
+            b, _, gt, srs = bands(out)
+            return b, gt, srs
+
+        def check(dem, options, windows, block=1):
+            whole, gt, srs = bake(dem, "whole.tif", *options)
+            names = sorted(whole)
+            for k, (x, y, w, h) in enumerate(windows):
+                part, pgt, psrs = bake(dem, "part%d.tif" % k, "--srcwin", x, y, w, h, *options)
+                self.assertEqual(sorted(part), names)
+                # the decimated cells covering the window (the file's rows, north first)
+                c0, r0 = x // block, y // block
+                ny, nx = whole[names[0]][0].shape
+                c1 = nx if w == 0 else min(nx, -(-(x + w) // block))
+                r1 = ny if h == 0 else min(ny, -(-(y + h) // block))
+                for name in names:
+                    np.testing.assert_array_equal(part[name][0], whole[name][0][r0:r1, c0:c1],
+                                                  err_msg="%s of window %d" % (name, k))
+                np.testing.assert_allclose(pgt, (gt[0] + c0 * gt[1], gt[1], 0.0,
+                                                 gt[3] + r0 * gt[5], 0.0, gt[5]),
+                                           rtol=0, atol=1e-9 * gt[1])
+                self.assertEqual(psrs, srs)
+            return whole
+
+        # six windows tiling the rough DEM (two reaching the edges with sizes of 0)
+        windows = [(0, 0, 70, 55), (70, 0, 61, 55), (131, 0, 0, 55),
+                   (0, 55, 70, 0), (70, 55, 61, 115), (131, 55, 69, 0)]
+        whole = check(rough, ["--radius", "1500", "-d", "16", "--products", "all"], windows)
+        self.assertEqual(len(whole), 9 + 16)  # the products, BentNormal's 3 bands, 16 horizons
+        # flagged only near the DEM's edges, not the windows' (1500 m: 50 cells; NaN on nodata)
+        self.assertFalse((whole["EdgeTruncated"][0][52:118, 52:148] == 1).any())
+        self.assertTrue((whole["EdgeTruncated"][0][:, 0] == 1).all())
+        # without a radius (the whole DEM is read), a window inside and one at a corner
+        check(rough, ["-d", "8"], [(40, 30, 50, 60), (150, 120, 0, 0)])
+        # lat/lon (3 arc-second cells, about 70 x 92 m)
+        check(jacksboro, ["--radius", "2000", "-d", "12"], [(100, 150, 60, 40), (0, 0, 30, 20)])
+        # decimated by 3: 66 x 56 cells of the raster's blocks; windows cover every block
+        # they touch (the first: columns 3..19, rows 6..19 of the decimated grid)
+        check(rough, ["--radius", "1500", "-d", "8", "--decimate", "3"],
+              [(10, 20, 50, 40), (180, 150, 0, 0)], block=3)
+
+    def test_window_of_a_large_dem(self):
+        # A window of a 60000^2 DEM (13.4 GiB of elevations, a 75 GB bake) with a radius reads
+        # only the window and the DEM within the radius around it: 100 + 2 x 102 columns (3000 m
+        # of 30 m cells and 2 more), so it takes a moment; flat ground: no horizon above 0.
+        big = zeros_vrt(self.path("window-big.vrt"), 60000)
+        out = self.path("window-big.tif")
+        exr = self.path("window-big.exr")
+        status, stdout, err = run("bake", big, out, "--srcwin", 30000, 20000, 100, 80,
+                                  "--radius", 3000, "-d", 8, "--exr", exr)
+        self.assertEqual(status, 0, err)
+        self.assertIn("for 100 x 80 cells", stdout)
+        import aperture
+        r = aperture.vtkApertureEXRReader()
+        r.SetFileName(exr)
+        r.Update()
+        self.assertEqual(r.GetOutput().GetDimensions(), (100, 80, 1))
+        b, meta, gt, _ = bands(out)
+        self.assertEqual(b["SkyViewFactor"][0].shape, (80, 100))
+        np.testing.assert_array_equal(b["SkyViewFactor"][0], 1.0)
+        np.testing.assert_array_equal(b["EdgeTruncated"][0], 0.0)
+        self.assertEqual(gt, (500000 + 30000 * 30, 30, 0, 4000000 - 20000 * 30, 0, -30))
+        # Without a radius every cell of the DEM may be on a horizon: it is all read, and the
+        # bake is refused before reading. The sky filter needs 21 bytes a cell of the DEM (its
+        # float copy 4, the sweep's state 17) and 41 a cell of the window (the products 37,
+        # EdgeTruncated as float beside its byte flags, and the window's copy of the
+        # elevations 4): 75600328000 bytes = 70.408 GiB, beside the elevations' 13.411 GiB.
+        memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+        if memory > 84 << 30:
+            self.skipTest("this machine has the memory to bake it")
+        left = memory - 4.0 * 60000 ** 2
+        units = ("bytes", "KiB", "MiB", "GiB", "TiB")
+        u = max(k for k in range(5) if left >= 1024 ** k)
+        status, _, err = run("bake", big, out, "--srcwin", 30000, 20000, 100, 80, "-d", 8)
+        self.assertEqual(status, 1, err)
+        self.assertEqual(err.strip(), "aperture: error: the products of 100 x 80 cells, with "
+                         "the 60000 x 60000 cells of DEM around them, need about 70.408 GiB, "
+                         "more than the %.3f %s of memory this machine has beside the DEM's "
+                         "13.411 GiB; bake a window with --srcwin and a --radius (only the DEM "
+                         "within the radius around it is read), use --decimate or --overview, "
+                         "or bake fewer --products" % (left / 1024.0 ** u, units[u]))
+
+    def test_window_errors(self):
+        rng = np.random.default_rng(6)
+        z = rng.normal(0, 10, (170, 200)).astype(np.float32)
+        dem = self.path("window-errors.tif")
+        make_dem(dem, z, (500000, 30, 0, 4000000, 0, -30), 32611)
+        out = self.path("window-errors-out.tif")
+        for options, message in (
+                (["--srcwin", 190, 0, 20, 10],
+                 "--srcwin 190 0 20 10 is not inside the 200 x 170 raster"),
+                (["--srcwin", 0, 0, 0, 171],
+                 "--srcwin 0 0 0 171 is not inside the 200 x 170 raster"),
+                (["--srcwin", 0, -1, 5, 5], "--srcwin values must not be negative"),
+                # 200 = 66 x 3 + 2: the last two columns are a partial block, dropped
+                (["--srcwin", 198, 0, 0, 0, "--decimate", 3],
+                 "--srcwin 198 0 0 0 covers no cell of the 66 x 56 grid read (decimation drops "
+                 "the partial blocks at the east and south edges)")):
+            status, stdout, err = run("bake", dem, out, *options)
+            self.assertEqual(status, 1, err)
+            self.assertEqual(err.strip(), "aperture: error: " + message, options)
+            self.assertFalse(os.path.exists(out))
 
     def test_threads_do_not_matter(self):
         # 900 m (30 columns) is marched ray by ray, 2000 m (67) swept through the hulls
@@ -313,17 +446,7 @@ class TestBake(unittest.TestCase):
         def capped():
             resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
 
-        def vrt(name, n):  # n x n float32 cells of 30 m, no sources: zeros, nothing on disk
-            path = self.path(name)
-            ds = gdal.GetDriverByName("VRT").Create(path, n, n, 1, gdal.GDT_Float32)
-            ds.SetGeoTransform((500000, 30, 0, 4000000, 0, -30))
-            srs = osr.SpatialReference()
-            srs.ImportFromEPSG(32611)
-            ds.SetSpatialRef(srs)
-            ds = None
-            return path
-
-        big = vrt("big.vrt", 30000)  # 3.35 GiB of elevations
+        big = zeros_vrt(self.path("big.vrt"), 30000)  # 3.35 GiB of elevations
         out = self.path("big-out.tif")
         # (bake refuses this DEM before reading it on machines with less than 50 GiB: below)
         p = subprocess.run([APERTURE, "info", big], capture_output=True, text=True,
@@ -351,7 +474,8 @@ class TestBake(unittest.TestCase):
         self.assertEqual(p.stderr.strip(), "aperture: error: a 30000 x 30000 DEM with these "
                          "products needs about 1.226 TiB (HorizonAngles take 4 bytes per cell "
                          "and direction), more than the %.3f %s of memory this machine has "
-                         "beside the DEM's 3.353 GiB; read a part with --srcwin, or use "
+                         "beside the DEM's 3.353 GiB; bake a window with --srcwin and a "
+                         "--radius (only the DEM within the radius around it is read), use "
                          "--decimate or --overview, or bake fewer --products"
                          % (left / 1024.0 ** u, units[u]))
         self.assertFalse(os.path.exists(out))
@@ -368,8 +492,8 @@ class TestBake(unittest.TestCase):
                   "except ApertureError as e:\n"
                   "    print(e, m.GetOutput().GetNumberOfPoints())\n")
         python = os.path.join(BUILD, "bin", "aperture-python")
-        p = subprocess.run([python, "-c", script, vrt("mesh.vrt", 12000)], capture_output=True,
-                           text=True, timeout=300, preexec_fn=capped)
+        p = subprocess.run([python, "-c", script, zeros_vrt(self.path("mesh.vrt"), 12000)],
+                           capture_output=True, text=True, timeout=300, preexec_fn=capped)
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertIn("out of memory: a mesh of 12000 x 12000 points needs about", p.stdout)
         self.assertTrue(p.stdout.strip().endswith("MiB; decimate the DEM 0"), p.stdout)

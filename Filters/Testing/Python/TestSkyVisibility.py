@@ -528,8 +528,18 @@ class TestSkyVisibility(Testing.vtkTest):
         f.SetMemoryLimit(9325)
         f.UpdateExtent((0, 4, 0, 4, 0, 0))
         self.assertEqual(f.GetOutput().GetDimensions(), (5, 5, 1))
-        self.assertIn("needs about 9.106 KiB, more than the 9.105 KiB MemoryLimit",
-                      self.error(image, MemoryLimit=9324, UpdateExtent=(0, 4, 0, 4, 0, 0)))
+        region = ("the products of 5 x 5 cells, with the 20 x 20 cells of DEM around them, "
+                  "need about 9.106 KiB, more than the 9.105 KiB MemoryLimit")
+        self.assertEqual(region + "; bake a part of the DEM, a decimated one, or fewer products",
+                         self.error(image, MemoryLimit=9324, UpdateExtent=(0, 4, 0, 4, 0, 0)))
+        # the same before reading, for a request whose input extent is known (the bake's
+        # --srcwin): the update's text without its advice
+        self.assertEqual(f.EstimateBytes(400.0, 25.0), 9325.0)
+        self.assertEqual(f.EstimateBytes(400.0, 400.0), 21600.0)
+        self.assertEqual(f.CheckMemory(20, 20, 5, 5, 0.0), "")
+        f.SetMemoryLimit(9324)
+        self.assertEqual(f.CheckMemory(20, 20, 5, 5, 0.0), region)
+        self.assertEqual(f.CheckMemory(20, 20, 20, 20, 0.0), f.CheckMemory(20, 20, 0.0))
         # The default limit is the physical memory less the input's size: 360 directions of
         # HorizonAngles (1494 bytes a cell) on a grid of a little more cells than that allows.
         memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")

@@ -17,6 +17,7 @@
 #include "vtkStringArray.h"
 #include "vtkTestErrorObserver.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -299,6 +300,121 @@ void ExpectError(const std::string& path, const std::string& expected,
   AP_CHECK(img->GetNumberOfPoints() == 0);
 }
 
+// GetWindowExtent against a brute force: the cells of the grid read whose ground overlaps the
+// ground of the window's file pixels (from the geotransform), for every window of an 11 x 8
+// raster (north-up and south-up) read whole, decimated by 2 and 3 (partial blocks dropped),
+// at an overview of 6 x 4 (11/6 file pixels a level pixel), and through a SubWindow.
+void TestWindowExtent()
+{
+  for (bool southUp : { false, true })
+  {
+    aptest::RasterSpec s;
+    s.nx = 11;
+    s.ny = 8;
+    if (southUp)
+    {
+      s.gt[3] = 4000000.0 - 8 * 30.0; // south edge
+      s.gt[5] = 30.0;
+    }
+    const std::string path = tmp + (southUp ? "/extent-south.tif" : "/extent.tif");
+    AP_CHECK(aptest::WriteRaster(path, s));
+    GDALDatasetH ds = GDALOpen(path.c_str(), GA_Update);
+    int levels[1] = { 2 };
+    AP_CHECK(ds && GDALBuildOverviews(ds, "AVERAGE", 1, levels, 0, nullptr, nullptr, nullptr) ==
+        CE_None);
+    GDALClose(ds);
+    struct Setup
+    {
+      int level, factor, sub[4];
+      bool misses; // some windows cover no cell: dropped partial blocks, or the SubWindow
+    };
+    const Setup setups[] = { { -1, 1, { 0, 0, 0, 0 }, false }, { -1, 2, { 0, 0, 0, 0 }, true },
+      { -1, 3, { 0, 0, 0, 0 }, true }, { 0, 1, { 0, 0, 0, 0 }, false },
+      { 0, 2, { 0, 0, 0, 0 }, false }, { -1, 1, { 2, 1, 6, 5 }, true },
+      { -1, 2, { 1, 2, 0, 0 }, true } };
+    for (const Setup& u : setups)
+    {
+      Read rd(path);
+      rd.Reader->SetOverviewLevel(u.level);
+      rd.Reader->SetDecimation(u.factor);
+      rd.Reader->SetSubWindow(const_cast<int*>(u.sub));
+      vtkImageData* img = rd.Update();
+      AP_CHECK(rd.Ok == 1);
+      int dims[3];
+      double origin[3], spacing[3];
+      img->GetDimensions(dims);
+      img->GetOrigin(origin);
+      img->GetSpacing(spacing);
+      int checked = 0, empty = 0;
+      for (int x0 = 0; x0 < s.nx; ++x0)
+      {
+        for (int w = 0; x0 + w <= s.nx; ++w)
+        {
+          for (int y0 = 0; y0 < s.ny; ++y0)
+          {
+            for (int h = 0; y0 + h <= s.ny; ++h)
+            {
+              // the window's ground, and the grid's cells overlapping it
+              const double wx0 = s.gt[0] + x0 * s.gt[1];
+              const double wx1 = s.gt[0] + (w ? x0 + w : s.nx) * s.gt[1];
+              const double ya = s.gt[3] + y0 * s.gt[5];
+              const double yb = s.gt[3] + (h ? y0 + h : s.ny) * s.gt[5];
+              const double wy0 = std::min(ya, yb), wy1 = std::max(ya, yb);
+              int want[6] = { dims[0], -1, dims[1], -1, 0, 0 };
+              for (int j = 0; j < dims[1]; ++j)
+              {
+                for (int i = 0; i < dims[0]; ++i)
+                {
+                  const double cx = origin[0] + i * spacing[0], cy = origin[1] + j * spacing[1];
+                  const double ox = std::min(wx1, cx + 0.5 * spacing[0]) -
+                    std::max(wx0, cx - 0.5 * spacing[0]);
+                  const double oy = std::min(wy1, cy + 0.5 * spacing[1]) -
+                    std::max(wy0, cy - 0.5 * spacing[1]);
+                  if (ox > 1e-6 * spacing[0] && oy > 1e-6 * spacing[1])
+                  {
+                    want[0] = std::min(want[0], i);
+                    want[1] = std::max(want[1], i);
+                    want[2] = std::min(want[2], j);
+                    want[3] = std::max(want[3], j);
+                  }
+                }
+              }
+              int got[6] = { -7, -7, -7, -7, -7, -7 };
+              rd.Errors->Clear();
+              const bool ok = rd.Reader->GetWindowExtent(x0, y0, w, h, got);
+              if (want[1] < 0)
+              {
+                ++empty;
+                AP_CHECK(!ok);
+                AP_CHECK_CONTAINS(rd.Errors->GetErrorMessage(), "covers no cell of the");
+              }
+              else
+              {
+                ++checked;
+                AP_CHECK(ok && !rd.Errors->GetError());
+                AP_CHECK(std::equal(want, want + 6, got));
+              }
+            }
+          }
+        }
+      }
+      AP_CHECK(checked > 1000);
+      AP_CHECK((empty > 0) == u.misses);
+    }
+  }
+  // a window outside the raster, and a reader without raster information
+  Read rd(tmp + "/extent.tif");
+  rd.Update();
+  int ext[6];
+  AP_CHECK(!rd.Reader->GetWindowExtent(10, 0, 2, 0, ext));
+  AP_CHECK_CONTAINS(
+    rd.Errors->GetErrorMessage(), "the window (10, 0, 2, 0) is not inside the 11 x 8 raster");
+  Read none(tmp + "/no-such-file.tif");
+  none.Update();
+  AP_CHECK(!none.Reader->GetWindowExtent(0, 0, 0, 0, ext));
+  AP_CHECK_CONTAINS(none.Errors->GetErrorMessage(), "no valid raster information");
+}
+
 void TestBadInput()
 {
   ExpectError(tmp + "/no-such-file.tif", "does not exist");
@@ -428,6 +544,7 @@ int TestApertureDEMReader(int argc, char* argv[])
   TestUnits();
   TestWindowsAndLevels();
   TestBands();
+  TestWindowExtent();
   TestBadInput();
   return aptest::Result();
 }

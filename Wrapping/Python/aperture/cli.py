@@ -30,7 +30,7 @@ def _warn(message):
 # Reading
 
 
-def _add_read_options(parser, dem_required=False):
+def _add_read_options(parser, dem_required=False, srcwin_help=None):
     g = parser.add_argument_group("reading the DEM")
     if dem_required:
         g.add_argument("dem", metavar="DEM", help="elevation raster")
@@ -40,8 +40,8 @@ def _add_read_options(parser, dem_required=False):
     g.add_argument("--band", "-b", type=int, default=0, metavar="N",
                    help="1-based band to read (default: band 1, with a note if there are more)")
     g.add_argument("--srcwin", type=int, nargs=4, metavar=("XOFF", "YOFF", "XSIZE", "YSIZE"),
-                   help="read only this window, in pixels from the top-left corner "
-                        "(as gdal_translate -srcwin)")
+                   help=srcwin_help or "read only this window, in pixels from the top-left "
+                                       "corner (as gdal_translate -srcwin)")
     g.add_argument("--overview", type=int, default=-1, metavar="K",
                    help="read GDAL overview level K (0-based) instead of full resolution")
     g.add_argument("--decimate", type=int, default=1, metavar="F",
@@ -118,7 +118,8 @@ _SMALLER_READ = "read a part with --srcwin, or use --decimate or --overview"
 # The DEM reader's messages name its VTK properties; here they are options.
 _READER_PHRASES = (
     (re.compile(r"read a SubWindow, or use Decimation or an OverviewLevel"), _SMALLER_READ),
-    (re.compile(r"SubWindow \((-?\d+), (-?\d+), (-?\d+), (-?\d+)\)"), r"--srcwin \1 \2 \3 \4"),
+    (re.compile(r"(?:SubWindow|the window) \((-?\d+), (-?\d+), (-?\d+), (-?\d+)\)"),
+     r"--srcwin \1 \2 \3 \4"),
     (re.compile(r"set BandIndex to choose"), "choose one with --band"),
     (re.compile(r"^OverrideCRS: "), "--srs: "),
     (re.compile(r"set OverrideCRS \(aperture: (--srs EPSG:xxxx)\)"), r"give one with \1"),
@@ -132,10 +133,9 @@ def _as_options(message):
     return message
 
 
-def read_dem(args, watcher, check_size=None):
-    """Read the DEM the arguments name; returns (reader, image). check_size(nx, ny), when
-    given, sees the size of the grid to be read before anything is read, and may raise."""
-    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
+def _dem_reader(args, watcher, subwindow=True):
+    """A reader set up with the arguments' options (not run); subwindow=False leaves --srcwin
+    to the caller."""
     from aperture import vtkApertureDEMReader
     if args.band < 0:
         raise ApertureError("--band must be 1 or more")
@@ -146,14 +146,22 @@ def read_dem(args, watcher, check_size=None):
     reader = watcher.watch(vtkApertureDEMReader())
     reader.SetFileName(_dem_path(args))
     reader.SetBandIndex(args.band)
-    if args.srcwin:
-        if min(args.srcwin) < 0:
-            raise ApertureError("--srcwin values must not be negative")
+    if args.srcwin and min(args.srcwin) < 0:
+        raise ApertureError("--srcwin values must not be negative")
+    if args.srcwin and subwindow:
         reader.SetSubWindow(*args.srcwin)
     reader.SetOverviewLevel(args.overview)
     reader.SetDecimation(args.decimate)
     if args.srs:
         reader.SetOverrideCRS(args.srs)
+    return reader
+
+
+def read_dem(args, watcher, check_size=None):
+    """Read the DEM the arguments name; returns (reader, image). check_size(nx, ny), when
+    given, sees the size of the grid to be read before anything is read, and may raise."""
+    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
+    reader = _dem_reader(args, watcher)
     try:
         if check_size:
             watcher.update_information(reader)
@@ -165,6 +173,33 @@ def read_dem(args, watcher, check_size=None):
     except ApertureError as e:
         raise ApertureError(_as_options(str(e)))
     return reader, image
+
+
+def _read_around_window(args, watcher, consumer, check_size):
+    """Read what `consumer` (the sky filter, which asks its input for a halo as wide as its
+    search distance) needs for the cells of the --srcwin window: the window and the DEM within
+    the radius around it (without a radius, all of it). Returns (reader, the window's extent of
+    the grid read). check_size(nx, ny, window_nx, window_ny) sees the size to be read and the
+    window's before anything is read, and may raise."""
+    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
+    reader = _dem_reader(args, watcher, subwindow=False)
+    try:
+        consumer.SetInputConnection(reader.GetOutputPort())
+        watcher.update_information(consumer)
+        window = [0] * 6
+        if not reader.GetWindowExtent(*args.srcwin, window):
+            watcher.check()
+            raise ApertureError("--srcwin %d %d %d %d: no cells" % tuple(args.srcwin))
+        consumer.GetOutputInformation(0).Set(sddp.UPDATE_EXTENT(), window, 6)
+        consumer.PropagateUpdateExtent()
+        read = reader.GetOutputInformation(0).Get(sddp.UPDATE_EXTENT())
+        check_size(read[1] - read[0] + 1, read[3] - read[2] + 1,
+                   window[1] - window[0] + 1, window[3] - window[2] + 1)
+        with _abort_on_interrupt(reader):  # (a large DEM can take minutes to read)
+            watcher.update(reader, extent=read)
+    except ApertureError as e:
+        raise ApertureError(_as_options(str(e)))
+    return reader, window
 
 
 # ---------------------------------------------------------------------------------------------
@@ -552,7 +587,8 @@ def _read_provenance(args, band):
     """What of the DEM was read; band: the reader's GetBandRead()."""
     record = {"SOURCE_BAND": str(band)}
     if args.srcwin:
-        record["SOURCE_WINDOW"] = "%d %d %d %d (xoff yoff xsize ysize)" % tuple(args.srcwin)
+        record["SOURCE_WINDOW"] = ("%d %d %d %d (xoff yoff xsize ysize; its horizons see the "
+                                   "DEM around it)" % tuple(args.srcwin))
     if args.overview >= 0:
         record["SOURCE_OVERVIEW"] = str(args.overview)
     if args.decimate > 1:
@@ -662,23 +698,31 @@ def _bake(args, products, progress):
     sky.SetAnglesInDegrees(True)  # the files' unit
     sky.SetFloatEdgeTruncated(True)  # one sample type for every band, NaN on nodata
 
-    def check_size(nx, ny):
+    def check_size(nx, ny, window_nx=None, window_ny=None):
         # Refuse before reading (which may take minutes) what the sky filter would refuse
         # after it, beside the elevations it will hold (4 bytes a cell): past physical memory
         # Linux kills the process instead of failing an allocation.
-        problem = sky.CheckMemory(nx, ny, 4.0 * nx * ny)
+        problem = sky.CheckMemory(nx, ny, window_nx or nx, window_ny or ny, 4.0 * nx * ny)
         if problem:
-            raise ApertureError("%s; %s, or bake fewer --products" % (problem, _SMALLER_READ))
+            raise ApertureError("%s; bake a window with --srcwin and a --radius (only the DEM "
+                                "within the radius around it is read), use --decimate or "
+                                "--overview, or bake fewer --products" % problem)
 
-    reader, _ = read_dem(args, watcher, check_size)
-    sky.SetInputConnection(reader.GetOutputPort())
+    # --srcwin: the window's cells, horizons from the DEM around it (so that windows tile)
+    window = None
+    if args.srcwin:
+        reader, window = _read_around_window(args, watcher, sky, check_size)
+    else:
+        reader, _ = read_dem(args, watcher, check_size)
+        sky.SetInputConnection(reader.GetOutputPort())
     if progress:
         # the sweep is nearly all of the time; the rest shows as the step to 100 after writing
         progress(0.0)
         sky.AddObserver("ProgressEvent", lambda obj, _: progress(0.95 * obj.GetProgress()))
     sweep_start = time.perf_counter()
     with _abort_on_interrupt(sky):
-        result = watcher.update(sky, "bake")  # the reader has run: the sky filter alone
+        # (the reader has run: the sky filter alone)
+        result = watcher.update(sky, "bake", extent=window)
     sweep_seconds = time.perf_counter() - sweep_start
     image = _product_image(result, products)
     provenance = _provenance(args, products, reader.GetBandRead())
@@ -965,7 +1009,10 @@ def build_parser():
                                    "in D azimuth sectors) and write the products as GeoTIFF "
                                    "bands named after them (angles in degrees), optionally also "
                                    "as one multi-channel float EXR.")
-    _add_read_options(p, dem_required=True)
+    _add_read_options(p, dem_required=True, srcwin_help=(
+        "bake only this window's cells, in pixels from the top-left corner (as gdal_translate "
+        "-srcwin); their horizons still see the DEM around the window (within --radius; "
+        "without one all of it is read), so the windows of a DEM tile its whole bake exactly"))
     p.add_argument("output", metavar="OUT.tif", help="GeoTIFF to write")
     p.add_argument("--directions", "-d", type=int, default=32, metavar="D",
                    help="azimuth sectors, 4..360 (default 32)")

@@ -65,9 +65,13 @@ class Watcher:
             self.errors = []
             raise ApertureError(message if not what else "%s: %s" % (what, message))
 
-    def update(self, algorithm, what=None):
-        """algorithm.Update(), then raise on any reported error."""
-        algorithm.Update()
+    def update(self, algorithm, what=None, extent=None):
+        """algorithm.Update() (algorithm.UpdateExtent(extent) when given), then raise on any
+        reported error."""
+        if extent is None:
+            algorithm.Update()
+        else:
+            algorithm.UpdateExtent(extent)
         self.check(what)
         return algorithm.GetOutputDataObject(0)
 
