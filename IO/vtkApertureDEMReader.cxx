@@ -327,6 +327,17 @@ int vtkApertureDEMReader::RequestInformation(
   d.LevelSize[0] = levelX;
   d.LevelSize[1] = levelY;
   d.Factor = this->Decimation;
+  // Decimation's blocks align to the level's top-left corner, not the window's, so that every
+  // window of a raster reads cells of one grid: the window grows to the blocks it touches, less
+  // a partial block at the level's east or south edge.
+  for (int a = 0; a < 2; ++a)
+  {
+    const vtkTypeInt64 f = d.Factor, size = a ? levelY : levelX;
+    const vtkTypeInt64 first = d.Window[a] / f;
+    const vtkTypeInt64 end = std::min((d.Window[a] + d.Window[a + 2] + f - 1) / f, size / f);
+    d.Window[a] = static_cast<int>(first * f);
+    d.Window[a + 2] = static_cast<int>(std::max<vtkTypeInt64>(0, end - first) * f);
+  }
   d.Out[0] = d.Window[2] / d.Factor;
   d.Out[1] = d.Window[3] / d.Factor;
   if (d.Out[0] < 2 || d.Out[1] < 2)

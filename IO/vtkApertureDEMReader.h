@@ -20,7 +20,9 @@
  *   resolution; -1 (default) reads full resolution.
  * - Decimation: an integer factor f >= 1; each output cell is the mean of the valid cells of an
  *   f x f block (nodata ignored; all-nodata blocks stay nodata); a partial block at the east or
- *   south edge is dropped. Applied after the overview and subwindow.
+ *   south edge is dropped. Applied to the overview level; the blocks align to its top-left
+ *   corner, not to the SubWindow's, which gets every block it touches, so that the windows of
+ *   one raster read cells of one grid.
  * - OverrideCRS: a CRS (WKT, "EPSG:xxxx", PROJ string) used instead of the file's.
  * - MemoryLimit: the most bytes one update may allocate for the output; 0 (default) means the
  *   machine's physical memory.
@@ -72,10 +74,9 @@ public:
    *  rows; 0 columns or rows: to the edge) of full-resolution pixels, as SubWindow gives one,
    *  after UpdateInformation: for asking a filter downstream for a window of a grid read whole
    *  (vtkApertureSkyVisibility then reads the window and its halo and computes the window's
-   *  cells). Decimation's blocks align to the grid read (its SubWindow or the raster), so the
-   *  windows of one raster tile one grid, and a window covers every block it touches; the
-   *  partial blocks the grid drops at its east and south edges are left out. False, with an
-   *  error, when the window is not inside the raster or covers no cell of the grid. */
+   *  cells): the cells a SubWindow of the same window would read, as Decimation's blocks align
+   *  to the raster. False, with an error, when the window is not inside the raster or covers
+   *  no cell of the grid (only a dropped partial block, or outside the SubWindow). */
   bool GetWindowExtent(int xoff, int yoff, int xsize, int ysize, int extent[6]);
 
   ///@{

@@ -45,7 +45,8 @@ def _add_read_options(parser, dem_required=False, srcwin_help=None):
     g.add_argument("--overview", type=int, default=-1, metavar="K",
                    help="read GDAL overview level K (0-based) instead of full resolution")
     g.add_argument("--decimate", type=int, default=1, metavar="F",
-                   help="average F x F blocks of cells (nodata ignored)")
+                   help="average F x F blocks of cells (nodata ignored), aligned to the "
+                        "raster's top-left corner (a --srcwin gets every block it touches)")
     g.add_argument("--srs", metavar="CRS",
                    help="use this CRS instead of the file's (EPSG:xxxx, WKT or PROJ string)")
 
