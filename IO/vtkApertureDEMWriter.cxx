@@ -4,14 +4,18 @@
 #include "vtkApertureGDALErrorTrap.h"
 #include "vtkApertureGeoreference.h"
 
+#include "vtkAlgorithmOutput.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <cpl_conv.h>
 #include <cpl_string.h>
@@ -39,6 +43,19 @@ struct vtkApertureDEMWriter::Internals
     std::string Array, Key, Value;
   };
   std::vector<BandItem> BandMetadata;
+
+  // The file being written, from BeginFile to EndFile, and what BeginFile resolved.
+  struct Band
+  {
+    std::string ArrayName, Description;
+    int Component, Components;
+  };
+  GDALDatasetH Dataset = nullptr;
+  std::string Path;
+  std::vector<Band> Bands;
+  GDALDataType Type = GDT_Float32;
+  int Whole[6] = { 0, -1, 0, -1, 0, 0 }; // the extent the file covers
+  std::string Error;                     // GDAL's message of a failed write
 };
 
 //------------------------------------------------------------------------------
@@ -47,6 +64,7 @@ vtkApertureDEMWriter::vtkApertureDEMWriter()
   , Compression(nullptr)
   , CompressionLevel(1)
   , NumberOfThreads(0)
+  , StripRows(0)
   , Impl(new Internals)
 {
   this->SetCompression("DEFLATE");
@@ -55,6 +73,7 @@ vtkApertureDEMWriter::vtkApertureDEMWriter()
 //------------------------------------------------------------------------------
 vtkApertureDEMWriter::~vtkApertureDEMWriter()
 {
+  this->EndFile(false); // (only after an exception between BeginFile and EndFile)
   this->SetFileName(nullptr);
   this->SetCompression(nullptr);
   delete this->Impl;
@@ -230,30 +249,125 @@ void* vtkApertureDEMWriter::CheckCompression(std::string& codec, const char*& le
 void vtkApertureDEMWriter::WriteData()
 {
   vtkImageData* input = this->GetInput();
+  int ext[6] = { 0, -1, 0, -1, 0, -1 };
+  if (input)
+  {
+    input->GetExtent(ext);
+  }
+  if (!this->BeginFile(input, ext))
+  {
+    return; // (reported)
+  }
+  this->EndFile(this->WriteRows(input, ext[2], ext[3], 0.0, 1.0));
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureDEMWriter::Write()
+{
+  if (this->StripRows <= 0)
+  {
+    return this->Superclass::Write();
+  }
+  if (this->GetNumberOfInputConnections(0) < 1)
+  {
+    vtkErrorMacro(<< "no input to write");
+    return 0;
+  }
+  vtkAlgorithmOutput* connection = this->GetInputConnection(0, 0);
+  vtkAlgorithm* producer = connection->GetProducer();
+  const int port = connection->GetIndex();
+  this->SetAbortExecute(0);
+  producer->UpdateInformation();
+  int whole[6];
+  vtkInformation* info = producer->GetOutputInformation(port);
+  if (!info || !info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    vtkErrorMacro(<< "the input has no whole extent to write in strips (see its error)");
+    return 0;
+  }
+  info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  if (whole[1] < whole[0] || whole[3] < whole[2])
+  {
+    vtkErrorMacro(<< "no input image to write to '" << (this->FileName ? this->FileName : "")
+                  << "'");
+    return 0;
+  }
+  // strips of whole tile rows, north (the file's first rows) first
+  const vtkTypeInt64 tile = 256;
+  const vtkTypeInt64 rows = (static_cast<vtkTypeInt64>(this->StripRows) + tile - 1) / tile * tile;
+  const vtkTypeInt64 ny = static_cast<vtkTypeInt64>(whole[3]) - whole[2] + 1;
+  const vtkTypeInt64 strips = (ny + rows - 1) / rows;
+  this->InvokeEvent(vtkCommand::StartEvent, nullptr);
+  bool ok = true, begun = false;
+  for (vtkTypeInt64 k = 0; ok && k < strips; ++k)
+  {
+    const int j1 = static_cast<int>(whole[3] - k * rows);
+    const int j0 = static_cast<int>(whole[3] - std::min(ny, (k + 1) * rows) + 1);
+    const int ext[6] = { whole[0], whole[1], j0, j1, whole[4], whole[5] };
+    vtkNew<vtkInformationVector> requests;
+    requests->SetNumberOfInformationObjects(producer->GetNumberOfOutputPorts());
+    requests->GetInformationObject(port)->Set(
+      vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext, 6);
+    // (a failed update has reported its error; rows j0..j1 are image rows, south up)
+    vtkImageData* strip = producer->Update(port, requests)
+      ? vtkImageData::SafeDownCast(producer->GetOutputDataObject(port))
+      : nullptr;
+    if (!strip)
+    {
+      vtkErrorMacro(<< "the input did not produce rows " << j0 << " to " << j1 << " of "
+                    << whole[2] << " to " << whole[3] << " for '"
+                    << (this->FileName ? this->FileName : "") << "'");
+      ok = false;
+      break;
+    }
+    if (!begun)
+    {
+      ok = begun = this->BeginFile(strip, whole);
+    }
+    ok = ok &&
+      this->WriteRows(strip, j0, j1, static_cast<double>(k) / static_cast<double>(strips),
+        1.0 / static_cast<double>(strips));
+    if (ok && this->GetAbortExecute())
+    {
+      vtkErrorMacro(<< "writing '" << this->FileName << "' was aborted");
+      ok = false;
+    }
+  }
+  if (begun)
+  {
+    this->EndFile(ok);
+  }
+  this->InvokeEvent(vtkCommand::EndEvent, nullptr);
+  return ok ? 1 : 0;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
+{
+  Internals& d = *this->Impl;
+  d.Bands.clear();
   if (!this->FileName || !*this->FileName)
   {
     vtkErrorMacro(<< "no file name was set");
-    return;
+    return false;
   }
   const std::string path(this->FileName);
   if (!input || input->GetNumberOfPoints() == 0)
   {
     vtkErrorMacro(<< "no input image to write to '" << path << "'");
-    return;
+    return false;
   }
-  int ext[6];
-  input->GetExtent(ext);
-  if (ext[4] != ext[5])
+  if (whole[4] != whole[5])
   {
     vtkErrorMacro(<< "only 2-D images can be written as GeoTIFF; this one has "
-                  << (ext[5] - ext[4] + 1) << " slices");
-    return;
+                  << (whole[5] - whole[4] + 1) << " slices");
+    return false;
   }
-  const int nx = ext[1] - ext[0] + 1, ny = ext[3] - ext[2] + 1;
+  const int nx = whole[1] - whole[0] + 1, ny = whole[3] - whole[2] + 1;
 
   // 1. The arrays, as (array, component, band description) in band order.
   vtkPointData* pd = input->GetPointData();
-  std::vector<std::string> names = this->Impl->ArrayNames;
+  std::vector<std::string> names = d.ArrayNames;
   if (names.empty())
   {
     for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
@@ -267,15 +381,8 @@ void vtkApertureDEMWriter::WriteData()
   if (names.empty())
   {
     vtkErrorMacro(<< "the image has no named point arrays to write to '" << path << "'");
-    return;
+    return false;
   }
-  struct Band
-  {
-    vtkDataArray* Array;
-    int Component;
-    std::string ArrayName, Description;
-  };
-  std::vector<Band> bands;
   bool anyDouble = false;
   for (const std::string& name : names)
   {
@@ -283,13 +390,13 @@ void vtkApertureDEMWriter::WriteData()
     if (!abstract)
     {
       vtkErrorMacro(<< "the image has no point array named '" << name << "'");
-      return;
+      return false;
     }
     vtkDataArray* array = vtkDataArray::SafeDownCast(abstract);
     if (!array)
     {
       vtkErrorMacro(<< "the point array '" << name << "' is not numeric");
-      return;
+      return false;
     }
     anyDouble = anyDouble || array->GetDataType() == VTK_DOUBLE;
     const int nc = array->GetNumberOfComponents();
@@ -301,28 +408,29 @@ void vtkApertureDEMWriter::WriteData()
         const char* cname = array->GetComponentName(c);
         description += "_" + ((cname && *cname) ? std::string(cname) : std::to_string(c));
       }
-      bands.push_back({ array, c, name, description });
+      d.Bands.push_back({ name, description, c, nc });
     }
   }
 
-  // 2. Georeference.
+  // 2. Georeference of the whole extent (CRS from the image's field data).
   vtkNew<vtkApertureGeoreference> geo;
   const bool hasCRS = geo->SetFromImage(input);
-  double gt[6];
+  double origin[3], spacing[3], gt[6];
+  input->GetOrigin(origin);
+  input->GetSpacing(spacing);
   if (hasCRS)
   {
+    geo->SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],
+      spacing[0], spacing[1], nx, ny);
     geo->GetGeoTransform(gt);
   }
   else
   {
     vtkWarningMacro(<< "writing '" << path << "' without a CRS: " << geo->GetErrorMessage());
-    double origin[3], spacing[3];
-    input->GetOrigin(origin);
-    input->GetSpacing(spacing);
-    gt[0] = origin[0] + (ext[0] - 0.5) * spacing[0];
+    gt[0] = origin[0] + (whole[0] - 0.5) * spacing[0];
     gt[1] = spacing[0];
     gt[2] = 0.0;
-    gt[3] = origin[1] + (ext[3] + 0.5) * spacing[1];
+    gt[3] = origin[1] + (whole[3] + 0.5) * spacing[1];
     gt[4] = 0.0;
     gt[5] = -spacing[1];
   }
@@ -334,7 +442,7 @@ void vtkApertureDEMWriter::WriteData()
   GDALDriverH driver = static_cast<GDALDriverH>(this->CheckCompression(compression, levelOption));
   if (!driver)
   {
-    return; // (reported)
+    return false; // (reported)
   }
   char** options = nullptr;
   options = CSLSetNameValue(options, "TILED", "YES");
@@ -359,16 +467,18 @@ void vtkApertureDEMWriter::WriteData()
       this->NumberOfThreads > 0 ? std::to_string(this->NumberOfThreads) : "ALL_CPUS";
     options = CSLSetNameValue(options, "NUM_THREADS", threads.c_str());
   }
-  const GDALDataType type = anyDouble ? GDT_Float64 : GDT_Float32;
-  GDALDatasetH ds =
-    GDALCreate(driver, path.c_str(), nx, ny, static_cast<int>(bands.size()), type, options);
+  d.Type = anyDouble ? GDT_Float64 : GDT_Float32;
+  GDALDatasetH ds = GDALCreate(
+    driver, path.c_str(), nx, ny, static_cast<int>(d.Bands.size()), d.Type, options);
   CSLDestroy(options);
   if (!ds)
   {
-    vtkErrorMacro(<< "GDAL cannot create '" << path
-                  << "': " << trap.Message("unknown error"));
-    return;
+    vtkErrorMacro(<< "GDAL cannot create '" << path << "': " << trap.Message("unknown error"));
+    return false;
   }
+  d.Dataset = ds;
+  d.Path = path;
+  std::copy(whole, whole + 6, d.Whole);
   bool ok = GDALSetGeoTransform(ds, gt) == CE_None;
   if (ok && hasCRS)
   {
@@ -377,40 +487,82 @@ void vtkApertureDEMWriter::WriteData()
       GDALSetSpatialRef(ds, srs) == CE_None;
     OSRRelease(srs);
   }
-  for (const auto& kv : this->Impl->Metadata)
+  for (const auto& kv : d.Metadata)
   {
     ok = ok && GDALSetMetadataItem(ds, kv.first.c_str(), kv.second.c_str(), nullptr) == CE_None;
   }
+  for (size_t b = 0; ok && b < d.Bands.size(); ++b)
+  {
+    GDALRasterBandH hb = GDALGetRasterBand(ds, static_cast<int>(b) + 1);
+    GDALSetDescription(hb, d.Bands[b].Description.c_str());
+    ok = GDALSetRasterNoDataValue(hb, std::numeric_limits<double>::quiet_NaN()) == CE_None;
+    for (const auto& item : d.BandMetadata)
+    {
+      if (item.Array == d.Bands[b].ArrayName)
+      {
+        ok = ok &&
+          GDALSetMetadataItem(hb, item.Key.c_str(), item.Value.c_str(), nullptr) == CE_None;
+      }
+    }
+  }
+  if (!ok)
+  {
+    d.Error = trap.Message("unknown error");
+    this->EndFile(false);
+  }
+  return ok;
+}
 
-  // 4. Bands, written in strips of one tile row in file order (north first), converting on
-  //    the fly into a buffer of the file's sample type, and each strip's tiles flushed at once
-  //    (compressed on the worker threads): GDAL's block cache never holds more than a strip.
+//------------------------------------------------------------------------------
+bool vtkApertureDEMWriter::WriteRows(
+  vtkImageData* input, int j0, int j1, double progress0, double progressSpan)
+{
+  Internals& d = *this->Impl;
+  const int* whole = d.Whole;
+  const int nx = whole[1] - whole[0] + 1;
+  int ext[6];
+  input->GetExtent(ext);
+  if (ext[0] > whole[0] || ext[1] < whole[1] || ext[2] > j0 || ext[3] < j1)
+  {
+    vtkErrorMacro(<< "the input's extent (" << ext[0] << ".." << ext[1] << ", " << ext[2]
+                  << ".." << ext[3] << ") does not hold rows " << j0 << " to " << j1
+                  << " of columns " << whole[0] << " to " << whole[1]);
+    return false;
+  }
+  const vtkIdType width = ext[1] - ext[0] + 1;
+  vtkApertureGDALErrorTrap trap;
+  // Rows in strips of one tile row in file order (north first), converted on the fly into a
+  // buffer of the file's sample type, and each strip's tiles flushed at once (compressed on
+  // the worker threads): GDAL's block cache never holds more than a strip. The file's row r
+  // is image row whole[3] - r.
+  const int fileFirst = whole[3] - j1, fileEnd = whole[3] - j0 + 1;
   const int stripRows = 256;
   std::vector<float> stripF;
   std::vector<double> stripD;
-  for (size_t b = 0; ok && b < bands.size(); ++b)
+  bool ok = true;
+  for (size_t b = 0; ok && b < d.Bands.size(); ++b)
   {
-    const Band& band = bands[b];
-    GDALRasterBandH hb = GDALGetRasterBand(ds, static_cast<int>(b) + 1);
-    GDALSetDescription(hb, band.Description.c_str());
-    ok = GDALSetRasterNoDataValue(hb, std::numeric_limits<double>::quiet_NaN()) == CE_None;
-    for (const auto& item : this->Impl->BandMetadata)
+    const Internals::Band& band = d.Bands[b];
+    vtkDataArray* array = input->GetPointData()->GetArray(band.ArrayName.c_str());
+    if (!array || array->GetNumberOfComponents() != band.Components ||
+      array->GetNumberOfTuples() != input->GetNumberOfPoints())
     {
-      if (item.Array == band.ArrayName)
-      {
-        ok = ok && GDALSetMetadataItem(hb, item.Key.c_str(), item.Value.c_str(), nullptr) == CE_None;
-      }
+      vtkErrorMacro(<< "the input of rows " << j0 << " to " << j1 << " has no point array '"
+                    << band.ArrayName << "' of " << band.Components
+                    << " components for every point (as the first rows had)");
+      return false;
     }
-    const int nc = band.Array->GetNumberOfComponents();
-    // Rows r0 .. r0 + k - 1 of the file (image rows counted from the south) into dst.
+    const int nc = band.Components;
+    GDALRasterBandH hb = GDALGetRasterBand(d.Dataset, static_cast<int>(b) + 1);
+    // File rows r0 .. r0 + k - 1 into dst.
     auto fill = [&](auto* dst, int r0, int k) {
       using T = typename std::remove_pointer<decltype(dst)>::type;
       for (int r = 0; r < k; ++r)
       {
-        const vtkIdType row = ny - 1 - (r0 + r); // file row r0 + r is image row ny-1-(r0+r)
+        const vtkIdType row = whole[3] - (r0 + r) - ext[2];
         T* out = dst + static_cast<size_t>(r) * static_cast<size_t>(nx);
-        const vtkIdType first = row * nx;
-        if (auto* fa = vtkFloatArray::SafeDownCast(band.Array))
+        const vtkIdType first = row * width + (whole[0] - ext[0]);
+        if (auto* fa = vtkFloatArray::SafeDownCast(array))
         {
           const float* src = fa->GetPointer(0) + first * nc + band.Component;
           for (int i = 0; i < nx; ++i)
@@ -418,7 +570,7 @@ void vtkApertureDEMWriter::WriteData()
             out[i] = static_cast<T>(src[static_cast<size_t>(i) * nc]);
           }
         }
-        else if (auto* da = vtkDoubleArray::SafeDownCast(band.Array))
+        else if (auto* da = vtkDoubleArray::SafeDownCast(array))
         {
           const double* src = da->GetPointer(0) + first * nc + band.Component;
           for (int i = 0; i < nx; ++i)
@@ -430,7 +582,7 @@ void vtkApertureDEMWriter::WriteData()
         {
           for (int i = 0; i < nx; ++i)
           {
-            out[i] = static_cast<T>(band.Array->GetComponent(first + i, band.Component));
+            out[i] = static_cast<T>(array->GetComponent(first + i, band.Component));
           }
         }
       }
@@ -439,24 +591,48 @@ void vtkApertureDEMWriter::WriteData()
     auto writeStrip = [&](auto& strip, int r0, int k) {
       strip.resize(static_cast<size_t>(k) * static_cast<size_t>(nx));
       fill(strip.data(), r0, k);
-      return GDALRasterIO(hb, GF_Write, 0, r0, nx, k, strip.data(), nx, k, type, 0, 0) == CE_None;
+      return GDALRasterIO(hb, GF_Write, 0, r0, nx, k, strip.data(), nx, k, d.Type, 0, 0) ==
+        CE_None;
     };
-    for (int r0 = 0; ok && r0 < ny; r0 += stripRows)
+    for (int r0 = fileFirst; ok && r0 < fileEnd; r0 += stripRows)
     {
-      const int k = std::min(stripRows, ny - r0);
-      ok = (type == GDT_Float32 ? writeStrip(stripF, r0, k) : writeStrip(stripD, r0, k)) &&
+      const int k = std::min(stripRows, fileEnd - r0);
+      ok = (d.Type == GDT_Float32 ? writeStrip(stripF, r0, k) : writeStrip(stripD, r0, k)) &&
         GDALFlushRasterCache(hb) == CE_None;
     }
-    this->UpdateProgress(static_cast<double>(b + 1) / static_cast<double>(bands.size()));
+    this->UpdateProgress(progress0 +
+      progressSpan * static_cast<double>(b + 1) / static_cast<double>(d.Bands.size()));
   }
-  GDALFlushCache(ds);
-  const std::string reason = trap.Message("unknown error");
-  GDALClose(ds);
-  if (!ok || CPLGetLastErrorType() >= CE_Failure)
+  if (!ok)
   {
-    VSIUnlink(path.c_str());
-    vtkErrorMacro(<< "GDAL failed writing '" << path << "': " << reason);
+    d.Error = trap.Message("unknown error");
   }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+void vtkApertureDEMWriter::EndFile(bool ok)
+{
+  Internals& d = *this->Impl;
+  if (!d.Dataset)
+  {
+    return;
+  }
+  vtkApertureGDALErrorTrap trap;
+  GDALFlushCache(d.Dataset);
+  const std::string reason = trap.Message(d.Error.empty() ? "unknown error" : d.Error.c_str());
+  GDALClose(d.Dataset);
+  d.Dataset = nullptr;
+  const bool failed = CPLGetLastErrorType() >= CE_Failure || !d.Error.empty();
+  if (!ok || failed)
+  {
+    VSIUnlink(d.Path.c_str());
+    if (failed)
+    {
+      vtkErrorMacro(<< "GDAL failed writing '" << d.Path << "': " << reason);
+    }
+  }
+  d.Error.clear();
 }
 
 //------------------------------------------------------------------------------
@@ -467,6 +643,7 @@ void vtkApertureDEMWriter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Compression: " << (this->Compression ? this->Compression : "(none)") << "\n";
   os << indent << "CompressionLevel: " << this->CompressionLevel << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "StripRows: " << this->StripRows << "\n";
   os << indent << "ArrayNames:";
   for (const auto& n : this->Impl->ArrayNames)
   {

@@ -86,6 +86,20 @@ public:
   ///@}
 
   ///@{
+  /** Rows per update when > 0: Write() asks its input for strips of this many rows (rounded
+   * up to whole 256-row tiles), north first, and writes each into the file before asking for
+   * the next, so that a pipeline whose stages produce sub-extents (vtkApertureDEMReader,
+   * vtkApertureSkyVisibility with its halo) holds one strip at a time. The file has the same
+   * bands, values, georeference and metadata as with 0 (default: the whole image in one
+   * update); a strip the input fails to produce is an error, and the file is removed. */
+  vtkSetClampMacro(StripRows, int, 0, VTK_INT_MAX);
+  vtkGetMacro(StripRows, int);
+  ///@}
+
+  /** Write the file (in strips when StripRows > 0); 1 on success. */
+  int Write() override;
+
+  ///@{
   /** Dataset metadata (key = value, the GeoTIFF's GDAL metadata domain), written with the file. */
   void AddMetadata(const char* key, const char* value);
   /** Metadata for the bands of one array (all its components). */
@@ -107,10 +121,20 @@ protected:
    * to set). */
   void* CheckCompression(std::string& codec, const char*& levelOption);
 
+  /** Create the file for the image rows and columns of `whole` (bands, georeference and
+   * metadata from `input`); false, reported, on failure (nothing left behind). */
+  bool BeginFile(vtkImageData* input, const int whole[6]);
+  /** Write image rows j0..j1 of every band from `input`, whose extent holds them; progress
+   * runs from progress0 over progressSpan. False, reported by EndFile or here, on failure. */
+  bool WriteRows(vtkImageData* input, int j0, int j1, double progress0, double progressSpan);
+  /** Close the file; remove it unless ok and GDAL reported no failure. */
+  void EndFile(bool ok);
+
   char* FileName;
   char* Compression;
   int CompressionLevel;
   int NumberOfThreads;
+  int StripRows;
 
 private:
   vtkApertureDEMWriter(const vtkApertureDEMWriter&) = delete;

@@ -8,15 +8,22 @@
 #include "vtkApertureDEMWriter.h"
 #include "vtkApertureGeoreference.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkImageAlgorithm.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkObjectFactory.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTestErrorObserver.h"
 
 #include <cpl_conv.h>
@@ -25,6 +32,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -301,6 +309,191 @@ void TestCompressionLevels()
   }
 }
 
+// A source of the sub-extents of an image (as vtkApertureDEMReader and the sky filter produce
+// them), recording each extent asked for, and failing when asked for rows below FailBelow.
+class StripSource : public vtkImageAlgorithm
+{
+public:
+  static StripSource* New();
+  vtkTypeMacro(StripSource, vtkImageAlgorithm);
+  vtkSmartPointer<vtkImageData> Image;
+  std::vector<std::vector<int>> Requests;
+  int FailBelow = -1;
+
+protected:
+  StripSource() { this->SetNumberOfInputPorts(0); }
+  int RequestInformation(
+    vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    vtkInformation* info = out->GetInformationObject(0);
+    info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), this->Image->GetExtent(), 6);
+    info->Set(vtkDataObject::ORIGIN(), this->Image->GetOrigin(), 3);
+    info->Set(vtkDataObject::SPACING(), this->Image->GetSpacing(), 3);
+    info->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+    return 1;
+  }
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    vtkInformation* info = out->GetInformationObject(0);
+    int ext[6], whole[6];
+    info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+    this->Image->GetExtent(whole);
+    this->Requests.emplace_back(ext, ext + 6);
+    if (this->FailBelow >= 0 && ext[2] < this->FailBelow)
+    {
+      vtkErrorMacro(<< "asked for row " << ext[2]);
+      return 0;
+    }
+    vtkImageData* output = vtkImageData::GetData(info);
+    output->SetExtent(ext);
+    output->GetFieldData()->PassData(this->Image->GetFieldData());
+    vtkPointData* pd = this->Image->GetPointData();
+    for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* src = pd->GetArray(a);
+      vtkSmartPointer<vtkDataArray> dst = vtk::TakeSmartPointer(src->NewInstance());
+      dst->SetName(src->GetName());
+      dst->SetNumberOfComponents(src->GetNumberOfComponents());
+      dst->SetNumberOfTuples(output->GetNumberOfPoints());
+      vtkIdType k = 0;
+      for (int j = ext[2]; j <= ext[3]; ++j)
+      {
+        for (int i = ext[0]; i <= ext[1]; ++i)
+        {
+          dst->SetTuple(k++, (j - whole[2]) * (whole[1] - whole[0] + 1) + (i - whole[0]), src);
+        }
+      }
+      output->GetPointData()->AddArray(dst);
+    }
+    return 1;
+  }
+};
+vtkStandardNewMacro(StripSource);
+
+// Every band of two GeoTIFFs, their geotransforms, CRSs, descriptions and metadata are equal.
+bool SameContents(const std::string& a, const std::string& b)
+{
+  GDALDatasetH da = GDALOpen(a.c_str(), GA_ReadOnly), db = GDALOpen(b.c_str(), GA_ReadOnly);
+  bool same = da && db && GDALGetRasterCount(da) == GDALGetRasterCount(db) &&
+    GDALGetRasterXSize(da) == GDALGetRasterXSize(db) &&
+    GDALGetRasterYSize(da) == GDALGetRasterYSize(db);
+  if (same)
+  {
+    double ga[6], gb[6];
+    GDALGetGeoTransform(da, ga);
+    GDALGetGeoTransform(db, gb);
+    same = std::equal(ga, ga + 6, gb) &&
+      std::string(GDALGetProjectionRef(da)) == GDALGetProjectionRef(db) &&
+      std::string(GDALGetMetadataItem(da, "SOURCE", nullptr)) ==
+        GDALGetMetadataItem(db, "SOURCE", nullptr);
+    const int nx = GDALGetRasterXSize(da), ny = GDALGetRasterYSize(da);
+    std::vector<double> va(static_cast<size_t>(nx) * ny), vb(va.size());
+    for (int band = 1; same && band <= GDALGetRasterCount(da); ++band)
+    {
+      GDALRasterBandH ba = GDALGetRasterBand(da, band), bb = GDALGetRasterBand(db, band);
+      const char* ua = GDALGetMetadataItem(ba, "UNITS", nullptr);
+      const char* ub = GDALGetMetadataItem(bb, "UNITS", nullptr);
+      same = std::string(GDALGetDescription(ba)) == GDALGetDescription(bb) &&
+        std::string(ua ? ua : "") == (ub ? ub : "") &&
+        GDALGetRasterDataType(ba) == GDALGetRasterDataType(bb) &&
+        GDALRasterIO(ba, GF_Read, 0, 0, nx, ny, va.data(), nx, ny, GDT_Float64, 0, 0) ==
+          CE_None &&
+        GDALRasterIO(bb, GF_Read, 0, 0, nx, ny, vb.data(), nx, ny, GDT_Float64, 0, 0) ==
+          CE_None &&
+        std::memcmp(va.data(), vb.data(), va.size() * sizeof(double)) == 0;
+    }
+  }
+  GDALClose(da);
+  GDALClose(db);
+  return same;
+}
+
+// StripRows: the input is asked for strips of whole 256-row tiles, north first, and the file
+// holds what a whole write gives (from a source of sub-extents, and from an image given whole);
+// a strip the input fails to produce, or an abort, is an error that leaves no file (and no
+// endless pipeline loop).
+void TestStrips()
+{
+  vtkSmartPointer<vtkImageData> image = MakeNoisyImage(); // 600 x 520
+  vtkNew<vtkDoubleArray> twice;
+  twice->SetName("Twice");
+  twice->SetNumberOfComponents(2);
+  vtkDataArray* z = image->GetPointData()->GetArray("Elevation");
+  for (vtkIdType k = 0; k < image->GetNumberOfPoints(); ++k)
+  {
+    twice->InsertNextTuple2(2.0 * z->GetTuple1(k), -static_cast<double>(k));
+  }
+  image->GetPointData()->AddArray(twice);
+  auto setup = [&](vtkApertureDEMWriter* w, const std::string& path, int rows) {
+    w->SetFileName(path.c_str());
+    w->SetStripRows(rows);
+    w->AddMetadata("SOURCE", "strips test");
+    w->AddBandMetadata("Twice", "UNITS", "m");
+  };
+  const std::string whole = tmp + "/strips-whole.tif";
+  {
+    vtkNew<vtkApertureDEMWriter> w;
+    w->SetInputData(image);
+    setup(w, whole, 0);
+    AP_CHECK(w->Write() == 1);
+  }
+  vtkNew<StripSource> source;
+  source->Image = image;
+  {
+    vtkNew<vtkApertureDEMWriter> w;
+    w->SetInputConnection(source->GetOutputPort());
+    setup(w, tmp + "/strips.tif", 1);
+    AP_CHECK(w->GetStripRows() == 1);
+    AP_CHECK(w->Write() == 1);
+    const std::vector<std::vector<int>> asked = { { 0, 599, 264, 519, 0, 0 },
+      { 0, 599, 8, 263, 0, 0 }, { 0, 599, 0, 7, 0, 0 } };
+    AP_CHECK(source->Requests == asked);
+    AP_CHECK(SameContents(whole, tmp + "/strips.tif"));
+  }
+  {
+    vtkNew<vtkApertureDEMWriter> w;
+    w->SetInputData(image);
+    setup(w, tmp + "/strips-given.tif", 300); // 512 rows: 2 strips of the image given whole
+    AP_CHECK(w->Write() == 1);
+    AP_CHECK(SameContents(whole, tmp + "/strips-given.tif"));
+  }
+  {
+    source->FailBelow = 100;
+    vtkNew<vtkApertureDEMWriter> w;
+    w->SetInputConnection(source->GetOutputPort());
+    const std::string path = tmp + "/strips-failed.tif";
+    setup(w, path, 256);
+    vtkNew<vtkTest::ErrorObserver> errors, sourceErrors, executiveErrors;
+    w->AddObserver(vtkCommand::ErrorEvent, errors);
+    source->AddObserver(vtkCommand::ErrorEvent, sourceErrors);
+    source->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+    AP_CHECK(w->Write() == 0);
+    AP_CHECK_CONTAINS(
+      errors->GetErrorMessage(), "the input did not produce rows 8 to 263 of 0 to 519");
+    AP_CHECK_CONTAINS(sourceErrors->GetErrorMessage(), "asked for row 8");
+    struct stat sb;
+    AP_CHECK(stat(path.c_str(), &sb) != 0); // nothing left behind
+    source->FailBelow = -1;
+  }
+  {
+    vtkNew<vtkApertureDEMWriter> w;
+    w->SetInputConnection(source->GetOutputPort());
+    const std::string path = tmp + "/strips-aborted.tif";
+    setup(w, path, 256);
+    vtkNew<vtkCallbackCommand> abort;
+    abort->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
+      static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    });
+    w->AddObserver(vtkCommand::ProgressEvent, abort);
+    vtkNew<vtkTest::ErrorObserver> errors;
+    w->AddObserver(vtkCommand::ErrorEvent, errors);
+    AP_CHECK(w->Write() == 0);
+    AP_CHECK_CONTAINS(errors->GetErrorMessage(), "strips-aborted.tif' was aborted");
+    struct stat sb;
+    AP_CHECK(stat(path.c_str(), &sb) != 0);
+  }
+}
+
 void ExpectError(vtkApertureDEMWriter* writer, const std::string& expected)
 {
   vtkNew<vtkTest::ErrorObserver> errors, executiveErrors;
@@ -382,6 +575,7 @@ int TestApertureDEMWriter(int argc, char* argv[])
   TestSelectionAndTypes();
   TestThreadsSameBytes();
   TestCompressionLevels();
+  TestStrips();
   TestErrors();
   return aptest::Result();
 }
