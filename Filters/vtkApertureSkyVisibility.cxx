@@ -91,6 +91,38 @@ bool HaloCells(vtkApertureGeoreference* geo, double distance, int halo[2])
   halo[1] = static_cast<int>(std::min(1e9, std::ceil(distance / my))) + 2;
   return true;
 }
+
+// The extent of the input (whose pipeline information is inInfo) that an update of `ext`
+// reads: `ext` grown by the halo of the search distance, clipped to the whole extent. A region
+// sees terrain up to the search distance away; unlimited distance, or no way to know metres
+// (the CRS is published by vtkApertureDEMReader as pipeline information), needs the whole.
+void InputExtent(vtkInformation* inInfo, double distance, const int ext[6], int in[6])
+{
+  int whole[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  std::copy(whole, whole + 6, in);
+  const char* crs = inInfo->Get(vtkApertureGeoreference::CRS_KEY());
+  if (distance > 0 && crs && inInfo->Has(vtkDataObject::SPACING()) &&
+    inInfo->Has(vtkDataObject::ORIGIN()))
+  {
+    vtkNew<vtkApertureGeoreference> geo;
+    double spacing[3], origin[3];
+    inInfo->Get(vtkDataObject::SPACING(), spacing);
+    inInfo->Get(vtkDataObject::ORIGIN(), origin);
+    int halo[2];
+    if (geo->SetCRS(crs))
+    {
+      SetWholeGrid(geo, origin, spacing, whole);
+      if (HaloCells(geo, distance, halo))
+      {
+        in[0] = std::max(whole[0], ext[0] - halo[0]);
+        in[1] = std::min(whole[1], ext[1] + halo[0]);
+        in[2] = std::max(whole[2], ext[2] - halo[1]);
+        in[3] = std::min(whole[3], ext[3] + halo[1]);
+      }
+    }
+  }
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -170,47 +202,35 @@ int vtkApertureSkyVisibility::RequestUpdateExtent(
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  int whole[6], ext[6];
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  int ext[6], in[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
-  // A region sees terrain up to the search distance away: grow it by that much. Unlimited
-  // distance, or no way to know metres (the CRS is published by vtkApertureDEMReader as
-  // pipeline information), needs the whole extent.
-  int in[6];
-  std::copy(whole, whole + 6, in);
   if (vtkStructuredData::GetDataDescriptionFromExtent(ext) == VTK_EMPTY)
   {
     // an empty request (VTK's way to ask for nothing) asks nothing of the input either
     inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext, 6);
     return 1;
   }
-  const char* crs = inInfo->Get(vtkApertureGeoreference::CRS_KEY());
-  if (this->MaximumDistance > 0 && crs && inInfo->Has(vtkDataObject::SPACING()) &&
-    inInfo->Has(vtkDataObject::ORIGIN()))
-  {
-    vtkNew<vtkApertureGeoreference> geo;
-    double spacing[3], origin[3];
-    inInfo->Get(vtkDataObject::SPACING(), spacing);
-    inInfo->Get(vtkDataObject::ORIGIN(), origin);
-    int halo[2];
-    if (geo->SetCRS(crs))
-    {
-      SetWholeGrid(geo, origin, spacing, whole);
-      if (HaloCells(geo, this->MaximumDistance, halo))
-      {
-        in[0] = std::max(whole[0], ext[0] - halo[0]);
-        in[1] = std::min(whole[1], ext[1] + halo[0]);
-        in[2] = std::max(whole[2], ext[2] - halo[1]);
-        in[3] = std::min(whole[3], ext[3] + halo[1]);
-      }
-    }
-  }
+  InputExtent(inInfo, this->MaximumDistance, ext, in);
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), in, 6);
   // The request is this extent, not a piece: the pipeline copies a piece request upstream, and
   // a source that produces sub-extents would turn it into its own, halo-less extent.
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureSkyVisibility::ComputeInputExtent(const int extent[6], int input[6])
+{
+  vtkInformation* inInfo =
+    this->GetNumberOfInputConnections(0) > 0 ? this->GetInputInformation(0, 0) : nullptr;
+  if (!inInfo || !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    vtkErrorMacro(<< "no input information (connect an input and call UpdateInformation)");
+    return false;
+  }
+  InputExtent(inInfo, this->MaximumDistance, extent, input);
+  return true;
 }
 
 //------------------------------------------------------------------------------

@@ -165,8 +165,15 @@ public:
   std::string CheckMemory(int nx, int ny, double held) const;
 
   /** The same for an update extent of outNx x outNy cells whose input (the extent with its
-   *  halo: the input's update extent once the request has been propagated) is nx x ny. */
+   *  halo: ComputeInputExtent) is nx x ny. */
   std::string CheckMemory(int nx, int ny, int outNx, int outNy, double held) const;
+
+  /** The extent of the input an update of `extent` reads (after UpdateInformation): the
+   *  extent grown by the halo of MaximumDistance (its cells at the smallest metric cell sizes,
+   *  and 2 more), clipped to the input's whole extent; the whole extent when the distance is
+   *  unlimited or the input publishes no CRS. False, with an error, without input
+   *  information. For sizing a request before anything runs (CheckMemory). */
+  bool ComputeInputExtent(const int extent[6], int input[6]);
 
   /** Threads that ran the last update's parallel work (0 before any; at most
    *  NumberOfThreads when that is set). */

@@ -51,6 +51,17 @@ def zeros_vrt(path, n):
     return path
 
 
+def rough_dem(path, shape, seed, hole=None):
+    """Rough terrain (a random walk's cumulative sums) of `shape` in UTM 11N, 30 m cells, with
+    nodata in the rows and columns of `hole` (a pair of slices); returns path."""
+    rng = np.random.default_rng(seed)
+    z = np.cumsum(np.cumsum(rng.normal(0, 1, shape), 0), 1).astype(np.float32)
+    if hole:
+        z[hole] = -9999
+    make_dem(path, z, (500000, 30, 0, 4000000, 0, -30), 32611)
+    return path
+
+
 def make_dem(path, z, gt, epsg):
     ds = gdal.GetDriverByName("GTiff").Create(path, z.shape[1], z.shape[0], 1, gdal.GDT_Float32)
     ds.SetGeoTransform(gt)
@@ -183,11 +194,7 @@ class TestBake(unittest.TestCase):
         # georeference of their place in it; a window alone would truncate horizons at its
         # edges. Rough terrain with nodata in UTM; the embedded lat/lon DEM; a decimated grid
         # (blocks aligned to the raster, a window covering every block it touches).
-        rng = np.random.default_rng(5)
-        z = np.cumsum(np.cumsum(rng.normal(0, 1, (170, 200)), 0), 1).astype(np.float32)
-        z[60:64, 90:97] = -9999
-        rough = self.path("rough.tif")
-        make_dem(rough, z, (500000, 30, 0, 4000000, 0, -30), 32611)
+        rough = rough_dem(self.path("rough.tif"), (170, 200), 5, np.s_[60:64, 90:97])
         import aperture
         jacksboro = aperture.default_dem()
 
@@ -275,6 +282,64 @@ class TestBake(unittest.TestCase):
                          "13.411 GiB; bake a window with --srcwin and a --radius (only the DEM "
                          "within the radius around it is read), use --decimate or --overview, "
                          "or bake fewer --products" % (left / 1024.0 ** u, units[u]))
+
+    def test_strips(self):
+        # A bake that does not fit --max-memory (the products and the sweep's state) is written
+        # in strips of whole 256-row tiles, each computing its own cells from itself and its
+        # halo: the same file contents as at once, bit for bit. Rough terrain with nodata,
+        # 700 x 150 cells, 1500 m (a halo of 52 rows), 8 directions and every product
+        # (HorizonAngles too): 90 bytes a cell at once, 9450000 bytes = 9.012 MiB. Strips of 256
+        # rows read 360 rows (21 bytes a cell: the float copy and the sweep's state) and hold 73
+        # bytes a cell of their own (the products and their copy of the elevations): 3937200
+        # bytes = 3.755 MiB; of 512 rows 7.197 MiB.
+        dem = rough_dem(self.path("strips.tif"), (700, 150), 8, np.s_[300:305, 40:48])
+        options = ["--radius", 1500, "-d", 8, "--products", "all"]
+        whole_out, strips_out = self.path("strips-whole.tif"), self.path("strips-out.tif")
+        status, _, err = run("bake", dem, whole_out, *options)
+        self.assertEqual(status, 0, err)
+        status, stdout, err = run("bake", dem, strips_out, *options, "--max-memory", "5M")
+        self.assertEqual(status, 0, err)
+        self.assertIn("in 3 strips of 256 rows: the whole did not fit in --max-memory", stdout)
+        whole, whole_meta, whole_gt, whole_srs = bands(whole_out)
+        strips, meta, gt, srs = bands(strips_out)
+        self.assertEqual(list(strips), list(whole))
+        for name in whole:
+            np.testing.assert_array_equal(strips[name][0], whole[name][0], err_msg=name)
+            self.assertEqual(strips[name][1], whole[name][1])  # units, definitions
+        self.assertEqual((meta, gt, srs), (whole_meta, whole_gt, whole_srs))
+        # a window in strips: the window's cells of the whole bake
+        status, stdout, err = run("bake", dem, strips_out, *options, "--max-memory", "3M",
+                                  "--srcwin", 20, 100, 100, 560)
+        self.assertEqual(status, 0, err)
+        self.assertIn("for 100 x 560 cells", stdout)
+        self.assertIn("in 3 strips of 256 rows", stdout)
+        window, _, _, _ = bands(strips_out)
+        for name in whole:
+            np.testing.assert_array_equal(window[name][0], whole[name][0][100:660, 20:120],
+                                          err_msg=name)
+        # the EXR needs every cell at once; too little memory for one tile row; bad sizes
+        for extra, message in (
+                (["--max-memory", "5M", "--exr", self.path("strips.exr")],
+                 "; --exr needs the products of every cell at once (the GeoTIFF alone is "
+                 "written in strips that fit): leave it out, or bake a window"),
+                (["--max-memory", "2M"], "and strips of 256 rows (the GeoTIFF's tiles) would "
+                 "not fit either: the products of 150 x 256 cells, with the 150 x 360 cells of "
+                 "DEM around them, need about 3.755 MiB (HorizonAngles take 4 bytes per cell "
+                 "and direction), more than --max-memory 2.000 MiB; "
+                 "bake a window with --srcwin")):
+            status, _, err = run("bake", dem, self.path("strips-refused.tif"), *options, *extra)
+            self.assertEqual(status, 1, err)
+            self.assertIn("aperture: error: a 150 x 700 DEM with these products needs about "
+                          "9.012 MiB (HorizonAngles take 4 bytes per cell and direction), more "
+                          "than --max-memory ", err)
+            self.assertIn(message, err)
+            self.assertEqual(len(err.strip().splitlines()), 1, err)
+            self.assertFalse(os.path.exists(self.path("strips-refused.tif")))
+        for bad in ("0", "-3M", "lots", "1e3"):
+            status, _, err = run("bake", dem, self.path("strips-refused.tif"),
+                                 "--max-memory=" + bad)
+            self.assertEqual(status, 2, err)
+            self.assertIn("is not a size (512, 300K, 1.5G, 2T)", err)
 
     def test_window_errors(self):
         rng = np.random.default_rng(6)
@@ -401,14 +466,13 @@ class TestBake(unittest.TestCase):
         # sweep here, interrupted once the bake has used 2 s of CPU (imports and reading take
         # about 0.4). What the bake spends after the signal is measured in CPU time, not wall
         # time, so that a loaded machine (a parallel ctest) cannot fail it: one sector of 32 is
-        # about 0.3 s of CPU on two threads, the rest of the sweep at least 6 s.
+        # about 0.3 s of CPU on two threads, the rest of the sweep at least 6 s. The same in
+        # strips (--max-memory), where the writer removes the file it had begun.
         import resource
         import signal
         import time
-        rng = np.random.default_rng(11)
-        z = np.cumsum(np.cumsum(rng.normal(0, 1, (2048, 2048)), 0), 1).astype(np.float32)
-        dem, out = self.path("interrupt.tif"), self.path("interrupt-out.tif")
-        make_dem(dem, z, (500000, 30, 0, 4000000, 0, -30), 32611)
+        dem = rough_dem(self.path("interrupt.tif"), (2048, 2048), 11)
+        out = self.path("interrupt-out.tif")
         tick = os.sysconf("SC_CLK_TCK")
 
         def cpu(pid):  # utime + stime of every thread, from /proc/PID/stat
@@ -416,23 +480,24 @@ class TestBake(unittest.TestCase):
                 fields = f.read().rsplit(")", 1)[1].split()
             return (int(fields[11]) + int(fields[12])) / tick
 
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        p = subprocess.Popen([APERTURE, "bake", dem, out, "-q"], stdout=subprocess.PIPE,
-                             stderr=subprocess.PIPE, text=True)
-        start = time.perf_counter()
-        while cpu(p.pid) < 2.0:
-            self.assertLess(time.perf_counter() - start, 120, "the bake never got the CPU")
-            self.assertIsNone(p.poll(), "the bake ended before it was interrupted")
-            time.sleep(0.02)
-        sent = cpu(p.pid)
-        p.send_signal(signal.SIGINT)
-        stdout, stderr = p.communicate(timeout=300)
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        used = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
-        self.assertEqual(p.returncode, 130, stderr)
-        self.assertEqual((stdout, stderr), ("", ""))
-        self.assertFalse(os.path.exists(out))
-        self.assertLess(used - sent, 1.0)
+        for options in ([], ["--radius", "20000", "--max-memory", "100M"]):
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
+            p = subprocess.Popen([APERTURE, "bake", dem, out, "-q"] + options,
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+            start = time.perf_counter()
+            while cpu(p.pid) < 2.0:
+                self.assertLess(time.perf_counter() - start, 120, "the bake never got the CPU")
+                self.assertIsNone(p.poll(), "the bake ended before it was interrupted")
+                time.sleep(0.02)
+            sent = cpu(p.pid)
+            p.send_signal(signal.SIGINT)
+            stdout, stderr = p.communicate(timeout=300)
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            used = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+            self.assertEqual(p.returncode, 130, stderr)
+            self.assertEqual((stdout, stderr), ("", ""))
+            self.assertFalse(os.path.exists(out), options)
+            self.assertLess(used - sent, 1.0, options)
 
     def test_out_of_memory(self):
         # A DEM that fits the machine's memory but not the process's address space (ulimit -v):
@@ -461,10 +526,12 @@ class TestBake(unittest.TestCase):
         # allocate): 30000^2 cells with HorizonAngles at 360 directions need 1498 bytes a cell
         # in the sky filter (1440 of horizons, 37 of the other products with EdgeTruncated as
         # float beside its byte flags, its float copy 4 and the sweep's state 17):
-        # 1.3482e12 bytes = 1.226 TiB, beside the elevations' 4 bytes a cell, 3.353 GiB.
+        # 1.3482e12 bytes = 1.226 TiB, beside the elevations' 4 bytes a cell, 3.353 GiB. In
+        # strips of 256 rows (no radius: each reads the whole DEM) 21 bytes a cell of the DEM
+        # and 1481 of the strip's: 3.0274e10 bytes = 28.195 GiB.
         memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-        if memory > 1.3e12:
-            self.skipTest("this machine has more than 1.3 TB of memory")
+        if memory > 3.0274e10 + 4.0 * 30000 ** 2:
+            self.skipTest("this machine could bake it in strips")
         units = ("bytes", "KiB", "MiB", "GiB", "TiB")
         left = memory - 4.0 * 30000 ** 2
         u = max(k for k in range(5) if left >= 1024 ** k)
@@ -474,10 +541,14 @@ class TestBake(unittest.TestCase):
         self.assertEqual(p.stderr.strip(), "aperture: error: a 30000 x 30000 DEM with these "
                          "products needs about 1.226 TiB (HorizonAngles take 4 bytes per cell "
                          "and direction), more than the %.3f %s of memory this machine has "
-                         "beside the DEM's 3.353 GiB; bake a window with --srcwin and a "
-                         "--radius (only the DEM within the radius around it is read), use "
-                         "--decimate or --overview, or bake fewer --products"
-                         % (left / 1024.0 ** u, units[u]))
+                         "beside the DEM's 3.353 GiB, and strips of 256 rows (the GeoTIFF's "
+                         "tiles) would not fit either: the products of 30000 x 256 cells, with "
+                         "the 30000 x 30000 cells of DEM around them, need about 28.195 GiB "
+                         "(HorizonAngles take 4 bytes per cell and direction), more than the "
+                         "%.3f %s of memory this machine has beside the DEM's 3.353 GiB; bake a "
+                         "window with --srcwin and a --radius (only the DEM within the radius "
+                         "around it is read), use --decimate or --overview, or bake fewer "
+                         "--products" % ((left / 1024.0 ** u, units[u]) * 2))
         self.assertFalse(os.path.exists(out))
         # 12000^2: the reader's 0.54 GiB fits, the mesh's points, normals and triangles do not
         script = ("import aperture, sys\n"

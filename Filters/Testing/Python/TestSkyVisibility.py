@@ -315,7 +315,13 @@ class TestSkyVisibility(Testing.vtkTest):
             reader.SetFileName(path)
             f.SetInputConnection(reader.GetOutputPort())
             f.SetMaximumDistance(distance)
+            none = aperture.vtkApertureSkyVisibility()
+            none.AddObserver("ErrorEvent", lambda *_: None)
+            self.assertFalse(none.ComputeInputExtent((x0, x1, y0, y1, 0, 0), [0] * 6))
             f.UpdateInformation()
+            # the input extent a request reads, asked before anything runs (as the bake plans)
+            planned = [0] * 6
+            self.assertTrue(f.ComputeInputExtent((x0, x1, y0, y1, 0, 0), planned))
             f.UpdateExtent((x0, x1, y0, y1, 0, 0))
             piece = f.GetOutput()
             read = reader.GetOutput().GetExtent()
@@ -323,6 +329,7 @@ class TestSkyVisibility(Testing.vtkTest):
         hx, hy = (math.ceil(distance / c) + 2 for c in cell)
         self.assertEqual(read, (max(0, x0 - hx), min(nx - 1, x1 + hx),
                                 max(0, y0 - hy), min(ny - 1, y1 + hy), 0, 0))
+        self.assertEqual(tuple(planned), read)
         for name in ("SkyViewFactor", "EdgeTruncated", "BentNormal", "DiffuseSkyFactor"):
             whole = array(runs[0], name).reshape(ny, nx, -1)[y0:y1 + 1, x0:x1 + 1]
             got = array(piece, name).reshape(y1 - y0 + 1, x1 - x0 + 1, -1)

@@ -122,6 +122,7 @@ _READER_PHRASES = (
     (re.compile(r"(?:SubWindow|the window) \((-?\d+), (-?\d+), (-?\d+), (-?\d+)\)"),
      r"--srcwin \1 \2 \3 \4"),
     (re.compile(r"set BandIndex to choose"), "choose one with --band"),
+    (re.compile(r"the (\S+ \S+) MemoryLimit"), r"--max-memory \1"),
     (re.compile(r"^OverrideCRS: "), "--srs: "),
     (re.compile(r"set OverrideCRS \(aperture: (--srs EPSG:xxxx)\)"), r"give one with \1"),
 )
@@ -174,33 +175,6 @@ def read_dem(args, watcher, check_size=None):
     except ApertureError as e:
         raise ApertureError(_as_options(str(e)))
     return reader, image
-
-
-def _read_around_window(args, watcher, consumer, check_size):
-    """Read what `consumer` (the sky filter, which asks its input for a halo as wide as its
-    search distance) needs for the cells of the --srcwin window: the window and the DEM within
-    the radius around it (without a radius, all of it). Returns (reader, the window's extent of
-    the grid read). check_size(nx, ny, window_nx, window_ny) sees the size to be read and the
-    window's before anything is read, and may raise."""
-    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
-    reader = _dem_reader(args, watcher, subwindow=False)
-    try:
-        consumer.SetInputConnection(reader.GetOutputPort())
-        watcher.update_information(consumer)
-        window = [0] * 6
-        if not reader.GetWindowExtent(*args.srcwin, window):
-            watcher.check()
-            raise ApertureError("--srcwin %d %d %d %d: no cells" % tuple(args.srcwin))
-        consumer.GetOutputInformation(0).Set(sddp.UPDATE_EXTENT(), window, 6)
-        consumer.PropagateUpdateExtent()
-        read = reader.GetOutputInformation(0).Get(sddp.UPDATE_EXTENT())
-        check_size(read[1] - read[0] + 1, read[3] - read[2] + 1,
-                   window[1] - window[0] + 1, window[3] - window[2] + 1)
-        with _abort_on_interrupt(reader):  # (a large DEM can take minutes to read)
-            watcher.update(reader, extent=read)
-    except ApertureError as e:
-        raise ApertureError(_as_options(str(e)))
-    return reader, window
 
 
 # ---------------------------------------------------------------------------------------------
@@ -290,6 +264,15 @@ def _parse_size(text):
     if not (16 <= w <= 16384 and 16 <= h <= 16384):
         raise argparse.ArgumentTypeError("width and height must be within 16..16384")
     return w, h
+
+
+def _memory_size(text):
+    """Bytes from '512' (MiB), '300K', '1.5G', '2TiB' (powers of 1024)."""
+    m = re.match(r"^\s*(\d+(?:\.\d*)?|\.\d+)\s*([KMGT]?)(?:I?B)?\s*$", text, re.IGNORECASE)
+    value = float(m.group(1)) * 1024 ** " KMGT".index(m.group(2).upper() or "M") if m else 0.0
+    if not (1 <= value < 2 ** 62):
+        raise argparse.ArgumentTypeError("%r is not a size (512, 300K, 1.5G, 2T)" % text)
+    return int(value)
 
 
 def _gt_text(gt):
@@ -647,6 +630,76 @@ class _abort_on_interrupt:
         return False
 
 
+def _plan_bake(args, watcher, sky):
+    """Set up the reader for the sky filter and plan the bake before anything is read:
+    returns (reader, the extent of the grid to bake (--srcwin's cells, else all), the extent
+    the sky filter reads for it (with its halo), rows per strip or 0 for all at once).
+
+    --srcwin bakes the window's cells with horizons from the DEM around it (so that windows
+    tile a DEM), reading the DEM within the radius around it (without one, all of it). When the
+    sky filter cannot hold it all (beside the elevations, 4 bytes a cell: past physical memory
+    Linux kills the process instead of failing an allocation), the GeoTIFF is baked in strips
+    of whole 256-row tiles, each reading its own halo, as many rows as fit; refused when not
+    even one tile row fits, or when --exr (which needs the whole image) is asked for."""
+    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
+    reader = _dem_reader(args, watcher, subwindow=False)
+    try:
+        sky.SetInputConnection(reader.GetOutputPort())
+        watcher.update_information(sky)
+        whole = reader.GetOutputInformation(0).Get(sddp.WHOLE_EXTENT())
+        window = list(whole)
+        if args.srcwin:
+            if not reader.GetWindowExtent(*args.srcwin, window):
+                watcher.check()
+                raise ApertureError("--srcwin %d %d %d %d: no cells" % tuple(args.srcwin))
+        size = lambda e: (e[1] - e[0] + 1, e[3] - e[2] + 1)
+
+        def problem(read, nx, ny):  # the sky filter's refusal of an update, or ""
+            rx, ry = size(read)
+            return sky.CheckMemory(rx, ry, nx, ny, 4.0 * rx * ry)
+
+        def needs(extent):  # what the sky filter reads for an extent of its output
+            read = [0] * 6
+            if not sky.ComputeInputExtent(extent, read):
+                watcher.check()
+            return read
+
+        read = needs(window)
+        nx, ny = size(window)
+        whole_problem = problem(read, nx, ny)
+        if not whole_problem:
+            return reader, window, read, 0
+        advice = ("bake a window with --srcwin and a --radius (only the DEM within the radius "
+                  "around it is read), use --decimate or --overview, or bake fewer --products")
+        if ny <= 256:  # (one tile row: strips would be the same request)
+            raise ApertureError("%s; %s" % (whole_problem, advice))
+        if args.exr:
+            raise ApertureError("%s; --exr needs the products of every cell at once (the "
+                                "GeoTIFF alone is written in strips that fit): leave it out, "
+                                "or %s" % (whole_problem, advice))
+        # the halo of a strip inside the grid, from a row in the middle
+        middle = (window[2] + window[3]) // 2
+        one = needs([window[0], window[1], middle, middle, 0, 0])
+        halo = max(one[3] - middle, middle - one[2])
+        whole_rows = size(whole)[1]
+
+        def strip_problem(tiles):  # for strips of this many 256-row tiles
+            rows = min(256 * tiles, ny)
+            inner = [one[0], one[1], 0, min(rows + 2 * halo, whole_rows) - 1, 0, 0]
+            return problem(inner, nx, rows)
+
+        fits, tiles = 0, -(-ny // 256)
+        while fits + 1 < tiles:  # the most tiles that fit: 'fits' fit, 'tiles' do not
+            mid = (fits + tiles) // 2
+            fits, tiles = (mid, tiles) if not strip_problem(mid) else (fits, mid)
+        if fits == 0 or strip_problem(fits):
+            raise ApertureError("%s, and strips of 256 rows (the GeoTIFF's tiles) would not "
+                                "fit either: %s; %s" % (whole_problem, strip_problem(1), advice))
+        return reader, window, read, 256 * fits
+    except ApertureError as e:
+        raise ApertureError(_as_options(str(e)))
+
+
 def cmd_bake(args):
     products = _parse_products(args.products)
     if not 4 <= args.directions <= 360:
@@ -699,37 +752,11 @@ def _bake(args, products, progress):
     sky.SetAnglesInDegrees(True)  # the files' unit
     sky.SetFloatEdgeTruncated(True)  # one sample type for every band, NaN on nodata
 
-    def check_size(nx, ny, window_nx=None, window_ny=None):
-        # Refuse before reading (which may take minutes) what the sky filter would refuse
-        # after it, beside the elevations it will hold (4 bytes a cell): past physical memory
-        # Linux kills the process instead of failing an allocation.
-        problem = sky.CheckMemory(nx, ny, window_nx or nx, window_ny or ny, 4.0 * nx * ny)
-        if problem:
-            raise ApertureError("%s; bake a window with --srcwin and a --radius (only the DEM "
-                                "within the radius around it is read), use --decimate or "
-                                "--overview, or bake fewer --products" % problem)
-
-    # --srcwin: the window's cells, horizons from the DEM around it (so that windows tile)
-    window = None
-    if args.srcwin:
-        reader, window = _read_around_window(args, watcher, sky, check_size)
-    else:
-        reader, _ = read_dem(args, watcher, check_size)
-        sky.SetInputConnection(reader.GetOutputPort())
-    if progress:
-        # the sweep is nearly all of the time; the rest shows as the step to 100 after writing
-        progress(0.0)
-        sky.AddObserver("ProgressEvent", lambda obj, _: progress(0.95 * obj.GetProgress()))
-    sweep_start = time.perf_counter()
-    with _abort_on_interrupt(sky):
-        # (the reader has run: the sky filter alone)
-        result = watcher.update(sky, "bake", extent=window)
-    sweep_seconds = time.perf_counter() - sweep_start
-    image = _product_image(result, products)
+    if args.max_memory is not None:
+        sky.SetMemoryLimit(args.max_memory)
+    reader, window, read, rows = _plan_bake(args, watcher, sky)
     provenance = _provenance(args, products, reader.GetBandRead())
     definitions = {name: (unit, text) for name, unit, text in PRODUCTS}
-
-    writer.SetInputData(image)
     writer.SetFileName(args.output)
     writer.SetNumberOfThreads(args.threads)  # tiles compressed in parallel; same bytes
     for key, value in provenance.items():
@@ -737,25 +764,69 @@ def _bake(args, products, progress):
     for name in products:
         writer.AddBandMetadata(name, "UNITS", definitions[name][0])
         writer.AddBandMetadata(name, "DEFINITION", definitions[name][1])
-    watcher.write(writer, "writing %s" % args.output)
-    written = [os.path.abspath(args.output)]
-    if args.exr:
-        exr = watcher.watch(vtkApertureEXRWriter())
-        exr.SetInputData(image)
-        exr.SetFileName(args.exr)
-        exr.SetNumberOfThreads(args.threads)  # chunks compressed in parallel; same bytes
-        for key, value in provenance.items():
-            exr.AddMetadata("aperture:" + key.lower(), value)
+    strips = 0
+    sweep_start = time.perf_counter()
+    if rows:
+        # In strips: the writer asks for each (the sky filter reading it and its halo) and
+        # writes it before the next; a clip makes the window the writer's whole extent.
+        from vtkmodules.vtkImagingCore import vtkImageClip
+        clip = vtkImageClip()
+        clip.SetInputConnection(sky.GetOutputPort())
+        clip.SetOutputWholeExtent(window)
+        clip.ClipDataOff()
+        writer.SetInputConnection(clip.GetOutputPort())
+        writer.SetStripRows(rows)
         for name in products:
-            exr.AddMetadata("aperture:unit:" + name, definitions[name][0])
-        watcher.write(exr, "writing %s" % args.exr)
-        written.append(os.path.abspath(args.exr))
+            writer.AddArrayName(name)
+        strips = -(-(window[3] - window[2] + 1) // rows)
+        done = [-1]  # strips started
+        sky.AddObserver("StartEvent", lambda obj, _: done.__setitem__(0, done[0] + 1))
+        if progress:
+            progress(0.0)
+            sky.AddObserver("ProgressEvent", lambda obj, _: progress(
+                (done[0] + 0.95 * obj.GetProgress()) / strips))
+        with _abort_on_interrupt(sky):
+            watcher.write(writer, "writing %s" % args.output)
+        sweep_seconds = time.perf_counter() - sweep_start
+        nx, ny = window[1] - window[0] + 1, window[3] - window[2] + 1
+        written = [os.path.abspath(args.output)]
+    else:
+        with _abort_on_interrupt(reader):  # (a large DEM can take minutes to read)
+            watcher.update(reader, extent=read)
+        if progress:
+            # the sweep is nearly all of the time; the rest shows as the step to 100 after
+            # writing
+            progress(0.0)
+            sky.AddObserver("ProgressEvent", lambda obj, _: progress(0.95 * obj.GetProgress()))
+        sweep_start = time.perf_counter()
+        with _abort_on_interrupt(sky):
+            # (the reader has run: the sky filter alone)
+            result = watcher.update(sky, "bake", extent=window)
+        sweep_seconds = time.perf_counter() - sweep_start
+        image = _product_image(result, products)
+        nx, ny, _ = image.GetDimensions()
+        writer.SetInputData(image)
+        watcher.write(writer, "writing %s" % args.output)
+        written = [os.path.abspath(args.output)]
+        if args.exr:
+            exr = watcher.watch(vtkApertureEXRWriter())
+            exr.SetInputData(image)
+            exr.SetFileName(args.exr)
+            exr.SetNumberOfThreads(args.threads)  # chunks compressed in parallel; same bytes
+            for key, value in provenance.items():
+                exr.AddMetadata("aperture:" + key.lower(), value)
+            for name in products:
+                exr.AddMetadata("aperture:unit:" + name, definitions[name][0])
+            watcher.write(exr, "writing %s" % args.exr)
+            written.append(os.path.abspath(args.exr))
     if progress:
         progress(1.0)
-    nx, ny, _ = image.GetDimensions()
-    print("wrote %s: %s for %d x %d cells, %d directions, in %.1f s (sky filter %.2f s)"
+    print("wrote %s: %s for %d x %d cells, %d directions, in %.1f s (sky filter %.2f s%s)"
           % (" and ".join(written), ", ".join(products), nx, ny, args.directions,
-             time.perf_counter() - start, sweep_seconds))
+             time.perf_counter() - start, sweep_seconds,
+             "" if not strips else ", with the write, in %d strips of %d rows: the whole "
+             "did not fit in %s" % (strips, rows, "--max-memory" if args.max_memory else
+                                    "memory")))
     return 0
 
 
@@ -1039,6 +1110,12 @@ def build_parser():
     p.add_argument("--compress-level", type=int, default=1, metavar="N",
                    help="compression level: DEFLATE 1-12, ZSTD 1-22; -1: GDAL's default "
                         "(default 1, the fastest: float bands shrink under 1%% more at 6)")
+    p.add_argument("--max-memory", type=_memory_size, metavar="SIZE",
+                   help="most memory for the products and the sweep's state, beside the DEM's "
+                        "elevations (4 bytes a cell): a number of MiB, or with K, M, G or T "
+                        "(default: the machine's physical memory); a bake that needs more is "
+                        "written in strips of rows that fit, with the same results (not with "
+                        "--exr)")
     p.add_argument("--near-field", type=int, default=0, metavar="K",
                    help="columns of each cell's ray evaluated exactly, 1..64 (default 0: 32 "
                         "where the horizon sweep runs, 8 where rays are sampled at every "
