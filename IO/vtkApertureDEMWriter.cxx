@@ -7,6 +7,7 @@
 #include "vtkAlgorithmOutput.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkDemandDrivenPipeline.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -327,6 +328,13 @@ int vtkApertureDEMWriter::Write()
     ok = ok &&
       this->WriteRows(strip, j0, j1, static_cast<double>(k) / static_cast<double>(strips),
         1.0 / static_cast<double>(strips));
+    // a producer whose data is to be released once used (its ReleaseDataFlag) holds no strip
+    // while the next is computed (a shallow copy would keep the arrays of its input alive)
+    auto* executive = vtkDemandDrivenPipeline::SafeDownCast(producer->GetExecutive());
+    if (executive && executive->GetReleaseDataFlag(port))
+    {
+      strip->ReleaseData();
+    }
     if (ok && this->GetAbortExecute())
     {
       vtkErrorMacro(<< "writing '" << this->FileName << "' was aborted");

@@ -91,7 +91,8 @@ public:
    * the next, so that a pipeline whose stages produce sub-extents (vtkApertureDEMReader,
    * vtkApertureSkyVisibility with its halo) holds one strip at a time. The file has the same
    * bands, values, georeference and metadata as with 0 (default: the whole image in one
-   * update); a strip the input fails to produce is an error, and the file is removed. */
+   * update); a strip the input fails to produce is an error, and the file is removed. When
+   * the input's producer has its ReleaseDataFlag on, each strip is released once written. */
   vtkSetClampMacro(StripRows, int, 0, VTK_INT_MAX);
   vtkGetMacro(StripRows, int);
   ///@}

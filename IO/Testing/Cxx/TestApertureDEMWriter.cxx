@@ -449,6 +449,16 @@ void TestStrips()
       { 0, 599, 8, 263, 0, 0 }, { 0, 599, 0, 7, 0, 0 } };
     AP_CHECK(source->Requests == asked);
     AP_CHECK(SameContents(whole, tmp + "/strips.tif"));
+    AP_CHECK(source->GetOutput()->GetNumberOfPoints() == 600 * 8); // the last strip, kept
+    // with the producer's ReleaseDataFlag on, each strip is released once written
+    source->ReleaseDataFlagOn();
+    source->Requests.clear();
+    setup(w, tmp + "/strips-released.tif", 256);
+    AP_CHECK(w->Write() == 1);
+    AP_CHECK(source->Requests == asked);
+    AP_CHECK(source->GetOutput()->GetNumberOfPoints() == 0);
+    AP_CHECK(SameContents(whole, tmp + "/strips-released.tif"));
+    source->ReleaseDataFlagOff();
   }
   {
     vtkNew<vtkApertureDEMWriter> w;

@@ -774,6 +774,7 @@ def _bake(args, products, progress):
         clip.SetInputConnection(sky.GetOutputPort())
         clip.SetOutputWholeExtent(window)
         clip.ClipDataOff()
+        clip.ReleaseDataFlagOn()  # (its shallow copy would keep a strip alive beside the next)
         writer.SetInputConnection(clip.GetOutputPort())
         writer.SetStripRows(rows)
         for name in products:
