@@ -1114,7 +1114,8 @@ def build_parser():
     p.add_argument("--max-memory", type=_memory_size, metavar="SIZE",
                    help="most memory for the products and the sweep's state, beside the DEM's "
                         "elevations (4 bytes a cell): a number of MiB, or with K, M, G or T "
-                        "(default: the machine's physical memory); a bake that needs more is "
+                        "(default: the machine's physical memory less the elevations); a bake "
+                        "that needs more is "
                         "written in strips of rows that fit, with the same results (not with "
                         "--exr)")
     p.add_argument("--near-field", type=int, default=0, metavar="K",
