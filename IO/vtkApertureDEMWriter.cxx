@@ -335,11 +335,6 @@ int vtkApertureDEMWriter::Write()
     {
       strip->ReleaseData();
     }
-    if (ok && this->GetAbortExecute())
-    {
-      vtkErrorMacro(<< "writing '" << this->FileName << "' was aborted");
-      ok = false;
-    }
   }
   if (begun)
   {
@@ -610,6 +605,11 @@ bool vtkApertureDEMWriter::WriteRows(
     }
     this->UpdateProgress(progress0 +
       progressSpan * static_cast<double>(b + 1) / static_cast<double>(d.Bands.size()));
+    if (ok && this->GetAbortExecute())
+    {
+      vtkErrorMacro(<< "writing '" << d.Path << "' was aborted");
+      return false;
+    }
   }
   if (!ok)
   {

@@ -501,6 +501,17 @@ void TestStrips()
     AP_CHECK_CONTAINS(errors->GetErrorMessage(), "strips-aborted.tif' was aborted");
     struct stat sb;
     AP_CHECK(stat(path.c_str(), &sb) != 0);
+    // the same when the image is written at once (after its first band)
+    vtkNew<vtkApertureDEMWriter> once;
+    once->SetInputData(image);
+    const std::string oncePath = tmp + "/once-aborted.tif";
+    setup(once, oncePath, 0);
+    once->AddObserver(vtkCommand::ProgressEvent, abort);
+    vtkNew<vtkTest::ErrorObserver> onceErrors;
+    once->AddObserver(vtkCommand::ErrorEvent, onceErrors);
+    once->Write();
+    AP_CHECK_CONTAINS(onceErrors->GetErrorMessage(), "once-aborted.tif' was aborted");
+    AP_CHECK(stat(oncePath.c_str(), &sb) != 0);
   }
 }
 

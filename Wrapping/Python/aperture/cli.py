@@ -601,30 +601,34 @@ def _product_image(sky, products):
 
 
 class _abort_on_interrupt:
-    """Ctrl-C during a long filter: Python runs its signal handler only when it gets control,
-    which a VTK update gives it only through observers. An observer of the filter's progress
-    (every azimuth sector for the sky filter) lets the handler run; it sets AbortExecute, the
-    filter stops after the sector, and KeyboardInterrupt follows the update (exit 130, nothing
-    written) instead of the whole computation first."""
+    """Ctrl-C during long filters and writers: Python runs its signal handler only when it gets
+    control, which a VTK update gives it only through observers. Observers of the algorithms'
+    progress (every azimuth sector for the sky filter, every band for the GeoTIFF writer) let
+    the handler run; it sets AbortExecute on all of them, the one running stops (a writer
+    removing its file), and KeyboardInterrupt follows (exit 130) instead of the whole
+    computation first."""
 
-    def __init__(self, algorithm):
-        self.algorithm = algorithm
+    def __init__(self, *algorithms):
+        self.algorithms = algorithms
         self.interrupted = False
 
     def _handler(self, signum, frame):
         self.interrupted = True
-        self.algorithm.SetAbortExecute(1)
+        for algorithm in self.algorithms:
+            algorithm.SetAbortExecute(1)
 
     def __enter__(self):
         import signal
-        self.observer = self.algorithm.AddObserver("ProgressEvent", lambda obj, _: None)
+        self.observers = [a.AddObserver("ProgressEvent", lambda obj, _: None)
+                          for a in self.algorithms]
         self.previous = signal.signal(signal.SIGINT, self._handler)
         return self
 
     def __exit__(self, kind, value, traceback):
         import signal
         signal.signal(signal.SIGINT, self.previous)
-        self.algorithm.RemoveObserver(self.observer)
+        for algorithm, observer in zip(self.algorithms, self.observers):
+            algorithm.RemoveObserver(observer)
         if self.interrupted:
             raise KeyboardInterrupt
         return False
@@ -765,61 +769,72 @@ def _bake(args, products, progress):
         writer.AddBandMetadata(name, "UNITS", definitions[name][0])
         writer.AddBandMetadata(name, "DEFINITION", definitions[name][1])
     strips = 0
-    sweep_start = time.perf_counter()
-    if rows:
-        # In strips: the writer asks for each (the sky filter reading it and its halo) and
-        # writes it before the next; a clip makes the window the writer's whole extent.
-        from vtkmodules.vtkImagingCore import vtkImageClip
-        clip = vtkImageClip()
-        clip.SetInputConnection(sky.GetOutputPort())
-        clip.SetOutputWholeExtent(window)
-        clip.ClipDataOff()
-        clip.ReleaseDataFlagOn()  # (its shallow copy would keep a strip alive beside the next)
-        writer.SetInputConnection(clip.GetOutputPort())
-        writer.SetStripRows(rows)
+    exr = None
+    if args.exr:
+        exr = watcher.watch(vtkApertureEXRWriter())
+        exr.SetFileName(args.exr)
+        exr.SetNumberOfThreads(args.threads)  # chunks compressed in parallel; same bytes
+        for key, value in provenance.items():
+            exr.AddMetadata("aperture:" + key.lower(), value)
         for name in products:
-            writer.AddArrayName(name)
-        strips = -(-(window[3] - window[2] + 1) // rows)
-        done = [-1]  # strips started
-        sky.AddObserver("StartEvent", lambda obj, _: done.__setitem__(0, done[0] + 1))
-        if progress:
-            progress(0.0)
-            sky.AddObserver("ProgressEvent", lambda obj, _: progress(
-                (done[0] + 0.95 * obj.GetProgress()) / strips))
-        with _abort_on_interrupt(sky):
-            watcher.write(writer, "writing %s" % args.output)
-        sweep_seconds = time.perf_counter() - sweep_start
-        nx, ny = window[1] - window[0] + 1, window[3] - window[2] + 1
-        written = [os.path.abspath(args.output)]
-    else:
-        with _abort_on_interrupt(reader):  # (a large DEM can take minutes to read)
-            watcher.update(reader, extent=read)
-        if progress:
-            # the sweep is nearly all of the time; the rest shows as the step to 100 after
-            # writing
-            progress(0.0)
-            sky.AddObserver("ProgressEvent", lambda obj, _: progress(0.95 * obj.GetProgress()))
-        sweep_start = time.perf_counter()
-        with _abort_on_interrupt(sky):
-            # (the reader has run: the sky filter alone)
-            result = watcher.update(sky, "bake", extent=window)
-        sweep_seconds = time.perf_counter() - sweep_start
-        image = _product_image(result, products)
-        nx, ny, _ = image.GetDimensions()
-        writer.SetInputData(image)
-        watcher.write(writer, "writing %s" % args.output)
-        written = [os.path.abspath(args.output)]
-        if args.exr:
-            exr = watcher.watch(vtkApertureEXRWriter())
-            exr.SetInputData(image)
-            exr.SetFileName(args.exr)
-            exr.SetNumberOfThreads(args.threads)  # chunks compressed in parallel; same bytes
-            for key, value in provenance.items():
-                exr.AddMetadata("aperture:" + key.lower(), value)
+            exr.AddMetadata("aperture:unit:" + name, definitions[name][0])
+    started = []  # the outputs begun: an interrupt removes them (a writer also removes its own)
+    try:
+        if rows:
+            # In strips: the writer asks for each (the sky filter reading it and its halo) and
+            # writes it before the next; a clip makes the window the writer's whole extent.
+            from vtkmodules.vtkImagingCore import vtkImageClip
+            clip = vtkImageClip()
+            clip.SetInputConnection(sky.GetOutputPort())
+            clip.SetOutputWholeExtent(window)
+            clip.ClipDataOff()
+            clip.ReleaseDataFlagOn()  # (its shallow copy would keep a strip beside the next)
+            writer.SetInputConnection(clip.GetOutputPort())
+            writer.SetStripRows(rows)
             for name in products:
-                exr.AddMetadata("aperture:unit:" + name, definitions[name][0])
-            watcher.write(exr, "writing %s" % args.exr)
-            written.append(os.path.abspath(args.exr))
+                writer.AddArrayName(name)
+            strips = -(-(window[3] - window[2] + 1) // rows)
+            done = [-1]  # strips started
+            sky.AddObserver("StartEvent", lambda obj, _: done.__setitem__(0, done[0] + 1))
+            if progress:
+                progress(0.0)
+                sky.AddObserver("ProgressEvent", lambda obj, _: progress(
+                    (done[0] + 0.95 * obj.GetProgress()) / strips))
+            sweep_start = time.perf_counter()
+            with _abort_on_interrupt(sky, writer):
+                started.append(args.output)
+                watcher.write(writer, "writing %s" % args.output)
+            sweep_seconds = time.perf_counter() - sweep_start
+            nx, ny = window[1] - window[0] + 1, window[3] - window[2] + 1
+        else:
+            with _abort_on_interrupt(reader):  # (a large DEM can take minutes to read)
+                watcher.update(reader, extent=read)
+            if progress:
+                # the sweep is nearly all of the time; the rest shows as the step to 100 after
+                # writing
+                progress(0.0)
+                sky.AddObserver("ProgressEvent",
+                                lambda obj, _: progress(0.95 * obj.GetProgress()))
+            with _abort_on_interrupt(sky, writer, *([exr] if exr else [])):
+                sweep_start = time.perf_counter()
+                # (the reader has run: the sky filter alone)
+                result = watcher.update(sky, "bake", extent=window)
+                sweep_seconds = time.perf_counter() - sweep_start
+                image = _product_image(result, products)
+                nx, ny, _ = image.GetDimensions()
+                writer.SetInputData(image)
+                started.append(args.output)
+                watcher.write(writer, "writing %s" % args.output)
+                if exr:
+                    exr.SetInputData(image)
+                    started.append(args.exr)
+                    watcher.write(exr, "writing %s" % args.exr)
+    except KeyboardInterrupt:
+        for path in started:
+            if os.path.exists(path):
+                os.remove(path)
+        raise
+    written = [os.path.abspath(p) for p in [args.output] + ([args.exr] if exr else [])]
     if progress:
         progress(1.0)
     print("wrote %s: %s for %d x %d cells, %d directions, in %.1f s (sky filter %.2f s%s)"
