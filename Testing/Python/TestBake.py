@@ -317,6 +317,20 @@ class TestBake(unittest.TestCase):
         for name in whole:
             np.testing.assert_array_equal(window[name][0], whole[name][0][100:660, 20:120],
                                           err_msg=name)
+        # a warning that every strip gives (here an undeclared nodata value of -32768 in each)
+        # is printed once
+        odd = rough_dem(self.path("strips-odd.tif"), (700, 150), 8)
+        ds = gdal.Open(odd, gdal.GA_Update)
+        band = ds.GetRasterBand(1)
+        band.DeleteNoDataValue()
+        for row in (10, 300, 600):
+            band.WriteArray(np.full((2, 2), -32768, np.float32), 5, row)
+        ds = None
+        status, stdout, err = run("bake", odd, strips_out, *options, "--max-memory", "5M")
+        self.assertEqual(status, 0, err)
+        self.assertIn("in 3 strips of 256 rows", stdout)
+        self.assertEqual(len(err.strip().splitlines()), 1, err)
+        self.assertIn("aperture: warning: elevations range from -32768 to ", err)
         # the EXR needs every cell at once; too little memory for one tile row; bad sizes
         for extra, message in (
                 (["--max-memory", "5M", "--exr", self.path("strips.exr")],

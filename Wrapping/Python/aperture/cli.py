@@ -738,7 +738,16 @@ def _bake(args, products, progress):
     from aperture import vtkApertureDEMWriter, vtkApertureEXRWriter, vtkApertureSkyVisibility
 
     start = time.perf_counter()
-    watcher = Watcher(on_warning=_warn)
+    # one line per kind of warning: in strips each strip would repeat it with its own numbers
+    kinds = set()
+
+    def warn_once(message):
+        kind = re.sub(r"-?\d[\w.+-]*", "#", message)
+        if kind not in kinds:
+            kinds.add(kind)
+            _warn(message)
+
+    watcher = Watcher(on_warning=warn_once)
     writer = watcher.watch(vtkApertureDEMWriter())
     writer.SetCompression(args.compress)
     writer.SetCompressionLevel(args.compress_level)
