@@ -159,17 +159,10 @@ def _dem_reader(args, watcher, subwindow=True):
     return reader
 
 
-def read_dem(args, watcher, check_size=None):
-    """Read the DEM the arguments name; returns (reader, image). check_size(nx, ny), when
-    given, sees the size of the grid to be read before anything is read, and may raise."""
-    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
+def read_dem(args, watcher):
+    """Read the DEM the arguments name (--srcwin as a SubWindow); returns (reader, image)."""
     reader = _dem_reader(args, watcher)
     try:
-        if check_size:
-            watcher.update_information(reader)
-            whole = reader.GetOutputInformation(0).Get(
-                vtkStreamingDemandDrivenPipeline.WHOLE_EXTENT())
-            check_size(whole[1] - whole[0] + 1, whole[3] - whole[2] + 1)
         with _abort_on_interrupt(reader):  # (a large DEM can take minutes to read)
             image = watcher.update(reader)
     except ApertureError as e:
