@@ -21,6 +21,17 @@ def run(*args):
     return p.returncode, p.stdout, p.stderr
 
 
+def render_rgb(test, out, *args):
+    """Render to `out` (200 x 120, the sun at azimuth 225, elevation 20) and return its RGB."""
+    status, _, stderr = run("render", "-o", out, "--size", "200x120", "--sun-az", "225",
+                            "--sun-el", "20", *args)
+    test.assertEqual(status, 0, stderr)
+    reader = vtkPNGReader()
+    reader.SetFileName(out)
+    reader.Update()
+    return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
+
+
 class TestCommandLineRender(unittest.TestCase):
     def test_views(self):
         with tempfile.TemporaryDirectory() as tmp:
@@ -91,6 +102,9 @@ class TestCommandLineRender(unittest.TestCase):
                                    (("--albedo", "/nonexistent.png"), "does not exist"),
                                    (("--baked", "/nonexistent.tif"), "cannot read the baked"),
                                    (("--exaggeration", "-1"), "--exaggeration must be within"),
+                                   (("--radius", "-5"), "--radius must be a positive distance"),
+                                   (("--srcwin", "999", "0", "5", "5"),
+                                    "--srcwin 999 0 5 5 is not inside the 403 x 344 raster"),
                                    (("-o", os.path.join(tmp, "no", "x.png")), "does not exist")):
                 status, stdout, stderr = run("render", *args)
                 self.assertEqual(status, 1, stderr)
@@ -173,17 +187,32 @@ class TestCommandLineRender(unittest.TestCase):
             status, _, stderr = run("bake", dem, baked, "-q")
             self.assertEqual(status, 0, stderr)
             for name, extra in (("own", ()), ("baked", ("--baked", baked))):
-                out = os.path.join(tmp, name + ".png")
-                status, _, stderr = run("render", "-o", out, "--size", "200x120", "--sun-az",
-                                        "225", "--sun-el", "20", *extra)
-                self.assertEqual(status, 0, stderr)
-                reader = vtkPNGReader()
-                reader.SetFileName(out)
-                reader.Update()
-                pictures[name] = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())
-            diff = np.abs(pictures["baked"][:, :3].astype(int) - pictures["own"][:, :3])
+                pictures[name] = render_rgb(self, os.path.join(tmp, name + ".png"), *extra)
+            diff = np.abs(pictures["baked"] - pictures["own"])
             self.assertLessEqual(diff.max(), 1)
             self.assertLess(diff.mean(), 0.01)
+
+            # A window: its aperture, baked here, sees the DEM around it within --radius, as
+            # bake --srcwin's does; a bake of the window alone (its horizons cut at its edges)
+            # lights it otherwise.
+            window = ("--srcwin", 100, 80, 160, 120)
+            around = os.path.join(tmp, "around.tif")
+            alone_dem = os.path.join(tmp, "alone-dem.tif")
+            alone = os.path.join(tmp, "alone.tif")
+            status, _, stderr = run("bake", dem, around, "-q", "--radius", 4000, *window)
+            self.assertEqual(status, 0, stderr)
+            gdal.Translate(alone_dem, dem, srcWin=list(window[1:]))
+            status, _, stderr = run("bake", alone_dem, alone, "-q", "--radius", 4000)
+            self.assertEqual(status, 0, stderr)
+            for name, extra in (("window", ("--radius", 4000)), ("around", ("--baked", around)),
+                                ("alone", ("--baked", alone))):
+                pictures[name] = render_rgb(self, os.path.join(tmp, name + ".png"), dem,
+                                            *window, *extra)
+            diff = np.abs(pictures["around"] - pictures["window"])
+            self.assertLessEqual(diff.max(), 1)
+            self.assertLess(diff.mean(), 0.01)
+            diff = np.abs(pictures["alone"] - pictures["window"])
+            self.assertGreater(diff.max(), 8)
 
             src = gdal.Open(dem)
             gt = list(src.GetGeoTransform())

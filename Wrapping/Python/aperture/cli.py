@@ -372,23 +372,31 @@ def cmd_render(args):
         raise ApertureError("--exposure must be a number of EV")
     if args.albedo and not os.path.isfile(args.albedo):
         raise ApertureError("the albedo image %s does not exist" % args.albedo)
+    if args.radius is not None and not (args.radius > 0 and math.isfinite(args.radius)):
+        raise ApertureError("--radius must be a positive distance in metres")
     watcher = Watcher(on_warning=_warn)
-    reader, image = read_dem(args, watcher)
-    sun = _render_sun(args, image, watcher)
-
-    if args.lighting == "aperture":
+    bake_here = args.lighting == "aperture" and not args.baked
+    if bake_here:
+        sky = watcher.watch(vtkApertureSkyVisibility())
+        sky.SetMaximumDistance(args.radius or 0.0)
+        for name in DERIVED + ["HorizonAngles"]:
+            getattr(sky, "SetCompute" + name)(name in ("BentNormal", "ApertureRadius"))
+        # the aperture of a --srcwin window sees the DEM around it, as bake --srcwin's does
+        try:
+            reader, window, read, _ = _window_reading(args, watcher, sky)
+            with _abort_on_interrupt(reader):
+                watcher.update(reader, extent=read)
+        except ApertureError as e:
+            raise ApertureError(_as_options(str(e)))
+        _render_sun(args, reader.GetOutput(), watcher)  # (bad --at, --tz: before the bake)
+        with _abort_on_interrupt(sky):
+            image = source = watcher.update(sky, "bake", extent=window)
+    else:
+        reader, image = read_dem(args, watcher)
         if args.baked:
             _attach_baked(image, args.baked)
-            source = image
-        else:
-            sky = watcher.watch(vtkApertureSkyVisibility())
-            sky.SetInputData(image)
-            for name in DERIVED + ["HorizonAngles"]:
-                getattr(sky, "SetCompute" + name)(name in ("BentNormal", "ApertureRadius"))
-            with _abort_on_interrupt(sky):
-                source = watcher.update(sky, "bake")
-    else:
         source = image
+    sun = _render_sun(args, image, watcher)
     mesher = watcher.watch(vtkApertureTerrainMesh())
     mesher.SetInputData(source)
     mesher.SetVerticalExaggeration(args.exaggeration)
@@ -627,6 +635,25 @@ class _abort_on_interrupt:
         return False
 
 
+def _window_reading(args, watcher, sky):
+    """Connect a reader of the whole grid to the sky filter: returns (reader, the extent of the
+    grid to compute (--srcwin's cells, else all), the extent the sky filter reads for it (with
+    its halo), the grid's whole extent). Nothing is read."""
+    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
+    reader = _dem_reader(args, watcher, subwindow=False)
+    sky.SetInputConnection(reader.GetOutputPort())
+    watcher.update_information(sky)
+    whole = reader.GetOutputInformation(0).Get(sddp.WHOLE_EXTENT())
+    window = list(whole)
+    if args.srcwin and not reader.GetWindowExtent(*args.srcwin, window):
+        watcher.check()
+        raise ApertureError("--srcwin %d %d %d %d: no cells" % tuple(args.srcwin))
+    read = [0] * 6
+    if not sky.ComputeInputExtent(window, read):
+        watcher.check()
+    return reader, window, read, whole
+
+
 def _plan_bake(args, watcher, sky):
     """Set up the reader for the sky filter and plan the bake before anything is read:
     returns (reader, the extent of the grid to bake (--srcwin's cells, else all), the extent
@@ -638,17 +665,8 @@ def _plan_bake(args, watcher, sky):
     Linux kills the process instead of failing an allocation), the GeoTIFF is baked in strips
     of whole 256-row tiles, each reading its own halo, as many rows as fit; refused when not
     even one tile row fits, or when --exr (which needs the whole image) is asked for."""
-    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
-    reader = _dem_reader(args, watcher, subwindow=False)
     try:
-        sky.SetInputConnection(reader.GetOutputPort())
-        watcher.update_information(sky)
-        whole = reader.GetOutputInformation(0).Get(sddp.WHOLE_EXTENT())
-        window = list(whole)
-        if args.srcwin:
-            if not reader.GetWindowExtent(*args.srcwin, window):
-                watcher.check()
-                raise ApertureError("--srcwin %d %d %d %d: no cells" % tuple(args.srcwin))
+        reader, window, read, whole = _window_reading(args, watcher, sky)
         size = lambda e: (e[1] - e[0] + 1, e[3] - e[2] + 1)
 
         def problem(read, nx, ny):  # the sky filter's refusal of an update, or ""
@@ -661,7 +679,6 @@ def _plan_bake(args, watcher, sky):
                 watcher.check()
             return read
 
-        read = needs(window)
         nx, ny = size(window)
         whole_problem = problem(read, nx, ny)
         if not whole_problem:
@@ -1195,6 +1212,11 @@ def build_parser():
     _add_read_options(p)
     p.add_argument("-o", "--output", default="aperture.png", metavar="OUT.png",
                    help="PNG to write (default: aperture.png)")
+    p.add_argument("--radius", type=float, metavar="METRES",
+                   help="search distance of the aperture baked here, in metres (default: "
+                        "unlimited); with --srcwin the DEM within it around the window is read "
+                        "(without it, all of the DEM), so that terrain outside the window casts "
+                        "horizons as in 'aperture bake --srcwin'")
     p.add_argument("--baked", metavar="BAKED.tif",
                    help="reuse the BentNormal and ApertureRadius bands of 'aperture bake' "
                         "output for this DEM (the same grid and CRS) instead of baking")
