@@ -355,6 +355,20 @@ class TestBake(unittest.TestCase):
             self.assertEqual(status, 2, err)
             self.assertIn("is not a size (512, 300K, 1.5G, 2T)", err)
 
+    def test_reader_refusal_in_options(self):
+        # The reader's own refusal (a grid past the machine's memory, reached here by a
+        # --max-memory beyond it) is worded in the command's options, as every other message.
+        memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+        if memory > 4.0 * 100000 ** 2:
+            self.skipTest("this machine could read 100000^2 floats")
+        huge = zeros_vrt(self.path("huge.vrt"), 100000)
+        status, _, err = run("bake", huge, self.path("huge.tif"), "--max-memory", "10T")
+        self.assertEqual(status, 1, err)
+        self.assertIn("reading 100000 x 100000 cells of '%s' needs 37.253 GiB as float32" % huge,
+                      err)
+        self.assertTrue(err.strip().endswith(
+            "; read a part with --srcwin, or use --decimate or --overview"), err)
+
     def test_window_errors(self):
         rng = np.random.default_rng(6)
         z = rng.normal(0, 10, (170, 200)).astype(np.float32)

@@ -116,7 +116,8 @@ def _dem_path(args):
 
 _SMALLER_READ = "read a part with --srcwin, or use --decimate or --overview"
 
-# The DEM reader's messages name its VTK properties; here they are options.
+# The DEM reader's and the sky filter's messages name their VTK properties; here they are
+# options (every error and warning is printed through _as_options).
 _READER_PHRASES = (
     (re.compile(r"read a SubWindow, or use Decimation or an OverviewLevel"), _SMALLER_READ),
     (re.compile(r"(?:SubWindow|the window) \((-?\d+), (-?\d+), (-?\d+), (-?\d+)\)"),
@@ -129,7 +130,7 @@ _READER_PHRASES = (
 
 
 def _as_options(message):
-    """A reader message in the command line's words (other messages pass unchanged)."""
+    """A reader or sky filter message in the command line's words (others pass unchanged)."""
     for pattern, words in _READER_PHRASES:
         message = pattern.sub(words, message)
     return message
@@ -159,15 +160,17 @@ def _dem_reader(args, watcher, subwindow=True):
     return reader
 
 
+def _read(watcher, reader, extent=None):
+    """Run the reader (over `extent`, else all of it); Ctrl-C stops it, as a large DEM can take
+    minutes to read. Returns its image."""
+    with _abort_on_interrupt(reader):
+        return watcher.update(reader, extent=extent)
+
+
 def read_dem(args, watcher):
     """Read the DEM the arguments name (--srcwin as a SubWindow); returns (reader, image)."""
     reader = _dem_reader(args, watcher)
-    try:
-        with _abort_on_interrupt(reader):  # (a large DEM can take minutes to read)
-            image = watcher.update(reader)
-    except ApertureError as e:
-        raise ApertureError(_as_options(str(e)))
-    return reader, image
+    return reader, _read(watcher, reader)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -382,12 +385,8 @@ def cmd_render(args):
         for name in DERIVED + ["HorizonAngles"]:
             getattr(sky, "SetCompute" + name)(name in ("BentNormal", "ApertureRadius"))
         # the aperture of a --srcwin window sees the DEM around it, as bake --srcwin's does
-        try:
-            reader, window, read, _ = _window_reading(args, watcher, sky)
-            with _abort_on_interrupt(reader):
-                watcher.update(reader, extent=read)
-        except ApertureError as e:
-            raise ApertureError(_as_options(str(e)))
+        reader, window, read, _ = _window_reading(args, watcher, sky)
+        _read(watcher, reader, read)
         _render_sun(args, reader.GetOutput(), watcher)  # (bad --at, --tz: before the bake)
         with _abort_on_interrupt(sky):
             image = source = watcher.update(sky, "bake", extent=window)
@@ -648,10 +647,16 @@ def _window_reading(args, watcher, sky):
     if args.srcwin and not reader.GetWindowExtent(*args.srcwin, window):
         watcher.check()
         raise ApertureError("--srcwin %d %d %d %d: no cells" % tuple(args.srcwin))
+    return reader, window, _input_extent(watcher, sky, window), whole
+
+
+def _input_extent(watcher, sky, extent):
+    """The extent of its input the sky filter reads for `extent` of its output (with its
+    halo), asked before anything runs."""
     read = [0] * 6
-    if not sky.ComputeInputExtent(window, read):
+    if not sky.ComputeInputExtent(extent, read):
         watcher.check()
-    return reader, window, read, whole
+    return read
 
 
 def _plan_bake(args, watcher, sky):
@@ -665,53 +670,44 @@ def _plan_bake(args, watcher, sky):
     Linux kills the process instead of failing an allocation), the GeoTIFF is baked in strips
     of whole 256-row tiles, each reading its own halo, as many rows as fit; refused when not
     even one tile row fits, or when --exr (which needs the whole image) is asked for."""
-    try:
-        reader, window, read, whole = _window_reading(args, watcher, sky)
-        size = lambda e: (e[1] - e[0] + 1, e[3] - e[2] + 1)
+    reader, window, read, whole = _window_reading(args, watcher, sky)
+    size = lambda e: (e[1] - e[0] + 1, e[3] - e[2] + 1)
 
-        def problem(read, nx, ny):  # the sky filter's refusal of an update, or ""
-            rx, ry = size(read)
-            return sky.CheckMemory(rx, ry, nx, ny, 4.0 * rx * ry)
+    def problem(read, nx, ny):  # the sky filter's refusal of an update, or ""
+        rx, ry = size(read)
+        return sky.CheckMemory(rx, ry, nx, ny, 4.0 * rx * ry)
 
-        def needs(extent):  # what the sky filter reads for an extent of its output
-            read = [0] * 6
-            if not sky.ComputeInputExtent(extent, read):
-                watcher.check()
-            return read
+    nx, ny = size(window)
+    whole_problem = problem(read, nx, ny)
+    if not whole_problem:
+        return reader, window, read, 0
+    advice = ("bake a window with --srcwin and a --radius (only the DEM within the radius "
+              "around it is read), use --decimate or --overview, or bake fewer --products")
+    if ny <= 256:  # (one tile row: strips would be the same request)
+        raise ApertureError("%s; %s" % (whole_problem, advice))
+    if args.exr:
+        raise ApertureError("%s; --exr needs the products of every cell at once (the "
+                            "GeoTIFF alone is written in strips that fit): leave it out, "
+                            "or %s" % (whole_problem, advice))
+    # the halo of a strip inside the grid, from a row in the middle
+    middle = (window[2] + window[3]) // 2
+    one = _input_extent(watcher, sky, [window[0], window[1], middle, middle, 0, 0])
+    halo = max(one[3] - middle, middle - one[2])
+    whole_rows = size(whole)[1]
 
-        nx, ny = size(window)
-        whole_problem = problem(read, nx, ny)
-        if not whole_problem:
-            return reader, window, read, 0
-        advice = ("bake a window with --srcwin and a --radius (only the DEM within the radius "
-                  "around it is read), use --decimate or --overview, or bake fewer --products")
-        if ny <= 256:  # (one tile row: strips would be the same request)
-            raise ApertureError("%s; %s" % (whole_problem, advice))
-        if args.exr:
-            raise ApertureError("%s; --exr needs the products of every cell at once (the "
-                                "GeoTIFF alone is written in strips that fit): leave it out, "
-                                "or %s" % (whole_problem, advice))
-        # the halo of a strip inside the grid, from a row in the middle
-        middle = (window[2] + window[3]) // 2
-        one = needs([window[0], window[1], middle, middle, 0, 0])
-        halo = max(one[3] - middle, middle - one[2])
-        whole_rows = size(whole)[1]
+    def strip_problem(tiles):  # for strips of this many 256-row tiles
+        rows = min(256 * tiles, ny)
+        inner = [one[0], one[1], 0, min(rows + 2 * halo, whole_rows) - 1, 0, 0]
+        return problem(inner, nx, rows)
 
-        def strip_problem(tiles):  # for strips of this many 256-row tiles
-            rows = min(256 * tiles, ny)
-            inner = [one[0], one[1], 0, min(rows + 2 * halo, whole_rows) - 1, 0, 0]
-            return problem(inner, nx, rows)
-
-        fits, tiles = 0, -(-ny // 256)
-        while fits + 1 < tiles:  # the most tiles that fit: 'fits' fit, 'tiles' do not
-            mid = (fits + tiles) // 2
-            fits, tiles = (mid, tiles) if not strip_problem(mid) else (fits, mid)
-        if fits == 0 or strip_problem(fits):
-            raise ApertureError("%s, and strips of 256 rows (the GeoTIFF's tiles) would not "
-                                "fit either: %s; %s" % (whole_problem, strip_problem(1), advice))
-        return reader, window, read, 256 * fits
-    except ApertureError as e:
-        raise ApertureError(_as_options(str(e)))
+    fits, tiles = 0, -(-ny // 256)
+    while fits + 1 < tiles:  # the most tiles that fit: 'fits' fit, 'tiles' do not
+        mid = (fits + tiles) // 2
+        fits, tiles = (mid, tiles) if not strip_problem(mid) else (fits, mid)
+    if fits == 0 or strip_problem(fits):
+        raise ApertureError("%s, and strips of 256 rows (the GeoTIFF's tiles) would not "
+                            "fit either: %s; %s" % (whole_problem, strip_problem(1), advice))
+    return reader, window, read, 256 * fits
 
 
 def cmd_bake(args):
@@ -826,8 +822,7 @@ def _bake(args, products, progress):
             sweep_seconds = time.perf_counter() - sweep_start
             nx, ny = window[1] - window[0] + 1, window[3] - window[2] + 1
         else:
-            with _abort_on_interrupt(reader):  # (a large DEM can take minutes to read)
-                watcher.update(reader, extent=read)
+            _read(watcher, reader, read)
             if progress:
                 # the sweep is nearly all of the time; the rest shows as the step to 100 after
                 # writing
@@ -1286,7 +1281,7 @@ def main(argv=None):
     try:
         return args.func(args)
     except ApertureError as e:
-        print("%s: error: %s" % (PROG, e), file=sys.stderr)
+        print("%s: error: %s" % (PROG, _as_options(str(e))), file=sys.stderr)
         return 1
     except MemoryError:
         # numpy's conversions of the products: the filters name their own sizes
