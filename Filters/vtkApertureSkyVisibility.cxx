@@ -290,13 +290,7 @@ std::string vtkApertureSkyVisibility::CheckMemory(
   int nx, int ny, int outNx, int outNy, double held) const
 {
   const double n = static_cast<double>(nx) * ny, outN = static_cast<double>(outNx) * outNy;
-  return this->MemoryProblem(nx, ny, outNx, outNy, this->EstimateBytes(n, outN), held);
-}
-
-//------------------------------------------------------------------------------
-std::string vtkApertureSkyVisibility::MemoryProblem(
-  int nx, int ny, int outNx, int outNy, double need, double held) const
-{
+  const double need = this->EstimateBytes(n, outN);
   const double limit = this->MemoryLimit > 0
     ? static_cast<double>(this->MemoryLimit)
     : static_cast<double>(vtkAperturePhysicalMemory()) - held;
@@ -304,7 +298,8 @@ std::string vtkApertureSkyVisibility::MemoryProblem(
   {
     return std::string();
   }
-  return NeedsText(nx, ny, outNx, outNy, vtkApertureHumanBytes(need), this->ComputeHorizonAngles) +
+  return NeedsText(
+           nx, ny, outNx, outNy, vtkApertureHumanBytes(need), this->ComputeHorizonAngles) +
     ", more than the " +
     (this->MemoryLimit > 0 ? vtkApertureHumanBytes(limit) + " MemoryLimit"
                            : vtkApertureHumanBytes(std::max(limit, 0.0)) +
@@ -760,8 +755,7 @@ int vtkApertureSkyVisibility::Execute(
   }
   else
   {
-    output->GetPointData()->CopyAllocate(input->GetPointData(),
-      static_cast<vtkIdType>(outExt[1] - outExt[0] + 1) * (outExt[3] - outExt[2] + 1));
+    output->GetPointData()->CopyAllocate(input->GetPointData(), static_cast<vtkIdType>(outN));
     output->GetPointData()->CopyStructuredData(input->GetPointData(), inExt, outExt);
   }
   output->GetFieldData()->PassData(input->GetFieldData());

@@ -47,11 +47,10 @@
  * about what the whole run does: 4 pieces of a 1024^2 DEM, reading included, took 1.16 times
  * the whole run's time at 10 km and 1.27 times unlimited (bench/bench_pieces.py; the sweep's
  * lines still cross the halo up to the region). Inside the region the results are the
- * whole-DEM run's: what
- * depends on the DEM as a whole (its centre's cell size, curvature radii and meridian
- * convergence, and the lattice of the sweep's lines, on lat/lon DEMs laid out by the whole
- * DEM's rows) is taken from the whole extent, so a piece is bit-identical to the whole run
- * there, projected or lat/lon, swept or marched (the tests compare every bit; the sweep
+ * whole-DEM run's: what depends on the DEM as a whole (its centre's cell size, curvature radii
+ * and meridian convergence, and the lattice of the sweep's lines, on lat/lon DEMs laid out by
+ * the whole DEM's rows) is taken from the whole extent, so a piece is bit-identical to the
+ * whole run there, projected or lat/lon, swept or marched (the tests compare every bit; the sweep
  * measures distances along its lines from the piece's own edge, so a horizon may round its
  * last bit differently: 2 of 5,500 random pieces in a stress test, by 4e-8 rad).
  *
@@ -242,8 +241,6 @@ protected:
   int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
   /** Bytes of the requested outputs per cell. */
   double OutputBytesPerCell() const;
-  /** CheckMemory's text for `need` bytes. */
-  std::string MemoryProblem(int nx, int ny, int outNx, int outNy, double need, double held) const;
 
   int NumberOfDirections;
   double MaximumDistance;
