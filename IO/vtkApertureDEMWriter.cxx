@@ -166,6 +166,9 @@ struct CompressionLevelOption
 const CompressionLevelOption levelOptions[] = { { "DEFLATE", "ZLEVEL", 1, 12 },
   { "ZSTD", "ZSTD_LEVEL", 1, 22 }, { "LZMA", "LZMA_PRESET", 0, 9 } };
 
+// The file's square tiles (cells a side): the strips written at a time are whole tile rows.
+constexpr int Tile = 256;
+
 // The values GDAL's GeoTIFF driver accepts for COMPRESS, from its creation option list.
 std::vector<std::string> GeoTIFFCodecs(GDALDriverH driver)
 {
@@ -294,8 +297,7 @@ int vtkApertureDEMWriter::Write()
     return 0;
   }
   // strips of whole tile rows, north (the file's first rows) first
-  const vtkTypeInt64 tile = 256;
-  const vtkTypeInt64 rows = (static_cast<vtkTypeInt64>(this->StripRows) + tile - 1) / tile * tile;
+  const vtkTypeInt64 rows = (static_cast<vtkTypeInt64>(this->StripRows) + Tile - 1) / Tile * Tile;
   const vtkTypeInt64 ny = static_cast<vtkTypeInt64>(whole[3]) - whole[2] + 1;
   const vtkTypeInt64 strips = (ny + rows - 1) / rows;
   this->InvokeEvent(vtkCommand::StartEvent, nullptr);
@@ -449,8 +451,8 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
   }
   char** options = nullptr;
   options = CSLSetNameValue(options, "TILED", "YES");
-  options = CSLSetNameValue(options, "BLOCKXSIZE", "256");
-  options = CSLSetNameValue(options, "BLOCKYSIZE", "256");
+  options = CSLSetNameValue(options, "BLOCKXSIZE", std::to_string(Tile).c_str());
+  options = CSLSetNameValue(options, "BLOCKYSIZE", std::to_string(Tile).c_str());
   options = CSLSetNameValue(options, "INTERLEAVE", "BAND");
   options = CSLSetNameValue(options, "BIGTIFF", "IF_SAFER");
   options = CSLSetNameValue(options, "COMPRESS", compression.c_str());
@@ -539,7 +541,6 @@ bool vtkApertureDEMWriter::WriteRows(
   // the worker threads): GDAL's block cache never holds more than a strip. The file's row r
   // is image row whole[3] - r.
   const int fileFirst = whole[3] - j1, fileEnd = whole[3] - j0 + 1;
-  const int stripRows = 256;
   std::vector<float> stripF;
   std::vector<double> stripD;
   bool ok = true;
@@ -597,9 +598,9 @@ bool vtkApertureDEMWriter::WriteRows(
       return GDALRasterIO(hb, GF_Write, 0, r0, nx, k, strip.data(), nx, k, d.Type, 0, 0) ==
         CE_None;
     };
-    for (int r0 = fileFirst; ok && r0 < fileEnd; r0 += stripRows)
+    for (int r0 = fileFirst; ok && r0 < fileEnd; r0 += Tile)
     {
-      const int k = std::min(stripRows, fileEnd - r0);
+      const int k = std::min(Tile, fileEnd - r0);
       ok = (d.Type == GDT_Float32 ? writeStrip(stripF, r0, k) : writeStrip(stripD, r0, k)) &&
         GDALFlushRasterCache(hb) == CE_None;
     }
