@@ -3,6 +3,7 @@
 
 #include "vtkApertureGDALErrorTrap.h"
 #include "vtkApertureGeoreference.h"
+#include "vtkApertureStripDriver.h"
 
 #include "vtkAlgorithmOutput.h"
 #include "vtkCommand.h"
@@ -56,6 +57,9 @@ struct vtkApertureDEMWriter::Internals
   std::vector<Band> Bands;
   GDALDataType Type = GDT_Float32;
   int Whole[6] = { 0, -1, 0, -1, 0, 0 }; // the extent the file covers
+  int NextRow = -1;                      // the next image row to write (north first)
+  bool Failed = false;                   // a strip failed (reported)
+  bool Written = false;                  // the last WriteData wrote its file
   std::string Error;                     // GDAL's message of a failed write
 };
 
@@ -124,7 +128,8 @@ void vtkApertureDEMWriter::AddMetadata(const char* key, const char* value)
 }
 
 //------------------------------------------------------------------------------
-void vtkApertureDEMWriter::AddBandMetadata(const char* arrayName, const char* key, const char* value)
+void vtkApertureDEMWriter::AddBandMetadata(
+  const char* arrayName, const char* key, const char* value)
 {
   if (arrayName && *arrayName && key && *key)
   {
@@ -262,7 +267,7 @@ void vtkApertureDEMWriter::WriteData()
   {
     return; // (reported)
   }
-  this->EndFile(this->WriteRows(input, ext[2], ext[3], 0.0, 1.0));
+  this->Impl->Written = this->EndFile(this->WriteRows(input, ext[2], ext[3]));
 }
 
 //------------------------------------------------------------------------------
@@ -270,80 +275,106 @@ int vtkApertureDEMWriter::Write()
 {
   if (this->StripRows <= 0)
   {
-    return this->Superclass::Write();
+    this->Impl->Written = false;
+    return this->Superclass::Write() && this->Impl->Written ? 1 : 0;
   }
-  if (this->GetNumberOfInputConnections(0) < 1)
+  return vtkApertureWriteInStrips(
+    this, this->StripRows, Tile, this->FileName ? this->FileName : "");
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureDEMWriter::BeginStrips(vtkImageData* image, const int whole[6])
+{
+  this->EndFile(false); // (a file begun and never ended)
+  if (!this->BeginFile(image, whole))
   {
-    vtkErrorMacro(<< "no input to write");
     return 0;
   }
-  vtkAlgorithmOutput* connection = this->GetInputConnection(0, 0);
-  vtkAlgorithm* producer = connection->GetProducer();
-  const int port = connection->GetIndex();
-  this->SetAbortExecute(0);
-  producer->UpdateInformation();
-  int whole[6];
-  vtkInformation* info = producer->GetOutputInformation(port);
-  if (!info || !info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  this->Impl->NextRow = whole[3];
+  this->Impl->Failed = false;
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureDEMWriter::WriteStrip(vtkImageData* strip)
+{
+  Internals& d = *this->Impl;
+  if (!d.Dataset || d.Failed)
   {
-    vtkErrorMacro(<< "the input has no whole extent to write in strips (see its error)");
+    vtkErrorMacro(<< (d.Failed ? "a strip failed; EndStrips() removes the file"
+                               : "no file begun: call BeginStrips() first"));
     return 0;
   }
-  info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  if (whole[1] < whole[0] || whole[3] < whole[2])
+  int ext[6] = { 0, -1, 0, -1, 0, -1 };
+  if (strip)
   {
-    vtkErrorMacro(<< "no input image to write to '" << (this->FileName ? this->FileName : "")
-                  << "'");
+    strip->GetExtent(ext);
+  }
+  const int* whole = d.Whole;
+  if (d.NextRow < whole[2])
+  {
+    vtkErrorMacro(<< "every row of '" << d.Path << "' is written already");
+    d.Failed = true;
     return 0;
   }
-  // strips of whole tile rows, north (the file's first rows) first
-  const vtkTypeInt64 rows = (static_cast<vtkTypeInt64>(this->StripRows) + Tile - 1) / Tile * Tile;
-  const vtkTypeInt64 ny = static_cast<vtkTypeInt64>(whole[3]) - whole[2] + 1;
-  const vtkTypeInt64 strips = (ny + rows - 1) / rows;
-  this->InvokeEvent(vtkCommand::StartEvent, nullptr);
-  bool ok = true, begun = false;
-  for (vtkTypeInt64 k = 0; ok && k < strips; ++k)
+  if (ext[0] > whole[0] || ext[1] < whole[1] || ext[2] > d.NextRow || ext[3] < d.NextRow)
   {
-    const int j1 = static_cast<int>(whole[3] - k * rows);
-    const int j0 = static_cast<int>(whole[3] - std::min(ny, (k + 1) * rows) + 1);
-    const int ext[6] = { whole[0], whole[1], j0, j1, whole[4], whole[5] };
-    vtkNew<vtkInformationVector> requests;
-    requests->SetNumberOfInformationObjects(producer->GetNumberOfOutputPorts());
-    requests->GetInformationObject(port)->Set(
-      vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext, 6);
-    // (a failed update has reported its error; rows j0..j1 are image rows, south up)
-    vtkImageData* strip = producer->Update(port, requests)
-      ? vtkImageData::SafeDownCast(producer->GetOutputDataObject(port))
-      : nullptr;
-    if (!strip)
+    vtkErrorMacro(<< "the strip's extent (" << ext[0] << ".." << ext[1] << ", " << ext[2] << ".."
+                  << ext[3] << ") does not hold row " << d.NextRow << " of columns " << whole[0]
+                  << " to " << whole[1] << ", the next of '" << d.Path << "'");
+    d.Failed = true;
+    return 0;
+  }
+  // down to the strip's last row, in whole tile rows of the file unless that ends the file
+  int j0 = std::max(ext[2], whole[2]);
+  if (j0 > whole[2])
+  {
+    j0 = d.NextRow + 1 - (d.NextRow - j0 + 1) / Tile * Tile;
+    if (j0 > d.NextRow)
     {
-      vtkErrorMacro(<< "the input did not produce rows " << j0 << " to " << j1 << " of "
-                    << whole[2] << " to " << whole[3] << " for '"
-                    << (this->FileName ? this->FileName : "") << "'");
-      ok = false;
-      break;
-    }
-    if (!begun)
-    {
-      ok = begun = this->BeginFile(strip, whole);
-    }
-    ok = ok &&
-      this->WriteRows(strip, j0, j1, static_cast<double>(k) / static_cast<double>(strips),
-        1.0 / static_cast<double>(strips));
-    // a producer whose data is to be released once used (its ReleaseDataFlag) holds no strip
-    // while the next is computed (a shallow copy would keep the arrays of its input alive)
-    auto* executive = vtkDemandDrivenPipeline::SafeDownCast(producer->GetExecutive());
-    if (executive && executive->GetReleaseDataFlag(port))
-    {
-      strip->ReleaseData();
+      vtkErrorMacro(<< "a strip must hold " << Tile << " rows (a tile row of '" << d.Path
+                    << "') or reach the last row " << whole[2] << "; this one holds rows "
+                    << ext[2] << " to " << d.NextRow);
+      d.Failed = true;
+      return 0;
     }
   }
-  if (begun)
+  if (!this->WriteRows(strip, j0, d.NextRow))
   {
-    this->EndFile(ok);
+    d.Failed = true;
+    return 0;
   }
-  this->InvokeEvent(vtkCommand::EndEvent, nullptr);
-  return ok ? 1 : 0;
+  d.NextRow = j0 - 1;
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureDEMWriter::EndStrips()
+{
+  Internals& d = *this->Impl;
+  if (!d.Dataset)
+  {
+    return 0; // (nothing begun, or BeginStrips failed: reported)
+  }
+  const bool complete = !d.Failed && d.NextRow < d.Whole[2];
+  if (!complete && !d.Failed && !this->GetAbortExecute())
+  {
+    vtkErrorMacro(<< "rows " << d.Whole[2] << " to " << d.NextRow << " of '" << d.Path
+                  << "' were not written; the file is removed");
+  }
+  return this->EndFile(complete) ? 1 : 0;
+}
+
+//------------------------------------------------------------------------------
+void vtkApertureDEMWriter::AbandonStrips()
+{
+  this->EndFile(false);
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureDEMWriter::GetNextStripRow()
+{
+  return this->Impl->NextRow;
 }
 
 //------------------------------------------------------------------------------
@@ -519,8 +550,7 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
 }
 
 //------------------------------------------------------------------------------
-bool vtkApertureDEMWriter::WriteRows(
-  vtkImageData* input, int j0, int j1, double progress0, double progressSpan)
+bool vtkApertureDEMWriter::WriteRows(vtkImageData* input, int j0, int j1)
 {
   Internals& d = *this->Impl;
   const int* whole = d.Whole;
@@ -604,8 +634,12 @@ bool vtkApertureDEMWriter::WriteRows(
       ok = (d.Type == GDT_Float32 ? writeStrip(stripF, r0, k) : writeStrip(stripD, r0, k)) &&
         GDALFlushRasterCache(hb) == CE_None;
     }
-    this->UpdateProgress(progress0 +
-      progressSpan * static_cast<double>(b + 1) / static_cast<double>(d.Bands.size()));
+    // (progress over the file's rows: those above this strip, then this strip's band by band)
+    const double rows = static_cast<double>(whole[3]) - whole[2] + 1;
+    this->UpdateProgress((static_cast<double>(fileFirst) +
+                           (j1 - j0 + 1.0) * static_cast<double>(b + 1) /
+                             static_cast<double>(d.Bands.size())) /
+      rows);
     if (ok && this->GetAbortExecute())
     {
       vtkErrorMacro(<< "writing '" << d.Path << "' was aborted");
@@ -620,12 +654,12 @@ bool vtkApertureDEMWriter::WriteRows(
 }
 
 //------------------------------------------------------------------------------
-void vtkApertureDEMWriter::EndFile(bool ok)
+bool vtkApertureDEMWriter::EndFile(bool ok)
 {
   Internals& d = *this->Impl;
   if (!d.Dataset)
   {
-    return;
+    return false;
   }
   vtkApertureGDALErrorTrap trap;
   GDALFlushCache(d.Dataset);
@@ -642,6 +676,7 @@ void vtkApertureDEMWriter::EndFile(bool ok)
     }
   }
   d.Error.clear();
+  return ok && !failed;
 }
 
 //------------------------------------------------------------------------------

@@ -97,8 +97,36 @@ public:
   vtkGetMacro(StripRows, int);
   ///@}
 
-  /** Write the file (in strips when StripRows > 0); 1 on success. */
+  /** Write the file (in strips when StripRows > 0); 1 on success, 0 after an error. */
   int Write() override;
+
+  ///@{
+  /**
+   * Writing strips the caller produces itself (one pass of a pipeline feeding this writer and
+   * a vtkApertureEXRWriter, say); Write() with StripRows takes the same steps.
+   * - BeginStrips(image, whole) creates the file for the image rows and columns of `whole`
+   *   (an extent in image indices), its bands and their types from `image`'s point arrays,
+   *   its georeference from `image`'s origin, spacing and `CRS` (any strip of the image will
+   *   do), and the metadata.
+   * - WriteStrip(strip) writes the rows of `strip` that come next, north first: from row
+   *   GetNextStripRow() (whole[3] at first) down to the strip's southern row, in whole 256-row
+   *   tile rows unless that reaches whole[2] (rows beyond the last whole tile row are left for
+   *   the next strip). The strip must hold every column of `whole` and the next row.
+   * - EndStrips() closes the file. It is kept only when every row was written without an
+   *   error; otherwise it is removed (with an error naming the rows missing, unless writing
+   *   was aborted or an error was reported already).
+   * - AbandonStrips() removes a file begun, quietly (for a caller that stops early).
+   * Each returns 1 on success and 0 after reporting the problem (vtkErrorMacro); after a
+   * failure only EndStrips() or AbandonStrips() is useful. Progress events run over the rows
+   * of `whole`, and AbortExecute is checked after every band of a strip.
+   */
+  int BeginStrips(vtkImageData* image, const int whole[6]);
+  int WriteStrip(vtkImageData* strip);
+  int EndStrips();
+  void AbandonStrips();
+  /** The next image row WriteStrip() writes (whole[2] - 1 once all are written). */
+  int GetNextStripRow();
+  ///@}
 
   ///@{
   /** Dataset metadata (key = value, the GeoTIFF's GDAL metadata domain), written with the file. */
@@ -126,10 +154,10 @@ protected:
    * metadata from `input`); false, reported, on failure (nothing left behind). */
   bool BeginFile(vtkImageData* input, const int whole[6]);
   /** Write image rows j0..j1 of every band from `input`, whose extent holds them; progress
-   * runs from progress0 over progressSpan. False, reported by EndFile or here, on failure. */
-  bool WriteRows(vtkImageData* input, int j0, int j1, double progress0, double progressSpan);
-  /** Close the file; remove it unless ok and GDAL reported no failure. */
-  void EndFile(bool ok);
+   * runs over the rows of the file. False, reported by EndFile or here, on failure. */
+  bool WriteRows(vtkImageData* input, int j0, int j1);
+  /** Close the file; remove it unless ok and GDAL reported no failure. True when kept. */
+  bool EndFile(bool ok);
 
   char* FileName;
   char* Compression;

@@ -3,6 +3,7 @@
 
 #include "vtkApertureGeoreference.h"
 #include "vtkApertureSMPThreads.h"
+#include "vtkApertureStripDriver.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -96,41 +97,58 @@ private:
 thread_local ErrorTrap* ErrorTrap::Current = nullptr;
 
 // Owns a write context. Finishing a context whose image was not completely written makes
-// OpenEXR delete its temporary file, so an early return leaves nothing behind.
+// OpenEXR delete its temporary file, so discarding a file begun leaves nothing behind.
 struct ContextHandle
 {
   exr_context_t H = nullptr;
   ContextHandle() = default;
   ContextHandle(const ContextHandle&) = delete;
   ContextHandle& operator=(const ContextHandle&) = delete;
-  ~ContextHandle()
+  ~ContextHandle() { this->Discard(); }
+  void Discard()
   {
     if (this->H)
     {
+      ErrorTrap trap; // (its complaint about missing chunks is expected)
       exr_finish(&this->H);
+      this->H = nullptr;
     }
   }
 };
 
-// One output channel: a component of a point array.
+// One output channel: a component of a point array (Array: of the strip being written).
 struct Channel
 {
   std::string Name;
-  vtkDataArray* Array;
+  std::string ArrayName;
   int Component;
+  int Components;
   exr_perceptual_treatment_t Perception;
+  vtkDataArray* Array;
 };
 
-// Fill `rows` scanlines starting at scanline y0 of one channel (float, nx per row). Scanline y
-// is VTK row ny-1-y: the one orientation flip of the writer.
-void FillScanlines(const Channel& ch, int nx, int ny, int y0, int rows, float* dst)
+// Where a strip's rows are: scanline y (0 = the file's top) is image row Top - y, which
+// starts at tuple (Top - y - Bottom) * Width + Column of the strip's arrays. The one
+// orientation flip of the writer.
+struct StripLayout
+{
+  int Top, Bottom;
+  vtkIdType Width, Column;
+  vtkIdType First(int y) const
+  {
+    return (this->Top - y - this->Bottom) * this->Width + this->Column;
+  }
+};
+
+// Fill `rows` scanlines starting at scanline y0 of one channel (float, nx per row).
+void FillScanlines(const Channel& ch, const StripLayout& at, int nx, int y0, int rows, float* dst)
 {
   const int nc = ch.Array->GetNumberOfComponents();
   auto* fa = vtkFloatArray::SafeDownCast(ch.Array);
   auto* da = vtkDoubleArray::SafeDownCast(ch.Array);
   for (int r = 0; r < rows; ++r)
   {
-    const vtkIdType first = static_cast<vtkIdType>(ny - 1 - (y0 + r)) * nx;
+    const vtkIdType first = at.First(y0 + r);
     float* out = dst + static_cast<size_t>(r) * static_cast<size_t>(nx);
     if (fa)
     {
@@ -188,7 +206,7 @@ exr_result_t KeepChunk(exr_encode_pipeline_t* encoder)
 // Convert and compress one chunk (any thread: after the header is written, OpenEXR's encoding
 // calls take no lock and only read the context).
 void EncodeChunk(exr_context_t ctx, int part, const std::vector<Channel>& channels,
-  const std::map<std::string, size_t>& byName, int nx, int ny, ChunkJob& job)
+  const std::map<std::string, size_t>& byName, const StripLayout& at, int nx, ChunkJob& job)
 {
   ErrorTrap trap; // this thread's messages
   exr_encode_pipeline_t encoder = EXR_ENCODE_PIPELINE_INITIALIZER;
@@ -218,7 +236,7 @@ void EncodeChunk(exr_context_t ctx, int part, const std::vector<Channel>& channe
       break;
     }
     float* dst = scratch.data() + found->second * chunkValues;
-    FillScanlines(channels[found->second], nx, ny, job.Info.start_y, job.Info.height, dst);
+    FillScanlines(channels[found->second], at, nx, job.Info.start_y, job.Info.height, dst);
     out.encode_from_ptr = reinterpret_cast<const uint8_t*>(dst);
     out.user_pixel_stride = static_cast<int32_t>(sizeof(float));
     out.user_line_stride = static_cast<int32_t>(sizeof(float)) * nx;
@@ -252,6 +270,18 @@ struct vtkApertureEXRWriter::Internals
 {
   std::vector<std::string> ArrayNames;
   std::vector<std::pair<std::string, std::string>> Metadata;
+
+  // The file being written, from BeginStrips to EndStrips.
+  ContextHandle Context;
+  std::string Path;
+  std::vector<Channel> Channels;
+  std::map<std::string, size_t> ByName;
+  int Part = 0;
+  int LinesPerChunk = 1;
+  int Whole[6] = { 0, -1, 0, -1, 0, 0 };
+  int NextRow = -1;    // the next image row to write (north first)
+  bool Failed = false;  // a strip failed (reported)
+  bool Written = false; // the last WriteData wrote its file
 };
 
 //------------------------------------------------------------------------------
@@ -262,6 +292,7 @@ vtkApertureEXRWriter::vtkApertureEXRWriter()
   , Compression(ZIP)
   , NumberOfThreads(0)
   , NumberOfThreadsUsed(0)
+  , StripRows(0)
   , Impl(new Internals)
 {
 }
@@ -371,40 +402,57 @@ int vtkApertureEXRWriter::FillInputPortInformation(int, vtkInformation* info)
 //------------------------------------------------------------------------------
 void vtkApertureEXRWriter::WriteData()
 {
-  this->NumberOfThreadsUsed = 0;
   vtkImageData* input = this->GetInput();
-  if (!this->FileName || !*this->FileName)
+  int ext[6] = { 0, -1, 0, -1, 0, -1 };
+  if (input)
   {
-    vtkErrorMacro(<< "no file name was set");
-    return;
+    input->GetExtent(ext);
   }
-  const std::string path(this->FileName);
-  if (!input || input->GetNumberOfPoints() == 0)
+  if (this->BeginStrips(input, ext) && this->WriteStrip(input))
   {
-    vtkErrorMacro(<< "no input image to write to '" << path << "'");
-    return;
+    this->Impl->Written = this->EndStrips() != 0;
   }
-  int ext[6];
-  input->GetExtent(ext);
-  if (ext[4] != ext[5])
+  else
   {
-    vtkErrorMacro(<< "only 2-D images can be written to '" << path << "'; this one has "
-                  << (ext[5] - ext[4] + 1) << " slices");
-    return;
+    this->AbandonStrips();
   }
-  const int nx = ext[1] - ext[0] + 1, ny = ext[3] - ext[2] + 1;
-  // The encoder takes the row stride in bytes as a 32-bit int.
-  if (nx > std::numeric_limits<int32_t>::max() / static_cast<int>(sizeof(float)))
-  {
-    vtkErrorMacro(<< "the image is " << nx << " columns wide, too wide for '" << path << "'");
-    return;
-  }
-  const vtkIdType points = static_cast<vtkIdType>(nx) * ny;
+}
 
-  // 1. Channels: the color array as R, G, B (, A), then the other arrays.
+//------------------------------------------------------------------------------
+int vtkApertureEXRWriter::Write()
+{
+  if (this->StripRows <= 0)
+  {
+    this->Impl->Written = false;
+    return this->Superclass::Write() && this->Impl->Written ? 1 : 0;
+  }
+  // whole EXR chunks (1, 16 or 32 scanlines) in every strip
+  return vtkApertureWriteInStrips(
+    this, this->StripRows, 32, this->FileName ? this->FileName : "");
+}
+
+//------------------------------------------------------------------------------
+void vtkApertureEXRWriter::AbandonStrips()
+{
+  for (Channel& ch : this->Impl->Channels)
+  {
+    ch.Array = nullptr;
+  }
+  this->Impl->Context.Discard();
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureEXRWriter::GetNextStripRow()
+{
+  return this->Impl->NextRow;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureEXRWriter::ResolveChannels(vtkImageData* input, const std::string& path)
+{
+  Internals& d = *this->Impl;
   vtkPointData* pd = input->GetPointData();
-  std::vector<Channel> channels;
-  const std::string colorName = this->ColorArrayName ? this->ColorArrayName : "";
+  const vtkIdType points = input->GetNumberOfPoints();
   auto fetch = [&](const std::string& name, const char* role) -> vtkDataArray* {
     vtkAbstractArray* abstract = pd->GetAbstractArray(name.c_str());
     if (!abstract)
@@ -429,12 +477,36 @@ void vtkApertureEXRWriter::WriteData()
     }
     return array;
   };
+  if (!d.Channels.empty())
+  {
+    // a later strip: the arrays the first one gave, with as many components
+    for (Channel& ch : d.Channels)
+    {
+      ch.Array = fetch(ch.ArrayName, "");
+      if (!ch.Array)
+      {
+        return false;
+      }
+      if (ch.Array->GetNumberOfComponents() != ch.Components)
+      {
+        vtkErrorMacro(<< "the point array '" << ch.ArrayName << "' has "
+                      << ch.Array->GetNumberOfComponents() << " components in this strip and "
+                      << ch.Components << " in the first; '" << path << "' not written");
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // The first strip: the color array as R, G, B (, A), then the other arrays.
+  std::vector<Channel>& channels = d.Channels;
+  const std::string colorName = this->ColorArrayName ? this->ColorArrayName : "";
   if (!colorName.empty())
   {
     vtkDataArray* color = fetch(colorName, " (ColorArrayName)");
     if (!color)
     {
-      return;
+      return false;
     }
     const int nc = color->GetNumberOfComponents();
     if (nc != 3 && nc != 4)
@@ -442,17 +514,16 @@ void vtkApertureEXRWriter::WriteData()
       vtkErrorMacro(<< "the color array '" << colorName << "' has " << nc << " component"
                     << (nc == 1 ? "" : "s") << "; it needs 3 (RGB) or 4 (RGBA) to be written to '"
                     << path << "'");
-      return;
+      return false;
     }
     const char* rgba[4] = { "R", "G", "B", "A" };
     for (int c = 0; c < nc; ++c)
     {
-      channels.push_back({ rgba[c], color, c, EXR_PERCEPTUALLY_LOGARITHMIC });
+      channels.push_back({ rgba[c], colorName, c, nc, EXR_PERCEPTUALLY_LOGARITHMIC, color });
     }
   }
-  std::vector<std::string> names = this->Impl->ArrayNames;
-  const bool all = names.empty();
-  if (all)
+  std::vector<std::string> names = d.ArrayNames;
+  if (names.empty())
   {
     for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
     {
@@ -473,7 +544,7 @@ void vtkApertureEXRWriter::WriteData()
     vtkDataArray* array = fetch(name, "");
     if (!array)
     {
-      return;
+      return false;
     }
     const int nc = array->GetNumberOfComponents();
     for (int c = 0; c < nc; ++c)
@@ -484,30 +555,76 @@ void vtkApertureEXRWriter::WriteData()
         const char* cname = array->GetComponentName(c);
         channel += "." + ((cname && *cname) ? std::string(cname) : std::to_string(c));
       }
-      channels.push_back({ channel, array, c, EXR_PERCEPTUALLY_LINEAR });
+      channels.push_back({ channel, name, c, nc, EXR_PERCEPTUALLY_LINEAR, array });
     }
   }
   if (channels.empty())
   {
     vtkErrorMacro(<< "the image has no numeric point arrays to write to '" << path << "'");
-    return;
+    return false;
   }
-  std::map<std::string, size_t> byName;
-  size_t longest = 0;
   for (size_t k = 0; k < channels.size(); ++k)
   {
-    if (!byName.emplace(channels[k].Name, k).second)
+    if (!d.ByName.emplace(channels[k].Name, k).second)
     {
       vtkErrorMacro(<< "two arrays give the channel name '" << channels[k].Name << "' (array '"
-                    << channels[k].Array->GetName() << "'); rename one before writing '" << path
+                    << channels[k].ArrayName << "'); rename one before writing '" << path
                     << "'");
-      return;
+      return false;
     }
-    longest = std::max(longest, channels[k].Name.size());
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
+{
+  Internals& d = *this->Impl;
+  this->NumberOfThreadsUsed = 0;
+  d.Context.Discard(); // (a file begun and never ended)
+  d.Channels.clear();
+  d.ByName.clear();
+  d.Failed = false;
+  d.NextRow = whole[2] - 1;
+  if (!this->FileName || !*this->FileName)
+  {
+    vtkErrorMacro(<< "no file name was set");
+    return 0;
+  }
+  const std::string path(this->FileName);
+  if (!input || input->GetNumberOfPoints() == 0 || whole[1] < whole[0] || whole[3] < whole[2])
+  {
+    vtkErrorMacro(<< "no input image to write to '" << path << "'");
+    return 0;
+  }
+  if (whole[4] != whole[5])
+  {
+    vtkErrorMacro(<< "only 2-D images can be written to '" << path << "'; this one has "
+                  << (whole[5] - whole[4] + 1) << " slices");
+    return 0;
+  }
+  const int nx = whole[1] - whole[0] + 1, ny = whole[3] - whole[2] + 1;
+  // The encoder takes the row stride in bytes as a 32-bit int.
+  if (nx > std::numeric_limits<int32_t>::max() / static_cast<int>(sizeof(float)))
+  {
+    vtkErrorMacro(<< "the image is " << nx << " columns wide, too wide for '" << path << "'");
+    return 0;
+  }
+
+  // 1. Channels.
+  if (!this->ResolveChannels(input, path))
+  {
+    d.Channels.clear();
+    return 0;
+  }
+  size_t longest = 0;
+  for (const Channel& ch : d.Channels)
+  {
+    longest = std::max(longest, ch.Name.size());
   }
 
   // 2. Header attributes: metadata, then the georeference (which wins on equal keys).
-  std::vector<std::pair<std::string, std::string>> attributes = this->Impl->Metadata;
+  std::vector<std::pair<std::string, std::string>> attributes = d.Metadata;
   vtkStringArray* crsArray = vtkStringArray::SafeDownCast(
     input->GetFieldData()->GetAbstractArray(vtkApertureGeoreference::GetCRSArrayName()));
   if (crsArray && crsArray->GetNumberOfValues() > 0 && !crsArray->GetValue(0).empty())
@@ -517,9 +634,14 @@ void vtkApertureEXRWriter::WriteData()
     {
       vtkErrorMacro(<< "the image has a CRS but its georeference cannot be written to '" << path
                     << "': " << geo->GetErrorMessage());
-      return;
+      return 0;
     }
-    double gt[6];
+    // the grid of `whole`, which a strip is part of
+    double origin[3], spacing[3], gt[6];
+    input->GetOrigin(origin);
+    input->GetSpacing(spacing);
+    geo->SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],
+      spacing[0], spacing[1], nx, ny);
     geo->GetGeoTransform(gt);
     // %.17g (round-trips every double), in the classic locale so that a program locale with
     // a decimal comma cannot merge the numbers.
@@ -538,75 +660,141 @@ void vtkApertureEXRWriter::WriteData()
     longest = std::max(longest, kv.first.size());
   }
 
-  // 3. Create the file (a temporary one, renamed by exr_finish on success) and its header.
+  // 3. Create the file (a temporary one, renamed by exr_finish when complete) and its header.
   ErrorTrap trap;
-  ContextHandle ctx;
   const exr_context_initializer_t init = ErrorTrap::Initializer();
-  exr_result_t rv = exr_start_write(&ctx.H, path.c_str(), EXR_INTERMEDIATE_TEMP_FILE, &init);
+  exr_result_t rv =
+    exr_start_write(&d.Context.H, path.c_str(), EXR_INTERMEDIATE_TEMP_FILE, &init);
   if (rv != EXR_ERR_SUCCESS)
   {
+    d.Context.H = nullptr;
     vtkErrorMacro(<< "OpenEXR cannot create '" << path << "': " << trap.Message(rv));
-    return;
+    return 0;
   }
-  int part = 0;
+  exr_context_t ctx = d.Context.H;
   const exr_pixel_type_t type = this->PixelType == HALF ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT;
-  rv = exr_add_part(ctx.H, "", EXR_STORAGE_SCANLINE, &part);
+  rv = exr_add_part(ctx, "", EXR_STORAGE_SCANLINE, &d.Part);
   if (rv == EXR_ERR_SUCCESS)
   {
     // Data and display window (0, 0) - (nx-1, ny-1), increasing-y line order, aspect 1.
     rv = exr_initialize_required_attr_simple(
-      ctx.H, part, nx, ny, static_cast<exr_compression_t>(this->Compression));
+      ctx, d.Part, nx, ny, static_cast<exr_compression_t>(this->Compression));
   }
   if (rv == EXR_ERR_SUCCESS && longest > ShortNameLength)
   {
-    rv = exr_set_longname_support(ctx.H, 1);
+    rv = exr_set_longname_support(ctx, 1);
   }
-  for (size_t k = 0; rv == EXR_ERR_SUCCESS && k < channels.size(); ++k)
+  for (size_t k = 0; rv == EXR_ERR_SUCCESS && k < d.Channels.size(); ++k)
   {
-    rv = exr_add_channel(ctx.H, part, channels[k].Name.c_str(), type, channels[k].Perception, 1, 1);
+    rv = exr_add_channel(ctx, d.Part, d.Channels[k].Name.c_str(), type, d.Channels[k].Perception,
+      1, 1);
   }
   for (size_t k = 0; rv == EXR_ERR_SUCCESS && k < attributes.size(); ++k)
   {
-    rv =
-      exr_attr_set_string(ctx.H, part, attributes[k].first.c_str(), attributes[k].second.c_str());
+    rv = exr_attr_set_string(
+      ctx, d.Part, attributes[k].first.c_str(), attributes[k].second.c_str());
   }
   if (rv == EXR_ERR_SUCCESS)
   {
-    rv = exr_write_header(ctx.H);
+    rv = exr_write_header(ctx);
   }
-  int linesPerChunk = 1;
   if (rv == EXR_ERR_SUCCESS)
   {
-    rv = exr_get_scanlines_per_chunk(ctx.H, part, &linesPerChunk);
+    rv = exr_get_scanlines_per_chunk(ctx, d.Part, &d.LinesPerChunk);
   }
   if (rv != EXR_ERR_SUCCESS)
   {
     vtkErrorMacro(<< "OpenEXR failed writing the header of '" << path << "': " << trap.Message(rv));
-    return;
+    d.Context.Discard();
+    return 0;
   }
+  d.Path = path;
+  std::copy(whole, whole + 6, d.Whole);
+  d.NextRow = whole[3];
+  return 1;
+}
 
-  // 4. Scanlines in batches of chunks, top (north) first: the worker threads convert each
+//------------------------------------------------------------------------------
+int vtkApertureEXRWriter::WriteStrip(vtkImageData* strip)
+{
+  Internals& d = *this->Impl;
+  if (!d.Context.H || d.Failed)
+  {
+    vtkErrorMacro(<< (d.Failed ? "a strip failed; EndStrips() removes the file"
+                               : "no file begun: call BeginStrips() first"));
+    return 0;
+  }
+  const int* whole = d.Whole;
+  const std::string& path = d.Path;
+  int ext[6] = { 0, -1, 0, -1, 0, -1 };
+  if (strip)
+  {
+    strip->GetExtent(ext);
+  }
+  d.Failed = true; // until written
+  if (d.NextRow < whole[2])
+  {
+    vtkErrorMacro(<< "every row of '" << path << "' is written already");
+    return 0;
+  }
+  if (ext[0] > whole[0] || ext[1] < whole[1] || ext[2] > d.NextRow || ext[3] < d.NextRow)
+  {
+    vtkErrorMacro(<< "the strip's extent (" << ext[0] << ".." << ext[1] << ", " << ext[2] << ".."
+                  << ext[3] << ") does not hold row " << d.NextRow << " of columns " << whole[0]
+                  << " to " << whole[1] << ", the next of '" << path << "'");
+    return 0;
+  }
+  // Scanlines y0 .. y1 - 1 (image rows NextRow down to j0): whole chunks unless they end the
+  // file.
+  const int nx = whole[1] - whole[0] + 1, ny = whole[3] - whole[2] + 1;
+  const int lines = d.LinesPerChunk;
+  const int y0 = whole[3] - d.NextRow;
+  int y1 = whole[3] - std::max(ext[2], whole[2]) + 1;
+  if (y1 < ny)
+  {
+    y1 = y0 + (y1 - y0) / lines * lines;
+    if (y1 == y0)
+    {
+      vtkErrorMacro(<< "a strip must hold " << lines << " rows (a chunk of '" << path
+                    << "') or reach the last row " << whole[2] << "; this one holds rows "
+                    << ext[2] << " to " << d.NextRow);
+      return 0;
+    }
+  }
+  if (!this->ResolveChannels(strip, path))
+  {
+    return 0;
+  }
+  const StripLayout at{ whole[3], ext[2], static_cast<vtkIdType>(ext[1]) - ext[0] + 1,
+    static_cast<vtkIdType>(whole[0]) - ext[0] };
+
+  // Scanlines in batches of chunks, top (north) first: the worker threads convert each
   // chunk's channels to float in their own scratch (the encoder converts to HALF when asked)
   // and compress it into the chunk's buffer; this thread then writes the batch in order.
   // Compression is per chunk and deterministic, so the bytes do not depend on the threads.
-  const int chunkCount = (ny + linesPerChunk - 1) / linesPerChunk;
-  const size_t chunkValues = static_cast<size_t>(linesPerChunk) * static_cast<size_t>(nx);
-  const size_t chunkBytes = chunkValues * channels.size() * sizeof(float);
+  ErrorTrap trap;
+  exr_context_t ctx = d.Context.H;
+  const int chunkCount = (ny + lines - 1) / lines;
+  const int firstChunk = y0 / lines, endChunk = (y1 + lines - 1) / lines;
+  const size_t chunkValues = static_cast<size_t>(lines) * static_cast<size_t>(nx);
+  const size_t chunkBytes = chunkValues * d.Channels.size() * sizeof(float);
   const size_t batchBytes = size_t(64) << 20; // of scratch and compressed chunks together
   const int batch =
     static_cast<int>(std::max<size_t>(1, std::min<size_t>(256, batchBytes / (2 * chunkBytes))));
   std::vector<ChunkJob> jobs;
   std::string chunkMessage; // a worker's OpenEXR message for a failed chunk
+  exr_result_t rv = EXR_ERR_SUCCESS;
+  bool aborted = false;
   vtkApertureThreadTally tally;
   vtkSMPTools::LocalScope(vtkApertureSMPConfig(this->NumberOfThreads), [&]() {
-    for (int first = 0; rv == EXR_ERR_SUCCESS && first < chunkCount; first += batch)
+    for (int first = firstChunk; rv == EXR_ERR_SUCCESS && first < endChunk; first += batch)
     {
-      const int count = std::min(batch, chunkCount - first);
+      const int count = std::min(batch, endChunk - first);
       jobs.assign(static_cast<size_t>(count), ChunkJob());
       for (int k = 0; rv == EXR_ERR_SUCCESS && k < count; ++k)
       {
         rv = exr_write_scanline_chunk_info(
-          ctx.H, part, (first + k) * linesPerChunk, &jobs[static_cast<size_t>(k)].Info);
+          ctx, d.Part, (first + k) * lines, &jobs[static_cast<size_t>(k)].Info);
       }
       if (rv != EXR_ERR_SUCCESS)
       {
@@ -616,9 +804,14 @@ void vtkApertureEXRWriter::WriteData()
         tally.Note();
         for (vtkIdType k = begin; k < end; ++k)
         {
-          EncodeChunk(ctx.H, part, channels, byName, nx, ny, jobs[static_cast<size_t>(k)]);
+          EncodeChunk(ctx, d.Part, d.Channels, d.ByName, at, nx, jobs[static_cast<size_t>(k)]);
         }
       });
+      if (this->GetAbortExecute())
+      {
+        aborted = true; // (before writing: an aborted file never holds every chunk)
+        break;
+      }
       for (int k = 0; rv == EXR_ERR_SUCCESS && k < count; ++k)
       {
         ChunkJob& job = jobs[static_cast<size_t>(k)];
@@ -626,7 +819,7 @@ void vtkApertureEXRWriter::WriteData()
         if (rv == EXR_ERR_SUCCESS)
         {
           rv = exr_write_scanline_chunk(
-            ctx.H, part, job.Info.start_y, job.Bytes.data(), job.Bytes.size());
+            ctx, d.Part, job.Info.start_y, job.Bytes.data(), job.Bytes.size());
         }
         else
         {
@@ -636,21 +829,56 @@ void vtkApertureEXRWriter::WriteData()
       this->UpdateProgress(static_cast<double>(first + count) / chunkCount);
     }
   });
-  this->NumberOfThreadsUsed = tally.Count();
+  this->NumberOfThreadsUsed = std::max(this->NumberOfThreadsUsed, tally.Count());
   jobs.clear();
+  if (aborted)
+  {
+    vtkErrorMacro(<< "writing '" << path << "' was aborted");
+    return 0;
+  }
   if (rv != EXR_ERR_SUCCESS)
   {
     vtkErrorMacro(<< "OpenEXR failed writing '" << path
                   << "': " << (chunkMessage.empty() ? trap.Message(rv) : chunkMessage));
-    return; // ~ContextHandle discards the temporary file
+    return 0;
   }
+  d.NextRow = whole[3] - y1;
+  d.Failed = false;
+  return 1;
+}
 
-  // 5. Offsets table, close, and rename the temporary file to FileName.
-  rv = exr_finish(&ctx.H);
+//------------------------------------------------------------------------------
+int vtkApertureEXRWriter::EndStrips()
+{
+  Internals& d = *this->Impl;
+  for (Channel& ch : d.Channels)
+  {
+    ch.Array = nullptr; // (the last strip's arrays are not kept)
+  }
+  if (!d.Context.H)
+  {
+    return 0; // (nothing begun, or BeginStrips failed: reported)
+  }
+  if (d.Failed || d.NextRow >= d.Whole[2])
+  {
+    if (!d.Failed && !this->GetAbortExecute())
+    {
+      vtkErrorMacro(<< "rows " << d.Whole[2] << " to " << d.NextRow << " of '" << d.Path
+                    << "' were not written; the file is removed");
+    }
+    d.Context.Discard();
+    return 0;
+  }
+  // Offsets table, close, and rename the temporary file to FileName.
+  ErrorTrap trap;
+  const exr_result_t rv = exr_finish(&d.Context.H);
+  d.Context.H = nullptr;
   if (rv != EXR_ERR_SUCCESS)
   {
-    vtkErrorMacro(<< "OpenEXR failed finishing '" << path << "': " << trap.Message(rv));
+    vtkErrorMacro(<< "OpenEXR failed finishing '" << d.Path << "': " << trap.Message(rv));
+    return 0;
   }
+  return 1;
 }
 
 //------------------------------------------------------------------------------
@@ -669,6 +897,7 @@ void vtkApertureEXRWriter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PixelType: " << this->GetPixelTypeAsString() << "\n";
   os << indent << "Compression: " << this->GetCompressionAsString() << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "StripRows: " << this->StripRows << "\n";
   os << indent << "NumberOfThreadsUsed: " << this->NumberOfThreadsUsed << "\n";
   os << indent << "Metadata: " << this->Impl->Metadata.size() << " items\n";
   for (const auto& kv : this->Impl->Metadata)

@@ -77,6 +77,8 @@
 #include "ApertureIOModule.h" // for export macro
 #include "vtkWriter.h"
 
+#include <string> // for std::string
+
 class vtkImageData;
 
 class APERTUREIO_EXPORT vtkApertureEXRWriter : public vtkWriter
@@ -159,6 +161,50 @@ public:
   vtkGetMacro(NumberOfThreadsUsed, int);
 
   ///@{
+  /** Rows per update when > 0: Write() asks its input for strips of this many rows (rounded
+   * up to a multiple of 32, so whole chunks of scanlines), north first, and writes each into
+   * the file before asking for the next, so that a pipeline whose stages produce sub-extents
+   * holds one strip at a time. The file has the same bytes as with 0 (default: the whole image
+   * in one update); a strip the input fails to produce is an error, and no file is left. When
+   * the input's producer has its ReleaseDataFlag on, each strip is released once written. */
+  vtkSetClampMacro(StripRows, int, 0, VTK_INT_MAX);
+  vtkGetMacro(StripRows, int);
+  ///@}
+
+  /** Write the file (in strips when StripRows > 0); 1 on success, 0 after an error. */
+  int Write() override;
+
+  ///@{
+  /**
+   * Writing strips the caller produces itself (one pass of a pipeline feeding this writer and
+   * a vtkApertureDEMWriter, say); Write() takes the same steps.
+   * - BeginStrips(image, whole) creates the file (a temporary one until EndStrips) for the
+   *   image rows and columns of `whole` (an extent in image indices): its channels from
+   *   `image`'s point arrays, its georeference from `image`'s origin, spacing and `CRS` (any
+   *   strip of the image will do), and the metadata; the header is written.
+   * - WriteStrip(strip) writes the rows of `strip` that come next, north first: from row
+   *   GetNextStripRow() (whole[3] at first) down to the strip's southern row, in whole chunks
+   *   of scanlines (1, 16 or 32 rows, by Compression) unless that reaches whole[2] (rows
+   *   beyond the last whole chunk are left for the next strip). The strip must hold every
+   *   column of `whole`, the next row, and the arrays the first strip had.
+   * - EndStrips() completes the file and gives it its name when every row was written
+   *   without an error; otherwise it leaves no file (and an earlier one of that name as it
+   *   was), with an error naming the rows missing unless writing was aborted or an error was
+   *   reported already.
+   * - AbandonStrips() removes a file begun, quietly (for a caller that stops early).
+   * Each returns 1 on success and 0 after reporting the problem (vtkErrorMacro); after a
+   * failure only EndStrips() or AbandonStrips() is useful. Progress events run over the
+   * chunks of `whole`, and AbortExecute is checked after every batch of chunks is compressed.
+   */
+  int BeginStrips(vtkImageData* image, const int whole[6]);
+  int WriteStrip(vtkImageData* strip);
+  int EndStrips();
+  void AbandonStrips();
+  /** The next image row WriteStrip() writes (whole[2] - 1 once all are written). */
+  int GetNextStripRow();
+  ///@}
+
+  ///@{
   /** String attributes of the header (key = value), written with the file. Keys are non-empty,
    *  at most 255 characters, and must not name one of OpenEXR's own attributes (channels,
    *  compression, dataWindow, ...). */
@@ -181,6 +227,7 @@ protected:
   int Compression;
   int NumberOfThreads;
   int NumberOfThreadsUsed;
+  int StripRows;
 
 private:
   vtkApertureEXRWriter(const vtkApertureEXRWriter&) = delete;
@@ -188,6 +235,10 @@ private:
 
   struct Internals;
   Internals* Impl;
+
+  // The channels of the first strip, or the same arrays of a later one; false, reported, when
+  // the image lacks them.
+  bool ResolveChannels(vtkImageData* input, const std::string& path);
 };
 
 #endif

@@ -2,13 +2,13 @@
 // vtkApertureDEMWriter: what GDAL reads back (bands, descriptions, values and orientation,
 // geotransform, CRS, nodata, compression, metadata), the round trip through the reader, and
 // the documented errors.
+#include "ApertureStripSource.h"
 #include "ApertureTestRasters.h"
 
 #include "vtkApertureDEMReader.h"
 #include "vtkApertureDEMWriter.h"
 #include "vtkApertureGeoreference.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
@@ -203,33 +203,12 @@ void TestSelectionAndTypes()
   }
 }
 
-// An image of 3 x 3 tiles (600 x 520) with values that do not compress to nothing:
-// Elevation(i, j) = i + noise below 17, in EPSG:32633.
-vtkSmartPointer<vtkImageData> MakeNoisyImage()
-{
-  const int nx = 600, ny = 520;
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(nx, ny, 1);
-  image->SetOrigin(300015.0, 5000015.0, 0.0);
-  image->SetSpacing(30.0, 30.0, 1.0);
-  vtkNew<vtkFloatArray> z;
-  z->SetName("Elevation");
-  const std::vector<float> values = aptest::NoisyRamp(nx, ny, 12345u, 1e-6f);
-  z->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
-  std::copy(values.begin(), values.end(), z->GetPointer(0));
-  image->GetPointData()->SetScalars(z);
-  vtkNew<vtkApertureGeoreference> geo;
-  geo->SetCRS("EPSG:32633");
-  geo->AttachToImage(image);
-  return image;
-}
-
 // Tiles compressed on several threads (NUM_THREADS) give the same file as on one, byte for
 // byte.
 void TestThreadsSameBytes()
 {
   const int nx = 600, ny = 520;
-  vtkSmartPointer<vtkImageData> image = MakeNoisyImage();
+  vtkSmartPointer<vtkImageData> image = NoisyImage(600, 520, 12345u, 1e-6f, "Elevation");
   vtkFloatArray* z = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Elevation"));
   std::string files[2];
   const int threads[2] = { 1, 3 };
@@ -263,7 +242,7 @@ void TestThreadsSameBytes()
 // case-insensitive (the predictor still applies); codecs without levels ignore it.
 void TestCompressionLevels()
 {
-  vtkSmartPointer<vtkImageData> image = MakeNoisyImage();
+  vtkSmartPointer<vtkImageData> image = NoisyImage(600, 520, 12345u, 1e-6f, "Elevation");
   auto write = [&](const char* codec, int level) {
     const std::string path =
       tmp + "/level_" + codec + "_" + std::to_string(level) + ".tif";
@@ -309,67 +288,6 @@ void TestCompressionLevels()
   }
 }
 
-// A source of the sub-extents of an image (as vtkApertureDEMReader and the sky filter produce
-// them), recording each extent asked for, and failing when asked for rows below FailBelow.
-class StripSource : public vtkImageAlgorithm
-{
-public:
-  static StripSource* New();
-  vtkTypeMacro(StripSource, vtkImageAlgorithm);
-  vtkSmartPointer<vtkImageData> Image;
-  std::vector<std::vector<int>> Requests;
-  int FailBelow = -1;
-
-protected:
-  StripSource() { this->SetNumberOfInputPorts(0); }
-  int RequestInformation(
-    vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
-  {
-    vtkInformation* info = out->GetInformationObject(0);
-    info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), this->Image->GetExtent(), 6);
-    info->Set(vtkDataObject::ORIGIN(), this->Image->GetOrigin(), 3);
-    info->Set(vtkDataObject::SPACING(), this->Image->GetSpacing(), 3);
-    info->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
-    return 1;
-  }
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
-  {
-    vtkInformation* info = out->GetInformationObject(0);
-    int ext[6], whole[6];
-    info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
-    this->Image->GetExtent(whole);
-    this->Requests.emplace_back(ext, ext + 6);
-    if (this->FailBelow >= 0 && ext[2] < this->FailBelow)
-    {
-      vtkErrorMacro(<< "asked for row " << ext[2]);
-      return 0;
-    }
-    vtkImageData* output = vtkImageData::GetData(info);
-    output->SetExtent(ext);
-    output->GetFieldData()->PassData(this->Image->GetFieldData());
-    vtkPointData* pd = this->Image->GetPointData();
-    for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
-    {
-      vtkDataArray* src = pd->GetArray(a);
-      vtkSmartPointer<vtkDataArray> dst = vtk::TakeSmartPointer(src->NewInstance());
-      dst->SetName(src->GetName());
-      dst->SetNumberOfComponents(src->GetNumberOfComponents());
-      dst->SetNumberOfTuples(output->GetNumberOfPoints());
-      vtkIdType k = 0;
-      for (int j = ext[2]; j <= ext[3]; ++j)
-      {
-        for (int i = ext[0]; i <= ext[1]; ++i)
-        {
-          dst->SetTuple(k++, (j - whole[2]) * (whole[1] - whole[0] + 1) + (i - whole[0]), src);
-        }
-      }
-      output->GetPointData()->AddArray(dst);
-    }
-    return 1;
-  }
-};
-vtkStandardNewMacro(StripSource);
-
 // Every band of two GeoTIFFs, their geotransforms, CRSs, descriptions and metadata are equal.
 bool SameContents(const std::string& a, const std::string& b)
 {
@@ -414,7 +332,7 @@ bool SameContents(const std::string& a, const std::string& b)
 // endless pipeline loop).
 void TestStrips()
 {
-  vtkSmartPointer<vtkImageData> image = MakeNoisyImage(); // 600 x 520
+  vtkSmartPointer<vtkImageData> image = NoisyImage(600, 520, 12345u, 1e-6f, "Elevation");
   vtkNew<vtkDoubleArray> twice;
   twice->SetName("Twice");
   twice->SetNumberOfComponents(2);
@@ -468,33 +386,21 @@ void TestStrips()
     AP_CHECK(SameContents(whole, tmp + "/strips-given.tif"));
   }
   {
-    source->FailBelow = 100;
     vtkNew<vtkApertureDEMWriter> w;
-    w->SetInputConnection(source->GetOutputPort());
     const std::string path = tmp + "/strips-failed.tif";
     setup(w, path, 256);
-    vtkNew<vtkTest::ErrorObserver> errors, sourceErrors, executiveErrors;
-    w->AddObserver(vtkCommand::ErrorEvent, errors);
-    source->AddObserver(vtkCommand::ErrorEvent, sourceErrors);
-    source->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
-    AP_CHECK(w->Write() == 0);
-    AP_CHECK_CONTAINS(
-      errors->GetErrorMessage(), "the input did not produce rows 8 to 263 of 0 to 519");
-    AP_CHECK_CONTAINS(sourceErrors->GetErrorMessage(), "asked for row 8");
+    const std::string errors = FailingWrite(w, source, 100);
+    AP_CHECK_CONTAINS(errors, "the input did not produce rows 8 to 263 of 0 to 519");
+    AP_CHECK(errors.find("were not written") == std::string::npos);
     struct stat sb;
     AP_CHECK(stat(path.c_str(), &sb) != 0); // nothing left behind
-    source->FailBelow = -1;
   }
   {
     vtkNew<vtkApertureDEMWriter> w;
     w->SetInputConnection(source->GetOutputPort());
     const std::string path = tmp + "/strips-aborted.tif";
     setup(w, path, 256);
-    vtkNew<vtkCallbackCommand> abort;
-    abort->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
-      static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
-    });
-    w->AddObserver(vtkCommand::ProgressEvent, abort);
+    AbortOnProgress(w);
     vtkNew<vtkTest::ErrorObserver> errors;
     w->AddObserver(vtkCommand::ErrorEvent, errors);
     AP_CHECK(w->Write() == 0);
@@ -506,13 +412,59 @@ void TestStrips()
     once->SetInputData(image);
     const std::string oncePath = tmp + "/once-aborted.tif";
     setup(once, oncePath, 0);
-    once->AddObserver(vtkCommand::ProgressEvent, abort);
+    AbortOnProgress(once);
     vtkNew<vtkTest::ErrorObserver> onceErrors;
     once->AddObserver(vtkCommand::ErrorEvent, onceErrors);
-    once->Write();
+    AP_CHECK(once->Write() == 0); // (Write() at once reports the failure too)
     AP_CHECK_CONTAINS(onceErrors->GetErrorMessage(), "once-aborted.tif' was aborted");
     AP_CHECK(stat(oncePath.c_str(), &sb) != 0);
   }
+
+  // BeginStrips / WriteStrip / EndStrips with strips the caller makes: a strip of 300 rows
+  // writes 256 (a whole tile row) and leaves the rest to the next, which must hold it; the
+  // file equals the whole write. A strip without the next row, one of fewer than 256 rows
+  // short of the end, or rows never written: errors, and no file.
+  const int all[6] = { 0, 599, 0, 519, 0, 0 };
+  auto rows = [&](int j0, int j1) {
+    source->Modified(); // (else the executive keeps a larger extent computed before)
+    source->UpdateExtent(std::vector<int>{ 0, 599, j0, j1, 0, 0 }.data());
+    return source->GetOutput();
+  };
+  {
+    vtkNew<vtkApertureDEMWriter> w;
+    const std::string path = tmp + "/strips-caller.tif";
+    setup(w, path, 0);
+    AP_CHECK(w->BeginStrips(rows(220, 519), all) == 1);
+    AP_CHECK(w->GetNextStripRow() == 519);
+    AP_CHECK(w->WriteStrip(source->GetOutput()) == 1);
+    AP_CHECK(w->GetNextStripRow() == 263); // rows 519 .. 264
+    AP_CHECK(w->WriteStrip(rows(0, 263)) == 1);
+    AP_CHECK(w->GetNextStripRow() == -1);
+    AP_CHECK(w->EndStrips() == 1);
+    AP_CHECK(SameContents(whole, path));
+  }
+  // strips as { first row, last row, WriteStrip's result }
+  auto failing = [&](const std::vector<std::vector<int>>& strips, const std::string& expected) {
+    vtkNew<vtkApertureDEMWriter> w;
+    const std::string path = tmp + "/strips-caller-failed.tif";
+    setup(w, path, 0);
+    vtkNew<vtkTest::ErrorObserver> errors;
+    w->AddObserver(vtkCommand::ErrorEvent, errors);
+    AP_CHECK(w->BeginStrips(rows(0, 519), all) == 1);
+    for (const std::vector<int>& strip : strips)
+    {
+      AP_CHECK(w->WriteStrip(rows(strip[0], strip[1])) == strip[2]);
+    }
+    AP_CHECK(w->EndStrips() == 0);
+    AP_CHECK_CONTAINS(errors->GetErrorMessage(), expected);
+    struct stat sb;
+    AP_CHECK(stat(path.c_str(), &sb) != 0);
+  };
+  failing({ { 264, 519, 1 }, { 0, 250, 0 } },
+    "extent (0..599, 0..250) does not hold row 263 of columns 0 to 599");
+  failing({ { 300, 519, 0 }, { 0, 519, 0 } }, "a strip must hold 256 rows (a tile row of");
+  failing({ { 264, 519, 1 } },
+    "rows 0 to 263 of '" + tmp + "/strips-caller-failed.tif' were not written");
 }
 
 void ExpectError(vtkApertureDEMWriter* writer, const std::string& expected)

@@ -4,6 +4,7 @@
 // attributes), the round trip through the reader (FLOAT exact, HALF within half precision,
 // RGB(A), metadata, georeference), the reader on files written here with the C API, the
 // documented errors of both classes, and `exrheader` on a written file when it is installed.
+#include "ApertureStripSource.h"
 #include "ApertureTestRasters.h"
 
 #include "vtkApertureEXRReader.h"
@@ -1096,6 +1097,155 @@ void TestExrHeader()
   AP_CHECK_CONTAINS(output, "aperture:geotransform (type string): \"300000,30,0,5000120,0,-30\"");
   AP_CHECK_CONTAINS(output, "aperture:software (type string): \"aperture test\"");
 }
+//------------------------------------------------------------------------------
+// StripRows: the input is asked for strips of whole chunks (multiples of 32 rows), north
+// first, and the file has the bytes of a whole write (for compressions whose chunks are 16,
+// 32 and 1 scanlines, and from an image given whole); BeginStrips / WriteStrip / EndStrips
+// with the caller's strips (a strip of 40 rows writes two 16-row chunks and leaves 8 rows to
+// the next); a strip the input fails to produce, an abort, a strip without the next row, one
+// short of a chunk, or rows never written: errors that leave no file (nor a temporary one),
+// and an earlier file of that name as it was.
+void TestStrips()
+{
+  const int nx = 97, ny = 1030;
+  vtkSmartPointer<vtkImageData> image = NoisyImage(nx, ny, 77u, 1e-7f, "Noise");
+  vtkDataArray* noise = image->GetPointData()->GetArray("Noise");
+  vtkNew<vtkDoubleArray> index;
+  index->SetName("Index");
+  index->SetNumberOfComponents(2);
+  for (vtkIdType k = 0; k < noise->GetNumberOfTuples(); ++k)
+  {
+    index->InsertNextTuple2(static_cast<double>(k % nx), static_cast<double>(k / nx));
+  }
+  image->GetPointData()->AddArray(index);
+  vtkNew<StripSource> source;
+  source->Image = image;
+  auto setup = [&](vtkApertureEXRWriter* w, const std::string& path, const char* compression,
+                 int rows) {
+    w->SetFileName(path.c_str());
+    w->SetCompression(compression);
+    w->SetStripRows(rows);
+    w->AddMetadata("aperture:test", "strips");
+  };
+  std::string wholeBytes;
+  for (const char* compression : { "ZIP", "PIZ", "NONE" })
+  {
+    const std::string whole = tmp + "/strips-whole.exr";
+    {
+      vtkNew<vtkApertureEXRWriter> w;
+      w->SetInputData(image);
+      setup(w, whole, compression, 0);
+      AP_CHECK(w->Write() == 1);
+    }
+    wholeBytes = aptest::ReadFileBytes(whole);
+    AP_CHECK(wholeBytes.size() > 400000);
+    for (int rows : { 1, 100 })
+    {
+      const std::string path = tmp + "/strips.exr";
+      source->Requests.clear();
+      vtkNew<vtkApertureEXRWriter> w;
+      w->SetInputConnection(source->GetOutputPort());
+      setup(w, path, compression, rows);
+      AP_CHECK(w->Write() == 1);
+      const int step = rows == 1 ? 32 : 128;
+      AP_CHECK(source->Requests.size() == static_cast<size_t>((ny + step - 1) / step));
+      AP_CHECK(
+        (source->Requests.front() == std::vector<int>{ 0, nx - 1, ny - step, ny - 1, 0, 0 }));
+      AP_CHECK(
+        (source->Requests.back() == std::vector<int>{ 0, nx - 1, 0, (ny - 1) % step, 0, 0 }));
+      AP_CHECK(aptest::ReadFileBytes(path) == wholeBytes);
+    }
+  }
+  {
+    vtkNew<vtkApertureEXRWriter> w; // (NONE: one-scanline chunks)
+    w->SetInputData(image);
+    setup(w, tmp + "/strips-given.exr", "NONE", 300); // 320 rows: the image given whole
+    AP_CHECK(w->Write() == 1);
+    AP_CHECK(aptest::ReadFileBytes(tmp + "/strips-given.exr") == wholeBytes);
+  }
+
+  // the caller's strips (ZIP: 16-row chunks)
+  const std::string zipWhole = tmp + "/strips-zip-whole.exr";
+  {
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputData(image);
+    setup(w, zipWhole, "ZIP", 0);
+    AP_CHECK(w->Write() == 1);
+  }
+  const int all[6] = { 0, nx - 1, 0, ny - 1, 0, 0 };
+  auto rows = [&](int j0, int j1) {
+    source->Modified(); // (else the executive keeps a larger extent computed before)
+    source->UpdateExtent(std::vector<int>{ 0, nx - 1, j0, j1, 0, 0 }.data());
+    return source->GetOutput();
+  };
+  {
+    vtkNew<vtkApertureEXRWriter> w;
+    const std::string path = tmp + "/strips-caller.exr";
+    setup(w, path, "ZIP", 0);
+    AP_CHECK(w->BeginStrips(rows(ny - 40, ny - 1), all) == 1);
+    AP_CHECK(w->GetNextStripRow() == ny - 1);
+    AP_CHECK(w->WriteStrip(source->GetOutput()) == 1);
+    AP_CHECK(w->GetNextStripRow() == ny - 33); // two chunks of 16
+    AP_CHECK(w->WriteStrip(rows(500, ny - 33)) == 1);
+    AP_CHECK(w->GetNextStripRow() == 501); // 496 more rows (of 498), 31 chunks
+    AP_CHECK(w->WriteStrip(rows(0, 501)) == 1);
+    AP_CHECK(w->GetNextStripRow() == -1);
+    AP_CHECK(w->EndStrips() == 1);
+    AP_CHECK(aptest::ReadFileBytes(path) == aptest::ReadFileBytes(zipWhole));
+  }
+  // strips as { first row, last row, WriteStrip's result }, into a path that holds a file
+  auto failing = [&](const std::vector<std::vector<int>>& strips, const std::string& expected) {
+    const std::string path = tmp + "/strips-failed.exr";
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    AP_CHECK(f != nullptr);
+    if (f)
+    {
+      std::fputs("earlier", f);
+      std::fclose(f);
+    }
+    vtkNew<vtkApertureEXRWriter> w;
+    setup(w, path, "ZIP", 0);
+    vtkNew<vtkTest::ErrorObserver> errors;
+    w->AddObserver(vtkCommand::ErrorEvent, errors);
+    AP_CHECK(w->BeginStrips(rows(0, ny - 1), all) == 1);
+    for (const std::vector<int>& strip : strips)
+    {
+      AP_CHECK(w->WriteStrip(rows(strip[0], strip[1])) == strip[2]);
+    }
+    AP_CHECK(w->EndStrips() == 0);
+    AP_CHECK_CONTAINS(errors->GetErrorMessage(), expected);
+    AP_CHECK(aptest::ReadFileBytes(path) == "earlier");
+    AP_CHECK(!LeftoverTemporaryFiles("strips-failed.exr"));
+  };
+  failing({ { ny - 32, ny - 1, 1 }, { 0, ny - 40, 0 } },
+    "extent (0..96, 0..990) does not hold row 997 of columns 0 to 96");
+  failing({ { ny - 10, ny - 1, 0 }, { 0, ny - 1, 0 } }, "a strip must hold 16 rows (a chunk of");
+  failing({ { ny - 32, ny - 1, 1 } },
+    "rows 0 to 997 of '" + tmp + "/strips-failed.exr' were not written");
+  {
+    vtkNew<vtkApertureEXRWriter> w;
+    const std::string path = tmp + "/strips-input-failed.exr";
+    setup(w, path, "ZIP", 256);
+    const std::string errors = FailingWrite(w, source, 100);
+    AP_CHECK_CONTAINS(errors, "the input did not produce rows 6 to 261 of 0 to 1029");
+    // (and no second error about the rows missing)
+    AP_CHECK(errors.find("were not written") == std::string::npos);
+    AP_CHECK(!Exists(path) && !LeftoverTemporaryFiles("strips-input-failed.exr"));
+  }
+  for (int stripRows : { 256, 0 })
+  {
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputConnection(source->GetOutputPort());
+    const std::string path = tmp + "/strips-aborted.exr";
+    setup(w, path, "ZIP", stripRows);
+    AbortOnProgress(w);
+    vtkNew<vtkTest::ErrorObserver> errors;
+    w->AddObserver(vtkCommand::ErrorEvent, errors);
+    AP_CHECK(w->Write() == 0);
+    AP_CHECK_CONTAINS(errors->GetErrorMessage(), "strips-aborted.exr' was aborted");
+    AP_CHECK(!Exists(path) && !LeftoverTemporaryFiles("strips-aborted.exr"));
+  }
+}
 } // namespace
 
 int TestApertureEXR(int argc, char* argv[])
@@ -1111,5 +1261,6 @@ int TestApertureEXR(int argc, char* argv[])
   TestWriterErrors();
   TestReaderErrors();
   TestExrHeader();
+  TestStrips();
   return aptest::Result();
 }
