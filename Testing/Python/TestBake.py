@@ -295,11 +295,16 @@ class TestBake(unittest.TestCase):
         dem = rough_dem(self.path("strips.tif"), (700, 150), 8, np.s_[300:305, 40:48])
         options = ["--radius", 1500, "-d", 8, "--products", "all"]
         whole_out, strips_out = self.path("strips-whole.tif"), self.path("strips-out.tif")
-        status, _, err = run("bake", dem, whole_out, *options)
+        whole_exr, strips_exr = self.path("strips-whole.exr"), self.path("strips-out.exr")
+        status, _, err = run("bake", dem, whole_out, *options, "--exr", whole_exr)
         self.assertEqual(status, 0, err)
-        status, stdout, err = run("bake", dem, strips_out, *options, "--max-memory", "5M")
+        status, stdout, err = run("bake", dem, strips_out, *options, "--max-memory", "5M",
+                                  "--exr", strips_exr)
         self.assertEqual(status, 0, err)
         self.assertIn("in 3 strips of 256 rows: the whole did not fit in --max-memory", stdout)
+        # the EXR from the same strips (each computed once), the same file byte for byte
+        with open(whole_exr, "rb") as a, open(strips_exr, "rb") as b:
+            self.assertEqual(a.read(), b.read())
         whole, whole_meta, whole_gt, whole_srs = bands(whole_out)
         strips, meta, gt, srs = bands(strips_out)
         self.assertEqual(list(strips), list(whole))
@@ -331,24 +336,21 @@ class TestBake(unittest.TestCase):
         self.assertIn("in 3 strips of 256 rows", stdout)
         self.assertEqual(len(err.strip().splitlines()), 1, err)
         self.assertIn("aperture: warning: elevations range from -32768 to ", err)
-        # the EXR needs every cell at once; too little memory for one tile row; bad sizes
-        for extra, message in (
-                (["--max-memory", "5M", "--exr", self.path("strips.exr")],
-                 "; --exr needs the products of every cell at once (the GeoTIFF alone is "
-                 "written in strips that fit): leave it out, or bake a window"),
-                (["--max-memory", "2M"], "and strips of 256 rows (the GeoTIFF's tiles) would "
-                 "not fit either: the products of 150 x 256 cells, with the 150 x 360 cells of "
-                 "DEM around them, need about 3.755 MiB (HorizonAngles take 4 bytes per cell "
-                 "and direction), more than --max-memory 2.000 MiB; "
-                 "bake a window with --srcwin")):
-            status, _, err = run("bake", dem, self.path("strips-refused.tif"), *options, *extra)
-            self.assertEqual(status, 1, err)
-            self.assertIn("aperture: error: a 150 x 700 DEM with these products needs about "
-                          "9.012 MiB (HorizonAngles take 4 bytes per cell and direction), more "
-                          "than --max-memory ", err)
-            self.assertIn(message, err)
-            self.assertEqual(len(err.strip().splitlines()), 1, err)
-            self.assertFalse(os.path.exists(self.path("strips-refused.tif")))
+        # too little memory for one tile row: refused before anything is written; bad sizes
+        status, _, err = run("bake", dem, self.path("strips-refused.tif"), *options,
+                             "--max-memory", "2M", "--exr", self.path("strips-refused.exr"))
+        self.assertEqual(status, 1, err)
+        self.assertEqual(err.strip(), "aperture: error: a 150 x 700 DEM with these products "
+                         "needs about 9.012 MiB (HorizonAngles take 4 bytes per cell and "
+                         "direction), more than --max-memory 2.000 MiB, and strips of 256 rows "
+                         "(the GeoTIFF's tiles) would not fit either: the products of 150 x 256 "
+                         "cells, with the 150 x 360 cells of DEM around them, need about 3.755 "
+                         "MiB (HorizonAngles take 4 bytes per cell and direction), more than "
+                         "--max-memory 2.000 MiB; bake a window with --srcwin and a --radius "
+                         "(only the DEM within the radius around it is read), use --decimate or "
+                         "--overview, or bake fewer --products")
+        self.assertFalse(os.path.exists(self.path("strips-refused.tif")))
+        self.assertFalse(os.path.exists(self.path("strips-refused.exr")))
         for bad in ("0", "-3M", "lots", "1e3"):
             status, _, err = run("bake", dem, self.path("strips-refused.tif"),
                                  "--max-memory=" + bad)
@@ -495,7 +497,7 @@ class TestBake(unittest.TestCase):
         # about 0.4). What the bake spends after the signal is measured in CPU time, not wall
         # time, so that a loaded machine (a parallel ctest) cannot fail it: one sector of 32 is
         # about 0.3 s of CPU on two threads, the rest of the sweep at least 6 s. The same in
-        # strips (--max-memory), where the writer removes the file it had begun.
+        # strips (--max-memory), where the writers remove the files they had begun.
         import resource
         import signal
         import time
@@ -508,7 +510,8 @@ class TestBake(unittest.TestCase):
                 fields = f.read().rsplit(")", 1)[1].split()
             return (int(fields[11]) + int(fields[12])) / tick
 
-        for options in ([], ["--radius", "20000", "--max-memory", "100M"]):
+        exr = self.path("interrupt-out.exr")
+        for options in ([], ["--radius", "20000", "--max-memory", "100M", "--exr", exr]):
             before = resource.getrusage(resource.RUSAGE_CHILDREN)
             p = subprocess.Popen([APERTURE, "bake", dem, out, "-q"] + options,
                                  stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -524,7 +527,7 @@ class TestBake(unittest.TestCase):
             used = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
             self.assertEqual(p.returncode, 130, stderr)
             self.assertEqual((stdout, stderr), ("", ""))
-            self.assertFalse(os.path.exists(out), options)
+            self.assertFalse(os.path.exists(out) or os.path.exists(exr), options)
             self.assertLess(used - sent, 1.0, options)
 
     def test_out_of_memory(self):

@@ -667,9 +667,9 @@ def _plan_bake(args, watcher, sky):
     --srcwin bakes the window's cells with horizons from the DEM around it (so that windows
     tile a DEM), reading the DEM within the radius around it (without one, all of it). When the
     sky filter cannot hold it all (beside the elevations, 4 bytes a cell: past physical memory
-    Linux kills the process instead of failing an allocation), the GeoTIFF is baked in strips
-    of whole 256-row tiles, each reading its own halo, as many rows as fit; refused when not
-    even one tile row fits, or when --exr (which needs the whole image) is asked for."""
+    Linux kills the process instead of failing an allocation), the outputs are baked in
+    strips of whole 256-row tiles, each reading its own halo, as many rows as fit; refused when
+    not even one tile row fits."""
     reader, window, read, whole = _window_reading(args, watcher, sky)
     size = lambda e: (e[1] - e[0] + 1, e[3] - e[2] + 1)
 
@@ -685,10 +685,6 @@ def _plan_bake(args, watcher, sky):
               "around it is read), use --decimate or --overview, or bake fewer --products")
     if ny <= 256:  # (one tile row: strips would be the same request)
         raise ApertureError("%s; %s" % (whole_problem, advice))
-    if args.exr:
-        raise ApertureError("%s; --exr needs the products of every cell at once (the "
-                            "GeoTIFF alone is written in strips that fit): leave it out, "
-                            "or %s" % (whole_problem, advice))
     # the halo of a strip inside the grid, from a row in the middle
     middle = (window[2] + window[3]) // 2
     one = _input_extent(watcher, sky, [window[0], window[1], middle, middle, 0, 0])
@@ -708,6 +704,35 @@ def _plan_bake(args, watcher, sky):
         raise ApertureError("%s, and strips of 256 rows (the GeoTIFF's tiles) would not "
                             "fit either: %s; %s" % (whole_problem, strip_problem(1), advice))
     return reader, window, read, 256 * fits
+
+
+def _write_strips(watcher, clip, window, extents, outputs, guard, started):
+    """Update `clip` for each extent of `window` in turn, north first, and write it into every
+    (writer, path) of `outputs` (their BeginStrips with the first, EndStrips after the last);
+    on an error or an interrupt (`guard`) the files begun are abandoned, the interrupt left to
+    `guard`."""
+    begun = []
+    try:
+        for extent in extents:
+            strip = watcher.update(clip, "bake", extent=extent)
+            if guard.interrupted:
+                return  # (an aborted sky filter's strip is incomplete)
+            for output, path in outputs:
+                if output not in begun and output.BeginStrips(strip, window):
+                    begun.append(output)
+                    started.append(path)
+                output.WriteStrip(strip)
+                if guard.interrupted:
+                    return
+                watcher.check("writing %s" % path)
+            strip.ReleaseData()  # (one strip at a time)
+        for output, path in outputs:
+            begun.remove(output)
+            output.EndStrips()
+            watcher.check("writing %s" % path)
+    finally:
+        for output in begun:
+            output.AbandonStrips()
 
 
 def cmd_bake(args):
@@ -796,19 +821,21 @@ def _bake(args, products, progress):
     started = []  # the outputs begun: an interrupt removes them (a writer also removes its own)
     try:
         if rows:
-            # In strips: the writer asks for each (the sky filter reading it and its halo) and
-            # writes it before the next; a clip makes the window the writer's whole extent.
+            # In strips, north first: the sky filter computes each (reading it and its halo)
+            # and every output writes it before the next; a clip makes the window the whole
+            # extent.
             from vtkmodules.vtkImagingCore import vtkImageClip
             clip = vtkImageClip()
             clip.SetInputConnection(sky.GetOutputPort())
             clip.SetOutputWholeExtent(window)
             clip.ClipDataOff()
-            clip.ReleaseDataFlagOn()  # (its shallow copy would keep a strip beside the next)
-            writer.SetInputConnection(clip.GetOutputPort())
-            writer.SetStripRows(rows)
-            for name in products:
-                writer.AddArrayName(name)
-            strips = -(-(window[3] - window[2] + 1) // rows)
+            outputs = [(writer, args.output)] + ([(exr, args.exr)] if exr else [])
+            for output, _ in outputs:
+                for name in products:
+                    output.AddArrayName(name)
+            extents = [[window[0], window[1], max(window[2], top - rows + 1), top, 0, 0]
+                       for top in range(window[3], window[2] - 1, -rows)]
+            strips = len(extents)
             done = [-1]  # strips started
             sky.AddObserver("StartEvent", lambda obj, _: done.__setitem__(0, done[0] + 1))
             if progress:
@@ -816,9 +843,8 @@ def _bake(args, products, progress):
                 sky.AddObserver("ProgressEvent", lambda obj, _: progress(
                     (done[0] + 0.95 * obj.GetProgress()) / strips))
             sweep_start = time.perf_counter()
-            with _abort_on_interrupt(sky, writer):
-                started.append(args.output)
-                watcher.write(writer, "writing %s" % args.output)
+            with _abort_on_interrupt(sky, writer, *([exr] if exr else [])) as guard:
+                _write_strips(watcher, clip, window, extents, outputs, guard, started)
             sweep_seconds = time.perf_counter() - sweep_start
             nx, ny = window[1] - window[0] + 1, window[3] - window[2] + 1
         else:
@@ -1145,8 +1171,7 @@ def build_parser():
                         "elevations (4 bytes a cell): a number of MiB, or with K, M, G or T "
                         "(default: the machine's physical memory less the elevations); a bake "
                         "that needs more is "
-                        "written in strips of rows that fit, with the same results (not with "
-                        "--exr)")
+                        "written in strips of rows that fit, with the same results")
     p.add_argument("--near-field", type=int, default=0, metavar="K",
                    help="columns of each cell's ray evaluated exactly, 1..64 (default 0: 32 "
                         "where the horizon sweep runs, 8 where rays are sampled at every "
