@@ -322,6 +322,21 @@ class TestBake(unittest.TestCase):
         for name in whole:
             np.testing.assert_array_equal(window[name][0], whole[name][0][100:660, 20:120],
                                           err_msg=name)
+        # without a radius every strip reads and sweeps the whole DEM: the same values, and a
+        # warning that says what that costs
+        status, _, err = run("bake", dem, whole_out, "-d", 8, "--products", "all")
+        self.assertEqual(status, 0, err)
+        status, stdout, err = run("bake", dem, strips_out, "-d", 8, "--products", "all",
+                                  "--max-memory", "5M")
+        self.assertEqual(status, 0, err)
+        self.assertIn("in 3 strips of 256 rows", stdout)
+        self.assertEqual(err.strip(), "aperture: warning: without --radius each of the 3 strips "
+                         "reads and sweeps the whole DEM (about 3 times the work of one pass); "
+                         "a --radius limits each to the DEM within it")
+        unlimited, _, _, _ = bands(whole_out)
+        in_strips, _, _, _ = bands(strips_out)
+        for name in unlimited:
+            np.testing.assert_array_equal(in_strips[name][0], unlimited[name][0], err_msg=name)
         # a warning that every strip gives (here an undeclared nodata value of -32768 in each)
         # is printed once
         odd = rough_dem(self.path("strips-odd.tif"), (700, 150), 8)
