@@ -5,19 +5,14 @@
 #include "vtkApertureGeoreference.h"
 #include "vtkApertureStripDriver.h"
 
-#include "vtkAlgorithmOutput.h"
-#include "vtkCommand.h"
 #include "vtkDataArray.h"
-#include "vtkDemandDrivenPipeline.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <cpl_conv.h>
 #include <cpl_string.h>
