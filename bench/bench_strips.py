@@ -2,7 +2,7 @@
 """Benchmark: `aperture bake` in strips (a bake that does not fit in memory) against at once.
 
     build/bin/aperture-python bench/bench_strips.py [--size 2048] [--repeat 3]
-        [--radii 3000,20000] [--workdir /tmp/aperture-bench-bake]
+        [--radii 3000,20000,unlimited] [--workdir /tmp/aperture-bench-bake]
 
 A bake whose products and sweep do not fit in memory (or in --max-memory) is written in strips
 of 256-row tiles, each reading its rows plus the DEM within the radius around them. For each
@@ -34,7 +34,9 @@ APERTURE = os.path.join(REPO, "build", "bin", "aperture")
 
 def bake(dem, out, radius, max_memory=None):
     """(seconds, peak resident bytes, stdout) of one bake."""
-    command = ["/usr/bin/time", "-v", APERTURE, "bake", dem, out, "--radius", str(radius), "-q"]
+    command = ["/usr/bin/time", "-v", APERTURE, "bake", dem, out, "-q"]
+    if radius:
+        command += ["--radius", str(radius)]
     if max_memory:
         command += ["--max-memory", "%dK" % (max_memory // 1024)]
     t = time.perf_counter()
@@ -59,7 +61,8 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--size", type=int, default=2048)
     parser.add_argument("--repeat", type=int, default=3)
-    parser.add_argument("--radii", default="3000,20000", help="metres")
+    parser.add_argument("--radii", default="3000,20000,unlimited",
+                        help="metres, or 'unlimited' (no --radius)")
     parser.add_argument("--workdir", default="/tmp/aperture-bench-bake")
     args = parser.parse_args()
     if not os.path.exists(APERTURE):
@@ -72,14 +75,14 @@ def main():
     print("| radius | at once | strips of 256 rows | time ratio | peak memory at once | "
           "in strips | ratio |")
     print("|---|---|---|---|---|---|---|")
-    for radius in (float(r) for r in args.radii.split(",")):
+    for radius in (None if r == "unlimited" else float(r) for r in args.radii.split(",")):
         # The sky filter's need (vtkApertureSkyVisibility.h): 21 bytes a cell it reads (its
         # float copy of the elevations and the sweep's state) and 41 a cell it computes (the
         # seven default products, EdgeTruncated as float beside its byte flags, and the
         # strip's copy of the elevations). A strip of r rows reads r + 2 halo rows, the halo
         # the radius over the 30 m cells and 2 more; a budget just below 512 rows' need leaves
         # 256-row strips.
-        halo = math.ceil(radius / 30.0) + 2
+        halo = math.ceil(radius / 30.0) + 2 if radius else n  # (unlimited: all of the DEM)
         need = lambda rows: 21.0 * n * min(n, rows + 2 * halo) + 41.0 * n * rows
         budget = int(need(512)) - 1024
         once, strips = [], []
@@ -95,8 +98,9 @@ def main():
             raise SystemExit("the strips' GeoTIFF differs from the one at once")
         t1, t2 = (statistics.median(s for s, _ in runs) for runs in (once, strips))
         m1, m2 = (statistics.median(m for _, m in runs) for runs in (once, strips))
-        print("| %g km | %.2f s | %.2f s | %.2f | %.0f MB | %.0f MB | %.2f |"
-              % (radius / 1000, t1, t2, t2 / t1, m1 / 1e6, m2 / 1e6, m2 / m1))
+        print("| %s | %.2f s | %.2f s | %.2f | %.0f MB | %.0f MB | %.2f |"
+              % ("%g km" % (radius / 1000) if radius else "unlimited", t1, t2, t2 / t1,
+                 m1 / 1e6, m2 / 1e6, m2 / m1))
 
 
 if __name__ == "__main__":

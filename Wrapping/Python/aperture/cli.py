@@ -836,10 +836,6 @@ def _bake(args, products, progress):
             extents = [[window[0], window[1], max(window[2], top - rows + 1), top, 0, 0]
                        for top in range(window[3], window[2] - 1, -rows)]
             strips = len(extents)
-            if not args.radius:
-                warn_once("without --radius each of the %d strips reads and sweeps the whole DEM "
-                          "(about %d times the work of one pass); a --radius limits each to the "
-                          "DEM within it" % (strips, strips))
             done = [-1]  # strips started
             sky.AddObserver("StartEvent", lambda obj, _: done.__setitem__(0, done[0] + 1))
             if progress:
