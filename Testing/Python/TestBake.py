@@ -501,6 +501,29 @@ class TestBake(unittest.TestCase):
         status, _, err = run("bake", self.dem)
         self.assertEqual(status, 2)
 
+    def test_interrupt_in_a_start_event(self):
+        # A Ctrl-C that Python handles in a StartEvent observer (the bake counts its strips in
+        # one) sets AbortExecute just before the executive resets it. The interrupt guard sets
+        # it again at the next progress event, so the sky filter stops after its first sector
+        # of 32 instead of running to the end (a strip of minutes, on a large DEM).
+        import signal
+        import aperture
+        from aperture.cli import _abort_on_interrupt
+        reader = aperture.vtkApertureDEMReader()
+        reader.SetFileName(rough_dem(self.path("start-event.tif"), (200, 150), 12))
+        reader.Update()
+        sky = aperture.vtkApertureSkyVisibility()
+        sky.SetInputConnection(reader.GetOutputPort())
+        sky.SetNumberOfThreads(1)
+        sky.AddObserver("StartEvent", lambda obj, _: signal.raise_signal(signal.SIGINT))
+        progress = []
+        sky.AddObserver("ProgressEvent", lambda obj, _: progress.append(obj.GetProgress()))
+        with self.assertRaises(KeyboardInterrupt):
+            with _abort_on_interrupt(sky):
+                sky.Update()
+        self.assertTrue(progress, "the sweep never ran")
+        self.assertLessEqual(max(progress), 1.0 / 32 + 1e-9, progress)
+
     def test_interrupt(self):
         # Ctrl-C during the sweep stops it after the sector in progress (the filter's
         # AbortExecute, set from the signal handler that its progress observer lets run), exits

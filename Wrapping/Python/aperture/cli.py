@@ -617,9 +617,15 @@ class _abort_on_interrupt:
         for algorithm in self.algorithms:
             algorithm.SetAbortExecute(1)
 
+    def _progress(self, algorithm, event):
+        # (the handler runs here; and again after an abort VTK has undone: a handler that ran
+        # in a StartEvent observer lost its abort when the executive reset AbortExecute next)
+        if self.interrupted:
+            algorithm.SetAbortExecute(1)
+
     def __enter__(self):
         import signal
-        self.observers = [a.AddObserver("ProgressEvent", lambda obj, _: None)
+        self.observers = [a.AddObserver("ProgressEvent", self._progress)
                           for a in self.algorithms]
         self.previous = signal.signal(signal.SIGINT, self._handler)
         return self
