@@ -312,9 +312,13 @@ class TestBake(unittest.TestCase):
             np.testing.assert_array_equal(strips[name][0], whole[name][0], err_msg=name)
             self.assertEqual(strips[name][1], whole[name][1])  # units, definitions
         self.assertEqual((meta, gt, srs), (whole_meta, whole_gt, whole_srs))
-        # a window in strips: the window's cells of the whole bake
-        status, stdout, err = run("bake", dem, strips_out, *options, "--max-memory", "3M",
-                                  "--srcwin", 20, 100, 100, 560)
+        # a window in strips: the window's cells of the whole bake; its EXR (georeferenced
+        # at the window) the same as the window's at once
+        window_options = options + ["--srcwin", 20, 100, 100, 560]
+        status, _, err = run("bake", dem, whole_out, *window_options, "--exr", whole_exr)
+        self.assertEqual(status, 0, err)
+        status, stdout, err = run("bake", dem, strips_out, *window_options, "--max-memory", "3M",
+                                  "--exr", strips_exr)
         self.assertEqual(status, 0, err)
         self.assertIn("for 100 x 560 cells", stdout)
         self.assertIn("in 3 strips of 256 rows", stdout)
@@ -322,6 +326,8 @@ class TestBake(unittest.TestCase):
         for name in whole:
             np.testing.assert_array_equal(window[name][0], whole[name][0][100:660, 20:120],
                                           err_msg=name)
+        with open(whole_exr, "rb") as a, open(strips_exr, "rb") as b:
+            self.assertEqual(a.read(), b.read())
         # without a radius every strip reads the whole DEM: the same values
         status, _, err = run("bake", dem, whole_out, "-d", 8, "--products", "all")
         self.assertEqual(status, 0, err)
