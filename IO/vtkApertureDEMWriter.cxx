@@ -278,6 +278,12 @@ int vtkApertureDEMWriter::Write()
 }
 
 //------------------------------------------------------------------------------
+int vtkApertureDEMWriter::GetTileSize()
+{
+  return Tile;
+}
+
+//------------------------------------------------------------------------------
 int vtkApertureDEMWriter::BeginStrips(vtkImageData* image, const int whole[6])
 {
   this->EndFile(false); // (a file begun and never ended)

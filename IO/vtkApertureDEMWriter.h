@@ -97,6 +97,10 @@ public:
   vtkGetMacro(StripRows, int);
   ///@}
 
+  /** Rows and columns of the file's square tiles (256): strips of whole tile rows are
+   * written without rewriting a tile. */
+  static int GetTileSize();
+
   /** Write the file (in strips when StripRows > 0); 1 on success, 0 after an error. */
   int Write() override;
 

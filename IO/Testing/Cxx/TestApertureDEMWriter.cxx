@@ -362,6 +362,7 @@ void TestStrips()
     w->SetInputConnection(source->GetOutputPort());
     setup(w, tmp + "/strips.tif", 1);
     AP_CHECK(w->GetStripRows() == 1);
+    AP_CHECK(vtkApertureDEMWriter::GetTileSize() == 256); // (the strips asked below)
     AP_CHECK(w->Write() == 1);
     const std::vector<std::vector<int>> asked = { { 0, 599, 264, 519, 0, 0 },
       { 0, 599, 8, 263, 0, 0 }, { 0, 599, 0, 7, 0, 0 } };

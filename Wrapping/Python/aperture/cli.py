@@ -689,7 +689,9 @@ def _plan_bake(args, watcher, sky):
         return reader, window, read, 0
     advice = ("bake a window with --srcwin and a --radius (only the DEM within the radius "
               "around it is read), use --decimate or --overview, or bake fewer --products")
-    if ny <= 256:  # (one tile row: strips would be the same request)
+    from aperture import vtkApertureDEMWriter
+    tile = vtkApertureDEMWriter.GetTileSize()  # (the strips are whole tile rows of the GeoTIFF)
+    if ny <= tile:  # (one tile row: strips would be the same request)
         raise ApertureError("%s; %s" % (whole_problem, advice))
     # the halo of a strip inside the grid, from a row in the middle
     middle = (window[2] + window[3]) // 2
@@ -697,19 +699,20 @@ def _plan_bake(args, watcher, sky):
     halo = max(one[3] - middle, middle - one[2])
     whole_rows = size(whole)[1]
 
-    def strip_problem(tiles):  # for strips of this many 256-row tiles
-        rows = min(256 * tiles, ny)
+    def strip_problem(tiles):  # for strips of this many tile rows
+        rows = min(tile * tiles, ny)
         inner = [one[0], one[1], 0, min(rows + 2 * halo, whole_rows) - 1, 0, 0]
         return problem(inner, nx, rows)
 
-    fits, tiles = 0, -(-ny // 256)
+    fits, tiles = 0, -(-ny // tile)
     while fits + 1 < tiles:  # the most tiles that fit: 'fits' fit, 'tiles' do not
         mid = (fits + tiles) // 2
         fits, tiles = (mid, tiles) if not strip_problem(mid) else (fits, mid)
     if fits == 0 or strip_problem(fits):
-        raise ApertureError("%s, and strips of 256 rows (the GeoTIFF's tiles) would not "
-                            "fit either: %s; %s" % (whole_problem, strip_problem(1), advice))
-    return reader, window, read, 256 * fits
+        raise ApertureError("%s, and strips of %d rows (the GeoTIFF's tiles) would not "
+                            "fit either: %s; %s" % (whole_problem, tile, strip_problem(1),
+                                                    advice))
+    return reader, window, read, tile * fits
 
 
 def _write_strips(watcher, clip, window, extents, outputs, guard, started):
