@@ -286,7 +286,6 @@ int vtkApertureDEMWriter::GetTileSize()
 //------------------------------------------------------------------------------
 int vtkApertureDEMWriter::BeginStrips(vtkImageData* image, const int whole[6])
 {
-  this->EndFile(false); // (a file begun and never ended)
   if (!this->BeginFile(image, whole))
   {
     return 0;
@@ -382,6 +381,7 @@ int vtkApertureDEMWriter::GetNextStripRow()
 bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
 {
   Internals& d = *this->Impl;
+  this->EndFile(false); // (a file begun by BeginStrips and never ended: removed)
   d.Bands.clear();
   if (!this->FileName || !*this->FileName)
   {

@@ -445,6 +445,19 @@ void TestStrips()
     AP_CHECK(w->EndStrips() == 1);
     AP_CHECK(SameContents(whole, path));
   }
+  {
+    // a file begun and never ended is removed when the writer writes another
+    vtkNew<vtkApertureDEMWriter> w;
+    const std::string begun = tmp + "/strips-begun.tif", once = tmp + "/strips-then-once.tif";
+    setup(w, begun, 0);
+    AP_CHECK(w->BeginStrips(rows(0, 519), all) == 1);
+    w->SetFileName(once.c_str());
+    w->SetInputData(image);
+    AP_CHECK(w->Write() == 1);
+    struct stat sb;
+    AP_CHECK(stat(begun.c_str(), &sb) != 0);
+    AP_CHECK(SameContents(whole, once));
+  }
   // strips as { first row, last row, WriteStrip's result }
   auto failing = [&](const std::vector<std::vector<int>>& strips, const std::string& expected) {
     vtkNew<vtkApertureDEMWriter> w;

@@ -1194,6 +1194,18 @@ void TestStrips()
     AP_CHECK(w->EndStrips() == 1);
     AP_CHECK(aptest::ReadFileBytes(path) == aptest::ReadFileBytes(zipWhole));
   }
+  {
+    // a file begun and never ended leaves nothing when the writer writes another
+    vtkNew<vtkApertureEXRWriter> w;
+    const std::string begun = tmp + "/strips-begun.exr", once = tmp + "/strips-then-once.exr";
+    setup(w, begun, "ZIP", 0);
+    AP_CHECK(w->BeginStrips(rows(0, ny - 1), all) == 1);
+    w->SetFileName(once.c_str());
+    w->SetInputData(image);
+    AP_CHECK(w->Write() == 1);
+    AP_CHECK(!Exists(begun) && !LeftoverTemporaryFiles("strips-begun.exr"));
+    AP_CHECK(aptest::ReadFileBytes(once) == aptest::ReadFileBytes(zipWhole));
+  }
   // strips as { first row, last row, WriteStrip's result }, into a path that holds a file
   auto failing = [&](const std::vector<std::vector<int>>& strips, const std::string& expected) {
     const std::string path = tmp + "/strips-failed.exr";
