@@ -305,39 +305,11 @@ int vtkApertureDEMWriter::WriteStrip(vtkImageData* strip)
                                : "no file begun: call BeginStrips() first"));
     return 0;
   }
-  int ext[6] = { 0, -1, 0, -1, 0, -1 };
-  if (strip)
+  int j0 = 0;
+  if (!vtkApertureStripRows(this, strip, d.Whole, d.NextRow, Tile, "a tile row", d.Path, j0))
   {
-    strip->GetExtent(ext);
-  }
-  const int* whole = d.Whole;
-  if (d.NextRow < whole[2])
-  {
-    vtkErrorMacro(<< "every row of '" << d.Path << "' is written already");
     d.Failed = true;
     return 0;
-  }
-  if (ext[0] > whole[0] || ext[1] < whole[1] || ext[2] > d.NextRow || ext[3] < d.NextRow)
-  {
-    vtkErrorMacro(<< "the strip's extent (" << ext[0] << ".." << ext[1] << ", " << ext[2] << ".."
-                  << ext[3] << ") does not hold row " << d.NextRow << " of columns " << whole[0]
-                  << " to " << whole[1] << ", the next of '" << d.Path << "'");
-    d.Failed = true;
-    return 0;
-  }
-  // down to the strip's last row, in whole tile rows of the file unless that ends the file
-  int j0 = std::max(ext[2], whole[2]);
-  if (j0 > whole[2])
-  {
-    j0 = d.NextRow + 1 - (d.NextRow - j0 + 1) / Tile * Tile;
-    if (j0 > d.NextRow)
-    {
-      vtkErrorMacro(<< "a strip must hold " << Tile << " rows (a tile row of '" << d.Path
-                    << "') or reach the last row " << whole[2] << "; this one holds rows "
-                    << ext[2] << " to " << d.NextRow);
-      d.Failed = true;
-      return 0;
-    }
   }
   if (!this->WriteRows(strip, j0, d.NextRow))
   {

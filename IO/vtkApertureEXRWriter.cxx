@@ -726,41 +726,18 @@ int vtkApertureEXRWriter::WriteStrip(vtkImageData* strip)
   }
   const int* whole = d.Whole;
   const std::string& path = d.Path;
-  int ext[6] = { 0, -1, 0, -1, 0, -1 };
-  if (strip)
-  {
-    strip->GetExtent(ext);
-  }
   d.Failed = true; // until written
-  if (d.NextRow < whole[2])
+  int j0 = 0;
+  if (!vtkApertureStripRows(this, strip, whole, d.NextRow, d.LinesPerChunk, "a chunk", path, j0))
   {
-    vtkErrorMacro(<< "every row of '" << path << "' is written already");
     return 0;
   }
-  if (ext[0] > whole[0] || ext[1] < whole[1] || ext[2] > d.NextRow || ext[3] < d.NextRow)
-  {
-    vtkErrorMacro(<< "the strip's extent (" << ext[0] << ".." << ext[1] << ", " << ext[2] << ".."
-                  << ext[3] << ") does not hold row " << d.NextRow << " of columns " << whole[0]
-                  << " to " << whole[1] << ", the next of '" << path << "'");
-    return 0;
-  }
-  // Scanlines y0 .. y1 - 1 (image rows NextRow down to j0): whole chunks unless they end the
-  // file.
+  // Scanlines y0 .. y1 - 1: image rows NextRow down to j0.
   const int nx = whole[1] - whole[0] + 1, ny = whole[3] - whole[2] + 1;
   const int lines = d.LinesPerChunk;
-  const int y0 = whole[3] - d.NextRow;
-  int y1 = whole[3] - std::max(ext[2], whole[2]) + 1;
-  if (y1 < ny)
-  {
-    y1 = y0 + (y1 - y0) / lines * lines;
-    if (y1 == y0)
-    {
-      vtkErrorMacro(<< "a strip must hold " << lines << " rows (a chunk of '" << path
-                    << "') or reach the last row " << whole[2] << "; this one holds rows "
-                    << ext[2] << " to " << d.NextRow);
-      return 0;
-    }
-  }
+  const int y0 = whole[3] - d.NextRow, y1 = whole[3] - j0 + 1;
+  int ext[6];
+  strip->GetExtent(ext);
   if (!this->ResolveChannels(strip, path))
   {
     return 0;

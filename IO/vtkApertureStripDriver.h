@@ -16,6 +16,52 @@
 #include "vtkType.h"
 
 #include <algorithm>
+#include <string>
+
+/**
+ * The rows a writer's WriteStrip(strip) writes, from `next` (the next row of `whole` not yet
+ * written, north first) down to `first` (set here): down to the strip's southern row, in
+ * whole multiples of `multiple` rows unless that reaches whole[2]. False after reporting
+ * (on `writer`, naming `path` and `unit`, what `multiple` rows are of the file) a strip that
+ * does not hold the next row and every column of `whole`, one that holds fewer than
+ * `multiple` rows short of the last, or a file whose rows are all written.
+ */
+inline bool vtkApertureStripRows(vtkObject* writer, vtkImageData* strip, const int whole[6],
+  int next, int multiple, const char* unit, const std::string& path, int& first)
+{
+  int ext[6] = { 0, -1, 0, -1, 0, -1 };
+  if (strip)
+  {
+    strip->GetExtent(ext);
+  }
+  if (next < whole[2])
+  {
+    vtkErrorWithObjectMacro(writer, << "every row of '" << path << "' is written already");
+    return false;
+  }
+  if (ext[0] > whole[0] || ext[1] < whole[1] || ext[2] > next || ext[3] < next)
+  {
+    vtkErrorWithObjectMacro(writer, << "the strip's extent (" << ext[0] << ".." << ext[1] << ", "
+                                    << ext[2] << ".." << ext[3] << ") does not hold row " << next
+                                    << " of columns " << whole[0] << " to " << whole[1]
+                                    << ", the next of '" << path << "'");
+    return false;
+  }
+  first = std::max(ext[2], whole[2]);
+  if (first > whole[2])
+  {
+    first = next + 1 - (next - first + 1) / multiple * multiple;
+    if (first > next)
+    {
+      vtkErrorWithObjectMacro(writer, << "a strip must hold " << multiple << " rows (" << unit
+                                      << " of '" << path << "') or reach the last row "
+                                      << whole[2] << "; this one holds rows " << ext[2] << " to "
+                                      << next);
+      return false;
+    }
+  }
+  return true;
+}
 
 /**
  * Update the producer of `writer`'s input for strips of `rows` image rows (rounded up to a
