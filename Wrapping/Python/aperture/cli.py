@@ -827,6 +827,8 @@ def _bake(args, products, progress):
             exr.AddMetadata("aperture:" + key.lower(), value)
         for name in products:
             exr.AddMetadata("aperture:unit:" + name, definitions[name][0])
+    outputs = [(writer, args.output)] + ([(exr, args.exr)] if exr else [])
+    writers = [output for output, _ in outputs]
     started = []  # the outputs begun: an interrupt removes them (a writer also removes its own)
     try:
         if rows:
@@ -838,8 +840,7 @@ def _bake(args, products, progress):
             clip.SetInputConnection(sky.GetOutputPort())
             clip.SetOutputWholeExtent(window)
             clip.ClipDataOff()
-            outputs = [(writer, args.output)] + ([(exr, args.exr)] if exr else [])
-            for output, _ in outputs:
+            for output in writers:
                 for name in products:
                     output.AddArrayName(name)
             extents = [[window[0], window[1], max(window[2], top - rows + 1), top, 0, 0]
@@ -852,7 +853,7 @@ def _bake(args, products, progress):
                 sky.AddObserver("ProgressEvent", lambda obj, _: progress(
                     (done[0] + 0.95 * obj.GetProgress()) / strips))
             sweep_start = time.perf_counter()
-            with _abort_on_interrupt(sky, writer, *([exr] if exr else [])) as guard:
+            with _abort_on_interrupt(sky, *writers) as guard:
                 _write_strips(watcher, clip, window, extents, outputs, guard, started)
             sweep_seconds = time.perf_counter() - sweep_start
             nx, ny = window[1] - window[0] + 1, window[3] - window[2] + 1
@@ -864,26 +865,23 @@ def _bake(args, products, progress):
                 progress(0.0)
                 sky.AddObserver("ProgressEvent",
                                 lambda obj, _: progress(0.95 * obj.GetProgress()))
-            with _abort_on_interrupt(sky, writer, *([exr] if exr else [])):
+            with _abort_on_interrupt(sky, *writers):
                 sweep_start = time.perf_counter()
                 # (the reader has run: the sky filter alone)
                 result = watcher.update(sky, "bake", extent=window)
                 sweep_seconds = time.perf_counter() - sweep_start
                 image = _product_image(result, products)
                 nx, ny, _ = image.GetDimensions()
-                writer.SetInputData(image)
-                started.append(args.output)
-                watcher.write(writer, "writing %s" % args.output)
-                if exr:
-                    exr.SetInputData(image)
-                    started.append(args.exr)
-                    watcher.write(exr, "writing %s" % args.exr)
+                for output, path in outputs:
+                    output.SetInputData(image)
+                    started.append(path)
+                    watcher.write(output, "writing %s" % path)
     except KeyboardInterrupt:
         for path in started:
             if os.path.exists(path):
                 os.remove(path)
         raise
-    written = [os.path.abspath(p) for p in [args.output] + ([args.exr] if exr else [])]
+    written = [os.path.abspath(path) for _, path in outputs]
     if progress:
         progress(1.0)
     print("wrote %s: %s for %d x %d cells, %d directions, in %.1f s (sky filter %.2f s%s)"
