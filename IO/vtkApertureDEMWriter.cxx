@@ -220,16 +220,29 @@ void* vtkApertureDEMWriter::CheckCompression(std::string& codec, const char*& le
   {
     ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
   }
-  const std::vector<std::string> codecs = GeoTIFFCodecs(driver);
-  if (std::find(codecs.begin(), codecs.end(), codec) == codecs.end())
+  // The codecs that keep floating-point samples exactly. JPEG and WEBP take 8- or 12-bit
+  // samples, the CCITT ones 1-bit: GDAL refuses them for every tile, and on its compression
+  // threads, where no caller sees the error, leaves the tiles out of a file that looks whole.
+  static const char* const lossless[] = { "NONE", "LZW", "PACKBITS", "DEFLATE", "ZSTD", "LZMA",
+    "LERC", "LERC_DEFLATE", "LERC_ZSTD" };
+  const std::vector<std::string> offered = GeoTIFFCodecs(driver);
+  std::string usable;
+  for (const std::string& c : offered)
   {
-    std::string known;
-    for (const std::string& c : codecs)
-    {
-      known += (known.empty() ? "" : ", ") + c;
-    }
-    vtkErrorMacro(<< "unknown GeoTIFF compression '" << (this->Compression ? this->Compression : "")
-                  << "' (GDAL offers " << known << ")");
+    const bool exact = std::find(std::begin(lossless), std::end(lossless), c) != std::end(lossless);
+    usable += exact ? (usable.empty() ? "" : ", ") + c : std::string();
+  }
+  const char* name = this->Compression ? this->Compression : "";
+  if (std::find(offered.begin(), offered.end(), codec) == offered.end())
+  {
+    vtkErrorMacro(<< "unknown GeoTIFF compression '" << name << "' (GDAL offers " << usable
+                  << " for floating-point bands)");
+    return nullptr;
+  }
+  if (std::find(std::begin(lossless), std::end(lossless), codec) == std::end(lossless))
+  {
+    vtkErrorMacro(<< "GeoTIFF compression '" << name
+                  << "' cannot store floating-point bands; choose one of " << usable);
     return nullptr;
   }
   const CompressionLevelOption* level = nullptr;

@@ -16,13 +16,16 @@
  *
  * Samples: Float32 bands, or Float64 when any written array is double. NaN is the nodata value
  * and is declared as such. Compression: DEFLATE with the floating-point predictor, tiled
- * 256 x 256, BigTIFF when needed; Compression may name another GeoTIFF codec (LZW, ZSTD,
- * NONE, ...), CompressionLevel sets its level (default 1, the fastest). Tiles are compressed
- * on NumberOfThreads threads (GDAL's NUM_THREADS; the file's bytes do not depend on it).
+ * 256 x 256, BigTIFF when needed; Compression may name another GeoTIFF codec that keeps
+ * floating-point samples exactly (NONE, LZW, PACKBITS, ZSTD, LZMA, LERC, LERC_DEFLATE,
+ * LERC_ZSTD, where GDAL offers them), CompressionLevel sets its level (default 1, the
+ * fastest). Tiles are compressed on NumberOfThreads threads (GDAL's NUM_THREADS; the file's
+ * bytes do not depend on it).
  *
  * Errors (vtkErrorMacro, nothing left behind): no file name, an input that is not 2-D, a named
- * array that does not exist, an array that is not numeric, a codec GDAL does not offer, a
- * compression level outside the codec's range, or GDAL failing to create or write.
+ * array that does not exist, an array that is not numeric, a codec GDAL does not offer or
+ * one that cannot store floating-point samples (JPEG, WEBP, the CCITT ones), a compression
+ * level outside the codec's range, or GDAL failing to create or write.
  * @sa vtkApertureDEMReader vtkApertureGeoreference
  */
 #ifndef vtkApertureDEMWriter_h
@@ -57,7 +60,8 @@ public:
   ///@}
 
   ///@{
-  /** GeoTIFF COMPRESS option (case-insensitive). Default "DEFLATE". */
+  /** GeoTIFF COMPRESS option (case-insensitive), one of the lossless codecs above. Default
+   * "DEFLATE". */
   vtkSetStringMacro(Compression);
   vtkGetStringMacro(Compression);
   ///@}
@@ -72,8 +76,8 @@ public:
   vtkGetMacro(CompressionLevel, int);
   ///@}
 
-  /** Whether GDAL's GeoTIFF driver offers Compression and CompressionLevel is within its
-   * range; otherwise false, with an error naming the problem. Writing checks the same first;
+  /** Whether GDAL's GeoTIFF driver offers Compression, it keeps floating-point samples, and
+   * CompressionLevel is within its range; otherwise false, with an error naming the problem. Writing checks the same first;
    * callers with long pipelines ahead of the writer call this to fail early. */
   bool CheckCompression();
 

@@ -490,6 +490,7 @@ class TestBake(unittest.TestCase):
                 (("--refraction", "1"), "--refraction must be within [0, 1)"),
                 (("--products", "Slope"), "unknown product 'Slope'"),
                 (("--compress", "FOO"), "unknown GeoTIFF compression 'FOO'"),
+                (("--compress", "JPEG"), "'JPEG' cannot store floating-point bands"),
                 (("--compress-level", "13"), "outside DEFLATE's range 1-12")):
             status, stdout, err = run("bake", self.dem, out, *args)
             self.assertEqual(status, 1, err)

@@ -33,6 +33,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -492,6 +493,68 @@ void ExpectError(vtkApertureDEMWriter* writer, const std::string& expected)
   AP_CHECK_CONTAINS(errors->GetErrorMessage(), expected);
 }
 
+// Every codec the writer accepts keeps each value, NaNs included, when tiles are compressed
+// on GDAL's threads (where GDAL reports a failing codec to nobody: the file would lack the
+// tiles); the codecs that cannot store float samples are refused before any file exists.
+void TestCodecs()
+{
+  vtkSmartPointer<vtkImageData> image = NoisyImage(300, 270, 777u, 1e-3f, "Elevation");
+  vtkFloatArray* z = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Elevation"));
+  for (vtkIdType k = 0; k < z->GetNumberOfTuples(); k += 37)
+  {
+    z->SetValue(k, std::numeric_limits<float>::quiet_NaN());
+  }
+  int written = 0;
+  for (const char* codec :
+    { "NONE", "LZW", "PACKBITS", "ZSTD", "LZMA", "LERC", "LERC_DEFLATE", "LERC_ZSTD" })
+  {
+    vtkNew<vtkApertureDEMWriter> writer;
+    writer->SetCompression(codec);
+    const std::string path = tmp + "/codec_" + codec + ".tif";
+    writer->SetInputData(image);
+    writer->SetFileName(path.c_str());
+    writer->SetNumberOfThreads(2);
+    AP_CHECK(writer->Write() == 1);
+    GDALDatasetH ds = GDALOpen(path.c_str(), GA_ReadOnly);
+    AP_CHECK(ds != nullptr);
+    if (!ds)
+    {
+      continue;
+    }
+    std::vector<float> back(300 * 270);
+    AP_CHECK(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Read, 0, 0, 300, 270, back.data(), 300,
+               270, GDT_Float32, 0, 0) == CE_None);
+    int differ = 0;
+    for (int row = 0; row < 270; ++row)
+    {
+      for (int col = 0; col < 300; ++col)
+      {
+        const float want = z->GetValue(static_cast<vtkIdType>(269 - row) * 300 + col);
+        const float got = back[static_cast<size_t>(row) * 300 + col];
+        differ += std::isnan(want) ? !std::isnan(got) : !(got == want);
+      }
+    }
+    AP_CHECK(differ == 0);
+    GDALClose(ds);
+    ++written;
+  }
+  AP_CHECK(written == 8); // (Debian 12's GDAL offers them all)
+  for (const char* codec : { "JPEG", "webp", "CCITTFAX4" })
+  {
+    vtkNew<vtkApertureDEMWriter> w;
+    w->SetInputData(image);
+    const std::string path = tmp + "/lossy.tif";
+    w->SetFileName(path.c_str());
+    w->SetCompression(codec);
+    w->SetNumberOfThreads(2);
+    ExpectError(w, std::string("GeoTIFF compression '") + codec +
+        "' cannot store floating-point bands; choose one of NONE, LZW, PACKBITS, DEFLATE");
+    struct stat sb;
+    AP_CHECK(stat(path.c_str(), &sb) != 0); // nothing left behind
+  }
+}
+
+
 void TestErrors()
 {
   {
@@ -563,6 +626,7 @@ int TestApertureDEMWriter(int argc, char* argv[])
   TestSelectionAndTypes();
   TestThreadsSameBytes();
   TestCompressionLevels();
+  TestCodecs();
   TestStrips();
   TestErrors();
   return aptest::Result();

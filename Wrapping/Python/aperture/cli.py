@@ -1169,7 +1169,8 @@ def build_parser():
                         "but HorizonAngles)" % ", ".join(n for n, *_ in PRODUCTS))
     p.add_argument("--exr", metavar="OUT.exr", help="also write the products to this EXR")
     p.add_argument("--compress", default="DEFLATE", metavar="CODEC",
-                   help="GeoTIFF compression: DEFLATE (default), ZSTD, LZW, NONE")
+                   help="GeoTIFF compression, lossless: DEFLATE (default), ZSTD, LZW, LZMA, "
+                        "PACKBITS, LERC, LERC_DEFLATE, LERC_ZSTD, NONE")
     p.add_argument("--compress-level", type=int, default=1, metavar="N",
                    help="compression level: DEFLATE 1-12, ZSTD 1-22; -1: GDAL's default "
                         "(default 1, the fastest: float bands shrink under 1%% more at 6)")
