@@ -77,8 +77,9 @@ public:
   ///@}
 
   /** Whether GDAL's GeoTIFF driver offers Compression, it keeps floating-point samples, and
-   * CompressionLevel is within its range; otherwise false, with an error naming the problem. Writing checks the same first;
-   * callers with long pipelines ahead of the writer call this to fail early. */
+   * CompressionLevel is within its range; otherwise false, with an error naming the problem.
+   * Writing checks the same first; callers with long pipelines ahead of the writer call this
+   * to fail early. */
   bool CheckCompression();
 
   ///@{
