@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Internal (not installed, not wrapped): sizing arrays so that a failed allocation can be
-// reported, the size of the input behind a failed update, the machine's physical memory (the
-// readers' and the sky filter's default size limit) and byte counts for messages.
+// reported (with huge pages asked for large ones), the size of the input behind a failed
+// update, the machine's physical memory (the readers' and the sky filter's default size
+// limit) and byte counts for messages.
 #ifndef vtkApertureMemory_h
 #define vtkApertureMemory_h
 
@@ -10,14 +11,17 @@
 #include "vtkInformationVector.h"
 #include "vtkType.h"
 
+#include "ap_memory.h"
+
 #include <unistd.h>
 
 #include <new>
 #include <sstream>
 #include <string>
 
-// Name and size an array; std::bad_alloc when VTK could not allocate it (VTK reports that and
-// leaves the array short), for RequestData to turn into an error naming the size needed.
+// Name and size an array (huge pages asked for when large); std::bad_alloc when VTK could not
+// allocate it (VTK reports that and leaves the array short), for RequestData to turn into an
+// error naming the size needed.
 inline void vtkApertureAllocate(
   vtkDataArray* a, const char* name, int components, vtkIdType tuples)
 {
@@ -28,6 +32,9 @@ inline void vtkApertureAllocate(
   {
     throw std::bad_alloc();
   }
+  ap_advise_huge_pages(a->GetVoidPointer(0),
+    static_cast<size_t>(tuples) * static_cast<size_t>(components) *
+      static_cast<size_t>(a->GetDataTypeSize()));
 }
 
 // Dimensions of the input image of a failed update, for RequestData's out-of-memory message;

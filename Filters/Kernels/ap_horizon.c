@@ -19,6 +19,7 @@
 #include "ap_horizon.h"
 
 #include "ap_atanf.h"
+#include "ap_memory.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -1016,6 +1017,11 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
     ap_horizon_destroy(hz);
     return AP_ERR_OUT_OF_MEMORY;
   }
+  ap_advise_huge_pages(hz->zt, n * sizeof(float));
+  ap_advise_huge_pages(hz->grad, 2 * nr * sizeof(float));
+  ap_advise_huge_pages(hz->slope, n * sizeof(float));
+  ap_advise_huge_pages(hz->edge, n);
+  ap_advise_huge_pages(hz->bsum, hz->bsum ? 3 * nr * sizeof(float) : 0);
   hz->zmax = (float)stats.max; /* (the largest of floats: exact) */
   for (j = 0; j < hz->ny; ++j) {
     hz->dxr[j] = row_dx(g, j);

@@ -1,0 +1,33 @@
+/* SPDX-License-Identifier: BSD-3-Clause */
+/* madvise is not C11: ask for the system's declarations (this file only). */
+#define _DEFAULT_SOURCE 1
+
+#include "ap_memory.h"
+
+#include <stdint.h>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
+
+void ap_advise_huge_pages(void *p, size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const long page_size = sysconf(_SC_PAGE_SIZE);
+  uintptr_t page, begin, end;
+  if (!p || page_size <= 0 || bytes < ((size_t)4 << 20)) {
+    return;
+  }
+  /* the whole pages inside the buffer (the kernel maps huge pages where 2 MiB fit) */
+  page = (uintptr_t)page_size;
+  begin = ((uintptr_t)p + page - 1) / page * page;
+  end = ((uintptr_t)p + bytes) / page * page;
+  if (end > begin) {
+    (void)madvise((void *)begin, end - begin, MADV_HUGEPAGE);
+  }
+#else
+  (void)p;
+  (void)bytes;
+#endif
+}
