@@ -19,22 +19,36 @@
 #include <sstream>
 #include <string>
 
-// Name and size an array (huge pages asked for when large); std::bad_alloc when VTK could not
-// allocate it (VTK reports that and leaves the array short), for RequestData to turn into an
-// error naming the size needed.
+// Name (unless name is null) and size an array, its values uninitialised; from 4 MiB up in
+// memory that huge pages can cover (ap_alloc_huge), which is first touched faster.
+// std::bad_alloc when the memory could not be had (VTK reports that and leaves the array
+// short), for RequestData to turn into an error naming the size needed.
 inline void vtkApertureAllocate(
   vtkDataArray* a, const char* name, int components, vtkIdType tuples)
 {
-  a->SetName(name);
+  if (name)
+  {
+    a->SetName(name);
+  }
   a->SetNumberOfComponents(components);
-  a->SetNumberOfTuples(tuples);
+  const double bytes = static_cast<double>(tuples) * components * a->GetDataTypeSize();
+  if (a->HasStandardMemoryLayout() && bytes >= 4194304.0 && bytes < 1e18)
+  {
+    void* values = ap_alloc_huge(static_cast<size_t>(bytes));
+    if (!values)
+    {
+      throw std::bad_alloc();
+    }
+    a->SetVoidArray(values, tuples * components, 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+  }
+  else
+  {
+    a->SetNumberOfTuples(tuples);
+  }
   if (a->GetNumberOfTuples() != tuples)
   {
     throw std::bad_alloc();
   }
-  ap_advise_huge_pages(a->GetVoidPointer(0),
-    static_cast<size_t>(tuples) * static_cast<size_t>(components) *
-      static_cast<size_t>(a->GetDataTypeSize()));
 }
 
 // Dimensions of the input image of a failed update, for RequestData's out-of-memory message;

@@ -26,7 +26,9 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
+#include <memory>
 #include <new>
 #include <sstream>
 #include <string>
@@ -419,14 +421,19 @@ int vtkApertureSkyVisibility::Execute(
   }
   // Non-finite elevations (also doubles beyond the float range) are nodata, as the reader
   // makes them; finite ones beyond any on Earth are kept but named in a warning.
-  std::vector<float> z(n);
+  std::unique_ptr<float[], void (*)(void*)> z(
+    static_cast<float*>(ap_alloc_huge(n * sizeof(float))), std::free);
+  if (!z)
+  {
+    throw std::bad_alloc();
+  }
   for (size_t k = 0; k < n; ++k)
   {
     const float v = static_cast<float>(elevation->GetComponent(static_cast<vtkIdType>(k), 0));
     z[k] = std::isfinite(v) ? v : std::numeric_limits<float>::quiet_NaN();
   }
   const ap_grid_view zview =
-    ap_grid_view_make(z.data(), static_cast<size_t>(nx), static_cast<size_t>(ny));
+    ap_grid_view_make(z.get(), static_cast<size_t>(nx), static_cast<size_t>(ny));
   ap_grid_stats range;
   if (ap_grid_stats_compute(&zview, &range) == AP_OK && range.valid > 0 &&
     (range.min < EarthLowest || range.max > EarthHighest))

@@ -403,16 +403,8 @@ int vtkApertureTerrainMesh::Execute(
   const vtkIdType ntri = static_cast<vtkIdType>(rowStart.back());
   vtkNew<vtkCellArray> polys;
   auto fill = [&](auto* offsets, auto* connectivity, auto writeRows) {
-    offsets->SetNumberOfValues(ntri + 1);
-    connectivity->SetNumberOfValues(3 * ntri);
-    if (offsets->GetNumberOfValues() != ntri + 1 || connectivity->GetNumberOfValues() != 3 * ntri)
-    {
-      throw std::bad_alloc(); // (VTK reported it and left the arrays short)
-    }
-    ap_advise_huge_pages(offsets->GetVoidPointer(0),
-      static_cast<size_t>(ntri + 1) * static_cast<size_t>(offsets->GetDataTypeSize()));
-    ap_advise_huge_pages(connectivity->GetVoidPointer(0),
-      static_cast<size_t>(3 * ntri) * static_cast<size_t>(connectivity->GetDataTypeSize()));
+    vtkApertureAllocate(offsets, nullptr, 1, ntri + 1);
+    vtkApertureAllocate(connectivity, nullptr, 1, 3 * ntri);
     auto* ids = connectivity->GetPointer(0);
     auto* offs = offsets->GetPointer(0);
     vtkSMPTools::For(0, quadRows, [&](vtkIdType j0, vtkIdType j1) {

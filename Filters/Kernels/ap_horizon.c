@@ -1005,23 +1005,18 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
   nr = hz->rnx * (hz->rj1 - hz->rj0);
   hz->dxr = (double *)malloc(hz->ny * sizeof(double));
   hz->dyr = (double *)malloc(hz->ny * sizeof(double));
-  hz->zt = (float *)malloc(n * sizeof(float));
-  hz->grad = (float *)malloc(2 * nr * sizeof(float));
-  hz->slope = (float *)malloc(n * sizeof(float));
-  hz->edge = (unsigned char *)malloc(n);
+  hz->zt = (float *)ap_alloc_huge(n * sizeof(float));
+  hz->grad = (float *)ap_alloc_huge(2 * nr * sizeof(float));
+  hz->slope = (float *)ap_alloc_huge(n * sizeof(float));
+  hz->edge = (unsigned char *)ap_alloc_huge(n);
   if (out->diffuse_sky_factor && !out->bent_normal) {
-    hz->bsum = (float *)malloc(3 * nr * sizeof(float));
+    hz->bsum = (float *)ap_alloc_huge(3 * nr * sizeof(float));
   }
   if (!hz->dxr || !hz->dyr || !hz->zt || !hz->grad || !hz->slope || !hz->edge ||
       (out->diffuse_sky_factor && !out->bent_normal && !hz->bsum)) {
     ap_horizon_destroy(hz);
     return AP_ERR_OUT_OF_MEMORY;
   }
-  ap_advise_huge_pages(hz->zt, n * sizeof(float));
-  ap_advise_huge_pages(hz->grad, 2 * nr * sizeof(float));
-  ap_advise_huge_pages(hz->slope, n * sizeof(float));
-  ap_advise_huge_pages(hz->edge, n);
-  ap_advise_huge_pages(hz->bsum, hz->bsum ? 3 * nr * sizeof(float) : 0);
   hz->zmax = (float)stats.max; /* (the largest of floats: exact) */
   for (j = 0; j < hz->ny; ++j) {
     hz->dxr[j] = row_dx(g, j);

@@ -5,6 +5,7 @@
 #include "ap_memory.h"
 
 #include <stdint.h>
+#include <stdlib.h>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -30,4 +31,18 @@ void ap_advise_huge_pages(void *p, size_t bytes)
   (void)p;
   (void)bytes;
 #endif
+}
+
+void *ap_alloc_huge(size_t bytes)
+{
+  const size_t huge = (size_t)2 << 20;
+  void *p;
+  if (bytes < 2 * huge || bytes > SIZE_MAX - huge) {
+    return malloc(bytes ? bytes : 1);
+  }
+  /* (aligned_alloc wants a multiple of the alignment; all of it is ours to advise) */
+  bytes = (bytes + huge - 1) / huge * huge;
+  p = aligned_alloc(huge, bytes);
+  ap_advise_huge_pages(p, bytes);
+  return p;
 }

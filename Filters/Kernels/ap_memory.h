@@ -16,6 +16,11 @@ extern "C" {
  * 4 MiB, for NULL, or off Linux. */
 void ap_advise_huge_pages(void *p, size_t bytes);
 
+/* Uninitialised memory for `bytes` (free() releases it; NULL when out of memory, never for
+ * 0 bytes). From 4 MiB up it starts on a 2 MiB boundary and is rounded up to whole 2 MiB, so that
+ * huge pages (advised as above) can cover all of it; smaller sizes come from malloc. */
+void *ap_alloc_huge(size_t bytes);
+
 #ifdef __cplusplus
 }
 #endif

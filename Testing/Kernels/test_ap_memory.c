@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Unit tests of ap_memory: the huge-page hint leaves every byte as it was, ignores what it
  * should (NULL, small buffers), and, where Linux offers transparent huge pages on request,
- * reaches the kernel: the advised part of a large buffer is a THP-eligible mapping in
- * /proc/self/smaps, the part before the buffer is not touched. */
+ * reaches the kernel (the advised buffer is a THP-eligible mapping in /proc/self/smaps);
+ * ap_alloc_huge gives large buffers on 2 MiB boundaries, advised, and small ones as malloc. */
 #include "ap_memory.h"
 #include "aptest.h"
 
@@ -100,9 +100,40 @@ static void test_reaches_the_kernel(void)
   free(p);
 }
 
+static void test_alloc_huge(void)
+{
+  const size_t huge = (size_t)2 << 20;
+  const size_t sizes[] = { 0, 1, 100, 4 * huge - 1, 4 * huge, 5 * huge + 12345 };
+  size_t s;
+  for (s = 0; s < sizeof sizes / sizeof sizes[0]; ++s) {
+    unsigned char *p = (unsigned char *)ap_alloc_huge(sizes[s]);
+    size_t i, bad = 0;
+    AP_CHECK(p != NULL);
+    if (!p) {
+      continue;
+    }
+    if (sizes[s] >= 2 * huge) {
+      AP_CHECK_EQ_INT((int)((uintptr_t)p % huge), 0);
+      if (thp_on_request()) {
+        AP_CHECK_EQ_INT(thp_eligible((uintptr_t)p), 1);
+        AP_CHECK_EQ_INT(thp_eligible((uintptr_t)(p + sizes[s] - 1)), 1);
+      }
+    }
+    for (i = 0; i < sizes[s]; ++i) {
+      p[i] = (unsigned char)(i * 13u);
+    }
+    for (i = 0; i < sizes[s]; ++i) {
+      bad += p[i] != (unsigned char)(i * 13u);
+    }
+    AP_CHECK_EQ_INT((int)bad, 0);
+    free(p);
+  }
+}
+
 int main(void)
 {
   test_contents_and_no_ops();
   test_reaches_the_kernel();
+  test_alloc_huge();
   AP_TEST_MAIN_END();
 }
