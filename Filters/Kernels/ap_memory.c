@@ -40,9 +40,9 @@ void *ap_alloc_huge(size_t bytes)
   if (bytes < 2 * huge || bytes > SIZE_MAX - huge) {
     return malloc(bytes ? bytes : 1);
   }
-  /* (aligned_alloc wants a multiple of the alignment; all of it is ours to advise) */
-  bytes = (bytes + huge - 1) / huge * huge;
-  p = aligned_alloc(huge, bytes);
-  ap_advise_huge_pages(p, bytes);
+  /* aligned_alloc wants a multiple of the alignment; huge pages for the whole 2 MiB within
+   * `bytes` only, as one over the end would take up to 2 MiB of memory for a few bytes */
+  p = aligned_alloc(huge, (bytes + huge - 1) / huge * huge);
+  ap_advise_huge_pages(p, bytes / huge * huge);
   return p;
 }

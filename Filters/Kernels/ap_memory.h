@@ -17,8 +17,9 @@ extern "C" {
 void ap_advise_huge_pages(void *p, size_t bytes);
 
 /* Uninitialised memory for `bytes` (free() releases it; NULL when out of memory, never for
- * 0 bytes). From 4 MiB up it starts on a 2 MiB boundary and is rounded up to whole 2 MiB, so that
- * huge pages (advised as above) can cover all of it; smaller sizes come from malloc. */
+ * 0 bytes). From 4 MiB up it starts on a 2 MiB boundary, and its whole 2 MiB are advised as
+ * above, so that huge pages cover all of it but the last partial 2 MiB (which would take a
+ * whole huge page of memory); smaller sizes come from malloc. */
 void *ap_alloc_huge(size_t bytes);
 
 #ifdef __cplusplus
