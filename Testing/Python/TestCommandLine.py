@@ -207,6 +207,10 @@ class TestInfo(CommandLineTest):
         self.assert_error("--srcwin 6 1 3 4 is not inside the 8 x 6 raster",
                           "info", p, "--band", 1, "--srcwin", 6, 1, 3, 4)
         self.assertEqual(d["elevation_range"], [10.0, 36.0])
+        # a size of 0 reaches the edge (rows 1..5, columns 2..4: 10 .. 44)
+        d, _ = self.info(p, "--srcwin", 2, 1, 3, 0)
+        self.assertEqual(d["size"], [3, 5])
+        self.assertEqual(d["elevation_range"], [10.0, 44.0])
         d, _ = self.info(p, "--band", 1, "--decimate", 2)
         self.assertEqual(d["size"], [4, 3])
         self.assertEqual(d["cell_size"], [60.0, 60.0])

@@ -40,8 +40,9 @@ def _add_read_options(parser, dem_required=False, srcwin_help=None):
     g.add_argument("--band", "-b", type=int, default=0, metavar="N",
                    help="1-based band to read (default: band 1, with a note if there are more)")
     g.add_argument("--srcwin", type=int, nargs=4, metavar=("XOFF", "YOFF", "XSIZE", "YSIZE"),
-                   help=srcwin_help or "read only this window, in pixels from the top-left "
-                                       "corner (as gdal_translate -srcwin)")
+                   help=(srcwin_help or "read only this window, in pixels from the top-left "
+                                        "corner (as gdal_translate -srcwin)") +
+                   "; a size of 0 reaches the raster's edge")
     g.add_argument("--overview", type=int, default=-1, metavar="K",
                    help="read GDAL overview level K (0-based) instead of full resolution")
     g.add_argument("--decimate", type=int, default=1, metavar="F",
