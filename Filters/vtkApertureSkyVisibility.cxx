@@ -421,8 +421,11 @@ int vtkApertureSkyVisibility::Execute(
   }
   // Non-finite elevations (also doubles beyond the float range) are nodata, as the reader
   // makes them; finite ones beyond any on Earth are kept but named in a warning.
-  std::unique_ptr<float[], void (*)(void*)> z(
-    static_cast<float*>(ap_alloc_huge(n * sizeof(float))), std::free);
+  struct Free
+  {
+    void operator()(float* p) const { std::free(p); }
+  };
+  const std::unique_ptr<float[], Free> z(static_cast<float*>(ap_alloc_huge(n * sizeof(float))));
   if (!z)
   {
     throw std::bad_alloc();
