@@ -225,12 +225,14 @@ void* vtkApertureDEMWriter::CheckCompression(std::string& codec, const char*& le
   // threads, where no caller sees the error, leaves the tiles out of a file that looks whole.
   static const char* const lossless[] = { "NONE", "LZW", "PACKBITS", "DEFLATE", "ZSTD", "LZMA",
     "LERC", "LERC_DEFLATE", "LERC_ZSTD" };
+  auto exact = [](const std::string& c) {
+    return std::find(std::begin(lossless), std::end(lossless), c) != std::end(lossless);
+  };
   const std::vector<std::string> offered = GeoTIFFCodecs(driver);
   std::string usable;
   for (const std::string& c : offered)
   {
-    const bool exact = std::find(std::begin(lossless), std::end(lossless), c) != std::end(lossless);
-    usable += exact ? (usable.empty() ? "" : ", ") + c : std::string();
+    usable += exact(c) ? (usable.empty() ? "" : ", ") + c : std::string();
   }
   const char* name = this->Compression ? this->Compression : "";
   if (std::find(offered.begin(), offered.end(), codec) == offered.end())
@@ -239,7 +241,7 @@ void* vtkApertureDEMWriter::CheckCompression(std::string& codec, const char*& le
                   << " for floating-point bands)");
     return nullptr;
   }
-  if (std::find(std::begin(lossless), std::end(lossless), codec) == std::end(lossless))
+  if (!exact(codec))
   {
     vtkErrorMacro(<< "GeoTIFF compression '" << name
                   << "' cannot store floating-point bands; choose one of " << usable);
@@ -341,13 +343,9 @@ int vtkApertureDEMWriter::EndStrips()
   {
     return 0; // (nothing begun, or BeginStrips failed: reported)
   }
-  const bool complete = !d.Failed && d.NextRow < d.Whole[2];
-  if (!complete && !d.Failed && !this->GetAbortExecute())
-  {
-    vtkErrorMacro(<< "rows " << d.Whole[2] << " to " << d.NextRow << " of '" << d.Path
-                  << "' were not written; the file is removed");
-  }
-  return this->EndFile(complete) ? 1 : 0;
+  return this->EndFile(vtkApertureStripsComplete(this, d.Failed, d.NextRow, d.Whole, d.Path))
+    ? 1
+    : 0;
 }
 
 //------------------------------------------------------------------------------

@@ -836,13 +836,8 @@ int vtkApertureEXRWriter::EndStrips()
   {
     return 0; // (nothing begun, or BeginStrips failed: reported)
   }
-  if (d.Failed || d.NextRow >= d.Whole[2])
+  if (!vtkApertureStripsComplete(this, d.Failed, d.NextRow, d.Whole, d.Path))
   {
-    if (!d.Failed && !this->GetAbortExecute())
-    {
-      vtkErrorMacro(<< "rows " << d.Whole[2] << " to " << d.NextRow << " of '" << d.Path
-                    << "' were not written; the file is removed");
-    }
     d.Context.Discard();
     return 0;
   }

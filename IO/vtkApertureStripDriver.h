@@ -64,6 +64,31 @@ inline bool vtkApertureStripRows(vtkObject* writer, vtkImageData* strip, const i
 }
 
 /**
+ * Whether a file written in strips is complete: no strip failed and every row of `whole` was
+ * written (`next`, the next row, below whole[2]). Otherwise false, after reporting (on
+ * `writer`, naming `path`) the rows never written, unless a strip failed (reported then) or
+ * `writer` was aborted.
+ */
+inline bool vtkApertureStripsComplete(
+  vtkAlgorithm* writer, bool failed, int next, const int whole[6], const std::string& path)
+{
+  if (failed)
+  {
+    return false;
+  }
+  if (next < whole[2])
+  {
+    return true;
+  }
+  if (!writer->GetAbortExecute())
+  {
+    vtkErrorWithObjectMacro(writer, << "rows " << whole[2] << " to " << next << " of '" << path
+                                    << "' were not written; the file is removed");
+  }
+  return false;
+}
+
+/**
  * Update the producer of `writer`'s input for strips of `rows` image rows (rounded up to a
  * multiple of `multiple`) of its whole extent, north (the files' first rows) first, and hand
  * each to the writer: `writer.BeginStrips(strip, whole)` with the first, then
