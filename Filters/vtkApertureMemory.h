@@ -19,8 +19,8 @@
 #include <sstream>
 #include <string>
 
-// Name (unless name is null) and size an array, its values uninitialised; from 4 MiB up in
-// memory that huge pages can cover (ap_alloc_huge), which is first touched faster.
+// Name (unless name is null) and size an array, its values uninitialised, in memory from
+// ap_alloc_huge (which huge pages cover from 4 MiB up: first touched faster).
 // std::bad_alloc when the memory could not be had (VTK reports that and leaves the array
 // short), for RequestData to turn into an error naming the size needed.
 inline void vtkApertureAllocate(
@@ -32,7 +32,7 @@ inline void vtkApertureAllocate(
   }
   a->SetNumberOfComponents(components);
   const double bytes = static_cast<double>(tuples) * components * a->GetDataTypeSize();
-  if (a->HasStandardMemoryLayout() && bytes >= 4194304.0 && bytes < 1e18)
+  if (a->HasStandardMemoryLayout() && bytes < 1e18)
   {
     void* values = ap_alloc_huge(static_cast<size_t>(bytes));
     if (!values)

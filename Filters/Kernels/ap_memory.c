@@ -12,12 +12,16 @@
 #include <unistd.h>
 #endif
 
+/* A huge page (x86-64, arm64 with 4 KiB pages), and the smallest buffer worth advising. */
+#define AP_HUGE_PAGE ((size_t)2 << 20)
+#define AP_HUGE_MIN (2 * AP_HUGE_PAGE)
+
 void ap_advise_huge_pages(void *p, size_t bytes)
 {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   const long page_size = sysconf(_SC_PAGE_SIZE);
   uintptr_t page, begin, end;
-  if (!p || page_size <= 0 || bytes < ((size_t)4 << 20)) {
+  if (!p || page_size <= 0 || bytes < AP_HUGE_MIN) {
     return;
   }
   /* the whole pages inside the buffer (the kernel maps huge pages where 2 MiB fit) */
@@ -35,9 +39,9 @@ void ap_advise_huge_pages(void *p, size_t bytes)
 
 void *ap_alloc_huge(size_t bytes)
 {
-  const size_t huge = (size_t)2 << 20;
+  const size_t huge = AP_HUGE_PAGE;
   void *p;
-  if (bytes < 2 * huge || bytes > SIZE_MAX - huge) {
+  if (bytes < AP_HUGE_MIN || bytes > SIZE_MAX - huge) {
     return malloc(bytes ? bytes : 1);
   }
   /* aligned_alloc wants a multiple of the alignment; huge pages for the whole 2 MiB within
