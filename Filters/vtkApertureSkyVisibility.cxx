@@ -300,12 +300,20 @@ std::string vtkApertureSkyVisibility::CheckMemory(
   {
     return std::string();
   }
-  return NeedsText(
-           nx, ny, outNx, outNy, vtkApertureHumanBytes(need), this->ComputeHorizonAngles) +
-    ", more than the " +
-    (this->MemoryLimit > 0 ? vtkApertureHumanBytes(limit) + " MemoryLimit"
-                           : vtkApertureHumanBytes(std::max(limit, 0.0)) +
-         " of memory this machine has beside the DEM's " + vtkApertureHumanBytes(held));
+  const std::string needs =
+    NeedsText(nx, ny, outNx, outNy, vtkApertureHumanBytes(need), this->ComputeHorizonAngles);
+  if (this->MemoryLimit > 0)
+  {
+    return needs + ", more than the " + vtkApertureHumanBytes(limit) + " MemoryLimit";
+  }
+  if (limit <= 0.0) // (nothing left to compare with: say what does not fit)
+  {
+    return needs + ", and the DEM's " + vtkApertureHumanBytes(held) + " alone exceed the " +
+      vtkApertureHumanBytes(static_cast<double>(vtkAperturePhysicalMemory())) +
+      " of memory this machine has";
+  }
+  return needs + ", more than the " + vtkApertureHumanBytes(limit) +
+    " of memory this machine has beside the DEM's " + vtkApertureHumanBytes(held);
 }
 
 //------------------------------------------------------------------------------

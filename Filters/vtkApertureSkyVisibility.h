@@ -159,8 +159,8 @@ public:
   /** Why an update over an nx x ny input would be refused for memory, or "" when it fits:
    *  EstimateBytes(nx * ny) against MemoryLimit, or (MemoryLimit 0) against the physical
    *  memory less `held` bytes, what the input occupies (4 x nx x ny for float elevations not
-   *  yet read). The update refuses with this text and advice; a caller can ask before reading
-   *  a DEM and add its own advice. */
+   *  yet read; when that alone exceeds the memory, the text says so). The update refuses with
+   *  this text and advice; a caller can ask before reading a DEM and add its own advice. */
   std::string CheckMemory(int nx, int ny, double held) const;
 
   /** The same for an update extent of outNx x outNy cells whose input (the extent with its

@@ -3,7 +3,6 @@
 degrees, BentNormal_E/N/U, HorizonAngles per azimuth), the DEM's georeference, units,
 definitions and provenance in the metadata, the EXR with the same products, results that do
 not depend on --threads, the products carried onto the terrain mesh, and one-line errors."""
-import json
 import math
 import os
 import shutil
@@ -49,6 +48,13 @@ def zeros_vrt(path, n):
     ds.SetSpatialRef(srs)
     ds = None
     return path
+
+
+def human_bytes(n):
+    """n bytes as the filters print them: 3 decimals of the largest unit up to TiB."""
+    units = ("bytes", "KiB", "MiB", "GiB", "TiB")
+    k = max([0] + [k for k in range(5) if n >= 1024 ** k])
+    return "%.3f %s" % (n / 1024.0 ** k, units[k])
 
 
 def rough_dem(path, shape, seed, hole=None):
@@ -269,19 +275,35 @@ class TestBake(unittest.TestCase):
         # EdgeTruncated as float beside its byte flags, and the window's copy of the
         # elevations 4): 75600328000 bytes = 70.408 GiB, beside the elevations' 13.411 GiB.
         memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+        def refused(text, *args):
+            status, _, err = run("bake", *args)
+            self.assertEqual(status, 1, err)
+            self.assertEqual(err.strip(), "aperture: error: %s; bake a window with --srcwin and "
+                             "a --radius (only the DEM within the radius around it is read), "
+                             "use --decimate or --overview, or bake fewer --products" % text)
+
+        # A DEM larger than the memory leaves nothing to compare with: 2e6^2 cells, 14.552 TiB
+        # of elevations, 21 bytes a cell of it and 41 a cell of the window; strips would read
+        # the same DEM, so they are not offered.
+        huge = zeros_vrt(self.path("window-huge.vrt"), 2000000)
+        huge_out = self.path("window-huge.tif")
+        if memory < 4.0 * 2000000 ** 2:
+            refused("the products of 100 x 100 cells, with the 2000000 x 2000000 cells of DEM "
+                    "around them, need about %s, and the DEM's 14.552 TiB alone exceed the %s "
+                    "of memory this machine has" % (human_bytes(21.0 * 4e12 + 41.0 * 1e4),
+                                                     human_bytes(memory)),
+                    huge, huge_out, "--srcwin", 0, 0, 100, 100)
+            refused("a 2000000 x 2000000 DEM with these products needs about %s, and the DEM's "
+                    "14.552 TiB alone exceed the %s of memory this machine has"
+                    % (human_bytes((21.0 + 41.0 - 4.0) * 4e12), human_bytes(memory)),
+                    huge, huge_out)
+            self.assertFalse(os.path.exists(huge_out))
         if memory > 84 << 30:
             self.skipTest("this machine has the memory to bake it")
-        left = memory - 4.0 * 60000 ** 2
-        units = ("bytes", "KiB", "MiB", "GiB", "TiB")
-        u = max(k for k in range(5) if left >= 1024 ** k)
-        status, _, err = run("bake", big, out, "--srcwin", 30000, 20000, 100, 80, "-d", 8)
-        self.assertEqual(status, 1, err)
-        self.assertEqual(err.strip(), "aperture: error: the products of 100 x 80 cells, with "
-                         "the 60000 x 60000 cells of DEM around them, need about 70.408 GiB, "
-                         "more than the %.3f %s of memory this machine has beside the DEM's "
-                         "13.411 GiB; bake a window with --srcwin and a --radius (only the DEM "
-                         "within the radius around it is read), use --decimate or --overview, "
-                         "or bake fewer --products" % (left / 1024.0 ** u, units[u]))
+        refused("the products of 100 x 80 cells, with the 60000 x 60000 cells of DEM around "
+                "them, need about 70.408 GiB, more than the %s of memory this machine has "
+                "beside the DEM's 13.411 GiB" % human_bytes(memory - 4.0 * 60000 ** 2),
+                big, out, "--srcwin", 30000, 20000, 100, 80, "-d", 8)
 
     def test_strips(self):
         # A bake that does not fit --max-memory (the products and the sweep's state) is written
@@ -605,23 +627,21 @@ class TestBake(unittest.TestCase):
         memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
         if memory > 3.0274e10 + 4.0 * 30000 ** 2:
             self.skipTest("this machine could bake it in strips")
-        units = ("bytes", "KiB", "MiB", "GiB", "TiB")
-        left = memory - 4.0 * 30000 ** 2
-        u = max(k for k in range(5) if left >= 1024 ** k)
+        left = human_bytes(memory - 4.0 * 30000 ** 2)
         p = subprocess.run([APERTURE, "bake", big, out, "-d", "360", "--products", "all"],
                            capture_output=True, text=True, timeout=300)
         self.assertEqual(p.returncode, 1, p.stderr)
         self.assertEqual(p.stderr.strip(), "aperture: error: a 30000 x 30000 DEM with these "
                          "products needs about 1.226 TiB (HorizonAngles take 4 bytes per cell "
-                         "and direction), more than the %.3f %s of memory this machine has "
+                         "and direction), more than the %s of memory this machine has "
                          "beside the DEM's 3.353 GiB, and strips of 256 rows (the GeoTIFF's "
                          "tiles) would not fit either: the products of 30000 x 256 cells, with "
                          "the 30000 x 30000 cells of DEM around them, need about 28.195 GiB "
                          "(HorizonAngles take 4 bytes per cell and direction), more than the "
-                         "%.3f %s of memory this machine has beside the DEM's 3.353 GiB; bake a "
+                         "%s of memory this machine has beside the DEM's 3.353 GiB; bake a "
                          "window with --srcwin and a --radius (only the DEM within the radius "
                          "around it is read), use --decimate or --overview, or bake fewer "
-                         "--products" % ((left / 1024.0 ** u, units[u]) * 2))
+                         "--products" % (left, left))
         self.assertFalse(os.path.exists(out))
         # 12000^2: the reader's 0.54 GiB fits, the mesh's points, normals and triangles do not
         script = ("import aperture, sys\n"

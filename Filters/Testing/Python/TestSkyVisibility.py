@@ -527,6 +527,13 @@ class TestSkyVisibility(Testing.vtkTest):
         self.assertEqual(f.CheckMemory(20, 20, memory - 21600.0), "")
         self.assertIn("needs about 21.094 KiB, more than the 21.092 KiB of memory this machine "
                       "has beside the DEM's ", f.CheckMemory(20, 20, memory - 21598.0))
+        # an input as large as the memory leaves nothing to compare with: the message says so
+        units = ("bytes", "KiB", "MiB", "GiB", "TiB")
+        u = max(k for k in range(5) if memory >= 1024 ** k)
+        self.assertEqual(f.CheckMemory(20, 20, memory), "a 20 x 20 DEM with these products "
+                         "needs about 21.094 KiB, and the DEM's %.3f %s alone exceed the "
+                         "%.3f %s of memory this machine has" % ((memory / 1024.0 ** u,
+                                                                  units[u]) * 2))
         self.assertTrue(np.all(array(f.GetOutput(), "SkyViewFactor") == 1.0))
         # A sub-extent's outputs cover it alone (5 x 5 cells of 33 bytes, not 20 x 20), and the
         # elevations passed on are copied to it (4 bytes a cell): 21600 - 375 x 33 + 25 x 4.

@@ -705,6 +705,9 @@ def _plan_bake(args, watcher, sky):
         inner = [one[0], one[1], 0, min(rows + 2 * halo, whole_rows) - 1, 0, 0]
         return problem(inner, nx, rows)
 
+    memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    if not args.max_memory and 4.0 * size(one)[0] * min(tile + 2 * halo, whole_rows) >= memory:
+        raise ApertureError("%s; %s" % (whole_problem, advice))  # (a strip's DEM alone)
     fits, tiles = 0, -(-ny // tile)
     while fits + 1 < tiles:  # the most tiles that fit: 'fits' fit, 'tiles' do not
         mid = (fits + tiles) // 2
