@@ -623,6 +623,12 @@ bool vtkApertureGeoreference::GetRowCellSizesMetres(double* dx, double* dy)
   try
   {
     const GeographicLib::Geodesic geod(ell[0], ell[1]);
+    // a row named so that users of north-up files find it: by its y, then its grid index
+    const auto row = [this](std::ostringstream& msg, int j) -> std::ostringstream& {
+      msg << "the row of cells at y = " << this->GridOrigin[1] + j * this->GridSpacing[1]
+          << " (grid row " << j << ", counted from the south)";
+      return msg;
+    };
     for (int j = 0; j < ny; ++j)
     {
       double* q = &ll[8 * static_cast<size_t>(j)];
@@ -631,7 +637,7 @@ bool vtkApertureGeoreference::GetRowCellSizesMetres(double* dx, double* dy)
         if (std::isnan(q[k]))
         {
           std::ostringstream msg;
-          msg << "row " << j << " of the grid has no geographic coordinates";
+          row(msg, j) << " has no geographic coordinates";
           this->Impl->Error = msg.str();
           return false;
         }
@@ -644,7 +650,7 @@ bool vtkApertureGeoreference::GetRowCellSizesMetres(double* dx, double* dy)
         if (beyond > 1e-9)
         {
           std::ostringstream msg;
-          msg << "row " << j << " of the grid reaches latitude " << q[k] << ", beyond the pole";
+          row(msg, j) << " reaches latitude " << q[k] << ", beyond the pole";
           this->Impl->Error = msg.str();
           return false;
         }
@@ -655,7 +661,7 @@ bool vtkApertureGeoreference::GetRowCellSizesMetres(double* dx, double* dy)
       if (!(std::isfinite(dx[j]) && dx[j] > 0.0 && std::isfinite(dy[j]) && dy[j] > 0.0))
       {
         std::ostringstream msg;
-        msg << "row " << j << " of the grid has no positive ground cell size (" << dx[j]
+        row(msg, j) << " has no positive ground cell size (" << dx[j]
             << " m east-west, " << dy[j] << " m north-south)";
         this->Impl->Error = msg.str();
         return false;

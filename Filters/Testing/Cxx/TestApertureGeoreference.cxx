@@ -232,7 +232,8 @@ void TestRowSizesAtPole()
   geo->SetGrid(-175.5, 88.075, 9.0, cell, 40, 40); // the last row's centre at 90.025 N
   AP_CHECK(!geo->GetRowCellSizesMetres(dx, dy));
   AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
-    "row 39 of the grid reaches latitude 90.025, beyond the pole");
+    "the row of cells at y = 90.025 (grid row 39, counted from the south) reaches latitude "
+    "90.025, beyond the pole");
 }
 
 // A geographic grid may go once around the Earth (360 degrees plus rounding), not more: 40
