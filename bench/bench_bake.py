@@ -10,9 +10,10 @@ resident memory), one after the other on the same machine, with the same paramet
 directions and a 10 km search radius on a DEM in a projected, metric CRS.
 
 Contenders:
-- SAGA  `saga_cmd ta_lighting 3` (Sky View Factor), METHOD 0 ("cell size": the exact sector
-  method, stepping one cell size along each of NDIRS directions; not the multi-scale
-  approximation), reading and writing GeoTIFF directly. Uses OpenMP (`saga_cmd --cores`).
+- SAGA  `saga_cmd ta_lighting 3` (Sky View Factor), METHOD 0 ("cell size": the sector
+  method, stepping one cell size along each of NDIRS directions and reading the nearest cell;
+  not the multi-scale approximation; its accuracy: bench_accuracy.py), reading and writing
+  GeoTIFF directly. Uses OpenMP (`saga_cmd --cores`).
 - GRASS `r.horizon` (all 32 directions, `step=11.25 maxdistance=10000`) in a temporary
   location made from the DEM: `grass --tmp-location DEM --exec sh script` that imports with
   r.in.gdal, sets the region and runs r.horizon under its own `/usr/bin/time`, so the horizon
