@@ -12,8 +12,8 @@ with 0.5 m of noise; made in --workdir, or reused from there) at --radius, and B
 The cells are drawn at random (seeded) among those whose whole search radius lies inside the
 DEM, so that no tool's edge handling enters. The reference marches each cell's ray at every
 sector's centre azimuth (360 d / D clockwise from grid north for the peers; from true north for
-ours, turned by the meridian convergence at the DEM's centre as ours does) in steps of 1/20 of
-a cell on the bilinear surface through the cell centres (and log-spaced steps down to 1e-5 of
+ours, turned by the meridian convergence at the DEM's centre as ours does) in steps of 1/500
+of a cell on the bilinear surface through the cell centres (and log-spaced steps down to 1e-5 of
 a cell next to it: the largest slope is often the surface's own at t -> 0), out to the radius,
 and takes the largest (z - z0) / t - c t, where c is the tool's own curvature term:
 - ours: (1 - 0.13) / 2R (curvature with refraction, the default; R = 6371 km here, ours takes
@@ -96,20 +96,19 @@ def grid_azimuth_of_north(dem):
     return math.atan2(x1 - x, y1 - y)
 
 
-def brute_force(z, cell, rows, cols, azimuths, radius, step=0.05):
-    """The largest slope (z - z0) / t along each cell's ray, per cell and azimuth, for every
-    curvature term c of interest: returns a function c -> array [cells, azimuths] of the largest
-    (z - z0) / t - c t (the max is taken per c over the same samples)."""
+def brute_force(z, cell, rows, cols, azimuths, radius, curvatures, step=0.002):
+    """The horizon angle (degrees) of each cell's ray, per cell and azimuth, for each curvature
+    term c of `curvatures`: the largest (z - z0) / t - c t over samples at every `step` cells
+    along the ray, and log-spaced ones down to 1e-5 of a cell next to it (on the bilinear
+    surface the largest slope is often its limit at t -> 0, the terrain's own slope). Returns
+    one array [cells, azimuths] per curvature term."""
     ny, nx = z.shape
-    # metres; the first samples close in on the cell (log-spaced down to 1e-5 cell): on the
-    # bilinear surface the largest slope is often its limit at t -> 0, the terrain's own slope
-    t = np.concatenate((np.geomspace(1e-5, step, 40, endpoint=False) * cell,
-                        np.arange(1, int(radius / (step * cell)) + 1) * (step * cell)))
-    samples = []
-    for r, c in zip(rows, cols):
+    t = np.concatenate((np.geomspace(1e-5, step, 40, endpoint=False),
+                        np.arange(1, int(radius / (step * cell)) + 1) * step)) * cell  # metres
+    out = [np.empty((len(rows), len(azimuths))) for _ in curvatures]
+    for n, (r, c) in enumerate(zip(rows, cols)):
         z0 = z[r, c]
-        per_az = []
-        for a in azimuths:
+        for k, a in enumerate(azimuths):
             x = c + t * math.sin(a) / cell
             y = r - t * math.cos(a) / cell  # rows run south
             i0 = np.clip(np.floor(x).astype(int), 0, nx - 2)
@@ -117,13 +116,10 @@ def brute_force(z, cell, rows, cols, azimuths, radius, step=0.05):
             fx, fy = x - i0, y - j0
             zz = ((1 - fy) * ((1 - fx) * z[j0, i0] + fx * z[j0, i0 + 1]) +
                   fy * ((1 - fx) * z[j0 + 1, i0] + fx * z[j0 + 1, i0 + 1]))
-            per_az.append((zz - z0) / t)
-        samples.append(np.array(per_az))
-    samples = np.array(samples)  # [cells, azimuths, steps]
-
-    def horizons(curv):
-        return np.degrees(np.arctan((samples - curv * t).max(axis=2)))
-    return horizons
+            slope = (zz - z0) / t
+            for o, curv in zip(out, curvatures):
+                o[n, k] = math.degrees(math.atan((slope - curv * t).max()))
+    return out
 
 
 def stats(err):
@@ -167,12 +163,10 @@ def compare(args, missing, dem, radius, work):
     # the DEM's centre turns them: grid azimuth = true azimuth + beta)
     beta = grid_azimuth_of_north(dem)
     print("grid azimuth of true north at the centre: %.4f degrees" % math.degrees(beta))
-    ref = brute_force(z, cell, rows, cols, azimuths, radius)
     c_ours, c_grass = (1.0 - 0.13) / (2.0 * EARTH_R), 1.0 / (2.0 * EARTH_R)
-    ref_flat, ref_grass = ref(0.0), ref(c_grass)
-    ref = brute_force(z, cell, rows, cols, azimuths + beta, radius)
-    ref_ours, ref_ours_flat = ref(c_ours), ref(0.0)
-    del ref
+    ref_flat, ref_grass = brute_force(z, cell, rows, cols, azimuths, radius, (0.0, c_grass))
+    ref_ours, ref_ours_flat = brute_force(z, cell, rows, cols, azimuths + beta, radius,
+                                          (c_ours, 0.0))
 
     results = []  # (tool, model, horizon stats, sky-view quantity, its stats)
     # ours, default and flat
