@@ -134,7 +134,7 @@ struct vtkApertureDEMReader::Internals
     }
     const std::string name(fileName);
     struct stat sb;
-    if (name.compare(0, 5, "/vsi") != 0 && stat(fileName, &sb) != 0)
+    if (name.compare(0, 4, "/vsi") != 0 && stat(fileName, &sb) != 0) // (GDAL's own paths)
     {
       error = "file '" + name + "' does not exist";
       return false;

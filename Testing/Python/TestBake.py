@@ -3,6 +3,7 @@
 degrees, BentNormal_E/N/U, HorizonAngles per azimuth), the DEM's georeference, units,
 definitions and provenance in the metadata, the EXR with the same products, results that do
 not depend on --threads, the products carried onto the terrain mesh, and one-line errors."""
+import json
 import math
 import os
 import shutil
@@ -192,6 +193,31 @@ class TestBake(unittest.TestCase):
         self.assertEqual(meta["SOURCE_DECIMATION"], "2 x 2 blocks averaged")
         self.assertEqual(meta["SOURCE_CRS_OVERRIDE"], "EPSG:32611")
         self.assertNotIn("SOURCE_OVERVIEW", meta)
+
+    def test_gdal_virtual_path(self):
+        # GDAL's virtual file systems are read as GDAL reads them: a DEM inside a zip (as SRTM
+        # tiles come) bakes to the same values as the file itself
+        import zipfile
+        archive = self.path("dem.zip")
+        with zipfile.ZipFile(archive, "w") as z:
+            z.write(self.dem, "tiles/dem.tif")
+        inside = "/vsizip/%s/tiles/dem.tif" % archive
+        plain, zipped = self.path("plain.tif"), self.path("zipped.tif")
+        for dem, out in ((self.dem, plain), (inside, zipped)):
+            status, _, err = run("bake", dem, out, "--products", "SkyViewFactor", "-d", "8",
+                                 "--radius", "600")
+            self.assertEqual(status, 0, err)
+        (a, _, gt, srs), (b, meta, gt_b, srs_b) = bands(plain), bands(zipped)
+        np.testing.assert_array_equal(a["SkyViewFactor"][0], b["SkyViewFactor"][0])
+        self.assertEqual((gt, srs), (gt_b, srs_b))
+        self.assertEqual(meta["SOURCE_DEM"], inside)  # (not normalised: /vsizip/tmp/... is
+        status, out, err = run("info", inside, "--json")  # relative to the working folder)
+        self.assertEqual(status, 0, err)
+        self.assertEqual(json.loads(out)["file"], inside)
+        # a member the archive does not have is GDAL's refusal, not a missing local file
+        status, _, err = run("bake", inside + ".no", zipped)
+        self.assertEqual(status, 1, err)
+        self.assertIn("GDAL cannot open '%s.no' as a raster" % inside, err)
 
     def test_windows_tile_the_whole_bake(self):
         # --srcwin bakes the window's cells with horizons that see the DEM around it (the sky

@@ -78,6 +78,12 @@ class _TermProgress:
             self._stream.flush()
 
 
+def _full_name(path):
+    """The absolute path of a file, for provenance; GDAL's virtual file names (/vsizip/...,
+    /vsicurl/...) as given, since normalising them changes what they name."""
+    return path if path.startswith("/vsi") else os.path.abspath(path)
+
+
 def _same_file(a, b):
     if os.path.exists(a) and os.path.exists(b):
         return os.path.samefile(a, b)  # hard links too
@@ -197,7 +203,7 @@ def describe(reader, image):
             and geo.GetCentreLonLat(centre)):
         raise ApertureError(geo.GetErrorMessage())
     return {
-        "file": os.path.abspath(reader.GetFileName()),
+        "file": _full_name(reader.GetFileName()),
         "driver": reader.GetDriverName(),
         "bands": reader.GetNumberOfBands(),
         "band": reader.GetBandRead(),
@@ -540,7 +546,7 @@ def _provenance(args, products, band):
     return {
         "APERTURE_VERSION": __version__,
         "APERTURE_COMMAND": "aperture bake",
-        "SOURCE_DEM": os.path.abspath(args.dem),
+        "SOURCE_DEM": _full_name(args.dem),
         "ALGORITHM": "convex-hull line sweep (Timonen & Westerholm 2010) of the terrain horizon "
                      "in every azimuth sector, each cell's own ray exact on the bilinear surface "
                      "for the first %s columns; in sectors where the search distance spans at "
