@@ -28,8 +28,11 @@
  * A, rp, SkyViewFactor, DiffuseSkyFactor and BentNormal are exact everywhere, while sector d
  * of HorizonAngles is centred on true azimuth φ_d + γ(cell) − γ(centre) (a fraction of a
  * degree across a UTM DEM). Cell sizes are metric per row (GeographicLib geodesics on the
- * CRS's ellipsoid), so lat/lon DEMs are exact. Earth curvature uses the ellipsoid's radius of
- * curvature in each azimuth at the DEM centre.
+ * CRS's ellipsoid), so lat/lon DEMs are exact. A projected DEM takes the ground cell size at
+ * its centre for every cell, so distances are off by the change of the projection's scale
+ * factor across it (about 0.1% across a whole UTM zone; some 5% over Antarctica in polar
+ * stereographic). Earth curvature uses the ellipsoid's radius of curvature in each azimuth at
+ * the DEM centre.
  *
  * Terrain beyond the DEM edge is invisible; EdgeTruncated marks the cells where that may
  * matter for the sky above the horizontal (A, rp, BentNormal, both sky-view factors).
