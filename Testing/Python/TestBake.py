@@ -176,6 +176,14 @@ class TestBake(unittest.TestCase):
         np.testing.assert_array_equal(np.flipud(svf_exr), b["SkyViewFactor"][0].astype(np.float32))
         self.assertEqual(pd.GetArray("BentNormal").GetNumberOfComponents(), 3)
         self.assertEqual(r.GetMetadataValue("aperture:directions"), "360")
+        # each channel's unit and definition, the same as the GeoTIFF band's (HorizonAngles
+        # once for its 360 bands)
+        for name, band in (("SkyViewFactor", "SkyViewFactor"), ("BentNormal", "BentNormal_E"),
+                           ("DiffuseSkyFactor", "DiffuseSkyFactor"),
+                           ("HorizonAngles", "HorizonAngles_az090.00")):
+            self.assertEqual(r.GetMetadataValue("aperture:unit:" + name), b[band][1]["UNITS"])
+            self.assertEqual(r.GetMetadataValue("aperture:definition:" + name),
+                             b[band][1]["DEFINITION"])
 
     def test_read_provenance(self):
         # a product of a window, a decimated grid or an overridden CRS records what was read

@@ -835,8 +835,9 @@ def _bake(args, products, progress):
         exr.SetNumberOfThreads(args.threads)  # chunks compressed in parallel; same bytes
         for key, value in provenance.items():
             exr.AddMetadata("aperture:" + key.lower(), value)
-        for name in products:
+        for name in products:  # (which sky-view definition each channel is, as in the GeoTIFF)
             exr.AddMetadata("aperture:unit:" + name, definitions[name][0])
+            exr.AddMetadata("aperture:definition:" + name, definitions[name][1])
     outputs = [(writer, args.output)] + ([(exr, args.exr)] if exr else [])
     writers = [output for output, _ in outputs]
     started = []  # the outputs begun: an interrupt removes them (a writer also removes its own)
