@@ -653,10 +653,14 @@ bool vtkApertureDEMWriter::EndFile(bool ok)
   const bool failed = CPLGetLastErrorType() >= CE_Failure || !d.Error.empty();
   if (!ok || failed)
   {
+    // GDAL's message for a full disk names a scanline only ("TIFFAppendToStrip: Write error"):
+    // say it, while the partial file still holds the space
+    const GIntBig left = failed ? VSIGetDiskFreeSpace(CPLGetDirname(d.Path.c_str())) : -1;
     VSIUnlink(d.Path.c_str());
     if (failed)
     {
-      vtkErrorMacro(<< "GDAL failed writing '" << d.Path << "': " << reason);
+      vtkErrorMacro(<< "GDAL failed writing '" << d.Path << "': " << reason
+                    << (left >= 0 && left < (1 << 20) ? " (the disk is full)" : ""));
     }
   }
   d.Error.clear();

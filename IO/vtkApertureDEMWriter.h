@@ -25,7 +25,8 @@
  * Errors (vtkErrorMacro, nothing left behind): no file name, an input that is not 2-D, a named
  * array that does not exist, an array that is not numeric, a codec GDAL does not offer or
  * one that cannot store floating-point samples (JPEG, WEBP, the CCITT ones), a compression
- * level outside the codec's range, or GDAL failing to create or write.
+ * level outside the codec's range, or GDAL failing to create or write (with "the disk is
+ * full" added when under 1 MiB is left beside the partial file, which GDAL does not say).
  * @sa vtkApertureDEMReader vtkApertureGeoreference
  */
 #ifndef vtkApertureDEMWriter_h

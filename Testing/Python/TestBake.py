@@ -696,6 +696,30 @@ class TestBake(unittest.TestCase):
         self.assertIn("out of memory: a mesh of 12000 x 12000 points needs about", p.stdout)
         self.assertTrue(p.stdout.strip().endswith("MiB; decimate the DEM 0"), p.stdout)
 
+    def test_full_disk(self):
+        # A disk that fills up while the GeoTIFF is written: GDAL says only "Write error at
+        # scanline ..."; the message says the disk is full, and no partial file is left. A
+        # 256 KiB tmpfs in a mount namespace of its own (needs root: skipped otherwise).
+        folder = self.path("full")
+        os.makedirs(folder)
+        dem = rough_dem(self.path("full-dem.tif"), (300, 300), 7)
+        out = os.path.join(folder, "out.tif")
+        script = ('mount -t tmpfs -o size=256k tmpfs "$1" || exit 99; d="$1"; shift; "$@"; '
+                  's=$?; echo "left: $(ls -A "$d")"; exit $s')
+        if not shutil.which("unshare"):
+            self.skipTest("no unshare (util-linux)")
+        p = subprocess.run(["unshare", "-m", "sh", "-c", script, "sh", folder, APERTURE, "bake",
+                            dem, out, "-d", "8", "--radius", "600"],
+                           capture_output=True, text=True, timeout=300)
+        if p.returncode == 99 or "left:" not in p.stdout:
+            self.skipTest("no tmpfs of our own here: %s" % p.stderr.strip())
+        self.assertEqual(p.returncode, 1, p.stdout)
+        self.assertIn("left: \n", p.stdout)  # (the folder, seen before the tmpfs goes: empty)
+        self.assertIn("aperture: error: writing %s: GDAL failed writing '%s': " % (out, out),
+                      p.stderr)
+        self.assertTrue(p.stderr.strip().endswith(" (the disk is full)"), p.stderr)
+        self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
+
     def test_does_not_overwrite(self):
         # An output that is the input DEM, or two outputs in one file, are refused before any
         # work: the EXR would silently replace the GeoTIFF, the bands the DEM.
