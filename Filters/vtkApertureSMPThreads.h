@@ -18,15 +18,17 @@ inline int vtkApertureCores()
 }
 
 /** A LocalScope configuration that runs on `requested` threads: 0 = all cores, larger counts
- *  capped at the cores. Always on vtkSMPTools' STDThread backend, whatever the default: the
- *  TBB backend of Debian's VTK 9.1 honours a LocalScope's thread count only when it differs
- *  from the previous scope's (a second LocalScope(1) in a process runs on every core), and
- *  its GetEstimatedNumberOfThreads() then reports that count, not the cores. */
+ *  capped at the cores. On vtkSMPTools' STDThread backend, whatever the default: the TBB
+ *  backend of Debian's VTK 9.1 honours a LocalScope's thread count only when it differs from
+ *  the previous scope's (a second LocalScope(1) in a process runs on every core), and its
+ *  GetEstimatedNumberOfThreads() then reports that count, not the cores. One thread runs on
+ *  the Sequential backend: in the calling thread, starting none (STDThread would start one,
+ *  and its std::thread throws std::system_error when the system refuses it). */
 inline vtkSMPTools::Config vtkApertureSMPConfig(int requested)
 {
   const int cores = vtkApertureCores();
   const int n = requested > 0 ? std::min(requested, cores) : cores;
-  return vtkSMPTools::Config{ n, "STDThread", false };
+  return vtkSMPTools::Config{ n, n == 1 ? "Sequential" : "STDThread", false };
 }
 
 /** The distinct threads that ran an operation's parallel chunks: Note() at the start of each

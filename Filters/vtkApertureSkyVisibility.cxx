@@ -32,6 +32,7 @@
 #include <new>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 vtkStandardNewMacro(vtkApertureSkyVisibility);
@@ -259,6 +260,16 @@ int vtkApertureSkyVisibility::RequestData(
     vtkErrorMacro(<< "out of memory: "
                   << NeedsText(
                        dims[0], dims[1], onx, ony, size.str(), this->ComputeHorizonAngles));
+    return 0;
+  }
+  catch (const std::system_error& e)
+  {
+    // (vtkSMPTools' STDThread backend starting its threads: std::thread throws when the
+    // system refuses one, e.g. no memory left for its stack)
+    vtkErrorMacro(<< "could not start "
+                  << vtkApertureSMPConfig(this->NumberOfThreads).MaxNumberOfThreads
+                  << " threads (" << e.what() << "); use fewer threads (NumberOfThreads; 1 "
+                  << "starts none)");
     return 0;
   }
 }
@@ -597,6 +608,11 @@ int vtkApertureSkyVisibility::Execute(
   // 4. The sweep, sector by sector; each sector's lines and rows in parallel.
   ap_horizon* hz = nullptr;
   st = ap_horizon_create(&grid, &params, &out, &hz);
+  struct Destroy
+  {
+    void operator()(ap_horizon* h) const { ap_horizon_destroy(h); }
+  };
+  std::unique_ptr<ap_horizon, Destroy> owner(hz); // (freed also when starting threads throws)
   if (st == AP_ERR_OUT_OF_MEMORY)
   {
     throw std::bad_alloc(); // (RequestData names the size needed)
@@ -660,7 +676,7 @@ int vtkApertureSkyVisibility::Execute(
       });
     }
   });
-  ap_horizon_destroy(hz);
+  owner.reset(); // (the sweep's state goes before the outputs are finished: peak memory)
   this->NumberOfThreadsUsed = tally.Count();
   if (failure == AP_ERR_OUT_OF_MEMORY)
   {

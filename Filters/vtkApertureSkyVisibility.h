@@ -135,7 +135,9 @@ public:
   /** Threads; 0 (default) = all cores, which also cap larger values. Results do not depend
    *  on it. They run on vtkSMPTools' STDThread backend whatever VTK's default backend is: the
    *  TBB backend of Debian's VTK 9.1 applies a scope's thread count only when it differs from
-   *  the previous scope's (a second update on one thread ran on every core). */
+   *  the previous scope's (a second update on one thread ran on every core). One thread
+   *  runs in the calling thread (Sequential backend), starting none; threads the system
+   *  refuses to start (no memory for their stacks) fail the update with an error saying so. */
   vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfThreads, int);
   ///@}

@@ -29,6 +29,7 @@
 #include <new>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -763,49 +764,61 @@ int vtkApertureEXRWriter::WriteStrip(vtkImageData* strip)
   exr_result_t rv = EXR_ERR_SUCCESS;
   bool aborted = false;
   vtkApertureThreadTally tally;
-  vtkSMPTools::LocalScope(vtkApertureSMPConfig(this->NumberOfThreads), [&]() {
-    for (int first = firstChunk; rv == EXR_ERR_SUCCESS && first < endChunk; first += batch)
-    {
-      const int count = std::min(batch, endChunk - first);
-      jobs.assign(static_cast<size_t>(count), ChunkJob());
-      for (int k = 0; rv == EXR_ERR_SUCCESS && k < count; ++k)
+  const vtkSMPTools::Config threads = vtkApertureSMPConfig(this->NumberOfThreads);
+  try
+  {
+    vtkSMPTools::LocalScope(threads, [&]() {
+      for (int first = firstChunk; rv == EXR_ERR_SUCCESS && first < endChunk; first += batch)
       {
-        rv = exr_write_scanline_chunk_info(
-          ctx, d.Part, (first + k) * lines, &jobs[static_cast<size_t>(k)].Info);
-      }
-      if (rv != EXR_ERR_SUCCESS)
-      {
-        break;
-      }
-      vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
-        tally.Note();
-        for (vtkIdType k = begin; k < end; ++k)
+        const int count = std::min(batch, endChunk - first);
+        jobs.assign(static_cast<size_t>(count), ChunkJob());
+        for (int k = 0; rv == EXR_ERR_SUCCESS && k < count; ++k)
         {
-          EncodeChunk(ctx, d.Part, d.Channels, d.ByName, at, nx, jobs[static_cast<size_t>(k)]);
+          rv = exr_write_scanline_chunk_info(
+            ctx, d.Part, (first + k) * lines, &jobs[static_cast<size_t>(k)].Info);
         }
-      });
-      if (this->GetAbortExecute())
-      {
-        aborted = true; // (before writing: an aborted file never holds every chunk)
-        break;
-      }
-      for (int k = 0; rv == EXR_ERR_SUCCESS && k < count; ++k)
-      {
-        ChunkJob& job = jobs[static_cast<size_t>(k)];
-        rv = job.Result;
-        if (rv == EXR_ERR_SUCCESS)
+        if (rv != EXR_ERR_SUCCESS)
         {
-          rv = exr_write_scanline_chunk(
-            ctx, d.Part, job.Info.start_y, job.Bytes.data(), job.Bytes.size());
+          break;
         }
-        else
+        vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+          tally.Note();
+          for (vtkIdType k = begin; k < end; ++k)
+          {
+            EncodeChunk(ctx, d.Part, d.Channels, d.ByName, at, nx, jobs[static_cast<size_t>(k)]);
+          }
+        });
+        if (this->GetAbortExecute())
         {
-          chunkMessage = job.Message;
+          aborted = true; // (before writing: an aborted file never holds every chunk)
+          break;
         }
+        for (int k = 0; rv == EXR_ERR_SUCCESS && k < count; ++k)
+        {
+          ChunkJob& job = jobs[static_cast<size_t>(k)];
+          rv = job.Result;
+          if (rv == EXR_ERR_SUCCESS)
+          {
+            rv = exr_write_scanline_chunk(
+              ctx, d.Part, job.Info.start_y, job.Bytes.data(), job.Bytes.size());
+          }
+          else
+          {
+            chunkMessage = job.Message;
+          }
+        }
+        this->UpdateProgress(static_cast<double>(first + count) / chunkCount);
       }
-      this->UpdateProgress(static_cast<double>(first + count) / chunkCount);
-    }
-  });
+    });
+  }
+  catch (const std::system_error& e)
+  {
+    // (the STDThread backend's std::thread, when the system refuses a thread)
+    vtkErrorMacro(<< "could not start " << threads.MaxNumberOfThreads << " threads to write '"
+                  << path << "' (" << e.what()
+                  << "); use fewer threads (NumberOfThreads; 1 starts none)");
+    return 0;
+  }
   this->NumberOfThreadsUsed = std::max(this->NumberOfThreadsUsed, tally.Count());
   jobs.clear();
   if (aborted)

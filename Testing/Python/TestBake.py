@@ -720,6 +720,33 @@ class TestBake(unittest.TestCase):
         self.assertTrue(p.stderr.strip().endswith(" (the disk is full)"), p.stderr)
         self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
 
+    def test_threads_refused(self):
+        # When the system refuses threads (here: each would get an 8 GiB stack, in 4 GiB of
+        # address space), the sky filter says so instead of terminating the process
+        # (std::thread throws); --threads 1 starts none and bakes.
+        if (os.cpu_count() or 1) < 2:
+            self.skipTest("one core: no threads to refuse")
+        import resource
+
+        def limits():
+            resource.setrlimit(resource.RLIMIT_AS, (4 << 30, 4 << 30))
+            resource.setrlimit(resource.RLIMIT_STACK, (8 << 30, 8 << 30))
+        out = self.path("threads.tif")
+        for threads in (2, 1):
+            p = subprocess.run([APERTURE, "bake", self.dem, out, "-d", "8", "--threads",
+                                str(threads)], preexec_fn=limits, capture_output=True,
+                               text=True, timeout=300)
+            if threads == 2:
+                self.assertEqual(p.returncode, 1, p.stderr)
+                self.assertTrue(p.stderr.startswith(
+                    "aperture: error: bake: could not start 2 threads ("), p.stderr)
+                self.assertTrue(p.stderr.strip().endswith(
+                    "); use fewer --threads (1 starts none)"), p.stderr)
+                self.assertFalse(os.path.exists(out))
+            else:
+                self.assertEqual(p.returncode, 0, p.stderr)
+                self.assertTrue(os.path.exists(out))
+
     def test_does_not_overwrite(self):
         # An output that is the input DEM, or two outputs in one file, are refused before any
         # work: the EXR would silently replace the GeoTIFF, the bands the DEM.

@@ -131,6 +131,8 @@ _READER_PHRASES = (
      r"--srcwin \1 \2 \3 \4"),
     (re.compile(r"set BandIndex to choose"), "choose one with --band"),
     (re.compile(r"the (\S+ \S+) MemoryLimit"), r"--max-memory \1"),
+    (re.compile(r"use fewer threads \(NumberOfThreads; 1 starts none\)"),
+     "use fewer --threads (1 starts none)"),
     (re.compile(r"^OverrideCRS: "), "--srs: "),
     (re.compile(r"set OverrideCRS \(aperture: (--srs EPSG:xxxx)\)"), r"give one with \1"),
 )
