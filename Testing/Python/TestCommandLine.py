@@ -105,6 +105,27 @@ class TestHelp(CommandLineTest):
         self.assertIn("expected one argument", err)
 
 
+class TestLauncher(CommandLineTest):
+    def test_modules_that_do_not_load(self):
+        # A launcher without its package beside it (a broken install; also what too little
+        # memory to load VTK and GDAL looks like): one line naming where it looked, no traceback
+        folder = self.path("lonely/bin")
+        os.makedirs(folder)
+        launcher = os.path.join(folder, "aperture")
+        shutil.copy(APERTURE, launcher)
+        env = dict(os.environ, PYTHONPATH="")
+        p = subprocess.run([launcher, "--help"], capture_output=True, text=True, env=env,
+                           timeout=60)
+        if p.returncode == 0:
+            self.skipTest("an installed aperture package is on this machine's path")
+        self.assertEqual(p.returncode, 1, p.stderr)
+        line = p.stderr.strip()
+        self.assertEqual(len(line.splitlines()), 1, line)
+        self.assertTrue(line.startswith("aperture: error: cannot load Aperture's Python modules "
+                                        "(from %s/" % os.path.join(self.tmp, "lonely")), line)
+        self.assertTrue(line.endswith("): No module named 'aperture'"), line)
+
+
 class TestInfo(CommandLineTest):
     def test_default_dem_json(self):
         d, err = self.info()
