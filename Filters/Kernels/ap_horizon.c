@@ -2822,14 +2822,55 @@ static int band_meets_region(const ap_horizon *hz, size_t b0, size_t nl)
   return 0;
 }
 
+/* Parallel lines: the view row of line k0 at view column p (line k0 + l is l rows further). */
+AP_INLINE double band_row(const ap_horizon *hz, double k0, size_t p)
+{
+  return hz->lattice ? (k0 + hz->lat_off[p]) - (double)hz->ocol
+                     : (k0 + hz->phase) - par_shift(hz, p, hz->np - 1);
+}
+
+/* Parallel lines: the view columns [*pa, *pb] on which some of the lines k0 .. k0 + nl - 1 lie
+ * within two rows of the grid (outside them the band brackets no cell and samples nothing);
+ * *pb < *pa when none. The rows move one way (band_row is monotonic in p): binary searches,
+ * so that a band of a long, narrow DEM does not walk every column of it. */
+static void band_columns(const ap_horizon *hz, double k0, size_t nl, size_t *pa, size_t *pb)
+{
+  const double lo = -1.0 - (double)nl, hi = (double)hz->ns + 1.0; /* band_row within these */
+  const size_t np = hz->np;
+  const int up = band_row(hz, k0, 0) <= band_row(hz, k0, np - 1);
+  size_t a = 0, b = np;
+  while (a < b) { /* the first column that has reached the interval */
+    const size_t mid = a + (b - a) / 2;
+    const double r = band_row(hz, k0, mid);
+    if (up ? r >= lo : r <= hi) {
+      b = mid;
+    } else {
+      a = mid + 1;
+    }
+  }
+  *pa = a;
+  a = 0;
+  b = np;
+  while (a < b) { /* the first column that has left it */
+    const size_t mid = a + (b - a) / 2;
+    const double r = band_row(hz, k0, mid);
+    if (!(up ? r <= hi : r >= lo)) {
+      b = mid;
+    } else {
+      a = mid + 1;
+    }
+  }
+  *pb = a; /* (one past the last: the caller's loop bound) */
+}
+
 ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
 {
   int K, limited, W;
   double L, c;
-  size_t np, ns, nl, l, pp;
+  size_t np, ns, nl, l, pp, pcol0, pcol1;
   line_state *lines = NULL;
   sample *ring = NULL; /* per line, K pending samples (u NaN: none) */
-  double shift, xc, k0, phase, smax;
+  double shift, xc, x0, k0, phase, smax;
   long jfirst = -1; /* per-row sizes, x-major: the first line's segment of rows (lattice_seek) */
   ap_status st = AP_OK;
   if (!hz) {
@@ -2883,11 +2924,16 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
   /* Parallel lines: line l sits at s = (k0 + l + phase) - shift with shift and distance xc
    * shared (k0 + l is the line's whole number, so its position does not depend on b0). */
   shift = 0.0;
-  xc = lines[0].x;
+  x0 = xc = lines[0].x;
   k0 = (double)(hz->kmin + (long)b0);
   phase = hz->phase;
+  pcol0 = 0; /* the band's columns [pcol0, pcol1) */
+  pcol1 = np;
+  if (hz->parallel) {
+    band_columns(hz, k0, nl, &pcol0, &pcol1);
+  }
 
-  for (pp = np; pp-- > 0;) {
+  for (pp = pcol1; pp-- > pcol0;) {
     const size_t p = pp;
     const float *col = view_column(hz, p);
     const int slot = (int)(p % (size_t)K);
@@ -2954,15 +3000,9 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
     } else {
       /* Parallel lines: every line has the same shift and distance, so only those inside are
        * touched. */
-      if (p + 1 < np) {
-        if (hz->xmajor) {
-          shift += hz->m_row[0];
-          xc -= hz->len_row[0];
-        } else {
-          shift += hz->cum_m[p + 1] - hz->cum_m[p];
-          xc -= hz->cum_len[p + 1] - hz->cum_len[p];
-        }
-      }
+      /* (in closed form: a band starts at its first column on the grid, band_columns) */
+      shift = par_shift(hz, p, np - 1);
+      xc = x0 - par_dist(hz, p, np - 1);
       if (hz->lattice) {
         /* per-row sizes, row-major: line k at column k + lat_off[p] of the larger DEM */
         const double off = hz->lat_off[p], oc = (double)hz->ocol;

@@ -616,16 +616,23 @@ static double compare_brute_force(const terrain *t, const ap_horizon_params *p, 
   return p99;
 }
 
-static void test_brute_force(void)
+/* nx x ny cells of 30 m of the rough terrain */
+static terrain rough_terrain(size_t nx, size_t ny)
 {
-  terrain t = make(120, 100, 30.0);
-  ap_horizon_params p = params(32, 1);
+  terrain t = make(nx, ny, 30.0);
   size_t i, j;
   for (j = 0; j < t.ny; ++j) {
     for (i = 0; i < t.nx; ++i) {
       t.z[j * t.nx + i] = (float)rough((double)i * 30.0, (double)j * 30.0);
     }
   }
+  return t;
+}
+
+static void test_brute_force(void)
+{
+  terrain t = rough_terrain(120, 100);
+  ap_horizon_params p = params(32, 1);
   p.radius_meridian = p.radius_normal = 6371000.0;
   {
     /* The automatic near field (0: 32 columns exact where the hulls search) against 8: the
@@ -669,6 +676,26 @@ static void test_brute_force(void)
   p.directions = 7 * 4 + 1; /* odd sector counts: azimuths off every grid diagonal */
   compare_brute_force(&t, &p, "rough, 29 sectors");
   drop(&t);
+}
+
+/* Long, narrow grids, either way round: each band of sweep lines crosses the grid within a few
+ * columns, and the sweep starts and stops it there (band_columns) instead of walking every
+ * column (a 40000 x 2 DEM took 13 s, not 0.3). Every cell must still get the brute force's
+ * horizons, unlimited and through the windows of a limited sweep. */
+static void test_long_narrow(void)
+{
+  const size_t sizes[2][2] = { { 600, 14 }, { 14, 600 } };
+  int k;
+  for (k = 0; k < 2; ++k) {
+    terrain t = rough_terrain(sizes[k][0], sizes[k][1]);
+    ap_horizon_params p = params(32, 1);
+    p.radius_meridian = p.radius_normal = 6371000.0;
+    compare_brute_force(&t, &p, k ? "14 x 600, unlimited" : "600 x 14, unlimited");
+    p.max_distance = 4000.0;
+    set_mode(&p, SWEPT, 64);
+    compare_brute_force(&t, &p, k ? "14 x 600, 4000 m, swept" : "600 x 14, 4000 m, swept");
+    drop(&t);
+  }
 }
 
 /* A lat/lon-like grid over 40..60 N: the east-west cell size shrinks by a third from south to
@@ -1679,6 +1706,7 @@ int main(void)
   test_pit();
   test_curvature();
   test_brute_force();
+  test_long_narrow();
   test_latlon_rows();
   test_side_edges();
   test_split_invariance();
