@@ -16,7 +16,7 @@
  *
  * Samples: Float32 bands, or Float64 when any written array is double. NaN is the nodata value
  * and is declared as such. Compression: DEFLATE with the floating-point predictor, tiled
- * 256 x 256, BigTIFF when needed; Compression may name another GeoTIFF codec that keeps
+ * 256 x 256 (a raster of fewer rows: its rows rounded up to 16), BigTIFF when needed; Compression may name another GeoTIFF codec that keeps
  * floating-point samples exactly (NONE, LZW, PACKBITS, ZSTD, LZMA, LERC, LERC_DEFLATE,
  * LERC_ZSTD, where GDAL offers them), CompressionLevel sets its level (default 1, the
  * fastest). Tiles are compressed on NumberOfThreads threads (GDAL's NUM_THREADS; the file's
@@ -103,8 +103,9 @@ public:
   vtkGetMacro(StripRows, int);
   ///@}
 
-  /** Rows and columns of the file's square tiles (256): strips of whole tile rows are
-   * written without rewriting a tile. */
+  /** Rows and columns of the file's square tiles (256; a raster of fewer rows has one row of
+   * tiles, its rows rounded up to 16 high): strips of whole tile rows are written without
+   * rewriting a tile. */
   static int GetTileSize();
 
   /** Write the file (in strips when StripRows > 0); 1 on success, 0 after an error. */

@@ -116,6 +116,9 @@ void TestWriteAndReadBack()
     GDALRasterBandH band = GDALGetRasterBand(ds, b);
     AP_CHECK(std::string(GDALGetDescription(band)) == names[b - 1]);
     AP_CHECK(GDALGetRasterDataType(band) == GDT_Float32);
+    int bx = 0, by = 0; // 4 rows: one row of tiles, 16 high (GeoTIFF's unit), not 256
+    GDALGetBlockSize(band, &bx, &by);
+    AP_CHECK(bx == 256 && by == 16);
     int has = 0;
     AP_CHECK(std::isnan(GDALGetRasterNoDataValue(band, &has)) && has);
   }
@@ -369,6 +372,13 @@ void TestStrips()
       { 0, 599, 8, 263, 0, 0 }, { 0, 599, 0, 7, 0, 0 } };
     AP_CHECK(source->Requests == asked);
     AP_CHECK(SameContents(whole, tmp + "/strips.tif"));
+    {
+      GDALDatasetH ds = GDALOpen((tmp + "/strips.tif").c_str(), GA_ReadOnly);
+      int bx = 0, by = 0; // (520 rows: square tiles)
+      GDALGetBlockSize(GDALGetRasterBand(ds, 1), &bx, &by);
+      AP_CHECK(bx == 256 && by == 256);
+      GDALClose(ds);
+    }
     AP_CHECK(source->GetOutput()->GetNumberOfPoints() == 600 * 8); // the last strip, kept
     // with the producer's ReleaseDataFlag on, each strip is released once written
     source->ReleaseDataFlagOn();
