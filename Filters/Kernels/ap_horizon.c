@@ -2800,49 +2800,29 @@ typedef struct line_state {
   window w;      /* limited search: the window of those samples within the distance */
 } line_state;
 
-/* Parallel lines: whether the band of nl lines from bracket b0 brackets a cell of the region
- * at some view column of it (the first line where ap_horizon_sweep puts it: moved by
- * par_shift from the last column, or on the lattice; a margin of two cells covers the
- * rounding of the sweep's running sum). A band that does not has nothing to compute. */
-static int band_meets_region(const ap_horizon *hz, size_t b0, size_t nl)
-{
-  const double k0 = (double)(hz->kmin + (long)b0);
-  const double lo = (double)hz->vs0 - 2.0, hi = (double)hz->vs1 + 1.0;
-  size_t p;
-  if (hz->vs0 == 0 && hz->vs1 == hz->ns) {
-    return 1; /* (every band brackets some cell of every view column) */
-  }
-  for (p = hz->vp0; p < hz->vp1; ++p) {
-    const double a = hz->lattice ? (k0 + hz->lat_off[p]) - (double)hz->ocol
-                                 : (k0 + hz->phase) - par_shift(hz, p, hz->np - 1);
-    if (a + (double)(nl - 1) >= lo && a <= hi) {
-      return 1;
-    }
-  }
-  return 0;
-}
-
-/* Parallel lines: the view row of line k0 at view column p (line k0 + l is l rows further). */
+/* Parallel lines: the view row of line k0 at view column p (line k0 + l is l rows further),
+ * where ap_horizon_sweep puts it: moved by par_shift from the last column, or on the lattice. */
 AP_INLINE double band_row(const ap_horizon *hz, double k0, size_t p)
 {
   return hz->lattice ? (k0 + hz->lat_off[p]) - (double)hz->ocol
                      : (k0 + hz->phase) - par_shift(hz, p, hz->np - 1);
 }
 
-/* Parallel lines: the view columns [*pa, *pb] on which some of the lines k0 .. k0 + nl - 1 lie
- * within two rows of the grid (outside them the band brackets no cell and samples nothing);
- * *pb < *pa when none. The rows move one way (band_row is monotonic in p): binary searches,
- * so that a band of a long, narrow DEM does not walk every column of it. */
-static void band_columns(const ap_horizon *hz, double k0, size_t nl, size_t *pa, size_t *pb)
+/* Parallel lines: the view columns [*pa, *pb) on which some of the lines k0 .. k0 + nl - 1 lie
+ * within view rows [lo, hi]; *pb <= *pa when none. The rows move one way (band_row is
+ * monotonic in p), so the columns are an interval: binary searches, so that a band of a long,
+ * narrow DEM does not walk every column of it. */
+static void band_columns(const ap_horizon *hz, double k0, size_t nl, double lo, double hi,
+                         size_t *pa, size_t *pb)
 {
-  const double lo = -1.0 - (double)nl, hi = (double)hz->ns + 1.0; /* band_row within these */
+  const double last = (double)(nl - 1); /* the band's last line, rows beyond its first */
   const size_t np = hz->np;
   const int up = band_row(hz, k0, 0) <= band_row(hz, k0, np - 1);
   size_t a = 0, b = np;
-  while (a < b) { /* the first column that has reached the interval */
+  while (a < b) { /* the first column where the band has reached the rows */
     const size_t mid = a + (b - a) / 2;
     const double r = band_row(hz, k0, mid);
-    if (up ? r >= lo : r <= hi) {
+    if (up ? r + last >= lo : r <= hi) {
       b = mid;
     } else {
       a = mid + 1;
@@ -2851,16 +2831,30 @@ static void band_columns(const ap_horizon *hz, double k0, size_t nl, size_t *pa,
   *pa = a;
   a = 0;
   b = np;
-  while (a < b) { /* the first column that has left it */
+  while (a < b) { /* the first column where it has left them */
     const size_t mid = a + (b - a) / 2;
     const double r = band_row(hz, k0, mid);
-    if (!(up ? r <= hi : r >= lo)) {
+    if (up ? r > hi : r + last < lo) {
       b = mid;
     } else {
       a = mid + 1;
     }
   }
-  *pb = a; /* (one past the last: the caller's loop bound) */
+  *pb = a;
+}
+
+/* Parallel lines: whether the band of nl lines from bracket b0 brackets a cell of the region
+ * at some view column of it (a margin of two cells). A band that does not has nothing to
+ * compute. */
+static int band_meets_region(const ap_horizon *hz, size_t b0, size_t nl)
+{
+  size_t pa, pb;
+  if (hz->vs0 == 0 && hz->vs1 == hz->ns) {
+    return 1; /* (every band brackets some cell of every view column) */
+  }
+  band_columns(hz, (double)(hz->kmin + (long)b0), nl, (double)hz->vs0 - 2.0,
+               (double)hz->vs1 + 1.0, &pa, &pb);
+  return (pa > hz->vp0 ? pa : hz->vp0) < (pb < hz->vp1 ? pb : hz->vp1);
 }
 
 ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
@@ -2929,8 +2923,8 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
   phase = hz->phase;
   pcol0 = 0; /* the band's columns [pcol0, pcol1) */
   pcol1 = np;
-  if (hz->parallel) {
-    band_columns(hz, k0, nl, &pcol0, &pcol1);
+  if (hz->parallel) { /* (within two rows of the grid: outside, a band brackets no cell) */
+    band_columns(hz, k0, nl, -2.0, (double)ns + 1.0, &pcol0, &pcol1);
   }
 
   for (pp = pcol1; pp-- > pcol0;) {
