@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <mutex>
 #include <set>
+#include <string>
+#include <system_error>
 #include <thread>
 
 /** Cores of this machine (at least 1). */
@@ -29,6 +31,14 @@ inline vtkSMPTools::Config vtkApertureSMPConfig(int requested)
   const int cores = vtkApertureCores();
   const int n = requested > 0 ? std::min(requested, cores) : cores;
   return vtkSMPTools::Config{ n, n == 1 ? "Sequential" : "STDThread", false };
+}
+
+/** Why an operation on `threads` threads failed when the system refused to start one (the
+ *  STDThread backend's std::thread threw `e`), in words the command line maps to --threads. */
+inline std::string vtkApertureThreadsRefused(int threads, const std::system_error& e)
+{
+  return "could not start " + std::to_string(threads) + " threads (" + e.what() +
+    "); use fewer threads (NumberOfThreads; 1 starts none)";
 }
 
 /** The distinct threads that ran an operation's parallel chunks: Note() at the start of each

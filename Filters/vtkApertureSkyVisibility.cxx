@@ -266,10 +266,8 @@ int vtkApertureSkyVisibility::RequestData(
   {
     // (vtkSMPTools' STDThread backend starting its threads: std::thread throws when the
     // system refuses one, e.g. no memory left for its stack)
-    vtkErrorMacro(<< "could not start "
-                  << vtkApertureSMPConfig(this->NumberOfThreads).MaxNumberOfThreads
-                  << " threads (" << e.what() << "); use fewer threads (NumberOfThreads; 1 "
-                  << "starts none)");
+    vtkErrorMacro(<< vtkApertureThreadsRefused(
+                    vtkApertureSMPConfig(this->NumberOfThreads).MaxNumberOfThreads, e));
     return 0;
   }
 }

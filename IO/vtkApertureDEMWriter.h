@@ -16,11 +16,11 @@
  *
  * Samples: Float32 bands, or Float64 when any written array is double. NaN is the nodata value
  * and is declared as such. Compression: DEFLATE with the floating-point predictor, tiled
- * 256 x 256 (a raster of fewer rows: its rows rounded up to 16), BigTIFF when needed; Compression may name another GeoTIFF codec that keeps
- * floating-point samples exactly (NONE, LZW, PACKBITS, ZSTD, LZMA, LERC, LERC_DEFLATE,
- * LERC_ZSTD, where GDAL offers them), CompressionLevel sets its level (default 1, the
- * fastest). Tiles are compressed on NumberOfThreads threads (GDAL's NUM_THREADS; the file's
- * bytes do not depend on it).
+ * 256 x 256 (a raster of fewer rows: its rows rounded up to 16), BigTIFF when needed;
+ * Compression may name another GeoTIFF codec that keeps floating-point samples exactly (NONE,
+ * LZW, PACKBITS, ZSTD, LZMA, LERC, LERC_DEFLATE, LERC_ZSTD, where GDAL offers them),
+ * CompressionLevel sets its level (default 1, the fastest). Tiles are compressed on
+ * NumberOfThreads threads (GDAL's NUM_THREADS; the file's bytes do not depend on it).
  *
  * Errors (vtkErrorMacro, nothing left behind): no file name, an input that is not 2-D, a named
  * array that does not exist, an array that is not numeric, a codec GDAL does not offer or

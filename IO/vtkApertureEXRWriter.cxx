@@ -814,9 +814,8 @@ int vtkApertureEXRWriter::WriteStrip(vtkImageData* strip)
   catch (const std::system_error& e)
   {
     // (the STDThread backend's std::thread, when the system refuses a thread)
-    vtkErrorMacro(<< "could not start " << threads.MaxNumberOfThreads << " threads to write '"
-                  << path << "' (" << e.what()
-                  << "); use fewer threads (NumberOfThreads; 1 starts none)");
+    vtkErrorMacro(<< "writing '" << path
+                  << "': " << vtkApertureThreadsRefused(threads.MaxNumberOfThreads, e));
     return 0;
   }
   this->NumberOfThreadsUsed = std::max(this->NumberOfThreadsUsed, tally.Count());

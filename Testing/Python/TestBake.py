@@ -746,6 +746,23 @@ class TestBake(unittest.TestCase):
             else:
                 self.assertEqual(p.returncode, 0, p.stderr)
                 self.assertTrue(os.path.exists(out))
+        # the EXR writer alike (the bake's sky filter fails first: the writer alone)
+        exr = self.path("threads.exr")
+        script = ("import aperture\n"
+                  "from vtkmodules.vtkImagingCore import vtkRTAnalyticSource\n"
+                  "s = vtkRTAnalyticSource()\n"
+                  "s.SetWholeExtent(0, 63, 0, 63, 0, 0)\n"
+                  "w = aperture.vtkApertureEXRWriter()\n"
+                  "w.SetInputConnection(s.GetOutputPort())\n"
+                  "w.SetFileName(%r)\n"
+                  "w.SetNumberOfThreads(2)\n"
+                  "print('written', w.Write())\n" % exr)
+        p = subprocess.run([os.path.join(BUILD, "bin", "aperture-python"), "-c", script],
+                           preexec_fn=limits, capture_output=True, text=True, timeout=300)
+        self.assertIn("written 0", p.stdout, p.stderr)
+        self.assertIn("writing '%s': could not start 2 threads (" % exr, p.stderr)
+        self.assertIn("); use fewer threads (NumberOfThreads; 1 starts none)", p.stderr)
+        self.assertFalse(os.path.exists(exr))
 
     def test_does_not_overwrite(self):
         # An output that is the input DEM, or two outputs in one file, are refused before any
