@@ -2795,34 +2795,60 @@ typedef struct line_state {
   double xend;   /* distance of the farthest sample position inside the grid; NAN: none yet */
   size_t pend;   /* its column */
   double avail;  /* xend - x on the current column (0 when none): how far the line sees */
+  int before;    /* bending lines: whether the line has only been beyond a side of the grid,
+                  * rows <= 0 (1) or >= ns - 1 (2), up to the previous column; 3 not; 0 not
+                  * yet known */
   hull h;        /* unlimited search: the hull of the samples at least K columns away */
   int hint[2];   /* the last tangent index of h for the cell below (0) and above (1) */
   window w;      /* limited search: the window of those samples within the distance */
 } line_state;
 
-/* Parallel lines: the view row of line k0 at view column p (line k0 + l is l rows further),
- * where ap_horizon_sweep puts it: moved by par_shift from the last column, or on the lattice. */
-AP_INLINE double band_row(const ap_horizon *hz, double k0, size_t p)
+/* Per-row sizes, x-major (bending lines): the view row of line k at view column p, where
+ * ap_horizon_sweep puts it (the row where Psi = sigma k + lat_off[p], linear on its segment of
+ * the larger DEM's rows); j is a segment hint for lattice_seek (-1: none). */
+AP_INLINE double lattice_row(const ap_horizon *hz, long k, size_t p, long *j)
 {
-  return hz->lattice ? (k0 + hz->lat_off[p]) - (double)hz->ocol
-                     : (k0 + hz->phase) - par_shift(hz, p, hz->np - 1);
+  const double T = hz->sigma * (double)k + hz->lat_off[p];
+  *j = lattice_seek(hz, T, *j);
+  return ((double)*j + (T - hz->psi[*j]) * hz->psi_inv[*j]) - (double)hz->orow;
 }
 
-/* Parallel lines: the view columns [*pa, *pb) on which some of the lines k0 .. k0 + nl - 1 lie
- * within view rows [lo, hi]; *pb <= *pa when none. The rows move one way (band_row is
- * monotonic in p), so the columns are an interval: binary searches, so that a band of a long,
- * narrow DEM does not walk every column of it. */
-static void band_columns(const ap_horizon *hz, double k0, size_t nl, double lo, double hi,
+/* The view rows of the first and the last of the lines k0 .. k0 + nl - 1 at view column p, where
+ * ap_horizon_sweep puts them: parallel lines moved by par_shift from the last column, or on the
+ * lattice; bending lines on theirs (lattice_row). */
+AP_INLINE void band_rows(const ap_horizon *hz, long k0, size_t nl, size_t p, double *first,
+                         double *last)
+{
+  if (hz->parallel) {
+    *first = hz->lattice ? ((double)k0 + hz->lat_off[p]) - (double)hz->ocol
+                         : ((double)k0 + hz->phase) - par_shift(hz, p, hz->np - 1);
+    *last = *first + (double)(nl - 1);
+  } else {
+    long j = -1;
+    *first = lattice_row(hz, k0, p, &j);
+    *last = lattice_row(hz, k0 + (long)(nl - 1), p, &j);
+  }
+}
+
+/* The view columns [*pa, *pb) on which some of the lines k0 .. k0 + nl - 1 lie within view
+ * rows [lo, hi]; *pb <= *pa when none. Every line's row moves one way with p, all of them the
+ * same way (the band's first row is monotonic in p, and so is its last), so the columns are an
+ * interval: binary searches, so that a band of a long, narrow DEM does not walk every column
+ * of it. */
+static void band_columns(const ap_horizon *hz, long k0, size_t nl, double lo, double hi,
                          size_t *pa, size_t *pb)
 {
-  const double last = (double)(nl - 1); /* the band's last line, rows beyond its first */
   const size_t np = hz->np;
-  const int up = band_row(hz, k0, 0) <= band_row(hz, k0, np - 1);
+  double r0, r1, e0, e1;
+  int up;
   size_t a = 0, b = np;
+  band_rows(hz, k0, nl, 0, &r0, &r1);
+  band_rows(hz, k0, nl, np - 1, &e0, &e1);
+  up = r0 <= e0;
   while (a < b) { /* the first column where the band has reached the rows */
     const size_t mid = a + (b - a) / 2;
-    const double r = band_row(hz, k0, mid);
-    if (up ? r + last >= lo : r <= hi) {
+    band_rows(hz, k0, nl, mid, &r0, &r1);
+    if (up ? r1 >= lo : r0 <= hi) {
       b = mid;
     } else {
       a = mid + 1;
@@ -2833,8 +2859,8 @@ static void band_columns(const ap_horizon *hz, double k0, size_t nl, double lo, 
   b = np;
   while (a < b) { /* the first column where it has left them */
     const size_t mid = a + (b - a) / 2;
-    const double r = band_row(hz, k0, mid);
-    if (up ? r > hi : r + last < lo) {
+    band_rows(hz, k0, nl, mid, &r0, &r1);
+    if (up ? r0 > hi : r1 < lo) {
       b = mid;
     } else {
       a = mid + 1;
@@ -2843,16 +2869,15 @@ static void band_columns(const ap_horizon *hz, double k0, size_t nl, double lo, 
   *pb = a;
 }
 
-/* Parallel lines: whether the band of nl lines from bracket b0 brackets a cell of the region
- * at some view column of it (a margin of two cells). A band that does not has nothing to
- * compute. */
+/* Whether the band of nl lines from bracket b0 brackets a cell of the region at some view
+ * column of it (a margin of two cells). A band that does not has nothing to compute. */
 static int band_meets_region(const ap_horizon *hz, size_t b0, size_t nl)
 {
   size_t pa, pb;
   if (hz->vs0 == 0 && hz->vs1 == hz->ns) {
     return 1; /* (every band brackets some cell of every view column) */
   }
-  band_columns(hz, (double)(hz->kmin + (long)b0), nl, (double)hz->vs0 - 2.0,
+  band_columns(hz, hz->kmin + (long)b0, nl, (double)hz->vs0 - 2.0,
                (double)hz->vs1 + 1.0, &pa, &pb);
   return (pa > hz->vp0 ? pa : hz->vp0) < (pb < hz->vp1 ? pb : hz->vp1);
 }
@@ -2893,7 +2918,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
     return AP_OK;
   }
   nl = b1 - b0 + 1; /* brackets b0..b1-1 need lines b0..b1 */
-  if (hz->parallel && !band_meets_region(hz, b0, nl)) {
+  if (!band_meets_region(hz, b0, nl)) {
     return AP_OK; /* (with a region: its cells lie beside this band's lines) */
   }
   lines = (line_state *)calloc(nl, sizeof(line_state));
@@ -2921,10 +2946,16 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
   x0 = xc = lines[0].x;
   k0 = (double)(hz->kmin + (long)b0);
   phase = hz->phase;
-  pcol0 = 0; /* the band's columns [pcol0, pcol1) */
-  pcol1 = np;
-  if (hz->parallel) { /* (within two rows of the grid: outside, a band brackets no cell) */
-    band_columns(hz, k0, nl, -2.0, (double)ns + 1.0, &pcol0, &pcol1);
+  /* the band's columns [pcol0, pcol1) (within two rows of the grid: outside, a band brackets
+   * no cell) */
+  band_columns(hz, hz->kmin + (long)b0, nl, -2.0, (double)ns + 1.0, &pcol0, &pcol1);
+  if (!hz->parallel && pcol1 < np) {
+    /* bending lines starting after the last column: each one's row on the column before
+     * (lines[l].s is the row of the previous column p + 1 in the loop below) */
+    long j = -1;
+    for (l = 0; l < nl; ++l) {
+      lines[l].s = lattice_row(hz, hz->kmin + (long)(b0 + l), pcol1, &j);
+    }
   }
 
   for (pp = pcol1; pp-- > pcol0;) {
@@ -2966,7 +2997,20 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
         line_state *ln = &lines[l];
         const double T = sigma * (double)(kfirst + (long)l) + off;
         if (p + 1 < np) {
-          ln->x -= row_value(hz->len_row, hz->ny, ln->s);
+          /* the step from the previous column, by the length at the line's row there; while
+           * the line has come from beyond one side of the grid (clamped lengths), in closed
+           * form, so that its distances do not depend on the column its band starts on */
+          const double sp = ln->s;
+          const int side = sp >= smax ? 2 : (!(sp > 0.0) ? 1 : 0);
+          if (ln->before == 0) {
+            ln->before = side ? side : 3; /* (the line's first step) */
+          }
+          if (ln->before == side) {
+            ln->x = x0 - (double)(np - 1 - p) * hz->len_row[side == 2 ? hz->ny - 1 : 0];
+          } else {
+            ln->before = 3;
+            ln->x -= row_value(hz->len_row, hz->ny, sp);
+          }
         }
         if (l == 0) {
           /* the band's first line: from its segment on the previous column */

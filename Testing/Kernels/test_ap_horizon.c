@@ -696,6 +696,21 @@ static void test_long_narrow(void)
     compare_brute_force(&t, &p, k ? "14 x 600, 4000 m, swept" : "600 x 14, 4000 m, swept");
     drop(&t);
   }
+  /* The same on lat/lon rows (about 29 x 33 m cells at 50 N): the x-major sectors' lines bend,
+   * and each band starts where its first line nears the grid (band_columns on lattice_row),
+   * its lines' distances in closed form until they reach it. */
+  for (k = 0; k < 2; ++k) {
+    terrain t = rough_terrain(sizes[k][0], sizes[k][1]);
+    ap_horizon_params p = params(32, 1);
+    latlon_rows(&t, 6371000.0, 50.0 * DEG, 0.0003 * DEG, 0.0004 * DEG);
+    p.radius_meridian = p.radius_normal = 6371000.0;
+    compare_brute_force(&t, &p, k ? "lat/lon 14 x 600, unlimited" : "lat/lon 600 x 14, unlimited");
+    p.max_distance = 4000.0;
+    set_mode(&p, SWEPT, 64);
+    compare_brute_force(&t, &p,
+                        k ? "lat/lon 14 x 600, 4000 m, swept" : "lat/lon 600 x 14, 4000 m, swept");
+    drop(&t);
+  }
 }
 
 /* A lat/lon-like grid over 40..60 N: the east-west cell size shrinks by a third from south to
