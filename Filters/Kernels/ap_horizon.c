@@ -867,17 +867,16 @@ static void free_sector(ap_horizon *hz)
   hz->lat_off = NULL;
   free((void *)hz->colp);
   hz->colp = NULL;
-  free(hz->recs);
-  free(hz->pats);
+  /* (the patterns' records and the patterns keep their memory for the next sector: a tall
+   * lat/lon DEM has a pattern or more per row, which growing again from nothing in every
+   * sector copied over and over) */
+  hz->nrecs = hz->npats = 0;
   free(hz->pat_of);
   free(hz->fm);
   hz->fm = NULL;
   hz->far_march = 0;
   hz->m_row = hz->len_row = hz->cum_m = hz->cum_len = NULL;
-  hz->recs = NULL;
-  hz->pats = NULL;
   hz->pat_of = NULL;
-  hz->nrecs = hz->caprecs = hz->npats = hz->cappats = 0;
 }
 
 void ap_horizon_destroy(ap_horizon *hz)
@@ -886,6 +885,8 @@ void ap_horizon_destroy(ap_horizon *hz)
     return;
   }
   free_sector(hz);
+  free(hz->recs);
+  free(hz->pats);
   free(hz->dxr);
   free(hz->dyr);
   free(hz->psi);
