@@ -465,12 +465,23 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     return false; // (reported)
   }
   char** options = nullptr;
-  options = CSLSetNameValue(options, "TILED", "YES");
-  options = CSLSetNameValue(options, "BLOCKXSIZE", std::to_string(Tile).c_str());
-  // (a raster of fewer rows gets tiles of its rows rounded up to 16, GeoTIFF's unit: a 2-row
-  // DEM in 256-row tiles would compress 128 times its size)
-  const int tileRows = std::min(Tile, (ny + 15) / 16 * 16);
-  options = CSLSetNameValue(options, "BLOCKYSIZE", std::to_string(tileRows).c_str());
+  if (nx < Tile)
+  {
+    // (a raster narrower than a tile is stored in strips of a tile's rows, as wide as the
+    // raster: tiles are multiples of 16 wide, and a 2-column DEM in 16-column tiles compressed
+    // 8 times its size into a file 2.6 times as large)
+    options = CSLSetNameValue(options, "TILED", "NO");
+    options = CSLSetNameValue(options, "BLOCKYSIZE", std::to_string(Tile).c_str());
+  }
+  else
+  {
+    // (a raster of fewer rows gets tiles of its rows rounded up to 16, GeoTIFF's unit: a 2-row
+    // DEM in 256-row tiles would compress 128 times its size)
+    const int tileRows = std::min(Tile, (ny + 15) / 16 * 16);
+    options = CSLSetNameValue(options, "TILED", "YES");
+    options = CSLSetNameValue(options, "BLOCKXSIZE", std::to_string(Tile).c_str());
+    options = CSLSetNameValue(options, "BLOCKYSIZE", std::to_string(tileRows).c_str());
+  }
   options = CSLSetNameValue(options, "INTERLEAVE", "BAND");
   options = CSLSetNameValue(options, "BIGTIFF", "IF_SAFER");
   options = CSLSetNameValue(options, "COMPRESS", compression.c_str());

@@ -16,7 +16,8 @@
  *
  * Samples: Float32 bands, or Float64 when any written array is double. NaN is the nodata value
  * and is declared as such. Compression: DEFLATE with the floating-point predictor, tiled
- * 256 x 256 (a raster of fewer rows: its rows rounded up to 16), BigTIFF when needed;
+ * 256 x 256 (a raster of fewer rows: its rows rounded up to 16; one of fewer columns is stored
+ * in strips of 256 rows instead), BigTIFF when needed;
  * Compression may name another GeoTIFF codec that keeps floating-point samples exactly (NONE,
  * LZW, PACKBITS, ZSTD, LZMA, LERC, LERC_DEFLATE, LERC_ZSTD, where GDAL offers them),
  * CompressionLevel sets its level (default 1, the fastest). Tiles are compressed on
@@ -104,8 +105,8 @@ public:
   ///@}
 
   /** Rows and columns of the file's square tiles (256; a raster of fewer rows has one row of
-   * tiles, its rows rounded up to 16 high): strips of whole tile rows are written without
-   * rewriting a tile. */
+   * tiles, its rows rounded up to 16 high, and one of fewer columns strips of 256 rows instead
+   * of tiles): strips of whole tile rows are written without rewriting a tile. */
   static int GetTileSize();
 
   /** Write the file (in strips when StripRows > 0); 1 on success, 0 after an error. */

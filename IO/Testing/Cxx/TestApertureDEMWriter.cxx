@@ -116,9 +116,9 @@ void TestWriteAndReadBack()
     GDALRasterBandH band = GDALGetRasterBand(ds, b);
     AP_CHECK(std::string(GDALGetDescription(band)) == names[b - 1]);
     AP_CHECK(GDALGetRasterDataType(band) == GDT_Float32);
-    int bx = 0, by = 0; // 4 rows: one row of tiles, 16 high (GeoTIFF's unit), not 256
+    int bx = 0, by = 0; // 6 x 4: one strip of the whole raster, not a 256 x 256 tile
     GDALGetBlockSize(band, &bx, &by);
-    AP_CHECK(bx == 256 && by == 16);
+    AP_CHECK(bx == NX && by == NY);
     int has = 0;
     AP_CHECK(std::isnan(GDALGetRasterNoDataValue(band, &has)) && has);
   }
@@ -389,6 +389,28 @@ void TestStrips()
     AP_CHECK(source->GetOutput()->GetNumberOfPoints() == 0);
     AP_CHECK(SameContents(whole, tmp + "/strips-released.tif"));
     source->ReleaseDataFlagOff();
+  }
+  {
+    // 3 columns: the file's strips of 256 rows, 3 wide; written in strips of 256 rows
+    vtkSmartPointer<vtkImageData> narrow = NoisyImage(3, 520, 777u, 1e-6f, "Elevation");
+    vtkNew<vtkApertureDEMWriter> w;
+    w->SetInputData(narrow);
+    setup(w, tmp + "/narrow-whole.tif", 0);
+    AP_CHECK(w->Write() == 1);
+    setup(w, tmp + "/narrow-strips.tif", 1);
+    AP_CHECK(w->Write() == 1);
+    AP_CHECK(SameContents(tmp + "/narrow-whole.tif", tmp + "/narrow-strips.tif"));
+    GDALDatasetH ds = GDALOpen((tmp + "/narrow-strips.tif").c_str(), GA_ReadOnly);
+    int bx = 0, by = 0;
+    GDALGetBlockSize(GDALGetRasterBand(ds, 1), &bx, &by);
+    AP_CHECK(bx == 3 && by == 256);
+    AP_CHECK(GDALGetRasterXSize(ds) == 3 && GDALGetRasterYSize(ds) == 520);
+    vtkDataArray* nz = narrow->GetPointData()->GetArray("Elevation");
+    for (int j : { 0, 255, 256, 519 }) // (file rows north first: grid row j is file row 519 - j)
+    {
+      AP_CHECK(Value(ds, 1, 2, 519 - j) == static_cast<float>(nz->GetTuple1(3 * j + 2)));
+    }
+    GDALClose(ds);
   }
   {
     vtkNew<vtkApertureDEMWriter> w;
