@@ -2950,6 +2950,12 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
   /* the band's columns [pcol0, pcol1) (within two rows of the grid: outside, a band brackets
    * no cell) */
   band_columns(hz, hz->kmin + (long)b0, nl, -2.0, (double)ns + 1.0, &pcol0, &pcol1);
+  if (limited && pcol1 > pcol0 && (double)(pcol1 - pcol0) + 2.0 < (double)W) {
+    /* every sample of the band lies on its columns, so a window never holds more than those:
+     * a band crossing a long, narrow DEM in a few columns gets rings of a few samples, not of
+     * the distance's columns (each line's ring is written whole when it starts) */
+    W = (int)(pcol1 - pcol0) + 2;
+  }
   if (!hz->parallel && pcol1 < np) {
     /* bending lines starting after the last column: each one's row on the column before
      * (lines[l].s is the row of the previous column p + 1 in the loop below) */
