@@ -543,6 +543,8 @@ class TestBake(unittest.TestCase):
                 (("--directions", "3"), "--directions must be within 4..360"),
                 (("--directions", "361"), "--directions must be within 4..360"),
                 (("--radius", "-5"), "--radius must be a positive distance"),
+                (("--radius", "inf"), "(inf given; leave --radius out for an unlimited search)"),
+                (("--radius", "0"), "(0 given; leave --radius out"),
                 (("--refraction", "1"), "--refraction must be within [0, 1)"),
                 (("--products", "Slope"), "unknown product 'Slope'"),
                 (("--compress", "FOO"), "unknown GeoTIFF compression 'FOO'"),

@@ -384,8 +384,7 @@ def cmd_render(args):
         raise ApertureError("--exposure must be a number of EV")
     if args.albedo and not os.path.isfile(args.albedo):
         raise ApertureError("the albedo image %s does not exist" % args.albedo)
-    if args.radius is not None and not (args.radius > 0 and math.isfinite(args.radius)):
-        raise ApertureError("--radius must be a positive distance in metres")
+    _check_radius(args.radius)
     watcher = Watcher(on_warning=_warn)
     bake_here = args.lighting == "aperture" and not args.baked
     if bake_here:
@@ -756,12 +755,18 @@ def _write_strips(watcher, clip, window, extents, outputs, guard, started):
             output.AbandonStrips()
 
 
+def _check_radius(radius):
+    """--radius: a positive, finite distance; leaving it out is the unlimited search."""
+    if radius is not None and not (radius > 0 and math.isfinite(radius)):
+        raise ApertureError("--radius must be a positive distance in metres (%s given; leave "
+                            "--radius out for an unlimited search)" % ("%g" % radius))
+
+
 def cmd_bake(args):
     products = _parse_products(args.products)
     if not 4 <= args.directions <= 360:
         raise ApertureError("--directions must be within 4..360")
-    if args.radius is not None and not (args.radius > 0 and math.isfinite(args.radius)):
-        raise ApertureError("--radius must be a positive distance in metres")
+    _check_radius(args.radius)
     if not (0 <= args.refraction < 1):
         raise ApertureError("--refraction must be within [0, 1)")
     if args.threads < 0:
