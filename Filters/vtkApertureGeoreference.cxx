@@ -534,13 +534,27 @@ bool vtkApertureGeoreference::GetBoundsLonLat(double bounds[4])
 //------------------------------------------------------------------------------
 bool vtkApertureGeoreference::GetCellSizeMetres(double size[2])
 {
+  const double xc = this->GridOrigin[0] + 0.5 * (this->GridSize[0] - 1) * this->GridSpacing[0];
+  const double yc = this->GridOrigin[1] + 0.5 * (this->GridSize[1] - 1) * this->GridSpacing[1];
+  if (!this->GetCellSizeMetresAt(xc, yc, size))
+  {
+    if (this->Impl->Error == "the cell has no geographic coordinates")
+    {
+      this->Impl->Error = "the grid centre has no geographic coordinates";
+    }
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::GetCellSizeMetresAt(double xc, double yc, double size[2])
+{
   double ell[2];
   if (!this->GetEllipsoid(ell))
   {
     return false;
   }
-  const double xc = this->GridOrigin[0] + 0.5 * (this->GridSize[0] - 1) * this->GridSpacing[0];
-  const double yc = this->GridOrigin[1] + 0.5 * (this->GridSize[1] - 1) * this->GridSpacing[1];
   const double hx = 0.5 * this->GridSpacing[0], hy = 0.5 * this->GridSpacing[1];
   const double xy[8] = { xc - hx, yc, xc + hx, yc, xc, yc - hy, xc, yc + hy };
   double ll[8];
@@ -552,7 +566,7 @@ bool vtkApertureGeoreference::GetCellSizeMetres(double size[2])
   {
     if (std::isnan(v))
     {
-      this->Impl->Error = "the grid centre has no geographic coordinates";
+      this->Impl->Error = "the cell has no geographic coordinates";
       return false;
     }
   }

@@ -152,6 +152,13 @@ public:
   bool GetCellSizeMetres(double size[2]);
 
   /**
+   * Ground size of one cell centred at CRS point (x, y), as GetCellSizeMetres (which is this at
+   * the grid centre): for a projected CRS it changes across the grid with the projection's
+   * scale factor. False (GetErrorMessage) when the cell has no geographic coordinates.
+   */
+  bool GetCellSizeMetresAt(double x, double y, double size[2]);
+
+  /**
    * Meridian convergence γ at a geographic point (degrees): the angle from grid north to true
    * north, positive when true north lies east of grid north (east of the central meridian of
    * a transverse Mercator zone in the northern hemisphere). A true azimuth A has grid azimuth

@@ -30,6 +30,7 @@
 #include <limits>
 #include <memory>
 #include <new>
+#include <iomanip>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -42,6 +43,10 @@ namespace
 // The range of the Earth's surface with a margin (m): Challenger Deep about -10,935 m, Everest
 // 8,849 m, orthometric or ellipsoidal (the geoid stays within about 110 m of the ellipsoid).
 constexpr float EarthLowest = -11100.0f;
+// A projected DEM's ground cell size may differ from its centre's by this much (relative) at
+// its corners and edge midpoints before the filter warns: distances, and so horizon tangents,
+// are off by as much (a 45-degree horizon by 0.14 degree at 0.5%; a whole UTM zone: 0.1%).
+constexpr double ScaleChangeWarning = 0.005;
 constexpr float EarthHighest = 9000.0f;
 
 // The start of both out-of-memory messages: "a NX x NY DEM with these products needs about
@@ -71,6 +76,62 @@ void SetWholeGrid(
 {
   geo->SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1], spacing[0],
     spacing[1], whole[1] - whole[0] + 1, whole[3] - whole[2] + 1);
+}
+
+// For a projected grid (geo describing the whole grid): a warning when its ground cell size at
+// a corner or an edge midpoint differs from the centre's, which the sweep uses for every cell,
+// by more than ScaleChangeWarning (the projection's scale factor changes across the grid);
+// "" otherwise, and where the sizes cannot be measured.
+std::string ScaleChange(vtkApertureGeoreference* geo)
+{
+  double origin[2], spacing[2], centre[2];
+  int size[2];
+  geo->GetGridOrigin(origin);
+  geo->GetGridSpacing(spacing);
+  geo->GetGridSize(size);
+  if (!geo->GetCellSizeMetres(centre) || !(centre[0] > 0) || !(centre[1] > 0))
+  {
+    return "";
+  }
+  double lo[2] = { centre[0], centre[1] }, hi[2] = { centre[0], centre[1] }, worst = 0.0;
+  for (int b = 0; b < 3; ++b)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      double s[2];
+      if (!geo->GetCellSizeMetresAt(origin[0] + 0.5 * a * (size[0] - 1) * spacing[0],
+            origin[1] + 0.5 * b * (size[1] - 1) * spacing[1], s))
+      {
+        continue;
+      }
+      for (int c = 0; c < 2; ++c)
+      {
+        lo[c] = std::min(lo[c], s[c]);
+        hi[c] = std::max(hi[c], s[c]);
+        worst = std::max(worst, std::fabs(s[c] / centre[c] - 1.0));
+      }
+    }
+  }
+  if (!(worst > ScaleChangeWarning))
+  {
+    return "";
+  }
+  // (metres to four significant digits, without an exponent)
+  const auto metres = [](double v) {
+    const int digits = std::max(0, 3 - static_cast<int>(std::floor(std::log10(v))));
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(digits) << v;
+    return s.str();
+  };
+  std::ostringstream m;
+  m << "the projection's scale changes across this DEM: its cells measure " << metres(lo[0])
+    << " to " << metres(hi[0]) << " m east-west and " << metres(lo[1]) << " to "
+    << metres(hi[1]) << " m south-north on the ground, against " << metres(centre[0]) << " x "
+    << metres(centre[1]) << " m at its centre, which the sweep uses for every cell, so "
+    << "distances and horizon tangents are off by up to " << std::fixed << std::setprecision(2)
+    << 100.0 * worst << "% towards its edges; bake smaller pieces, or the DEM reprojected to a "
+    << "projection centred on it";
+  return m.str();
 }
 
 // Halo (in cells along i and j) that a search distance needs, from the smallest metric
@@ -539,6 +600,14 @@ int vtkApertureSkyVisibility::Execute(
     return 0;
   }
   params.azimuth_offset = gammaCentre * M_PI / 180.0;
+  if (!geographic)
+  {
+    const std::string scale = ScaleChange(geo);
+    if (!scale.empty())
+    {
+      vtkWarningMacro(<< scale);
+    }
+  }
   ap_status st = ap_horizon_validate(&grid, &params);
   if (st == AP_ERR_ALL_NODATA)
   {

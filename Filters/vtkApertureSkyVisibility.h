@@ -31,7 +31,8 @@
  * CRS's ellipsoid), so lat/lon DEMs are exact. A projected DEM takes the ground cell size at
  * its centre for every cell, so distances are off by the change of the projection's scale
  * factor across it (about 0.1% across a whole UTM zone; some 5% over Antarctica in polar
- * stereographic). Earth curvature uses the ellipsoid's radius of curvature in each azimuth at
+ * stereographic); a change of more than 0.5% (the ground cell size at a corner or an edge
+ * midpoint against the centre's) is warned about, naming it. Earth curvature uses the ellipsoid's radius of curvature in each azimuth at
  * the DEM centre.
  *
  * Terrain beyond the DEM edge is invisible; EdgeTruncated marks the cells where that may

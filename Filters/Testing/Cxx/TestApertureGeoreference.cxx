@@ -14,6 +14,8 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 
+#include <GeographicLib/TransverseMercator.hpp>
+
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -45,6 +47,21 @@ void TestProjected()
   AP_CHECK(geo->GetCellSizeMetres(size));
   AP_CHECK_NEAR(size[0], 30.0 / 0.9996, 1e-6);
   AP_CHECK_NEAR(size[1], 30.0 / 0.9996, 1e-6);
+  // Elsewhere the scale factor k of GeographicLib's exact transverse Mercator (zone 11: 117 W)
+  // gives 30 / k: 300 km east of the central meridian k is 1.0007 (not 0.9996); the grid
+  // centre through GetCellSizeMetresAt is GetCellSizeMetres.
+  {
+    double at[2], p[2];
+    AP_CHECK(geo->GetCellSizeMetresAt(500000.0, 4001500.0, at));
+    AP_CHECK(at[0] == size[0] && at[1] == size[1]);
+    AP_CHECK(geo->CRSToLonLat(800000.0, 4001500.0, p));
+    double x, y, gamma, k;
+    GeographicLib::TransverseMercator::UTM().Forward(-117.0, p[1], p[0], x, y, gamma, k);
+    AP_CHECK(k > 1.0005);
+    AP_CHECK(geo->GetCellSizeMetresAt(800000.0, 4001500.0, at));
+    AP_CHECK_NEAR(at[0], 30.0 / k, 1e-5);
+    AP_CHECK_NEAR(at[1], 30.0 / k, 1e-5);
+  }
   // Bounds: symmetric about 117 W; they enclose the transformed corners.
   double b[4], centre[2];
   AP_CHECK(geo->GetBoundsLonLat(b));

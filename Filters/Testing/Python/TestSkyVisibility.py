@@ -11,6 +11,7 @@
 - every documented error.
 """
 import math
+import re
 import os
 import sys
 
@@ -505,6 +506,56 @@ class TestSkyVisibility(Testing.vtkTest):
         # the highest and lowest places on Earth are not warned about
         _, warnings = run(np.where(z > 300.0, 8848.9, -10935.0))
         self.assertEqual(warnings, [])
+
+    def testProjectionScaleChange(self):
+        # The sweep takes a projected DEM's ground cell size at its centre for every cell: a
+        # DEM across which the projection's scale changes by more than 0.5% is warned about,
+        # with the change computed here from polar stereographic's own scale factor
+        # (EPSG:3031, standard parallel 71 S: k = rho / (a m(lat)), m = cos(lat) / w).
+        from aperture.errors import Watcher
+        a, e2 = 6378137.0, 0.00669437999014
+
+        def warnings_of(x0, y0, cell, n, crs):
+            w = Watcher()
+            f = w.watch(aperture.vtkApertureSkyVisibility())
+            f.SetInputData(make_image(np.full((n, n), 100.0), x0, y0, cell, cell, crs))
+            f.SetMaximumDistance(3 * cell)
+            f.Update()
+            self.assertEqual(w.errors, [])
+            return w.warnings
+
+        polar = osr.SpatialReference()
+        polar.ImportFromEPSG(3031)
+        polar.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+        wgs84 = osr.SpatialReference()
+        wgs84.ImportFromEPSG(4326)
+        wgs84.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+        to_geo = osr.CoordinateTransformation(polar, wgs84)
+
+        def k(x, y):
+            lat = math.radians(to_geo.TransformPoint(x, y)[1])
+            m = math.cos(lat) / math.sqrt(1 - e2 * math.sin(lat) ** 2)
+            return math.hypot(x, y) / (a * m)
+
+        # 41 x 41 cells of 50 km from 500 to 2500 km east, -1000 to 1000 km north of the pole
+        cell, n, x0, y0 = 50000.0, 41, 500000.0, -1000000.0
+        xs = (x0, x0 + 20 * cell, x0 + 40 * cell)
+        ys = (y0, y0 + 20 * cell, y0 + 40 * cell)
+        kc = k(xs[1], ys[1])
+        worst = max(abs(kc / k(x, y) - 1) for x in xs for y in ys)
+        self.assertGreater(worst, 0.02)  # (3.1%)
+        warnings = warnings_of(x0, y0, cell, n, "EPSG:3031")
+        self.assertEqual(len(warnings), 1, warnings)
+        self.assertIn("the projection's scale changes across this DEM: its cells measure ",
+                      warnings[0])
+        self.assertIn("m at its centre, which the sweep uses for every cell", warnings[0])
+        got = float(re.search(r"off by up to ([0-9.]+)%", warnings[0]).group(1))
+        self.assertAlmostEqual(got, 100 * worst, delta=0.02)
+        centre = "against %s x %s m" % (("%.0f" % (cell / kc),) * 2)
+        self.assertIn(centre, warnings[0])
+        # 100 km of the same projection, and a whole UTM zone (600 km wide, 0.11%): none
+        self.assertEqual(warnings_of(x0, y0, 1000.0, 101, "EPSG:3031"), [])
+        self.assertEqual(warnings_of(200000.0, 4000000.0, 6000.0, 101, "EPSG:32633"), [])
 
     def testMemoryLimit(self):
         # Refused before allocating when the estimate exceeds MemoryLimit: bytes per cell of
