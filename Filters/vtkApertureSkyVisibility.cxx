@@ -44,8 +44,8 @@ namespace
 // 8,849 m, orthometric or ellipsoidal (the geoid stays within about 110 m of the ellipsoid).
 constexpr float EarthLowest = -11100.0f;
 // A projected DEM's ground cell size may differ from its centre's by this much (relative) at
-// its corners and edge midpoints before the filter warns: distances, and so horizon tangents,
-// are off by as much (a 45-degree horizon by 0.14 degree at 0.5%; a whole UTM zone: 0.1%).
+// its corners and edge midpoints before the filter warns: a horizon's tangent there is off by
+// as much (a 45-degree horizon by 0.14 degree at 0.5%; a whole UTM zone changes by 0.1%).
 constexpr double ScaleChangeWarning = 0.005;
 constexpr float EarthHighest = 9000.0f;
 
@@ -78,10 +78,11 @@ void SetWholeGrid(
     spacing[1], whole[1] - whole[0] + 1, whole[3] - whole[2] + 1);
 }
 
-// For a projected grid (geo describing the whole grid): a warning when its ground cell size at
-// a corner or an edge midpoint differs from the centre's, which the sweep uses for every cell,
-// by more than ScaleChangeWarning (the projection's scale factor changes across the grid);
-// "" otherwise, and where the sizes cannot be measured.
+// For a projected grid (geo describing the whole grid): a warning when its ground cell size s at
+// a corner or an edge midpoint differs from the centre's c, which the sweep uses for every
+// cell, by more than ScaleChangeWarning (the projection's scale factor changes across the
+// grid): horizon tangents there are s / c times the truth. "" otherwise, and for the points
+// whose sizes cannot be measured.
 std::string ScaleChange(vtkApertureGeoreference* geo)
 {
   double origin[2], spacing[2], centre[2];
@@ -128,7 +129,7 @@ std::string ScaleChange(vtkApertureGeoreference* geo)
     << " to " << metres(hi[0]) << " m east-west and " << metres(lo[1]) << " to "
     << metres(hi[1]) << " m south-north on the ground, against " << metres(centre[0]) << " x "
     << metres(centre[1]) << " m at its centre, which the sweep uses for every cell, so "
-    << "distances and horizon tangents are off by up to " << std::fixed << std::setprecision(2)
+    << "horizon tangents are off by up to " << std::fixed << std::setprecision(2)
     << 100.0 * worst << "% towards its edges; bake smaller pieces, or the DEM reprojected to a "
     << "projection centred on it";
   return m.str();
