@@ -585,6 +585,9 @@ struct ap_horizon {
   size_t nx, ny;
   double *dxr, *dyr;    /* per-row cell sizes (m) */
   float *zt;            /* transposed elevations: zt[i * ny + j] = z(i, j) */
+  size_t *data_span;    /* per grid row j: its first column with data and one past its last
+                         * ([2 j], [2 j + 1]; 0, 0 when none); then per grid column i, rows
+                         * ([2 (ny + i)], ...): nodata cells outside never need a search */
   float *grad;          /* Horn gradient (dz/dx east, dz/dy north) per cell of the region,
                          * in the outputs' order */
   float *slope;         /* prepared sector, per cell: the near field's slope (tangent of the
@@ -857,6 +860,37 @@ static void transpose(ap_horizon *hz)
   }
 }
 
+/* The first and one past the last non-NaN of v[0 .. n) into span[0], span[1] (0, 0 if none). */
+static void data_span(const float *v, size_t n, size_t *span)
+{
+  size_t a = 0, b = n;
+  while (a < n && isnan(v[a])) {
+    ++a;
+  }
+  while (b > a && isnan(v[b - 1])) {
+    --b;
+  }
+  span[0] = a < b ? a : 0;
+  span[1] = a < b ? b : 0;
+}
+
+/* hz->data_span of every grid row and column; 0 when out of memory. */
+static int data_spans_init(ap_horizon *hz)
+{
+  size_t i, j;
+  hz->data_span = (size_t *)malloc(2 * (hz->ny + hz->nx) * sizeof(size_t));
+  if (!hz->data_span) {
+    return 0;
+  }
+  for (j = 0; j < hz->ny; ++j) {
+    data_span(grid_row(hz, (long)j), hz->nx, hz->data_span + 2 * j);
+  }
+  for (i = 0; i < hz->nx; ++i) {
+    data_span(hz->zt + i * hz->ny, hz->ny, hz->data_span + 2 * (hz->ny + i));
+  }
+  return 1;
+}
+
 static void free_sector(ap_horizon *hz)
 {
   free(hz->m_row);
@@ -893,6 +927,7 @@ void ap_horizon_destroy(ap_horizon *hz)
   free(hz->psi_inv);
   free(hz->ycum);
   free(hz->zt);
+  free(hz->data_span);
   free(hz->grad);
   free(hz->slope);
   free(hz->edge);
@@ -1024,6 +1059,10 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
     hz->dyr[j] = row_dy(g, j);
   }
   transpose(hz);
+  if (!data_spans_init(hz)) {
+    ap_horizon_destroy(hz);
+    return AP_ERR_OUT_OF_MEMORY;
+  }
   hz->lattice = g->dx != NULL || g->dy != NULL;
   if (hz->lattice && !lattice_init(hz)) {
     ap_horizon_destroy(hz);
@@ -1373,6 +1412,16 @@ size_t ap_horizon_near_field_count(const ap_horizon *hz)
 static const float *view_column(const ap_horizon *hz, size_t p)
 {
   return hz->colp[p];
+}
+
+/* Clamp view rows [*sa, *sb) of view column p to the cells with data in it, where searching
+ * matters: a nodata cell's NaN height never raises a slope (*sb <= *sa when none is left). */
+AP_INLINE void clamp_to_data(const ap_horizon *hz, size_t p, long *sa, long *sb)
+{
+  const size_t q = prim_index(hz, p);
+  const size_t *span = hz->data_span + 2 * (hz->xmajor ? hz->ny + q : q);
+  *sa = *sa > (long)span[0] ? *sa : (long)span[0];
+  *sb = *sb < (long)span[1] ? *sb : (long)span[1];
 }
 
 /* Elevation at fractional s of a view column of ns cells (smax = ns - 1), linear between the
@@ -2662,9 +2711,15 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t u0, size_t u1)
       } else {
         pat = hz->pat_of[p];
       }
-      near_column(hz, &hz->pats[pat], p, run, run_end, col, hz->c, best);
-      if (far_point) {
-        far_point_column(hz, &hz->pats[pat], p, run, run_end, col, best);
+      {
+        long a = run, b = run_end; /* (nodata cells keep -inf: their NaN never wins) */
+        clamp_to_data(hz, p, &a, &b);
+        if (a < b) {
+          near_column(hz, &hz->pats[pat], p, a, b, col, hz->c, best);
+          if (far_point) {
+            far_point_column(hz, &hz->pats[pat], p, a, b, col, best);
+          }
+        }
       }
       if (hz->march || hz->far_march) {
         /* (before the far march below: a nodata cell's NaN never changes there) */
@@ -2695,7 +2750,11 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t u0, size_t u1)
         long kmax;
         const long kt = lattice_steps_col(hz, p, fm, t, &kmax);
         float *best = hz->slope + scratch_index(hz, p, 0);
-        far_march_column(hz, fm, kmax, p, vs0, ns, view_column(hz, p), best);
+        long a = vs0, b = ns;
+        clamp_to_data(hz, p, &a, &b);
+        if (a < b) {
+          far_march_column(hz, fm, kmax, p, a, b, view_column(hz, p), best);
+        }
         lattice_finish_col(hz, fm, t, kt, p, vs0, ns, view_column(hz, p), best,
                            hz->edge + scratch_index(hz, p, 0));
       }
@@ -2707,8 +2766,12 @@ ap_status ap_horizon_near_field(const ap_horizon *hz, size_t u0, size_t u1)
       const long s1 = s0 + AP_FM_CHUNK < ns ? s0 + AP_FM_CHUNK : ns;
       for (p = u0; p < u1; ++p) {
         float *best = hz->slope + scratch_index(hz, p, 0);
-        far_march_column(hz, hz->fm, hz->fm_kmax, p, s0, s1, view_column(hz, p), best);
-        far_side_exits(hz, p, s0, s1, view_column(hz, p), best);
+        long a = s0, b = s1; /* (nodata cells: their NaN never raises a slope) */
+        clamp_to_data(hz, p, &a, &b);
+        if (a < b) {
+          far_march_column(hz, hz->fm, hz->fm_kmax, p, a, b, view_column(hz, p), best);
+          far_side_exits(hz, p, a, b, view_column(hz, p), best);
+        }
       }
     }
   }

@@ -1085,6 +1085,54 @@ static void test_nodata_transparent(void)
   drop(&t);
 }
 
+/* Each view column's search runs over its cells with data only (hz->data_span). Flat ground
+ * of 10 m cells, nodata before and after a span of each row (transposed: of each column) that
+ * starts and ends at varying cells, and a 100 m wall across every row at column 30: the first
+ * and the last cell with data of every row see the wall at the closed-form angle
+ * atan(100 / x), x their distance to it, in every search mode (a span one cell short at either
+ * end would leave that cell with no horizon at all: -90 degrees). */
+static void test_nodata_spans(void)
+{
+  int transposed, mode;
+  for (transposed = 0; transposed < 2; ++transposed) {
+    const size_t N = 60, M = 40;
+    terrain t = transposed ? make(M, N, 10.0) : make(N, M, 10.0);
+    ap_horizon_params p = params(4, 0);
+    size_t i, j;
+    /* (along a row: i across, j the row; transposed the same along a column) */
+#define AT(i, j) t.z[transposed ? (i) * t.nx + (j) : (j) * t.nx + (i)]
+    for (j = 0; j < M; ++j) {
+      for (i = 0; i < N; ++i) {
+        const size_t first = 5 + j % 7, last = 50 - j % 5;
+        AT(i, j) = i < first || i > last ? NAN : (i == 30 ? 100.0f : 0.0f);
+      }
+    }
+    for (mode = 0; mode < SEARCH_MODES; ++mode) {
+      results r;
+      double worst = 0.0;
+      set_mode(&p, mode, 64);
+      p.max_distance = 450.0;
+      r = compute(&t, &p);
+      for (j = 0; j < M; ++j) {
+        const size_t first = 5 + j % 7, last = 50 - j % 5;
+        /* sectors 1 (east) and 3 (west); transposed 0 (north) and 2 (south) */
+        const size_t k0 = transposed ? first * t.nx + j : j * t.nx + first;
+        const size_t k1 = transposed ? last * t.nx + j : j * t.nx + last;
+        const double h0 = r.h[k0 * 4 + (transposed ? 0 : 1)];
+        const double h1 = r.h[k1 * 4 + (transposed ? 2 : 3)];
+        worst = fmax(worst, fabs(h0 - atan(100.0 / (10.0 * (double)(30 - first)))));
+        worst = fmax(worst, fabs(h1 - atan(100.0 / (10.0 * (double)(last - 30)))));
+      }
+      fprintf(stderr, "nodata spans%s, %s: largest difference %.3g deg\n",
+              transposed ? ", transposed" : "", mode_name[mode], worst / DEG);
+      AP_CHECK(worst <= 1e-5);
+      release(&r);
+    }
+#undef AT
+    drop(&t);
+  }
+}
+
 /* An integer option accepts exactly [lo, hi] (then restored). */
 static void check_int_option(const ap_horizon_grid *g, ap_horizon_params *p, int *option, int lo,
                              int hi)
@@ -1732,6 +1780,7 @@ int main(void)
   test_edge_flags();
   test_extreme_ranges();
   test_nodata_transparent();
+  test_nodata_spans();
   test_errors();
   AP_TEST_MAIN_END();
 }
