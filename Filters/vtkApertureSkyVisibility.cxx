@@ -27,10 +27,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iomanip>
 #include <limits>
 #include <memory>
 #include <new>
-#include <iomanip>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -43,11 +43,11 @@ namespace
 // The range of the Earth's surface with a margin (m): Challenger Deep about -10,935 m, Everest
 // 8,849 m, orthometric or ellipsoidal (the geoid stays within about 110 m of the ellipsoid).
 constexpr float EarthLowest = -11100.0f;
+constexpr float EarthHighest = 9000.0f;
 // A projected DEM's ground cell size may differ from its centre's by this much (relative) at
 // its corners and edge midpoints before the filter warns: a horizon's tangent there is off by
 // as much (a 45-degree horizon by 0.14 degree at 0.5%; a whole UTM zone changes by 0.1%).
 constexpr double ScaleChangeWarning = 0.005;
-constexpr float EarthHighest = 9000.0f;
 
 // The start of both out-of-memory messages: "a NX x NY DEM with these products needs about
 // SIZE", and what HorizonAngles cost when they are asked for.
@@ -85,32 +85,30 @@ void SetWholeGrid(
 // whose sizes cannot be measured.
 std::string ScaleChange(vtkApertureGeoreference* geo)
 {
-  double origin[2], spacing[2], centre[2];
+  double origin[2], spacing[2], sizes[9][2];
+  bool measured[9];
   int size[2];
   geo->GetGridOrigin(origin);
   geo->GetGridSpacing(spacing);
   geo->GetGridSize(size);
-  if (!geo->GetCellSizeMetres(centre) || !(centre[0] > 0) || !(centre[1] > 0))
+  for (int k = 0; k < 9; ++k) // (corners, edge midpoints and the centre, k = 4)
+  {
+    measured[k] = geo->GetCellSizeMetresAt(origin[0] + 0.5 * (k % 3) * (size[0] - 1) * spacing[0],
+      origin[1] + 0.5 * (k / 3) * (size[1] - 1) * spacing[1], sizes[k]);
+  }
+  const double* centre = sizes[4];
+  if (!measured[4] || !(centre[0] > 0) || !(centre[1] > 0))
   {
     return "";
   }
   double lo[2] = { centre[0], centre[1] }, hi[2] = { centre[0], centre[1] }, worst = 0.0;
-  for (int b = 0; b < 3; ++b)
+  for (int k = 0; k < 9; ++k)
   {
-    for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 2 && measured[k]; ++c)
     {
-      double s[2];
-      if (!geo->GetCellSizeMetresAt(origin[0] + 0.5 * a * (size[0] - 1) * spacing[0],
-            origin[1] + 0.5 * b * (size[1] - 1) * spacing[1], s))
-      {
-        continue;
-      }
-      for (int c = 0; c < 2; ++c)
-      {
-        lo[c] = std::min(lo[c], s[c]);
-        hi[c] = std::max(hi[c], s[c]);
-        worst = std::max(worst, std::fabs(s[c] / centre[c] - 1.0));
-      }
+      lo[c] = std::min(lo[c], sizes[k][c]);
+      hi[c] = std::max(hi[c], sizes[k][c]);
+      worst = std::max(worst, std::fabs(sizes[k][c] / centre[c] - 1.0));
     }
   }
   if (!(worst > ScaleChangeWarning))

@@ -758,8 +758,8 @@ def _write_strips(watcher, clip, window, extents, outputs, guard, started):
 def _check_radius(radius):
     """--radius: a positive, finite distance; leaving it out is the unlimited search."""
     if radius is not None and not (radius > 0 and math.isfinite(radius)):
-        raise ApertureError("--radius must be a positive distance in metres (%s given; leave "
-                            "--radius out for an unlimited search)" % ("%g" % radius))
+        raise ApertureError("--radius must be a positive distance in metres (%g given; leave "
+                            "--radius out for an unlimited search)" % radius)
 
 
 def cmd_bake(args):
