@@ -557,6 +557,10 @@ typedef struct patch_rec {
   float dt, inv_t1, inv_t2, t1x2; /* t2 - t1; 1/t1 (0 on the first patch); 1/t2; 2 t1 */
   float u1, v1, u1v1; /* where the ray enters the patch (the patch's coordinates); their product */
   float wa, wb, wk, wab; /* a, b (the ray's columns and rows per metre), k = u1 b + v1 a, a b */
+  int ea, eb;        /* where the ray leaves the patch, on the grid line between corners ea
+                      * and eb (0: z00, 1: z10, 2: z01, 3: z11) at ew of the way to eb; at a
+                      * corner ea = eb, ew = 0; -1 inside the patch (the pattern's end) */
+  float ew;
 } patch_rec;
 
 typedef struct pattern {
@@ -596,6 +600,7 @@ struct ap_horizon {
   unsigned char *edge;  /* prepared sector: 1 where the search reached the DEM edge */
   float *bsum;          /* bent-normal sums when out.bent_normal is NULL (region cells) */
   float zmax;
+  int has_nodata;       /* some cell is NaN (the near field's edge pass, see near_column) */
   size_t ri0, ri1, rj0, rj1, rnx; /* the region: grid columns [ri0, ri1), rows [rj0, rj1) */
   int first;            /* the prepared sector is the first: its ap_horizon_accumulate
                          * computes grad and starts the sums (create leaves both unwritten,
@@ -1054,6 +1059,7 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
     return AP_ERR_OUT_OF_MEMORY;
   }
   hz->zmax = (float)stats.max; /* (the largest of floats: exact) */
+  hz->has_nodata = stats.nodata > 0;
   for (j = 0; j < hz->ny; ++j) {
     hz->dxr[j] = row_dx(g, j);
     hz->dyr[j] = row_dy(g, j);
@@ -1470,7 +1476,10 @@ static size_t scratch_index(const ap_horizon *hz, size_t p, size_t s)
  * thousandth of a row over the near field share a pattern. In x-major views those runs of rows
  * are a few cells long, so there the near field runs row by row instead (near_row), each
  * record over a whole grid row. (An 1800^2 SRTM grid at 50 N, unlimited distance, one
- * thread: 122 ns per cell and direction as lat/lon against 73 as UTM before, 88 against 84.) */
+ * thread: 122 ns per cell and direction as lat/lon against 73 as UTM before, 88 against 84.)
+ * A patch with a nodata corner is no terrain, but the grid line the ray leaves it through is
+ * where its two cells have data (patch_rec's exit edge): DEMs with nodata run a second
+ * variant of the loops that evaluates it there. */
 
 static int push_rec(ap_horizon *hz, const patch_rec *r)
 {
@@ -1485,6 +1494,39 @@ static int push_rec(ap_horizon *hz, const patch_rec *r)
   }
   hz->recs[hz->nrecs++] = *r;
   return 1;
+}
+
+/* Where the ray leaves its patch (see patch_rec): through the patch's edge u = 1 (it crossed
+ * column line P + 1: at_p), through v = 1 (rising, b > 0) or v = 0 (falling) when it crossed a
+ * row line (at_s), at their corner when both, along the lower edge v = 0 when it runs along a
+ * row (b = 0), or inside the patch; (u2, v2) the exit point in the patch's coordinates. A
+ * point within 1e-9 of a corner is that corner, so that a nodata corner of a weight of
+ * rounding noise does not void it. */
+static void exit_edge(patch_rec *r, int at_p, int at_s, double b, double u2, double v2)
+{
+  const int on_row = b == 0.0, up = b > 0.0 ? 2 : 0; /* the row the ray leaves through */
+  double w = 0.0;
+  if (at_p && (at_s || on_row)) {
+    r->ea = r->eb = 1 + up;
+  } else if (at_p) {
+    r->ea = 1; /* z10 to z11 */
+    r->eb = 3;
+    w = v2;
+  } else if (at_s || on_row) {
+    r->ea = up; /* z00 to z10, or z01 to z11 */
+    r->eb = up + 1;
+    w = u2;
+  } else {
+    r->ea = r->eb = -1;
+  }
+  if (w < 1e-9) {
+    r->eb = r->ea;
+    w = 0.0;
+  } else if (w > 1.0 - 1e-9) {
+    r->ea = r->eb;
+    w = 0.0;
+  }
+  r->ew = (float)w;
 }
 
 /* Walk a ray from node (0, 0) of the view, a = 1/len columns and b = m/len rows per metre,
@@ -1530,6 +1572,7 @@ static int build_pattern(ap_horizon *hz, double m, double len, double tmax)
     r.wb = (float)b;
     r.wk = (float)k;
     r.wab = (float)(a * b);
+    exit_edge(&r, tp <= t2, ts <= t2, b, a * t2 - (double)P, b * t2 - (double)S);
     if (!push_rec(hz, &r)) {
       return 0;
     }
@@ -1583,6 +1626,17 @@ AP_INLINE float patch_slope(const patch_rec *rec, float cf, float zq, float z00,
   return v;
 }
 
+/* The slope from a cell at height zq to where its ray leaves the patch (rec), on the grid line
+ * between heights za and zb (at rec->ew of the way to zb; za itself at a corner). */
+AP_INLINE float exit_slope(const patch_rec *rec, float cf, float zq, float za, float zb)
+{
+  return (za + rec->ew * (zb - za) - zq) * rec->inv_t2 - cf * rec->t2;
+}
+
+/* Corner k of a patch (patch_rec's ea, eb) whose lower corners are columns c0, c1 (the upper
+ * ones one further) */
+#define CORNER(c0, c1, k) (((k) & 1 ? (c1) : (c0)) + ((k) >> 1))
+
 /* Largest near-field slope of cells [sa, sb) of view column p into best[] (max-merged).
  * Compiled three times where the compiler supports it (GCC function multi-versioning): for
  * x86-64-v4 (AVX-512: mask registers for the compares and selects, 7-8% off the whole kernel
@@ -1621,17 +1675,35 @@ static void near_column(const ap_horizon *hz, const pattern *pt, size_t p, long 
      * weights stay bounded and float rounding stays near 1e-7 of a slope. On the first patch
      * the ray leaves the cell's own node (A1 = zq) and the slope tends to B1. (A patch's start
      * is the previous patch's end, but that one gives NaN when one of its corners is nodata.) */
-    for (s = lo; s < hi; ++s) {
-      const float v = patch_slope(rec, cf, col[s], c0[s], c1[s], c0[s + 1], c1[s + 1]);
-      best[s] = v > best[s] ? v : best[s]; /* NaN (nodata corner) never wins */
+    if (!hz->has_nodata || rec->ea < 0) {
+      for (s = lo; s < hi; ++s) {
+        const float v = patch_slope(rec, cf, col[s], c0[s], c1[s], c0[s + 1], c1[s + 1]);
+        best[s] = v > best[s] ? v : best[s]; /* NaN (nodata corner) never wins */
+      }
+    } else {
+      /* A patch with a nodata corner is no terrain, but the grid line the ray leaves it
+       * through is where its two cells have data (as the far field's samples between two
+       * cells of a column are): a one-cell-wide strip of land has no patch of its own, and a
+       * ray along a row beside nodata runs on such patches only. */
+      const float *za = CORNER(c0, c1, rec->ea), *zb = CORNER(c0, c1, rec->eb);
+      for (s = lo; s < hi; ++s) {
+        const float v = patch_slope(rec, cf, col[s], c0[s], c1[s], c0[s + 1], c1[s + 1]);
+        const float ve = exit_slope(rec, cf, col[s], za[s], zb[s]);
+        const float u = v == v ? v : ve;
+        best[s] = u > best[s] ? u : best[s];
+      }
     }
     /* A ray along a row of the view (no lateral shift: every patch entered at its lower
      * edge) on the last row has no patch above it; the upper row's weights are zero there, so
-     * the row itself stands in for it. */
+     * the row itself stands in for it (its exit lies on the row too). */
     if (rec->wb == 0.0f && rec->v1 == 0.0f) {
       s = ns - 1 - rec->ds;
       if (s >= sa && s < sb) {
-        const float v = patch_slope(rec, cf, col[s], c0[s], c1[s], c0[s], c1[s]);
+        float v = patch_slope(rec, cf, col[s], c0[s], c1[s], c0[s], c1[s]);
+        if (v != v && rec->ea >= 0) {
+          const float *za = CORNER(c0, c1, rec->ea), *zb = CORNER(c0, c1, rec->eb);
+          v = exit_slope(rec, cf, col[s], za[s], zb[s]);
+        }
         best[s] = v > best[s] ? v : best[s];
       }
     }
@@ -2552,10 +2624,23 @@ static void near_row(const ap_horizon *hz, const pattern *pt, long s, const floa
       qlo = 0;
       qhi = nx - dp - 1;
     }
-    for (q = qlo; q < qhi; ++q) {
-      const float v = patch_slope(rec, cf, zrow[q], lo_row[q + a0], lo_row[q + a1],
-                                  hi_row[q + a0], hi_row[q + a1]);
-      best[q] = v > best[q] ? v : best[q];
+    if (!hz->has_nodata || rec->ea < 0) {
+      for (q = qlo; q < qhi; ++q) {
+        const float v = patch_slope(rec, cf, zrow[q], lo_row[q + a0], lo_row[q + a1],
+                                    hi_row[q + a0], hi_row[q + a1]);
+        best[q] = v > best[q] ? v : best[q];
+      }
+    } else {
+      /* (near_column's exit edges) */
+      const float *za = (rec->ea >> 1 ? hi_row : lo_row) + (rec->ea & 1 ? a1 : a0);
+      const float *zb = (rec->eb >> 1 ? hi_row : lo_row) + (rec->eb & 1 ? a1 : a0);
+      for (q = qlo; q < qhi; ++q) {
+        const float v = patch_slope(rec, cf, zrow[q], lo_row[q + a0], lo_row[q + a1],
+                                    hi_row[q + a0], hi_row[q + a1]);
+        const float ve = exit_slope(rec, cf, zrow[q], za[q], zb[q]);
+        const float u = v == v ? v : ve;
+        best[q] = u > best[q] ? u : best[q];
+      }
     }
   }
 }
@@ -3193,6 +3278,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
           line_state *bl[2];
           long done = -1; /* the column the cell's ray was evaluated on */
           int e, lost = 0; /* a line's tangent lay where the cell's ray is off the grid */
+          int void_hit = 0; /* ... or where the cell's ray meets nodata */
           bl[0] = &lines[l];
           bl[1] = &lines[l + 1];
           AP_UNROLL_2
@@ -3233,6 +3319,7 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
             }
             zn = interp(colp[v->col], smax, sn);
             dn = v->x - ln->x;
+            void_hit |= isnan(zn) && parallel; /* (bending lines have no ray_march) */
             if (isnan(zn) || !(dn > 0.0)) {
               continue;
             }
@@ -3270,6 +3357,16 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
                 far = gs > far ? gs : far;
               }
             }
+          }
+          if (void_hit && far == -INFINITY) {
+            /* Each line's hull gives one tangent, and the cell's ray met nodata where one lay
+             * (and the other gave none): the hulls cannot say what else the ray meets, so it
+             * is marched. Rare (a cell beside nodata looking along it: 0.004% of the
+             * cell-directions of a 1024^2 DEM with 1% of its cells nodata at random, 0.05% of
+             * the land's of one half sea), but without it such a cell lost its whole horizon
+             * along a shore (up to 74 degrees). */
+            const double gs = ray_march(hz, p, sq, zq, p + (size_t)K);
+            far = gs > far ? gs : far;
           }
           avail = bl[0]->avail < bl[1]->avail ? bl[0]->avail : bl[1]->avail;
         }

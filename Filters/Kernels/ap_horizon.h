@@ -66,8 +66,14 @@
  *  rows it adds, before adding them (a bowl rising to the edge was up to 7.8 degrees low).
  *
  *  Terrain beyond the DEM edge is invisible (it does not exist for the sweep). Nodata (NaN)
- *  never occludes; nodata cells get NaN products. A direction with no terrain sample at all
- *  (the ray leaves the DEM at once) has horizon −π/2.
+ *  never occludes; nodata cells get NaN products. Beside nodata the terrain is the bilinear
+ *  patches whose four corners have data and the grid lines between two cells with data (a
+ *  one-cell-wide strip of land between nodata stands as a ridge line). The near field finds
+ *  it exactly; beyond it (far march, hulls) a ray is sampled where it crosses the view's
+ *  columns, linear between the column's two cells, so there a stretch of the ray within a
+ *  cell of nodata is not searched, and a one-cell-wide strip crossed between two columns is
+ *  missed. A direction with no terrain sample at all (the ray leaves the DEM at once) has
+ *  horizon −π/2.
  *
  *  ## Products, from the sector horizons in one pass (ALGORITHMS.md §2.2)
  *  Per sector d (width Δ = 2π/D, grid azimuth φ) with terrain horizon h_t, the cell's own
