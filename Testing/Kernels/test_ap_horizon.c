@@ -1157,15 +1157,17 @@ static void test_nodata_spans(void)
  * only (measured before the near field took their exit edges: MAE 0.70 deg, p99 4.3, max 139
  * on the axes, 108 turned). The far field samples the rays where they cross the view's
  * columns, and loses a stretch of a ray where one of a column sample's two cells is nodata;
- * on the shore alone it must still keep the issue's mean error (measured: MAE 0.013-0.031
- * deg, p99 0.20-0.74, max 17; before, MAE 0.26-0.28 on the axes and lost horizons).
+ * on the shore alone it must still keep the issue's mean error (measured: MAE 0.013-0.034
+ * deg, p99 0.20-0.91, max 17-26; before, MAE 0.26-0.28 on the axes and lost horizons).
  * A thin feature crossed between two columns is lost beyond the near field (documented).
- * Last, the thin features on lat/lon rows (about 29 x 33 m at 50 N), whose x-major sectors
- * run the near field row by row (near_row). */
+ * Each also on lat/lon rows (about 29 x 33 m at 50 N), whose x-major sectors run the near
+ * field row by row (near_row) and sweep along bending lines. */
 static void test_nodata_coast(void)
 {
-  int thin, k, mode, d;
-  for (thin = 0; thin < 3; ++thin) {
+  int variant, k, mode, d;
+  for (variant = 0; variant < 4; ++variant) {
+    /* 0: the shore, 1: the same on lat/lon rows, 2 and 3: with the pier and the causeway */
+    const int thin = variant >= 2, latlon = variant % 2;
     terrain t = rough_terrain(90, 70);
     ap_horizon_params p = params(16, 1);
     const double c = (1 - p.refraction) / (2 * 6371000.0);
@@ -1183,7 +1185,7 @@ static void test_nodata_coast(void)
         }
       }
     }
-    if (thin == 2) {
+    if (latlon) {
       latlon_rows(&t, 6371000.0, 50.0 * DEG, 0.0003 * DEG, 0.0004 * DEG);
     }
     p.radius_meridian = p.radius_normal = 6371000.0;
@@ -1222,15 +1224,15 @@ static void test_nodata_coast(void)
         fprintf(stderr,
                 "nodata coast%s%s, %s, azimuths %s: %zu land cells, MAE %.4f deg, "
                 "p99 %.4f deg, max %.3f deg\n",
-                thin ? " with a pier and a causeway" : "", thin == 2 ? ", lat/lon" : "",
+                thin ? " with a pier and a causeway" : "", latlon ? ", lat/lon" : "",
                 mode_name[mode], k ? "turned" : "on the axes", land, mae, p99, worst);
         if (mode == MARCHED) {
           /* (the largest: the reference's steps, on a 150 m pier's flank) */
           AP_CHECK(mae <= 0.001 && p99 <= 0.005 && worst <= 0.1);
         } else {
-          /* (the sweep lost whole horizons along the shore, up to 74 deg, before it marched
-           * the rays of cells whose hulls' tangents both fell on nodata) */
-          AP_CHECK(mae <= 0.05 && p99 <= 1.0 && worst <= 20.0);
+          /* (the sweep lost whole horizons along the shore, up to 74 deg, 37 on lat/lon rows,
+           * before it marched the rays of cells whose hulls' tangents fell on nodata) */
+          AP_CHECK(mae <= 0.05 && p99 <= 1.0 && worst <= (latlon ? 30.0 : 20.0));
         }
         release(&r);
       }
