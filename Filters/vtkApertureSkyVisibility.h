@@ -40,9 +40,11 @@
  * PositiveOpenness and HorizonAngles below the horizontal may differ near the edge on
  * unflagged cells too (a sector whose ray leaves the DEM at once has horizon -90 degrees).
  * Nodata (NaN, and any elevation that is not finite, as vtkApertureDEMReader makes it) never
- * occludes and gives NaN products. Finite elevations are taken as they are, but those beyond
- * the Earth's range (below -11,100 m or above 9,000 m: undeclared nodata values such as
- * -32768, or heights not in metres) raise a warning naming the range.
+ * occludes and gives NaN products; beside it the terrain is the cells with data and the grid
+ * lines between two of them (ap_horizon.h says how closely each search follows it). Finite
+ * elevations are taken as they are, but those beyond the Earth's range (below -11,100 m or
+ * above 9,000 m: undeclared nodata values such as -32768, or heights not in metres) raise a
+ * warning naming the range.
  *
  * Streaming: a request for a sub-extent reads the input extent grown by the search distance
  * on every side (the whole extent when the distance is unlimited, or when the CRS is not known
