@@ -140,7 +140,8 @@ static void hull_free(hull *h)
 /* Push a sample nearer than every sample in the hull (Timonen & Westerholm, Algorithm 1;
  * Andrew's monotone chain): the top is dropped while the new sample lies on or above the line
  * through the second and the top (the second is then at least as steep from it), because the
- * top can then never be the tangent point again. */
+ * top can then never be the tangent point again. (Inlined: the sweep is compiled twice, and
+ * GCC then stopped inlining it there: 3% more instructions in the sweep.) */
 AP_INLINE int hull_push_near(hull *h, const sample *q)
 {
   while (h->n >= 2 && q->u >= edge_at(&h->ed[h->n - 1], q->x)) {
@@ -581,7 +582,7 @@ static void fm_step_set(struct fm_step *st, double sh, double t, double c);
 
 
 #define AP_SIDE_ROWS 8 /* rows next to a side with their own bound (sweep_side_rows) */
-#define AP_VOID_HIT 1u  /* the sweep's rare cases of a cell (see ap_horizon_sweep) */
+#define AP_VOID_HIT 1u  /* the sweep's rare cases of a cell (see sweep) */
 #define AP_FAILED 2u
 #define AP_VOID_LINE 4u
 
@@ -605,7 +606,8 @@ struct ap_horizon {
   unsigned char *edge;  /* prepared sector: 1 where the search reached the DEM edge */
   float *bsum;          /* bent-normal sums when out.bent_normal is NULL (region cells) */
   float zmax;
-  int has_nodata;       /* some cell is NaN (the near field's edge pass, see near_column) */
+  int has_nodata;       /* some cell is NaN: the near field's exit edges (near_column) and
+                         * the sweep's rare cases (sweep) are needed */
   size_t ri0, ri1, rj0, rj1, rnx; /* the region: grid columns [ri0, ri1), rows [rj0, rj1) */
   int first;            /* the prepared sector is the first: its ap_horizon_accumulate
                          * computes grad and starts the sums (create leaves both unwritten,
