@@ -596,8 +596,8 @@ struct ap_horizon {
   size_t *data_span;    /* per grid row j: its first column with data and one past its last
                          * ([2 j], [2 j + 1]; 0, 0 when none); then per grid column i, rows
                          * ([2 (ny + i)], ...): nodata cells outside never need a search */
-  unsigned char *holes; /* per grid row j ([j]) and column i ([ny + i]): 1 where it has nodata
-                         * between its first and last cells with data */
+  unsigned char *holes; /* DEMs with nodata: per grid row j ([j]) and column i ([ny + i]), 1
+                         * where it has nodata between its first and last cells with data */
   float *grad;          /* Horn gradient (dz/dx east, dz/dy north) per cell of the region,
                          * in the outputs' order */
   float *slope;         /* prepared sector, per cell: the near field's slope (tangent of the
@@ -897,26 +897,33 @@ static unsigned char has_hole(const float *v, size_t a, size_t b)
   return 0;
 }
 
-/* hz->data_span and hz->holes of every grid row and column; 0 when out of memory. */
+/* hz->data_span of every grid row and column, and for DEMs with nodata hz->holes; 0 when out
+ * of memory. */
 static int data_spans_init(ap_horizon *hz)
 {
   size_t i, j;
   size_t *sp;
   hz->data_span = sp = (size_t *)malloc(2 * (hz->ny + hz->nx) * sizeof(size_t));
-  hz->holes = (unsigned char *)malloc(hz->ny + hz->nx);
-  if (!hz->data_span || !hz->holes) {
+  if (hz->has_nodata) { /* (without nodata no line has holes, nor is all_data asked) */
+    hz->holes = (unsigned char *)malloc(hz->ny + hz->nx);
+  }
+  if (!hz->data_span || (hz->has_nodata && !hz->holes)) {
     return 0;
   }
   for (j = 0; j < hz->ny; ++j) {
     const float *v = grid_row(hz, (long)j);
     data_span(v, hz->nx, sp + 2 * j);
-    hz->holes[j] = has_hole(v, sp[2 * j], sp[2 * j + 1]);
+    if (hz->holes) {
+      hz->holes[j] = has_hole(v, sp[2 * j], sp[2 * j + 1]);
+    }
   }
   for (i = 0; i < hz->nx; ++i) {
     const float *v = hz->zt + i * hz->ny;
     const size_t g = hz->ny + i;
     data_span(v, hz->ny, sp + 2 * g);
-    hz->holes[g] = has_hole(v, sp[2 * g], sp[2 * g + 1]);
+    if (hz->holes) {
+      hz->holes[g] = has_hole(v, sp[2 * g], sp[2 * g + 1]);
+    }
   }
   return 1;
 }
@@ -1176,6 +1183,14 @@ static long lattice_seek(const ap_horizon *hz, double T, long j)
     --j;
   }
   return j;
+}
+
+/* The view row (this grid's rows) where Psi = T, linear on its segment of the larger DEM's
+ * rows; *j is lattice_seek's hint, and becomes the segment. */
+AP_INLINE double psi_row(const ap_horizon *hz, double T, long *j)
+{
+  *j = lattice_seek(hz, T, *j);
+  return ((double)*j + (T - hz->psi[*j]) * hz->psi_inv[*j]) - (double)hz->orow;
 }
 
 /* Per-row cell sizes: the sector's lines on the larger DEM's lattice. A rhumb line at grid
@@ -1446,12 +1461,18 @@ static const float *view_column(const ap_horizon *hz, size_t p)
   return hz->colp[p];
 }
 
+/* The grid row (g < ny) or grid column g - ny that view column p is (data_span's, holes'
+ * index g). */
+AP_INLINE size_t view_line(const ap_horizon *hz, size_t p)
+{
+  return hz->xmajor ? hz->ny + prim_index(hz, p) : prim_index(hz, p);
+}
+
 /* Clamp view rows [*sa, *sb) of view column p to the cells with data in it, where searching
  * matters: a nodata cell's NaN height never raises a slope (*sb <= *sa when none is left). */
 AP_INLINE void clamp_to_data(const ap_horizon *hz, size_t p, long *sa, long *sb)
 {
-  const size_t q = prim_index(hz, p);
-  const size_t *span = hz->data_span + 2 * (hz->xmajor ? hz->ny + q : q);
+  const size_t *span = hz->data_span + 2 * view_line(hz, p);
   *sa = *sa > (long)span[0] ? *sa : (long)span[0];
   *sb = *sb < (long)span[1] ? *sb : (long)span[1];
 }
@@ -1461,12 +1482,6 @@ AP_INLINE int all_data(const ap_horizon *hz, size_t g, long a, long b)
 {
   const size_t *span = hz->data_span + 2 * g;
   return !hz->holes[g] && a >= (long)span[0] && b < (long)span[1];
-}
-
-/* The grid row or column (all_data's g) of view column p. */
-AP_INLINE size_t view_line(const ap_horizon *hz, size_t p)
-{
-  return hz->xmajor ? hz->ny + prim_index(hz, p) : prim_index(hz, p);
 }
 
 /* Elevation at fractional s of a view column of ns cells (smax = ns - 1), linear between the
@@ -2300,7 +2315,7 @@ static void lattice_finish_col(const ap_horizon *hz, const fm_step *fm, const do
 static long lattice_steps_row(const ap_horizon *hz, long s, fm_step *fm, double *t, long *kmax)
 {
   const double L = hz->p.max_distance, cot = cos(hz->phi) / fabs(sin(hz->phi));
-  const double T0 = hz->psi[s + hz->orow], orow = (double)hz->orow;
+  const double T0 = hz->psi[s + hz->orow];
   double dist = 0.0, len_prev = hz->len_row[s], y = (double)s;
   long k, j = s + hz->orow;
   *kmax = 0;
@@ -2308,8 +2323,7 @@ static long lattice_steps_row(const ap_horizon *hz, long s, fm_step *fm, double 
     if (k > 0) {
       const double T = T0 + (double)k * cot;
       double len;
-      j = lattice_seek(hz, T, j);
-      y = ((double)j + (T - hz->psi[j]) * hz->psi_inv[j]) - orow;
+      y = psi_row(hz, T, &j);
       len = row_value(hz->len_row, hz->ny, y);
       dist += 0.5 * (len_prev + len);
       len_prev = len;
@@ -2994,39 +3008,25 @@ static double ray_march(const ap_horizon *hz, size_t p, double sq, double zq, si
 static double ray_march_rows(const ap_horizon *hz, size_t p, long j, double zq, long K)
 {
   const double cphi = cos(hz->phi), sphi = sin(hz->phi);
-  const double L = hz->p.max_distance, c = hz->c, orow = (double)hz->orow;
-  const long ny = (long)hz->ny, np = (long)hz->np, dir = hz->flip ? -1 : 1;
-  const long q = (long)prim_index(hz, p);
+  const double L = hz->p.max_distance, c = hz->c, smax = (double)(hz->ny - 1);
+  const long np = (long)hz->np;
   const double *Y = hz->ycum;
   const int along = !(fabs(cphi) > 1e-12); /* along the row (x-major: |sin phi| >= 0.7) */
   const double cot = cphi / fabs(sphi);
   double best = -INFINITY;
   long k, jj = j + hz->orow;
   for (k = K; (long)p + k < np; ++k) {
-    const double T = hz->psi[j + hz->orow] + (double)k * cot;
-    const long col = q + dir * k;
-    double y = (double)j, t, fy, z;
-    long r0;
-    if (!along) {
-      jj = lattice_seek(hz, T, jj);
-      y = ((double)jj + (T - hz->psi[jj]) * hz->psi_inv[jj]) - orow;
-    }
-    if (y < 0.0 || y > (double)(ny - 1)) {
+    const double y = along ? (double)j : psi_row(hz, hz->psi[j + hz->orow] + (double)k * cot, &jj);
+    double t, z;
+    if (y < 0.0 || y > smax) {
       break; /* (left through a side) */
     }
     t = along ? (double)k * hz->len_row[j]
-              : fabs(row_value(Y, (size_t)ny, y) - Y[j]) / fabs(cphi);
+              : fabs(row_value(Y, hz->ny, y) - Y[j]) / fabs(cphi);
     if (t > L) {
       break;
     }
-    r0 = (long)floor(y);
-    r0 = r0 > ny - 2 ? ny - 2 : r0;
-    fy = y - (double)r0;
-    /* (a cell of weight 0 is not read: a nodata one beside would void the point) */
-    z = fy == 0.0   ? (double)grid_row(hz, r0)[col]
-        : fy == 1.0 ? (double)grid_row(hz, r0 + 1)[col]
-                    : grid_row(hz, r0)[col] + fy * ((double)grid_row(hz, r0 + 1)[col] -
-                                                    (double)grid_row(hz, r0)[col]);
+    z = interp(view_column(hz, p + (size_t)k), smax, y); /* (x-major: view column = grid's) */
     if (t > 0.0) {
       const double sl = (z - zq) / t - c * t;
       best = sl > best ? sl : best; /* (NaN never wins) */
@@ -3054,9 +3054,7 @@ typedef struct line_state {
  * the larger DEM's rows); j is a segment hint for lattice_seek (-1: none). */
 AP_INLINE double lattice_row(const ap_horizon *hz, long k, size_t p, long *j)
 {
-  const double T = hz->sigma * (double)k + hz->lat_off[p];
-  *j = lattice_seek(hz, T, *j);
-  return ((double)*j + (T - hz->psi[*j]) * hz->psi_inv[*j]) - (double)hz->orow;
+  return psi_row(hz, hz->sigma * (double)k + hz->lat_off[p], j);
 }
 
 /* The view rows of the first and the last of the lines k0 .. k0 + nl - 1 at view column p, where
@@ -3665,7 +3663,7 @@ static ap_status sweep_side_rows(const ap_horizon *hz, size_t j0, size_t j1)
 {
   const double cphi = cos(hz->phi), sphi = sin(hz->phi);
   const double cot = cphi / fabs(sphi), L = hz->p.max_distance, c = hz->c;
-  const double zmax = (double)hz->zmax, orow = (double)hz->orow;
+  const double zmax = (double)hz->zmax;
   const long ny = (long)hz->ny, nx = (long)hz->np, dir = hz->flip ? -1 : 1;
   const long e = cot > 0.0 ? ny - 1 : 0; /* the side row */
   /* the highest cell at most d rows from the side (NaN ignored): the bound for a stretch
@@ -3699,8 +3697,7 @@ static ap_status sweep_side_rows(const ap_horizon *hz, size_t j0, size_t j1)
     for (k = 0; k < nk; ++k) {
       const double T = hz->psi[j + hz->orow] + (double)(k0 + k) * cot;
       double rows, z0;
-      jj = lattice_seek(hz, T, jj);
-      ys[k] = ((double)jj + (T - hz->psi[jj]) * hz->psi_inv[jj]) - orow;
+      ys[k] = psi_row(hz, T, &jj);
       ts[k] = fabs(row_value(Y, (size_t)ny, ys[k]) - Y[j]) / fabs(cphi);
       /* rows from this step to the side bound the elevations of the stretch from here */
       rows = cot > 0.0 ? (double)e - floor(ys[k]) : ceil(ys[k]) - (double)e;
