@@ -69,11 +69,17 @@
  *  never occludes; nodata cells get NaN products. Beside nodata the terrain is the bilinear
  *  patches whose four corners have data and the grid lines between two cells with data (a
  *  one-cell-wide strip of land between nodata stands as a ridge line). The near field finds
- *  it exactly; beyond it (far march, hulls) a ray is sampled where it crosses the view's
- *  columns, linear between the column's two cells, so there a stretch of the ray within a
- *  cell of nodata is not searched, and a one-cell-wide strip crossed between two columns is
- *  missed. A direction with no terrain sample at all (the ray leaves the DEM at once) has
- *  horizon −π/2.
+ *  it exactly; beyond it a ray is sampled where it crosses the view's columns, linear between
+ *  the column's two cells. Where one of them is nodata the far march also takes the points
+ *  where the ray crosses a view row next to that sample, up to the search distance (a shore,
+ *  a one-cell strip of land crossed between two columns), so it keeps the accuracy above
+ *  beside nodata (a coast: horizon MAE 0.003 deg, p99 0.1 against a brute force), at some
+ *  cost on DEMs with nodata only (kernel instructions: +5% for a few voids, +20% half sea,
+ *  +47% for 1% scattered nodata cells). The hulls hold the column samples alone: there (no
+ *  search distance, or more than far_march_columns) a stretch of a ray within a cell of
+ *  nodata is not searched, and a one-cell-wide strip crossed between two columns is missed
+ *  (a coast: MAE 0.03 deg, p99 0.4-0.9). A direction with no terrain sample at all (the ray
+ *  leaves the DEM at once) has horizon −π/2.
  *
  *  ## Products, from the sector horizons in one pass (ALGORITHMS.md §2.2)
  *  Per sector d (width Δ = 2π/D, grid azimuth φ) with terrain horizon h_t, the cell's own
