@@ -70,16 +70,16 @@
  *  patches whose four corners have data and the grid lines between two cells with data (a
  *  one-cell-wide strip of land between nodata stands as a ridge line). The near field finds
  *  it exactly; beyond it a ray is sampled where it crosses the view's columns, linear between
- *  the column's two cells. Where one of them is nodata the far march also takes the points
- *  where the ray crosses a view row next to that sample, up to the search distance (a shore,
- *  a one-cell strip of land crossed between two columns), so it keeps the accuracy above
- *  beside nodata (a coast: horizon MAE 0.003 deg, p99 0.1 against a brute force), at some
- *  cost on DEMs with nodata only (kernel instructions: +5% for a few voids, +20% half sea,
- *  +47% for 1% scattered nodata cells). The hulls hold the column samples alone: there (no
- *  search distance, or more than far_march_columns) a stretch of a ray within a cell of
- *  nodata is not searched, and a one-cell-wide strip crossed between two columns is missed
- *  (a coast: MAE 0.03 deg, p99 0.4-0.9). A direction with no terrain sample at all (the ray
- *  leaves the DEM at once) has horizon −π/2.
+ *  the column's two cells. Where one of them is nodata the points where the ray crosses a view
+ *  row next to that sample are taken too, up to the search distance (a shore, a one-cell strip
+ *  of land crossed between two columns): by the far march, and for the sweep by
+ *  ap_horizon_accumulate after it. That keeps the accuracy above beside nodata (a coast,
+ *  against a brute force: horizon MAE 0.003 deg, p99 0.1 far-marched; MAE 0.006-0.009, p99
+ *  0.15 swept, where a few horizons stay off by up to 12 deg, and 36 on a diagonal beside a
+ *  one-cell pier), at a cost on DEMs with nodata only (kernel instructions, far-marched: +5%
+ *  for a few voids, +19% half sea, +47% for 1% scattered nodata cells; swept: +5 to +11%).
+ *  A direction with no terrain sample at all (the ray leaves the DEM at once) has horizon
+ *  −π/2.
  *
  *  ## Products, from the sector horizons in one pass (ALGORITHMS.md §2.2)
  *  Per sector d (width Δ = 2π/D, grid azimuth φ) with terrain horizon h_t, the cell's own
