@@ -575,6 +575,7 @@ typedef struct pattern {
 
 static int build_pattern(ap_horizon *hz, double m, double len, double tmax);
 static int fm_tiles_init(ap_horizon *hz);
+static int fm_tiles_alloc(const ap_horizon *hz, float *t[2]);
 static void fm_coarsen(const ap_horizon *hz, float *fine, float *coarse);
 static int fm_shore_init(ap_horizon *hz);
 static int fm_steps_init(ap_horizon *hz);
@@ -1950,23 +1951,16 @@ typedef struct fm_step {
 static int fm_tiles_init(ap_horizon *hz)
 {
   const size_t F = AP_FM_FINE, r = AP_FM_COARSE / AP_FM_FINE;
-  const size_t fnx = (hz->nx + F - 1) / F, fny = (hz->ny + F - 1) / F;
-  const size_t cnx = (fnx + r - 1) / r, cny = (fny + r - 1) / r;
+  const size_t fnx = (hz->nx + F - 1) / F;
   float zabs = 0.0f, *fine, *coarse;
   size_t i, j;
-  hz->fm_tile[0] = fine = (float *)malloc(fnx * fny * sizeof(float));
-  hz->fm_tile[1] = coarse = (float *)malloc(cnx * cny * sizeof(float));
-  if (!fine || !coarse) {
+  hz->fm_tnx[0] = fnx;
+  hz->fm_tnx[1] = (fnx + r - 1) / r;
+  if (!fm_tiles_alloc(hz, hz->fm_tile)) {
     return 0;
   }
-  hz->fm_tnx[0] = fnx;
-  hz->fm_tnx[1] = cnx;
-  for (i = 0; i < fnx * fny; ++i) {
-    fine[i] = -INFINITY;
-  }
-  for (i = 0; i < cnx * cny; ++i) {
-    coarse[i] = -INFINITY;
-  }
+  fine = hz->fm_tile[0];
+  coarse = hz->fm_tile[1];
   for (i = 0; i < hz->nx; ++i) { /* (the transposed copy, in its memory order) */
     const float *zcol = hz->zt + i * hz->ny;
     float *tcol = fine + i / F;
@@ -1983,8 +1977,30 @@ static int fm_tiles_init(ap_horizon *hz)
   return !hz->has_nodata || fm_shore_init(hz);
 }
 
+/* Both levels of an array of tiles laid out as fm_tile (fm_tnx set), every tile -inf, into
+ * t[0] (fine) and t[1] (coarse). 0 when out of memory (what was allocated is in t[], for
+ * ap_horizon_destroy). */
+static int fm_tiles_alloc(const ap_horizon *hz, float *t[2])
+{
+  const size_t n0 = hz->fm_tnx[0] * ((hz->ny + AP_FM_FINE - 1) / AP_FM_FINE);
+  const size_t n1 = hz->fm_tnx[1] * ((hz->ny + AP_FM_COARSE - 1) / AP_FM_COARSE);
+  size_t i;
+  t[0] = (float *)malloc(n0 * sizeof(float));
+  t[1] = (float *)malloc(n1 * sizeof(float));
+  if (!t[0] || !t[1]) {
+    return 0;
+  }
+  for (i = 0; i < n0; ++i) {
+    t[0][i] = -INFINITY;
+  }
+  for (i = 0; i < n1; ++i) {
+    t[1][i] = -INFINITY;
+  }
+  return 1;
+}
+
 /* The coarse tiles' maxima from the fine ones' (a coarse tile is r x r fine ones: AP_FM_COARSE
- * divides), both -inf-initialised here. */
+ * divides; both levels -inf-initialised by fm_tiles_alloc). */
 static void fm_coarsen(const ap_horizon *hz, float *fine, float *coarse)
 {
   const size_t F = AP_FM_FINE, r = AP_FM_COARSE / AP_FM_FINE;
@@ -2003,24 +2019,14 @@ static void fm_coarsen(const ap_horizon *hz, float *fine, float *coarse)
 static int fm_shore_init(ap_horizon *hz)
 {
   const size_t nx = hz->nx, ny = hz->ny, F = AP_FM_FINE, fnx = hz->fm_tnx[0];
-  const size_t n0 = fnx * ((ny + F - 1) / F);
-  const size_t n1 = hz->fm_tnx[1] * ((ny + AP_FM_COARSE - 1) / AP_FM_COARSE);
   unsigned char *near = (unsigned char *)malloc(3 * nx); /* rows j - 1, j, j + 1, cyclically */
-  float *fine = (float *)malloc(n0 * sizeof(float));
-  float *coarse = (float *)malloc(n1 * sizeof(float));
+  float *fine;
   size_t i, j;
-  hz->fm_shore[0] = fine;
-  hz->fm_shore[1] = coarse;
-  if (!near || !fine || !coarse) {
+  if (!fm_tiles_alloc(hz, hz->fm_shore) || !near) {
     free(near);
     return 0;
   }
-  for (i = 0; i < n0; ++i) {
-    fine[i] = -INFINITY;
-  }
-  for (i = 0; i < n1; ++i) {
-    coarse[i] = -INFINITY;
-  }
+  fine = hz->fm_shore[0];
   /* near[(j % 3) nx + i]: whether row j has nodata in columns i - 1 .. i + 1 */
   for (j = 0; j <= ny; ++j) {
     if (j < ny) {
@@ -2045,7 +2051,7 @@ static int fm_shore_init(ap_horizon *hz)
     }
   }
   free(near);
-  fm_coarsen(hz, fine, coarse);
+  fm_coarsen(hz, fine, hz->fm_shore[1]);
   return 1;
 }
 
@@ -2589,9 +2595,9 @@ static void far_march_column(const ap_horizon *hz, const fm_step *fm, long kmax,
  * 0.013-0.021, p99 0.20-0.57 deg against the brute force; with them, up to the search
  * distance, 0.0026-0.0037, p99 0.08-0.10, largest 0.36-0.51). Only beside a column sample on
  * nodata, so DEMs without nodata never come here and the far field elsewhere stays the column
- * samples. The two cells of such a crossing each
- * have a nodata cell among their eight neighbours when the ray moves at most one view row per
- * column (the cell of the void sample's column, or the next column's cell beside it), so
+ * samples. The two cells of such a crossing each have a nodata cell among their eight
+ * neighbours when the ray moves at most one view row per column (the cell of the void sample's
+ * column, or the next column's cell beside it), so
  * fm_shore's tiles (the maxima of such cells) bound them and rule out most stretches; where a
  * ray moves more than a row per column (lat/lon rows far from the DEM's centre row), fm_tile's
  * do (every cell). */
@@ -2622,6 +2628,12 @@ AP_INLINE int shore_void(const shore_ray *ry, const fm_step *st, long k)
 AP_INLINE double shore_y(const fm_step *st)
 {
   return (double)st->o + (double)st->f;
+}
+
+/* The distance of step k: t[k] (per-row cell sizes), or k len (t NULL). */
+AP_INLINE double shore_t(const double *t, double len, long k)
+{
+  return t ? t[k] : (double)k * len;
 }
 
 /* Whether a ray crosses a view row strictly between steps a and b (shore_stretch's rows): in
@@ -2666,8 +2678,8 @@ static void shore_scan(const shore_ray *ry, const fm_step *fm, const double *t, 
   for (k = ka; k < kb; ++k) {
     const int v1 = shore_void(ry, &fm[k + 1], k + 1);
     if ((v0 || v1) && shore_crosses(&fm[k], &fm[k + 1])) {
-      shore_stretch(ry, k, shore_y(&fm[k]), shore_y(&fm[k + 1]),
-                    t ? t[k] : (double)k * len, t ? t[k + 1] : (double)(k + 1) * len, zq, b);
+      shore_stretch(ry, k, shore_y(&fm[k]), shore_y(&fm[k + 1]), shore_t(t, len, k),
+                    shore_t(t, len, k + 1), zq, b);
     }
     v0 = v1;
   }
@@ -2690,8 +2702,8 @@ static void shore_last_init(shore_last *sl, const fm_step *fm, const double *t, 
 {
   sl->y0 = shore_y(&fm[kmax]);
   sl->y1 = 2.0 * sl->y0 - shore_y(&fm[kmax - 1]);
-  sl->t0 = t ? t[kmax] : (double)kmax * len;
-  sl->t1 = t ? 2.0 * sl->t0 - t[kmax - 1] : (double)(kmax + 1) * len;
+  sl->t0 = shore_t(t, len, kmax);
+  sl->t1 = t ? 2.0 * sl->t0 - t[kmax - 1] : shore_t(t, len, kmax + 1);
   sl->next.o = (long)floor(sl->y1);
   sl->next.f = (float)(sl->y1 - floor(sl->y1));
 }
@@ -2733,9 +2745,7 @@ static int shore_wide(const fm_step *fm, long ka, long kb)
 {
   long k;
   for (k = ka; k < kb; ++k) {
-    const double y0 = (double)fm[k].o + (double)fm[k].f;
-    const double y1 = (double)fm[k + 1].o + (double)fm[k + 1].f;
-    if (fabs(y1 - y0) > 1.0) {
+    if (fabs(shore_y(&fm[k + 1]) - shore_y(&fm[k])) > 1.0) {
       return 1;
     }
   }
@@ -2827,9 +2837,8 @@ static void shore_lanes(shore_ray *ry, const fm_step *fm, const double *t, doubl
         } else {
           ry->s = base + c;
         }
-        shore_stretch(ry, k, shore_y(&fm[k]), shore_y(&fm[k + 1]),
-                      t ? t[k] : (double)k * len, t ? t[k + 1] : (double)(k + 1) * len, zq[c],
-                      b + c);
+        shore_stretch(ry, k, shore_y(&fm[k]), shore_y(&fm[k + 1]), shore_t(t, len, k),
+                      shore_t(t, len, k + 1), zq[c], b + c);
       }
     }
   }

@@ -1538,27 +1538,6 @@ static double next_uniform(unsigned long long *state)
 
 /* Cell-directions of t whose far-marched horizon (3000 m, curvature on, D = 29) lies below the
  * samples' reference by more than the float rounding; prints the count checked. */
-/* The height of t at (x, y) (grid units, on the grid), bilinear; a cell of weight 0 is not
- * read, so a point on a grid line between two cells with data has one. */
-static double far_height(const terrain *t, double x, double y)
-{
-  const size_t x0 = (size_t)x, y0 = (size_t)y;
-  const size_t x1 = x0 + 1 < t->nx ? x0 + 1 : x0, y1 = y0 + 1 < t->ny ? y0 + 1 : y0;
-  const double fx = x - (double)x0, fy = y - (double)y0;
-  const double a = t->z[y0 * t->nx + x0], b = t->z[y0 * t->nx + x1];
-  const double e = t->z[y1 * t->nx + x0], g = t->z[y1 * t->nx + x1];
-  if (fx == 0.0 && fy == 0.0) {
-    return a; /* (a nodata neighbour of weight 0 does not matter) */
-  }
-  if (fx == 0.0) {
-    return (1 - fy) * a + fy * e;
-  }
-  if (fy == 0.0) {
-    return (1 - fx) * a + fx * b;
-  }
-  return (1 - fy) * ((1 - fx) * a + fx * b) + fy * ((1 - fx) * e + fx * g);
-}
-
 static size_t far_march_below_mode(const terrain *t, size_t stride, const char *what, int mode)
 {
   ap_horizon_params p = params(29, 1);
@@ -1595,7 +1574,7 @@ static size_t far_march_below_mode(const terrain *t, size_t stride, const char *
           const double yv = xmajor ? (double)j + lv : (double)j + (double)sj * qv;
           const int on = xv > -1e-9 && yv > -1e-9 && xv < (double)(t->nx - 1) + 1e-9 &&
                          yv < (double)(t->ny - 1) + 1e-9;
-          const int void_q = on && isnan(far_height(t, fmin(fmax(xv, 0.0), (double)(t->nx - 1)),
+          const int void_q = on && isnan(height_at(t, fmin(fmax(xv, 0.0), (double)(t->nx - 1)),
                                                     fmin(fmax(yv, 0.0), (double)(t->ny - 1))));
           const double lat = m * q; /* rows (x-major) or columns moved sideways */
           double x = xmajor ? (double)i + (double)si * q : (double)i + lat;
@@ -1616,7 +1595,7 @@ static size_t far_march_below_mode(const terrain *t, size_t stride, const char *
               const double yc = xmajor ? (double)j + r : (double)j + (double)sj * qc;
               if (tc <= L && xc >= 0.0 && yc >= 0.0 && xc <= (double)(t->nx - 1) &&
                   yc <= (double)(t->ny - 1)) {
-                const double zc = far_height(t, xc, yc);
+                const double zc = height_at(t, xc, yc);
                 if (!isnan(zc)) {
                   best = fmax(best, (zc - zq) / tc - c * tc);
                 }
@@ -1627,7 +1606,7 @@ static size_t far_march_below_mode(const terrain *t, size_t stride, const char *
           void_p = void_q;
           x = fmin(fmax(x, 0.0), (double)(t->nx - 1));
           y = fmin(fmax(y, 0.0), (double)(t->ny - 1));
-          z = far_height(t, x, y);
+          z = height_at(t, x, y);
           if (!isnan(z) && !crossings_only) {
             best = fmax(best, (z - zq) / tt - c * tt);
           }
