@@ -1521,6 +1521,20 @@ AP_INLINE double interp(const float *col, double smax, double s)
   return (double)col[s0] + t * ((double)col[s0 + 1] - (double)col[s0]);
 }
 
+/* interp, but where that is NaN inside the column, a position within 1e-9 of a whole row reads
+ * that cell alone, as the far march's steps do (fm_step_set): lines and rays of the diagonals
+ * run through cells up to rounding, and a nodata neighbour of a weight of rounding noise must
+ * not void them (a cell looking at 45 degrees past nodata lost the single cell its ray meets
+ * beyond, up to 11 degrees). The same as interp wherever that is not NaN. */
+AP_INLINE double interp_snap(const float *col, double smax, double s)
+{
+  const double z = interp(col, smax, s), r = nearbyint(s);
+  if (isnan(z) && s >= 0.0 && s <= smax && fabs(s - r) < 1e-9) {
+    return col[(long)r];
+  }
+  return z;
+}
+
 /* Where the result of view cell (p, s) goes in the sector scratch: x-major sectors are stored
  * transposed (grid column-major), so the sweep writes contiguously. */
 static size_t scratch_index(const ap_horizon *hz, size_t p, size_t s)
@@ -3573,7 +3587,7 @@ static double ray_march(const ap_horizon *hz, size_t p, double sq, double zq, si
     if (dn > L) {
       break;
     }
-    zn = interp(view_column(hz, q), smax, sn);
+    zn = interp_snap(view_column(hz, q), smax, sn);
     if (!isnan(zn) && dn > 0.0) {
       const double slope = (zn - zq) / dn - c * dn;
       best = slope > best ? slope : best;
@@ -3610,7 +3624,7 @@ static double ray_march_rows(const ap_horizon *hz, size_t p, long j, double zq, 
     if (t > L) {
       break;
     }
-    z = interp(view_column(hz, p + (size_t)k), smax, y); /* (x-major: view column = grid's) */
+    z = interp_snap(view_column(hz, p + (size_t)k), smax, y); /* (x-major: the grid's column) */
     if (t > 0.0) {
       const double sl = (z - zq) / t - c * t;
       best = sl > best ? sl : best; /* (NaN never wins) */
@@ -3868,7 +3882,8 @@ AP_INLINE ap_status sweep(const ap_horizon *hz, size_t b0, size_t b1, const int 
             ln->xend = ln->x;
           }
           q->x = ln->x;
-          q->u = interp(col, smax, ln->s) - c * ln->x * ln->x;
+          q->u = (nodata ? interp_snap(col, smax, ln->s) : interp(col, smax, ln->s)) -
+                 c * ln->x * ln->x;
           q->s = ln->s;
           q->col = (long)p;
         }
@@ -3917,7 +3932,8 @@ AP_INLINE ap_status sweep(const ap_horizon *hz, size_t b0, size_t b1, const int 
             ln->pend = p;
           }
           q->x = xc;
-          q->u = interp(col, smax, ln->s) - c * xc * xc; /* NaN on nodata */
+          /* (NaN on nodata) */
+          q->u = (nodata ? interp_snap(col, smax, ln->s) : interp(col, smax, ln->s)) - c * xc * xc;
           q->s = ln->s;
           q->col = (long)p;
         }
@@ -4011,7 +4027,7 @@ AP_INLINE ap_status sweep(const ap_horizon *hz, size_t b0, size_t b1, const int 
               rare |= AP_FAILED;
               continue;
             }
-            zn = interp(colp[v->col], smax, sn);
+            zn = nodata ? interp_snap(colp[v->col], smax, sn) : interp(colp[v->col], smax, sn);
             dn = v->x - ln->x;
             if (isnan(zn) || !(dn > 0.0)) {
               rare |= isnan(zn) && sn >= 0.0 && sn <= smax ? AP_VOID_HIT | AP_FAILED : AP_FAILED;
@@ -4326,6 +4342,9 @@ static ap_status sweep_side_rows(const ap_horizon *hz, size_t j0, size_t j1)
         fy = y - (double)r0;
         z = grid_row(hz, r0)[col] + fy * ((double)grid_row(hz, r0 + 1)[col] -
                                           (double)grid_row(hz, r0)[col]);
+        if (isnan(z) && (fy < 1e-9 || fy > 1.0 - 1e-9)) {
+          z = grid_row(hz, fy < 0.5 ? r0 : r0 + 1)[col]; /* (as interp_snap) */
+        }
         if (t > 0.0) {
           const double sl = (z - zq) / t - c * t;
           best = sl > best ? sl : best; /* (NaN never wins) */
