@@ -1226,8 +1226,12 @@ static int lattice_lines(ap_horizon *hz, double sphi, double cphi)
   hz->sigma = hz->wdy_c / hz->wdx_c;
   for (p = 0; p < hz->np; ++p) {
     const long q = (long)prim_index(hz, p);
-    const double off = hz->xmajor ? (cphi / sphi) * (double)(q + hz->ocol)
-                                  : (sphi / cphi) * hz->psi[q + hz->orow];
+    /* (along the columns, |sin phi| <= 1e-12, the lines are the columns themselves: with
+     * offsets of rounding noise the line of a DEM's first or last column lay off the grid, and
+     * its cells took their horizons from the next line alone, up to 21 degrees low) */
+    const double off = hz->xmajor          ? (cphi / sphi) * (double)(q + hz->ocol)
+                       : fabs(sphi) > 1e-12 ? (sphi / cphi) * hz->psi[q + hz->orow]
+                                            : 0.0;
     hz->lat_off[p] = off;
     lo = fmin(lo, off);
     hi = fmax(hi, off);
@@ -1243,10 +1247,11 @@ static int lattice_lines(ap_horizon *hz, double sphi, double cphi)
   hz->kmin = (long)floor(first) - 2;
   hz->nlines = (size_t)((long)ceil(last) + 2 - hz->kmin + 1);
   /* Along the rows every ray keeps to its row, but lines spaced sigma apart in Psi lie between
-   * rows wherever the cell size differs from the centre row's. A row with data between rows of
-   * nodata (a pier, a dyke, the row beside a nodata row) is then void on both of its lines,
-   * and the sweep lost its terrain: up to 20 degrees along a one-row pier at 50 N
-   * (test_nodata_coast). There the rows themselves are the lines, two to spare on each side. */
+   * rows wherever the cell size differs from the centre row's. The DEM's first and last rows
+   * then had one line, a fraction of a row away (up to 15 degrees low there), and a row with
+   * data between rows of nodata (a pier, a dyke, the row beside a nodata row) was void on both
+   * of its lines (20 degrees along a one-row pier at 50 N, test_nodata_coast). There the rows
+   * themselves are the lines, two to spare on each side. */
   hz->row_lines = hz->xmajor && !(fabs(cphi) > 1e-12);
   if (hz->row_lines) {
     hz->kmin = hz->orow - 2;
