@@ -73,13 +73,14 @@
  *  the column's two cells. Where one of them is nodata the points where the ray crosses a view
  *  row next to that sample are taken too, up to the search distance (a shore, a one-cell strip
  *  of land crossed between two columns): by the far march, and for the sweep by
- *  ap_horizon_accumulate after it; the sweep also marches the ray of a cell where one of its
- *  two lines met nodata, a line beside nodata skipping terrain the ray crosses. That keeps the
- *  accuracy above beside nodata (a coast, against a brute force: horizon MAE 0.003 deg, p99
- *  0.1 far-marched; MAE 0.004-0.006, p99 0.15, largest 1.3 deg swept; beside a one-cell pier
- *  150 m high the column samples miss up to 7 deg of its patches, as they would without
- *  nodata), at a cost on DEMs with nodata only (kernel instructions, far-marched: +5% for a
- *  few voids, +19% half sea, +47% for 1% scattered nodata cells; swept: +5 to +15%).
+ *  ap_horizon_accumulate after it; the sweep also marches a cell's ray where a sample one of
+ *  its two lines lost to nodata beside data could rise above the cell's horizon (the line's
+ *  ghosts). That keeps the accuracy above beside nodata (a coast, against a brute force:
+ *  horizon MAE 0.003 deg, p99 0.1 far-marched; MAE 0.003-0.005, p99 0.14, largest 1 deg swept;
+ *  beside a one-cell pier 150 m high the column samples miss up to 7 deg of its patches, as
+ *  they would without nodata), at a cost on DEMs with nodata only (kernel instructions,
+ *  far-marched: +5% for a few voids, +19% half sea, +47% for 1% scattered nodata cells;
+ *  swept: +5 to +15%).
  *  A direction with no terrain sample at all (the ray leaves the DEM at once) has horizon
  *  −π/2.
  *

@@ -1240,13 +1240,14 @@ static terrain coast_terrain(int thin, int latlon)
  * nodata (before the crossings: about 100 deg, the strips lost). The sweep's hulls hold the
  * column samples alone; it marches the rays whose tangents fell on nodata, and
  * ap_horizon_accumulate adds the same crossings beside nodata (shore_sweep_rows) to its
- * horizons (measured: MAE 0.0036-0.0055, p99 0.11-0.15, max 0.9-1.3 on the shore, 3.2-7.2
- * with the pier and the causeway, the largest the far march's too; without the crossings
- * MAE 0.025-0.035, p99 0.44-0.91, max 14-26; before the marches, MAE 0.26-0.28 on the axes
- * and lost horizons). The diagonals' lines and rays run through cells up to rounding, so a
- * nodata neighbour of a weight of 1e-13 voided them (interp_snap: up to 11 deg, 36 along the
- * pier), a line beside nodata skips terrain its cell's ray meets (so such rays are marched:
- * up to 7 deg), and on lat/lon rows the lines along the rows lay between rows, both void
+ * horizons (measured: MAE 0.0034-0.0049, p99 0.10-0.14, max 0.75-0.97, the same with the
+ * pier and the causeway but on lat/lon rows on the axes, where the far march too misses 7.2
+ * deg of the pier's patches; without the crossings MAE 0.025-0.035, p99 0.44-0.91, max 14-26;
+ * before the marches, MAE 0.26-0.28 on the axes and lost horizons). The diagonals' lines and
+ * rays run through cells up to rounding, so a nodata neighbour of a weight of 1e-13 voided
+ * them (interp_snap: up to 11 deg, 36 along the pier), a line's samples lost beside nodata
+ * leave a ray between it and the next line without a bracket (ghost_push: up to 7 deg, 3.7
+ * past the pier), and on lat/lon rows the lines along the rows lay between rows, both void
  * beside the pier (row_lines: 20 deg). Each also on lat/lon rows (about 29 x 33 m
  * at 50 N), whose x-major sectors run the near field and the far march row by row (near_row,
  * far_march_row) and sweep along bending lines. */
@@ -1300,13 +1301,13 @@ static void test_nodata_coast(void)
           /* (the largest: the reference's steps, on a 150 m pier's flank) */
           AP_CHECK(mae <= 0.001 && p99 <= 0.005 && worst <= 0.1);
         } else if (mode == FAR_MARCHED) {
-          AP_CHECK(mae <= 0.05 && p99 <= 0.5 && worst <= (thin ? 10.0 : 1.0));
+          AP_CHECK(mae <= 0.05 && p99 <= 0.5 && worst <= (thin && latlon ? 10.0 : 1.0));
         } else {
           /* (the sweep lost whole horizons along the shore, up to 74 deg, 37 on lat/lon rows,
            * before it marched the rays of cells whose hulls' tangents fell on nodata; then up
-           * to 12 deg, 36 with the pier, before interp_snap, the marches past a line that met
-           * nodata and the row lines of lat/lon grids' axes) */
-          AP_CHECK(mae <= 0.05 && p99 <= 0.5 && worst <= (thin ? 10.0 : 2.0));
+           * to 12 deg, 36 with the pier, before interp_snap, the ghosts and the row lines of
+           * lat/lon grids' axes) */
+          AP_CHECK(mae <= 0.05 && p99 <= 0.5 && worst <= (thin && latlon ? 10.0 : 1.5));
         }
         release(&r);
       }
