@@ -3692,9 +3692,10 @@ typedef struct line_state {
  * lost the sample, but a cell's ray between this line and the next reads the same column
  * from the next line's pair of cells, which holds that data cell: without the line's sample
  * the hulls have no bracket for the ray there (a pier seen obliquely, whose one row of data
- * lies between two of nodata, was up to 3.7 degrees low). A ghost bounds the ray's height
- * there from above, for the sweep's test whether such a ray must be marched (ghost_above).
- * Samples on two nodata cells need none: every ray reading that column reads one of them.
+ * lies between two of nodata, was up to 3.7 degrees low). The ghost, the most the ray reads
+ * there unless its pair's other cell is higher (which the next line's hull brackets as it
+ * would without nodata), is the sweep's test whether such a ray must be marched
+ * (ghost_above). Samples on two nodata cells need none: a ray there reads one of them.
  * 0 when out of memory. */
 static int ghost_push(hull *g, const sample *q, const float *col, long ns, double c)
 {
