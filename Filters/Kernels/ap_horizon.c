@@ -650,8 +650,8 @@ struct ap_horizon {
                            * k + lat_off[p] of the larger DEM (row-major views) or at the row
                            * where Ψ = sigma k + lat_off[p] (x-major views) */
   double sigma;           /* x-major, per-row sizes: Psi between neighbouring lines */
-  int row_lines;          /* x-major, per-row sizes, along the rows (|cos phi| <= 1e-12, as
-                           * ray_march_rows' along): line k is the larger DEM's row k */
+  int row_lines;          /* x-major, per-row sizes, along the rows (|cos phi| <= 1e-12): line
+                           * k is the larger DEM's row k, and every ray keeps to its row */
   size_t nlines;
   /* near-field patch patterns (see build_pattern): a pool of records, the patterns, and which
    * pattern serves each view position (indexed by p for row-major views, s for x-major) */
@@ -1550,6 +1550,13 @@ AP_INLINE double interp_snap(const float *col, double smax, double s)
     return col[(long)r];
   }
   return z;
+}
+
+/* The sweep's sample: interp_snap on DEMs with nodata, interp alone on others (nodata is a
+ * constant in each of the sweep's two variants, so the other keeps its loop as it was). */
+AP_INLINE double interp_nd(const float *col, double smax, double s, int nodata)
+{
+  return nodata ? interp_snap(col, smax, s) : interp(col, smax, s);
 }
 
 /* Where the result of view cell (p, s) goes in the sector scratch: x-major sectors are stored
@@ -3646,7 +3653,7 @@ static double ray_march_rows(const ap_horizon *hz, size_t p, long j, double zq, 
   const double L = hz->p.max_distance, c = hz->c, smax = (double)(hz->ny - 1);
   const long np = (long)hz->np;
   const double *Y = hz->ycum;
-  const int along = !(fabs(cphi) > 1e-12); /* along the row (x-major: |sin phi| >= 0.7) */
+  const int along = hz->row_lines; /* along the row: the row is a line (lattice_lines) */
   const double cot = cphi / fabs(sphi), zb = march_top(hz);
   double best = -INFINITY;
   long k, jj = j + hz->orow;
@@ -3971,8 +3978,7 @@ AP_INLINE ap_status sweep(const ap_horizon *hz, size_t b0, size_t b1, const int 
             ln->xend = ln->x;
           }
           q->x = ln->x;
-          q->u = (nodata ? interp_snap(col, smax, ln->s) : interp(col, smax, ln->s)) -
-                 c * ln->x * ln->x;
+          q->u = interp_nd(col, smax, ln->s, nodata) - c * ln->x * ln->x;
           q->s = ln->s;
           q->col = (long)p;
         }
@@ -4021,8 +4027,7 @@ AP_INLINE ap_status sweep(const ap_horizon *hz, size_t b0, size_t b1, const int 
             ln->pend = p;
           }
           q->x = xc;
-          /* (NaN on nodata) */
-          q->u = (nodata ? interp_snap(col, smax, ln->s) : interp(col, smax, ln->s)) - c * xc * xc;
+          q->u = interp_nd(col, smax, ln->s, nodata) - c * xc * xc; /* NaN on nodata */
           q->s = ln->s;
           q->col = (long)p;
         }
@@ -4116,7 +4121,7 @@ AP_INLINE ap_status sweep(const ap_horizon *hz, size_t b0, size_t b1, const int 
               rare |= AP_FAILED;
               continue;
             }
-            zn = nodata ? interp_snap(colp[v->col], smax, sn) : interp(colp[v->col], smax, sn);
+            zn = interp_nd(colp[v->col], smax, sn, nodata);
             dn = v->x - ln->x;
             if (isnan(zn) || !(dn > 0.0)) {
               rare |= isnan(zn) && sn >= 0.0 && sn <= smax ? AP_VOID_HIT | AP_FAILED : AP_FAILED;
@@ -4149,9 +4154,7 @@ AP_INLINE ap_status sweep(const ap_horizon *hz, size_t b0, size_t b1, const int 
             if (g < np) {
               /* (the point where the ray leaves may lie before column g, after g - 1) */
               const double d0 = par_dist(hz, p, g - 1), best = near > far ? near : far;
-              const double bound = d0 > 0.0 ? (zmax > zq ? (zmax - zq) / d0 : 0.0) - c * d0
-                                            : INFINITY;
-              if (d0 <= L && bound > best) {
+              if (d0 <= L && !(d0 > 0.0 && march_done(march_top(hz), zq, c, d0, best))) {
                 const double gs = ray_march(hz, p, sq, zq, g, -INFINITY);
                 far = gs > far ? gs : far;
               }
@@ -4371,7 +4374,7 @@ static ap_status sweep_side_rows(const ap_horizon *hz, size_t j0, size_t j1)
   const double *Y = hz->ycum;
   double *ys, *ts, *zbs;
   long W, j;
-  if (hz->m_row[0] == 0.0 || !(fabs(cphi) > 1e-12)) {
+  if (hz->m_row[0] == 0.0 || hz->row_lines) {
     return AP_OK; /* along the rows: no ray leaves through a side */
   }
   /* (from the whole DEM's lattice alone; the table below holds at most nx steps) */

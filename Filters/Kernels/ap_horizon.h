@@ -52,9 +52,10 @@
  *  dx / dx(centre) rows apart elsewhere (sectors that cross rows faster than columns: line k
  *  at column k + tan φ · Ψ(row)). Along the axes (|cos φ| or |sin φ| ≤ 1e-12) the lines are
  *  the rows or the columns themselves, on which every ray then runs. They depend on the DEM's
- *  rows alone, not on where a piece of it starts (whole_dx, origin_row). Sector d is centred on true azimuth φ_d = 2π d / D
- *  (clockwise from north, d = 0 north); with a projected DEM, pass the meridian convergence γ
- *  at the DEM centre as azimuth_offset and the sweep runs at grid azimuth φ_d − γ.
+ *  rows alone, not on where a piece of it starts (whole_dx, origin_row). Sector d is centred
+ *  on true azimuth φ_d = 2π d / D (clockwise from north, d = 0 north); with a projected DEM,
+ *  pass the meridian convergence γ at the DEM centre as azimuth_offset and the sweep runs at
+ *  grid azimuth φ_d − γ.
  *
  *  Near a side of the DEM, where a cell's ray still runs on the grid after the bracketing
  *  line on that side has left it, the sweep samples the cell's own ray over that last stretch

@@ -1292,11 +1292,11 @@ static void test_top_bounds_exact(void)
     terrain t = coast_terrain(1, latlon);
     terrain u = coast_terrain(1, latlon);
     ap_horizon_params p = params(16, 1);
-    size_t a, b;
-    for (b = 0; b < t.ny; ++b) {
-      for (a = 0; a < t.nx; ++a) {
-        if (b % 9 == 4 || a % 13 == 6) { /* (more rays for the sweep to march) */
-          t.z[b * t.nx + a] = u.z[b * t.nx + a] = NAN;
+    size_t x, y;
+    for (y = 0; y < t.ny; ++y) {
+      for (x = 0; x < t.nx; ++x) {
+        if (y % 9 == 4 || x % 13 == 6) { /* (more rays for the sweep to march) */
+          t.z[y * t.nx + x] = u.z[y * t.nx + x] = NAN;
         }
       }
     }
