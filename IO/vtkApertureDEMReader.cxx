@@ -237,10 +237,19 @@ int vtkApertureDEMReader::RequestInformation(
   double gt[6];
   if (GDALGetGeoTransform(ds.H, gt) != CE_None)
   {
-    if (GDALGetGCPCount(ds.H) > 0)
+    const int gcps = GDALGetGCPCount(ds.H);
+    if (gcps >= 3)
     {
-      vtkErrorMacro(<< "'" << name << "' is georeferenced only by " << GDALGetGCPCount(ds.H)
+      vtkErrorMacro(<< "'" << name << "' is georeferenced only by " << gcps
                     << " ground control points; warp it to a grid first (gdalwarp)");
+    }
+    else if (gcps > 0)
+    {
+      // (what GDAL reads from a GeoTIFF tie point without a pixel size, as a geotransform
+      // with a pixel size of 0 is written; too few for gdalwarp, which needs 3)
+      vtkErrorMacro(<< "'" << name << "' is georeferenced only by " << gcps
+                    << " ground control point" << (gcps == 1 ? "" : "s")
+                    << ", too few to place a grid; set its corners first (gdal_edit.py -a_ullr)");
     }
     else
     {
@@ -254,8 +263,13 @@ int vtkApertureDEMReader::RequestInformation(
                   << ", " << gt[4] << "); warp it north-up first (gdalwarp)");
     return 0;
   }
-  if (!(gt[1] > 0) || gt[5] == 0 || !std::isfinite(gt[0]) || !std::isfinite(gt[3]) ||
-    !std::isfinite(gt[5]))
+  if (gt[1] == 0 || gt[5] == 0)
+  {
+    vtkErrorMacro(<< "'" << name << "' has a pixel size of 0 in its geotransform (width " << gt[1]
+                  << ", height " << gt[5] << "); set its corners first (gdal_edit.py -a_ullr)");
+    return 0;
+  }
+  if (!(gt[1] > 0) || !std::isfinite(gt[0]) || !std::isfinite(gt[3]) || !std::isfinite(gt[5]))
   {
     vtkErrorMacro(<< "'" << name << "' has an unsupported geotransform (pixel width " << gt[1]
                   << ", pixel height " << gt[5] << "); warp it north-up first (gdalwarp)");

@@ -293,7 +293,22 @@ class TestBadInput(CommandLineTest):
         gcps = [gdal.GCP(10.0 + 0.01 * x, 45.0 - 0.01 * y, 0.0, x, y)
                 for x, y in ((0, 0), (3, 0), (0, 3), (3, 3))]
         p = make_raster(self.path("gcps.tif"), np.ones((3, 3)), None, srs="EPSG:4326", gcps=gcps)
-        self.assert_error("ground control points", "info", p)
+        self.assert_error("ground control points; warp it to a grid first", "info", p)
+
+    def test_zero_pixel_size(self):
+        # A pixel size of 0: nothing to warp, corners to set. GTiff keeps such a geotransform
+        # as it is when copied, but a file created with one holds a tie point without a
+        # scale, which reads back as one ground control point.
+        p = make_raster(self.path("zero.tif"), np.ones((3, 3)), (500000, 0, 0, 4000000, 0, 0))
+        self.assert_error("'%s' has a pixel size of 0 in its geotransform (width 0, height 0); "
+                          "set its corners first (gdal_edit.py -a_ullr)" % p, "info", p)
+        p = self.path("zero-created.tif")
+        ds = gdal.GetDriverByName("GTiff").Create(p, 3, 3, 1, gdal.GDT_Float32)
+        ds.SetGeoTransform((500000, 0, 0, 4000000, 0, -30))
+        ds.GetRasterBand(1).Fill(1.0)
+        ds = None
+        self.assert_error("'%s' is georeferenced only by 1 ground control point, too few to place "
+                          "a grid; set its corners first (gdal_edit.py -a_ullr)" % p, "info", p)
 
     def test_local_crs(self):
         p = make_raster(self.path("local.tif"), np.ones((3, 3)), (0, 1, 0, 3, 0, -1),

@@ -476,7 +476,13 @@ void TestBadInput()
   gcps.crs = "EPSG:4326";
   gcps.gcps = 4;
   AP_CHECK(aptest::WriteRaster(tmp + "/gcps.tif", gcps));
-  ExpectError(tmp + "/gcps.tif", "only by 4 ground control points");
+  ExpectError(tmp + "/gcps.tif", "only by 4 ground control points; warp it");
+  // A GeoTIFF tie point without a pixel size (GDAL's GTiff writes a geotransform whose pixel
+  // size is 0 so) reads as one ground control point, which no warp can use.
+  gcps.gcps = 1;
+  AP_CHECK(aptest::WriteRaster(tmp + "/gcp.tif", gcps));
+  ExpectError(tmp + "/gcp.tif", "only by 1 ground control point, too few to place a grid; set "
+                                "its corners first (gdal_edit.py -a_ullr)");
 
   aptest::RasterSpec nocrs;
   nocrs.crs = "";
