@@ -601,6 +601,8 @@ struct ap_horizon {
                          * ([2 (ny + i)], ...): nodata cells outside never need a search */
   unsigned char *holes; /* DEMs with nodata: per grid row j ([j]) and column i ([ny + i]), 1
                          * where it has nodata between its first and last cells with data */
+  size_t *void_before;  /* DEMs with nodata: the grid rows before row j that have a nodata
+                         * cell ([j], j <= ny), then the columns before column i ([ny + 1 + i]) */
   float *grad;          /* Horn gradient (dz/dx east, dz/dy north) per cell of the region,
                          * in the outputs' order */
   float *slope;         /* prepared sector, per cell: the near field's slope (tangent of the
@@ -918,7 +920,10 @@ static int data_spans_init(ap_horizon *hz)
   if (hz->has_nodata) { /* (without nodata no line has holes, nor is all_data asked) */
     hz->holes = (unsigned char *)malloc(hz->ny + hz->nx);
   }
-  if (!hz->data_span || (hz->has_nodata && !hz->holes)) {
+  if (hz->has_nodata) {
+    hz->void_before = (size_t *)malloc((hz->ny + hz->nx + 2) * sizeof(size_t));
+  }
+  if (!hz->data_span || (hz->has_nodata && (!hz->holes || !hz->void_before))) {
     return 0;
   }
   for (j = 0; j < hz->ny; ++j) {
@@ -936,7 +941,42 @@ static int data_spans_init(ap_horizon *hz)
       hz->holes[g] = has_hole(v, sp[2 * g], sp[2 * g + 1]);
     }
   }
+  if (hz->void_before) {
+    size_t *vb = hz->void_before, g = 0;
+    for (i = 0; i < 2; ++i) { /* (rows, then columns) */
+      const size_t n = i ? hz->nx : hz->ny, other = i ? hz->ny : hz->nx;
+      size_t *before = vb + (i ? hz->ny + 1 : 0), k;
+      before[0] = 0;
+      for (k = 0; k < n; ++k, ++g) {
+        const int full = !hz->holes[g] && sp[2 * g] == 0 && sp[2 * g + 1] == other;
+        before[k + 1] = before[k] + (size_t)!full;
+      }
+    }
+  }
   return 1;
+}
+
+/* DEMs with nodata: whether some cell of grid rows [r0, r1] and some cell of grid columns
+ * [c0, c1] (each clamped to the grid) are nodata; 0 guarantees that no cell of that box is.
+ * (Two look-ups of void_before.) */
+AP_INLINE int box_may_void(const ap_horizon *hz, long r0, long r1, long c0, long c1)
+{
+#if defined(AP_HORIZON_NO_VOID_SKIP)
+  /* (a test build: every box may, which must change no result; Kernels-void-skip-equality) */
+  (void)hz;
+  (void)r0;
+  (void)r1;
+  (void)c0;
+  (void)c1;
+  return 1;
+#else
+  const size_t *rows = hz->void_before, *cols = hz->void_before + hz->ny + 1;
+  r0 = r0 < 0 ? 0 : r0;
+  c0 = c0 < 0 ? 0 : c0;
+  r1 = r1 > (long)hz->ny - 1 ? (long)hz->ny - 1 : r1;
+  c1 = c1 > (long)hz->nx - 1 ? (long)hz->nx - 1 : c1;
+  return r0 <= r1 && c0 <= c1 && rows[r1 + 1] > rows[r0] && cols[c1 + 1] > cols[c0];
+#endif
 }
 
 static void free_sector(ap_horizon *hz)
@@ -977,6 +1017,7 @@ void ap_horizon_destroy(ap_horizon *hz)
   free(hz->zt);
   free(hz->data_span);
   free(hz->holes);
+  free(hz->void_before);
   free(hz->grad);
   free(hz->slope);
   free(hz->edge);
@@ -2165,6 +2206,41 @@ static long fm_last_on_grid(const ap_horizon *hz, const fm_step *fm, long s, lon
   return lo;
 }
 
+/* The grid rows [b[0], b[1]] and columns [b[2], b[3]] (clamped to the grid) of every sample
+ * that cells [s0, s0 + n) of view column p read at steps [ka, kb]. */
+AP_INLINE void fm_box_cells(const ap_horizon *hz, const fm_step *fm, size_t p, long s0, long n,
+                            long ka, long kb, long b[4])
+{
+  const fm_step *sa = &fm[ka], *sb = &fm[kb];
+  const long ns = (long)hz->ns;
+  long r0 = s0 + (fm_lo(sa) < fm_lo(sb) ? fm_lo(sa) : fm_lo(sb));
+  long r1 = s0 + n - 1 + (fm_hi(sa) > fm_hi(sb) ? fm_hi(sa) : fm_hi(sb)) - 1;
+  const long qa = (long)prim_index(hz, p + (size_t)ka), qb = (long)prim_index(hz, p + (size_t)kb);
+  const long q0 = qa < qb ? qa : qb, q1 = qa < qb ? qb : qa;
+  r0 = r0 < 0 ? 0 : r0;
+  r1 = r1 > ns - 1 ? ns - 1 : r1;
+  b[0] = hz->xmajor ? r0 : q0; /* (x-major: view p = grid column, s = grid row) */
+  b[1] = hz->xmajor ? r1 : q1;
+  b[2] = hz->xmajor ? q0 : r0;
+  b[3] = hz->xmajor ? q1 : r1;
+}
+
+/* The largest tile (B cells square) of `tile` (an array laid out as fm_tile[l]) over grid
+ * rows [b[0], b[1]] and columns [b[2], b[3]], raised by fm_eps. */
+AP_INLINE float fm_box_tiles(const ap_horizon *hz, const float *tile, int l, const long b[4])
+{
+  const size_t B = l ? AP_FM_COARSE : AP_FM_FINE, tnx = hz->fm_tnx[l];
+  size_t i, j;
+  float Z = -INFINITY;
+  for (j = (size_t)b[0] / B; j <= (size_t)b[1] / B; ++j) {
+    for (i = (size_t)b[2] / B; i <= (size_t)b[3] / B; ++i) {
+      const float t = tile[j * tnx + i];
+      Z = t > Z ? t : Z;
+    }
+  }
+  return Z + hz->fm_eps;
+}
+
 /* The box of tile maxima (level l of fm_tile, or of another array of the same tiles) around
  * every sample that cells [s0, s0 + n) of view column p read at steps [ka, kb], raised by
  * fm_eps: at least every elevation those samples interpolate, and that of any cell of those
@@ -2172,39 +2248,19 @@ static long fm_last_on_grid(const ap_horizon *hz, const fm_step *fm, long s, lon
 AP_INLINE float fm_box_in(const ap_horizon *hz, const float *tile, const fm_step *fm, int l,
                           size_t p, long s0, long n, long ka, long kb)
 {
-  const size_t B = l ? AP_FM_COARSE : AP_FM_FINE, tnx = hz->fm_tnx[l];
-  const fm_step *sa = &fm[ka], *sb = &fm[kb];
-  const long ns = (long)hz->ns;
-  long r0 = s0 + (fm_lo(sa) < fm_lo(sb) ? fm_lo(sa) : fm_lo(sb));
-  long r1 = s0 + n - 1 + (fm_hi(sa) > fm_hi(sb) ? fm_hi(sa) : fm_hi(sb)) - 1;
-  size_t q0 = prim_index(hz, p + (size_t)ka), q1 = prim_index(hz, p + (size_t)kb), i0, i1, j0,
-         j1, i, j;
-  float Z = -INFINITY;
-  if (q0 > q1) {
-    const size_t t = q0;
-    q0 = q1;
-    q1 = t;
-  }
-  r0 = r0 < 0 ? 0 : r0;
-  r1 = r1 > ns - 1 ? ns - 1 : r1;
-  if (hz->xmajor) { /* view p = grid column, s = grid row */
-    i0 = q0 / B;
-    i1 = q1 / B;
-    j0 = (size_t)r0 / B;
-    j1 = (size_t)r1 / B;
-  } else {
-    i0 = (size_t)r0 / B;
-    i1 = (size_t)r1 / B;
-    j0 = q0 / B;
-    j1 = q1 / B;
-  }
-  for (j = j0; j <= j1; ++j) {
-    for (i = i0; i <= i1; ++i) {
-      const float t = tile[j * tnx + i];
-      Z = t > Z ? t : Z;
-    }
-  }
-  return Z + hz->fm_eps;
+  long b[4];
+  fm_box_cells(hz, fm, p, s0, n, ka, kb, b);
+  return fm_box_tiles(hz, tile, l, b);
+}
+
+/* DEMs with nodata: box_may_void of fm_box_in's cells (not rounded to tiles): 0 when those 16
+ * rays' samples at steps [ka, kb] can read no nodata cell. */
+AP_INLINE int fm_box_void(const ap_horizon *hz, const fm_step *fm, size_t p, long s0, long n,
+                          long ka, long kb)
+{
+  long b[4];
+  fm_box_cells(hz, fm, p, s0, n, ka, kb, b);
+  return box_may_void(hz, b[0], b[1], b[2], b[3]);
 }
 
 AP_INLINE float fm_box_max(const ap_horizon *hz, const fm_step *fm, int l, size_t p, long s0,
@@ -2896,7 +2952,9 @@ AP_INLINE unsigned shore_void_lanes(const int *acc, unsigned r)
 /* DEMs with nodata, after the far march of cells [sa, sb) of view column p (steps fm[0..kmax];
  * t their distances with per-row cell sizes, NULL with constant ones): the crossings beside
  * nodata (above) within the distance, max-merged into best[]. A group of 16 cells skips a
- * stretch of 64, then 16 steps whose tiles cannot raise any of its slopes, as the far march
+ * stretch of 64, then 16 steps whose box of samples lies in grid rows or columns without
+ * nodata (fm_box_void: no sample there is void, so no crossing is taken; two look-ups where
+ * the tiles take several) or whose tiles cannot raise any of its slopes, as the far march
  * does (the tiles bound the crossings of the stretches between the box's first and last
  * steps); in a stretch that some can raise, each of those cells evaluates the crossings next
  * to its column samples on nodata (found for the 16 at once while all their rays are on the
@@ -2952,7 +3010,8 @@ static void far_shore_column(const ap_horizon *hz, const fm_step *fm, const doub
       if (s0 + fm_lo(&fm[k]) > ns - 1 || s0 + n - 1 + fm_hi(&fm[k]) - 1 < 0) {
         break; /* every ray has left the grid (the box would hold no row of it) */
       }
-      if (!shore_rises(fm_box_in(hz, tiles[1], fm, 1, p, s0, n, k, k1), col + s0, best + s0, n,
+      if (!fm_box_void(hz, fm, p, s0, n, k, k1) ||
+          !shore_rises(fm_box_in(hz, tiles[1], fm, 1, p, s0, n, k, k1), col + s0, best + s0, n,
                        &fm[k], &fm[k1])) {
         continue;
       }
@@ -2962,8 +3021,10 @@ static void far_shore_column(const ap_horizon *hz, const fm_step *fm, const doub
         if (s0 + fm_lo(&fm[kf]) > ns - 1 || s0 + n - 1 + fm_hi(&fm[kf]) - 1 < 0) {
           break;
         }
-        r = shore_rises(fm_box_in(hz, tiles[0], fm, 0, p, s0, n, kf, kf1), col + s0, best + s0,
-                        n, &fm[kf], &fm[kf1]);
+        r = fm_box_void(hz, fm, p, s0, n, kf, kf1)
+              ? shore_rises(fm_box_in(hz, tiles[0], fm, 0, p, s0, n, kf, kf1), col + s0,
+                            best + s0, n, &fm[kf], &fm[kf1])
+              : 0u;
         if (!r) {
           continue;
         }
@@ -3020,30 +3081,38 @@ static void far_shore_column(const ap_horizon *hz, const fm_step *fm, const doub
  * at columns q0 + dir k (dir = -1 in flipped views), with the same operations per cell as
  * fm_march_one. best[] and zrow[] are indexed by grid column, as in near_row. */
 
+/* fm_box_cells for the cells of columns [q0, q0 + n) of grid row s. */
+AP_INLINE void fm_box_cells_rows(const ap_horizon *hz, const fm_step *fm, long s, long q0,
+                                 long n, long dir, long ka, long kb, long b[4])
+{
+  const fm_step *sa = &fm[ka], *sb = &fm[kb];
+  const long ny = (long)hz->ny, nx = (long)hz->nx;
+  const long r0 = s + (fm_lo(sa) < fm_lo(sb) ? fm_lo(sa) : fm_lo(sb));
+  const long r1 = s + (fm_hi(sa) > fm_hi(sb) ? fm_hi(sa) : fm_hi(sb)) - 1;
+  const long c0 = dir > 0 ? q0 + ka : q0 - kb, c1 = dir > 0 ? q0 + n - 1 + kb : q0 + n - 1 - ka;
+  b[0] = r0 < 0 ? 0 : r0;
+  b[1] = r1 > ny - 1 ? ny - 1 : r1;
+  b[2] = c0 < 0 ? 0 : c0;
+  b[3] = c1 > nx - 1 ? nx - 1 : c1;
+}
+
 /* The box of tile maxima (level l) around every sample that the cells of columns
  * [q0, q0 + n) of grid row s read at steps [ka, kb], raised by fm_eps. */
 AP_INLINE float fm_box_in_rows(const ap_horizon *hz, const float *tile, const fm_step *fm, int l,
                                long s, long q0, long n, long dir, long ka, long kb)
 {
-  const size_t B = l ? AP_FM_COARSE : AP_FM_FINE, tnx = hz->fm_tnx[l];
-  const fm_step *sa = &fm[ka], *sb = &fm[kb];
-  const long ny = (long)hz->ny, nx = (long)hz->nx;
-  long r0 = s + (fm_lo(sa) < fm_lo(sb) ? fm_lo(sa) : fm_lo(sb));
-  long r1 = s + (fm_hi(sa) > fm_hi(sb) ? fm_hi(sa) : fm_hi(sb)) - 1;
-  long c0 = dir > 0 ? q0 + ka : q0 - kb, c1 = dir > 0 ? q0 + n - 1 + kb : q0 + n - 1 - ka;
-  size_t i, j;
-  float Z = -INFINITY;
-  r0 = r0 < 0 ? 0 : r0;
-  r1 = r1 > ny - 1 ? ny - 1 : r1;
-  c0 = c0 < 0 ? 0 : c0;
-  c1 = c1 > nx - 1 ? nx - 1 : c1;
-  for (j = (size_t)r0 / B; j <= (size_t)r1 / B; ++j) {
-    for (i = (size_t)c0 / B; i <= (size_t)c1 / B; ++i) {
-      const float t = tile[j * tnx + i];
-      Z = t > Z ? t : Z;
-    }
-  }
-  return Z + hz->fm_eps;
+  long b[4];
+  fm_box_cells_rows(hz, fm, s, q0, n, dir, ka, kb, b);
+  return fm_box_tiles(hz, tile, l, b);
+}
+
+/* fm_box_void for fm_box_in_rows's cells. */
+AP_INLINE int fm_box_void_rows(const ap_horizon *hz, const fm_step *fm, long s, long q0, long n,
+                               long dir, long ka, long kb)
+{
+  long b[4];
+  fm_box_cells_rows(hz, fm, s, q0, n, dir, ka, kb, b);
+  return box_may_void(hz, b[0], b[1], b[2], b[3]);
 }
 
 AP_INLINE float fm_box_max_rows(const ap_horizon *hz, const fm_step *fm, int l, long s, long q0,
@@ -3206,14 +3275,18 @@ static void far_shore_row(const ap_horizon *hz, const fm_step *fm, const double 
     for (k = k0; k < kg; k += AP_FM_COARSE) {
       const long k1 = k + AP_FM_COARSE < kg ? k + AP_FM_COARSE : kg;
       long kf;
-      if (!shore_rises(fm_box_in_rows(hz, tiles[1], fm, 1, s, q0, n, dir, k, k1), zrow + q0,
+      if (!fm_box_void_rows(hz, fm, s, q0, n, dir, k, k1) ||
+          !shore_rises(fm_box_in_rows(hz, tiles[1], fm, 1, s, q0, n, dir, k, k1), zrow + q0,
                        best + q0, n, &fm[k], &fm[k1])) {
         continue;
       }
       for (kf = k; kf < k1; kf += AP_FM_FINE) {
         const long kf1 = kf + AP_FM_FINE < k1 ? kf + AP_FM_FINE : k1;
-        const unsigned r = shore_rises(fm_box_in_rows(hz, tiles[0], fm, 0, s, q0, n, dir, kf, kf1),
-                                       zrow + q0, best + q0, n, &fm[kf], &fm[kf1]);
+        const unsigned r =
+          fm_box_void_rows(hz, fm, s, q0, n, dir, kf, kf1)
+            ? shore_rises(fm_box_in_rows(hz, tiles[0], fm, 0, s, q0, n, dir, kf, kf1), zrow + q0,
+                          best + q0, n, &fm[kf], &fm[kf1])
+            : 0u;
         if (!r) {
           continue;
         }

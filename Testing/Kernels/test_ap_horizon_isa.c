@@ -7,7 +7,10 @@
  * (isa_equality.cmake) runs both and requires the same lines: the clones make the same IEEE
  * operations in the same order, so the results must not depend on the CPU. The configurations
  * cover every search path: the exact march (short radius), the far march (4 km; projected and
- * lat/lon rows), the sweep (unlimited), x-major and y-major sectors, D not a multiple of 4. */
+ * lat/lon rows), the sweep (unlimited), x-major and y-major sectors, D not a multiple of 4.
+ * Built a third time with AP_HORIZON_NO_VOID_SKIP too (every stretch of the crossings beside
+ * nodata tested, none ruled out for lying in rows or columns without nodata), for the test
+ * Kernels-void-skip-equality: the same lines again. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
