@@ -4542,6 +4542,24 @@ static ap_status sweep_side_rows(const ap_horizon *hz, size_t j0, size_t j1)
   return AP_OK;
 }
 
+/* Per-row cell sizes, x-major view, DEMs with nodata: whether the rays of grid row s may read
+ * a nodata cell over the steps lattice_steps_row takes (the last, partial step's too): some
+ * grid row between s and the row they reach, 2 more on either side, has one. Their Psi moves
+ * one way, so they keep between those rows. */
+static int row_rays_may_void(const ap_horizon *hz, long s)
+{
+  const double cot = cos(hz->phi) / fabs(sin(hz->phi)), ny = (double)hz->ny;
+  const long kcap = hz->fm_kmax < (long)hz->np - 1 ? hz->fm_kmax : (long)hz->np - 1;
+  long j = s + hz->orow;
+  double y = psi_row(hz, hz->psi[s + hz->orow] + (double)(kcap + 1) * cot, &j);
+  if (isnan(y)) {
+    return 1;
+  }
+  y = y > -3.0 ? (y < ny + 3.0 ? y : ny + 3.0) : -3.0;
+  return box_may_void(hz, (long)floor(y < (double)s ? y : (double)s) - 2,
+                      (long)ceil(y > (double)s ? y : (double)s) + 2, 0, (long)hz->nx - 1);
+}
+
 /* A swept sector of a DEM with nodata (hz->shore_sweep): the crossings beside nodata
  * (far_shore_column, far_shore_row) along every ray of the region's cells of grid rows
  * [j0, j1), to the search distance or the grid's edge, max-merged into the sweep's horizons.
@@ -4567,6 +4585,9 @@ static ap_status shore_sweep_rows(const ap_horizon *hz, size_t j0, size_t j1)
      * column-major scratch (cells outside the region +inf: nothing to raise there) */
     for (u = j0; u < j1; ++u) {
       long kmax;
+      if (!row_rays_may_void(hz, (long)u)) {
+        continue; /* (no crossing to take: nor its steps to compute, most of the time here) */
+      }
       for (q = 0; q < hz->nx; ++q) {
         row[q] = q >= hz->ri0 && q < hz->ri1 ? hz->slope[q * hz->ny + u] : INFINITY;
       }
