@@ -32,9 +32,10 @@
  *
  * Errors (vtkErrorMacro, failed update, empty output): a missing file, a file GDAL cannot
  * open, a band that does not exist, no georeference (no geotransform, or ground control points
- * only), a rotated or mirrored geotransform, no CRS (without OverrideCRS), fewer than 2 x 2
- * output cells, a whole raster of nodata, an output larger than MemoryLimit, and an output the
- * process cannot allocate (out of memory, e.g. under `ulimit -v`).
+ * only), a rotated or mirrored geotransform, or one with a pixel size of 0, no CRS (without
+ * OverrideCRS), fewer than 2 x 2 output cells, a whole raster of nodata, an output larger than
+ * MemoryLimit, and an output the process cannot allocate (out of memory, e.g. under
+ * `ulimit -v`).
  *
  * @sa vtkApertureDEMWriter vtkApertureGeoreference vtkApertureTerrainMesh
  */
