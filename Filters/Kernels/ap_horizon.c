@@ -910,6 +910,13 @@ static unsigned char has_hole(const float *v, size_t a, size_t b)
   return 0;
 }
 
+/* Whether grid row g (g < ny) or grid column g - ny has data in every cell of [a, b]. */
+AP_INLINE int all_data(const ap_horizon *hz, size_t g, long a, long b)
+{
+  const size_t *span = hz->data_span + 2 * g;
+  return !hz->holes[g] && a >= (long)span[0] && b < (long)span[1];
+}
+
 /* hz->data_span of every grid row and column, and for DEMs with nodata hz->holes; 0 when out
  * of memory. */
 static int data_spans_init(ap_horizon *hz)
@@ -944,33 +951,30 @@ static int data_spans_init(ap_horizon *hz)
   if (hz->void_before) {
     size_t *vb = hz->void_before, g = 0;
     for (i = 0; i < 2; ++i) { /* (rows, then columns) */
-      const size_t n = i ? hz->nx : hz->ny, other = i ? hz->ny : hz->nx;
+      const size_t n = i ? hz->nx : hz->ny, len = i ? hz->ny : hz->nx; /* (lines, their cells) */
       size_t *before = vb + (i ? hz->ny + 1 : 0), k;
       before[0] = 0;
       for (k = 0; k < n; ++k, ++g) {
-        const int full = !hz->holes[g] && sp[2 * g] == 0 && sp[2 * g + 1] == other;
-        before[k + 1] = before[k] + (size_t)!full;
+        before[k + 1] = before[k] + (size_t)!all_data(hz, g, 0, (long)len - 1);
       }
     }
   }
   return 1;
 }
 
-/* DEMs with nodata: whether some cell of grid rows [r0, r1] and some cell of grid columns
- * [c0, c1] (each clamped to the grid) are nodata; 0 guarantees that no cell of that box is.
- * (Two look-ups of void_before.) */
-AP_INLINE int box_may_void(const ap_horizon *hz, long r0, long r1, long c0, long c1)
+/* DEMs with nodata: whether some cell of grid rows [b[0], b[1]] and some cell of grid columns
+ * [b[2], b[3]] (each clamped to the grid) are nodata; 0 guarantees that no cell of that box
+ * is. (Two look-ups of void_before.) */
+AP_INLINE int box_may_void(const ap_horizon *hz, const long b[4])
 {
 #if defined(AP_HORIZON_NO_VOID_SKIP)
   /* (a test build: every box may, which must change no result; Kernels-void-skip-equality) */
   (void)hz;
-  (void)r0;
-  (void)r1;
-  (void)c0;
-  (void)c1;
+  (void)b;
   return 1;
 #else
   const size_t *rows = hz->void_before, *cols = hz->void_before + hz->ny + 1;
+  long r0 = b[0], r1 = b[1], c0 = b[2], c1 = b[3];
   r0 = r0 < 0 ? 0 : r0;
   c0 = c0 < 0 ? 0 : c0;
   r1 = r1 > (long)hz->ny - 1 ? (long)hz->ny - 1 : r1;
@@ -1552,13 +1556,6 @@ AP_INLINE void clamp_to_data(const ap_horizon *hz, size_t p, long *sa, long *sb)
   const size_t *span = hz->data_span + 2 * view_line(hz, p);
   *sa = *sa > (long)span[0] ? *sa : (long)span[0];
   *sb = *sb < (long)span[1] ? *sb : (long)span[1];
-}
-
-/* Whether grid row g (g < ny) or grid column g - ny has data in every cell of [a, b]. */
-AP_INLINE int all_data(const ap_horizon *hz, size_t g, long a, long b)
-{
-  const size_t *span = hz->data_span + 2 * g;
-  return !hz->holes[g] && a >= (long)span[0] && b < (long)span[1];
 }
 
 /* Elevation at fractional s of a view column of ns cells (smax = ns - 1), linear between the
@@ -2253,16 +2250,6 @@ AP_INLINE float fm_box_in(const ap_horizon *hz, const float *tile, const fm_step
   return fm_box_tiles(hz, tile, l, b);
 }
 
-/* DEMs with nodata: box_may_void of fm_box_in's cells (not rounded to tiles): 0 when those 16
- * rays' samples at steps [ka, kb] can read no nodata cell. */
-AP_INLINE int fm_box_void(const ap_horizon *hz, const fm_step *fm, size_t p, long s0, long n,
-                          long ka, long kb)
-{
-  long b[4];
-  fm_box_cells(hz, fm, p, s0, n, ka, kb, b);
-  return box_may_void(hz, b[0], b[1], b[2], b[3]);
-}
-
 AP_INLINE float fm_box_max(const ap_horizon *hz, const fm_step *fm, int l, size_t p, long s0,
                            long n, long ka, long kb)
 {
@@ -2952,9 +2939,10 @@ AP_INLINE unsigned shore_void_lanes(const int *acc, unsigned r)
 /* DEMs with nodata, after the far march of cells [sa, sb) of view column p (steps fm[0..kmax];
  * t their distances with per-row cell sizes, NULL with constant ones): the crossings beside
  * nodata (above) within the distance, max-merged into best[]. A group of 16 cells skips a
- * stretch of 64, then 16 steps whose box of samples lies in grid rows or columns without
- * nodata (fm_box_void: no sample there is void, so no crossing is taken; two look-ups where
- * the tiles take several) or whose tiles cannot raise any of its slopes, as the far march
+ * stretch of 64, then 16 steps whose box of samples (fm_box_cells) lies in grid rows or
+ * columns without nodata (box_may_void: no sample there is void, so no crossing is taken; two
+ * look-ups where the tiles take several) or whose tiles cannot raise any of its slopes, as the
+ * far march
  * does (the tiles bound the crossings of the stretches between the box's first and last
  * steps); in a stretch that some can raise, each of those cells evaluates the crossings next
  * to its column samples on nodata (found for the 16 at once while all their rays are on the
@@ -3006,13 +2994,14 @@ static void far_shore_column(const ap_horizon *hz, const fm_step *fm, const doub
     }
     for (k = k0; k < kend; k += AP_FM_COARSE) {
       const long k1 = k + AP_FM_COARSE < kend ? k + AP_FM_COARSE : kend;
-      long kf;
+      long kf, b[4];
       if (s0 + fm_lo(&fm[k]) > ns - 1 || s0 + n - 1 + fm_hi(&fm[k]) - 1 < 0) {
         break; /* every ray has left the grid (the box would hold no row of it) */
       }
-      if (!fm_box_void(hz, fm, p, s0, n, k, k1) ||
-          !shore_rises(fm_box_in(hz, tiles[1], fm, 1, p, s0, n, k, k1), col + s0, best + s0, n,
-                       &fm[k], &fm[k1])) {
+      fm_box_cells(hz, fm, p, s0, n, k, k1, b);
+      if (!box_may_void(hz, b) ||
+          !shore_rises(fm_box_tiles(hz, tiles[1], 1, b), col + s0, best + s0, n, &fm[k],
+                       &fm[k1])) {
         continue;
       }
       for (kf = k; kf < k1; kf += AP_FM_FINE) {
@@ -3021,10 +3010,10 @@ static void far_shore_column(const ap_horizon *hz, const fm_step *fm, const doub
         if (s0 + fm_lo(&fm[kf]) > ns - 1 || s0 + n - 1 + fm_hi(&fm[kf]) - 1 < 0) {
           break;
         }
-        r = fm_box_void(hz, fm, p, s0, n, kf, kf1)
-              ? shore_rises(fm_box_in(hz, tiles[0], fm, 0, p, s0, n, kf, kf1), col + s0,
-                            best + s0, n, &fm[kf], &fm[kf1])
-              : 0u;
+        fm_box_cells(hz, fm, p, s0, n, kf, kf1, b);
+        r = box_may_void(hz, b) ? shore_rises(fm_box_tiles(hz, tiles[0], 0, b), col + s0,
+                                              best + s0, n, &fm[kf], &fm[kf1])
+                                : 0u;
         if (!r) {
           continue;
         }
@@ -3106,14 +3095,6 @@ AP_INLINE float fm_box_in_rows(const ap_horizon *hz, const float *tile, const fm
   return fm_box_tiles(hz, tile, l, b);
 }
 
-/* fm_box_void for fm_box_in_rows's cells. */
-AP_INLINE int fm_box_void_rows(const ap_horizon *hz, const fm_step *fm, long s, long q0, long n,
-                               long dir, long ka, long kb)
-{
-  long b[4];
-  fm_box_cells_rows(hz, fm, s, q0, n, dir, ka, kb, b);
-  return box_may_void(hz, b[0], b[1], b[2], b[3]);
-}
 
 AP_INLINE float fm_box_max_rows(const ap_horizon *hz, const fm_step *fm, int l, long s, long q0,
                                 long n, long dir, long ka, long kb)
@@ -3274,19 +3255,20 @@ static void far_shore_row(const ap_horizon *hz, const fm_step *fm, const double 
     }
     for (k = k0; k < kg; k += AP_FM_COARSE) {
       const long k1 = k + AP_FM_COARSE < kg ? k + AP_FM_COARSE : kg;
-      long kf;
-      if (!fm_box_void_rows(hz, fm, s, q0, n, dir, k, k1) ||
-          !shore_rises(fm_box_in_rows(hz, tiles[1], fm, 1, s, q0, n, dir, k, k1), zrow + q0,
-                       best + q0, n, &fm[k], &fm[k1])) {
+      long kf, b[4];
+      fm_box_cells_rows(hz, fm, s, q0, n, dir, k, k1, b);
+      if (!box_may_void(hz, b) ||
+          !shore_rises(fm_box_tiles(hz, tiles[1], 1, b), zrow + q0, best + q0, n, &fm[k],
+                       &fm[k1])) {
         continue;
       }
       for (kf = k; kf < k1; kf += AP_FM_FINE) {
         const long kf1 = kf + AP_FM_FINE < k1 ? kf + AP_FM_FINE : k1;
-        const unsigned r =
-          fm_box_void_rows(hz, fm, s, q0, n, dir, kf, kf1)
-            ? shore_rises(fm_box_in_rows(hz, tiles[0], fm, 0, s, q0, n, dir, kf, kf1), zrow + q0,
-                          best + q0, n, &fm[kf], &fm[kf1])
-            : 0u;
+        unsigned r;
+        fm_box_cells_rows(hz, fm, s, q0, n, dir, kf, kf1, b);
+        r = box_may_void(hz, b) ? shore_rises(fm_box_tiles(hz, tiles[0], 0, b), zrow + q0,
+                                              best + q0, n, &fm[kf], &fm[kf1])
+                                : 0u;
         if (!r) {
           continue;
         }
@@ -4556,8 +4538,11 @@ static int row_rays_may_void(const ap_horizon *hz, long s)
     return 1;
   }
   y = y > -3.0 ? (y < ny + 3.0 ? y : ny + 3.0) : -3.0;
-  return box_may_void(hz, (long)floor(y < (double)s ? y : (double)s) - 2,
-                      (long)ceil(y > (double)s ? y : (double)s) + 2, 0, (long)hz->nx - 1);
+  {
+    const long b[4] = { (long)floor(y < (double)s ? y : (double)s) - 2,
+                        (long)ceil(y > (double)s ? y : (double)s) + 2, 0, (long)hz->nx - 1 };
+    return box_may_void(hz, b);
+  }
 }
 
 /* A swept sector of a DEM with nodata (hz->shore_sweep): the crossings beside nodata
