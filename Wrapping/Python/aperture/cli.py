@@ -626,8 +626,17 @@ class _abort_on_interrupt:
             algorithm.SetAbortExecute(1)
 
     def _progress(self, algorithm, event):
-        # (the handler runs here; and again after an abort VTK has undone: a handler that ran
-        # in a StartEvent observer lost its abort when the executive reset AbortExecute next)
+        # The handler runs here, once Python checks for signals. It does so by itself only for
+        # a signal the main thread took: one that a worker thread took (the kernel's choice
+        # when the main thread blocks signals, as it does while it starts a thread) is noted
+        # but left for a main thread that retakes the GIL, which a VTK update holds to its
+        # end. pthread_kill with signal 0 sends nothing and checks (CPython's own comment: the
+        # signal may have been sent to this thread).
+        import signal
+        import threading
+        signal.pthread_kill(threading.main_thread().ident, 0)
+        # (and again after an abort VTK has undone: a handler that ran in a StartEvent
+        # observer lost its abort when the executive reset AbortExecute next)
         if self.interrupted:
             algorithm.SetAbortExecute(1)
 
