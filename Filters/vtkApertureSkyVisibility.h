@@ -9,19 +9,30 @@
  * `CRS` in the field data; lat/lon or projected). Output: the same image with these point
  * arrays added (float32; angles in radians):
  *
- * | array | meaning |
- * |---|---|
- * | `VisibleSolidAngle` | A (sr): solid angle of the sky visible above the horizontal, the terrain and the cell's own tangent plane |
- * | `ApertureRadius` | rp = acos(1 − A/2π) (rad): radius of the spherical cap of the same area (Oat & Sander 2007) |
- * | `BentNormal` | unit mean direction of that visible sky, East-North-Up at the cell (components E, N, U) |
- * | `SkyViewFactor` | Zakšek et al. (2011): 1 − mean sin of the terrain horizon clamped at 0; the visible share of the upper hemisphere over a *horizontal* plane, ignoring the cell's slope |
- * | `DiffuseSkyFactor` | Dozier & Frew (1990), with Dozier's (2022) self-shadowing: isotropic sky irradiance on the *tilted* cell relative to an unobstructed horizontal surface (cosine-weighted) |
- * | `PositiveOpenness` | Yokoyama et al. (2002): mean zenith angle of the terrain horizon (rad) |
- * | `EdgeTruncated` | 1 where in some sector the DEM ends closer than the search limit (unsigned char) |
- * | `HorizonAngles` | optional: D components, the terrain horizon elevation per sector (rad), components named by azimuth ("az011.25") |
+ * - `VisibleSolidAngle`: A (sr), the solid angle of the sky visible above the horizontal,
+ *   the terrain and the cell's own tangent plane;
+ * - `ApertureRadius`: rp = acos(1 − A/2π) (rad), the radius of the spherical cap of the same
+ *   area (Oat & Sander 2007);
+ * - `BentNormal`: the unit mean direction of that visible sky, East-North-Up at the cell
+ *   (components E, N, U);
+ * - `SkyViewFactor`: Zakšek et al. (2011), 1 − mean sin of the terrain horizon clamped at 0:
+ *   the visible share of the upper hemisphere over a *horizontal* plane, ignoring the cell's
+ *   slope;
+ * - `DiffuseSkyFactor`: Dozier & Frew (1990), with Dozier's (2022) self-shadowing: isotropic
+ *   sky irradiance on the *tilted* cell relative to an unobstructed horizontal surface
+ *   (cosine-weighted);
+ * - `PositiveOpenness`: Yokoyama et al. (2002), the mean zenith angle of the terrain horizon
+ *   (rad);
+ * - `EdgeTruncated`: 1 where in some sector the DEM ends closer than the search limit
+ *   (unsigned char);
+ * - `HorizonAngles` (optional): D components, the terrain horizon elevation per sector (rad),
+ *   components named by azimuth ("az011.25").
  *
- * The formulas, the algorithm (convex-hull line sweep, amortised O(1) per cell and direction,
- * independent of the search distance) and its accuracy are documented in ap_horizon.h.
+ * The formulas, the algorithms and their accuracy are documented in ap_horizon.h: without a
+ * search distance, or beyond 1024 steps of a sector, a convex-hull line sweep (amortised O(1)
+ * per cell and direction, independent of the distance); within them, marches along each
+ * cell's own ray (O(distance) at worst, with tile bounds skipping what cannot rise; cheaper
+ * than the sweep there).
  * Sector d is centred on true azimuth 360 d / D degrees, clockwise from north. For projected
  * DEMs the sweep runs at grid azimuths using the meridian convergence at the DEM centre;
  * BentNormal is rotated into each cell's true East-North-Up with the convergence there, so
@@ -32,8 +43,8 @@
  * its centre for every cell, so distances are off by the change of the projection's scale
  * factor across it (about 0.1% across a whole UTM zone; some 5% over Antarctica in polar
  * stereographic); a change of more than 0.5% (the ground cell size at a corner or an edge
- * midpoint against the centre's) is warned about, naming it. Earth curvature uses the ellipsoid's radius of curvature in each azimuth at
- * the DEM centre.
+ * midpoint against the centre's) is warned about, naming it. Earth curvature uses the
+ * ellipsoid's radius of curvature in each azimuth at the DEM centre.
  *
  * Terrain beyond the DEM edge is invisible; EdgeTruncated marks the cells where that may
  * matter for the sky above the horizontal (A, rp, BentNormal, both sky-view factors).
