@@ -602,6 +602,8 @@ class TestBake(unittest.TestCase):
         # thread blocks signals (it does while it starts a thread): Python then runs its
         # handler only when asked to check, and a VTK update holds the GIL to its end, so the
         # bake used to run to its end before exiting 130 (this test's flake, 1 run in ~10).
+        # SIGTERM (`timeout`, a batch system) likewise, exiting 143: it used to end the process
+        # at once, leaving the strips' outputs begun.
         import ctypes
         import signal
         import time
@@ -628,8 +630,11 @@ class TestBake(unittest.TestCase):
 
         exr = self.path("interrupt-out.exr")
         strips = ["--radius", "20000", "--max-memory", "100M", "--exr", exr]
+        before = sorted(os.listdir(self.tmp))  # (OpenEXR's temporary file included, after)
         two = ["--threads", "2"]  # (a worker thread on any machine)
-        for options, to_worker in (([], False), (two, True), (strips + two, True)):
+        for options, to_worker, number, code in (
+                ([], False, signal.SIGINT, 130), (two, True, signal.SIGINT, 130),
+                (strips + two, True, signal.SIGINT, 130), (strips, False, signal.SIGTERM, 143)):
             p = subprocess.Popen([APERTURE, "bake", dem, out, "-q"] + options,
                                  stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
             start = time.perf_counter()
@@ -640,10 +645,9 @@ class TestBake(unittest.TestCase):
             sent, sent_at = cpu(p.pid), time.perf_counter()
             if to_worker:
                 tid = worker(p.pid)
-                self.assertEqual(tgkill(p.pid, tid, signal.SIGINT), 0, os.strerror(
-                    ctypes.get_errno()))
+                self.assertEqual(tgkill(p.pid, tid, number), 0, os.strerror(ctypes.get_errno()))
             else:
-                p.send_signal(signal.SIGINT)
+                p.send_signal(number)
             # (the outputs are a line at most: read to the end, then reap the bake with its own
             # CPU time, which RUSAGE_CHILDREN would mix with any other child reaped meanwhile)
             stdout, stderr = p.stdout.read(), p.stderr.read()
@@ -652,12 +656,12 @@ class TestBake(unittest.TestCase):
             p.stdout.close()
             p.stderr.close()
             used = usage.ru_utime + usage.ru_stime
-            what = "%s%s: %.2f s of CPU when interrupted, %.2f at the end, %.2f s later" % (
-                options, " (to a worker thread)" if to_worker else "", sent, used,
-                time.perf_counter() - sent_at)
-            self.assertEqual(p.returncode, 130, "%s; %s" % (what, stderr))
+            what = "%s, %s%s: %.2f s of CPU when interrupted, %.2f at the end, %.2f s later" % (
+                options, signal.Signals(number).name, " to a worker thread" if to_worker else "",
+                sent, used, time.perf_counter() - sent_at)
+            self.assertEqual(p.returncode, code, "%s; %s" % (what, stderr))
             self.assertEqual((stdout, stderr), ("", ""), what)
-            self.assertFalse(os.path.exists(out) or os.path.exists(exr), what)
+            self.assertEqual(sorted(os.listdir(self.tmp)), before, what)
             self.assertLess(used - sent, 1.0, what)
 
     def test_out_of_memory(self):

@@ -608,20 +608,30 @@ def _product_image(sky, products):
     return image
 
 
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM during a step that _abort_on_interrupt guards: the step stopped as for Ctrl-C,
+    and the command exits 143 (128 + 15), as the signal's default action would have."""
+
+
 class _abort_on_interrupt:
-    """Ctrl-C during long filters and writers: Python runs its signal handler only when it gets
-    control, which a VTK update gives it only through observers. Observers of the algorithms'
-    progress (every azimuth sector for the sky filter, every band for the GeoTIFF writer) let
-    the handler run; it sets AbortExecute on all of them, the one running stops (a writer
-    removing its file), and KeyboardInterrupt follows (exit 130) instead of the whole
-    computation first."""
+    """Ctrl-C (SIGINT), or SIGTERM (`timeout`, a batch system's time limit), during long filters
+    and writers: Python runs its signal handler only when it gets control, which a VTK update
+    gives it only through observers. Observers of the algorithms' progress (every azimuth
+    sector for the sky filter, every band for the GeoTIFF writer) let the handler run; it sets
+    AbortExecute on all of them, the one running stops (a writer removing its file), and
+    KeyboardInterrupt follows (exit 130; _Terminated, exit 143, for SIGTERM) instead of the
+    whole computation first. Without it a SIGTERM would end the process at once, leaving the
+    outputs a bake in strips had begun."""
 
     def __init__(self, *algorithms):
         self.algorithms = algorithms
         self.interrupted = False
+        self.terminated = False
 
     def _handler(self, signum, frame):
+        import signal
         self.interrupted = True
+        self.terminated |= signum == signal.SIGTERM
         for algorithm in self.algorithms:
             algorithm.SetAbortExecute(1)
 
@@ -644,16 +654,18 @@ class _abort_on_interrupt:
         import signal
         self.observers = [a.AddObserver("ProgressEvent", self._progress)
                           for a in self.algorithms]
-        self.previous = signal.signal(signal.SIGINT, self._handler)
+        self.previous = {number: signal.signal(number, self._handler)
+                         for number in (signal.SIGINT, signal.SIGTERM)}
         return self
 
     def __exit__(self, kind, value, traceback):
         import signal
-        signal.signal(signal.SIGINT, self.previous)
+        for number, handler in self.previous.items():
+            signal.signal(number, handler)
         for algorithm, observer in zip(self.algorithms, self.observers):
             algorithm.RemoveObserver(observer)
         if self.interrupted:
-            raise KeyboardInterrupt
+            raise _Terminated if self.terminated else KeyboardInterrupt
         return False
 
 
@@ -1347,8 +1359,8 @@ def main(argv=None):
         # numpy's conversions of the products: the filters name their own sizes
         print("%s: error: out of memory; %s" % (PROG, _SMALLER_READ), file=sys.stderr)
         return 1
-    except KeyboardInterrupt:
-        return 130
+    except KeyboardInterrupt as e:
+        return 143 if isinstance(e, _Terminated) else 130
 
 
 if __name__ == "__main__":
