@@ -625,13 +625,14 @@ class _abort_on_interrupt:
 
     def __init__(self, *algorithms):
         self.algorithms = algorithms
-        self.interrupted = False
-        self.terminated = False
+        self.received = set()  # the signals handled
+
+    @property
+    def interrupted(self):
+        return bool(self.received)
 
     def _handler(self, signum, frame):
-        import signal
-        self.interrupted = True
-        self.terminated |= signum == signal.SIGTERM
+        self.received.add(signum)
         for algorithm in self.algorithms:
             algorithm.SetAbortExecute(1)
 
@@ -665,7 +666,7 @@ class _abort_on_interrupt:
         for algorithm, observer in zip(self.algorithms, self.observers):
             algorithm.RemoveObserver(observer)
         if self.interrupted:
-            raise _Terminated if self.terminated else KeyboardInterrupt
+            raise _Terminated if signal.SIGTERM in self.received else KeyboardInterrupt
         return False
 
 
