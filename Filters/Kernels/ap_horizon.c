@@ -3095,7 +3095,6 @@ AP_INLINE float fm_box_in_rows(const ap_horizon *hz, const float *tile, const fm
   return fm_box_tiles(hz, tile, l, b);
 }
 
-
 AP_INLINE float fm_box_max_rows(const ap_horizon *hz, const fm_step *fm, int l, long s, long q0,
                                 long n, long dir, long ka, long kb)
 {
