@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -48,6 +49,9 @@ constexpr float EarthHighest = 9000.0f;
 // its corners and edge midpoints before the filter warns: a horizon's tangent there is off by
 // as much (a 45-degree horizon by 0.14 degree at 0.5%; a whole UTM zone changes by 0.1%).
 constexpr double ScaleChangeWarning = 0.005;
+// Cells of the grid above which a sector's phases run in slices, reporting progress between
+// them (RequestData): some 0.1-0.4 s of a sector's costliest phase on two threads.
+constexpr double SliceCells = 8.0 * 1024 * 1024;
 
 // The start of both out-of-memory messages: "a NX x NY DEM with these products needs about
 // SIZE", and what HorizonAngles cost when they are asked for.
@@ -697,9 +701,48 @@ int vtkApertureSkyVisibility::Execute(
   };
   bool aborted = false;
   vtkApertureThreadTally tally;
+  // Progress within a sector too, on large DEMs (a sector of a 10000^2 DEM takes seconds): a
+  // phase over more than SliceCells cells runs as slices of whole grains, each its own
+  // parallel loop (the same chunks, so the same results), and after each slice but a sector's
+  // last the filter reports progress and checks AbortExecute; smaller DEMs report once a
+  // sector. A phase's share of its sector comes from the previous sector's times (a third
+  // each in the first).
+  using Clock = std::chrono::steady_clock;
+  const double cells = static_cast<double>(nx) * ny;
+  double share[3] = { 1.0 / 3, 1.0 / 3, 1.0 / 3 }; // (of the sector's time, per phase)
+  double seconds[3] = { 0.0, 0.0, 0.0 };            // (of the sector in progress)
+  int d = 0;
+  auto sliced = [&](int phase, vtkIdType units, vtkIdType grain, ap_status (*run)(
+                      const ap_horizon*, size_t, size_t)) {
+    const Clock::time_point start = Clock::now();
+    const vtkIdType grains = (units + grain - 1) / grain;
+    const vtkIdType slices = std::max<vtkIdType>(
+      1, std::min(grains, static_cast<vtkIdType>(std::ceil(cells / SliceCells))));
+    double before = 0.0;
+    for (int p = 0; p < phase; ++p)
+    {
+      before += share[p];
+    }
+    for (vtkIdType s = 0; s < slices && failure == AP_OK && !aborted; ++s)
+    {
+      const vtkIdType first = grains * s / slices * grain;
+      const vtkIdType last = std::min(units, grains * (s + 1) / slices * grain);
+      vtkSMPTools::For(first, last, grain, [&](vtkIdType a, vtkIdType b) {
+        tally.Note();
+        record(run(hz, static_cast<size_t>(a), static_cast<size_t>(b)));
+      });
+      if (slices > 1 && failure == AP_OK && (phase < 2 || s + 1 < slices))
+      {
+        const double f = before + share[phase] * (s + 1.0) / slices;
+        this->UpdateProgress((d + std::min(f, 1.0)) / D); // (shares sum to 1 +- rounding)
+        aborted = this->GetAbortExecute() != 0;
+      }
+    }
+    seconds[phase] = std::chrono::duration<double>(Clock::now() - start).count();
+  };
   const vtkSMPTools::Config threads = vtkApertureSMPConfig(this->NumberOfThreads);
   vtkSMPTools::LocalScope(threads, [&]() {
-    for (int d = 0; d < D && failure == AP_OK; ++d)
+    for (d = 0; d < D && failure == AP_OK && !aborted; ++d)
     {
       ap_status ps = ap_horizon_prepare(hz, d);
       if (ps != AP_OK)
@@ -707,31 +750,23 @@ int vtkApertureSkyVisibility::Execute(
         failure = ps;
         break;
       }
-      const vtkIdType units = static_cast<vtkIdType>(ap_horizon_near_field_count(hz));
-      vtkSMPTools::For(0, units, 16, [&](vtkIdType u0, vtkIdType u1) {
-        tally.Note();
-        record(ap_horizon_near_field(hz, static_cast<size_t>(u0), static_cast<size_t>(u1)));
-      });
-      const vtkIdType brackets = static_cast<vtkIdType>(ap_horizon_bracket_count(hz));
+      sliced(0, static_cast<vtkIdType>(ap_horizon_near_field_count(hz)), 16,
+        ap_horizon_near_field);
       // Small chunks of lines (ap_horizon.h): their hulls and windows stay in cache, and no
       // thread idles long at the end of a direction. Results do not depend on the chunks.
-      vtkSMPTools::For(0, brackets, AP_HORIZON_SWEEP_BAND, [&](vtkIdType b0, vtkIdType b1) {
-        tally.Note();
-        record(ap_horizon_sweep(hz, static_cast<size_t>(b0), static_cast<size_t>(b1)));
-      });
-      vtkSMPTools::For(0, ny, 64, [&](vtkIdType j0, vtkIdType j1) {
-        tally.Note();
-        record(ap_horizon_accumulate(hz, static_cast<size_t>(j0), static_cast<size_t>(j1)));
-      });
-      if (failure != AP_OK)
+      sliced(1, static_cast<vtkIdType>(ap_horizon_bracket_count(hz)), AP_HORIZON_SWEEP_BAND,
+        ap_horizon_sweep);
+      sliced(2, ny, 64, ap_horizon_accumulate);
+      if (failure != AP_OK || aborted)
       {
         break; // (no progress reported for a failed sector)
       }
       this->UpdateProgress(static_cast<double>(d + 1) / D);
-      if (this->GetAbortExecute())
+      aborted = this->GetAbortExecute() != 0;
+      const double sector = seconds[0] + seconds[1] + seconds[2];
+      for (int p = 0; p < 3 && sector > 0.0; ++p)
       {
-        aborted = true;
-        break;
+        share[p] = seconds[p] / sector;
       }
     }
     if (failure == AP_OK && !aborted)

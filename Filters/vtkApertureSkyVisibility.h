@@ -79,6 +79,10 @@
  * rather than fail an allocation), or an allocation that fails (e.g. under `ulimit -v`); the
  * message gives the estimated need (HorizonAngles take 4 bytes per cell and direction).
  *
+ * Progress and abort: ProgressEvent at the end of each sector, and on DEMs of more than 8 Mi
+ * cells also inside it (its phases run in slices of about that many cells); AbortExecute,
+ * checked at each, stops the update there: an empty output (the update fails).
+ *
  * @warning Threads: NumberOfThreads (default all cores, through vtkSMPTools' STDThread
  * backend); the results are bit-identical for any thread count.
  * @sa vtkApertureDEMReader vtkApertureTerrainMesh

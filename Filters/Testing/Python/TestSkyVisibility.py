@@ -449,6 +449,62 @@ class TestSkyVisibility(Testing.vtkTest):
         self.assertEqual(progress, sorted(progress))
         self.assertEqual(progress[-1], 1.0)
 
+    def testProgressWithinSectors(self):
+        # A DEM of more than 8 Mi cells runs each sector's three phases in slices, reporting
+        # progress and checking AbortExecute after each slice but the sector's last: here 2
+        # slices, so 5 events inside each of the 4 sectors, 1 at its end; rising, on 1 thread
+        # (the calling one) and on 2. An abort set at the first event inside the first sector
+        # stops there: no further progress, and no error of the filter's own (the executive
+        # reports the aborted update's failure). (A sector of a 10000^2 DEM takes seconds.)
+        from aperture.errors import Watcher
+        ny, nx = 2050, 4100
+        y, x = np.mgrid[0:ny, 0:nx].astype(np.float32)
+        z = 300.0 + 40.0 * np.sin(x / 37.0) * np.cos(y / 23.0)
+        image = make_image(z, 400000, 5000000, 30, 30, "EPSG:32633")
+        del x, y, z
+        for threads in (1, 2):
+            for abort in (False, True):
+                w = Watcher()
+                f = w.watch(aperture.vtkApertureSkyVisibility())
+                w.watch(f.GetExecutive())
+                f.SetInputData(image)
+                f.SetNumberOfThreads(threads)
+                f.SetNumberOfDirections(4)
+                f.SetMaximumDistance(300.0)
+                for name in ("VisibleSolidAngle", "ApertureRadius", "BentNormal",
+                             "DiffuseSkyFactor", "PositiveOpenness", "EdgeTruncated"):
+                    getattr(f, "SetCompute" + name)(False)
+                progress = []
+
+                def note(o, e, abort=abort, progress=progress):
+                    progress.append(o.GetProgress())
+                    if abort and 0.0 < progress[-1] < 0.25:
+                        o.SetAbortExecute(1)
+                f.AddObserver("ProgressEvent", note)
+                f.Update()
+                label = "threads %d, abort %s: %s" % (threads, abort, progress)
+                self.assertEqual(progress, sorted(progress), label)
+                inside = [p for p in progress if p > 0.0 and p not in (0.25, 0.5, 0.75, 1.0)]
+                if abort:
+                    self.assertEqual(len(inside), 1, label)
+                    self.assertTrue(w.errors, label)
+                    for message in w.errors:
+                        self.assertIn("vtkApertureSkyVisibility", message)
+                        self.assertIn("returned failure for request", message)
+                    self.assertEqual(max(progress), inside[0], label)
+                    continue
+                self.assertEqual(w.errors, [], label)
+                self.assertEqual(len(inside), 20, label)
+                for d in range(4):
+                    self.assertEqual(sum(d / 4 < p < (d + 1) / 4 for p in inside), 5, label)
+                    self.assertIn((d + 1) / 4, progress, label)
+                svf = array(f.GetOutput(), "SkyViewFactor")
+                self.assertEqual(svf.size, nx * ny)
+                if threads == 1:
+                    first = svf
+                else:
+                    self.assertTrue(np.array_equal(first, svf, equal_nan=True))
+
     def testErrors(self):
         image = make_image(np.ones((10, 10)), 0, 0, 30, 30, "EPSG:32633")
         cases = [(dict(NumberOfDirections=3), "NumberOfDirections must be within 4..360"),
