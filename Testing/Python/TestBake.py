@@ -742,28 +742,55 @@ class TestBake(unittest.TestCase):
         self.assertTrue(p.stdout.strip().endswith("MiB; decimate the DEM 0"), p.stdout)
 
     def test_full_disk(self):
-        # A disk that fills up while the GeoTIFF is written: GDAL says only "Write error at
-        # scanline ..."; the message says the disk is full, and no partial file is left. A
+        # A disk that fills up while an output is written: GDAL says only "Write error at
+        # scanline ..."; the message says the disk is full, and no partial file is left; at
+        # once and in strips (--max-memory), where the GeoTIFF writer keeps GDAL's reason for
+        # EndStrips (the message was "a strip failed; EndStrips() removes the file"). With the
+        # EXR on the full disk, the message says what became of the GeoTIFF: written in full
+        # (at once, before the EXR) or removed unfinished (in strips, written beside it). A
         # 256 KiB tmpfs in a mount namespace of its own (needs root: skipped otherwise).
-        folder = self.path("full")
-        os.makedirs(folder)
-        dem = rough_dem(self.path("full-dem.tif"), (300, 300), 7)
-        out = os.path.join(folder, "out.tif")
-        script = ('mount -t tmpfs -o size=256k tmpfs "$1" || exit 99; d="$1"; shift; "$@"; '
-                  's=$?; echo "left: $(ls -A "$d")"; exit $s')
         if not shutil.which("unshare"):
             self.skipTest("no unshare (util-linux)")
-        p = subprocess.run(["unshare", "-m", "sh", "-c", script, "sh", folder, APERTURE, "bake",
-                            dem, out, "-d", "8", "--radius", "600"],
-                           capture_output=True, text=True, timeout=300)
-        if p.returncode == 99 or "left:" not in p.stdout:
-            self.skipTest("no tmpfs of our own here: %s" % p.stderr.strip())
-        self.assertEqual(p.returncode, 1, p.stdout)
-        self.assertIn("left: \n", p.stdout)  # (the folder, seen before the tmpfs goes: empty)
-        self.assertIn("aperture: error: writing %s: GDAL failed writing '%s': " % (out, out),
-                      p.stderr)
-        self.assertTrue(p.stderr.strip().endswith(" (the disk is full)"), p.stderr)
-        self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
+        folder = self.path("full")
+        os.makedirs(folder)
+        dem = rough_dem(self.path("full-dem.tif"), (600, 300), 7)
+        full_tif, full_exr = os.path.join(folder, "out.tif"), os.path.join(folder, "out.exr")
+        tif = self.path("full-beside.tif")
+        strips = ["--max-memory", "6M"]
+        script = ('mount -t tmpfs -o size=256k tmpfs "$1" || exit 99; d="$1"; shift; "$@"; '
+                  's=$?; echo "left: $(ls -A "$d")"; exit $s')
+        cases = [  # (outputs, options, what the message ends with, the GeoTIFF beside is left)
+            ([full_tif], [], " (the disk is full)", None),
+            ([full_tif], strips, " (the disk is full)", None),
+            ([tif, "--exr", full_exr], [], " (%s was written in full)" % tif, True),
+            ([tif, "--exr", full_exr], strips,
+             " (%s, written strip by strip beside it, was removed unfinished)" % tif, False)]
+        for outputs, options, ending, beside in cases:
+            if os.path.exists(tif):
+                os.remove(tif)
+            p = subprocess.run(["unshare", "-m", "sh", "-c", script, "sh", folder, APERTURE,
+                                "bake", dem, *outputs, "-d", "8", "--radius", "600", "-q",
+                                *options], capture_output=True, text=True, timeout=300)
+            if p.returncode == 99 or "left:" not in p.stdout:
+                self.skipTest("no tmpfs of our own here: %s" % p.stderr.strip())
+            label = "%s %s: %s" % (outputs, options, p.stderr)
+            self.assertEqual(p.returncode, 1, label)
+            self.assertIn("left: \n", p.stdout)  # (the folder, seen before the tmpfs goes)
+            if beside is None:
+                self.assertIn("aperture: error: writing %s: GDAL failed writing '%s': "
+                              % (full_tif, full_tif), p.stderr)
+            else:
+                self.assertIn("aperture: error: writing %s: OpenEXR failed writing '%s': "
+                              % (full_exr, full_exr), p.stderr)
+                self.assertIn("No space left on device", p.stderr)
+                self.assertEqual(os.path.exists(tif), beside, label)
+            if beside:
+                ds = gdal.Open(tif)  # (whole: every band, to the last row)
+                self.assertEqual(ds.RasterCount, 9)
+                self.assertIsNotNone(ds.GetRasterBand(9).ReadAsArray())
+                ds = None
+            self.assertTrue(p.stderr.strip().endswith(ending), label)
+            self.assertEqual(len(p.stderr.strip().splitlines()), 1, label)
 
     def test_threads_refused(self):
         # When the system refuses threads (here: each would get an 8 GiB stack, in 4 GiB of

@@ -752,29 +752,50 @@ def _write_strips(watcher, clip, window, extents, outputs, guard, started):
     """Update `clip` for each extent of `window` in turn, north first, and write it into every
     (writer, path) of `outputs` (their BeginStrips with the first, EndStrips after the last);
     on an error or an interrupt (`guard`) the files begun are abandoned, the interrupt left to
-    `guard`."""
+    `guard`, and an error's message names the other outputs it leaves whole or removes."""
     begun = []
+    finished = []  # the paths written in full
+    writing = None  # the path being written, if an output's step fails
     try:
         for extent in extents:
             strip = watcher.update(clip, "bake", extent=extent)
             if guard.interrupted:
                 return  # (an aborted sky filter's strip is incomplete)
-            for output, path in outputs:
+            for output, writing in outputs:
                 if output not in begun and output.BeginStrips(strip, window):
                     begun.append(output)
-                    started.append(path)
-                output.WriteStrip(strip)
+                    started.append(writing)
+                if not output.WriteStrip(strip) and not guard.interrupted:
+                    # a writer may keep a failure's reason (GDAL's: a full disk) for EndStrips,
+                    # which reports it and removes the file
+                    begun.remove(output)
+                    output.EndStrips()
                 if guard.interrupted:
                     return
-                watcher.check("writing %s" % path)
+                watcher.check("writing %s" % writing)
+            writing = None
             strip.ReleaseData()  # (one strip at a time)
-        for output, path in outputs:
+        for output, writing in outputs:
             begun.remove(output)
             output.EndStrips()
-            watcher.check("writing %s" % path)
+            watcher.check("writing %s" % writing)
+            finished.append(writing)
+    except ApertureError as e:
+        # (the failed writer removes its own file; the others begun are unfinished)
+        raise _outputs_left(e, written=finished, removed=[
+            path for output, path in outputs if output in begun and path != writing]) from None
     finally:
         for output in begun:
             output.AbandonStrips()
+
+
+def _outputs_left(error, written=(), removed=()):
+    """`error` (an ApertureError) with what a failed bake leaves of its other outputs: the
+    user need not guess whether a file there is this bake's, whole."""
+    notes = (["%s was written in full" % path for path in written]
+             + ["%s, written strip by strip beside it, was removed unfinished" % path
+                for path in removed])
+    return ApertureError("%s (%s)" % (error, "; ".join(notes))) if notes else error
 
 
 def _check_radius(radius):
@@ -915,7 +936,11 @@ def _bake(args, products, progress):
                 for output, path in outputs:
                     output.SetInputData(image)
                     started.append(path)
-                    watcher.write(output, "writing %s" % path)
+                    try:
+                        watcher.write(output, "writing %s" % path)
+                    except ApertureError as e:
+                        # (the writer removed its file; the ones before it are whole)
+                        raise _outputs_left(e, written=started[:-1]) from None
     except KeyboardInterrupt:
         for path in started:
             if os.path.exists(path):
