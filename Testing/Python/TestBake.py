@@ -763,8 +763,7 @@ class TestBake(unittest.TestCase):
             ([full_tif], [], " (the disk is full)", None),
             ([full_tif], strips, " (the disk is full)", None),
             ([tif, "--exr", full_exr], [], " (%s was written in full)" % tif, True),
-            ([tif, "--exr", full_exr], strips,
-             " (%s, written strip by strip beside it, was removed unfinished)" % tif, False)]
+            ([tif, "--exr", full_exr], strips, " (the unfinished %s was removed)" % tif, False)]
         for outputs, options, ending, beside in cases:
             if os.path.exists(tif):
                 os.remove(tif)

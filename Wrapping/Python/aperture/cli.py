@@ -793,8 +793,7 @@ def _outputs_left(error, written=(), removed=()):
     """`error` (an ApertureError) with what a failed bake leaves of its other outputs: the
     user need not guess whether a file there is this bake's, whole."""
     notes = (["%s was written in full" % path for path in written]
-             + ["%s, written strip by strip beside it, was removed unfinished" % path
-                for path in removed])
+             + ["the unfinished %s was removed" % path for path in removed])
     return ApertureError("%s (%s)" % (error, "; ".join(notes))) if notes else error
 
 
