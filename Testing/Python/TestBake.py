@@ -791,6 +791,58 @@ class TestBake(unittest.TestCase):
             self.assertTrue(p.stderr.strip().endswith(ending), label)
             self.assertEqual(len(p.stderr.strip().splitlines()), 1, label)
 
+    def test_unwritable_outputs(self):
+        # An output folder that takes no new files (read-only, no permission) is refused before
+        # the DEM is read, not after a sweep of hours: a read-only tmpfs in a mount namespace of
+        # our own (needs root: skipped otherwise), for the GeoTIFF and for the EXR (the
+        # GeoTIFF beside it not begun). An existing read-only file likewise (GDAL cannot
+        # replace it), as an unprivileged user (root may write it; skipped without one).
+        if not shutil.which("unshare"):
+            self.skipTest("no unshare (util-linux)")
+        folder = self.path("read-only")
+        os.makedirs(folder)
+        tif = self.path("unwritable-beside.tif")
+        script = 'mount -t tmpfs -o size=64k,ro tmpfs "$1" || exit 99; shift; "$@"'
+        for outputs, name, path in (([os.path.join(folder, "out.tif")], "OUT.tif",
+                                     os.path.join(folder, "out.tif")),
+                                    ([tif, "--exr", os.path.join(folder, "out.exr")], "--exr",
+                                     os.path.join(folder, "out.exr"))):
+            p = subprocess.run(["unshare", "-m", "sh", "-c", script, "sh", folder, APERTURE,
+                                "bake", self.dem, *outputs], capture_output=True, text=True,
+                               timeout=300)
+            if p.returncode == 99:
+                self.skipTest("no tmpfs of our own here: %s" % p.stderr.strip())
+            self.assertEqual((p.returncode, p.stdout), (1, ""), p.stderr)
+            self.assertEqual(p.stderr, "aperture: error: cannot write %s %s: the folder does not "
+                             "take new files (Read-only file system)\n" % (name, path))
+            self.assertFalse(os.path.exists(tif))
+        if not shutil.which("setpriv"):
+            self.skipTest("no setpriv (util-linux)")
+        as_nobody = ["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"]
+        shared = tempfile.mkdtemp(prefix="aperture-nobody-")
+        try:
+            os.chmod(shared, 0o777)
+            dem = os.path.join(shared, "dem.tif")
+            shutil.copy(self.dem, dem)
+            os.chmod(dem, 0o644)
+            locked = os.path.join(shared, "locked.tif")
+            with open(locked, "w") as f:
+                f.write("keep")
+            os.chmod(locked, 0o444)
+            probe = subprocess.run(as_nobody + [APERTURE, "info", dem], capture_output=True,
+                                   timeout=300)
+            if probe.returncode != 0:
+                self.skipTest("the build cannot run as an unprivileged user here")
+            p = subprocess.run(as_nobody + [APERTURE, "bake", dem, locked], capture_output=True,
+                               text=True, timeout=300)
+            self.assertEqual(p.returncode, 1, p.stderr)
+            self.assertEqual(p.stderr, "aperture: error: cannot write OUT.tif %s: the file "
+                             "exists and is read-only\n" % locked)
+            with open(locked) as f:
+                self.assertEqual(f.read(), "keep")
+        finally:
+            shutil.rmtree(shared, ignore_errors=True)
+
     def test_threads_refused(self):
         # When the system refuses threads (here: each would get an 8 GiB stack, in 4 GiB of
         # address space), the sky filter says so instead of terminating the process

@@ -91,9 +91,11 @@ def _same_file(a, b):
 
 
 def _check_outputs(outputs, inputs):
-    """Refuse an output whose folder does not exist, one that would overwrite an input, or two
-    outputs in one file (the second would silently replace the first). outputs, inputs:
+    """Refuse an output whose folder does not exist or cannot take a new file (read-only, no
+    permission: found before a bake of hours, not after it), one that would overwrite an input,
+    or two outputs in one file (the second would silently replace the first). outputs, inputs:
     (option, path) pairs; empty paths skipped."""
+    import tempfile
     taken = [(name, path) for name, path in inputs if path]
     for name, path in outputs:
         if not path:
@@ -101,6 +103,15 @@ def _check_outputs(outputs, inputs):
         folder = os.path.dirname(os.path.abspath(path))
         if not os.path.isdir(folder):
             raise ApertureError("the output folder %s does not exist" % folder)
+        try:
+            with tempfile.TemporaryFile(dir=folder):  # (unnamed where the system allows)
+                pass
+        except OSError as e:
+            raise ApertureError("cannot write %s %s: the folder does not take new files (%s)"
+                                % (name, path, e.strerror or e))
+        if os.path.exists(path) and not os.access(path, os.W_OK):
+            raise ApertureError("cannot write %s %s: the file exists and is read-only"
+                                % (name, path))
         for other, other_path in taken:
             if _same_file(path, other_path):
                 raise ApertureError("%s %s is the same file as %s; choose another name"
