@@ -796,12 +796,19 @@ class TestBake(unittest.TestCase):
         # the DEM is read, not after a sweep of hours: a read-only tmpfs in a mount namespace of
         # our own (needs root: skipped otherwise), for the GeoTIFF and for the EXR (the
         # GeoTIFF beside it not begun). An existing read-only file likewise (GDAL cannot
-        # replace it), as an unprivileged user (root may write it; skipped without one).
+        # replace it), as an unprivileged user (root may write it; skipped without one). And an
+        # output that is a folder (the EXR's message was "Unable to rename temporary file").
+        tif = self.path("unwritable-beside.tif")
+        for outputs, name in (([self.tmp], "OUT.tif"), ([tif, "--exr", self.tmp], "--exr")):
+            status, stdout, err = run("bake", self.dem, *outputs)
+            self.assertEqual((status, stdout), (1, ""), err)
+            self.assertEqual(err, "aperture: error: cannot write %s %s: it is a folder\n"
+                             % (name, self.tmp))
+            self.assertFalse(os.path.exists(tif))
         if not shutil.which("unshare"):
             self.skipTest("no unshare (util-linux)")
         folder = self.path("read-only")
         os.makedirs(folder)
-        tif = self.path("unwritable-beside.tif")
         script = 'mount -t tmpfs -o size=64k,ro tmpfs "$1" || exit 99; shift; "$@"'
         for outputs, name, path in (([os.path.join(folder, "out.tif")], "OUT.tif",
                                      os.path.join(folder, "out.tif")),

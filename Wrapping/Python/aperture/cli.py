@@ -91,10 +91,10 @@ def _same_file(a, b):
 
 
 def _check_outputs(outputs, inputs):
-    """Refuse an output whose folder does not exist or cannot take a new file (read-only, no
-    permission: found before a bake of hours, not after it), one that would overwrite an input,
-    or two outputs in one file (the second would silently replace the first). outputs, inputs:
-    (option, path) pairs; empty paths skipped."""
+    """Refuse an output that is a folder, or whose folder does not exist or cannot take a new
+    file (read-only, no permission: found before a bake of hours, not after it), one that would
+    overwrite an input, or two outputs in one file (the second would silently replace the
+    first). outputs, inputs: (option, path) pairs; empty paths skipped."""
     import tempfile
     taken = [(name, path) for name, path in inputs if path]
     for name, path in outputs:
@@ -103,6 +103,8 @@ def _check_outputs(outputs, inputs):
         folder = os.path.dirname(os.path.abspath(path))
         if not os.path.isdir(folder):
             raise ApertureError("the output folder %s does not exist" % folder)
+        if os.path.isdir(path):
+            raise ApertureError("cannot write %s %s: it is a folder" % (name, path))
         try:
             with tempfile.TemporaryFile(dir=folder):  # (unnamed where the system allows)
                 pass
