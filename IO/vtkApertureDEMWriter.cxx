@@ -3,6 +3,7 @@
 
 #include "vtkApertureGDALErrorTrap.h"
 #include "vtkApertureGeoreference.h"
+#include "vtkApertureOutputFile.h"
 #include "vtkApertureStripDriver.h"
 
 #include "vtkDataArray.h"
@@ -372,6 +373,12 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     return false;
   }
   const std::string path(this->FileName);
+  std::string what;
+  if (!vtkApertureOutputReplaceable(path, what))
+  {
+    vtkErrorMacro(<< "'" << path << "' is " << what << ", not a file a GeoTIFF can be written to");
+    return false;
+  }
   if (!input || input->GetNumberOfPoints() == 0)
   {
     vtkErrorMacro(<< "no input image to write to '" << path << "'");

@@ -23,11 +23,13 @@
  * CompressionLevel sets its level (default 1, the fastest). Tiles are compressed on
  * NumberOfThreads threads (GDAL's NUM_THREADS; the file's bytes do not depend on it).
  *
- * Errors (vtkErrorMacro, nothing left behind): no file name, an input that is not 2-D, a named
- * array that does not exist, an array that is not numeric, a codec GDAL does not offer or
- * one that cannot store floating-point samples (JPEG, WEBP, the CCITT ones), a compression
- * level outside the codec's range, or GDAL failing to create or write (with "the disk is
- * full" added when under 1 MiB is left beside the partial file, which GDAL does not say).
+ * Errors (vtkErrorMacro, nothing left behind): no file name, a file name that names something
+ * other than a file (a folder, a device such as /dev/null, a pipe: left as it is), an input
+ * that is not 2-D, a named array that does not exist, an array that is not numeric, a codec
+ * GDAL does not offer or one that cannot store floating-point samples (JPEG, WEBP, the CCITT
+ * ones), a compression level outside the codec's range, or GDAL failing to create or write
+ * (with "the disk is full" added when under 1 MiB is left beside the partial file, which GDAL
+ * does not say).
  * @sa vtkApertureDEMReader vtkApertureGeoreference
  */
 #ifndef vtkApertureDEMWriter_h

@@ -2,6 +2,7 @@
 #include "vtkApertureEXRWriter.h"
 
 #include "vtkApertureGeoreference.h"
+#include "vtkApertureOutputFile.h"
 #include "vtkApertureSMPThreads.h"
 #include "vtkApertureStripDriver.h"
 
@@ -593,6 +594,12 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
     return 0;
   }
   const std::string path(this->FileName);
+  std::string what;
+  if (!vtkApertureOutputReplaceable(path, what))
+  {
+    vtkErrorMacro(<< "'" << path << "' is " << what << ", not a file an EXR can be written to");
+    return 0;
+  }
   if (!input || input->GetNumberOfPoints() == 0 || whole[1] < whole[0] || whole[3] < whole[2])
   {
     vtkErrorMacro(<< "no input image to write to '" << path << "'");

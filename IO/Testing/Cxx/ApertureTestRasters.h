@@ -10,11 +10,16 @@
 #include <gdal.h>
 #include <ogr_srs_api.h>
 
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <algorithm>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace aptest
@@ -165,6 +170,56 @@ inline std::string ReadFileBytes(const std::string& path)
     std::fclose(f);
   }
   return bytes;
+}
+
+/** Remove what SpecialFiles made (or an earlier run left). */
+inline void RemoveSpecialFiles(const std::vector<std::pair<std::string, std::string>>& made)
+{
+  for (const auto& m : made)
+  {
+    if (unlink(m.first.c_str()) != 0)
+    {
+      rmdir(m.first.c_str());
+    }
+  }
+}
+
+/** Paths `dir`/`prefix`-... that name no regular file, as (path, kind), made here (anew): a
+ *  pipe, a folder, and when run as root a null device (a copy of /dev/null's node, so that a
+ *  writer that removed it would remove the copy). A writer must refuse each and leave it as it
+ *  was (SameKind); RemoveSpecialFiles afterwards. */
+inline std::vector<std::pair<std::string, std::string>> SpecialFiles(
+  const std::string& dir, const std::string& prefix)
+{
+  const std::string base = dir + "/" + prefix;
+  RemoveSpecialFiles({ { base + "-pipe", "" }, { base + "-folder", "" }, { base + "-null", "" } });
+  std::vector<std::pair<std::string, std::string>> made;
+  if (mkfifo((base + "-pipe").c_str(), 0644) == 0)
+  {
+    made.emplace_back(base + "-pipe", "a pipe");
+  }
+  if (mkdir((base + "-folder").c_str(), 0755) == 0)
+  {
+    made.emplace_back(base + "-folder", "a folder");
+  }
+  if (geteuid() == 0 && mknod((base + "-null").c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0)
+  {
+    made.emplace_back(base + "-null", "a device");
+  }
+  return made;
+}
+
+/** Whether `path` is still what SpecialFiles made as `kind`. */
+inline bool SameKind(const std::string& path, const std::string& kind)
+{
+  struct stat st;
+  if (stat(path.c_str(), &st) != 0)
+  {
+    return false;
+  }
+  return kind == "a pipe" ? S_ISFIFO(st.st_mode)
+    : kind == "a folder"  ? S_ISDIR(st.st_mode)
+                          : S_ISCHR(st.st_mode) && st.st_rdev == makedev(1, 3);
 }
 
 } // namespace aptest

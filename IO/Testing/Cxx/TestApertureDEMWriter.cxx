@@ -636,6 +636,30 @@ void TestErrors()
     w->SetCompression("zstd");
     AP_CHECK(w->CheckCompression());
   }
+  // No file there (a pipe, a folder, a device): GDAL would fail writing it, and the writer then
+  // removed what it had tried to write, /dev/null for a root bake to /dev/null. Uncompressed
+  // (GDAL streams to a pipe: it waited for a reader) and compressed, on one thread and two
+  // (GDAL's compression threads spun forever on the device).
+  const auto specials = aptest::SpecialFiles(tmp, "dem-writer");
+  AP_CHECK(specials.size() >= 2);
+  for (const auto& special : specials)
+  {
+    for (const char* codec : { "NONE", "DEFLATE" })
+    {
+      for (int threads : { 1, 2 })
+      {
+        vtkNew<vtkApertureDEMWriter> w;
+        w->SetInputData(MakeImage(true));
+        w->SetFileName(special.first.c_str());
+        w->SetCompression(codec);
+        w->SetNumberOfThreads(threads);
+        ExpectError(w, "'" + special.first + "' is " + special.second +
+            ", not a file a GeoTIFF can be written to");
+        AP_CHECK(aptest::SameKind(special.first, special.second));
+      }
+    }
+  }
+  aptest::RemoveSpecialFiles(specials);
   for (const auto& bad : badLevels)
   {
     vtkNew<vtkApertureDEMWriter> w;

@@ -999,6 +999,20 @@ void TestWriterErrors()
     AP_CHECK(kept.Ok && kept.Channels == std::vector<std::string>{ "Elevation" });
     AP_CHECK(!LeftoverTemporaryFiles("keep.exr"));
   }
+  // No file there (a pipe, a folder, a device): the writer renames its temporary file into
+  // place, which replaced a copy of /dev/null's node with the EXR.
+  const auto specials = aptest::SpecialFiles(tmp, "exr-writer");
+  AP_CHECK(specials.size() >= 2);
+  for (const auto& special : specials)
+  {
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputData(image);
+    w->SetFileName(special.first.c_str());
+    ExpectWriterError(
+      w, "'" + special.first + "' is " + special.second + ", not a file an EXR can be written to");
+    AP_CHECK(aptest::SameKind(special.first, special.second));
+  }
+  aptest::RemoveSpecialFiles(specials);
 }
 
 //------------------------------------------------------------------------------
