@@ -797,14 +797,25 @@ class TestBake(unittest.TestCase):
         # our own (needs root: skipped otherwise), for the GeoTIFF and for the EXR (the
         # GeoTIFF beside it not begun). An existing read-only file likewise (GDAL cannot
         # replace it), as an unprivileged user (root may write it; skipped without one). And an
-        # output that is a folder (the EXR's message was "Unable to rename temporary file").
+        # output that is no file: a folder (the EXR's message was "Unable to rename temporary
+        # file"), a pipe, and as root a copy of /dev/null's node (a bake to /dev/null as root
+        # ran its sweep, then GDAL failed writing it and the writer removed /dev/null).
+        import stat
         tif = self.path("unwritable-beside.tif")
-        for outputs, name in (([self.tmp], "OUT.tif"), ([tif, "--exr", self.tmp], "--exr")):
-            status, stdout, err = run("bake", self.dem, *outputs)
-            self.assertEqual((status, stdout), (1, ""), err)
-            self.assertEqual(err, "aperture: error: cannot write %s %s: it is a folder\n"
-                             % (name, self.tmp))
-            self.assertFalse(os.path.exists(tif))
+        specials = [(self.tmp, "a folder", stat.S_ISDIR)]
+        os.mkfifo(self.path("pipe.tif"))
+        specials.append((self.path("pipe.tif"), "a pipe", stat.S_ISFIFO))
+        if os.geteuid() == 0:
+            os.mknod(self.path("null.tif"), stat.S_IFCHR | 0o666, os.makedev(1, 3))
+            specials.append((self.path("null.tif"), "a device", stat.S_ISCHR))
+        for special, kind, is_kind in specials:
+            for outputs, name in (([special], "OUT.tif"), ([tif, "--exr", special], "--exr")):
+                status, stdout, err = run("bake", self.dem, *outputs)
+                self.assertEqual((status, stdout), (1, ""), err)
+                self.assertEqual(err, "aperture: error: cannot write %s %s: it is %s, not a "
+                                 "file\n" % (name, special, kind))
+                self.assertFalse(os.path.exists(tif))
+                self.assertTrue(is_kind(os.stat(special).st_mode))
         if not shutil.which("unshare"):
             self.skipTest("no unshare (util-linux)")
         folder = self.path("read-only")

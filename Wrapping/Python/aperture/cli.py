@@ -90,11 +90,23 @@ def _same_file(a, b):
     return os.path.realpath(a) == os.path.realpath(b)
 
 
+def _file_kind(mode):
+    """What a path of this st_mode is, when it is not a regular file."""
+    import stat
+    for test, kind in ((stat.S_ISDIR, "a folder"), (stat.S_ISCHR, "a device"),
+                       (stat.S_ISBLK, "a device"), (stat.S_ISFIFO, "a pipe"),
+                       (stat.S_ISSOCK, "a socket")):
+        if test(mode):
+            return kind
+    return "something else"
+
+
 def _check_outputs(outputs, inputs):
-    """Refuse an output that is a folder, or whose folder does not exist or cannot take a new
-    file (read-only, no permission: found before a bake of hours, not after it), one that would
-    overwrite an input, or two outputs in one file (the second would silently replace the
-    first). outputs, inputs: (option, path) pairs; empty paths skipped."""
+    """Refuse an output that is not a file (a folder, a device such as /dev/null, a pipe), or
+    whose folder does not exist or cannot take a new file (read-only, no permission: found
+    before a bake of hours, not after it), one that would overwrite an input, or two outputs
+    in one file (the second would silently replace the first). outputs, inputs: (option,
+    path) pairs; empty paths skipped."""
     import tempfile
     taken = [(name, path) for name, path in inputs if path]
     for name, path in outputs:
@@ -103,8 +115,10 @@ def _check_outputs(outputs, inputs):
         folder = os.path.dirname(os.path.abspath(path))
         if not os.path.isdir(folder):
             raise ApertureError("the output folder %s does not exist" % folder)
-        if os.path.isdir(path):
-            raise ApertureError("cannot write %s %s: it is a folder" % (name, path))
+        if os.path.exists(path) and not os.path.isfile(path):
+            # (the writers refuse these too: they replace their file, and remove it on failure)
+            raise ApertureError("cannot write %s %s: it is %s, not a file"
+                                % (name, path, _file_kind(os.stat(path).st_mode)))
         try:
             with tempfile.TemporaryFile(dir=folder):  # (unnamed where the system allows)
                 pass
@@ -955,7 +969,7 @@ def _bake(args, products, progress):
                         raise _outputs_left(e, written=started[:-1]) from None
     except KeyboardInterrupt:
         for path in started:
-            if os.path.exists(path):
+            if os.path.isfile(path):  # (never a device or a pipe: _check_outputs refused them)
                 os.remove(path)
         raise
     written = [os.path.abspath(path) for _, path in outputs]
