@@ -130,9 +130,11 @@ public:
    *   error; otherwise it is removed (with an error naming the rows missing, unless writing
    *   was aborted or an error was reported already).
    * - AbandonStrips() removes a file begun, quietly (for a caller that stops early).
-   * Each returns 1 on success and 0 after reporting the problem (vtkErrorMacro); after a
-   * failure only EndStrips() or AbandonStrips() is useful. Progress events run over the rows
-   * of `whole`, and AbortExecute is checked after every band of a strip.
+   * Each returns 1 on success and 0 after reporting the problem (vtkErrorMacro), except that
+   * WriteStrip keeps GDAL's reason for a failed write (a full disk: known only once GDAL gives
+   * up) for EndStrips to report; after a failure only EndStrips() or AbandonStrips() is
+   * useful. Progress events run over the rows of `whole`, and AbortExecute is checked after
+   * every band of a strip.
    */
   int BeginStrips(vtkImageData* image, const int whole[6]);
   int WriteStrip(vtkImageData* strip);

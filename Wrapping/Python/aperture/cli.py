@@ -797,6 +797,8 @@ def _write_strips(watcher, clip, window, extents, outputs, guard, started):
                     # which reports it and removes the file
                     begun.remove(output)
                     output.EndStrips()
+                    watcher.check("writing %s" % writing)
+                    raise ApertureError("writing %s failed" % writing)  # (no reason given)
                 if guard.interrupted:
                     return
                 watcher.check("writing %s" % writing)
