@@ -2942,11 +2942,10 @@ AP_INLINE unsigned shore_void_lanes(const int *acc, unsigned r)
  * stretch of 64, then 16 steps whose box of samples (fm_box_cells) lies in grid rows or
  * columns without nodata (box_may_void: no sample there is void, so no crossing is taken; two
  * look-ups where the tiles take several) or whose tiles cannot raise any of its slopes, as the
- * far march
- * does (the tiles bound the crossings of the stretches between the box's first and last
- * steps); in a stretch that some can raise, each of those cells evaluates the crossings next
- * to its column samples on nodata (found for the 16 at once while all their rays are on the
- * grid, else cell by cell), then the last, partial step (shore_tail). */
+ * far march does (the tiles bound the crossings of the stretches between the box's first and
+ * last steps); in a stretch that some can raise, each of those cells evaluates the crossings
+ * next to its column samples on nodata (found for the 16 at once while all their rays are on
+ * the grid, else cell by cell), then the last, partial step (shore_tail). */
 AP_MULTIVERSION
 static void far_shore_column(const ap_horizon *hz, const fm_step *fm, const double *t, long kmax,
                              size_t p, long sa, long sb, const float *col, float *best)
