@@ -711,9 +711,8 @@ int vtkApertureSkyVisibility::Execute(
   const double cells = static_cast<double>(nx) * ny;
   double share[3] = { 1.0 / 3, 1.0 / 3, 1.0 / 3 }; // (of the sector's time, per phase)
   double seconds[3] = { 0.0, 0.0, 0.0 };            // (of the sector in progress)
-  int d = 0;
-  auto sliced = [&](int phase, vtkIdType units, vtkIdType grain, ap_status (*run)(
-                      const ap_horizon*, size_t, size_t)) {
+  auto sliced = [&](int d, int phase, vtkIdType units, vtkIdType grain,
+                  ap_status (*run)(const ap_horizon*, size_t, size_t)) {
     const Clock::time_point start = Clock::now();
     const vtkIdType grains = (units + grain - 1) / grain;
     const vtkIdType slices = std::max<vtkIdType>(
@@ -742,7 +741,7 @@ int vtkApertureSkyVisibility::Execute(
   };
   const vtkSMPTools::Config threads = vtkApertureSMPConfig(this->NumberOfThreads);
   vtkSMPTools::LocalScope(threads, [&]() {
-    for (d = 0; d < D && failure == AP_OK && !aborted; ++d)
+    for (int d = 0; d < D && failure == AP_OK && !aborted; ++d)
     {
       ap_status ps = ap_horizon_prepare(hz, d);
       if (ps != AP_OK)
@@ -750,13 +749,13 @@ int vtkApertureSkyVisibility::Execute(
         failure = ps;
         break;
       }
-      sliced(0, static_cast<vtkIdType>(ap_horizon_near_field_count(hz)), 16,
+      sliced(d, 0, static_cast<vtkIdType>(ap_horizon_near_field_count(hz)), 16,
         ap_horizon_near_field);
       // Small chunks of lines (ap_horizon.h): their hulls and windows stay in cache, and no
       // thread idles long at the end of a direction. Results do not depend on the chunks.
-      sliced(1, static_cast<vtkIdType>(ap_horizon_bracket_count(hz)), AP_HORIZON_SWEEP_BAND,
-        ap_horizon_sweep);
-      sliced(2, ny, 64, ap_horizon_accumulate);
+      sliced(d, 1, static_cast<vtkIdType>(ap_horizon_bracket_count(hz)),
+        AP_HORIZON_SWEEP_BAND, ap_horizon_sweep);
+      sliced(d, 2, ny, 64, ap_horizon_accumulate);
       if (failure != AP_OK || aborted)
       {
         break; // (no progress reported for a failed sector)
