@@ -115,7 +115,8 @@ def _check_outputs(outputs, inputs):
         folder = os.path.dirname(os.path.abspath(path))
         if not os.path.isdir(folder):
             raise ApertureError("the output folder %s does not exist" % folder)
-        if os.path.exists(path) and not os.path.isfile(path):
+        exists = os.path.exists(path)
+        if exists and not os.path.isfile(path):
             # (the writers refuse these too: they replace their file, and remove it on failure)
             raise ApertureError("cannot write %s %s: it is %s, not a file"
                                 % (name, path, _file_kind(os.stat(path).st_mode)))
@@ -125,7 +126,7 @@ def _check_outputs(outputs, inputs):
         except OSError as e:
             raise ApertureError("cannot write %s %s: the folder does not take new files (%s)"
                                 % (name, path, e.strerror or e))
-        if os.path.exists(path) and not os.access(path, os.W_OK):
+        if exists and not os.access(path, os.W_OK):
             raise ApertureError("cannot write %s %s: the file exists and is read-only"
                                 % (name, path))
         for other, other_path in taken:
@@ -644,11 +645,11 @@ class _abort_on_interrupt:
     """Ctrl-C (SIGINT), or SIGTERM (`timeout`, a batch system's time limit), during long filters
     and writers: Python runs its signal handler only when it gets control, which a VTK update
     gives it only through observers. Observers of the algorithms' progress (every azimuth
-    sector for the sky filter, every band for the GeoTIFF writer) let the handler run; it sets
-    AbortExecute on all of them, the one running stops (a writer removing its file), and
-    KeyboardInterrupt follows (exit 130; _Terminated, exit 143, for SIGTERM) instead of the
-    whole computation first. Without it a SIGTERM would end the process at once, leaving the
-    outputs a bake in strips had begun."""
+    sector for the sky filter, or slice of one on large DEMs, every band for the GeoTIFF
+    writer) let the handler run; it sets AbortExecute on all of them, the one running stops (a
+    writer removing its file), and KeyboardInterrupt follows (exit 130; _Terminated, exit 143,
+    for SIGTERM) instead of the whole computation first. Without it a SIGTERM would end the
+    process at once, leaving the outputs a bake in strips had begun."""
 
     def __init__(self, *algorithms):
         self.algorithms = algorithms
