@@ -99,6 +99,22 @@ class TestBake(unittest.TestCase):
     def path(self, name):
         return os.path.join(self.tmp, name)
 
+    def bake_on_tmpfs(self, folder, mount_options, *args):
+        """`aperture bake *args` with a tmpfs (`mount_options`, e.g. "size=256k") on `folder` in
+        a mount namespace of its own; skips the test where none can be mounted (needs root and
+        unshare). The process; its stdout ends with the folder's listing before the tmpfs goes
+        ("left: ...")."""
+        if not shutil.which("unshare"):
+            self.skipTest("no unshare (util-linux)")
+        script = ('mount -t tmpfs -o "$2" tmpfs "$1" || exit 99; d="$1"; shift 2; "$@"; s=$?; '
+                  'echo "left: $(ls -A "$d")"; exit $s')
+        p = subprocess.run(["unshare", "-m", "sh", "-c", script, "sh", folder, mount_options,
+                            APERTURE, "bake", *args], capture_output=True, text=True,
+                           timeout=300)
+        if p.returncode == 99 or "left:" not in p.stdout:
+            self.skipTest("no tmpfs of our own here: %s" % p.stderr.strip())
+        return p
+
     def test_bands_units_metadata(self):
         out, exr = self.path("all.tif"), self.path("all.exr")
         status, stdout, err = run("bake", self.dem, out, "--products", "all", "--directions",
@@ -749,16 +765,12 @@ class TestBake(unittest.TestCase):
         # EXR on the full disk, the message says what became of the GeoTIFF: written in full
         # (at once, before the EXR) or removed unfinished (in strips, written beside it). A
         # 256 KiB tmpfs in a mount namespace of its own (needs root: skipped otherwise).
-        if not shutil.which("unshare"):
-            self.skipTest("no unshare (util-linux)")
         folder = self.path("full")
         os.makedirs(folder)
         dem = rough_dem(self.path("full-dem.tif"), (600, 300), 7)
         full_tif, full_exr = os.path.join(folder, "out.tif"), os.path.join(folder, "out.exr")
         tif = self.path("full-beside.tif")
         strips = ["--max-memory", "6M"]
-        script = ('mount -t tmpfs -o size=256k tmpfs "$1" || exit 99; d="$1"; shift; "$@"; '
-                  's=$?; echo "left: $(ls -A "$d")"; exit $s')
         cases = [  # (outputs, options, what the message ends with, the GeoTIFF beside is left)
             ([full_tif], [], " (the disk is full)", None),
             ([full_tif], strips, " (the disk is full)", None),
@@ -767,11 +779,8 @@ class TestBake(unittest.TestCase):
         for outputs, options, ending, beside in cases:
             if os.path.exists(tif):
                 os.remove(tif)
-            p = subprocess.run(["unshare", "-m", "sh", "-c", script, "sh", folder, APERTURE,
-                                "bake", dem, *outputs, "-d", "8", "--radius", "600", "-q",
-                                *options], capture_output=True, text=True, timeout=300)
-            if p.returncode == 99 or "left:" not in p.stdout:
-                self.skipTest("no tmpfs of our own here: %s" % p.stderr.strip())
+            p = self.bake_on_tmpfs(folder, "size=256k", dem, *outputs, "-d", "8", "--radius",
+                                   "600", "-q", *options)
             label = "%s %s: %s" % (outputs, options, p.stderr)
             self.assertEqual(p.returncode, 1, label)
             self.assertIn("left: \n", p.stdout)  # (the folder, seen before the tmpfs goes)
@@ -816,21 +825,14 @@ class TestBake(unittest.TestCase):
                                  "file\n" % (name, special, kind))
                 self.assertFalse(os.path.exists(tif))
                 self.assertTrue(is_kind(os.stat(special).st_mode))
-        if not shutil.which("unshare"):
-            self.skipTest("no unshare (util-linux)")
         folder = self.path("read-only")
         os.makedirs(folder)
-        script = 'mount -t tmpfs -o size=64k,ro tmpfs "$1" || exit 99; shift; "$@"'
         for outputs, name, path in (([os.path.join(folder, "out.tif")], "OUT.tif",
                                      os.path.join(folder, "out.tif")),
                                     ([tif, "--exr", os.path.join(folder, "out.exr")], "--exr",
                                      os.path.join(folder, "out.exr"))):
-            p = subprocess.run(["unshare", "-m", "sh", "-c", script, "sh", folder, APERTURE,
-                                "bake", self.dem, *outputs], capture_output=True, text=True,
-                               timeout=300)
-            if p.returncode == 99:
-                self.skipTest("no tmpfs of our own here: %s" % p.stderr.strip())
-            self.assertEqual((p.returncode, p.stdout), (1, ""), p.stderr)
+            p = self.bake_on_tmpfs(folder, "size=64k,ro", self.dem, *outputs)
+            self.assertEqual((p.returncode, p.stdout), (1, "left: \n"), p.stderr)
             self.assertEqual(p.stderr, "aperture: error: cannot write %s %s: the folder does not "
                              "take new files (Read-only file system)\n" % (name, path))
             self.assertFalse(os.path.exists(tif))
