@@ -41,6 +41,9 @@ struct vtkApertureGeoreference::Internals
   std::string WKT;
   std::string Name;
   std::string UnitName;
+  double UnitMetres = 0.0;         // (projected: metres per horizontal unit; else 0)
+  std::string VerticalUnitName;    // (a compound or vertical CRS's height unit, else "")
+  double VerticalUnitMetres = 0.0;
   std::string Error;
 
   void ResetTransforms()
@@ -74,6 +77,9 @@ struct vtkApertureGeoreference::Internals
     this->WKT.clear();
     this->Name.clear();
     this->UnitName.clear();
+    this->UnitMetres = 0.0;
+    this->VerticalUnitName.clear();
+    this->VerticalUnitMetres = 0.0;
   }
 
   // Build the transformations to and from the CRS's own geographic CRS once.
@@ -206,9 +212,15 @@ bool vtkApertureGeoreference::SetCRS(const char* definition)
   }
   else
   {
-    OSRGetLinearUnits(srs, &unit);
+    d.UnitMetres = OSRGetLinearUnits(srs, &unit);
   }
   d.UnitName = unit ? unit : "";
+  if (OSRIsCompound(srs) || OSRIsVertical(srs))
+  {
+    char* vertical = nullptr;
+    d.VerticalUnitMetres = OSRGetTargetLinearUnits(srs, "VERT_CS", &vertical);
+    d.VerticalUnitName = vertical ? vertical : "";
+  }
   d.Error.clear();
   this->Modified();
   return true;
@@ -348,6 +360,24 @@ const char* vtkApertureGeoreference::GetCRSName()
 const char* vtkApertureGeoreference::GetCRSUnitName()
 {
   return this->Impl->UnitName.c_str();
+}
+
+//------------------------------------------------------------------------------
+double vtkApertureGeoreference::GetCRSUnitMetres()
+{
+  return this->Impl->UnitMetres;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkApertureGeoreference::GetVerticalUnitName()
+{
+  return this->Impl->VerticalUnitName.c_str();
+}
+
+//------------------------------------------------------------------------------
+double vtkApertureGeoreference::GetVerticalUnitMetres()
+{
+  return this->Impl->VerticalUnitMetres;
 }
 
 //------------------------------------------------------------------------------

@@ -111,6 +111,18 @@ public:
   /** Name of the horizontal unit of the CRS ("degree", "metre", "US survey foot"). */
   const char* GetCRSUnitName();
 
+  /** Metres per horizontal unit of a projected CRS (1 for metres, 0.3048 for feet); 0 for a
+   *  geographic CRS or none. */
+  double GetCRSUnitMetres();
+
+  ///@{
+  /** The height unit of a compound CRS (e.g. EPSG:2263+6360, its vertical part NAVD88 height
+   *  in US survey feet) or of a vertical one: its name and metres per unit; "" and 0 when the
+   *  CRS has no vertical part (a plain projected or geographic CRS says nothing of heights). */
+  const char* GetVerticalUnitName();
+  double GetVerticalUnitMetres();
+  ///@}
+
   /** Semi-major axis (m) and flattening of the CRS's ellipsoid. */
   bool GetEllipsoid(double ellipsoid[2]);
 

@@ -118,6 +118,7 @@ struct vtkApertureDEMReader::Internals
   bool HasNoData = false;
   double NoData = 0.0;
   double Scale = 1.0, Offset = 0.0; // includes the unit conversion to metres
+  std::string UnitSource;           // where the elevation unit came from (for messages)
   bool UseMask = false;
   bool Valid = false;
   int Reading[2] = { 0, 0 }; // columns, rows of the request being read (for messages)
@@ -164,10 +165,12 @@ vtkApertureDEMReader::vtkApertureDEMReader()
   , Decimation(1)
   , OverrideCRS(nullptr)
   , MemoryLimit(0)
+  , MetresPerElevationUnit(0.0)
   , NumberOfBands(0)
   , BandRead(0)
   , HasNoDataValue(false)
   , NoDataValue(0.0)
+  , ElevationUnitRead(0.0)
   , Impl(new Internals)
 {
   this->SetNumberOfInputPorts(0);
@@ -190,11 +193,19 @@ const char* vtkApertureDEMReader::GetDriverName()
 }
 
 //------------------------------------------------------------------------------
+const char* vtkApertureDEMReader::GetElevationUnitSource()
+{
+  return this->Impl->UnitSource.c_str();
+}
+
+//------------------------------------------------------------------------------
 int vtkApertureDEMReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   Internals& d = *this->Impl;
   d.Valid = false;
+  d.UnitSource.clear();
+  this->ElevationUnitRead = 0.0;
   std::string error, openWarning;
   DatasetHandle ds;
   if (!Internals::Open(this->FileName, ds, error, &openWarning))
@@ -379,14 +390,65 @@ int vtkApertureDEMReader::RequestInformation(
   d.Scale = has && scale != 0 ? scale : 1.0;
   const double offset = GDALGetRasterOffset(base, &has);
   d.Offset = has ? offset : 0.0;
+  // The elevation unit: MetresPerElevationUnit, else the band's unit, else the height unit of
+  // a compound CRS (the file's, or OverrideCRS), else metres. A projected CRS in feet that
+  // says nothing of heights (a state-plane DEM's, often in feet too) gets a warning: read as
+  // metres, horizon tangents would be 3.28 times too steep.
   const char* unit = GDALGetRasterUnitType(base);
-  double metres = MetresPerUnit(unit);
-  if (metres == 0.0)
+  const std::string bandUnit = unit ? unit : "";
+  const double vertical = geo->GetVerticalUnitMetres();
+  const double given = this->MetresPerElevationUnit;
+  double metres = 1.0;
+  if (given != 0.0)
   {
-    vtkWarningMacro(<< "'" << name << "' band " << d.Band << " has the unknown unit '" << unit
-                    << "'; treating elevations as metres");
-    metres = 1.0;
+    if (!(given > 0.0) || !std::isfinite(given))
+    {
+      vtkErrorMacro(<< "MetresPerElevationUnit must be a positive number of metres (0: the "
+                       "file's unit), not "
+                    << given);
+      return 0;
+    }
+    metres = given;
+    d.UnitSource = "MetresPerElevationUnit";
   }
+  else if (!bandUnit.empty())
+  {
+    metres = MetresPerUnit(unit);
+    d.UnitSource = "the band's unit '" + bandUnit + "'";
+    if (metres == 0.0)
+    {
+      vtkWarningMacro(<< "'" << name << "' band " << d.Band << " has the unknown unit '"
+                      << bandUnit << "'; treating elevations as metres (another unit: give "
+                      << "its metres with MetresPerElevationUnit)");
+      metres = 1.0;
+      d.UnitSource += ", unknown: read as metres";
+    }
+    else if (vertical > 0.0 && std::fabs(vertical - metres) > 1e-9 * metres)
+    {
+      vtkWarningMacro(<< "'" << name << "' band " << d.Band << " has the unit '" << bandUnit
+                      << "' but the CRS's heights are in " << geo->GetVerticalUnitName()
+                      << "; the band's unit is used (another: MetresPerElevationUnit)");
+    }
+  }
+  else if (vertical > 0.0)
+  {
+    metres = vertical;
+    d.UnitSource = std::string("the CRS's height unit '") + geo->GetVerticalUnitName() + "'";
+  }
+  else
+  {
+    d.UnitSource = "none in the file: metres";
+    const double horizontal = geo->GetCRSUnitMetres();
+    if (horizontal > 0.0 && std::fabs(horizontal - 1.0) > 1e-6)
+    {
+      vtkWarningMacro(<< "'" << name << "' band " << d.Band << " has no elevation unit and its "
+                      << "CRS is in " << geo->GetCRSUnitName() << "; elevations are read as "
+                      << "metres: if they are in feet, say so with MetresPerElevationUnit "
+                      << "0.3048006096 (US survey feet) or 0.3048 (feet); 1 keeps metres "
+                      << "without this warning");
+    }
+  }
+  this->ElevationUnitRead = metres;
   d.Scale *= metres;
   d.Offset *= metres;
   const double nodata = GDALGetRasterNoDataValue(level, &has);
@@ -672,9 +734,12 @@ void vtkApertureDEMReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Decimation: " << this->Decimation << "\n";
   os << indent << "OverrideCRS: " << (this->OverrideCRS ? this->OverrideCRS : "(none)") << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
+  os << indent << "MetresPerElevationUnit: " << this->MetresPerElevationUnit << "\n";
   os << indent << "RasterSize: " << this->RasterSize[0] << ", " << this->RasterSize[1] << "\n";
   os << indent << "NumberOfBands: " << this->NumberOfBands << "\n";
   os << indent << "BandRead: " << this->BandRead << "\n";
   os << indent << "HasNoDataValue: " << this->HasNoDataValue << "\n";
   os << indent << "NoDataValue: " << this->NoDataValue << "\n";
+  os << indent << "ElevationUnitRead: " << this->ElevationUnitRead << " ("
+     << this->Impl->UnitSource << ")\n";
 }

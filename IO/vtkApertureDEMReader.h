@@ -4,7 +4,8 @@
  * @brief   Read a single-band elevation raster (any format GDAL opens) as a 2-D DEM image.
  *
  * Output: a vtkImageData with one float32 point array `Elevation` in metres: the band's scale
- * and offset are applied, and a band unit of feet or US survey feet is converted. Nodata
+ * and offset are applied, and feet or US survey feet are converted (the band's unit, else the
+ * height unit of a compound CRS, else metres; MetresPerElevationUnit overrides them). Nodata
  * (the band's nodata value, a GDAL mask, NaN, an infinity, or a value that does not fit a
  * float) becomes NaN. The grid follows vtkApertureGeoreference's conventions: origin and
  * spacing in CRS units, origin at the centre of the south-west cell, row 0 south, identity
@@ -26,6 +27,10 @@
  * - OverrideCRS: a CRS (WKT, "EPSG:xxxx", PROJ string) used instead of the file's.
  * - MemoryLimit: the most bytes one update may allocate for the output; 0 (default) means the
  *   machine's physical memory.
+ * - MetresPerElevationUnit: metres per elevation unit, for a file whose unit is missing or
+ *   wrong; 0 (default): the file's. A band without a unit in a projected CRS in feet warns
+ *   (such DEMs' heights are often feet: read as metres, their slopes would be 3.28 times too
+ *   steep); an unknown unit warns; both are read as metres.
  *
  * The reader honours the pipeline's update extent: a sub-extent request reads only those rows
  * and columns from the file.
@@ -33,9 +38,9 @@
  * Errors (vtkErrorMacro, failed update, empty output): a missing file, a file GDAL cannot
  * open, a band that does not exist, no georeference (no geotransform, or ground control points
  * only), a rotated or mirrored geotransform, or one with a pixel size of 0, no CRS (without
- * OverrideCRS), fewer than 2 x 2 output cells, a whole raster of nodata, an output larger than
- * MemoryLimit, and an output the process cannot allocate (out of memory, e.g. under
- * `ulimit -v`).
+ * OverrideCRS), a negative, NaN or infinite MetresPerElevationUnit, fewer than 2 x 2 output
+ * cells, a whole raster of nodata, an output larger than MemoryLimit, and an output the
+ * process cannot allocate (out of memory, e.g. under `ulimit -v`).
  *
  * @sa vtkApertureDEMWriter vtkApertureGeoreference vtkApertureTerrainMesh
  */
@@ -105,6 +110,21 @@ public:
   ///@}
 
   ///@{
+  /** Metres per elevation unit of the file (after the band's scale and offset), overriding its
+   *  own unit: 0.3048 for feet, 1200/3937 for US survey feet; 0 (default): the file's unit. */
+  vtkSetMacro(MetresPerElevationUnit, double);
+  vtkGetMacro(MetresPerElevationUnit, double);
+  ///@}
+
+  ///@{
+  /** Valid after UpdateInformation(): the metres per elevation unit applied, and where it came
+   *  from ("MetresPerElevationUnit", "the band's unit 'ft'", "the CRS's height unit 'US survey
+   *  foot'", "none in the file: metres"). */
+  vtkGetMacro(ElevationUnitRead, double);
+  const char* GetElevationUnitSource();
+  ///@}
+
+  ///@{
   /** Facts about the file, valid after UpdateInformation(): GDAL driver short name, raster
    *  size in full-resolution pixels, band count, the band read, and its nodata value. */
   const char* GetDriverName();
@@ -133,12 +153,14 @@ protected:
   int Decimation;
   char* OverrideCRS;
   vtkTypeInt64 MemoryLimit;
+  double MetresPerElevationUnit;
 
   int RasterSize[2];
   int NumberOfBands;
   int BandRead;
   bool HasNoDataValue;
   double NoDataValue;
+  double ElevationUnitRead;
 
 private:
   vtkApertureDEMReader(const vtkApertureDEMReader&) = delete;

@@ -31,6 +31,22 @@ void TestProjected()
   AP_CHECK(geo->HasCRS() && !geo->IsGeographic());
   AP_CHECK(std::string(geo->GetCRSName()) == "WGS 84 / UTM zone 11N");
   AP_CHECK(std::string(geo->GetCRSUnitName()) == "metre");
+  AP_CHECK(geo->GetCRSUnitMetres() == 1.0);
+  AP_CHECK(geo->GetVerticalUnitMetres() == 0.0 && !*geo->GetVerticalUnitName());
+  // Units in feet: a state plane (US survey feet, 1200/3937 m), with NAVD88 heights in the same
+  // unit as a compound CRS; the horizontal unit is the projected part's.
+  vtkNew<vtkApertureGeoreference> feet;
+  AP_CHECK(feet->SetCRS("EPSG:2263"));
+  AP_CHECK_NEAR(feet->GetCRSUnitMetres(), 1200.0 / 3937.0, 1e-15);
+  AP_CHECK(feet->GetVerticalUnitMetres() == 0.0);
+  AP_CHECK(feet->SetCRS("EPSG:2263+6360"));
+  AP_CHECK_NEAR(feet->GetCRSUnitMetres(), 1200.0 / 3937.0, 1e-15);
+  AP_CHECK_NEAR(feet->GetVerticalUnitMetres(), 1200.0 / 3937.0, 1e-15);
+  AP_CHECK(std::string(feet->GetVerticalUnitName()) == "US survey foot");
+  AP_CHECK(feet->SetCRS("EPSG:32611+5703")); // (UTM 11N + NAVD88 height in metres)
+  AP_CHECK(feet->GetCRSUnitMetres() == 1.0 && feet->GetVerticalUnitMetres() == 1.0);
+  AP_CHECK(feet->SetCRS("EPSG:32611")); // (a new CRS forgets the vertical part)
+  AP_CHECK(feet->GetVerticalUnitMetres() == 0.0 && !*feet->GetVerticalUnitName());
   // The false origin of UTM zone 11N: the equator on the central meridian, 117 W.
   double ll[2];
   AP_CHECK(geo->CRSToLonLat(500000.0, 0.0, ll));
@@ -93,6 +109,7 @@ void TestGeographic()
   AP_CHECK(geo->SetCRS("EPSG:4326"));
   AP_CHECK(geo->IsGeographic());
   AP_CHECK(std::string(geo->GetCRSUnitName()) == "degree");
+  AP_CHECK(geo->GetCRSUnitMetres() == 0.0);
   // 3 arc-second cells at 36.3 N: east-west N cos(lat) dlon, north-south M dlat (closed forms
   // of the prime vertical and meridian radii; the geodesic over 90 m differs by < 1e-9).
   const double cell = 1.0 / 1200.0, lat = 36.3;

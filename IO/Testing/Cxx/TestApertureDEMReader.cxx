@@ -163,6 +163,8 @@ void TestUnits()
   Read rd(tmp + "/feet.tif");
   rd.Update();
   AP_CHECK_NEAR(rd.Z(0, 0), 304.8, 1e-4);
+  AP_CHECK(rd.Reader->GetElevationUnitRead() == 0.3048);
+  AP_CHECK(std::string(rd.Reader->GetElevationUnitSource()) == "the band's unit 'ft'");
   s.unit = "US survey foot";
   AP_CHECK(aptest::WriteRaster(tmp + "/usfeet.tif", s));
   Read us(tmp + "/usfeet.tif");
@@ -175,6 +177,83 @@ void TestUnits()
   AP_CHECK(cu.Ok == 1 && cu.Warnings->GetWarning());
   AP_CHECK_CONTAINS(cu.Warnings->GetWarningMessage(), "unknown unit 'cubits'");
   AP_CHECK_NEAR(cu.Z(0, 0), 1000.0, 0.0);
+  AP_CHECK(cu.Reader->GetElevationUnitRead() == 1.0);
+
+  // MetresPerElevationUnit overrides the band's unit (cubits: 0.4572 m), silently.
+  Read cubits(tmp + "/cubits.tif");
+  cubits.Reader->SetMetresPerElevationUnit(0.4572);
+  cubits.Update();
+  AP_CHECK(cubits.Ok == 1 && !cubits.Warnings->GetWarning());
+  AP_CHECK_NEAR(cubits.Z(0, 0), 457.2, 1e-4);
+  AP_CHECK(std::string(cubits.Reader->GetElevationUnitSource()) == "MetresPerElevationUnit");
+  Read metres(tmp + "/feet.tif");
+  metres.Reader->SetMetresPerElevationUnit(1.0);
+  metres.Update();
+  AP_CHECK_NEAR(metres.Z(0, 0), 1000.0, 0.0);
+  for (double bad : { -0.3048, std::nan(""), HUGE_VAL })
+  {
+    Read b(tmp + "/feet.tif");
+    b.Reader->SetMetresPerElevationUnit(bad);
+    b.Update();
+    AP_CHECK(b.Ok == 0 && b.Errors->GetError());
+    AP_CHECK_CONTAINS(
+      b.Errors->GetErrorMessage(), "MetresPerElevationUnit must be a positive number of metres");
+  }
+
+  // No unit in the band: metres, silently in a metric CRS or a geographic one...
+  s.unit.clear();
+  AP_CHECK(aptest::WriteRaster(tmp + "/nounit.tif", s));
+  Read plain(tmp + "/nounit.tif");
+  plain.Update();
+  AP_CHECK(plain.Ok == 1 && !plain.Warnings->GetWarning());
+  AP_CHECK_NEAR(plain.Z(0, 0), 1000.0, 0.0);
+  AP_CHECK(std::string(plain.Reader->GetElevationUnitSource()) == "none in the file: metres");
+  aptest::RasterSpec ll = s;
+  ll.crs = "EPSG:4326";
+  ll.gt[0] = -84.0;
+  ll.gt[1] = 1.0 / 1200;
+  ll.gt[5] = -1.0 / 1200;
+  ll.gt[3] = 36.0;
+  AP_CHECK(aptest::WriteRaster(tmp + "/nounit-ll.tif", ll));
+  Read geographic(tmp + "/nounit-ll.tif");
+  geographic.Update();
+  AP_CHECK(geographic.Ok == 1 && !geographic.Warnings->GetWarning());
+  // ...but a warning in a projected CRS in feet, whose DEMs' heights are often feet too.
+  aptest::RasterSpec sp = s;
+  sp.crs = "EPSG:2263"; // (NAD83 / New York Long Island (ftUS))
+  sp.gt[0] = 1000000.0;
+  sp.gt[3] = 200000.0;
+  AP_CHECK(aptest::WriteRaster(tmp + "/stateplane.tif", sp));
+  Read feetCRS(tmp + "/stateplane.tif");
+  feetCRS.Update();
+  AP_CHECK(feetCRS.Ok == 1 && feetCRS.Warnings->GetWarning());
+  AP_CHECK_CONTAINS(feetCRS.Warnings->GetWarningMessage(),
+    "has no elevation unit and its CRS is in US survey foot; elevations are read as metres");
+  AP_CHECK_NEAR(feetCRS.Z(0, 0), 1000.0, 0.0);
+  Read feetSaid(tmp + "/stateplane.tif");
+  feetSaid.Reader->SetMetresPerElevationUnit(1200.0 / 3937.0);
+  feetSaid.Update();
+  AP_CHECK(feetSaid.Ok == 1 && !feetSaid.Warnings->GetWarning());
+  AP_CHECK_NEAR(feetSaid.Z(0, 0), 1000.0 * 1200.0 / 3937.0, 1e-4);
+
+  // A compound CRS's height unit (here through OverrideCRS: NAVD88 height in US survey feet)
+  // when the band has none; the band's own unit wins over it, with a warning.
+  Read compound(tmp + "/nounit.tif");
+  compound.Reader->SetOverrideCRS("EPSG:32611+6360");
+  compound.Update();
+  AP_CHECK(compound.Ok == 1 && !compound.Warnings->GetWarning());
+  AP_CHECK_NEAR(compound.Z(0, 0), 1000.0 * 1200.0 / 3937.0, 1e-4);
+  AP_CHECK(std::string(compound.Reader->GetElevationUnitSource()) ==
+    "the CRS's height unit 'US survey foot'");
+  s.unit = "metre";
+  AP_CHECK(aptest::WriteRaster(tmp + "/metre.tif", s));
+  Read disagree(tmp + "/metre.tif");
+  disagree.Reader->SetOverrideCRS("EPSG:32611+6360");
+  disagree.Update();
+  AP_CHECK(disagree.Ok == 1 && disagree.Warnings->GetWarning());
+  AP_CHECK_CONTAINS(disagree.Warnings->GetWarningMessage(),
+    "has the unit 'metre' but the CRS's heights are in US survey foot; the band's unit is used");
+  AP_CHECK_NEAR(disagree.Z(0, 0), 1000.0, 0.0);
 }
 
 // Subwindow, decimation (block means ignoring nodata), overviews and update extents.
