@@ -217,6 +217,36 @@ class TestBake(unittest.TestCase):
         self.assertEqual(meta["SOURCE_DECIMATION"], "2 x 2 blocks averaged")
         self.assertEqual(meta["SOURCE_CRS_OVERRIDE"], "EPSG:32611")
         self.assertNotIn("SOURCE_OVERVIEW", meta)
+        self.assertEqual(meta["SOURCE_ELEVATION_UNIT"], "1 m (none in the file: metres)")
+
+    def test_elevation_in_feet(self):
+        # The class's valley with its heights in feet and no unit said: --zfactor ft bakes the
+        # valley (the floor's SkyViewFactor 1 - 2 alpha / pi, alpha = 30 degrees, as the metre
+        # DEM's); without it the sides rise at atan(tan 30 / 0.3048) = 62 degrees.
+        ds = gdal.Open(self.dem)
+        z, gt = ds.GetRasterBand(1).ReadAsArray(), ds.GetGeoTransform()
+        ds = None
+        feet = np.where(z == -9999, -9999, z / 0.3048).astype(np.float32)
+        dem = self.path("valley-feet.tif")
+        make_dem(dem, feet, gt, 32611)
+        svf = {}
+        for name, options in (("metres", (self.dem,)), ("zfactor", (dem, "--zfactor", "ft")),
+                              ("none", (dem,))):
+            out = self.path("feet-%s.tif" % name)
+            status, _, err = run("bake", *options, out, "--products", "SkyViewFactor", "-d", 360,
+                                 "--no-curvature")
+            self.assertEqual(status, 0, err)
+            self.assertEqual(err, "")  # (a projected CRS in metres: no unit is no warning)
+            b, meta, _, _ = bands(out)
+            svf[name] = b["SkyViewFactor"][0]
+            if name == "zfactor":
+                self.assertEqual(meta["SOURCE_ELEVATION_UNIT"], "0.3048 m (--zfactor)")
+        # (elevations rounded to float32 twice: 1e-5 of the valley's 693 m height)
+        np.testing.assert_allclose(svf["zfactor"], svf["metres"], atol=1e-5)
+        self.assertAlmostEqual(svf["zfactor"][30, 40], 1 - 2 * math.radians(30) / math.pi,
+                               delta=3e-3)
+        alpha = math.atan(0.9996 * math.tan(math.radians(30)) / 0.3048)
+        self.assertAlmostEqual(svf["none"][30, 40], 1 - 2 * alpha / math.pi, delta=3e-3)
 
     def test_gdal_virtual_path(self):
         # GDAL's virtual file systems are read as GDAL reads them: a DEM inside a zip (as SRTM

@@ -246,6 +246,52 @@ class TestInfo(CommandLineTest):
         d, _ = self.info(p, "--srs", "EPSG:32611")
         self.assertEqual(d["crs"], "WGS 84 / UTM zone 11N")
 
+    def test_elevation_unit(self):
+        # A state-plane DEM in US survey feet whose band has no unit: its heights are read as
+        # metres, with a warning in the options' words; --zfactor says what they are.
+        rows = np.full((4, 5), 1000.0)
+        p = make_raster(self.path("stateplane.tif"), rows, (1000000, 100, 0, 200000, 0, -100),
+                        srs="EPSG:2263")
+        d, err = self.info(p)
+        self.assertEqual(err.strip(), (
+            "aperture: warning: '%s' band 1 has no elevation unit and its CRS is in "
+            "US survey foot; elevations are read as metres: if they are in feet, say so with "
+            "--zfactor 0.3048006096 (US survey feet) or 0.3048 (feet); 1 keeps metres without "
+            "this warning" % p))
+        self.assertEqual(d["elevation_range"], [1000.0, 1000.0])
+        self.assertEqual(d["elevation_unit_m"], 1.0)
+        self.assertEqual(d["elevation_unit_source"], "none in the file: metres")
+        us_foot = 1200.0 / 3937.0
+        for z, metres in (("us-ft", us_foot), ("US-FT", us_foot), ("ft", 0.3048),
+                          ("0.3048", 0.3048), ("1", 1.0), ("m", 1.0)):
+            d, err = self.info(p, "--zfactor", z)
+            self.assertEqual(err, "")
+            self.assertEqual(d["elevation_unit_m"], metres)
+            self.assertEqual(d["elevation_unit_source"], "--zfactor")
+            # (float32 elevations: 1000 * metres rounded once)
+            self.assertEqual(d["elevation_range"], [float(np.float32(1000.0 * metres))] * 2)
+        status, out, _ = run("info", p, "--zfactor", "us-ft")
+        self.assertIn("Elevation:  304.80 .. 304.80 m (unit: 0.3048006096 m, --zfactor)", out)
+        # A band with a unit needs no option; --zfactor overrides it.
+        m = make_raster(self.path("metres.tif"), rows, (500000, 30, 0, 4000000, 0, -30))
+        ds = gdal.Open(m, gdal.GA_Update)
+        ds.GetRasterBand(1).SetUnitType("ft")
+        ds = None
+        d, err = self.info(m)
+        self.assertEqual(err, "")
+        self.assertEqual(d["elevation_unit_source"], "the band's unit 'ft'")
+        self.assertEqual(d["elevation_range"], [float(np.float32(304.8))] * 2)
+        d, _ = self.info(m, "--zfactor", "m")
+        self.assertEqual(d["elevation_range"], [1000.0, 1000.0])
+
+    def test_bad_zfactor(self):
+        for z in ("0", "-0.3048", "nan", "inf", "feet", ""):
+            status, out, err = run("info", "--zfactor", z)
+            self.assertEqual(status, 2, err)
+            self.assertIn("argument --zfactor: must be a positive number of metres per "
+                          "elevation unit, or ft, us-ft or m, not %r" % z, err)
+            self.assertEqual(out, "")
+
 
 class TestBadInput(CommandLineTest):
     def test_missing_file(self):

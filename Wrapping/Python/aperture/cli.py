@@ -50,6 +50,28 @@ def _add_read_options(parser, dem_required=False, srcwin_help=None):
                         "raster's top-left corner (a --srcwin gets every block it touches)")
     g.add_argument("--srs", metavar="CRS",
                    help="use this CRS instead of the file's (EPSG:xxxx, WKT or PROJ string)")
+    g.add_argument("--zfactor", type=_parse_zfactor, default=0.0, metavar="Z",
+                   help="metres per elevation unit, for a DEM whose unit is missing or wrong: "
+                        "a number, or ft (0.3048), us-ft (1200/3937) or m (default: the "
+                        "band's unit, else a compound CRS's height unit, else metres)")
+
+
+# --zfactor's names: metres per unit
+_ELEVATION_UNITS = {"m": 1.0, "ft": 0.3048, "us-ft": 1200.0 / 3937.0}
+
+
+def _parse_zfactor(text):
+    value = _ELEVATION_UNITS.get(text.strip().lower())
+    if value is None:
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+    if not (0.0 < value < math.inf):
+        raise argparse.ArgumentTypeError(
+            "must be a positive number of metres per elevation unit, or ft, us-ft or m, not %r"
+            % text)
+    return value
 
 
 class _TermProgress:
@@ -163,6 +185,7 @@ _READER_PHRASES = (
      "use fewer --threads (1 starts none)"),
     (re.compile(r"^OverrideCRS: "), "--srs: "),
     (re.compile(r"set OverrideCRS \(aperture: (--srs EPSG:xxxx)\)"), r"give one with \1"),
+    (re.compile(r"MetresPerElevationUnit"), "--zfactor"),
 )
 
 
@@ -194,6 +217,7 @@ def _dem_reader(args, watcher, subwindow=True):
     reader.SetDecimation(args.decimate)
     if args.srs:
         reader.SetOverrideCRS(args.srs)
+    reader.SetMetresPerElevationUnit(args.zfactor)
     return reader
 
 
@@ -246,6 +270,9 @@ def describe(reader, image):
         "bounds_lonlat": bounds,
         "centre_lonlat": centre,
         "elevation_range": [float(z[valid].min()), float(z[valid].max())],
+        # metres per unit of the file's elevations, and where that came from
+        "elevation_unit_m": reader.GetElevationUnitRead(),
+        "elevation_unit_source": _as_options(reader.GetElevationUnitSource()),
         "nodata_count": int(z.size - np.count_nonzero(valid)),
         # JSON has no NaN: a NaN nodata value is reported as the string "nan".
         "nodata_value": (None if not reader.GetHasNoDataValue()
@@ -267,7 +294,8 @@ def _format_info(d):
         "Bounds:     west %s, south %s, east %s, north %s (degrees)"
         % tuple(deg(v) for v in d["bounds_lonlat"]),
         "Centre:     longitude %s, latitude %s" % tuple(deg(v) for v in d["centre_lonlat"]),
-        "Elevation:  %.2f .. %.2f m" % tuple(d["elevation_range"]),
+        "Elevation:  %.2f .. %.2f m (unit: %.10g m, %s)"
+        % (*d["elevation_range"], d["elevation_unit_m"], d["elevation_unit_source"]),
         "Nodata:     %d cells%s" % (d["nodata_count"], "" if d["nodata_value"] is None
                                     else " (nodata value %s)" % d["nodata_value"]),
     ]
@@ -570,7 +598,7 @@ def _parse_products(text):
     return [name for name, *_ in PRODUCTS if name in chosen]  # band order, no duplicates
 
 
-def _provenance(args, products, band):
+def _provenance(args, products, reader):
     from aperture import __version__, vtkApertureSkyVisibility
     return {
         "APERTURE_VERSION": __version__,
@@ -599,13 +627,13 @@ def _provenance(args, products, band):
         "EDGES": "terrain beyond the DEM edge is treated as invisible; see EdgeTruncated",
         "PRODUCTS": ",".join(products),
         # what of the DEM was read: a product of a window or a decimated grid says so
-        **_read_provenance(args, band),
+        **_read_provenance(args, reader),
     }
 
 
-def _read_provenance(args, band):
-    """What of the DEM was read; band: the reader's GetBandRead()."""
-    record = {"SOURCE_BAND": str(band)}
+def _read_provenance(args, reader):
+    """What of the DEM was read (the reader's band and elevation unit, after its update)."""
+    record = {"SOURCE_BAND": str(reader.GetBandRead())}
     if args.srcwin:
         record["SOURCE_WINDOW"] = ("%d %d %d %d (xoff yoff xsize ysize; its horizons see the "
                                    "DEM around it)" % tuple(args.srcwin))
@@ -615,6 +643,8 @@ def _read_provenance(args, band):
         record["SOURCE_DECIMATION"] = "%d x %d blocks averaged" % (args.decimate, args.decimate)
     if args.srs:
         record["SOURCE_CRS_OVERRIDE"] = args.srs
+    record["SOURCE_ELEVATION_UNIT"] = "%.10g m (%s)" % (
+        reader.GetElevationUnitRead(), _as_options(reader.GetElevationUnitSource()))
     return record
 
 
@@ -897,7 +927,7 @@ def _bake(args, products, progress):
     if args.max_memory is not None:
         sky.SetMemoryLimit(args.max_memory)
     reader, window, read, rows = _plan_bake(args, watcher, sky)
-    provenance = _provenance(args, products, reader.GetBandRead())
+    provenance = _provenance(args, products, reader)
     definitions = {name: (unit, text) for name, unit, text in PRODUCTS}
     writer.SetFileName(args.output)
     writer.SetNumberOfThreads(args.threads)  # tiles compressed in parallel; same bytes
@@ -1321,7 +1351,8 @@ def build_parser():
                         "azimuth_deg, elevation_deg, zenith_deg, elevation_true_deg, "
                         "angular_radius_deg, distance_au, equation_of_time_min, sunrise, "
                         "transit, sunset and, with --dem, grid_azimuth_deg, direction_enu")
-    p.set_defaults(func=cmd_sun, band=0, srcwin=None, overview=-1, decimate=1, srs=None)
+    p.set_defaults(func=cmd_sun, band=0, srcwin=None, overview=-1, decimate=1, srs=None,
+                   zfactor=0.0)
 
     p = sub.add_parser("render", help="render the DEM lit by the sun and sky, to a PNG",
                        description="Render the DEM as a terrain mesh coloured by elevation and "
