@@ -220,7 +220,12 @@ class TestCommandLineRender(unittest.TestCase):
                     ("shifted.tif", lambda ds: ds.SetGeoTransform([gt[0] + 10 * gt[1]] + gt[1:]),
                      "covers another grid than the DEM"),
                     ("nad83.tif", lambda ds: ds.SetProjection("EPSG:4269"),
-                     "is in another CRS (NAD83) than the DEM (WGS 84)")):
+                     "is in another CRS (NAD83) than the DEM (WGS 84)"),
+                    ("feet.tif",
+                     lambda ds: ds.SetMetadataItem("SOURCE_ELEVATION_UNIT", "0.3048 m (--zfactor)"),
+                     "was baked from elevations in units of 0.3048 m (--zfactor); the DEM is read "
+                     "in units of 1 m (none in the file: metres): render with the bake's "
+                     "--zfactor")):
                 other = os.path.join(tmp, name)
                 ds = gdal.GetDriverByName("GTiff").CreateCopy(other, gdal.Open(baked))
                 change(ds)
@@ -230,6 +235,11 @@ class TestCommandLineRender(unittest.TestCase):
                 self.assertEqual(status, 1, stderr)
                 self.assertEqual(len(stderr.strip().splitlines()), 1, stderr)
                 self.assertIn(expected, stderr)
+            # (with the bake's unit the same file is taken)
+            status, _, stderr = run("render", "-o", os.path.join(tmp, "x.png"), "--size",
+                                    "200x120", "--baked", os.path.join(tmp, "feet.tif"),
+                                    "--zfactor", "ft")
+            self.assertEqual(status, 0, stderr)
             src = None
 
 

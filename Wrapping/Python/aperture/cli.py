@@ -340,9 +340,9 @@ def _gt_text(gt):
     return "none" if gt is None else "(%s)" % ", ".join("%.10g" % v for v in gt)
 
 
-def _attach_baked(image, path):
+def _attach_baked(image, path, reader):
     """Put BentNormal and ApertureRadius (radians) from a GeoTIFF of `aperture bake` onto the
-    DEM image; the two grids must be the same."""
+    DEM image (read by `reader`); the two grids and elevation units must be the same."""
     import numpy as np
     from osgeo import gdal
     from vtkmodules.util.numpy_support import numpy_to_vtk
@@ -383,6 +383,19 @@ def _attach_baked(image, path):
             raise ApertureError("%s is in another CRS (%s) than the DEM (%s): bake this DEM"
                                 % (path, baked_srs.GetName() if baked_srs else "none",
                                    dem_srs.GetName()))
+    # nor are the same cells the same terrain when their heights were read in another unit
+    # (bakes since SOURCE_ELEVATION_UNIT was recorded: "<metres> m (<where from>)")
+    baked_unit = ds.GetMetadataItem("SOURCE_ELEVATION_UNIT") or ""
+    try:
+        baked_metres = float(baked_unit.split(" ", 1)[0])
+    except ValueError:
+        baked_metres = None
+    metres = reader.GetElevationUnitRead()
+    if baked_metres is not None and abs(baked_metres - metres) > 1e-9 * metres:
+        raise ApertureError("%s was baked from elevations in units of %s; the DEM is read in "
+                            "units of %.10g m (%s): render with the bake's --zfactor"
+                            % (path, baked_unit, metres,
+                               _as_options(reader.GetElevationUnitSource())))
     # file rows run north to south, image rows south to north
     read = lambda name: ds.GetRasterBand(bands[name]).ReadAsArray().astype(np.float32)[::-1]
     bent = np.stack([read("BentNormal_E"), read("BentNormal_N"), read("BentNormal_U")], -1)
@@ -457,7 +470,7 @@ def cmd_render(args):
     else:
         reader, image = read_dem(args, watcher)
         if args.baked:
-            _attach_baked(image, args.baked)
+            _attach_baked(image, args.baked, reader)
         source = image
     sun = _render_sun(args, image, watcher)
     mesher = watcher.watch(vtkApertureTerrainMesh())
