@@ -351,6 +351,77 @@ bool vtkApertureGeoreference::IsGeographic()
 }
 
 //------------------------------------------------------------------------------
+bool vtkApertureGeoreference::HasMeridianColumns()
+{
+  if (!this->Impl->CRS)
+  {
+    this->Impl->Error = "no coordinate reference system is set";
+    return false;
+  }
+  if (OSRIsGeographic(this->Impl->CRS))
+  {
+    return true;
+  }
+  const int nx = this->GridSize[0], ny = this->GridSize[1];
+  if (nx < 2 || ny < 2)
+  {
+    this->Impl->Error = "the grid has fewer than 2 x 2 cells";
+    return false;
+  }
+  const int cols[3] = { 0, (nx - 1) / 2, nx - 1 }, rows[3] = { 0, (ny - 1) / 2, ny - 1 };
+  double xy[18], ll[18];
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      xy[2 * (3 * r + c)] = this->GridOrigin[0] + cols[c] * this->GridSpacing[0];
+      xy[2 * (3 * r + c) + 1] = this->GridOrigin[1] + rows[r] * this->GridSpacing[1];
+    }
+  }
+  if (!this->CRSToLonLatPoints(9, xy, ll))
+  {
+    return false;
+  }
+  for (double v : ll)
+  {
+    if (!std::isfinite(v))
+    {
+      return false;
+    }
+  }
+  // (longitudes relative to the first column's, within +-180: a cut crossed in between shows
+  // as a longitude that is not linear in x)
+  const auto lon = [&ll](int r, int c) {
+    return std::remainder(ll[2 * (3 * r + c)] - ll[0], 360.0);
+  };
+  const auto lat = [&ll](int r, int c) { return ll[2 * (3 * r + c) + 1]; };
+  const double cellLon = std::fabs(lon(0, 2) - lon(0, 0)) / (nx - 1);
+  const double cellLat = std::fabs(lat(2, 0) - lat(0, 0)) / (ny - 1);
+  if (!(cellLon > 0.0 && cellLat > 0.0))
+  {
+    return false;
+  }
+  const double tolLon = std::max(1e-6 * cellLon, 1e-12);
+  const double tolLat = std::max(1e-6 * cellLat, 1e-12);
+  for (int k = 0; k < 3; ++k)
+  {
+    for (int m = 1; m < 3; ++m)
+    {
+      if (std::fabs(lat(k, m) - lat(k, 0)) > tolLat || std::fabs(lon(m, k) - lon(0, k)) > tolLon)
+      {
+        return false; // (a row that is not a parallel, or a column that is not a meridian)
+      }
+    }
+    const double t = static_cast<double>(cols[1]) / (nx - 1);
+    if (std::fabs(lon(k, 1) - ((1 - t) * lon(k, 0) + t * lon(k, 2))) > tolLon)
+    {
+      return false; // (longitude not linear in x)
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 const char* vtkApertureGeoreference::GetCRSName()
 {
   return this->Impl->Name.c_str();

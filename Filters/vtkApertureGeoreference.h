@@ -105,6 +105,17 @@ public:
   /** True when the CRS is geographic (lat/lon). Requires a CRS. */
   bool IsGeographic();
 
+  /**
+   * True when the grid's columns are meridians and its rows parallels: a geographic CRS, or a
+   * normal-aspect cylindrical projection (Mercator, Web Mercator, equirectangular, cylindrical
+   * equal-area), with longitude linear in x. Checked on the cells of the first, middle and
+   * last rows and columns (to a millionth of a cell). Ground cell sizes then depend on the row
+   * alone, so GetRowCellSizesMetres holds for every cell, and the meridian convergence is 0.
+   * False for other projections (transverse Mercator, conic, polar, sinusoidal), and without
+   * a CRS or a grid of at least 2 x 2 cells.
+   */
+  bool HasMeridianColumns();
+
   /** Name of the CRS ("WGS 84", "WGS 84 / UTM zone 11N"), or "" when none. */
   const char* GetCRSName();
 

@@ -557,13 +557,14 @@ int vtkApertureSkyVisibility::Execute(
     vtkErrorMacro(<< "no metric cell size: " << geo->GetErrorMessage());
     return 0;
   }
-  const bool geographic = geo->IsGeographic();
+  // Grids whose columns are meridians and rows parallels (lat/lon, Mercator, equirectangular)
+  // get their cell sizes row by row, exact for every cell; other projected grids are metric to
+  // within the projection's scale factor, taken at the centre.
+  const bool rowSizes = geo->HasMeridianColumns();
   ap_horizon_grid grid;
   grid.z = zview;
-  // Lat/lon grids get their cell size row by row; projected grids are metric to within the
-  // projection's scale factor, taken at the centre.
-  grid.dx = geographic ? dx.data() + pieceJ : nullptr;
-  grid.dy = geographic ? dy.data() + pieceJ : nullptr;
+  grid.dx = rowSizes ? dx.data() + pieceJ : nullptr;
+  grid.dy = rowSizes ? dy.data() + pieceJ : nullptr;
   grid.dx0 = dx[static_cast<size_t>(nyWhole) / 2];
   grid.dy0 = dy[static_cast<size_t>(nyWhole) / 2];
 
@@ -581,7 +582,7 @@ int vtkApertureSkyVisibility::Execute(
   params.region_j0 = static_cast<size_t>(outExt[2] - inExt[2]);
   params.region_nx = static_cast<size_t>(onx);
   params.region_ny = static_cast<size_t>(ony);
-  if (geographic)
+  if (rowSizes)
   {
     // the sweep's lines bend with the rows' cell sizes: their lattice is the whole DEM's rows'
     params.whole_dx = dx.data();
@@ -595,15 +596,15 @@ int vtkApertureSkyVisibility::Execute(
     params.radius_normal = a / std::sqrt(w2);
     params.radius_meridian = a * (1 - e2) / (w2 * std::sqrt(w2));
   }
-  const double gammaCentre =
-    geographic ? 0.0 : geo->ComputeMeridianConvergence(centre[0], centre[1]);
+  const double gammaCentre = // (0 where the columns are meridians)
+    rowSizes ? 0.0 : geo->ComputeMeridianConvergence(centre[0], centre[1]);
   if (std::isnan(gammaCentre))
   {
     vtkErrorMacro(<< "meridian convergence: " << geo->GetErrorMessage());
     return 0;
   }
   params.azimuth_offset = gammaCentre * M_PI / 180.0;
-  if (!geographic)
+  if (!rowSizes)
   {
     const std::string scale = ScaleChange(geo);
     if (!scale.empty())
@@ -796,7 +797,7 @@ int vtkApertureSkyVisibility::Execute(
   // 5. Bent normals into each cell's true East-North-Up: the sweep ran in the grid frame;
   //    the meridian convergence γ (from a coarse lattice over the whole extent, bilinear
   //    between) rotates them.
-  if (out.bent_normal && !geographic)
+  if (out.bent_normal && !rowSizes)
   {
     const int lx = std::min(nxWhole, 33), ly = std::min(nyWhole, 33);
     std::vector<double> gamma(static_cast<size_t>(lx * ly));

@@ -39,9 +39,12 @@
  * A, rp, SkyViewFactor, DiffuseSkyFactor and BentNormal are exact everywhere, while sector d
  * of HorizonAngles is centred on true azimuth φ_d + γ(cell) − γ(centre) (a fraction of a
  * degree across a UTM DEM). Cell sizes are metric per row (GeographicLib geodesics on the
- * CRS's ellipsoid), so lat/lon DEMs are exact. A projected DEM takes the ground cell size at
- * its centre for every cell, so distances are off by the change of the projection's scale
- * factor across it (about 0.1% across a whole UTM zone; some 5% over Antarctica in polar
+ * CRS's ellipsoid), so lat/lon DEMs are exact, and so are DEMs in a normal-aspect cylindrical
+ * projection (Mercator, Web Mercator, equirectangular, cylindrical equal-area: rows are
+ * parallels, columns meridians, vtkApertureGeoreference::HasMeridianColumns), whose rows get
+ * their own sizes the same way. Any other projected DEM takes the ground cell size at its
+ * centre for every cell, so distances are off by the change of the projection's scale factor
+ * across it (about 0.1% across a whole UTM zone; some 5% over Antarctica in polar
  * stereographic); a change of more than 0.5% (the ground cell size at a corner or an edge
  * midpoint against the centre's) is warned about, naming it. Earth curvature uses the
  * ellipsoid's radius of curvature in each azimuth at the DEM centre.

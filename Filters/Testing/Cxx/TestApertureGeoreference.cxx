@@ -297,6 +297,44 @@ void TestLongitudeSpan()
 }
 } // namespace
 
+// Columns are meridians and rows parallels on lat/lon grids and the cylindrical projections
+// (also across the antimeridian), not on transverse Mercator (even a 2 x 2 grid beside its
+// central meridian), polar stereographic, sinusoidal or Albers.
+void TestMeridianColumns()
+{
+  struct Case
+  {
+    const char* CRS;
+    double X0, Y0, Cell;
+    int N;
+    bool Expected;
+  };
+  const Case cases[] = { { "EPSG:4326", -120.0, 40.0, 0.001, 100, true },
+    { "EPSG:3857", 1e6, 8.5e6, 1000.0, 100, true },
+    { "EPSG:3857", 20037508.34 - 50000.0, 8.5e6, 1000.0, 100, true },
+    { "EPSG:3395", 1e6, 8.5e6, 1000.0, 100, true }, { "EPSG:4087", 1e6, 6e6, 1000.0, 100, true },
+    { "EPSG:6933", 1e6, 5e6, 1000.0, 100, true }, { "EPSG:32611", 5e5, 4e6, 30.0, 100, false },
+    { "EPSG:32611", 499985.0, 4e6, 30.0, 2, false }, { "EPSG:3031", 5e5, 5e5, 1000.0, 100, false },
+    { "ESRI:54008", 1e6, 5e6, 1000.0, 100, false }, { "EPSG:5070", 1e6, 2e6, 30.0, 100, false } };
+  for (const Case& c : cases)
+  {
+    vtkNew<vtkApertureGeoreference> geo;
+    AP_CHECK(geo->SetCRS(c.CRS));
+    geo->SetGrid(c.X0, c.Y0, c.Cell, c.Cell, c.N, c.N + 20);
+    if (geo->HasMeridianColumns() != c.Expected)
+    {
+      std::printf("HasMeridianColumns of %s at (%g, %g): %d\n", c.CRS, c.X0, c.Y0, !c.Expected);
+      AP_CHECK(false);
+    }
+  }
+  vtkNew<vtkApertureGeoreference> none;
+  AP_CHECK(!none->HasMeridianColumns());
+  AP_CHECK(std::string(none->GetErrorMessage()) == "no coordinate reference system is set");
+  AP_CHECK(none->SetCRS("EPSG:3857"));
+  none->SetGrid(1e6, 8.5e6, 1000.0, 1000.0, 1, 5);
+  AP_CHECK(!none->HasMeridianColumns());
+}
+
 int TestApertureGeoreference(int, char*[])
 {
   TestProjected();
@@ -308,5 +346,6 @@ int TestApertureGeoreference(int, char*[])
   TestRowSizes();
   TestRowSizesAtPole();
   TestLongitudeSpan();
+  TestMeridianColumns();
   return aptest::Result();
 }

@@ -613,6 +613,56 @@ class TestSkyVisibility(Testing.vtkTest):
         self.assertEqual(warnings_of(x0, y0, 1000.0, 101, "EPSG:3031"), [])
         self.assertEqual(warnings_of(200000.0, 4000000.0, 6000.0, 101, "EPSG:32633"), [])
 
+    def testMercatorRowsAreExact(self):
+        # A Mercator DEM's rows are parallels and its columns meridians, so its cells' ground
+        # sizes depend on the row alone and the filter takes them row by row, as for lat/lon:
+        # exact over a DEM from 58 to 64 N, where the scale changes by 20%. The terrain is a
+        # plane rising S to the north on the ground, z = tan S * (meridian arc from the DEM's
+        # south edge): its horizon in azimuth phi is atan(tan S cos phi) everywhere (flat Earth),
+        # as on rhumb lines the northing grows by cos phi per metre. With the centre's cell size
+        # for every cell, the cells near the edges got horizons 10% too steep or too flat.
+        from aperture.errors import Watcher
+        S, D, cell, nx = math.radians(0.7), 32, 1000.0, 50
+        expected = np.arctan(np.tan(S) * np.cos(2 * np.pi * np.arange(D) / D))
+        wgs84 = osr.SpatialReference()
+        wgs84.ImportFromEPSG(4326)
+        wgs84.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+
+        def arc(lat0, lat):  # meridian arc (m) from lat0 to each lat (rad): Simpson, 64 steps
+            t = np.linspace(0.0, 1.0, 65)[:, None] * (lat - lat0)[None, :] + lat0
+            w = np.ones(65)
+            w[1:-1:2], w[2:-1:2] = 4, 2
+            return (w[:, None] * radii(t)[0]).sum(0) * (lat - lat0) / 192
+
+        for epsg in (3395, 3857):  # (World Mercator, ellipsoidal; Web Mercator, spherical)
+            merc = osr.SpatialReference()
+            merc.ImportFromEPSG(epsg)
+            merc.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+            to_merc = osr.CoordinateTransformation(wgs84, merc)
+            to_geo = osr.CoordinateTransformation(merc, wgs84)
+            y0 = to_merc.TransformPoint(10.0, 58.0)[1]
+            ny = int((to_merc.TransformPoint(10.0, 64.0)[1] - y0) / cell)
+            ys = y0 + cell * np.arange(ny)
+            lats = np.radians([to_geo.TransformPoint(1e6, y)[1] for y in ys])
+            south = math.radians(to_geo.TransformPoint(1e6, y0 - cell / 2)[1])
+            z = np.tile((-4000 + np.tan(S) * arc(south, lats))[:, None], (1, nx))
+            w = Watcher()
+            f = w.watch(aperture.vtkApertureSkyVisibility())
+            f.SetInputData(make_image(z, 1e6, y0, cell, cell, "EPSG:%d" % epsg))
+            f.SetMaximumDistance(5000.0)
+            f.SetEarthCurvature(False)
+            f.SetNumberOfDirections(D)
+            f.SetComputeHorizonAngles(True)
+            f.Update()
+            self.assertEqual((w.errors, w.warnings), ([], []))  # (no scale-change warning)
+            h = array(f.GetOutput(), "HorizonAngles").reshape(ny, nx, D)
+            bent = array(f.GetOutput(), "BentNormal").reshape(ny, nx, 3)
+            for j in (12, ny // 2, ny - 13):  # 58.1, 61 and 63.9 N
+                err = np.degrees(np.abs(h[j, nx // 2] - expected)).max()
+                # (6e-5 degree measured: float32 elevations; 0.067 with the centre's cell size)
+                self.assertLess(err, 2e-4, "EPSG:%d row %d: %.5f deg" % (epsg, j, err))
+                self.assertLess(abs(bent[j, nx // 2, 0]), 1e-6)  # (no convergence to rotate)
+
     def testMemoryLimit(self):
         # Refused before allocating when the estimate exceeds MemoryLimit: bytes per cell of
         # the default products 33 (five floats, BentNormal 12, EdgeTruncated 1), the float
