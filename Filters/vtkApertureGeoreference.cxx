@@ -389,8 +389,8 @@ bool vtkApertureGeoreference::HasMeridianColumns()
       return false;
     }
   }
-  // (longitudes relative to the first column's, within +-180: a cut crossed in between shows
-  // as a longitude that is not linear in x)
+  // (longitudes relative to the first column's, within +-180, so that a grid across the
+  // antimeridian stays linear in x)
   const auto lon = [&ll](int r, int c) {
     return std::remainder(ll[2 * (3 * r + c)] - ll[0], 360.0);
   };
