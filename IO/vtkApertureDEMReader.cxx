@@ -438,8 +438,9 @@ int vtkApertureDEMReader::RequestInformation(
   else
   {
     d.UnitSource = "none in the file: metres";
+    // (a foot of any kind: international, US survey, Clarke's, Indian, ... within 0.1%)
     const double horizontal = geo->GetCRSUnitMetres();
-    if (horizontal > 0.0 && std::fabs(horizontal - 1.0) > 1e-6)
+    if (std::fabs(horizontal / 0.3048 - 1.0) < 1e-3)
     {
       vtkWarningMacro(<< "'" << name << "' band " << d.Band << " has no elevation unit and its "
                       << "CRS is in " << geo->GetCRSUnitName() << "; elevations are read as "

@@ -235,6 +235,11 @@ void TestUnits()
   feetSaid.Update();
   AP_CHECK(feetSaid.Ok == 1 && !feetSaid.Warnings->GetWarning());
   AP_CHECK_NEAR(feetSaid.Z(0, 0), 1000.0 * 1200.0 / 3937.0, 1e-4);
+  // (a CRS in kilometres says nothing of feet: no warning)
+  Read kilometres(tmp + "/nounit.tif");
+  kilometres.Reader->SetOverrideCRS("+proj=utm +zone=11 +datum=WGS84 +units=km +type=crs");
+  kilometres.Update();
+  AP_CHECK(kilometres.Ok == 1 && !kilometres.Warnings->GetWarning());
 
   // A compound CRS's height unit (here through OverrideCRS: NAVD88 height in US survey feet)
   // when the band has none; the band's own unit wins over it, with a warning.
