@@ -384,7 +384,7 @@ def _attach_baked(image, path, reader):
                                 % (path, baked_srs.GetName() if baked_srs else "none",
                                    dem_srs.GetName()))
     # nor are the same cells the same terrain when their heights were read in another unit
-    # (bakes since SOURCE_ELEVATION_UNIT was recorded: "<metres> m (<where from>)")
+    # (bakes since SOURCE_ELEVATION_UNIT was recorded, as _elevation_unit writes it)
     baked_unit = ds.GetMetadataItem("SOURCE_ELEVATION_UNIT") or ""
     try:
         baked_metres = float(baked_unit.split(" ", 1)[0])
@@ -393,9 +393,8 @@ def _attach_baked(image, path, reader):
     metres = reader.GetElevationUnitRead()
     if baked_metres is not None and abs(baked_metres - metres) > 1e-9 * metres:
         raise ApertureError("%s was baked from elevations in units of %s; the DEM is read in "
-                            "units of %.10g m (%s): render with the bake's --zfactor"
-                            % (path, baked_unit, metres,
-                               _as_options(reader.GetElevationUnitSource())))
+                            "units of %s: render with the bake's --zfactor"
+                            % (path, baked_unit, _elevation_unit(reader)))
     # file rows run north to south, image rows south to north
     read = lambda name: ds.GetRasterBand(bands[name]).ReadAsArray().astype(np.float32)[::-1]
     bent = np.stack([read("BentNormal_E"), read("BentNormal_N"), read("BentNormal_U")], -1)
@@ -656,9 +655,15 @@ def _read_provenance(args, reader):
         record["SOURCE_DECIMATION"] = "%d x %d blocks averaged" % (args.decimate, args.decimate)
     if args.srs:
         record["SOURCE_CRS_OVERRIDE"] = args.srs
-    record["SOURCE_ELEVATION_UNIT"] = "%.10g m (%s)" % (
-        reader.GetElevationUnitRead(), _as_options(reader.GetElevationUnitSource()))
+    record["SOURCE_ELEVATION_UNIT"] = _elevation_unit(reader)
     return record
+
+
+def _elevation_unit(reader):
+    """The reader's elevation unit (after its update) as bakes record it and render --baked
+    compares it: "<metres per unit> m (<where that came from>)"."""
+    return "%.10g m (%s)" % (reader.GetElevationUnitRead(),
+                             _as_options(reader.GetElevationUnitSource()))
 
 
 def _product_image(sky, products):
