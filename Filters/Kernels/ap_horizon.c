@@ -687,6 +687,15 @@ struct ap_horizon {
   size_t fm_tnx[2];
   float fm_eps;           /* added to a tile maximum: covers the interpolation's rounding */
   float fm_side_max;      /* the highest cell of the view's side the rays leave through */
+
+  /* p.scale_metric: a copy, its nodes divided by dx0², dx0 dy0, dy0² (so 1, 0, 1 where the
+   * cells measure dx0 x dy0); the inverse of its square root S at every node (S^-1: xx, xy,
+   * yy); and the prepared sector's 1 / ρ at every node */
+  double *metric;
+  double *sinv;
+  float *inv_rho;
+  size_t *scale_col;      /* per grid column: its lattice cell's first node (scale_node) */
+  float *scale_frac;      /* and the fraction towards the next */
 };
 
 /* Cell sizes of row j. */
@@ -726,6 +735,28 @@ void ap_horizon_params_init(ap_horizon_params *p)
   p->whole_dy = NULL;
   p->whole_rows = 0;
   p->region_i0 = p->region_j0 = p->region_nx = p->region_ny = 0;
+  p->scale_metric = NULL;
+  p->scale_cols = p->scale_rows = 0;
+  p->scale_span_cols = p->scale_span_rows = 0.0;
+}
+
+/* p.scale_metric's lattice: sizes and spans in range, every node a positive definite metric */
+static int scale_metric_valid(const ap_horizon_params *p)
+{
+  size_t k;
+  if (p->scale_cols < 2 || p->scale_cols > 1025 || p->scale_rows < 2 ||
+      p->scale_rows > 1025 || !positive_finite(p->scale_span_cols) ||
+      !positive_finite(p->scale_span_rows)) {
+    return 0;
+  }
+  for (k = 0; k < p->scale_cols * p->scale_rows; ++k) {
+    const double *m = p->scale_metric + 3 * k;
+    if (!positive_finite(m[0]) || !positive_finite(m[2]) || !isfinite(m[1]) ||
+        !(m[0] * m[2] - m[1] * m[1] > 0.0)) {
+      return 0;
+    }
+  }
+  return 1;
 }
 
 /* ap_horizon_validate, also giving the elevations' statistics when AP_OK. */
@@ -768,6 +799,9 @@ static ap_status validate(const ap_horizon_grid *g, const ap_horizon_params *p,
     }
   }
   if ((p->whole_dx == NULL) != (p->whole_dy == NULL)) {
+    return AP_ERR_INVALID_ARGUMENT;
+  }
+  if (p->scale_metric && (g->dx || g->dy || !scale_metric_valid(p))) {
     return AP_ERR_INVALID_ARGUMENT;
   }
   if (p->whole_dx && (g->dx || g->dy)) {
@@ -1030,6 +1064,11 @@ void ap_horizon_destroy(ap_horizon *hz)
   free(hz->fm_tile[1]);
   free(hz->fm_shore[0]);
   free(hz->fm_shore[1]);
+  free(hz->metric);
+  free(hz->sinv);
+  free(hz->inv_rho);
+  free(hz->scale_col);
+  free(hz->scale_frac);
   free(hz);
 }
 
@@ -1097,6 +1136,104 @@ size_t ap_horizon_state_bytes_per_cell(int diffuse_sky_factor, int bent_normal)
   return state + (diffuse_sky_factor && !bent_normal ? 3 * sizeof(float) : 0); /* bsum */
 }
 
+/* The lattice cell of p.scale_metric around grid column i (axis 0) or row i (axis 1): its
+ * first node and the fraction towards the next. From the larger DEM's index alone, so a piece
+ * of it interpolates as the whole does. */
+static size_t scale_node(const ap_horizon *hz, int axis, size_t i, float *t)
+{
+  const size_t n = axis ? hz->p.scale_rows : hz->p.scale_cols;
+  const double span = axis ? hz->p.scale_span_rows : hz->p.scale_span_cols;
+  const long whole = (long)i + (axis ? hz->p.origin_row : hz->p.origin_col);
+  const double f = fmin(fmax((double)whole * (double)(n - 1) / span, 0.0), (double)(n - 1));
+  size_t a = (size_t)f;
+  a = a > n - 2 ? n - 2 : a;
+  *t = (float)(f - (double)a);
+  return a;
+}
+
+/* p.scale_metric: copied and relative to dx0, dy0 (hz->metric), with room for the sector's
+ * 1 / rho (hz->inv_rho), and every grid column's place between the nodes. 0 when out of
+ * memory. */
+static int scale_metric_init(ap_horizon *hz)
+{
+  const size_t nodes = hz->p.scale_cols * hz->p.scale_rows;
+  const double dx0 = hz->g.dx0, dy0 = hz->g.dy0;
+  size_t k;
+  hz->metric = (double *)malloc(3 * nodes * sizeof(double));
+  hz->sinv = (double *)malloc(3 * nodes * sizeof(double));
+  hz->inv_rho = (float *)malloc(nodes * sizeof(float));
+  hz->scale_col = (size_t *)malloc(hz->nx * sizeof(size_t));
+  hz->scale_frac = (float *)malloc(hz->nx * sizeof(float));
+  if (!hz->metric || !hz->sinv || !hz->inv_rho || !hz->scale_col || !hz->scale_frac) {
+    return 0;
+  }
+  for (k = 0; k < nodes; ++k) {
+    const double *m = hz->p.scale_metric + 3 * k;
+    double *r = hz->metric + 3 * k, *v = hz->sinv + 3 * k, q, t, a, b, c, det;
+    r[0] = m[0] / (dx0 * dx0);
+    r[1] = m[1] / (dx0 * dy0);
+    r[2] = m[2] / (dy0 * dy0);
+    /* S = sqrt(r) = (r + q I) / t, q = sqrt(det r), t = sqrt(trace r + 2 q); then S^-1 */
+    q = sqrt(r[0] * r[2] - r[1] * r[1]);
+    t = sqrt(r[0] + r[2] + 2.0 * q);
+    a = (r[0] + q) / t;
+    b = r[1] / t;
+    c = (r[2] + q) / t;
+    det = a * c - b * b;
+    v[0] = c / det;
+    v[1] = -b / det;
+    v[2] = a / det;
+  }
+  for (k = 0; k < hz->nx; ++k) {
+    hz->scale_col[k] = scale_node(hz, 0, k, hz->scale_frac + k);
+  }
+  hz->p.scale_metric = NULL; /* (read here only) */
+  return 1;
+}
+
+/* 1 / rho of the prepared sector for grid cells [i0, i0 + n) of grid row j: between the
+ * lattice's rows, then between its columns (hz->inv_rho). */
+static void scale_block(const ap_horizon *hz, size_t j, size_t i0, size_t n, float *out)
+{
+  enum { MAX_NODES = 1025 };
+  const size_t cols = hz->p.scale_cols;
+  float tb, row[MAX_NODES];
+  const size_t b = scale_node(hz, 1, j, &tb);
+  const float *r0 = hz->inv_rho + b * cols, *r1 = r0 + cols;
+  const size_t a0 = hz->scale_col[i0], a1 = hz->scale_col[i0 + n - 1] + 1;
+  size_t a, k;
+  for (a = a0; a <= a1; ++a) {
+    row[a] = r0[a] + tb * (r1[a] - r0[a]);
+  }
+  for (k = 0; k < n;) {
+    /* the cells between nodes c and c + 1: a loop without gathers */
+    const size_t c = hz->scale_col[i0 + k];
+    const float lo = row[c], step = row[c + 1] - row[c];
+    const float *f = hz->scale_frac + i0;
+    size_t e = k + 1;
+    while (e < n && hz->scale_col[i0 + e] == c) {
+      ++e;
+    }
+    for (; k < e; ++k) {
+      out[k] = lo + f[k] * step;
+    }
+  }
+}
+
+/* S^-1 (xx, xy, yy) at grid column i of a row between the lattice's rows b and b + 1 (at
+ * fraction tb; scale_node), bilinear between the nodes. */
+static void scale_sinv_at(const ap_horizon *hz, size_t b, double tb, size_t i, double v[3])
+{
+  const size_t a = hz->scale_col[i];
+  const double ta = hz->scale_frac[i];
+  const double *n0 = hz->sinv + 3 * (b * hz->p.scale_cols + a), *n1 = n0 + 3 * hz->p.scale_cols;
+  int c;
+  for (c = 0; c < 3; ++c) {
+    const double lo = n0[c] + ta * (n0[3 + c] - n0[c]), hi = n1[c] + ta * (n1[3 + c] - n1[c]);
+    v[c] = lo + tb * (hi - lo);
+  }
+}
+
 ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p,
                             const ap_sky_products *out, ap_horizon **result)
 {
@@ -1157,6 +1294,10 @@ ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p
   }
   transpose(hz);
   if (!data_spans_init(hz)) {
+    ap_horizon_destroy(hz);
+    return AP_ERR_OUT_OF_MEMORY;
+  }
+  if (p->scale_metric && !scale_metric_init(hz)) {
     ap_horizon_destroy(hz);
     return AP_ERR_OUT_OF_MEMORY;
   }
@@ -1321,6 +1462,14 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
   hz->phi = ap_horizon_azimuth(hz, d) - hz->p.azimuth_offset;
   sphi = sin(hz->phi);
   cphi = cos(hz->phi);
+  if (hz->metric) {
+    /* rho^2 = the relative metric of the sector's unit step (sin phi, cos phi) */
+    for (p = 0; p < hz->p.scale_cols * hz->p.scale_rows; ++p) {
+      const double *m = hz->metric + 3 * p;
+      const double r2 = m[0] * sphi * sphi + 2.0 * m[1] * sphi * cphi + m[2] * cphi * cphi;
+      hz->inv_rho[p] = (float)(1.0 / sqrt(r2));
+    }
+  }
   /* Index-space speed of the ground direction at the centre row (of the larger DEM, with
    * per-row sizes) decides the view. */
   if (hz->lattice) {
@@ -4304,18 +4453,19 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
 
 /* The per-cell terms of one sector for n cells, in single precision: the cosine ce and sine se
  * of the effective horizon (tangent te), and the arctangents of te and of the terrain horizon
- * (tangent tt_in, the sector scratch, contiguous). Branch-free so that it vectorises (AVX2 clone
+ * (tangent tt_in, the sector scratch, contiguous), tangents times the cells' 1 / rho (inv: 1
+ * without p.scale_metric, which changes no bit). Branch-free so that it vectorises (AVX2 clone
  * where available, the same operations in the same order). A nodata cell (tt NaN) gets
  * meaningless terms, which ap_horizon_finish overwrites. */
 AP_MULTIVERSION
-static void sector_terms(size_t n, const float *tt_in, const float *grad,
+static void sector_terms(size_t n, const float *tt_in, const float *inv, const float *grad,
                          float sphi, float cphi, int want_ht, float *restrict ce_out,
                          float *restrict se_out, float *restrict he_out, float *restrict ht_out)
 {
   size_t k;
   for (k = 0; k < n; ++k) {
-    const float tt = tt_in[k];
-    const float ts = grad[2 * k] * sphi + grad[2 * k + 1] * cphi;
+    const float tt = tt_in[k] * inv[k];
+    const float ts = (grad[2 * k] * sphi + grad[2 * k + 1] * cphi) * inv[k];
     /* The sky a cell sees lies above the horizontal, the terrain and its own tangent plane. */
     float te = tt > ts ? tt : ts;
     float ce;
@@ -4328,20 +4478,22 @@ static void sector_terms(size_t n, const float *tt_in, const float *grad,
   }
   if (want_ht) {
     for (k = 0; k < n; ++k) {
-      ht_out[k] = ap_atanf(tt_in[k]); /* -pi/2 for an empty direction (tt = -inf) */
+      ht_out[k] = ap_atanf(tt_in[k] * inv[k]); /* -pi/2 for an empty direction (tt = -inf) */
     }
   }
 }
 
 /* Add one sector's terms for the n cells from output index c0 (their edge flags contiguous at
- * e, their terrain horizon tangents at tt) to the sums. Its own function so that the loops
+ * e, their terrain horizon tangents at tt, to be multiplied by inv as in sector_terms) to the
+ * sums. Its own function so that the loops
  * vectorise in the AVX2 clone (the same operations in the same order: no result depends on
  * the clone). */
 AP_MULTIVERSION
 static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned char *restrict e,
                              size_t n, const float *restrict ce, const float *restrict se,
                              const float *restrict he, const float *restrict ht,
-                             const float *restrict tt, double sphi, double cphi)
+                             const float *restrict tt, const float *restrict inv, double sphi,
+                             double cphi)
 {
   const double delta = 2.0 * AP_PI / (double)hz->p.directions;
   const double w = 2.0 * sin(0.5 * delta);
@@ -4377,7 +4529,8 @@ static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned cha
   if (o->sky_view_factor) {
     float *v = o->sky_view_factor + c0;
     for (k = 0; k < n; ++k) {
-      const float t = tt[k] < AP_TAN_MAX ? tt[k] : AP_TAN_MAX;
+      const float tk = tt[k] * inv[k];
+      const float t = tk < AP_TAN_MAX ? tk : AP_TAN_MAX;
       v[k] += t > 0.0f ? t / sqrtf(1.0f + t * t) : 0.0f;
     }
   }
@@ -4614,6 +4767,7 @@ ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
    * reads of ROWS cells) instead of reading each row at a stride of a whole column. */
   enum { BLOCK = 256, ROWS = 16 };
   float ce[BLOCK], se[BLOCK], he[BLOCK], ht[BLOCK];
+  float inv[BLOCK]; /* the cells' 1 / rho (p.scale_metric), else 1 */
   float *tile = NULL;
   unsigned char *etile = NULL;
   double sphi, cphi;
@@ -4628,6 +4782,9 @@ ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
   sphi = sin(hz->phi);
   cphi = cos(hz->phi);
   want_ht = hz->out.positive_openness || hz->out.horizon_angles;
+  for (k = 0; k < BLOCK; ++k) {
+    inv[k] = 1.0f;
+  }
   /* the region's rows, and its columns [ri0, ri1) of them */
   if (j0 < hz->rj0) {
     j0 = hz->rj0;
@@ -4686,9 +4843,13 @@ ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
         const size_t o0 = (j + r - hz->rj0) * rnx + i0; /* and in the outputs */
         const float *slope = hz->xmajor ? tile + r * rnx + i0 : hz->slope + c0;
         const unsigned char *edge = hz->xmajor ? etile + r * rnx + i0 : hz->edge + c0;
-        sector_terms(n, slope, hz->grad + 2 * o0, (float)sphi, (float)cphi, want_ht, ce, se,
-                     he, ht);
-        accumulate_terms(hz, o0, edge, n, ce, se, he, ht, slope, sphi, cphi);
+        if (hz->metric) {
+          /* the cells' ground distances are rho times the sweep's: tangents over rho */
+          scale_block(hz, j + r, ri0 + i0, n, inv);
+        }
+        sector_terms(n, slope, inv, hz->grad + 2 * o0, (float)sphi, (float)cphi, want_ht, ce,
+                     se, he, ht);
+        accumulate_terms(hz, o0, edge, n, ce, se, he, ht, slope, inv, sphi, cphi);
       }
     }
   }
@@ -4704,6 +4865,8 @@ void ap_horizon_finish(const ap_horizon *hz, size_t j0, size_t j1)
   float *B = o->bent_normal ? o->bent_normal : hz->bsum;
   size_t i, j;
   for (j = j0 > hz->rj0 ? j0 : hz->rj0; j < j1 && j < hz->rj1; ++j) {
+    float tb = 0.0f;
+    const size_t b = hz->sinv ? scale_node(hz, 1, j, &tb) : 0;
     for (i = hz->ri0; i < hz->ri1; ++i) {
       const size_t k = (j - hz->rj0) * hz->rnx + (i - hz->ri0); /* the output's index */
       if (isnan(zat(hz, i, j))) {
@@ -4739,7 +4902,16 @@ void ap_horizon_finish(const ap_horizon *hz, size_t j0, size_t j1)
       if (B) {
         const double bx = B[3 * k], by = B[3 * k + 1], bz = B[3 * k + 2];
         if (o->diffuse_sky_factor) {
-          const double gx = hz->grad[2 * k], gy = hz->grad[2 * k + 1];
+          double gx = hz->grad[2 * k], gy = hz->grad[2 * k + 1];
+          if (hz->sinv) {
+            /* the gradient in the frame where the cell's steps have their ground lengths:
+             * through S^-1, S = sqrt of the relative metric (a step u measures |S u|) */
+            double v[3], t;
+            scale_sinv_at(hz, b, tb, i, v);
+            t = v[0] * gx + v[1] * gy;
+            gy = v[1] * gx + v[2] * gy;
+            gx = t;
+          }
           const double inv = 1.0 / sqrt(1.0 + gx * gx + gy * gy);
           /* in [0, 1] by construction (the visible sky lies above the tangent plane and the
            * horizontal); clamped against rounding, which on walls of 1e37 m left -1e-26 */

@@ -231,6 +231,30 @@ typedef struct ap_horizon_params {
   size_t region_j0;
   size_t region_nx;
   size_t region_ny;
+  const double *scale_metric; /**< constant cell sizes only (else AP_ERR_INVALID_ARGUMENT):
+                               the ground metric of one grid step where a projection's scale
+                               changes across the DEM, on a lattice over the larger DEM
+                               (origin_col, origin_row): node (a, b) lies at its column
+                               a * scale_span_cols / (scale_cols − 1) and row
+                               b * scale_span_rows / (scale_rows − 1) and holds, at
+                               [3 (b * scale_cols + a)], |E|², E·N and |N|² (m²), where E and N
+                               are the ground vectors of one step along the row and one along
+                               the column (E·N = 0 for a conformal projection). Bilinear
+                               between nodes, each cell's ground distance in the prepared
+                               sector is ρ times the one from dx0, dy0 (ρ² = the metric of the
+                               sector's step over that step's squared length from dx0, dy0),
+                               so its terrain and tangent-plane tangents are divided by ρ and
+                               its gradient (DiffuseSkyFactor's normal) taken through the
+                               metric's square root; the search distance and the curvature
+                               drop stay at dx0, dy0's scale (off by ρ − 1: under 0.01 deg at
+                               100 km for a 2% scale change). Each node: finite, |E|², |N|² > 0,
+                               |E|²|N|² > (E·N)². Caller-owned, read by ap_horizon_create
+                               only. NULL (default): every cell at dx0, dy0 */
+  size_t scale_cols;          /**< lattice nodes per row and column, 2..1025 each */
+  size_t scale_rows;
+  double scale_span_cols;     /**< the larger DEM's columns and rows the lattice spans, from
+                               column and row 0: > 0 and finite (its sizes − 1) */
+  double scale_span_rows;
 } ap_horizon_params;
 
 /** Output arrays, caller-owned, one value per cell of the region (ap_horizon_params; by

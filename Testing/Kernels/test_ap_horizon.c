@@ -1434,6 +1434,46 @@ static void test_errors(void)
     p.whole_rows = 0;
     p.origin_row = 0;
   }
+  {
+    /* the scale lattice: 2..1025 nodes a side, spans positive and finite, each node a
+     * positive definite metric; not with per-row sizes */
+    double m[3 * 6] = { 900, 0, 900, 900, 10, 900, 900, 0, 900, 900, 0, 900, 900, 0, 900,
+                        900, -899, 900 };
+    double rdx[10];
+    size_t k;
+    p.scale_metric = m;
+    p.scale_cols = 3;
+    p.scale_rows = 2;
+    p.scale_span_cols = p.scale_span_rows = 9.0;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_OK);
+    for (k = 0; k < 10; ++k) {
+      rdx[k] = 30.0;
+    }
+    g.dx = rdx;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+    g.dx = NULL;
+    p.scale_cols = 1;
+    p.scale_rows = 6;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+    p.scale_cols = 3;
+    p.scale_rows = 2;
+    p.scale_span_rows = 0.0;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+    p.scale_span_rows = INFINITY;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+    p.scale_span_rows = 9.0;
+    m[16] = -900.0; /* (E.N)^2 = |E|^2 |N|^2: the steps parallel */
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+    m[16] = -899.0;
+    m[0] = NAN;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+    m[0] = 0.0;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+    m[0] = 900.0;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_OK);
+    p.scale_metric = NULL;
+    p.scale_cols = p.scale_rows = 0;
+  }
   g.dx0 = 0.0;
   AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
   g.dx0 = 30.0;
@@ -1602,6 +1642,118 @@ static void test_pieces(void)
     }
     drop(&u);
   }
+}
+
+/* The largest difference between two runs' horizons and products over every cell. */
+static double results_difference(const terrain *t, int D, const results *a, const results *b)
+{
+  const size_t n = t->nx * t->ny;
+  double worst = 0.0;
+  size_t k;
+  for (k = 0; k < n * (size_t)D; ++k) {
+    worst = fmax(worst, fabs((double)a->h[k] - (double)b->h[k]));
+  }
+  for (k = 0; k < n; ++k) {
+    const float x[6] = { a->A[k], a->rp[k], a->svf[k], a->vd[k], a->open[k], a->bn[3 * k] };
+    const float y[6] = { b->A[k], b->rp[k], b->svf[k], b->vd[k], b->open[k], b->bn[3 * k] };
+    int c;
+    for (c = 0; c < 6; ++c) {
+      worst = fmax(worst, fabs((double)x[c] - (double)y[c]));
+    }
+    worst = fmax(worst, fabs((double)a->bn[3 * k + 1] - (double)b->bn[3 * k + 1]));
+    worst = fmax(worst, fabs((double)a->bn[3 * k + 2] - (double)b->bn[3 * k + 2]));
+    AP_CHECK_EQ_INT(a->edge[k], b->edge[k]);
+  }
+  return worst;
+}
+
+/* scale_metric, a projection's scale changing across the DEM. With every node's cell s times
+ * as large as dx0 x dy0 (isotropic), a run is the run with cells s dx0 x s dy0, flat Earth and
+ * no distance limit (where the search does not depend on the cell size): the same horizons and
+ * products up to float rounding, DiffuseSkyFactor's gradient included. With steps a dx0 along
+ * the rows and b dy0 along the columns (a != b), likewise in the four sectors along the axes
+ * (D = 4), the only directions that are not turned. (The two runs' distances round
+ * differently, which moves a horizon by up to 3e-6 rad.) A lattice that changes from node to node
+ * (turning directions too) gives a piece of the DEM its cells' values bit for bit: the
+ * interpolation uses the larger DEM's indices. */
+static void test_scale_metric(void)
+{
+  terrain t = make(90, 70, 30.0), big = make(90, 70, 30.0);
+  ap_horizon_params p = params(16, 0), q;
+  const double s = 1.03, a = 1.02, b = 0.97;
+  double metric[3 * 5 * 4], worst;
+  results r0, r1;
+  size_t i, j, k;
+  for (j = 0; j < t.ny; ++j) {
+    for (i = 0; i < t.nx; ++i) {
+      t.z[j * t.nx + i] = big.z[j * t.nx + i] = (float)rough((double)i * 30.0, (double)j * 30.0);
+    }
+  }
+  /* isotropic */
+  for (k = 0; k < 4; ++k) {
+    metric[3 * k] = metric[3 * k + 2] = 900.0 * s * s;
+    metric[3 * k + 1] = 0.0;
+  }
+  big.dx0 = big.dy0 = 30.0 * s;
+  r0 = compute(&big, &p);
+  q = p;
+  q.scale_metric = metric;
+  q.scale_cols = q.scale_rows = 2;
+  q.scale_span_cols = (double)t.nx - 1.0;
+  q.scale_span_rows = (double)t.ny - 1.0;
+  r1 = compute(&t, &q);
+  worst = results_difference(&t, p.directions, &r0, &r1);
+  printf("scale metric, isotropic %.2f: largest difference %.3g\n", s, worst);
+  AP_CHECK(worst < 1e-5); /* (the distances' rounding differs: 3e-6 rad measured) */
+  release(&r0);
+  release(&r1);
+  /* anisotropic, four sectors */
+  for (k = 0; k < 4; ++k) {
+    metric[3 * k] = 900.0 * a * a;
+    metric[3 * k + 2] = 900.0 * b * b;
+  }
+  big.dx0 = 30.0 * a;
+  big.dy0 = 30.0 * b;
+  p.directions = q.directions = 4;
+  r0 = compute(&big, &p);
+  r1 = compute(&t, &q);
+  worst = results_difference(&t, p.directions, &r0, &r1);
+  printf("scale metric, %.2f x %.2f: largest difference %.3g\n", a, b, worst);
+  AP_CHECK(worst < 2e-6);
+  release(&r0);
+  release(&r1);
+  /* and without the lattice, the same terrain differs (the test can fail) */
+  r0 = compute(&t, &p);
+  r1 = compute(&t, &q);
+  AP_CHECK(results_difference(&t, p.directions, &r0, &r1) > 1e-3);
+  release(&r0);
+  release(&r1);
+  /* a changing lattice, 5 x 4 nodes, with shear: pieces, swept and far-marched */
+  for (k = 0; k < 20; ++k) {
+    const double u = 0.9 + 0.01 * (double)k, v = 1.1 - 0.008 * (double)k;
+    metric[3 * k] = 900.0 * u * u;
+    metric[3 * k + 1] = 900.0 * 0.02 * (double)(k % 3) * u * v;
+    metric[3 * k + 2] = 900.0 * v * v;
+  }
+  q.scale_cols = 5;
+  q.scale_rows = 4;
+  q.curvature = 1;
+  q.directions = 29;
+  for (k = 0; k < 2; ++k) {
+    const size_t region[4] = { 40, 55, 30, 41 };
+    results w;
+    double aligned;
+    set_mode(&q, k == 0 ? SWEPT : FAR_MARCHED, 64);
+    q.max_distance = 900.0;
+    w = compute(&t, &q);
+    aligned = piece_difference(&t, &w, &q, region, 900 / 27 + 3, 900 / 27 + 3, 1);
+    printf("scale metric, changing, piece %s: largest difference %.3g\n",
+           mode_name[k == 0 ? SWEPT : FAR_MARCHED], aligned);
+    AP_CHECK(k == 0 ? aligned <= 1e-5 : aligned == 0.0);
+    release(&w);
+  }
+  drop(&t);
+  drop(&big);
 }
 
 /* A uniform number in [0, 1) from a xorshift state (deterministic, the same on every
@@ -2018,6 +2170,7 @@ int main(void)
   test_split_invariance();
   test_far_march_skips();
   test_pieces();
+  test_scale_metric();
   test_random_pieces();
   test_regions();
   test_edge_flags();
