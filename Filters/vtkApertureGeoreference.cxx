@@ -131,7 +131,58 @@ struct vtkApertureGeoreference::Internals
     this->PrimeMeridianDegrees = OSRGetPrimeMeridian(this->Geographic, nullptr);
     return true;
   }
+
+  // Ground lengths (m) and mean azimuths (degrees) of the geodesics across the cell of geo's
+  // grid centred at CRS point (xc, yc): from its west edge's centre to its east edge's, and
+  // from its south edge's to its north edge's.
+  bool CellVectors(
+    vtkApertureGeoreference* geo, double xc, double yc, double size[2], double azimuth[2]);
 };
+
+bool vtkApertureGeoreference::Internals::CellVectors(
+  vtkApertureGeoreference* geo, double xc, double yc, double size[2], double azimuth[2])
+{
+  double ell[2];
+  if (!geo->GetEllipsoid(ell))
+  {
+    return false;
+  }
+  const double hx = 0.5 * geo->GridSpacing[0], hy = 0.5 * geo->GridSpacing[1];
+  const double xy[8] = { xc - hx, yc, xc + hx, yc, xc, yc - hy, xc, yc + hy };
+  double ll[8];
+  if (!geo->CRSToLonLatPoints(4, xy, ll))
+  {
+    return false;
+  }
+  for (double v : ll)
+  {
+    if (std::isnan(v))
+    {
+      this->Error = "the cell has no geographic coordinates";
+      return false;
+    }
+  }
+  try
+  {
+    const GeographicLib::Geodesic geod(ell[0], ell[1]);
+    for (int k = 0; k < 2; ++k)
+    {
+      const double* a = ll + 4 * k;
+      double azi1, azi2;
+      geod.Inverse(a[1], a[0], a[3], a[2], size[k], azi1, azi2);
+      // (the mean of the two ends' azimuths, as unit vectors: no wrap at +-180)
+      const double r = M_PI / 180.0;
+      azimuth[k] = std::atan2(std::sin(azi1 * r) + std::sin(azi2 * r),
+                     std::cos(azi1 * r) + std::cos(azi2 * r)) / r;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    this->Error = std::string("GeographicLib: ") + e.what();
+    return false;
+  }
+  return true;
+}
 
 //------------------------------------------------------------------------------
 vtkApertureGeoreference::vtkApertureGeoreference()
@@ -651,37 +702,21 @@ bool vtkApertureGeoreference::GetCellSizeMetres(double size[2])
 //------------------------------------------------------------------------------
 bool vtkApertureGeoreference::GetCellSizeMetresAt(double xc, double yc, double size[2])
 {
-  double ell[2];
-  if (!this->GetEllipsoid(ell))
+  double azimuth[2];
+  return this->Impl->CellVectors(this, xc, yc, size, azimuth);
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::GetCellMetricAt(double xc, double yc, double metric[3])
+{
+  double size[2], azimuth[2];
+  if (!this->Impl->CellVectors(this, xc, yc, size, azimuth))
   {
     return false;
   }
-  const double hx = 0.5 * this->GridSpacing[0], hy = 0.5 * this->GridSpacing[1];
-  const double xy[8] = { xc - hx, yc, xc + hx, yc, xc, yc - hy, xc, yc + hy };
-  double ll[8];
-  if (!this->CRSToLonLatPoints(4, xy, ll))
-  {
-    return false;
-  }
-  for (double v : ll)
-  {
-    if (std::isnan(v))
-    {
-      this->Impl->Error = "the cell has no geographic coordinates";
-      return false;
-    }
-  }
-  try
-  {
-    const GeographicLib::Geodesic geod(ell[0], ell[1]);
-    geod.Inverse(ll[1], ll[0], ll[3], ll[2], size[0]);
-    geod.Inverse(ll[5], ll[4], ll[7], ll[6], size[1]);
-  }
-  catch (const std::exception& e)
-  {
-    this->Impl->Error = std::string("GeographicLib: ") + e.what();
-    return false;
-  }
+  metric[0] = size[0] * size[0];
+  metric[1] = size[0] * size[1] * std::cos((azimuth[0] - azimuth[1]) * M_PI / 180.0);
+  metric[2] = size[1] * size[1];
   return true;
 }
 

@@ -182,6 +182,16 @@ public:
   bool GetCellSizeMetresAt(double x, double y, double size[2]);
 
   /**
+   * Ground metric of one cell centred at CRS point (x, y), m²: |E|², E·N and |N|², where E and N
+   * are the ground vectors from the centre of the cell's west edge to its east edge and from
+   * its south edge to its north edge (geodesics on the ellipsoid; E·N from their mean
+   * azimuths). |E| and |N| are GetCellSizeMetresAt's sizes; E·N is 0 on a conformal projection
+   * and on a lat/lon grid, and the angle between E and N differs from 90° on others
+   * (Albers, sinusoidal). False (GetErrorMessage) when the cell has no geographic coordinates.
+   */
+  bool GetCellMetricAt(double x, double y, double metric[3]);
+
+  /**
    * Meridian convergence γ at a geographic point (degrees): the angle from grid north to true
    * north, positive when true north lies east of grid north (east of the central meridian of
    * a transverse Mercator zone in the northern hemisphere). A true azimuth A has grid azimuth

@@ -335,6 +335,39 @@ void TestMeridianColumns()
   AP_CHECK(!none->HasMeridianColumns());
 }
 
+// GetCellMetricAt: on UTM (conformal) the steps along the row and the column are as long as
+// GetCellSizeMetresAt says and at right angles; on the sinusoidal projection of a sphere
+// (x = R lon cos lat, y = R lat: not conformal) a step of d along the row runs d along the
+// parallel, and one of d along the column moves lat by d / R and lon by lon tan(lat) d / R,
+// so E = d (1, 0) and N = d (lon sin(lat), 1) in east-north metres: E.N = d^2 lon sin(lat),
+// |N|^2 = d^2 (1 + lon^2 sin^2(lat)) (a 1 km cell: chords against these curves differ by
+// 1e-9 of them).
+void TestCellMetric()
+{
+  vtkNew<vtkApertureGeoreference> geo;
+  AP_CHECK(geo->SetCRS("EPSG:32611"));
+  geo->SetGrid(500000.0 - 50 * 30.0, 4000000.0, 30.0, 30.0, 101, 101);
+  double size[2], m[3];
+  AP_CHECK(geo->GetCellSizeMetresAt(800000.0, 4001500.0, size));
+  AP_CHECK(geo->GetCellMetricAt(800000.0, 4001500.0, m));
+  AP_CHECK(m[0] == size[0] * size[0] && m[2] == size[1] * size[1]);
+  AP_CHECK(std::fabs(m[1]) < 1e-6 * m[0]);
+  const double R = 6371000.0, d = 1000.0, lon = 30.0 * kDeg, lat = 45.0 * kDeg;
+  AP_CHECK(geo->SetCRS("+proj=sinu +R=6371000 +units=m +no_defs"));
+  geo->SetGrid(0.0, 0.0, d, d, 10, 10);
+  AP_CHECK(geo->GetCellMetricAt(R * lon * std::cos(lat), R * lat, m));
+  const double s = lon * std::sin(lat);
+  AP_CHECK_NEAR(m[0] / (d * d), 1.0, 1e-6);
+  AP_CHECK_NEAR(m[1] / (d * d), s, 1e-6);
+  AP_CHECK_NEAR(m[2] / (d * d), 1.0 + s * s, 1e-6);
+  // off the projection's domain (beyond an orthographic view's disc): no metric, and why
+  AP_CHECK(geo->SetCRS("+proj=ortho +lat_0=0 +lon_0=0 +R=6371000 +units=m +no_defs"));
+  geo->SetGrid(0.0, 0.0, d, d, 10, 10);
+  AP_CHECK(geo->GetCellMetricAt(0.5 * R, 0.0, m));
+  AP_CHECK(!geo->GetCellMetricAt(1.01 * R, 0.0, m));
+  AP_CHECK(std::string(geo->GetErrorMessage()) == "the cell has no geographic coordinates");
+}
+
 int TestApertureGeoreference(int, char*[])
 {
   TestProjected();
@@ -347,5 +380,6 @@ int TestApertureGeoreference(int, char*[])
   TestRowSizesAtPole();
   TestLongitudeSpan();
   TestMeridianColumns();
+  TestCellMetric();
   return aptest::Result();
 }
