@@ -49,6 +49,17 @@ constexpr float EarthHighest = 9000.0f;
 // its corners and edge midpoints before the filter warns: a horizon's tangent there is off by
 // as much (a 45-degree horizon by 0.14 degree at 0.5%; a whole UTM zone changes by 0.1%).
 constexpr double ScaleChangeWarning = 0.005;
+// Nodes of the lattice of ground metrics per side (at most: one per cell on smaller grids),
+// bilinear between them: across a DEM of 1000 km, nodes 31 km apart leave the scale factor's
+// curvature (about 1 / R^2) some 3e-6 of it.
+constexpr int ScaleNodes = 33;
+// Relative metric changes below this leave the kernel at the centre's cell size: a float's
+// rounding (and the same bits as without a lattice on small DEMs).
+constexpr double ScaleChangeApplied = 1e-6;
+// A projection that turns the grid's directions on the ground by more than this (degrees)
+// somewhere on the DEM (not conformal: Albers, sinusoidal) is warned about: sector azimuths are
+// off by as much there.
+constexpr double AzimuthDistortionWarning = 0.5;
 // Cells of the grid above which a sector's phases run in slices, reporting progress between
 // them (RequestData): some 0.1-0.4 s of a sector's costliest phase on two threads.
 constexpr double SliceCells = 8.0 * 1024 * 1024;
@@ -135,6 +146,53 @@ std::string ScaleChange(vtkApertureGeoreference* geo)
     << 100.0 * worst << "% towards its edges; bake smaller pieces, or the DEM reprojected to a "
     << "projection centred on it";
   return m.str();
+}
+
+// The ground metric of one grid step (vtkApertureGeoreference::GetCellMetricAt) at
+// cols x rows nodes spread evenly over geo's grid, corners included, for the kernel's
+// scale_metric (ap_horizon.h). False when a node has no geographic coordinates.
+bool ScaleMetric(vtkApertureGeoreference* geo, int cols, int rows, std::vector<double>& metric)
+{
+  double origin[2], spacing[2];
+  int size[2];
+  geo->GetGridOrigin(origin);
+  geo->GetGridSpacing(spacing);
+  geo->GetGridSize(size);
+  metric.resize(3 * static_cast<size_t>(cols) * rows);
+  for (int b = 0; b < rows; ++b)
+  {
+    for (int a = 0; a < cols; ++a)
+    {
+      const double i = (size[0] - 1.0) * a / (cols - 1), j = (size[1] - 1.0) * b / (rows - 1);
+      if (!geo->GetCellMetricAt(origin[0] + i * spacing[0], origin[1] + j * spacing[1],
+            metric.data() + 3 * (static_cast<size_t>(b) * cols + a)))
+      {
+        metric.clear();
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+// Over the nodes of a metric lattice taken relative to cells of dx0 x dy0 m: the largest
+// change of a step's ground length (relative, |rho - 1| over every direction: the metric's
+// singular values' square roots), and the largest angle (degrees) by which it turns a
+// direction on the ground (asin((s1 - s2) / (s1 + s2)) for the square roots s1 >= s2; 0 on a
+// conformal projection).
+void MetricChange(const std::vector<double>& metric, double dx0, double dy0, double& scale,
+  double& turn)
+{
+  scale = turn = 0.0;
+  for (size_t k = 0; k + 2 < metric.size(); k += 3)
+  {
+    const double a = metric[k] / (dx0 * dx0), b = metric[k + 1] / (dx0 * dy0),
+                 c = metric[k + 2] / (dy0 * dy0);
+    const double mean = 0.5 * (a + c), dev = std::hypot(0.5 * (a - c), b);
+    const double s1 = std::sqrt(mean + dev), s2 = std::sqrt(std::max(0.0, mean - dev));
+    scale = std::max(scale, std::max(std::fabs(s1 - 1.0), std::fabs(s2 - 1.0)));
+    turn = std::max(turn, std::asin((s1 - s2) / (s1 + s2)) * 180.0 / M_PI);
+  }
 }
 
 // Halo (in cells along i and j) that a search distance needs, from the smallest metric
@@ -604,12 +662,47 @@ int vtkApertureSkyVisibility::Execute(
     return 0;
   }
   params.azimuth_offset = gammaCentre * M_PI / 180.0;
+  // Other projections' scale changes across the DEM: each cell's ground distances from a
+  // lattice of ground metrics (exact to the lattice's interpolation; directions too on
+  // conformal projections). Without one (a node off the projection's domain), the centre's
+  // cell size for every cell, warned about where that is off by more than ScaleChangeWarning.
+  std::vector<double> metric;
   if (!rowSizes)
   {
-    const std::string scale = ScaleChange(geo);
-    if (!scale.empty())
+    const int lx = std::min(nxWhole, ScaleNodes), ly = std::min(nyWhole, ScaleNodes);
+    double scale = 0.0, turn = 0.0;
+    if (ScaleMetric(geo, lx, ly, metric))
     {
-      vtkWarningMacro(<< scale);
+      MetricChange(metric, grid.dx0, grid.dy0, scale, turn);
+    }
+    if (metric.empty())
+    {
+      const std::string warning = ScaleChange(geo);
+      if (!warning.empty())
+      {
+        vtkWarningMacro(<< warning);
+      }
+    }
+    else if (scale > ScaleChangeApplied)
+    {
+      params.scale_metric = metric.data();
+      params.scale_cols = static_cast<size_t>(lx);
+      params.scale_rows = static_cast<size_t>(ly);
+      params.scale_span_cols = nxWhole - 1.0;
+      params.scale_span_rows = nyWhole - 1.0;
+    }
+    if (turn > AzimuthDistortionWarning)
+    {
+      std::ostringstream m;
+      const std::string name = geo->GetCRSName();
+      m << "the DEM's projection "
+        << (name.empty() || name == "unknown" ? std::string() : "(" + name + ") ")
+        << "is not conformal: across this DEM it turns directions on the ground by up to "
+        << std::fixed << std::setprecision(2) << turn << " degrees, so each sector's true "
+        << "azimuth is off by as much there (its distances are exact); for exact azimuths, "
+        << "bake the DEM reprojected to a conformal projection (UTM, Lambert conformal conic, "
+        << "stereographic)";
+      vtkWarningMacro(<< m.str());
     }
   }
   ap_status st = ap_horizon_validate(&grid, &params);

@@ -42,12 +42,20 @@
  * CRS's ellipsoid), so lat/lon DEMs are exact, and so are DEMs in a normal-aspect cylindrical
  * projection (Mercator, Web Mercator, equirectangular, cylindrical equal-area: rows are
  * parallels, columns meridians, vtkApertureGeoreference::HasMeridianColumns), whose rows get
- * their own sizes the same way. Any other projected DEM takes the ground cell size at its
- * centre for every cell, so distances are off by the change of the projection's scale factor
- * across it (about 0.1% across a whole UTM zone; some 5% over Antarctica in polar
- * stereographic); a change of more than 0.5% (the ground cell size at a corner or an edge
- * midpoint against the centre's) is warned about, naming it. Earth curvature uses the
- * ellipsoid's radius of curvature in each azimuth at the DEM centre.
+ * their own sizes the same way. On any other projection the scale changes across the DEM
+ * (about 0.1% across a whole UTM zone, 7% from 60 to 88 N in polar stereographic): each cell
+ * takes its own ground metric (the lengths of, and angle between, its steps along the row and
+ * the column: vtkApertureGeoreference::GetCellMetricAt on a lattice of up to 33 x 33 nodes
+ * over the whole DEM, bilinear between them), so a sector's distances from that cell are
+ * exact up to the scale's change along its ray (7e-5 over 3 km at 60 N in polar
+ * stereographic), as is its tangent plane. The search distance and the curvature drop stay
+ * at the centre's scale. Where the projection is not conformal (Albers, Lambert azimuthal
+ * equal-area, sinusoidal) it also turns directions on the ground, and each sector's azimuth
+ * with them: a turn of more than 0.5 degree somewhere on the DEM is warned about, naming it.
+ * Where some lattice node has no geographic coordinates (a DEM reaching off the projection's
+ * domain), every cell takes the centre's cell size instead, and a size change of more than
+ * 0.5% (a corner's or an edge midpoint's against the centre's) is warned about. Earth
+ * curvature uses the ellipsoid's radius of curvature in each azimuth at the DEM centre.
  *
  * Terrain beyond the DEM edge is invisible; EdgeTruncated marks the cells where that may
  * matter for the sky above the horizontal (A, rp, BentNormal, both sky-view factors).
@@ -67,12 +75,13 @@
  * about what the whole run does: 4 pieces of a 1024^2 DEM, reading included, took 1.16 times
  * the whole run's time at 10 km and 1.27 times unlimited (bench/bench_pieces.py; the sweep's
  * lines still cross the halo up to the region). Inside the region the results are the
- * whole-DEM run's: what depends on the DEM as a whole (its centre's cell size, curvature radii
- * and meridian convergence, and the lattice of the sweep's lines, on lat/lon DEMs laid out by
- * the whole DEM's rows) is taken from the whole extent, so a piece is bit-identical to the
- * whole run there, projected or lat/lon, swept or marched (the tests compare every bit; the sweep
- * measures distances along its lines from the piece's own edge, so a horizon may round its
- * last bit differently: 2 of 5,500 random pieces in a stress test, by 4e-8 rad).
+ * whole-DEM run's: what depends on the DEM as a whole (its centre's cell size, the lattice of
+ * ground metrics, curvature radii and meridian convergence, and the lattice of the sweep's
+ * lines, on lat/lon DEMs laid out by the whole DEM's rows) is taken from the whole extent, so
+ * a piece is bit-identical to the whole run there, projected or lat/lon, swept or marched (the
+ * tests compare every bit; the sweep measures distances along its lines from the piece's own
+ * edge, so a horizon may round its last bit differently: 2 of 5,500 random pieces in a stress
+ * test, by 4e-8 rad).
  *
  * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, no CRS
  * or no metric cell size, every cell nodata, NumberOfDirections outside 4..360, a negative

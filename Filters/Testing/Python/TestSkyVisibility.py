@@ -565,55 +565,157 @@ class TestSkyVisibility(Testing.vtkTest):
         _, warnings = run(np.where(z > 300.0, 8848.9, -10935.0))
         self.assertEqual(warnings, [])
 
-    def testProjectionScaleChange(self):
-        # The sweep takes a projected DEM's ground cell size at its centre for every cell: a
-        # DEM across which the projection's scale changes by more than 0.5% is warned about,
-        # with the change computed here from polar stereographic's own scale factor
-        # (EPSG:3031, standard parallel 71 S: k = rho / (a m(lat)), m = cos(lat) / w).
+    def testProjectionScaleChangesPerCell(self):
+        # A projection's scale changes across a large DEM (7% over north polar stereographic
+        # from 60 to 88 N, true scale at 70 N; 1.5% over LAEA Europe from 52 to 72 N, not
+        # conformal): each cell's ground distances come from its own scale, not the centre's.
+        # Flat ground with one-cell towers 100 m high, 3 cells north of an observer on the
+        # projection's central meridian (ground distance: the meridian arc between their
+        # latitudes) and 2 cells east of one (straddling the meridian, at one latitude: the
+        # parallel's arc N cos(lat) dlon); each observer's horizon towards its tower is
+        # atan(100 / distance). With the centre's cell size for every cell the tangents were
+        # off by up to 4.6% (polar, at 60 N); now by the scale's change along the 2-3 km to
+        # the tower (7e-5 measured there).
         from aperture.errors import Watcher
-        a, e2 = 6378137.0, 0.00669437999014
+        cell, H, nx = 1000.0, 100.0, 9
+        wgs84 = osr.SpatialReference()
+        wgs84.ImportFromEPSG(4326)
+        wgs84.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
 
-        def warnings_of(x0, y0, cell, n, crs):
+        def arc(lat0, lat1):  # meridian arc (m) between latitudes (rad): Simpson, 64 steps
+            t = lat0 + np.linspace(0.0, 1.0, 65) * (lat1 - lat0)
+            w = np.ones(65)
+            w[1:-1:2], w[2:-1:2] = 4, 2
+            return abs((w * radii(t)[0]).sum() * (lat1 - lat0) / 192)
+
+        for epsg, lon0, south, north in ((3413, -45.0, 60.0, 88.0), (3035, 10.0, 52.0, 72.0)):
+            crs = osr.SpatialReference()
+            crs.ImportFromEPSG(epsg)
+            crs.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+            to_crs = osr.CoordinateTransformation(wgs84, crs)
+            to_geo = osr.CoordinateTransformation(crs, wgs84)
+            a, b = to_crs.TransformPoint(lon0, south), to_crs.TransformPoint(lon0, north)
+            self.assertLess(abs(a[0] - b[0]), 1e-6)  # (the meridian is a grid column)
+            y0 = min(a[1], b[1])
+            ny = int(abs(b[1] - a[1]) / cell)
+            x0 = a[0] - 4 * cell  # (column 4 on the meridian)
+            z = np.zeros((ny, nx))
+            to_north = list(range(40, ny - 10, 300))
+            to_east = list(range(190, ny - 10, 300))
+            for j in to_north:
+                z[j + 3, 4] = H
+            for j in to_east:
+                z[j, 5] = H
             w = Watcher()
             f = w.watch(aperture.vtkApertureSkyVisibility())
-            f.SetInputData(make_image(np.full((n, n), 100.0), x0, y0, cell, cell, crs))
-            f.SetMaximumDistance(3 * cell)
+            f.SetInputData(make_image(z, x0, y0, cell, cell, "EPSG:%d" % epsg))
+            f.SetEarthCurvature(False)
+            f.SetNumberOfDirections(4)
+            f.SetMaximumDistance(20000.0)
+            f.SetComputeHorizonAngles(True)
+            f.Update()
+            self.assertEqual(w.errors, [])
+            h = array(f.GetOutput(), "HorizonAngles").reshape(ny, nx, 4)
+            lat = lambda i, j: to_geo.TransformPoint(x0 + i * cell, y0 + j * cell)[:2]
+            for j in to_north:
+                # (rows run north on 3035, towards the pole, south, on 3413: sector 0 or 2)
+                la, lb = math.radians(lat(4, j)[1]), math.radians(lat(4, j + 3)[1])
+                d = 0 if lb > la else 2
+                err = math.tan(h[j, 4, d]) * arc(la, lb) / H - 1
+                self.assertLess(abs(err), 1.5e-4, "EPSG:%d row %d: %.2e" % (epsg, j, err))
+            for j in to_east:
+                (ea, la), (eb, lb) = lat(3, j), lat(5, j)
+                self.assertAlmostEqual(la, lb, delta=1e-9)
+                d = 1  # (grid east is true east on both meridians)
+                distance = radii(math.radians(la))[1] * math.cos(math.radians(la)) * \
+                    math.radians(abs(eb - ea))
+                err = math.tan(h[j, 3, d]) * distance / H - 1
+                self.assertLess(abs(err), 1.5e-4, "EPSG:%d row %d: %.2e" % (epsg, j, err))
+            if epsg == 3413:
+                self.assertEqual(w.warnings, [])  # conformal: no scale or azimuth warning
+                continue
+            # LAEA turns directions: the warning gives the largest turn over the filter's
+            # lattice (33 nodes up the meridian), here from the local radii and PROJ's
+            # coordinates of each node's cell: the ground steps' lengths sx, sy relative to
+            # the centre row's turn a direction by asin(|sx - sy| / (sx + sy)).
+            def steps(j):
+                out = []
+                for di, dj in ((0.5, 0.0), (0.0, 0.5)):
+                    (e0, n0), (e1, n1) = lat(4 - di, j - dj), lat(4 + di, j + dj)
+                    m, n = radii(math.radians(0.5 * (n0 + n1)))
+                    out.append(math.hypot(n * math.cos(math.radians(0.5 * (n0 + n1))) *
+                                          math.radians(e1 - e0), m * math.radians(n1 - n0)))
+                return np.array(out)
+
+            centre = steps(ny // 2)
+            turn = max(math.degrees(math.asin(abs(s[0] - s[1]) / (s[0] + s[1])))
+                       for s in (steps((ny - 1) * k / 32.0) / centre for k in range(33)))
+            self.assertAlmostEqual(turn, 0.671, delta=0.001)
+            self.assertEqual(len(w.warnings), 1, w.warnings)
+            self.assertIn("the DEM's projection (ETRS89-extended / LAEA Europe) is not "
+                          "conformal: across this DEM it turns directions on the ground by up to ",
+                          w.warnings[0])
+            got = float(re.search(r"up to ([0-9.]+) degrees", w.warnings[0]).group(1))
+            self.assertAlmostEqual(got, turn, delta=0.006)  # (two decimals)
+
+    def testProjectionScaleChangeWithoutLattice(self):
+        # Where a part of the DEM has no geographic coordinates (an orthographic view's
+        # corners beyond the globe's disc) no lattice of scales can be measured: the sweep
+        # takes the centre's cell size for every cell, and a DEM across which the ground cell
+        # size changes by more than 0.5% is warned about. The sizes are computed here on the
+        # sphere: the orthographic projection's inverse and great-circle distances between
+        # the centres of a cell's opposite edges, at the points the filter measures (the
+        # centre, the edges' midpoints; the corners have no coordinates).
+        from aperture.errors import Watcher
+        R = 6371000.0
+        ortho = "+proj=ortho +lat_0=0 +lon_0=0 +R=%.0f +units=m +no_defs" % R
+
+        def warnings_of(x0, y0, dx, dy, n):
+            w = Watcher()
+            f = w.watch(aperture.vtkApertureSkyVisibility())
+            image = make_image(np.full((n, n), 100.0), x0, y0, dx, dy, ortho)
+            f.SetInputData(image)
+            f.SetMaximumDistance(3 * dx)
             f.Update()
             self.assertEqual(w.errors, [])
             return w.warnings
 
-        polar = osr.SpatialReference()
-        polar.ImportFromEPSG(3031)
-        polar.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
-        wgs84 = osr.SpatialReference()
-        wgs84.ImportFromEPSG(4326)
-        wgs84.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
-        to_geo = osr.CoordinateTransformation(polar, wgs84)
+        def lonlat(x, y):  # (radians)
+            r = math.hypot(x, y)
+            c = math.asin(r / R)
+            return math.atan2(x * math.sin(c), r * math.cos(c)), math.asin(y * math.sin(c) / r)
 
-        def k(x, y):
-            lat = math.radians(to_geo.TransformPoint(x, y)[1])
-            m = math.cos(lat) / math.sqrt(1 - e2 * math.sin(lat) ** 2)
-            return math.hypot(x, y) / (a * m)
+        def distance(p, q):
+            (l1, f1), (l2, f2) = lonlat(*p), lonlat(*q)
+            h = math.sin((f2 - f1) / 2) ** 2 + \
+                math.cos(f1) * math.cos(f2) * math.sin((l2 - l1) / 2) ** 2
+            return 2 * R * math.asin(math.sqrt(h))
 
-        # 41 x 41 cells of 50 km from 500 to 2500 km east, -1000 to 1000 km north of the pole
-        cell, n, x0, y0 = 50000.0, 41, 500000.0, -1000000.0
-        xs = (x0, x0 + 20 * cell, x0 + 40 * cell)
-        ys = (y0, y0 + 20 * cell, y0 + 40 * cell)
-        kc = k(xs[1], ys[1])
-        worst = max(abs(kc / k(x, y) - 1) for x in xs for y in ys)
-        self.assertGreater(worst, 0.02)  # (3.1%)
-        warnings = warnings_of(x0, y0, cell, n, "EPSG:3031")
+        # 41 x 41 cells of 30 x 110 km, 4.8 to 6.0 million m east, -2.2 to 2.2 million north
+        dx, dy, n, x0, y0 = 30000.0, 110000.0, 41, 4800000.0, -2200000.0
+        self.assertGreater(math.hypot(x0 + 40 * dx, y0), R)  # (the east corners)
+        sizes = {}
+        for i, j in ((20, 20), (0, 20), (40, 20), (20, 0), (20, 40)):
+            x, y = x0 + i * dx, y0 + j * dy
+            sizes[i, j] = (distance((x - dx / 2, y), (x + dx / 2, y)),
+                           distance((x, y - dy / 2), (x, y + dy / 2)))
+        centre = sizes[20, 20]
+        worst = max(abs(s[c] / centre[c] - 1) for s in sizes.values() for c in (0, 1))
+        self.assertGreater(worst, 0.5)
+        warnings = warnings_of(x0, y0, dx, dy, n)
         self.assertEqual(len(warnings), 1, warnings)
         self.assertIn("the projection's scale changes across this DEM: its cells measure ",
                       warnings[0])
-        self.assertIn("m at its centre, which the sweep uses for every cell", warnings[0])
+        self.assertIn("against %.0f x %.0f m at its centre, which the sweep uses for every "
+                      "cell" % centre, warnings[0])
         got = float(re.search(r"off by up to ([0-9.]+)%", warnings[0]).group(1))
-        self.assertAlmostEqual(got, 100 * worst, delta=0.02)
-        centre = "against %s x %s m" % (("%.0f" % (cell / kc),) * 2)
-        self.assertIn(centre, warnings[0])
-        # 100 km of the same projection, and a whole UTM zone (600 km wide, 0.11%): none
-        self.assertEqual(warnings_of(x0, y0, 1000.0, 101, "EPSG:3031"), [])
-        self.assertEqual(warnings_of(200000.0, 4000000.0, 6000.0, 101, "EPSG:32633"), [])
+        self.assertAlmostEqual(got, 100 * worst, delta=0.006)
+        # 100 km of the same projection, inside the disc: a lattice, so no scale warning, but
+        # this near the disc's edge the projection turns directions by 0.7 degrees across it
+        warnings = warnings_of(x0, 0.0, 1000.0, 1000.0, 101)
+        self.assertEqual(len(warnings), 1, warnings)
+        self.assertIn("the DEM's projection is not conformal: across this DEM it turns "
+                      "directions on the ground by up to 0.6", warnings[0])
 
     def testMercatorRowsAreExact(self):
         # A Mercator DEM's rows are parallels and its columns meridians, so its cells' ground
