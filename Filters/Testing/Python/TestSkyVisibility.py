@@ -370,18 +370,23 @@ class TestSkyVisibility(Testing.vtkTest):
     def testPieceRequests(self):
         # UpdatePiece (ParaView's ranks, vtkPStreaming...) becomes a sub-extent of the output,
         # which RequestUpdateExtent grows by the halo: each piece is its block of the whole
-        # run, bit for bit, and the pieces cover the DEM. Projected with a radius (UTM, and Web
-        # Mercator at 60 N, whose rows have their own cell sizes as lat/lon ones do), and the
-        # embedded lat/lon DEM through its reader, unlimited (the whole DEM as the halo).
+        # run, bit for bit, and the pieces cover the DEM. Projected with a radius (UTM; polar
+        # stereographic and LAEA Europe with 2 km cells, whose cells take their ground metrics
+        # from a lattice over the whole DEM; Web Mercator at 60 N, whose rows have their own
+        # cell sizes as lat/lon ones do), and the embedded lat/lon DEM through its reader,
+        # unlimited (the whole DEM as the halo).
         z = np.random.default_rng(4).uniform(0, 300, (50, 70))
         projected = make_image(z, 400000, 5000000, 30, 30, "EPSG:32633")
+        polar = make_image(z, 300000, -2500000, 2000, 2000, "EPSG:3413")
+        laea = make_image(z, 5300000, 4700000, 2000, 2000, "EPSG:3035")
         mercator = make_image(z, 1000000, 8400000, 60, 60, "EPSG:3857")
         reader = aperture.vtkApertureDEMReader()
         try:
             reader.SetFileName(aperture.default_dem())
         except FileNotFoundError:
             reader = None
-        cases = [(projected, 600.0, 4), (projected, 600.0, 7), (mercator, 600.0, 5)]
+        cases = [(projected, 600.0, 4), (projected, 600.0, 7), (polar, 12000.0, 5),
+                 (laea, 12000.0, 6), (mercator, 600.0, 5)]
         if reader:
             cases.append((reader.GetOutputPort(), 0.0, 3))
         for source, distance, pieces in cases:
