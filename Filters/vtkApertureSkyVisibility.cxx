@@ -889,8 +889,11 @@ int vtkApertureSkyVisibility::Execute(
 
   // 5. Bent normals into each cell's true East-North-Up: the sweep ran in the grid frame;
   //    the meridian convergence γ (from a coarse lattice over the whole extent, bilinear
-  //    between) rotates them.
-  if (out.bent_normal && !rowSizes)
+  //    between) rotates them. The sweep's sector d points at true azimuth φ_d + γ − γ(centre)
+  //    at a cell: its HorizonAngles go back to φ_d, linear between the two sectors either
+  //    side (the nearer one's where the other is an empty direction, -π/2).
+  float* const horizons = out.horizon_angles;
+  if ((out.bent_normal || horizons) && !rowSizes)
   {
     const int lx = std::min(nxWhole, 33), ly = std::min(nyWhole, 33);
     std::vector<double> gamma(static_cast<size_t>(lx * ly));
@@ -910,11 +913,14 @@ int vtkApertureSkyVisibility::Execute(
         gamma[static_cast<size_t>(b * lx + a)] = g * M_PI / 180.0;
       }
     }
+    const double sector = 2.0 * M_PI / D, centre = gammaCentre * M_PI / 180.0;
+    const float empty = -static_cast<float>(M_PI / 2);
     vtkSMPTools::LocalScope(threads, [&]() {
       // (output rows and columns; the output's cell (0, 0) is the whole DEM's (oi, oj))
       const int oi = outExt[0] - wholeExt[0], oj = outExt[2] - wholeExt[2];
       vtkSMPTools::For(0, ony, 64, [&](vtkIdType j0, vtkIdType j1) {
         tally.Note();
+        std::vector<float> h(horizons ? static_cast<size_t>(D) : 0);
         for (vtkIdType j = j0; j < j1; ++j)
         {
           const double fb = ly > 1 ? (j + oj) * (ly - 1.0) / (nyWhole - 1.0) : 0.0;
@@ -928,10 +934,33 @@ int vtkApertureSkyVisibility::Execute(
             const double g =
               (1 - tb) * ((1 - ta) * gamma[b0 * lx + a0] + ta * gamma[b0 * lx + a1]) +
               tb * ((1 - ta) * gamma[b1 * lx + a0] + ta * gamma[b1 * lx + a1]);
-            float* v = out.bent_normal + 3 * (static_cast<size_t>(j) * onx + i);
-            const double e = v[0], nn = v[1];
-            v[0] = static_cast<float>(e * std::cos(g) + nn * std::sin(g));
-            v[1] = static_cast<float>(-e * std::sin(g) + nn * std::cos(g));
+            const size_t k = static_cast<size_t>(j) * onx + i;
+            if (out.bent_normal)
+            {
+              float* v = out.bent_normal + 3 * k;
+              const double e = v[0], nn = v[1];
+              v[0] = static_cast<float>(e * std::cos(g) + nn * std::sin(g));
+              v[1] = static_cast<float>(-e * std::sin(g) + nn * std::cos(g));
+            }
+            if (horizons)
+            {
+              // true azimuth φ_d lies (γ(centre) − γ) / sector sectors from sector d
+              float* v = horizons + k * D;
+              const double shift = (centre - g) / sector;
+              const double fl = std::floor(shift), t = shift - fl;
+              const int s0 = static_cast<int>(((static_cast<long>(fl) % D) + D) % D);
+              if (t == 0.0 && s0 == 0)
+              {
+                continue;
+              }
+              std::copy(v, v + D, h.begin());
+              for (int d = 0; d < D; ++d)
+              {
+                const float lo = h[(d + s0) % D], hi = h[(d + s0 + 1) % D];
+                v[d] = lo == empty || hi == empty ? (t < 0.5 ? lo : hi)
+                                                  : static_cast<float>(lo + t * (hi - lo));
+              }
+            }
           }
         }
       });

@@ -36,9 +36,12 @@
  * Sector d is centred on true azimuth 360 d / D degrees, clockwise from north. For projected
  * DEMs the sweep runs at grid azimuths using the meridian convergence at the DEM centre;
  * BentNormal is rotated into each cell's true East-North-Up with the convergence there, so
- * A, rp, SkyViewFactor, DiffuseSkyFactor and BentNormal are exact everywhere, while sector d
- * of HorizonAngles is centred on true azimuth φ_d + γ(cell) − γ(centre) (a fraction of a
- * degree across a UTM DEM). Cell sizes are metric per row (GeographicLib geodesics on the
+ * A, rp, SkyViewFactor, DiffuseSkyFactor and BentNormal are exact everywhere. The sweep's
+ * sector d looks at true azimuth φ_d + γ(cell) − γ(centre) (a fraction of a degree apart
+ * across a UTM DEM, 9 degrees at the ends of a strip 700 km long at 70 N in polar
+ * stereographic): HorizonAngles give each cell's horizon at φ_d itself, linear between its
+ * two sectors either side (the nearer one's where the other is an empty direction, -90
+ * degrees; on a plane rising 0.7 degree north, 0.002 degree from the closed form). Cell sizes are metric per row (GeographicLib geodesics on the
  * CRS's ellipsoid), so lat/lon DEMs are exact, and so are DEMs in a normal-aspect cylindrical
  * projection (Mercator, Web Mercator, equirectangular, cylindrical equal-area: rows are
  * parallels, columns meridians, vtkApertureGeoreference::HasMeridianColumns), whose rows get

@@ -578,7 +578,11 @@ class TestSkyVisibility(Testing.vtkTest):
         # projection's central meridian (ground distance: the meridian arc between their
         # latitudes) and 2 cells east of one (straddling the meridian, at one latitude: the
         # parallel's arc N cos(lat) dlon); each observer's horizon towards its tower is
-        # atan(100 / distance). With the centre's cell size for every cell the tangents were
+        # atan(100 / distance), read from PositiveOpenness, the mean of 90 degrees less the
+        # horizon over the 4 sectors, of which the other 3 are flat: it holds the sector's own
+        # ray, where HorizonAngles are interpolated to true azimuths (the convergence
+        # changes by 0.02 degree from the meridian to the next column at 60 N, a 2e-4 part of
+        # a 90-degree sector). With the centre's cell size for every cell the tangents were
         # off by up to 4.6% (polar, at 60 N); now by the scale's change along the 2-3 km to
         # the tower (7e-5 measured there).
         from aperture.errors import Watcher
@@ -617,24 +621,21 @@ class TestSkyVisibility(Testing.vtkTest):
             f.SetEarthCurvature(False)
             f.SetNumberOfDirections(4)
             f.SetMaximumDistance(20000.0)
-            f.SetComputeHorizonAngles(True)
             f.Update()
             self.assertEqual(w.errors, [])
-            h = array(f.GetOutput(), "HorizonAngles").reshape(ny, nx, 4)
+            openness = array(f.GetOutput(), "PositiveOpenness").reshape(ny, nx)
+            h = 4 * (math.pi / 2 - openness)  # (the tower's sector)
             lat = lambda i, j: to_geo.TransformPoint(x0 + i * cell, y0 + j * cell)[:2]
             for j in to_north:
-                # (rows run north on 3035, towards the pole, south, on 3413: sector 0 or 2)
                 la, lb = math.radians(lat(4, j)[1]), math.radians(lat(4, j + 3)[1])
-                d = 0 if lb > la else 2
-                err = math.tan(h[j, 4, d]) * arc(la, lb) / H - 1
+                err = math.tan(h[j, 4]) * arc(la, lb) / H - 1
                 self.assertLess(abs(err), 1.5e-4, "EPSG:%d row %d: %.2e" % (epsg, j, err))
             for j in to_east:
                 (ea, la), (eb, lb) = lat(3, j), lat(5, j)
                 self.assertAlmostEqual(la, lb, delta=1e-9)
-                d = 1  # (grid east is true east on both meridians)
                 distance = radii(math.radians(la))[1] * math.cos(math.radians(la)) * \
                     math.radians(abs(eb - ea))
-                err = math.tan(h[j, 3, d]) * distance / H - 1
+                err = math.tan(h[j, 3]) * distance / H - 1
                 self.assertLess(abs(err), 1.5e-4, "EPSG:%d row %d: %.2e" % (epsg, j, err))
             if epsg == 3413:
                 self.assertEqual(w.warnings, [])  # conformal: no scale or azimuth warning
@@ -662,6 +663,55 @@ class TestSkyVisibility(Testing.vtkTest):
                           w.warnings[0])
             got = float(re.search(r"up to ([0-9.]+) degrees", w.warnings[0]).group(1))
             self.assertAlmostEqual(got, turn, delta=0.006)  # (two decimals)
+
+    def testHorizonAnglesAtTrueAzimuths(self):
+        # A projected DEM's sweep runs at the centre's grid azimuths, so at a cell where the
+        # meridian convergence differs by dg its sector d looks at true azimuth phi_d + dg:
+        # 9 degrees at the ends of a strip 700 km long across 70 N in polar stereographic
+        # (EPSG:3413, the convergence is the longitude's difference). HorizonAngles hold the
+        # horizon at phi_d itself, linear between the two sectors either side. The terrain is
+        # a ground plane rising S to the north (z = tan S * meridian arc), whose horizon in
+        # true azimuth a is atan(tan S cos a) everywhere (flat Earth): the interpolation
+        # leaves 0.003 degree of it (tan S (pi/16)^2 / 8), the rays' crossing of curved
+        # parallels 0.001; without it the ends' horizons were 0.11 degree off.
+        from aperture.errors import Watcher
+        S, D, cell, nx, ny = math.radians(0.7), 32, 1000.0, 701, 21
+        expected = np.arctan(np.tan(S) * np.cos(2 * np.pi * np.arange(D) / D))
+        wgs84 = osr.SpatialReference()
+        wgs84.ImportFromEPSG(4326)
+        wgs84.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+        polar = osr.SpatialReference()
+        polar.ImportFromEPSG(3413)
+        polar.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+        to_polar = osr.CoordinateTransformation(wgs84, polar)
+        to_geo = osr.CoordinateTransformation(polar, wgs84)
+        x0, y0 = to_polar.TransformPoint(-45.0, 70.0)[:2]
+        x0 -= cell * (nx // 2)
+        y0 -= cell * (ny // 2)
+        lat = np.radians([[to_geo.TransformPoint(x0 + i * cell, y0 + j * cell)[1]
+                           for i in range(nx)] for j in range(ny)])
+        t = np.linspace(0.0, 1.0, 65)[:, None] * (lat.ravel() - math.radians(65))[None, :] + \
+            math.radians(65)
+        w = np.ones(65)
+        w[1:-1:2], w[2:-1:2] = 4, 2
+        arc = (w[:, None] * radii(t)[0]).sum(0) * (lat.ravel() - math.radians(65)) / 192
+        z = (np.tan(S) * arc).reshape(ny, nx)
+        watch = Watcher()
+        f = watch.watch(aperture.vtkApertureSkyVisibility())
+        f.SetInputData(make_image(z, x0, y0, cell, cell, "EPSG:3413"))
+        f.SetMaximumDistance(5000.0)
+        f.SetEarthCurvature(False)
+        f.SetNumberOfDirections(D)
+        f.SetComputeHorizonAngles(True)
+        f.Update()
+        self.assertEqual((watch.errors, watch.warnings), ([], []))
+        h = array(f.GetOutput(), "HorizonAngles").reshape(ny, nx, D)
+        for i in (10, nx // 2, nx - 11):
+            lon = to_geo.TransformPoint(x0 + i * cell, y0 + 10 * cell)[0]
+            err = np.degrees(np.abs(h[10, i] - expected)).max()
+            self.assertLess(err, 0.006, "at %.1f E: %.4f deg" % (lon, err))
+            if i != nx // 2:
+                self.assertGreater(abs(lon + 45.0), 8.5)  # (the convergence's change)
 
     def testProjectionScaleChangeWithoutLattice(self):
         # Where a part of the DEM has no geographic coordinates (an orthographic view's
