@@ -49,10 +49,11 @@ constexpr float EarthHighest = 9000.0f;
 // its corners and edge midpoints before the filter warns: a horizon's tangent there is off by
 // as much (a 45-degree horizon by 0.14 degree at 0.5%; a whole UTM zone changes by 0.1%).
 constexpr double ScaleChangeWarning = 0.005;
-// Nodes of the lattice of ground metrics per side (at most: one per cell on smaller grids),
-// bilinear between them: across a DEM of 1000 km, nodes 31 km apart leave the scale factor's
-// curvature (about 1 / R^2) some 3e-6 of it.
-constexpr int ScaleNodes = 33;
+// Nodes per side of the lattices over a projected DEM (at most: one per cell on smaller grids)
+// of ground metrics and of meridian convergences, bilinear between them: across a DEM of
+// 1000 km, nodes 31 km apart leave the scale factor's curvature (about 1 / R^2) some 3e-6 of
+// it.
+constexpr int LatticeNodes = 33;
 // Relative metric changes below this leave the kernel at the centre's cell size: a float's
 // rounding (and the same bits as without a lattice on small DEMs).
 constexpr double ScaleChangeApplied = 1e-6;
@@ -669,7 +670,7 @@ int vtkApertureSkyVisibility::Execute(
   std::vector<double> metric;
   if (!rowSizes)
   {
-    const int lx = std::min(nxWhole, ScaleNodes), ly = std::min(nyWhole, ScaleNodes);
+    const int lx = std::min(nxWhole, LatticeNodes), ly = std::min(nyWhole, LatticeNodes);
     double scale = 0.0, turn = 0.0;
     if (ScaleMetric(geo, lx, ly, metric))
     {
@@ -895,7 +896,7 @@ int vtkApertureSkyVisibility::Execute(
   float* const horizons = out.horizon_angles;
   if ((out.bent_normal || horizons) && !rowSizes)
   {
-    const int lx = std::min(nxWhole, 33), ly = std::min(nyWhole, 33);
+    const int lx = std::min(nxWhole, LatticeNodes), ly = std::min(nyWhole, LatticeNodes);
     std::vector<double> gamma(static_cast<size_t>(lx * ly));
     for (int b = 0; b < ly; ++b)
     {

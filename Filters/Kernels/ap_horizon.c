@@ -4485,9 +4485,8 @@ static void sector_terms(size_t n, const float *tt_in, const float *inv, const f
 
 /* Add one sector's terms for the n cells from output index c0 (their edge flags contiguous at
  * e, their terrain horizon tangents at tt, to be multiplied by inv as in sector_terms) to the
- * sums. Its own function so that the loops
- * vectorise in the AVX2 clone (the same operations in the same order: no result depends on
- * the clone). */
+ * sums. Its own function so that the loops vectorise in the AVX2 clone (the same operations
+ * in the same order: no result depends on the clone). */
 AP_MULTIVERSION
 static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned char *restrict e,
                              size_t n, const float *restrict ce, const float *restrict se,
