@@ -14,6 +14,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkStringArray.h"
 
+#include <GeographicLib/Geocentric.hpp>
 #include <GeographicLib/Geodesic.hpp>
 #include <cpl_conv.h>
 #include <ogr_srs_api.h>
@@ -132,15 +133,16 @@ struct vtkApertureGeoreference::Internals
     return true;
   }
 
-  // Ground lengths (m) and mean azimuths (degrees) of the geodesics across the cell of geo's
-  // grid centred at CRS point (xc, yc): from its west edge's centre to its east edge's, and
-  // from its south edge's to its north edge's.
+  // Ground lengths (m) of the geodesics across the cell of geo's grid centred at CRS point
+  // (xc, yc), from its west edge's centre to its east edge's and from its south edge's to its
+  // north edge's, and the cosine of the angle between them (from their chords in Earth-centred
+  // coordinates: no azimuths, which change fast near a pole and are undefined on it).
   bool CellVectors(
-    vtkApertureGeoreference* geo, double xc, double yc, double size[2], double azimuth[2]);
+    vtkApertureGeoreference* geo, double xc, double yc, double size[2], double& cosine);
 };
 
 bool vtkApertureGeoreference::Internals::CellVectors(
-  vtkApertureGeoreference* geo, double xc, double yc, double size[2], double azimuth[2])
+  vtkApertureGeoreference* geo, double xc, double yc, double size[2], double& cosine)
 {
   double ell[2];
   if (!geo->GetEllipsoid(ell))
@@ -165,16 +167,27 @@ bool vtkApertureGeoreference::Internals::CellVectors(
   try
   {
     const GeographicLib::Geodesic geod(ell[0], ell[1]);
+    const GeographicLib::Geocentric ecef(ell[0], ell[1]);
+    double chord[2][3];
     for (int k = 0; k < 2; ++k)
     {
       const double* a = ll + 4 * k;
-      double azi1, azi2;
-      geod.Inverse(a[1], a[0], a[3], a[2], size[k], azi1, azi2);
-      // (the mean of the two ends' azimuths, as unit vectors: no wrap at +-180)
-      const double r = M_PI / 180.0;
-      azimuth[k] = std::atan2(std::sin(azi1 * r) + std::sin(azi2 * r),
-                     std::cos(azi1 * r) + std::cos(azi2 * r)) / r;
+      double p[2][3];
+      geod.Inverse(a[1], a[0], a[3], a[2], size[k]);
+      ecef.Forward(a[1], a[0], 0.0, p[0][0], p[0][1], p[0][2]);
+      ecef.Forward(a[3], a[2], 0.0, p[1][0], p[1][1], p[1][2]);
+      for (int c = 0; c < 3; ++c)
+      {
+        chord[k][c] = p[1][c] - p[0][c];
+      }
     }
+    const double dot = chord[0][0] * chord[1][0] + chord[0][1] * chord[1][1] +
+      chord[0][2] * chord[1][2];
+    const double norms = std::sqrt(chord[0][0] * chord[0][0] + chord[0][1] * chord[0][1] +
+                           chord[0][2] * chord[0][2]) *
+      std::sqrt(chord[1][0] * chord[1][0] + chord[1][1] * chord[1][1] +
+        chord[1][2] * chord[1][2]);
+    cosine = norms > 0.0 ? dot / norms : 0.0;
   }
   catch (const std::exception& e)
   {
@@ -702,20 +715,20 @@ bool vtkApertureGeoreference::GetCellSizeMetres(double size[2])
 //------------------------------------------------------------------------------
 bool vtkApertureGeoreference::GetCellSizeMetresAt(double xc, double yc, double size[2])
 {
-  double azimuth[2];
-  return this->Impl->CellVectors(this, xc, yc, size, azimuth);
+  double cosine;
+  return this->Impl->CellVectors(this, xc, yc, size, cosine);
 }
 
 //------------------------------------------------------------------------------
 bool vtkApertureGeoreference::GetCellMetricAt(double xc, double yc, double metric[3])
 {
-  double size[2], azimuth[2];
-  if (!this->Impl->CellVectors(this, xc, yc, size, azimuth))
+  double size[2], cosine;
+  if (!this->Impl->CellVectors(this, xc, yc, size, cosine))
   {
     return false;
   }
   metric[0] = size[0] * size[0];
-  metric[1] = size[0] * size[1] * std::cos((azimuth[0] - azimuth[1]) * M_PI / 180.0);
+  metric[1] = size[0] * size[1] * cosine;
   metric[2] = size[1] * size[1];
   return true;
 }

@@ -183,11 +183,12 @@ public:
 
   /**
    * Ground metric of one cell centred at CRS point (x, y), m²: |E|², E·N and |N|², where E and N
-   * are the ground vectors from the centre of the cell's west edge to its east edge and from
-   * its south edge to its north edge (geodesics on the ellipsoid; E·N from their mean
-   * azimuths). |E| and |N| are GetCellSizeMetresAt's sizes; E·N is 0 on a conformal projection
-   * and on a lat/lon grid, and the angle between E and N differs from 90° on others
-   * (Albers, sinusoidal). False (GetErrorMessage) when the cell has no geographic coordinates.
+   * are the ground vectors from the centre of the cell's west edge to its east edge and from its
+   * south edge to its north edge (lengths of geodesics on the ellipsoid; the angle between them
+   * from their chords, which holds near and on a pole). |E| and |N| are GetCellSizeMetresAt's
+   * sizes; E·N is 0 on a conformal projection and on a lat/lon grid, and the angle between E and N
+   * differs from 90° on others (Albers, sinusoidal). False (GetErrorMessage) when the cell has no
+   * geographic coordinates.
    */
   bool GetCellMetricAt(double x, double y, double metric[3]);
 

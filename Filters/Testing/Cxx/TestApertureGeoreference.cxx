@@ -360,6 +360,16 @@ void TestCellMetric()
   AP_CHECK_NEAR(m[0] / (d * d), 1.0, 1e-6);
   AP_CHECK_NEAR(m[1] / (d * d), s, 1e-6);
   AP_CHECK_NEAR(m[2] / (d * d), 1.0 + s * s, 1e-6);
+  // on and beside a pole (polar stereographic, conformal): square cells, at right angles, where
+  // azimuths change fast or are undefined (from the cells' chords, not their azimuths)
+  AP_CHECK(geo->SetCRS("EPSG:3413"));
+  geo->SetGrid(-5000.0, -5000.0, d, d, 11, 11);
+  for (const double x : { 0.0, 1000.0, 3000.0 })
+  {
+    AP_CHECK(geo->GetCellMetricAt(x, 0.5 * x, m));
+    AP_CHECK_NEAR(m[2] / m[0], 1.0, 1e-9);
+    AP_CHECK(std::fabs(m[1]) < 1e-9 * m[0]);
+  }
   // off the projection's domain (beyond an orthographic view's disc): no metric, and why
   AP_CHECK(geo->SetCRS("+proj=ortho +lat_0=0 +lon_0=0 +R=6371000 +units=m +no_defs"));
   geo->SetGrid(0.0, 0.0, d, d, 10, 10);
