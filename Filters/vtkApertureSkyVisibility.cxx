@@ -61,6 +61,10 @@ constexpr double ScaleChangeApplied = 1e-6;
 // somewhere on the DEM (not conformal: Albers, sinusoidal) is warned about: sector azimuths are
 // off by as much there.
 constexpr double AzimuthDistortionWarning = 0.5;
+// The meridian convergence is bilinear between the lattice's nodes where that misses it by at
+// most this much (rad, 0.006 degree) at the lattice cell's centre, else each cell's own
+// (within some lattice cells of a pole).
+constexpr double GammaTolerance = 1e-4;
 // Cells of the grid above which a sector's phases run in slices, reporting progress between
 // them (RequestData): some 0.1-0.4 s of a sector's costliest phase on two threads.
 constexpr double SliceCells = 8.0 * 1024 * 1024;
@@ -890,35 +894,98 @@ int vtkApertureSkyVisibility::Execute(
 
   // 5. Bent normals into each cell's true East-North-Up: the sweep ran in the grid frame;
   //    the meridian convergence γ (from a coarse lattice over the whole extent, bilinear
-  //    between) rotates them. The sweep's sector d points at true azimuth φ_d + γ − γ(centre)
-  //    at a cell: its HorizonAngles go back to φ_d, linear between the two sectors either
-  //    side (the nearer one's where the other is an empty direction, -π/2).
+  //    between where that holds, each cell's own elsewhere) rotates them. The sweep's sector d
+  //    points at true azimuth φ_d + γ − γ(centre) at a cell: its HorizonAngles go back to φ_d,
+  //    linear between the two sectors either side (the nearer one's where the other is an
+  //    empty direction, -π/2).
   float* const horizons = out.horizon_angles;
   if ((out.bent_normal || horizons) && !rowSizes)
   {
     const int lx = std::min(nxWhole, LatticeNodes), ly = std::min(nyWhole, LatticeNodes);
+    // γ (rad) at the whole DEM's cell (i, j), counted from its first column and row
+    const auto exact = [&](double i, double j) {
+      double ll[2];
+      double g = gammaCentre;
+      if (geo->CRSToLonLat(origin[0] + (wholeExt[0] + i) * spacing[0],
+            origin[1] + (wholeExt[2] + j) * spacing[1], ll))
+      {
+        const double v = geo->ComputeMeridianConvergence(ll[0], ll[1]);
+        g = std::isnan(v) ? gammaCentre : v;
+      }
+      return g * M_PI / 180.0;
+    };
+    const auto nodeI = [&](int a) { return (nxWhole - 1) * (a / (lx - 1.0)); };
+    const auto nodeJ = [&](int b) { return (nyWhole - 1) * (b / (ly - 1.0)); };
     std::vector<double> gamma(static_cast<size_t>(lx * ly));
     for (int b = 0; b < ly; ++b)
     {
       for (int a = 0; a < lx; ++a)
       {
-        const double i = wholeExt[0] + (nxWhole - 1) * (lx > 1 ? a / (lx - 1.0) : 0.0);
-        const double j = wholeExt[2] + (nyWhole - 1) * (ly > 1 ? b / (ly - 1.0) : 0.0);
-        double ll[2];
-        double g = gammaCentre;
-        if (geo->CRSToLonLat(origin[0] + i * spacing[0], origin[1] + j * spacing[1], ll))
+        gamma[static_cast<size_t>(b * lx + a)] = exact(nodeI(a), nodeJ(b));
+      }
+    }
+    // Where γ is far from bilinear between the nodes (around a pole, where it takes every
+    // value), the cells of that lattice cell get their own (serially: the CRS's
+    // transformations are not thread-safe): GammaPatch.
+    const auto cellOf = [](int k, int whole, int n) { // (the lattice cell of a column or row)
+      return std::min(static_cast<int>(k * (n - 1.0) / (whole - 1.0)), n - 2);
+    };
+    struct GammaPatch
+    {
+      int I0, I1, J0, J1; // (output columns and rows)
+      std::vector<double> Values;
+    };
+    std::vector<int> patchOf(static_cast<size_t>((lx - 1) * (ly - 1)), -1);
+    std::vector<GammaPatch> patches;
+    const int oi = outExt[0] - wholeExt[0], oj = outExt[2] - wholeExt[2];
+    for (int b = 0; b + 1 < ly; ++b)
+    {
+      for (int a = 0; a + 1 < lx; ++a)
+      {
+        const double mean = 0.25 * (gamma[b * lx + a] + gamma[b * lx + a + 1] +
+                                     gamma[(b + 1) * lx + a] + gamma[(b + 1) * lx + a + 1]);
+        const double centre =
+          exact(0.5 * (nodeI(a) + nodeI(a + 1)), 0.5 * (nodeJ(b) + nodeJ(b + 1)));
+        if (!(std::fabs(std::remainder(centre - mean, 2.0 * M_PI)) > GammaTolerance))
         {
-          const double v = geo->ComputeMeridianConvergence(ll[0], ll[1]);
-          g = std::isnan(v) ? gammaCentre : v;
+          continue;
         }
-        gamma[static_cast<size_t>(b * lx + a)] = g * M_PI / 180.0;
+        GammaPatch patch{ onx, 0, ony, 0, {} };
+        for (int i = 0; i < onx; ++i)
+        {
+          if (cellOf(i + oi, nxWhole, lx) == a)
+          {
+            patch.I0 = std::min(patch.I0, i);
+            patch.I1 = i + 1;
+          }
+        }
+        for (int j = 0; j < ony; ++j)
+        {
+          if (cellOf(j + oj, nyWhole, ly) == b)
+          {
+            patch.J0 = std::min(patch.J0, j);
+            patch.J1 = j + 1;
+          }
+        }
+        if (patch.I0 >= patch.I1 || patch.J0 >= patch.J1)
+        {
+          continue; // (none of the output's cells)
+        }
+        for (int j = patch.J0; j < patch.J1; ++j)
+        {
+          for (int i = patch.I0; i < patch.I1; ++i)
+          {
+            patch.Values.push_back(exact(i + oi, j + oj));
+          }
+        }
+        patchOf[static_cast<size_t>(b * (lx - 1) + a)] = static_cast<int>(patches.size());
+        patches.push_back(std::move(patch));
       }
     }
     const double sector = 2.0 * M_PI / D, centre = gammaCentre * M_PI / 180.0;
     const float empty = -static_cast<float>(M_PI / 2);
     vtkSMPTools::LocalScope(threads, [&]() {
       // (output rows and columns; the output's cell (0, 0) is the whole DEM's (oi, oj))
-      const int oi = outExt[0] - wholeExt[0], oj = outExt[2] - wholeExt[2];
       vtkSMPTools::For(0, ony, 64, [&](vtkIdType j0, vtkIdType j1) {
         tally.Note();
         std::vector<float> h(horizons ? static_cast<size_t>(D) : 0);
@@ -932,9 +999,14 @@ int vtkApertureSkyVisibility::Execute(
             const double fa = lx > 1 ? (i + oi) * (lx - 1.0) / (nxWhole - 1.0) : 0.0;
             const int a0 = std::min(static_cast<int>(fa), lx - 1), a1 = std::min(a0 + 1, lx - 1);
             const double ta = fa - a0;
-            const double g =
-              (1 - tb) * ((1 - ta) * gamma[b0 * lx + a0] + ta * gamma[b0 * lx + a1]) +
-              tb * ((1 - ta) * gamma[b1 * lx + a0] + ta * gamma[b1 * lx + a1]);
+            const int patch = patchOf[static_cast<size_t>(
+              cellOf(static_cast<int>(j) + oj, nyWhole, ly) * (lx - 1) +
+              cellOf(i + oi, nxWhole, lx))];
+            const GammaPatch* gp = patch < 0 ? nullptr : &patches[static_cast<size_t>(patch)];
+            const double g = gp
+              ? gp->Values[static_cast<size_t>((j - gp->J0) * (gp->I1 - gp->I0) + i - gp->I0)]
+              : (1 - tb) * ((1 - ta) * gamma[b0 * lx + a0] + ta * gamma[b0 * lx + a1]) +
+                tb * ((1 - ta) * gamma[b1 * lx + a0] + ta * gamma[b1 * lx + a1]);
             const size_t k = static_cast<size_t>(j) * onx + i;
             if (out.bent_normal)
             {

@@ -33,32 +33,33 @@
  * per cell and direction, independent of the distance); within them, marches along each
  * cell's own ray (O(distance) at worst, with tile bounds skipping what cannot rise; cheaper
  * than the sweep there).
- * Sector d is centred on true azimuth 360 d / D degrees, clockwise from north. For projected
- * DEMs the sweep runs at grid azimuths using the meridian convergence at the DEM centre;
- * BentNormal is rotated into each cell's true East-North-Up with the convergence there, so
- * A, rp, SkyViewFactor, DiffuseSkyFactor and BentNormal are exact everywhere. The sweep's
- * sector d looks at true azimuth φ_d + γ(cell) − γ(centre) (a fraction of a degree apart
- * across a UTM DEM, 9 degrees at the ends of a strip 700 km long at 70 N in polar
- * stereographic): HorizonAngles give each cell's horizon at φ_d itself, linear between its
- * two sectors either side (the nearer one's where the other is an empty direction, -90
- * degrees; on a plane rising 0.7 degree north, 0.002 degree from the closed form). Cell sizes are metric per row (GeographicLib geodesics on the
- * CRS's ellipsoid), so lat/lon DEMs are exact, and so are DEMs in a normal-aspect cylindrical
- * projection (Mercator, Web Mercator, equirectangular, cylindrical equal-area: rows are
- * parallels, columns meridians, vtkApertureGeoreference::HasMeridianColumns), whose rows get
- * their own sizes the same way. On any other projection the scale changes across the DEM
- * (about 0.1% across a whole UTM zone, 7% from 60 to 88 N in polar stereographic): each cell
- * takes its own ground metric (the lengths of, and angle between, its steps along the row and
- * the column: vtkApertureGeoreference::GetCellMetricAt on a lattice of up to 33 x 33 nodes
- * over the whole DEM, bilinear between them), so a sector's distances from that cell are
- * exact up to the scale's change along its ray (7e-5 over 3 km at 60 N in polar
- * stereographic), as is its tangent plane. The search distance and the curvature drop stay
+ * Sector d is centred on true azimuth 360 d / D degrees, clockwise from north. For projected DEMs
+ * the sweep runs at grid azimuths using the meridian convergence at the DEM centre; BentNormal is
+ * rotated into each cell's true East-North-Up with the convergence there (bilinear between the
+ * nodes of a 33 x 33 lattice, or each cell's own where that misses by more than 0.006 degree:
+ * around a pole, where it takes every value), so A, rp, SkyViewFactor, DiffuseSkyFactor and
+ * BentNormal are exact everywhere, a DEM on a pole too. The sweep's sector d looks at true azimuth
+ * φ_d + γ(cell) − γ(centre) (a fraction of a degree apart across a UTM DEM, 9 degrees at the ends
+ * of a strip 700 km long at 70 N in polar stereographic): HorizonAngles give each cell's horizon at
+ * φ_d itself, linear between its two sectors either side (the nearer one's where the other is an
+ * empty direction, -90 degrees; on a plane rising 0.7 degree north, 0.002 degree from the closed
+ * form). Cell sizes are metric per row (GeographicLib geodesics on the CRS's ellipsoid), so lat/lon
+ * DEMs are exact, and so are DEMs in a normal-aspect cylindrical projection (Mercator, Web
+ * Mercator, equirectangular, cylindrical equal-area: rows are parallels, columns meridians,
+ * vtkApertureGeoreference::HasMeridianColumns), whose rows get their own sizes the same way. On any
+ * other projection the scale changes across the DEM (about 0.1% across a whole UTM zone, 7% from 60
+ * to 88 N in polar stereographic): each cell takes its own ground metric (the lengths of, and angle
+ * between, its steps along the row and the column: vtkApertureGeoreference::GetCellMetricAt on a
+ * lattice of up to 33 x 33 nodes over the whole DEM, bilinear between them), so a sector's
+ * distances from that cell are exact up to the scale's change along its ray (7e-5 over 3 km at 60 N
+ * in polar stereographic), as is its tangent plane. The search distance and the curvature drop stay
  * at the centre's scale. Where the projection is not conformal (Albers, Lambert azimuthal
- * equal-area, sinusoidal) it also turns directions on the ground, and each sector's azimuth
- * with them: a turn of more than 0.5 degree somewhere on the DEM is warned about, naming it.
- * Where some lattice node has no geographic coordinates (a DEM reaching off the projection's
- * domain), every cell takes the centre's cell size instead, and a size change of more than
- * 0.5% (a corner's or an edge midpoint's against the centre's) is warned about. Earth
- * curvature uses the ellipsoid's radius of curvature in each azimuth at the DEM centre.
+ * equal-area, sinusoidal) it also turns directions on the ground, and each sector's azimuth with
+ * them: a turn of more than 0.5 degree somewhere on the DEM is warned about, naming it. Where some
+ * lattice node has no geographic coordinates (a DEM reaching off the projection's domain), every
+ * cell takes the centre's cell size instead, and a size change of more than 0.5% (a corner's or an
+ * edge midpoint's against the centre's) is warned about. Earth curvature uses the ellipsoid's
+ * radius of curvature in each azimuth at the DEM centre.
  *
  * Terrain beyond the DEM edge is invisible; EdgeTruncated marks the cells where that may
  * matter for the sky above the horizontal (A, rp, BentNormal, both sky-view factors).

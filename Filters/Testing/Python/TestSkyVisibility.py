@@ -713,6 +713,33 @@ class TestSkyVisibility(Testing.vtkTest):
             if i != nx // 2:
                 self.assertGreater(abs(lon + 45.0), 8.5)  # (the convergence's change)
 
+    def testPoles(self):
+        # A DEM around a pole (polar stereographic, the pole on a cell): the meridian
+        # convergence takes every value around it, so between the lattice's nodes it is not
+        # bilinear (nor continuous: +-180 degrees); there each cell takes its own. A cone 2 km
+        # high and 20 km across on the pole: every cell's BentNormal points away from the pole
+        # (true south on the north pole, north on the south pole) but for the grid's
+        # discretization of the cone, which turns it by up to 1 degree on the same cone in UTM.
+        # Before, interpolating the convergence turned bent normals by up to 167 degrees.
+        from aperture.errors import Watcher
+        n, cell = 101, 1000.0
+        y, x = (np.mgrid[0:n, 0:n] - 50) * cell
+        r = np.hypot(x, y)
+        z = np.maximum(0.0, 2000.0 - 0.1 * r)
+        near = (r > 0) & (r <= 12000.0)
+        for epsg, away in ((3413, -1.0), (3031, 1.0)):
+            w = Watcher()
+            f = w.watch(aperture.vtkApertureSkyVisibility())
+            f.SetInputData(make_image(z, -50 * cell, -50 * cell, cell, cell, "EPSG:%d" % epsg))
+            f.SetMaximumDistance(20000.0)
+            f.SetEarthCurvature(False)
+            f.Update()
+            self.assertEqual((w.errors, w.warnings), ([], []))
+            bn = array(f.GetOutput(), "BentNormal").reshape(n, n, 3)
+            off = np.degrees(np.abs(np.arctan2(bn[..., 0], away * bn[..., 1])))[near]
+            self.assertLess(off.max(), 1.5, "EPSG:%d" % epsg)
+            self.assertLess(off.mean(), 0.3, "EPSG:%d" % epsg)
+
     def testProjectionScaleChangeWithoutLattice(self):
         # Where a part of the DEM has no geographic coordinates (an orthographic view's
         # corners beyond the globe's disc) no lattice of scales can be measured: the sweep
