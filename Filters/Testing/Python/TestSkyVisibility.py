@@ -33,6 +33,16 @@ def radii(lat):
     return A_WGS84 * (1 - E2) / w2 ** 1.5, A_WGS84 / np.sqrt(w2)
 
 
+def meridian_arc(lat0, lat):
+    """Signed meridian arc of WGS 84 (m) from latitude lat0 to each of lat (rad, any shape):
+    Simpson's rule over 64 steps of the meridional radius."""
+    lat = np.asarray(lat, dtype=np.float64)
+    t = np.linspace(0.0, 1.0, 65)[:, None] * (lat.ravel() - lat0)[None, :] + lat0
+    w = np.ones(65)
+    w[1:-1:2], w[2:-1:2] = 4, 2
+    return ((w[:, None] * radii(t)[0]).sum(0) * (lat.ravel() - lat0) / 192).reshape(lat.shape)
+
+
 def make_image(z, x0, y0, dx, dy, crs):
     """A DEM image (row 0 south) with its CRS attached."""
     ny, nx = z.shape
@@ -591,12 +601,6 @@ class TestSkyVisibility(Testing.vtkTest):
         wgs84.ImportFromEPSG(4326)
         wgs84.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
 
-        def arc(lat0, lat1):  # meridian arc (m) between latitudes (rad): Simpson, 64 steps
-            t = lat0 + np.linspace(0.0, 1.0, 65) * (lat1 - lat0)
-            w = np.ones(65)
-            w[1:-1:2], w[2:-1:2] = 4, 2
-            return abs((w * radii(t)[0]).sum() * (lat1 - lat0) / 192)
-
         for epsg, lon0, south, north in ((3413, -45.0, 60.0, 88.0), (3035, 10.0, 52.0, 72.0)):
             crs = osr.SpatialReference()
             crs.ImportFromEPSG(epsg)
@@ -628,7 +632,7 @@ class TestSkyVisibility(Testing.vtkTest):
             lat = lambda i, j: to_geo.TransformPoint(x0 + i * cell, y0 + j * cell)[:2]
             for j in to_north:
                 la, lb = math.radians(lat(4, j)[1]), math.radians(lat(4, j + 3)[1])
-                err = math.tan(h[j, 4]) * arc(la, lb) / H - 1
+                err = math.tan(h[j, 4]) * abs(float(meridian_arc(la, lb))) / H - 1
                 self.assertLess(abs(err), 1.5e-4, "EPSG:%d row %d: %.2e" % (epsg, j, err))
             for j in to_east:
                 (ea, la), (eb, lb) = lat(3, j), lat(5, j)
@@ -690,12 +694,7 @@ class TestSkyVisibility(Testing.vtkTest):
         y0 -= cell * (ny // 2)
         lat = np.radians([[to_geo.TransformPoint(x0 + i * cell, y0 + j * cell)[1]
                            for i in range(nx)] for j in range(ny)])
-        t = np.linspace(0.0, 1.0, 65)[:, None] * (lat.ravel() - math.radians(65))[None, :] + \
-            math.radians(65)
-        w = np.ones(65)
-        w[1:-1:2], w[2:-1:2] = 4, 2
-        arc = (w[:, None] * radii(t)[0]).sum(0) * (lat.ravel() - math.radians(65)) / 192
-        z = (np.tan(S) * arc).reshape(ny, nx)
+        z = np.tan(S) * meridian_arc(math.radians(65), lat)
         watch = Watcher()
         f = watch.watch(aperture.vtkApertureSkyVisibility())
         f.SetInputData(make_image(z, x0, y0, cell, cell, "EPSG:3413"))
@@ -814,12 +813,6 @@ class TestSkyVisibility(Testing.vtkTest):
         wgs84.ImportFromEPSG(4326)
         wgs84.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
 
-        def arc(lat0, lat):  # meridian arc (m) from lat0 to each lat (rad): Simpson, 64 steps
-            t = np.linspace(0.0, 1.0, 65)[:, None] * (lat - lat0)[None, :] + lat0
-            w = np.ones(65)
-            w[1:-1:2], w[2:-1:2] = 4, 2
-            return (w[:, None] * radii(t)[0]).sum(0) * (lat - lat0) / 192
-
         for epsg in (3395, 3857):  # (World Mercator, ellipsoidal; Web Mercator, spherical)
             merc = osr.SpatialReference()
             merc.ImportFromEPSG(epsg)
@@ -831,7 +824,7 @@ class TestSkyVisibility(Testing.vtkTest):
             ys = y0 + cell * np.arange(ny)
             lats = np.radians([to_geo.TransformPoint(1e6, y)[1] for y in ys])
             south = math.radians(to_geo.TransformPoint(1e6, y0 - cell / 2)[1])
-            z = np.tile((-4000 + np.tan(S) * arc(south, lats))[:, None], (1, nx))
+            z = np.tile((-4000 + np.tan(S) * meridian_arc(south, lats))[:, None], (1, nx))
             w = Watcher()
             f = w.watch(aperture.vtkApertureSkyVisibility())
             f.SetInputData(make_image(z, 1e6, y0, cell, cell, "EPSG:%d" % epsg))
