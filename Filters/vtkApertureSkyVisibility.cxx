@@ -999,9 +999,9 @@ int vtkApertureSkyVisibility::Execute(
             const double fa = lx > 1 ? (i + oi) * (lx - 1.0) / (nxWhole - 1.0) : 0.0;
             const int a0 = std::min(static_cast<int>(fa), lx - 1), a1 = std::min(a0 + 1, lx - 1);
             const double ta = fa - a0;
-            const int patch = patchOf[static_cast<size_t>(
-              cellOf(static_cast<int>(j) + oj, nyWhole, ly) * (lx - 1) +
-              cellOf(i + oi, nxWhole, lx))];
+            // (the lattice cell, as cellOf gives it: fa and fb are its arithmetic)
+            const int patch =
+              patchOf[static_cast<size_t>(std::min(b0, ly - 2) * (lx - 1) + std::min(a0, lx - 2))];
             const GammaPatch* gp = patch < 0 ? nullptr : &patches[static_cast<size_t>(patch)];
             const double g = gp
               ? gp->Values[static_cast<size_t>((j - gp->J0) * (gp->I1 - gp->I0) + i - gp->I0)]
