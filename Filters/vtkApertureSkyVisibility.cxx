@@ -58,9 +58,10 @@ constexpr int LatticeNodes = 33;
 // rounding (and the same bits as without a lattice on small DEMs).
 constexpr double ScaleChangeApplied = 1e-6;
 // A projection that turns the grid's directions on the ground by more than this (degrees)
-// somewhere on the DEM (not conformal: Albers, sinusoidal) is warned about: sector azimuths are
-// off by as much there.
-constexpr double AzimuthDistortionWarning = 0.5;
+// somewhere on the DEM (not conformal: Albers, LAEA, sinusoidal) has each cell's sector
+// azimuths from its own metric (RequestData, step 5); below, from the meridian convergence
+// alone, which is off by at most as much.
+constexpr double ConformalTurn = 1e-4;
 // The meridian convergence is bilinear between the lattice's nodes where that misses it by at
 // most this much (rad, 0.006 degree) at the lattice cell's centre, else each cell's own
 // (within some lattice cells of a pole).
@@ -668,10 +669,13 @@ int vtkApertureSkyVisibility::Execute(
   }
   params.azimuth_offset = gammaCentre * M_PI / 180.0;
   // Other projections' scale changes across the DEM: each cell's ground distances from a
-  // lattice of ground metrics (exact to the lattice's interpolation; directions too on
-  // conformal projections). Without one (a node off the projection's domain), the centre's
-  // cell size for every cell, warned about where that is off by more than ScaleChangeWarning.
+  // lattice of ground metrics (exact to the lattice's interpolation; on projections that are
+  // not conformal the kernel weights each sector by its share of the ground's directions, and
+  // step 5 takes its azimuths per cell). Without one (a node off the projection's domain), the
+  // centre's cell size for every cell, warned about where that is off by more than
+  // ScaleChangeWarning.
   std::vector<double> metric;
+  bool sheared = false; // (the lattice is applied and turns directions: ConformalTurn)
   if (!rowSizes)
   {
     const int lx = std::min(nxWhole, LatticeNodes), ly = std::min(nyWhole, LatticeNodes);
@@ -696,19 +700,7 @@ int vtkApertureSkyVisibility::Execute(
       params.scale_span_cols = nxWhole - 1.0;
       params.scale_span_rows = nyWhole - 1.0;
     }
-    if (turn > AzimuthDistortionWarning)
-    {
-      std::ostringstream m;
-      const std::string name = geo->GetCRSName();
-      m << "the DEM's projection "
-        << (name.empty() || name == "unknown" ? std::string() : "(" + name + ") ")
-        << "is not conformal: across this DEM it turns directions on the ground by up to "
-        << std::fixed << std::setprecision(2) << turn << " degrees, so each sector's true "
-        << "azimuth is off by as much there (its distances are exact); for exact azimuths, "
-        << "bake the DEM reprojected to a conformal projection (UTM, Lambert conformal conic, "
-        << "stereographic)";
-      vtkWarningMacro(<< m.str());
-    }
+    sheared = params.scale_metric && turn > ConformalTurn;
   }
   ap_status st = ap_horizon_validate(&grid, &params);
   if (st == AP_ERR_ALL_NODATA)
@@ -897,7 +889,11 @@ int vtkApertureSkyVisibility::Execute(
   //    between where that holds, each cell's own elsewhere) rotates them. The sweep's sector d
   //    points at true azimuth φ_d + γ − γ(centre) at a cell: its HorizonAngles go back to φ_d,
   //    linear between the two sectors either side (the nearer one's where the other is an
-  //    empty direction, -π/2).
+  //    empty direction, -π/2). Where the projection is not conformal (sheared), the kernel's
+  //    bent normal lies in the frame of S, the square root of the cell's relative metric
+  //    (ap_horizon.h), which the ground's is a rotation of: the one that takes S w_N north,
+  //    w_N the grid step towards true north (grid bearing −γ); and sector d points at the
+  //    ground azimuth of S u(ψ_d) after it, u(ψ_d) the sector's grid direction.
   float* const horizons = out.horizon_angles;
   if ((out.bent_normal || horizons) && !rowSizes)
   {
@@ -984,11 +980,36 @@ int vtkApertureSkyVisibility::Execute(
     }
     const double sector = 2.0 * M_PI / D, centre = gammaCentre * M_PI / 180.0;
     const float empty = -static_cast<float>(M_PI / 2);
+    // sheared: S at the metric lattice's nodes (its nodes are the convergences'), relative to
+    // the kernel's cells of dx0 x dy0; the grid directions of the sectors, and of a step east
+    // and north of the grid in the kernel's metres
+    std::vector<double> sroot, su, cu;
+    if (sheared)
+    {
+      sroot.resize(metric.size());
+      for (size_t k = 0; k + 2 < metric.size(); k += 3)
+      {
+        const double r0 = metric[k] / (grid.dx0 * grid.dx0),
+                     r1 = metric[k + 1] / (grid.dx0 * grid.dy0),
+                     r2 = metric[k + 2] / (grid.dy0 * grid.dy0);
+        const double q = std::sqrt(r0 * r2 - r1 * r1), t = std::sqrt(r0 + r2 + 2.0 * q);
+        sroot[k] = (r0 + q) / t;
+        sroot[k + 1] = r1 / t;
+        sroot[k + 2] = (r2 + q) / t;
+      }
+      for (int d = 0; d < D; ++d)
+      {
+        su.push_back(std::sin(d * sector - centre));
+        cu.push_back(std::cos(d * sector - centre));
+      }
+    }
+    const double eastStep = grid.dx0 / spacing[0], northStep = grid.dy0 / spacing[1];
     vtkSMPTools::LocalScope(threads, [&]() {
       // (output rows and columns; the output's cell (0, 0) is the whole DEM's (oi, oj))
       vtkSMPTools::For(0, ony, 64, [&](vtkIdType j0, vtkIdType j1) {
         tally.Note();
         std::vector<float> h(horizons ? static_cast<size_t>(D) : 0);
+        std::vector<double> at(sheared && horizons ? static_cast<size_t>(D) + 1 : 0);
         for (vtkIdType j = j0; j < j1; ++j)
         {
           const double fb = ly > 1 ? (j + oj) * (ly - 1.0) / (nyWhole - 1.0) : 0.0;
@@ -1008,14 +1029,61 @@ int vtkApertureSkyVisibility::Execute(
               : (1 - tb) * ((1 - ta) * gamma[b0 * lx + a0] + ta * gamma[b0 * lx + a1]) +
                 tb * ((1 - ta) * gamma[b1 * lx + a0] + ta * gamma[b1 * lx + a1]);
             const size_t k = static_cast<size_t>(j) * onx + i;
+            double S[3] = { 1.0, 0.0, 1.0 }, rotation = g; // (of the bent normal)
+            if (sheared)
+            {
+              for (int c = 0; c < 3; ++c)
+              {
+                const auto node = [&](int a, int b) { return sroot[3 * (b * lx + a) + c]; };
+                S[c] = (1 - tb) * ((1 - ta) * node(a0, b0) + ta * node(a1, b0)) +
+                  tb * ((1 - ta) * node(a0, b1) + ta * node(a1, b1));
+              }
+              const double wx = -std::sin(g) * eastStep, wy = std::cos(g) * northStep;
+              rotation = -std::atan2(S[0] * wx + S[1] * wy, S[1] * wx + S[2] * wy);
+            }
             if (out.bent_normal)
             {
               float* v = out.bent_normal + 3 * k;
               const double e = v[0], nn = v[1];
-              v[0] = static_cast<float>(e * std::cos(g) + nn * std::sin(g));
-              v[1] = static_cast<float>(-e * std::sin(g) + nn * std::cos(g));
+              v[0] = static_cast<float>(e * std::cos(rotation) + nn * std::sin(rotation));
+              v[1] = static_cast<float>(-e * std::sin(rotation) + nn * std::cos(rotation));
             }
-            if (horizons)
+            if (horizons && sheared)
+            {
+              // each sector's ground azimuth in sectors from north, at[d] = d + its offset
+              // from φ_d, the offsets unwrapped from one sector to the next (so at[] rises:
+              // S keeps the orientation); at[D] = at[0] + D
+              float* v = horizons + k * D;
+              double offset = 0.0;
+              for (int d = 0; d < D; ++d)
+              {
+                const double x = S[0] * su[d] + S[1] * cu[d], y = S[1] * su[d] + S[2] * cu[d];
+                const double off = std::atan2(x, y) + rotation - d * sector;
+                offset += std::remainder(off - offset, 2.0 * M_PI);
+                at[d] = d + offset / sector;
+              }
+              at[D] = at[0] + D;
+              std::copy(v, v + D, h.begin());
+              int seg = 0;
+              for (int d = 0; d < D; ++d)
+              {
+                // φ_d, as a place in [at[0], at[0] + D), lies in at[seg], at[seg + 1]
+                const double x = d - D * std::floor((d - at[0]) / D);
+                while (seg > 0 && at[seg] > x)
+                {
+                  --seg;
+                }
+                while (seg < D - 1 && at[seg + 1] <= x)
+                {
+                  ++seg;
+                }
+                const double t = (x - at[seg]) / (at[seg + 1] - at[seg]);
+                const float lo = h[seg], hi = h[(seg + 1) % D];
+                v[d] = lo == empty || hi == empty ? (t < 0.5 ? lo : hi)
+                                                  : static_cast<float>(lo + t * (hi - lo));
+              }
+            }
+            else if (horizons)
             {
               // true azimuth φ_d lies (γ(centre) − γ) / sector sectors from sector d
               float* v = horizons + k * D;

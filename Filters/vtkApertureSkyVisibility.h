@@ -54,12 +54,16 @@
  * distances from that cell are exact up to the scale's change along its ray (7e-5 over 3 km at 60 N
  * in polar stereographic), as is its tangent plane. The search distance and the curvature drop stay
  * at the centre's scale. Where the projection is not conformal (Albers, Lambert azimuthal
- * equal-area, sinusoidal) it also turns directions on the ground, and each sector's azimuth with
- * them: a turn of more than 0.5 degree somewhere on the DEM is warned about, naming it. Where some
- * lattice node has no geographic coordinates (a DEM reaching off the projection's domain), every
- * cell takes the centre's cell size instead, and a size change of more than 0.5% (a corner's or an
- * edge midpoint's against the centre's) is warned about. Earth curvature uses the ellipsoid's
- * radius of curvature in each azimuth at the DEM centre.
+ * equal-area, sinusoidal) it also turns directions on the ground, so the sectors, evenly spaced on
+ * the grid, lie unevenly on the ground: each sector's terms are weighted by its share of the
+ * ground's directions, BentNormal sums their ground directions, and HorizonAngles are interpolated
+ * from their ground azimuths (a plane in sinusoidal at 45 N, 15 E, where directions turn by 5.4
+ * degrees: SkyViewFactor within 3e-5 of the closed form, bent normals within 0.03 degree and
+ * horizons 0.011 at 64 sectors). Where some lattice node has no geographic coordinates (a DEM
+ * reaching off the projection's domain), every cell takes the centre's cell size instead, and a
+ * size change of more than 0.5% (a corner's or an edge midpoint's against the centre's) is warned
+ * about. Earth curvature uses the ellipsoid's radius of curvature in each azimuth at the DEM
+ * centre.
  *
  * Terrain beyond the DEM edge is invisible; EdgeTruncated marks the cells where that may
  * matter for the sky above the horizontal (A, rp, BentNormal, both sky-view factors).

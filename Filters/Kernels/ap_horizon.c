@@ -689,11 +689,13 @@ struct ap_horizon {
   float fm_side_max;      /* the highest cell of the view's side the rays leave through */
 
   /* p.scale_metric: a copy, its nodes divided by dx0², dx0 dy0, dy0² (so 1, 0, 1 where the
-   * cells measure dx0 x dy0); the inverse of its square root S at every node (S^-1: xx, xy,
-   * yy); and the prepared sector's 1 / ρ at every node */
+   * cells measure dx0 x dy0); its square root S and that one's inverse at every node (xx, xy,
+   * yy each); and the prepared sector's 1 / ρ and weight ω at every node */
   double *metric;
+  double *sroot;
   double *sinv;
   float *inv_rho;
+  float *weight;
   size_t *scale_col;      /* per grid column: its lattice cell's first node (scale_node) */
   float *scale_frac;      /* and the fraction towards the next */
 };
@@ -1065,8 +1067,10 @@ void ap_horizon_destroy(ap_horizon *hz)
   free(hz->fm_shore[0]);
   free(hz->fm_shore[1]);
   free(hz->metric);
+  free(hz->sroot);
   free(hz->sinv);
   free(hz->inv_rho);
+  free(hz->weight);
   free(hz->scale_col);
   free(hz->scale_frac);
   free(hz);
@@ -1151,8 +1155,9 @@ static size_t scale_node(const ap_horizon *hz, int axis, size_t i, float *t)
   return a;
 }
 
-/* p.scale_metric: copied and relative to dx0, dy0 (hz->metric), with room for the sector's
- * 1 / rho (hz->inv_rho), and every grid column's place between the nodes. 0 when out of
+/* p.scale_metric: copied and relative to dx0, dy0 (hz->metric), its square root and that
+ * one's inverse (hz->sroot, hz->sinv), with room for the sector's 1 / rho and weight
+ * (hz->inv_rho, hz->weight), and every grid column's place between the nodes. 0 when out of
  * memory. */
 static int scale_metric_init(ap_horizon *hz)
 {
@@ -1160,16 +1165,20 @@ static int scale_metric_init(ap_horizon *hz)
   const double dx0 = hz->g.dx0, dy0 = hz->g.dy0;
   size_t k;
   hz->metric = (double *)malloc(3 * nodes * sizeof(double));
+  hz->sroot = (double *)malloc(3 * nodes * sizeof(double));
   hz->sinv = (double *)malloc(3 * nodes * sizeof(double));
   hz->inv_rho = (float *)malloc(nodes * sizeof(float));
+  hz->weight = (float *)malloc(nodes * sizeof(float));
   hz->scale_col = (size_t *)malloc(hz->nx * sizeof(size_t));
   hz->scale_frac = (float *)malloc(hz->nx * sizeof(float));
-  if (!hz->metric || !hz->sinv || !hz->inv_rho || !hz->scale_col || !hz->scale_frac) {
+  if (!hz->metric || !hz->sroot || !hz->sinv || !hz->inv_rho || !hz->weight ||
+      !hz->scale_col || !hz->scale_frac) {
     return 0;
   }
   for (k = 0; k < nodes; ++k) {
     const double *m = hz->p.scale_metric + 3 * k;
-    double *r = hz->metric + 3 * k, *v = hz->sinv + 3 * k, q, t, a, b, c, det;
+    double *r = hz->metric + 3 * k, *v = hz->sinv + 3 * k, *sr = hz->sroot + 3 * k;
+    double q, t, a, b, c, det;
     r[0] = m[0] / (dx0 * dx0);
     r[1] = m[1] / (dx0 * dy0);
     r[2] = m[2] / (dy0 * dy0);
@@ -1179,6 +1188,9 @@ static int scale_metric_init(ap_horizon *hz)
     a = (r[0] + q) / t;
     b = r[1] / t;
     c = (r[2] + q) / t;
+    sr[0] = a;
+    sr[1] = b;
+    sr[2] = c;
     det = a * c - b * b;
     v[0] = c / det;
     v[1] = -b / det;
@@ -1191,15 +1203,17 @@ static int scale_metric_init(ap_horizon *hz)
   return 1;
 }
 
-/* 1 / rho of the prepared sector for grid cells [i0, i0 + n) of grid row j: between the
- * lattice's rows, then between its columns (hz->inv_rho). */
-static void scale_block(const ap_horizon *hz, size_t j, size_t i0, size_t n, float *out)
+/* A value of the prepared sector given at the lattice's nodes (hz->inv_rho, hz->weight) for
+ * grid cells [i0, i0 + n) of grid row j: between the lattice's rows, then between its
+ * columns. */
+static void scale_block(const ap_horizon *hz, const float *nodes, size_t j, size_t i0, size_t n,
+                        float *out)
 {
   enum { MAX_NODES = 1025 };
   const size_t cols = hz->p.scale_cols;
   float tb, row[MAX_NODES];
   const size_t b = scale_node(hz, 1, j, &tb);
-  const float *r0 = hz->inv_rho + b * cols, *r1 = r0 + cols;
+  const float *r0 = nodes + b * cols, *r1 = r0 + cols;
   const size_t a0 = hz->scale_col[i0], a1 = hz->scale_col[i0 + n - 1] + 1;
   size_t a, k;
   for (a = a0; a <= a1; ++a) {
@@ -1220,18 +1234,24 @@ static void scale_block(const ap_horizon *hz, size_t j, size_t i0, size_t n, flo
   }
 }
 
-/* S^-1 (xx, xy, yy) at grid column i of a row between the lattice's rows b and b + 1 (at
+/* The vector xy times a 2 x 2 symmetric matrix given at the lattice's nodes (xx, xy, yy:
+ * hz->sroot, hz->sinv), at grid column i of a row between the lattice's rows b and b + 1 (at
  * fraction tb; scale_node), bilinear between the nodes. */
-static void scale_sinv_at(const ap_horizon *hz, size_t b, double tb, size_t i, double v[3])
+static void scale_matrix_times(const ap_horizon *hz, const double *nodes, size_t b, double tb,
+                               size_t i, double xy[2])
 {
   const size_t a = hz->scale_col[i];
   const double ta = hz->scale_frac[i];
-  const double *n0 = hz->sinv + 3 * (b * hz->p.scale_cols + a), *n1 = n0 + 3 * hz->p.scale_cols;
+  const double *n0 = nodes + 3 * (b * hz->p.scale_cols + a), *n1 = n0 + 3 * hz->p.scale_cols;
+  double v[3], x;
   int c;
   for (c = 0; c < 3; ++c) {
     const double lo = n0[c] + ta * (n0[3 + c] - n0[c]), hi = n1[c] + ta * (n1[3 + c] - n1[c]);
     v[c] = lo + tb * (hi - lo);
   }
+  x = v[0] * xy[0] + v[1] * xy[1];
+  xy[1] = v[1] * xy[0] + v[2] * xy[1];
+  xy[0] = x;
 }
 
 ap_status ap_horizon_create(const ap_horizon_grid *g, const ap_horizon_params *p,
@@ -1463,11 +1483,28 @@ ap_status ap_horizon_prepare(ap_horizon *hz, int d)
   sphi = sin(hz->phi);
   cphi = cos(hz->phi);
   if (hz->metric) {
-    /* rho^2 = the relative metric of the sector's unit step (sin phi, cos phi) */
+    /* rho^2 = the relative metric of the sector's unit step u = (sin phi, cos phi); the
+     * weight: half the angle on the ground between the neighbouring sectors' directions,
+     * S u(phi - delta) and S u(phi + delta), over delta */
+    const double delta = 2.0 * AP_PI / (double)hz->p.directions;
+    const double u[3][2] = { { sin(hz->phi - delta), cos(hz->phi - delta) },
+                             { sphi, cphi },
+                             { sin(hz->phi + delta), cos(hz->phi + delta) } };
     for (p = 0; p < hz->p.scale_cols * hz->p.scale_rows; ++p) {
-      const double *m = hz->metric + 3 * p;
+      const double *m = hz->metric + 3 * p, *sr = hz->sroot + 3 * p;
       const double r2 = m[0] * sphi * sphi + 2.0 * m[1] * sphi * cphi + m[2] * cphi * cphi;
+      double v[3][2], turn = 0.0;
+      int e;
+      for (e = 0; e < 3; ++e) {
+        v[e][0] = sr[0] * u[e][0] + sr[1] * u[e][1];
+        v[e][1] = sr[1] * u[e][0] + sr[2] * u[e][1];
+      }
+      for (e = 0; e < 2; ++e) { /* (clockwise, each in (0, pi): S keeps the orientation) */
+        turn += atan2(v[e][1] * v[e + 1][0] - v[e][0] * v[e + 1][1],
+                      v[e][0] * v[e + 1][0] + v[e][1] * v[e + 1][1]);
+      }
       hz->inv_rho[p] = (float)(1.0 / sqrt(r2));
+      hz->weight[p] = (float)(0.5 * turn / delta);
     }
   }
   /* Index-space speed of the ground direction at the centre row (of the larger DEM, with
@@ -4485,14 +4522,16 @@ static void sector_terms(size_t n, const float *tt_in, const float *inv, const f
 
 /* Add one sector's terms for the n cells from output index c0 (their edge flags contiguous at
  * e, their terrain horizon tangents at tt, to be multiplied by inv as in sector_terms) to the
- * sums. Its own function so that the loops vectorise in the AVX2 clone (the same operations
+ * sums, each weighted by the cell's omega (wt; the horizontal of B by omega / rho, the unit
+ * direction once ap_horizon_finish applies S; all 1 without p.scale_metric, which changes no
+ * bit). Its own function so that the loops vectorise in the AVX2 clone (the same operations
  * in the same order: no result depends on the clone). */
 AP_MULTIVERSION
 static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned char *restrict e,
                              size_t n, const float *restrict ce, const float *restrict se,
                              const float *restrict he, const float *restrict ht,
-                             const float *restrict tt, const float *restrict inv, double sphi,
-                             double cphi)
+                             const float *restrict tt, const float *restrict inv,
+                             const float *restrict wt, double sphi, double cphi)
 {
   const double delta = 2.0 * AP_PI / (double)hz->p.directions;
   const double w = 2.0 * sin(0.5 * delta);
@@ -4513,16 +4552,16 @@ static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned cha
   if (A) {
     float *a = A + c0;
     for (k = 0; k < n; ++k) {
-      a[k] += fdelta * (1.0f - se[k]);
+      a[k] += fdelta * ((1.0f - se[k]) * wt[k]);
     }
   }
   if (B) {
     float *b = B + 3 * c0;
     for (k = 0; k < n; ++k) {
-      const float Q = 0.5f * ((half_pi - he[k]) - se[k] * ce[k]);
-      b[3 * k] += wsphi * Q;
-      b[3 * k + 1] += wcphi * Q;
-      b[3 * k + 2] += fhalf_delta * (ce[k] * ce[k]);
+      const float Q = 0.5f * ((half_pi - he[k]) - se[k] * ce[k]), Qh = Q * (wt[k] * inv[k]);
+      b[3 * k] += wsphi * Qh;
+      b[3 * k + 1] += wcphi * Qh;
+      b[3 * k + 2] += fhalf_delta * ((ce[k] * ce[k]) * wt[k]);
     }
   }
   if (o->sky_view_factor) {
@@ -4530,13 +4569,13 @@ static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned cha
     for (k = 0; k < n; ++k) {
       const float tk = tt[k] * inv[k];
       const float t = tk < AP_TAN_MAX ? tk : AP_TAN_MAX;
-      v[k] += t > 0.0f ? t / sqrtf(1.0f + t * t) : 0.0f;
+      v[k] += (t > 0.0f ? t / sqrtf(1.0f + t * t) : 0.0f) * wt[k];
     }
   }
   if (o->positive_openness) {
     float *v = o->positive_openness + c0;
     for (k = 0; k < n; ++k) {
-      v[k] += half_pi - ht[k];
+      v[k] += (half_pi - ht[k]) * wt[k];
     }
   }
   if (o->edge_truncated) {
@@ -4767,6 +4806,7 @@ ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
   enum { BLOCK = 256, ROWS = 16 };
   float ce[BLOCK], se[BLOCK], he[BLOCK], ht[BLOCK];
   float inv[BLOCK]; /* the cells' 1 / rho (p.scale_metric), else 1 */
+  float wgt[BLOCK]; /* and their weight omega, else 1 */
   float *tile = NULL;
   unsigned char *etile = NULL;
   double sphi, cphi;
@@ -4782,7 +4822,7 @@ ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
   cphi = cos(hz->phi);
   want_ht = hz->out.positive_openness || hz->out.horizon_angles;
   for (k = 0; k < BLOCK; ++k) {
-    inv[k] = 1.0f;
+    inv[k] = wgt[k] = 1.0f;
   }
   /* the region's rows, and its columns [ri0, ri1) of them */
   if (j0 < hz->rj0) {
@@ -4843,12 +4883,14 @@ ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
         const float *slope = hz->xmajor ? tile + r * rnx + i0 : hz->slope + c0;
         const unsigned char *edge = hz->xmajor ? etile + r * rnx + i0 : hz->edge + c0;
         if (hz->metric) {
-          /* the cells' ground distances are rho times the sweep's: tangents over rho */
-          scale_block(hz, j + r, ri0 + i0, n, inv);
+          /* the cells' ground distances are rho times the sweep's: tangents over rho; and
+           * the sector's share of the ground's directions */
+          scale_block(hz, hz->inv_rho, j + r, ri0 + i0, n, inv);
+          scale_block(hz, hz->weight, j + r, ri0 + i0, n, wgt);
         }
         sector_terms(n, slope, inv, hz->grad + 2 * o0, (float)sphi, (float)cphi, want_ht, ce,
                      se, he, ht);
-        accumulate_terms(hz, o0, edge, n, ce, se, he, ht, slope, inv, sphi, cphi);
+        accumulate_terms(hz, o0, edge, n, ce, se, he, ht, slope, inv, wgt, sphi, cphi);
       }
     }
   }
@@ -4899,29 +4941,31 @@ void ap_horizon_finish(const ap_horizon *hz, size_t j0, size_t j1)
         o->aperture_radius[k] = (float)(2.0 * asin(s));
       }
       if (B) {
-        const double bx = B[3 * k], by = B[3 * k + 1], bz = B[3 * k + 2];
+        double bh[2] = { B[3 * k], B[3 * k + 1] };
+        const double bz = B[3 * k + 2];
+        if (hz->sroot) {
+          /* the frame where the cell's steps have their ground lengths and directions (up to
+           * a rotation), S = sqrt of the relative metric (a step u measures |S u|): B's
+           * horizontal was summed as omega / rho times u, which S turns into the sectors'
+           * ground directions */
+          scale_matrix_times(hz, hz->sroot, b, tb, i, bh);
+        }
         if (o->diffuse_sky_factor) {
-          double gx = hz->grad[2 * k], gy = hz->grad[2 * k + 1];
+          double g[2] = { hz->grad[2 * k], hz->grad[2 * k + 1] };
           if (hz->sinv) {
-            /* the gradient in the frame where the cell's steps have their ground lengths:
-             * through S^-1, S = sqrt of the relative metric (a step u measures |S u|) */
-            double v[3], t;
-            scale_sinv_at(hz, b, tb, i, v);
-            t = v[0] * gx + v[1] * gy;
-            gy = v[1] * gx + v[2] * gy;
-            gx = t;
+            scale_matrix_times(hz, hz->sinv, b, tb, i, g); /* (the gradient in that frame) */
           }
-          const double inv = 1.0 / sqrt(1.0 + gx * gx + gy * gy);
+          const double inv = 1.0 / sqrt(1.0 + g[0] * g[0] + g[1] * g[1]);
           /* in [0, 1] by construction (the visible sky lies above the tangent plane and the
            * horizontal); clamped against rounding, which on walls of 1e37 m left -1e-26 */
-          const double v = (-gx * bx - gy * by + bz) * inv / AP_PI;
+          const double v = (-g[0] * bh[0] - g[1] * bh[1] + bz) * inv / AP_PI;
           o->diffuse_sky_factor[k] = (float)fmin(1.0, fmax(0.0, v));
         }
         if (o->bent_normal) {
-          const double len = sqrt(bx * bx + by * by + bz * bz);
+          const double len = sqrt(bh[0] * bh[0] + bh[1] * bh[1] + bz * bz);
           if (len > 0.0) {
-            o->bent_normal[3 * k] = (float)(bx / len);
-            o->bent_normal[3 * k + 1] = (float)(by / len);
+            o->bent_normal[3 * k] = (float)(bh[0] / len);
+            o->bent_normal[3 * k + 1] = (float)(bh[1] / len);
             o->bent_normal[3 * k + 2] = (float)(bz / len);
           } else {
             o->bent_normal[3 * k] = o->bent_normal[3 * k + 1] = 0.0f;

@@ -114,7 +114,8 @@
  *                         flagged, yet an edge cell's openness is 132° at D = 32: the sectors
  *                         leaving the DEM at once count −π/2). With a max_distance the flag
  *                         does not use z_max, which a piece of a DEM would not know.
- *  The sums converge as O(1/D²) to the continuous integrals.
+ *  The sums converge as O(1/D²) to the continuous integrals. With scale_metric each sector's
+ *  terms carry its weight ω and B's horizontal its ground direction (see there).
  *
  *  ## Use and threads
  *      ap_horizon_params_init(&p);  ...set fields...
@@ -243,11 +244,22 @@ typedef struct ap_horizon_params {
                                between nodes, each cell's ground distance in the prepared
                                sector is ρ times the one from dx0, dy0 (ρ² = the metric of the
                                sector's step over that step's squared length from dx0, dy0),
-                               so its terrain and tangent-plane tangents are divided by ρ and
-                               its gradient (DiffuseSkyFactor's normal) taken through the
-                               metric's square root; the search distance and the curvature
-                               drop stay at dx0, dy0's scale (off by ρ − 1: under 0.01 deg at
-                               100 km for a 2% scale change). Each node: finite, |E|², |N|² > 0,
+                               so its terrain and tangent-plane tangents are divided by ρ.
+                               With S the square root of the relative metric (ground vector
+                               of a step u = Q S u, Q a rotation), the sector's ground
+                               direction is S u / |S u|, and the sectors, even in grid
+                               azimuth, lie unevenly on the ground where the projection is not
+                               conformal: each sector's terms are weighted by ω = half the
+                               ground angle between its two neighbours' directions over Δ
+                               (ω = 1 on a conformal projection; the ω of a cell sum to D),
+                               B's horizontal is summed along the ground directions and
+                               DiffuseSkyFactor's normal taken through S⁻¹, so B and
+                               BentNormal lie in S's frame (the ground's turned by Q⁻¹: a
+                               caller turns them by Q; HorizonAngles stay at the sectors' own
+                               ground directions, which a caller may interpolate to even
+                               azimuths). The search distance and the curvature drop stay at
+                               dx0, dy0's scale (off by ρ − 1: under 0.01 deg at 100 km for a
+                               2% scale change). Each node: finite, |E|², |N|² > 0,
                                |E|²|N|² > (E·N)². Caller-owned, read by ap_horizon_create
                                only. NULL (default): every cell at dx0, dy0 */
   size_t scale_cols;          /**< lattice nodes per row and column, 2..1025 each */
@@ -264,7 +276,8 @@ typedef struct ap_horizon_params {
 typedef struct ap_sky_products {
   float *visible_solid_angle;   /**< A (sr), [0, 2π] */
   float *aperture_radius;       /**< rp (rad), [0, π/2] */
-  float *bent_normal;           /**< 3 per cell, unit vector in the grid frame */
+  float *bent_normal;           /**< 3 per cell, unit vector in the grid frame (in S's
+                                     frame with ap_horizon_params.scale_metric) */
   float *sky_view_factor;       /**< Zakšek SVF, [0, 1] */
   float *diffuse_sky_factor;    /**< Dozier–Frew V_d, [0, 1] */
   float *positive_openness;     /**< radians, [0, π] */

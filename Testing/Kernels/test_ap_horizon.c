@@ -1756,6 +1756,104 @@ static void test_scale_metric(void)
   drop(&big);
 }
 
+/* Ground elevation of the sheared-lattice test: a valley along a bearing of 35 degrees and a
+ * hill beside it (m, ground metres). */
+static double sheared_ground(double x, double y)
+{
+  const double across = x * cos(35.0 * PI / 180.0) - y * sin(35.0 * PI / 180.0);
+  const double hx = x - 700.0, hy = y + 400.0;
+  return 250.0 * (1.0 - exp(-across * across / (2.0 * 500.0 * 500.0))) +
+         180.0 * exp(-(hx * hx + hy * hy) / (2.0 * 400.0 * 400.0));
+}
+
+/* A projection that is not conformal shears the grid: the ground vector of a step w (in the
+ * metres of dx0, dy0) is Q S w with S the metric's square root, so the sweep's sectors, evenly
+ * spaced in grid azimuth, lie unevenly on the ground. The same ground terrain on a sheared
+ * lattice and on a square grid, each cell of the first at a node of the second, must give the
+ * same products (BentNormal in S's frame, which is the ground's here: Q = I), up to where the
+ * two grids' rays cross their columns, between which they interpolate (halving both grids'
+ * cells took the first cell's differences down 8-fold; D = 360). Sectors weighted evenly, as
+ * before the sweep weighted them by their share of the ground's directions, were off by 10 to
+ * 30 times these bounds (S's singular values are 1.094 and 0.906: sectors 20% wider or
+ * narrower on the ground; SkyViewFactor 0.0062-0.0075 off, BentNormal 0.005-0.011 rad). */
+static void test_scale_metric_sheared(void)
+{
+  const double S[3] = { 1.05, 0.08, 0.95 }, cell = 30.0; /* xx, xy, yy */
+  const size_t n = 161, c = 80;
+  terrain t = make(n, n, cell), sq = make(n, n, cell);
+  ap_horizon_params p = params(360, 0), q;
+  double metric[3 * 4], worst[5] = { 0 };
+  const size_t cells[3][2] = { { 80, 80 }, { 70, 88 }, { 91, 75 } };
+  size_t i, j, k;
+  /* the metric of one grid step (m^2): S^2 times the cells' squared sizes */
+  for (k = 0; k < 4; ++k) {
+    metric[3 * k] = cell * cell * (S[0] * S[0] + S[1] * S[1]);
+    metric[3 * k + 1] = cell * cell * (S[0] * S[1] + S[1] * S[2]);
+    metric[3 * k + 2] = cell * cell * (S[1] * S[1] + S[2] * S[2]);
+  }
+  for (j = 0; j < n; ++j) {
+    for (i = 0; i < n; ++i) {
+      const double wx = cell * ((double)i - (double)c), wy = cell * ((double)j - (double)c);
+      t.z[j * n + i] = (float)sheared_ground(S[0] * wx + S[1] * wy, S[1] * wx + S[2] * wy);
+    }
+  }
+  p.max_distance = 2500.0;
+  q = p;
+  q.scale_metric = metric;
+  q.scale_cols = q.scale_rows = 2;
+  q.scale_span_cols = q.scale_span_rows = (double)n - 1.0;
+  {
+    results r = compute(&t, &q);
+    for (k = 0; k < 3; ++k) {
+      const size_t ci = cells[k][0], cj = cells[k][1], kb = cj * n + ci;
+      const double wx = cell * ((double)ci - (double)c), wy = cell * ((double)cj - (double)c);
+      const double gx = S[0] * wx + S[1] * wy, gy = S[1] * wx + S[2] * wy;
+      results r0;
+      double e[5];
+      /* the square grid with the cell's ground point at its node (c, c) */
+      for (j = 0; j < n; ++j) {
+        for (i = 0; i < n; ++i) {
+          sq.z[j * n + i] = (float)sheared_ground(gx + cell * ((double)i - (double)c),
+                                                  gy + cell * ((double)j - (double)c));
+        }
+      }
+      r0 = compute(&sq, &p);
+      e[0] = fabs(r.A[kb] - r0.A[c * n + c]);
+      e[1] = fabs(r.svf[kb] - r0.svf[c * n + c]);
+      e[2] = fabs(r.vd[kb] - r0.vd[c * n + c]);
+      e[3] = fabs(r.open[kb] - r0.open[c * n + c]);
+      e[4] = acos(fmin(1.0, r.bn[3 * kb] * r0.bn[3 * (c * n + c)] +
+                            r.bn[3 * kb + 1] * r0.bn[3 * (c * n + c) + 1] +
+                            r.bn[3 * kb + 2] * r0.bn[3 * (c * n + c) + 2]));
+      printf("sheared lattice, cell (%zu, %zu): A %.2g sr, SkyViewFactor %.2g, "
+             "DiffuseSkyFactor %.2g, PositiveOpenness %.2g rad, BentNormal %.2g rad "
+             "(SkyViewFactor %.4f on the square grid)\n",
+             ci, cj, e[0], e[1], e[2], e[3], e[4], r0.svf[c * n + c]);
+      for (i = 0; i < 5; ++i) {
+        worst[i] = fmax(worst[i], e[i]);
+      }
+      release(&r0);
+    }
+    release(&r);
+  }
+  AP_CHECK(worst[0] < 3e-3 && worst[1] < 5e-4 && worst[2] < 2e-4 && worst[3] < 6e-4 &&
+           worst[4] < 1.5e-3);
+  /* flat ground: the sectors' weights sum to D, so a full sky and a level horizon */
+  memset(t.z, 0, n * n * sizeof(float));
+  {
+    results r = compute(&t, &q);
+    const size_t kc = c * n + c;
+    printf("sheared lattice, flat: A - 2 pi %.2g, PositiveOpenness - pi/2 %.2g, BentNormal "
+           "(%.2g, %.2g, %.7f)\n", r.A[kc] - 2 * PI, r.open[kc] - PI / 2, r.bn[3 * kc],
+           r.bn[3 * kc + 1], r.bn[3 * kc + 2]);
+    AP_CHECK(fabs(r.A[kc] - 2 * PI) < 2e-5 && fabs(r.open[kc] - PI / 2) < 2e-6);
+    AP_CHECK(fabs(r.bn[3 * kc]) < 1e-6 && fabs(r.bn[3 * kc + 1]) < 1e-6 && r.svf[kc] == 1.0f);
+    release(&r);
+  }
+  drop(&t);
+  drop(&sq);
+}
+
 /* A uniform number in [0, 1) from a xorshift state (deterministic, the same on every
  * platform). */
 static double next_uniform(unsigned long long *state)
@@ -2171,6 +2269,7 @@ int main(void)
   test_far_march_skips();
   test_pieces();
   test_scale_metric();
+  test_scale_metric_sheared();
   test_random_pieces();
   test_regions();
   test_edge_flags();

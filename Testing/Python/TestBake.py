@@ -154,7 +154,8 @@ class TestBake(unittest.TestCase):
                            ("EARTH_CURVATURE", "off"), ("ANGLE_UNIT", "degree")):
             self.assertEqual(meta[key], value)
         self.assertIn("Timonen", meta["ALGORITHM"])
-        self.assertIn("on other projected DEMs each cell's distances at its own ground scale",
+        self.assertIn("on other projected DEMs each cell's distances at its own ground scale "
+                      "and its sectors weighted by their share of the ground's directions",
                       meta["ALGORITHM"])
         # the kernel's march_columns, far_march_columns and automatic near fields (documented
         # defaults 64, 1024, 32 and 8), read from it, not restated

@@ -623,7 +623,8 @@ def _provenance(args, products, reader):
                      "where it spans at most %d columns, every cell's ray sampled where it "
                      "crosses the grid's columns (the far march, no hulls; along rhumb lines on "
                      "lat/lon and cylindrical (Mercator) DEMs); on other projected DEMs each "
-                     "cell's distances at its own ground scale; sector sums of ALGORITHMS.md 2.2"
+                     "cell's distances at its own ground scale and its sectors weighted by their "
+                     "share of the ground's directions; sector sums of ALGORITHMS.md 2.2"
                      % ("%d (swept sectors) or %d (far-marched sectors)"
                         % (vtkApertureSkyVisibility.GetSweptNearField(),
                            vtkApertureSkyVisibility.GetMarchedNearField())
