@@ -1773,9 +1773,10 @@ static double sheared_ground(double x, double y)
  * same products (BentNormal in S's frame, which is the ground's here: Q = I), up to where the
  * two grids' rays cross their columns, between which they interpolate (halving both grids'
  * cells took the first cell's differences down 8-fold; D = 360). Sectors weighted evenly, as
- * before the sweep weighted them by their share of the ground's directions, were off by 10 to
- * 30 times these bounds (S's singular values are 1.094 and 0.906: sectors 20% wider or
- * narrower on the ground; SkyViewFactor 0.0062-0.0075 off, BentNormal 0.005-0.011 rad). */
+ * before the sweep weighted them by their share of the ground's directions, left each
+ * product's worst difference 7 to 16 times these bounds (S's singular values are 1.094 and
+ * 0.906: sectors 20% wider or narrower on the ground; SkyViewFactor 0.0062-0.0075 off,
+ * BentNormal 0.005-0.011 rad). */
 static void test_scale_metric_sheared(void)
 {
   const double S[3] = { 1.05, 0.08, 0.95 }, cell = 30.0; /* xx, xy, yy */
