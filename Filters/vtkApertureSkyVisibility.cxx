@@ -981,9 +981,10 @@ int vtkApertureSkyVisibility::Execute(
     const double sector = 2.0 * M_PI / D, centre = gammaCentre * M_PI / 180.0;
     const float empty = -static_cast<float>(M_PI / 2);
     // sheared: S at the metric lattice's nodes (its nodes are the convergences'), relative to
-    // the kernel's cells of dx0 x dy0; the grid directions of the sectors, and of a step east
-    // and north of the grid in the kernel's metres
-    std::vector<double> sroot, su, cu;
+    // the kernel's cells of dx0 x dy0, and with HorizonAngles each sector's turn there, the
+    // bearing of S u(ψ_d) less ψ_d (within ±π/2: u · S u > 0), bilinear between the nodes
+    // as S is; then a step east and north of the grid in the kernel's metres
+    std::vector<double> sroot, sectorTurn;
     if (sheared)
     {
       sroot.resize(metric.size());
@@ -996,11 +997,13 @@ int vtkApertureSkyVisibility::Execute(
         sroot[k] = (r0 + q) / t;
         sroot[k + 1] = r1 / t;
         sroot[k + 2] = (r2 + q) / t;
-      }
-      for (int d = 0; d < D; ++d)
-      {
-        su.push_back(std::sin(d * sector - centre));
-        cu.push_back(std::cos(d * sector - centre));
+        for (int d = 0; horizons && d < D; ++d)
+        {
+          const double psi = d * sector - centre, su = std::sin(psi), cu = std::cos(psi);
+          const double x = sroot[k] * su + sroot[k + 1] * cu;
+          const double y = sroot[k + 1] * su + sroot[k + 2] * cu;
+          sectorTurn.push_back(std::remainder(std::atan2(x, y) - psi, 2.0 * M_PI));
+        }
       }
     }
     const double eastStep = grid.dx0 / spacing[0], northStep = grid.dy0 / spacing[1];
@@ -1051,16 +1054,19 @@ int vtkApertureSkyVisibility::Execute(
             if (horizons && sheared)
             {
               // each sector's ground azimuth in sectors from north, at[d] = d + its offset
-              // from φ_d, the offsets unwrapped from one sector to the next (so at[] rises:
-              // S keeps the orientation); at[D] = at[0] + D
+              // from φ_d: the sector's turn, and the rotation less γ(centre) (so at[] rises: S
+              // keeps the orientation); at[D] = at[0] + D
               float* v = horizons + k * D;
-              double offset = 0.0;
+              const double* t00 = sectorTurn.data() + static_cast<size_t>(b0 * lx + a0) * D;
+              const double* t10 = sectorTurn.data() + static_cast<size_t>(b0 * lx + a1) * D;
+              const double* t01 = sectorTurn.data() + static_cast<size_t>(b1 * lx + a0) * D;
+              const double* t11 = sectorTurn.data() + static_cast<size_t>(b1 * lx + a1) * D;
+              const double w00 = (1 - ta) * (1 - tb), w10 = ta * (1 - tb), w01 = (1 - ta) * tb,
+                           w11 = ta * tb, common = std::remainder(rotation - centre, 2.0 * M_PI);
               for (int d = 0; d < D; ++d)
               {
-                const double x = S[0] * su[d] + S[1] * cu[d], y = S[1] * su[d] + S[2] * cu[d];
-                const double off = std::atan2(x, y) + rotation - d * sector;
-                offset += std::remainder(off - offset, 2.0 * M_PI);
-                at[d] = d + offset / sector;
+                at[d] = d +
+                  (w00 * t00[d] + w10 * t10[d] + w01 * t01[d] + w11 * t11[d] + common) / sector;
               }
               at[D] = at[0] + D;
               std::copy(v, v + D, h.begin());
