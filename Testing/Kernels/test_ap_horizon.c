@@ -1772,7 +1772,7 @@ static double sheared_ground(double x, double y)
  * lattice and on a square grid, each cell of the first at a node of the second, must give the
  * same products (BentNormal in S's frame, which is the ground's here: Q = I), up to where the
  * two grids' rays cross their columns, between which they interpolate (halving both grids'
- * cells took the first cell's differences down 8-fold; D = 360). Sectors weighted evenly, as
+ * cells took the first cell's differences down 8-fold; D = 180). Sectors weighted evenly, as
  * before the sweep weighted them by their share of the ground's directions, left each
  * product's worst difference 7 to 16 times these bounds (S's singular values are 1.094 and
  * 0.906: sectors 20% wider or narrower on the ground; SkyViewFactor 0.0062-0.0075 off,
@@ -1782,7 +1782,7 @@ static void test_scale_metric_sheared(void)
   const double S[3] = { 1.05, 0.08, 0.95 }, cell = 30.0; /* xx, xy, yy */
   const size_t n = 161, c = 80;
   terrain t = make(n, n, cell), sq = make(n, n, cell);
-  ap_horizon_params p = params(360, 0), q;
+  ap_horizon_params p = params(180, 0), q;
   double metric[3 * 4], worst[5] = { 0 };
   const size_t cells[3][2] = { { 80, 80 }, { 70, 88 }, { 91, 75 } };
   size_t i, j, k;
