@@ -154,8 +154,16 @@ std::string ScaleChange(vtkApertureGeoreference* geo)
   return m.str();
 }
 
+// Node a of `nodes` spread evenly over `cells` columns (or rows), the first and last on the
+// first and last: its place in cells from the first. The lattices over a projected DEM (its
+// ground metrics, its meridian convergences) put their nodes there.
+double LatticeNode(int a, int nodes, int cells)
+{
+  return (cells - 1.0) * a / (nodes - 1);
+}
+
 // The ground metric of one grid step (vtkApertureGeoreference::GetCellMetricAt) at
-// cols x rows nodes spread evenly over geo's grid, corners included, for the kernel's
+// cols x rows nodes spread evenly over geo's grid (LatticeNode), for the kernel's
 // scale_metric (ap_horizon.h). False when a node has no geographic coordinates.
 bool ScaleMetric(vtkApertureGeoreference* geo, int cols, int rows, std::vector<double>& metric)
 {
@@ -169,7 +177,7 @@ bool ScaleMetric(vtkApertureGeoreference* geo, int cols, int rows, std::vector<d
   {
     for (int a = 0; a < cols; ++a)
     {
-      const double i = (size[0] - 1.0) * a / (cols - 1), j = (size[1] - 1.0) * b / (rows - 1);
+      const double i = LatticeNode(a, cols, size[0]), j = LatticeNode(b, rows, size[1]);
       if (!geo->GetCellMetricAt(origin[0] + i * spacing[0], origin[1] + j * spacing[1],
             metric.data() + 3 * (static_cast<size_t>(b) * cols + a)))
       {
@@ -910,8 +918,8 @@ int vtkApertureSkyVisibility::Execute(
       }
       return g * M_PI / 180.0;
     };
-    const auto nodeI = [&](int a) { return (nxWhole - 1) * (a / (lx - 1.0)); };
-    const auto nodeJ = [&](int b) { return (nyWhole - 1) * (b / (ly - 1.0)); };
+    const auto nodeI = [&](int a) { return LatticeNode(a, lx, nxWhole); };
+    const auto nodeJ = [&](int b) { return LatticeNode(b, ly, nyWhole); };
     std::vector<double> gamma(static_cast<size_t>(lx * ly));
     for (int b = 0; b < ly; ++b)
     {
