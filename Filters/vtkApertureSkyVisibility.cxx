@@ -987,7 +987,13 @@ int vtkApertureSkyVisibility::Execute(
       }
     }
     const double sector = 2.0 * M_PI / D, centre = gammaCentre * M_PI / 180.0;
-    const float empty = -static_cast<float>(M_PI / 2);
+    // a horizon at fraction t from horizon lo to hi: linear, but the nearer one's where either
+    // is an empty direction (-π/2)
+    const auto between = [](float lo, float hi, double t) {
+      const float empty = -static_cast<float>(M_PI / 2);
+      return lo == empty || hi == empty ? (t < 0.5 ? lo : hi)
+                                        : static_cast<float>(lo + t * (hi - lo));
+    };
     // sheared: S at the metric lattice's nodes (its nodes are the convergences'), relative to
     // the kernel's cells of dx0 x dy0, and with HorizonAngles each sector's turn there, the
     // bearing of S u(ψ_d) less ψ_d (within ±π/2: u · S u > 0), bilinear between the nodes
@@ -998,13 +1004,7 @@ int vtkApertureSkyVisibility::Execute(
       sroot.resize(metric.size());
       for (size_t k = 0; k + 2 < metric.size(); k += 3)
       {
-        const double r0 = metric[k] / (grid.dx0 * grid.dx0),
-                     r1 = metric[k + 1] / (grid.dx0 * grid.dy0),
-                     r2 = metric[k + 2] / (grid.dy0 * grid.dy0);
-        const double q = std::sqrt(r0 * r2 - r1 * r1), t = std::sqrt(r0 + r2 + 2.0 * q);
-        sroot[k] = (r0 + q) / t;
-        sroot[k + 1] = r1 / t;
-        sroot[k + 2] = (r2 + q) / t;
+        ap_horizon_metric_root(metric.data() + k, grid.dx0, grid.dy0, sroot.data() + k);
         for (int d = 0; horizons && d < D; ++d)
         {
           const double psi = d * sector - centre, su = std::sin(psi), cu = std::cos(psi);
@@ -1091,10 +1091,7 @@ int vtkApertureSkyVisibility::Execute(
                 {
                   ++seg;
                 }
-                const double t = (x - at[seg]) / (at[seg + 1] - at[seg]);
-                const float lo = h[seg], hi = h[(seg + 1) % D];
-                v[d] = lo == empty || hi == empty ? (t < 0.5 ? lo : hi)
-                                                  : static_cast<float>(lo + t * (hi - lo));
+                v[d] = between(h[seg], h[(seg + 1) % D], (x - at[seg]) / (at[seg + 1] - at[seg]));
               }
             }
             else if (horizons)
@@ -1111,9 +1108,7 @@ int vtkApertureSkyVisibility::Execute(
               std::copy(v, v + D, h.begin());
               for (int d = 0; d < D; ++d)
               {
-                const float lo = h[(d + s0) % D], hi = h[(d + s0 + 1) % D];
-                v[d] = lo == empty || hi == empty ? (t < 0.5 ? lo : hi)
-                                                  : static_cast<float>(lo + t * (hi - lo));
+                v[d] = between(h[(d + s0) % D], h[(d + s0 + 1) % D], t);
               }
             }
           }

@@ -1140,6 +1140,16 @@ size_t ap_horizon_state_bytes_per_cell(int diffuse_sky_factor, int bent_normal)
   return state + (diffuse_sky_factor && !bent_normal ? 3 * sizeof(float) : 0); /* bsum */
 }
 
+void ap_horizon_metric_root(const double m[3], double dx0, double dy0, double s[3])
+{
+  /* S = sqrt(r) = (r + q I) / t, q = sqrt(det r), t = sqrt(trace r + 2 q) */
+  const double r0 = m[0] / (dx0 * dx0), r1 = m[1] / (dx0 * dy0), r2 = m[2] / (dy0 * dy0);
+  const double q = sqrt(r0 * r2 - r1 * r1), t = sqrt(r0 + r2 + 2.0 * q);
+  s[0] = (r0 + q) / t;
+  s[1] = r1 / t;
+  s[2] = (r2 + q) / t;
+}
+
 /* The lattice cell of p.scale_metric around grid column i (axis 0) or row i (axis 1): its
  * first node and the fraction towards the next. From the larger DEM's index alone, so a piece
  * of it interpolates as the whole does. */
@@ -1177,24 +1187,15 @@ static int scale_metric_init(ap_horizon *hz)
   }
   for (k = 0; k < nodes; ++k) {
     const double *m = hz->p.scale_metric + 3 * k;
-    double *r = hz->metric + 3 * k, *v = hz->sinv + 3 * k, *sr = hz->sroot + 3 * k;
-    double q, t, a, b, c, det;
+    double *r = hz->metric + 3 * k, *v = hz->sinv + 3 * k, *sr = hz->sroot + 3 * k, det;
     r[0] = m[0] / (dx0 * dx0);
     r[1] = m[1] / (dx0 * dy0);
     r[2] = m[2] / (dy0 * dy0);
-    /* S = sqrt(r) = (r + q I) / t, q = sqrt(det r), t = sqrt(trace r + 2 q); then S^-1 */
-    q = sqrt(r[0] * r[2] - r[1] * r[1]);
-    t = sqrt(r[0] + r[2] + 2.0 * q);
-    a = (r[0] + q) / t;
-    b = r[1] / t;
-    c = (r[2] + q) / t;
-    sr[0] = a;
-    sr[1] = b;
-    sr[2] = c;
-    det = a * c - b * b;
-    v[0] = c / det;
-    v[1] = -b / det;
-    v[2] = a / det;
+    ap_horizon_metric_root(m, dx0, dy0, sr);
+    det = sr[0] * sr[2] - sr[1] * sr[1];
+    v[0] = sr[2] / det;
+    v[1] = -sr[1] / det;
+    v[2] = sr[0] / det;
   }
   for (k = 0; k < hz->nx; ++k) {
     hz->scale_col[k] = scale_node(hz, 0, k, hz->scale_frac + k);

@@ -291,6 +291,12 @@ typedef struct ap_horizon ap_horizon;
 /** Set the defaults documented on each field. */
 void ap_horizon_params_init(ap_horizon_params *p);
 
+/** S, the square root of one node of ap_horizon_params.scale_metric relative to cells of
+ *  dx0 x dy0 m (m[0] / dx0², m[1] / (dx0 dy0), m[2] / dy0²), as xx, xy, yy in s: symmetric
+ *  and positive definite, the ground vector of a step u (in metres of dx0, dy0) is Q S u for a
+ *  rotation Q. The node must be valid (see scale_metric); no check. */
+void ap_horizon_metric_root(const double m[3], double dx0, double dy0, double s[3]);
+
 /** Check a grid and options without allocating: AP_OK or the first problem
  *  (AP_ERR_INVALID_ARGUMENT for an option out of range or a cell size that is not positive
  *  and finite, AP_ERR_GRID_TOO_SMALL, AP_ERR_ALL_NODATA, AP_ERR_OUT_OF_RANGE for an
