@@ -1007,6 +1007,75 @@ class TestBake(unittest.TestCase):
                 "0...10...20...30...40...50...60...70...80...90...100 - done.\r\n"
             self.assertEqual(seen.decode(), expected)
 
+    def test_progress_follows_every_step(self):
+        # The display follows each step's own progress, weighted by its rough cost: the read,
+        # the sweep and every output's write, so it keeps moving while large outputs are
+        # written (it stood at 95 % through the whole write before, which with every
+        # HorizonAngles band of a 3601^2 DEM took 13 of 25 s). Run in this process, the
+        # terminal's display replaced by a recorder that notes which step each call came from
+        # (the Python frame running it: _read for the reader, Watcher.update for the sky
+        # filter, the writers' otherwise), at once and in 3 strips (see test_strips), with
+        # every product at 8 directions (16 GeoTIFF bands) and an EXR.
+        import contextlib
+        import io
+        from aperture import cli
+        dem = rough_dem(self.path("progress-steps.tif"), (700, 150), 8)
+        options = ["--radius", "1500", "-d", "8", "--products", "all"]
+        calls = []
+
+        class Recorder:
+            open = False
+
+            def __init__(self, stream):
+                pass
+
+            def __call__(self, fraction):
+                names, frame = set(), sys._getframe()
+                while frame:
+                    names.add(frame.f_code.co_name)
+                    frame = frame.f_back
+                calls.append(("read" if "_read" in names else
+                              "sky" if "update" in names else "write", fraction))
+
+        class Terminal:
+            def isatty(self):
+                return True
+
+            def __getattr__(self, name):
+                return getattr(sys.__stderr__, name)
+
+        display, stderr = cli._TermProgress, sys.stderr
+        cli._TermProgress, sys.stderr = Recorder, Terminal()
+        try:
+            for strips in ([], ["--max-memory", "5M"]):
+                del calls[:]
+                out = self.path("progress-steps-%d.tif" % len(strips))
+                with contextlib.redirect_stdout(io.StringIO()) as stdout:
+                    status = cli.main(["bake", dem, out, "--exr", out + ".exr"] + options
+                                      + strips)
+                self.assertEqual(status, 0)
+                self.assertIn("wrote", stdout.getvalue())
+                fractions = [f for _, f in calls]
+                self.assertEqual((fractions[0], fractions[-1]), (0.0, 1.0))
+                self.assertEqual(fractions, sorted(fractions))
+                steps = [step for step, _ in calls[1:]]  # (after the display's start)
+                written = [f for step, f in calls if step == "write"]
+                swept = [f for step, f in calls if step == "sky"]
+                # the writes report as they go (each band, each batch of EXR chunks), not once
+                self.assertGreaterEqual(len(set(written)), 10, calls)
+                if not strips:
+                    # read, swept, written, in that order; the writes move the display by a
+                    # large share (16 bands and 16 channels against 8 directions)
+                    self.assertIn("read", steps)
+                    self.assertEqual(steps, sorted(steps, key=["read", "sky", "write"].index))
+                    self.assertGreater(written[-1] - swept[-1], 0.5, calls)
+                else:
+                    # strip by strip: each strip's writes before the next strip's sweep
+                    self.assertLess(written[0], swept[-1], calls)
+                    self.assertGreaterEqual(steps.count("sky"), 3 * 8)
+        finally:
+            cli._TermProgress, sys.stderr = display, stderr
+
     def test_mesh_carries_products(self):
         import aperture
         from vtkmodules.util.numpy_support import vtk_to_numpy
