@@ -180,14 +180,34 @@ void FillScanlines(const Channel& ch, const StripLayout& at, int nx, int y0, int
   }
 }
 
+// Values that are written whole before they are read: no zero fill, as std::vector's resize
+// would do (on large chunks, zeroing fresh pages cost a third of a ZIP write), and the
+// allocation kept for a later request no larger. Throws std::bad_alloc.
+template <typename T>
+struct Buffer
+{
+  std::unique_ptr<T[]> Data;
+  size_t Size = 0, Capacity = 0;
+  T* Resize(size_t n)
+  {
+    if (n > this->Capacity)
+    {
+      this->Data.reset(new T[n]);
+      this->Capacity = n;
+    }
+    this->Size = n;
+    return this->Data.get();
+  }
+};
+
 // One chunk of scanlines to encode on a worker thread: its place, its compressed bytes, and
-// the outcome (with OpenEXR's message on failure).
+// the outcome (with OpenEXR's message on failure). A batch's jobs are reused by the next
+// batch, buffers and all.
 struct ChunkJob
 {
   exr_chunk_info_t Info;
   int ZipLevel = 0; // ZIP or ZIPS: libdeflate's level; 0: OpenEXR's own compression
-  std::vector<uint8_t> Bytes;
-  std::vector<uint8_t> Scratch; // (ZIP's reordered bytes)
+  Buffer<uint8_t> Bytes;
   exr_result_t Result = EXR_ERR_SUCCESS;
   std::string Message;
 };
@@ -198,13 +218,13 @@ exr_result_t KeepChunk(exr_encode_pipeline_t* encoder)
 {
   auto* job = static_cast<ChunkJob*>(encoder->encoding_user_data);
   const auto* bytes = static_cast<const uint8_t*>(encoder->compressed_buffer);
-  if (bytes == job->Bytes.data())
+  if (bytes == job->Bytes.Data.get())
   {
     return EXR_ERR_SUCCESS; // (DeflateChunk compressed into them)
   }
   try
   {
-    job->Bytes.assign(bytes, bytes + encoder->compressed_bytes);
+    std::memcpy(job->Bytes.Resize(encoder->compressed_bytes), bytes, encoder->compressed_bytes);
   }
   catch (const std::bad_alloc&)
   {
@@ -236,28 +256,29 @@ exr_result_t DeflateChunk(exr_encode_pipeline_t* encoder)
   }
   try
   {
-    job->Scratch.resize(n);
-    uint8_t* even = job->Scratch.data();
-    uint8_t* odd = even + (n + 1) / 2;
+    Buffer<uint8_t> scratch;
+    uint8_t* const t = scratch.Resize(n);
+    uint8_t* even = t;
+    uint8_t* odd = t + (n + 1) / 2;
     for (size_t k = 0; k < n; ++k)
     {
       *((k & 1) ? odd++ : even++) = packed[k];
     }
-    uint8_t* t = job->Scratch.data();
     for (size_t k = n - 1; k > 0; --k) // (back to front: each takes the original before it)
     {
       t[k] = static_cast<uint8_t>(t[k] - t[k - 1] + 128);
     }
-    job->Bytes.resize(libdeflate_zlib_compress_bound(compressor.get(), n));
-    const size_t m =
-      libdeflate_zlib_compress(compressor.get(), t, n, job->Bytes.data(), job->Bytes.size());
+    const size_t bound = libdeflate_zlib_compress_bound(compressor.get(), n);
+    uint8_t* const out = job->Bytes.Resize(bound);
+    const size_t m = libdeflate_zlib_compress(compressor.get(), t, n, out, bound);
     if (m == 0 || m >= n)
     {
-      job->Bytes.assign(packed, packed + n);
+      std::memcpy(out, packed, n);
+      job->Bytes.Size = n;
     }
     else
     {
-      job->Bytes.resize(m);
+      job->Bytes.Size = m;
     }
   }
   catch (const std::bad_alloc&)
@@ -265,8 +286,8 @@ exr_result_t DeflateChunk(exr_encode_pipeline_t* encoder)
     return EXR_ERR_OUT_OF_MEMORY;
   }
   // (ours: a compressed_alloc_size of 0 keeps OpenEXR from freeing it)
-  encoder->compressed_buffer = job->Bytes.data();
-  encoder->compressed_bytes = job->Bytes.size();
+  encoder->compressed_buffer = job->Bytes.Data.get();
+  encoder->compressed_bytes = job->Bytes.Size;
   encoder->compressed_alloc_size = 0;
   return EXR_ERR_SUCCESS;
 }
@@ -280,12 +301,12 @@ void EncodeChunk(exr_context_t ctx, int part, const std::vector<Channel>& channe
   exr_encode_pipeline_t encoder = EXR_ENCODE_PIPELINE_INITIALIZER;
   exr_result_t rv = exr_encoding_initialize(ctx, part, &job.Info, &encoder);
   const bool initialized = rv == EXR_ERR_SUCCESS;
-  std::vector<float> scratch;
+  Buffer<float> scratch; // (every value written by FillScanlines)
   if (initialized)
   {
     try
     {
-      scratch.resize(static_cast<size_t>(job.Info.height) * static_cast<size_t>(nx) *
+      scratch.Resize(static_cast<size_t>(job.Info.height) * static_cast<size_t>(nx) *
         channels.size());
     }
     catch (const std::bad_alloc&)
@@ -303,7 +324,7 @@ void EncodeChunk(exr_context_t ctx, int part, const std::vector<Channel>& channe
       rv = EXR_ERR_INCORRECT_CHUNK; // cannot happen: the header holds only our channels
       break;
     }
-    float* dst = scratch.data() + found->second * chunkValues;
+    float* dst = scratch.Data.get() + found->second * chunkValues;
     FillScanlines(channels[found->second], at, nx, job.Info.start_y, job.Info.height, dst);
     out.encode_from_ptr = reinterpret_cast<const uint8_t*>(dst);
     out.user_pixel_stride = static_cast<int32_t>(sizeof(float));
@@ -851,12 +872,14 @@ int vtkApertureEXRWriter::WriteStrip(vtkImageData* strip)
       for (int first = firstChunk; rv == EXR_ERR_SUCCESS && first < endChunk; first += batch)
       {
         const int count = std::min(batch, endChunk - first);
-        jobs.assign(static_cast<size_t>(count), ChunkJob());
+        jobs.resize(std::max(jobs.size(), static_cast<size_t>(count)));
         for (int k = 0; rv == EXR_ERR_SUCCESS && k < count; ++k)
         {
-          jobs[static_cast<size_t>(k)].ZipLevel = d.ZipLevel;
-          rv = exr_write_scanline_chunk_info(
-            ctx, d.Part, (first + k) * lines, &jobs[static_cast<size_t>(k)].Info);
+          ChunkJob& job = jobs[static_cast<size_t>(k)];
+          job.ZipLevel = d.ZipLevel;
+          job.Result = EXR_ERR_SUCCESS;
+          job.Message.clear();
+          rv = exr_write_scanline_chunk_info(ctx, d.Part, (first + k) * lines, &job.Info);
         }
         if (rv != EXR_ERR_SUCCESS)
         {
@@ -881,7 +904,7 @@ int vtkApertureEXRWriter::WriteStrip(vtkImageData* strip)
           if (rv == EXR_ERR_SUCCESS)
           {
             rv = exr_write_scanline_chunk(
-              ctx, d.Part, job.Info.start_y, job.Bytes.data(), job.Bytes.size());
+              ctx, d.Part, job.Info.start_y, job.Bytes.Data.get(), job.Bytes.Size);
           }
           else
           {
