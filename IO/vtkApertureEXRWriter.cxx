@@ -648,7 +648,9 @@ bool vtkApertureEXRWriter::ResolveChannels(vtkImageData* input, const std::strin
       if (nc > 1)
       {
         const char* cname = array->GetComponentName(c);
-        channel += "." + ((cname && *cname) ? std::string(cname) : std::to_string(c));
+        std::string component = (cname && *cname) ? std::string(cname) : std::to_string(c);
+        std::replace(component.begin(), component.end(), '.', '_'); // (the layer is the array)
+        channel += "." + component;
       }
       channels.push_back({ channel, name, c, nc, EXR_PERCEPTUALLY_LINEAR, array });
     }

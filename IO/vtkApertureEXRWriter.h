@@ -17,7 +17,11 @@
  *   is named; arrays that are not numeric are then skipped). A one-component array gives one
  *   channel named like the array; an array of c > 1 components gives c channels
  *   `<name>.<component name>`, or `<name>.<k>` (k = 0 .. c-1) where the component has no name.
- *   OpenEXR stores channels sorted by name, whatever the order here.
+ *   A '.' in a component name becomes '_': OpenEXR tools take the text before a channel's last
+ *   '.' as its layer, so `HorizonAngles.az011.25` would be a channel `25` of a layer of its own,
+ *   where `HorizonAngles.az011_25` is one of the layer `HorizonAngles` (and vtkApertureEXRReader
+ *   reads the layer back as one array). OpenEXR stores channels sorted by name, whatever the
+ *   order here.
  * - ColorArrayName: a 3- or 4-component array written as the standard channels R, G, B (and A),
  *   so image tools and renderers see an RGB(A) picture. It is not written again under its own
  *   name, even when it is also named with AddArrayName.

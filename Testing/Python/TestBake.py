@@ -194,6 +194,14 @@ class TestBake(unittest.TestCase):
         svf_exr = vtk_to_numpy(pd.GetArray("SkyViewFactor")).reshape(60, 81)
         np.testing.assert_array_equal(np.flipud(svf_exr), b["SkyViewFactor"][0].astype(np.float32))
         self.assertEqual(pd.GetArray("BentNormal").GetNumberOfComponents(), 3)
+        # HorizonAngles: one layer of 360 channels (HorizonAngles.az090_00: a '.' inside the
+        # azimuth would make OpenEXR tools see a layer per sector), read back as one array
+        horizons = pd.GetArray("HorizonAngles")
+        self.assertEqual(horizons.GetNumberOfComponents(), 360)
+        self.assertEqual(horizons.GetComponentName(90), "az090_00")
+        np.testing.assert_array_equal(
+            np.flipud(vtk_to_numpy(horizons)[:, 90].reshape(60, 81)),
+            b["HorizonAngles_az090.00"][0].astype(np.float32))
         self.assertEqual(r.GetMetadataValue("aperture:directions"), "360")
         # each channel's unit and definition, the same as the GeoTIFF band's (HorizonAngles
         # once for its 360 bands)

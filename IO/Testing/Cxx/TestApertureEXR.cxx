@@ -771,6 +771,47 @@ void TestCompressions()
 }
 
 //------------------------------------------------------------------------------
+// A '.' in a component name becomes '_' in the channel's name, so the channels of an array
+// whose components are named like the sky filter's HorizonAngles ("az011.25") form the one
+// layer the array is, which the reader turns back into one array (with '_' in its component
+// names), instead of a layer per component with a channel "25".
+void TestDottedComponentNames()
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(NX, NY, 1);
+  vtkNew<vtkFloatArray> h;
+  h->SetName("HorizonAngles");
+  h->SetNumberOfComponents(2);
+  h->SetComponentName(0, "az000.00");
+  h->SetComponentName(1, "az011.25");
+  for (int k = 0; k < NX * NY; ++k)
+  {
+    h->InsertNextTuple2(k, -0.5 * k);
+  }
+  image->GetPointData()->AddArray(h);
+  const std::string path = tmp + "/dotted.exr";
+  vtkNew<vtkApertureEXRWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(path.c_str());
+  AP_CHECK(writer->Write() == 1);
+  const RawImage raw = ReadRaw(path);
+  AP_CHECK(raw.Ok && raw.Channels.size() == 2);
+  AP_CHECK(raw.Ok && raw.Channels[0] == "HorizonAngles.az000_00");
+  AP_CHECK(raw.Ok && raw.Channels[1] == "HorizonAngles.az011_25");
+  Read read(path);
+  vtkImageData* back = read.Update();
+  AP_CHECK(read.Ok == 1);
+  vtkDataArray* a = back->GetPointData()->GetArray("HorizonAngles");
+  AP_CHECK(a && a->GetNumberOfComponents() == 2);
+  if (a && a->GetNumberOfComponents() == 2)
+  {
+    AP_CHECK(std::string(a->GetComponentName(0)) == "az000_00");
+    AP_CHECK(std::string(a->GetComponentName(1)) == "az011_25");
+    AP_CHECK(a->GetComponent(7, 0) == 7.0 && a->GetComponent(7, 1) == -3.5);
+  }
+}
+
+//------------------------------------------------------------------------------
 // ZIP and ZIPS chunks are deflated by libdeflate in OpenEXR's own format (the bytes split into
 // even and odd ones, then differences), so OpenEXR's decoder gives back every value, FLOAT and
 // HALF (as the NONE file holds it), at levels 1 and 12, 12 no larger; a smooth ramp shrinks to
@@ -1412,6 +1453,7 @@ int TestApertureEXR(int argc, char* argv[])
   TestMetadataAndPlainPicture();
   TestCompressions();
   TestDeflateChunks();
+  TestDottedComponentNames();
   TestThreadsSameBytes();
   TestReaderGrouping();
   TestWriterErrors();
