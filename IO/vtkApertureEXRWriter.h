@@ -33,7 +33,7 @@
  * Compression: lossless only, ZIP (default; 16 scanlines per block), ZIPS (1), RLE (1),
  * PIZ (32) or NONE; set it with the enum or its name. ZIP and ZIPS blocks are deflated by
  * libdeflate at CompressionLevel (OpenEXR's own format, which every OpenEXR reader decodes;
- * 1.8 to 2.9 times as fast as OpenEXR 3.1's zlib at level 1, files 0.2-0.5% larger). Blocks
+ * 2 to 3 times as fast as OpenEXR 3.1's zlib, files 0.2-0.5% larger at level 1). Blocks
  * are converted and compressed on NumberOfThreads threads and written in order (the file's
  * bytes do not depend on it).
  *
