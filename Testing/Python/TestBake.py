@@ -212,6 +212,48 @@ class TestBake(unittest.TestCase):
             self.assertEqual(r.GetMetadataValue("aperture:definition:" + name),
                              b[band][1]["DEFINITION"])
 
+    def test_exr_half(self):
+        # --exr-type half: 16-bit channels (as exrheader and OpenEXR's own decoder, through the
+        # reader, see them), each value the GeoTIFF's float rounded to 11 significant bits
+        # (within 2^-11 of it, relative; 2^-25 near zero, half's subnormals; NaN on the nodata
+        # cell), the file smaller than the float one; --exr-type without --exr is an error.
+        import aperture
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        out = self.path("half.tif")
+        sizes = {}
+        for kind in ("float", "half"):
+            exr = self.path("%s.exr" % kind)
+            status, _, err = run("bake", self.dem, out, "-d", "8", "--exr", exr,
+                                 "--exr-type", kind, "--products",
+                                 "SkyViewFactor,BentNormal,PositiveOpenness")
+            self.assertEqual(status, 0, err)
+            sizes[kind] = os.path.getsize(exr)
+        b, _, _, _ = bands(out)
+        r = aperture.vtkApertureEXRReader()
+        r.SetFileName(self.path("half.exr"))
+        r.Update()
+        pd = r.GetOutput().GetPointData()
+        for name, band, component in (("SkyViewFactor", "SkyViewFactor", None),
+                                      ("BentNormal", "BentNormal_U", 2),
+                                      ("PositiveOpenness", "PositiveOpenness", None)):
+            got = vtk_to_numpy(pd.GetArray(name)).astype(np.float64)
+            got = np.flipud((got[:, component] if component is not None else got).reshape(60, 81))
+            want = b[band][0]
+            self.assertTrue(np.array_equal(np.isnan(got), np.isnan(want)), name)
+            self.assertTrue(np.isnan(want[5, 5]), name)  # (the DEM's nodata cell)
+            ok = ~np.isnan(want)
+            error = np.abs(got[ok] - want[ok])
+            self.assertTrue(np.all(error <= np.abs(want[ok]) * 2.0 ** -11 + 2.0 ** -25), name)
+            self.assertGreater(error.max(), 0.0, name)  # (rounded: not the float file)
+        self.assertLess(sizes["half"], 0.7 * sizes["float"])
+        if shutil.which("exrheader"):
+            header = subprocess.run(["exrheader", self.path("half.exr")], capture_output=True,
+                                    text=True).stdout
+            self.assertIn("SkyViewFactor, 16-bit floating-point", header)
+        status, _, err = run("bake", self.dem, out, "--exr-type", "half")
+        self.assertEqual(status, 1)
+        self.assertIn("aperture: error: --exr-type half needs --exr OUT.exr", err)
+
     def test_read_provenance(self):
         # a product of a window, a decimated grid or an overridden CRS records what was read
         out = self.path("window.tif")

@@ -918,6 +918,8 @@ def cmd_bake(args):
         raise ApertureError("--threads must be 0 (all cores) or more")
     if not 0 <= args.near_field <= 64:
         raise ApertureError("--near-field must be within 1..64, or 0 (automatic)")
+    if args.exr_type and not args.exr:
+        raise ApertureError("--exr-type %s needs --exr OUT.exr" % args.exr_type)
     _check_outputs([("OUT.tif", args.output), ("--exr", args.exr)], [("the DEM", _dem_path(args))])
     ext = os.path.splitext(args.output)[1].lower()
     if ext == ".exr":
@@ -1003,6 +1005,8 @@ def _bake(args, products, progress):
         exr = watcher.watch(vtkApertureEXRWriter())
         exr.SetFileName(args.exr)
         exr.SetNumberOfThreads(args.threads)  # chunks compressed in parallel; same bytes
+        if args.exr_type == "half":
+            exr.SetPixelTypeToHalf()
         for key, value in provenance.items():
             exr.AddMetadata("aperture:" + key.lower(), value)
         for name in products:  # (which sky-view definition each channel is, as in the GeoTIFF)
@@ -1357,6 +1361,10 @@ def build_parser():
                    help="comma-separated products: %s; 'all' adds HorizonAngles (default: all "
                         "but HorizonAngles)" % ", ".join(n for n, *_ in PRODUCTS))
     p.add_argument("--exr", metavar="OUT.exr", help="also write the products to this EXR")
+    p.add_argument("--exr-type", choices=("float", "half"), metavar="float|half",
+                   help="the EXR's sample type: float (default; the GeoTIFF's values exactly) or "
+                        "half (16-bit, half the size, as GPUs and game engines take textures; "
+                        "within 2^-11 of each value, 0.04 degree at 90)")
     p.add_argument("--compress", default="DEFLATE", metavar="CODEC",
                    help="GeoTIFF compression, lossless: DEFLATE (default), ZSTD, LZW, LZMA, "
                         "PACKBITS, LERC, LERC_DEFLATE, LERC_ZSTD, NONE")
