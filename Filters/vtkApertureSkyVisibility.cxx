@@ -805,8 +805,11 @@ int vtkApertureSkyVisibility::Execute(
   // parallel loop (the same chunks, so the same results), and after each slice but a sector's
   // last the filter reports progress and checks AbortExecute; smaller DEMs report once a
   // sector. A phase's share of its sector comes from the previous sector's times (a third
-  // each in the first).
+  // each in the first). The sectors take D of D + 1 parts of the progress; the end (the sums'
+  // finish, then the bent normals' rotation and the horizons' azimuths) the last one, in two
+  // reports: about as long as a sector takes.
   using Clock = std::chrono::steady_clock;
+  const double parts = D + 1.0;
   const double cells = static_cast<double>(nx) * ny;
   double share[3] = { 1.0 / 3, 1.0 / 3, 1.0 / 3 }; // (of the sector's time, per phase)
   double seconds[3] = { 0.0, 0.0, 0.0 };            // (of the sector in progress)
@@ -832,7 +835,7 @@ int vtkApertureSkyVisibility::Execute(
       if (slices > 1 && failure == AP_OK && (phase < 2 || s + 1 < slices))
       {
         const double f = before + share[phase] * (s + 1.0) / slices;
-        this->UpdateProgress((d + std::min(f, 1.0)) / D); // (shares sum to 1 +- rounding)
+        this->UpdateProgress((d + std::min(f, 1.0)) / parts); // (shares sum to 1 +- rounding)
         aborted = this->GetAbortExecute() != 0;
       }
     }
@@ -859,7 +862,7 @@ int vtkApertureSkyVisibility::Execute(
       {
         break; // (no progress reported for a failed sector)
       }
-      this->UpdateProgress(static_cast<double>(d + 1) / D);
+      this->UpdateProgress((d + 1.0) / parts);
       aborted = this->GetAbortExecute() != 0;
       const double sector = seconds[0] + seconds[1] + seconds[2];
       for (int p = 0; p < 3 && sector > 0.0; ++p)
@@ -873,6 +876,8 @@ int vtkApertureSkyVisibility::Execute(
         tally.Note();
         ap_horizon_finish(hz, static_cast<size_t>(j0), static_cast<size_t>(j1));
       });
+      this->UpdateProgress((D + 0.5) / parts);
+      aborted = this->GetAbortExecute() != 0;
     }
   });
   owner.reset(); // (the sweep's state goes before the outputs are finished: peak memory)
@@ -1116,6 +1121,11 @@ int vtkApertureSkyVisibility::Execute(
       });
     });
     this->NumberOfThreadsUsed = tally.Count();
+  }
+  this->UpdateProgress((D + 0.9) / parts);
+  if (this->GetAbortExecute())
+  {
+    return 0;
   }
 
   // 6. Units for files (AnglesInDegrees, FloatEdgeTruncated): elementwise.

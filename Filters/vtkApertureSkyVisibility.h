@@ -99,9 +99,12 @@
  * rather than fail an allocation), or an allocation that fails (e.g. under `ulimit -v`); the
  * message gives the estimated need (HorizonAngles take 4 bytes per cell and direction).
  *
- * Progress and abort: ProgressEvent at the end of each sector, and on DEMs of more than 8 Mi
- * cells also inside it (its phases run in slices of about that many cells); AbortExecute,
- * checked at each, stops the update there: an empty output (the update fails).
+ * Progress and abort: ProgressEvent at the end of each sector d ((d + 1) / (D + 1)), and on
+ * DEMs of more than 8 Mi cells also inside it (its phases run in slices of about that many
+ * cells); then twice in the last part, the end (after the sums' finish, (D + 0.5) / (D + 1),
+ * and after the bent normals' rotation, (D + 0.9) / (D + 1)), which takes about as long as a
+ * sector. AbortExecute, checked at each, stops the update there: an empty output (the update
+ * fails).
  *
  * @warning Threads: NumberOfThreads (default all cores, through vtkSMPTools' STDThread
  * backend); the results are bit-identical for any thread count.

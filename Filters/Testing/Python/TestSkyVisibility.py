@@ -485,18 +485,23 @@ class TestSkyVisibility(Testing.vtkTest):
     def testProgressWithinSectors(self):
         # A DEM of more than 8 Mi cells runs each sector's three phases in slices, reporting
         # progress and checking AbortExecute after each slice but the sector's last: here 2
-        # slices, so 5 events inside each of the 4 sectors, 1 at its end; rising, on 1 thread
-        # (the calling one) and on 2. An abort set at the first event inside the first sector
-        # stops there: no further progress, and no error of the filter's own (the executive
-        # reports the aborted update's failure). (A sector of a 10000^2 DEM takes seconds.)
+        # slices, so 5 events inside each of the 4 sectors, 1 at its end ((d + 1) / 5: the
+        # sectors take 4 fifths, the end the last fifth), then 2 in the end (after the sums'
+        # finish, 0.9, and after the bent normals' rotation, 0.98) before the executive's 1;
+        # rising, on 1 thread (the calling one) and on 2. An abort set at the first event
+        # inside the first sector, or at the end's first, stops there: no further progress,
+        # and no error of the filter's own (the executive reports the aborted update's
+        # failure). (A sector of a 10000^2 DEM takes seconds, its end about as long.)
         from aperture.errors import Watcher
         ny, nx = 2050, 4100
         y, x = np.mgrid[0:ny, 0:nx].astype(np.float32)
         z = 300.0 + 40.0 * np.sin(x / 37.0) * np.cos(y / 23.0)
         image = make_image(z, 400000, 5000000, 30, 30, "EPSG:32633")
         del x, y, z
+        ends = [(d + 1) / 5 for d in range(4)]
+        finish, rotated = (4 + 0.5) / 5, (4 + 0.9) / 5
         for threads in (1, 2):
-            for abort in (False, True):
+            for abort in (None, "sector", "end"):
                 w = Watcher()
                 f = w.watch(aperture.vtkApertureSkyVisibility())
                 w.watch(f.GetExecutive())
@@ -511,26 +516,33 @@ class TestSkyVisibility(Testing.vtkTest):
 
                 def note(o, e, abort=abort, progress=progress):
                     progress.append(o.GetProgress())
-                    if abort and 0.0 < progress[-1] < 0.25:
+                    if (abort == "sector" and 0.0 < progress[-1] < ends[0]) or \
+                            (abort == "end" and progress[-1] == finish):
                         o.SetAbortExecute(1)
                 f.AddObserver("ProgressEvent", note)
                 f.Update()
                 label = "threads %d, abort %s: %s" % (threads, abort, progress)
                 self.assertEqual(progress, sorted(progress), label)
-                inside = [p for p in progress if p > 0.0 and p not in (0.25, 0.5, 0.75, 1.0)]
+                inside = [p for p in progress if 0.0 < p < ends[-1] and p not in ends]
                 if abort:
-                    self.assertEqual(len(inside), 1, label)
                     self.assertTrue(w.errors, label)
                     for message in w.errors:
                         self.assertIn("vtkApertureSkyVisibility", message)
                         self.assertIn("returned failure for request", message)
-                    self.assertEqual(max(progress), inside[0], label)
+                    if abort == "sector":
+                        self.assertEqual(len(inside), 1, label)
+                        self.assertEqual(max(progress), inside[0], label)
+                    else:
+                        self.assertEqual(len(inside), 20, label)
+                        self.assertEqual(max(progress), finish, label)
                     continue
                 self.assertEqual(w.errors, [], label)
                 self.assertEqual(len(inside), 20, label)
                 for d in range(4):
-                    self.assertEqual(sum(d / 4 < p < (d + 1) / 4 for p in inside), 5, label)
-                    self.assertIn((d + 1) / 4, progress, label)
+                    self.assertEqual(sum(d / 5 < p < (d + 1) / 5 for p in inside), 5, label)
+                    self.assertIn(ends[d], progress, label)
+                self.assertEqual([p for p in progress if p > ends[-1]], [finish, rotated, 1.0],
+                                 label)
                 svf = array(f.GetOutput(), "SkyViewFactor")
                 self.assertEqual(svf.size, nx * ny)
                 if threads == 1:
