@@ -796,6 +796,11 @@ def _input_extent(watcher, sky, extent):
     return read
 
 
+def _extent_size(e):
+    """Columns and rows of a VTK extent."""
+    return e[1] - e[0] + 1, e[3] - e[2] + 1
+
+
 def _plan_bake(args, watcher, sky):
     """Set up the reader for the sky filter and plan the bake before anything is read:
     returns (reader, the extent of the grid to bake (--srcwin's cells, else all), the extent
@@ -808,13 +813,12 @@ def _plan_bake(args, watcher, sky):
     strips of whole 256-row tiles, each reading its own halo, as many rows as fit; refused when
     not even one tile row fits."""
     reader, window, read, whole = _window_reading(args, watcher, sky)
-    size = lambda e: (e[1] - e[0] + 1, e[3] - e[2] + 1)
 
     def problem(read, nx, ny):  # the sky filter's refusal of an update, or ""
-        rx, ry = size(read)
+        rx, ry = _extent_size(read)
         return sky.CheckMemory(rx, ry, nx, ny, 4.0 * rx * ry)
 
-    nx, ny = size(window)
+    nx, ny = _extent_size(window)
     whole_problem = problem(read, nx, ny)
     if not whole_problem:
         return reader, window, read, 0
@@ -828,7 +832,7 @@ def _plan_bake(args, watcher, sky):
     middle = (window[2] + window[3]) // 2
     one = _input_extent(watcher, sky, [window[0], window[1], middle, middle, 0, 0])
     halo = max(one[3] - middle, middle - one[2])
-    whole_rows = size(whole)[1]
+    whole_rows = _extent_size(whole)[1]
 
     def strip_problem(tiles):  # for strips of this many tile rows
         rows = min(tile * tiles, ny)
@@ -836,7 +840,8 @@ def _plan_bake(args, watcher, sky):
         return problem(inner, nx, rows)
 
     memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-    if not args.max_memory and 4.0 * size(one)[0] * min(tile + 2 * halo, whole_rows) >= memory:
+    one_columns = _extent_size(one)[0]
+    if not args.max_memory and 4.0 * one_columns * min(tile + 2 * halo, whole_rows) >= memory:
         raise ApertureError("%s; %s" % (whole_problem, advice))  # (a strip's DEM alone)
     fits, tiles = 0, -(-ny // tile)
     while fits + 1 < tiles:  # the most tiles that fit: 'fits' fit, 'tiles' do not
@@ -944,7 +949,7 @@ def _bake_steps(progress, window, read, args, products):
     and direction, writing 20 a cell and GeoTIFF band (7 uncompressed) and 25 a cell and EXR
     channel. So the display moves while a large output is written, which can take as long as
     the sweep (every HorizonAngles band of a 3601^2 DEM: 13 s against 12)."""
-    size = lambda e: (e[1] - e[0] + 1) * (e[3] - e[2] + 1)
+    size = lambda e: math.prod(_extent_size(e))
     cells = size(window)
     bands = sum(3 if p == "BentNormal" else args.directions if p == "HorizonAngles" else 1
                 for p in products)
@@ -1044,7 +1049,7 @@ def _bake(args, products, progress):
             with _abort_on_interrupt(sky, *writers) as guard:
                 _write_strips(watcher, clip, window, extents, outputs, guard, started)
             sweep_seconds = time.perf_counter() - sweep_start
-            nx, ny = window[1] - window[0] + 1, window[3] - window[2] + 1
+            nx, ny = _extent_size(window)
         else:
             if progress:
                 steps = _bake_steps(progress, window, read, args, products)
