@@ -108,6 +108,15 @@ struct vtkApertureGeoreference::Internals
         "to a geographic or projected CRS";
       return false;
     }
+    if (OSRIsGeocentric(this->CRS))
+    {
+      // PROJ would take a grid's x and y for Earth-centred X and Y at Z = 0: a strip of the
+      // equator, silently wrong.
+      this->Error = "the CRS '" + this->Name +
+        "' is geocentric (Earth-centred X, Y, Z), which no DEM grid is in; reproject the DEM "
+        "to a geographic or projected CRS";
+      return false;
+    }
     this->Geographic = OSRCloneGeogCS(this->CRS);
     if (!this->Geographic)
     {

@@ -361,6 +361,16 @@ class TestBadInput(CommandLineTest):
                         srs='LOCAL_CS["mine grid",UNIT["metre",1]]')
         self.assert_error("no geographic coordinates", "info", p)
 
+    def test_geocentric_crs(self):
+        # PROJ takes a geocentric CRS's x, y as X, Y at Z = 0 (the equator): refused by name.
+        p = make_raster(self.path("geocentric.tif"), np.ones((3, 3)),
+                        (4000000, 30, 0, 4000000, 0, -30), srs="EPSG:4978")
+        for command in ("info", "bake"):
+            with self.subTest(command=command):
+                args = [p] if command == "info" else [p, self.path("out.tif")]
+                self.assert_error("the CRS 'WGS 84' is geocentric (Earth-centred X, Y, Z), which "
+                                  "no DEM grid is in", command, *args)
+
     def test_all_nodata(self):
         p = make_raster(self.path("empty.tif"), np.full((3, 3), -1.0),
                         (500000, 30, 0, 4000000, 0, -30), nodata=-1)
@@ -399,10 +409,12 @@ class TestBadInput(CommandLineTest):
                           "render", "-o", png, "--exr", png, env=env)
         dem = self.path("keep.tif")
         make_raster(dem, [[1.0, 2.0], [3.0, 4.0]], (500000, 30, 0, 4000000, 0, -30))
-        before = open(dem, "rb").read()
+        with open(dem, "rb") as f:
+            before = f.read()
         self.assert_error("--output %s is the same file as the DEM" % dem,
                           "render", dem, "-o", dem, env=env)
-        self.assertEqual(open(dem, "rb").read(), before)
+        with open(dem, "rb") as f:
+            self.assertEqual(f.read(), before)
         self.assertFalse(os.path.exists(png))
         missing = self.path("no-such-folder")
         self.assert_error("the output folder %s does not exist" % missing,

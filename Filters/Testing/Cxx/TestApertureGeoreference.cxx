@@ -157,6 +157,13 @@ void TestErrors()
   AP_CHECK(!geo->CRSToLonLat(0, 0, ll));
   AP_CHECK(std::string(geo->GetErrorMessage()).find("no geographic coordinates") !=
     std::string::npos);
+  AP_CHECK(geo->SetCRS("EPSG:4978")); // WGS 84 geocentric
+  AP_CHECK(!geo->CRSToLonLat(4e6, 4e6, ll));
+  AP_CHECK(std::string(geo->GetErrorMessage()).find("is geocentric") != std::string::npos);
+  double size[2];
+  geo->SetGrid(4e6, 4e6, 30.0, 30.0, 3, 3);
+  AP_CHECK(!geo->GetCellSizeMetres(size));
+  AP_CHECK(std::string(geo->GetErrorMessage()).find("is geocentric") != std::string::npos);
   AP_CHECK(geo->SetCRS(nullptr) && !geo->HasCRS());
 
   vtkNew<vtkImageData> image;
