@@ -322,6 +322,8 @@ class TestBadInput(CommandLineTest):
     def test_missing_band(self):
         p = make_raster(self.path("one.tif"), np.ones((3, 3)), (500000, 30, 0, 4000000, 0, -30))
         self.assert_error("band 5 does not exist", "info", p, "--band", "5")
+        for band in ("0", "-1"):
+            self.assert_error("--band must be 1 or more (%s given)" % band, "info", p, "--band", band)
 
     def test_too_small(self):
         p = make_raster(self.path("tiny.tif"), np.ones((1, 1)), (500000, 30, 0, 4000000, 0, -30))

@@ -37,7 +37,7 @@ def _add_read_options(parser, dem_required=False, srcwin_help=None):
     else:
         g.add_argument("dem", nargs="?", metavar="DEM",
                        help="elevation raster (default: the embedded Jacksboro DEM)")
-    g.add_argument("--band", "-b", type=int, default=0, metavar="N",
+    g.add_argument("--band", "-b", type=int, metavar="N",
                    help="1-based band to read (default: band 1, with a note if there are more)")
     g.add_argument("--srcwin", type=int, nargs=4, metavar=("XOFF", "YOFF", "XSIZE", "YSIZE"),
                    help=(srcwin_help or "read only this window, in pixels from the top-left "
@@ -223,15 +223,15 @@ def _dem_reader(args, watcher, subwindow=True):
     """A reader set up with the arguments' options (not run); subwindow=False leaves --srcwin
     to the caller."""
     from aperture import vtkApertureDEMReader
-    if args.band < 0:
-        raise ApertureError("--band must be 1 or more")
+    if args.band is not None and args.band < 1:
+        raise ApertureError("--band must be 1 or more (%d given)" % args.band)
     if args.decimate < 1:
         raise ApertureError("--decimate must be 1 or more")
     if args.overview < -1:
         raise ApertureError("--overview must be 0 or more")
     reader = watcher.watch(vtkApertureDEMReader())
     reader.SetFileName(_dem_path(args))
-    reader.SetBandIndex(args.band)
+    reader.SetBandIndex(args.band or 0)  # 0: the reader's default, band 1 with a note
     if args.srcwin and min(args.srcwin) < 0:
         raise ApertureError("--srcwin values must not be negative")
     if args.srcwin and subwindow:
@@ -1429,7 +1429,7 @@ def build_parser():
                         "azimuth_deg, elevation_deg, zenith_deg, elevation_true_deg, "
                         "angular_radius_deg, distance_au, equation_of_time_min, sunrise, "
                         "transit, sunset and, with --dem, grid_azimuth_deg, direction_enu")
-    p.set_defaults(func=cmd_sun, band=0, srcwin=None, overview=-1, decimate=1, srs=None,
+    p.set_defaults(func=cmd_sun, band=None, srcwin=None, overview=-1, decimate=1, srs=None,
                    zfactor=0.0)
 
     p = sub.add_parser("render", help="render the DEM lit by the sun and sky, to a PNG",
