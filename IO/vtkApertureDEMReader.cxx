@@ -240,6 +240,14 @@ int vtkApertureDEMReader::RequestInformation(
   }
   this->BandRead = d.Band;
   GDALRasterBandH base = GDALGetRasterBand(ds.H, d.Band);
+  const GDALDataType type = GDALGetRasterDataType(base);
+  if (GDALDataTypeIsComplex(type))
+  {
+    // GDAL would hand over the real parts alone.
+    vtkErrorMacro(<< "'" << name << "' band " << d.Band << " holds complex numbers ("
+                  << GDALGetDataTypeName(type) << "), not elevations");
+    return 0;
+  }
 
   // Georeference: a north-up or south-up geotransform and a CRS. (A damaged GeoTIFF's
   // unreadable keys are a GDAL warning while it opens or its georeference loads: named in the

@@ -36,11 +36,12 @@
  * and columns from the file.
  *
  * Errors (vtkErrorMacro, failed update, empty output): a missing file, a file GDAL cannot
- * open, a band that does not exist, no georeference (no geotransform, or ground control points
- * only), a rotated or mirrored geotransform, or one with a pixel size of 0, no CRS (without
- * OverrideCRS), a negative, NaN or infinite MetresPerElevationUnit, fewer than 2 x 2 output
- * cells, a whole raster of nodata, an output larger than MemoryLimit, and an output the
- * process cannot allocate (out of memory, e.g. under `ulimit -v`).
+ * open, a band that does not exist or holds complex numbers, no georeference (no
+ * geotransform, or ground control points only), a rotated or mirrored geotransform, or one
+ * with a pixel size of 0, no CRS (without OverrideCRS), a negative, NaN or infinite
+ * MetresPerElevationUnit, fewer than 2 x 2 output cells, a whole raster of nodata, an output
+ * larger than MemoryLimit, and an output the process cannot allocate (out of memory, e.g.
+ * under `ulimit -v`).
  *
  * @sa vtkApertureDEMWriter vtkApertureGeoreference vtkApertureTerrainMesh
  */

@@ -325,6 +325,16 @@ class TestBadInput(CommandLineTest):
         for band in ("0", "-1"):
             self.assert_error("--band must be 1 or more (%s given)" % band, "info", p, "--band", band)
 
+    def test_complex_band(self):
+        p = self.path("complex.tif")
+        ds = gdal.GetDriverByName("GTiff").Create(p, 3, 3, 1, gdal.GDT_CFloat32)
+        ds.SetGeoTransform((500000, 30, 0, 4000000, 0, -30))
+        ds.SetProjection("EPSG:32611")
+        ds.GetRasterBand(1).Fill(100.0, 5.0)
+        ds = None
+        self.assert_error("'%s' band 1 holds complex numbers (CFloat32), not elevations" % p,
+                          "info", p)
+
     def test_too_small(self):
         p = make_raster(self.path("tiny.tif"), np.ones((1, 1)), (500000, 30, 0, 4000000, 0, -30))
         self.assert_error("at least 2 x 2", "info", p)
