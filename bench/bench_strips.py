@@ -34,7 +34,9 @@ APERTURE = os.path.join(REPO, "build", "bin", "aperture")
 
 def bake(dem, out, radius, max_memory=None):
     """(seconds, peak resident bytes, stdout) of one bake."""
-    command = ["/usr/bin/time", "-v", APERTURE, "bake", dem, out, "-q"]
+    # (no -q: its summary line on stdout says whether it ran in strips; stderr is not a
+    # terminal, so there is no progress display)
+    command = ["/usr/bin/time", "-v", APERTURE, "bake", dem, out]
     if radius:
         command += ["--radius", str(radius)]
     if max_memory:

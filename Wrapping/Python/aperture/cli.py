@@ -1082,6 +1082,8 @@ def _bake(args, products, progress):
     written = [os.path.abspath(path) for _, path in outputs]
     if progress:
         progress(1.0)
+    if args.quiet:
+        return 0
     print("wrote %s: %s for %d x %d cells, %d directions, in %.1f s (sky filter %.2f s%s)"
           % (" and ".join(written), ", ".join(products), nx, ny, args.directions,
              time.perf_counter() - start, sweep_seconds,
@@ -1387,7 +1389,9 @@ def build_parser():
                         "where the horizon sweep runs, 8 where rays are sampled at every "
                         "column)")
     p.add_argument("--quiet", "-q", action="store_true",
-                   help="no progress display (shown, as by gdaldem, when stderr is a terminal)")
+                   help="no progress display (shown, as by gdaldem, when stderr is a "
+                        "terminal) and no summary line on stdout; warnings and errors still "
+                        "go to stderr")
     p.set_defaults(func=cmd_bake)
 
     p = sub.add_parser("sun", help="where the sun is for a time and place; sunrise and sunset",
