@@ -145,6 +145,40 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertAlmostEqual(math.degrees(math.atan2(e, nn)) % 360, r["azimuth_deg"], delta=1e-9)
         self.assertAlmostEqual(math.degrees(math.asin(u)), r["elevation_deg"], delta=1e-9)
 
+    def test_dem_reading_options(self):
+        # The reading options of the other commands: a two-band DEM in feet without a CRS.
+        srs = osr.SpatialReference()
+        srs.ImportFromEPSG(32633)
+        wgs = osr.SpatialReference()
+        wgs.ImportFromEPSG(4326)
+        wgs.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+        to_wgs = osr.CoordinateTransformation(srs, wgs)
+        x0, y0, n, cell = 600000.0, 6650000.0, 100, 100.0
+        at = ["--at", "2026-06-21T13:30Z"]
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "two-bands.tif")
+            ds = gdal.GetDriverByName("GTiff").Create(path, n, n, 2, gdal.GDT_Float32)
+            ds.SetGeoTransform((x0, cell, 0, y0, 0, -cell))
+            ds.GetRasterBand(1).WriteArray(np.full((n, n), 300.0))
+            ds.GetRasterBand(2).WriteArray(np.full((n, n), 1000.0))
+            ds = None
+            self.assertIn("give one with --srs", self.error_of(*at, "--dem", path, "--band", 1))
+            r = self.json_of(*at, "--dem", path, "--srs", "EPSG:32633", "--band", 2,
+                             "--zfactor", "ft")
+            self.assertAlmostEqual(r["height_m"], 304.8, delta=1e-4)
+            lon, lat, _ = to_wgs.TransformPoint(x0 + n / 2 * cell, y0 - n / 2 * cell)
+            self.assertAlmostEqual(r["latitude_deg"], lat, delta=1e-7)
+            self.assertAlmostEqual(r["longitude_deg"], lon, delta=1e-7)
+            # the window's centre: its 10 x 20 cells from column 30, row 40
+            r = self.json_of(*at, "--dem", path, "--srs", "EPSG:32633", "--srcwin", 30, 40,
+                             10, 20)
+            self.assertEqual(r["height_m"], 300.0)
+            lon, lat, _ = to_wgs.TransformPoint(x0 + 35 * cell, y0 - 50 * cell)
+            self.assertAlmostEqual(r["latitude_deg"], lat, delta=1e-7)
+            self.assertAlmostEqual(r["longitude_deg"], lon, delta=1e-7)
+        self.assertIn("--band, --zfactor read the DEM: give one with --dem",
+                      self.error_of(*at, "--lat", 60, "--lon", 18, "--band", 2, "--zfactor", 1))
+
     def test_time_series(self):
         status, out, err = run("--at", "2026-06-21T00:00", "--tz", "Europe/Zurich",
                                "--lat", 47.3769, "--lon", 8.5417, "--days", 2, "--step", 30)

@@ -30,9 +30,13 @@ def _warn(message):
 # Reading
 
 
-def _add_read_options(parser, dem_required=False, srcwin_help=None):
+def _add_read_options(parser, dem_required=False, srcwin_help=None, dem_option=None):
+    """The DEM (a positional argument, or with dem_option, that option with its help) and the
+    options that read it."""
     g = parser.add_argument_group("reading the DEM")
-    if dem_required:
+    if dem_option:
+        g.add_argument("--dem", dest="dem", metavar="DEM", help=dem_option)
+    elif dem_required:
         g.add_argument("dem", metavar="DEM", help="elevation raster")
     else:
         g.add_argument("dem", nargs="?", metavar="DEM",
@@ -1223,6 +1227,13 @@ def cmd_sun(args):
         raise ApertureError("give the place: --lat DEG --lon DEG, or --dem DEM")
     if args.dem is not None and (args.lat is not None or args.lon is not None):
         raise ApertureError("give either --lat/--lon or --dem, not both")
+    reading = [name for name, given in (
+        ("--band", args.band is not None), ("--srcwin", args.srcwin is not None),
+        ("--overview", args.overview != -1), ("--decimate", args.decimate != 1),
+        ("--srs", args.srs is not None), ("--zfactor", args.zfactor != 0.0)) if given]
+    if args.dem is None and reading:
+        raise ApertureError("%s read%s the DEM: give one with --dem" % (
+            ", ".join(reading), "s" if len(reading) == 1 else ""))
     if args.days is not None and args.days < 1:
         raise ApertureError("--days must be 1 or more")
     if args.step is not None and not (args.step > 0 and math.isfinite(args.step)):
@@ -1412,7 +1423,6 @@ def build_parser():
     p.add_argument("--height", type=float, metavar="M",
                    help="height above the ellipsoid, metres (default 0; with --dem: the DEM's "
                         "height at its centre)")
-    p.add_argument("--dem", metavar="DEM", help="take the place (and frame) from this DEM")
     p.add_argument("--pressure", type=float, default=1013.25, metavar="HPA",
                    help="air pressure for refraction, hPa (default 1013.25)")
     p.add_argument("--temperature", type=float, default=15.0, metavar="C",
@@ -1433,8 +1443,9 @@ def build_parser():
                         "azimuth_deg, elevation_deg, zenith_deg, elevation_true_deg, "
                         "angular_radius_deg, distance_au, equation_of_time_min, sunrise, "
                         "transit, sunset and, with --dem, grid_azimuth_deg, direction_enu")
-    p.set_defaults(func=cmd_sun, band=None, srcwin=None, overview=-1, decimate=1, srs=None,
-                   zfactor=0.0)
+    _add_read_options(p, dem_option="take the place (and frame) from this DEM's centre (of "
+                                    "the window read, with --srcwin)")
+    p.set_defaults(func=cmd_sun)
 
     p = sub.add_parser("render", help="render the DEM lit by the sun and sky, to a PNG",
                        description="Render the DEM as a terrain mesh coloured by elevation and "
