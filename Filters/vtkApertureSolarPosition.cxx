@@ -416,7 +416,8 @@ bool vtkApertureSolarPosition::Compute()
     this->Events[0] = rts.sunrise;
     this->Events[1] = rts.transit;
     this->Events[2] = rts.sunset;
-    this->DayKind = rts.kind == AP_SUN_DAY_POLAR_DAY ? 1 : rts.kind == AP_SUN_DAY_POLAR_NIGHT ? 2 : 0;
+    this->DayKind =
+      rts.kind == AP_SUN_DAY_POLAR_DAY ? 1 : rts.kind == AP_SUN_DAY_POLAR_NIGHT ? 2 : 0;
   }
   d.Sunrise = FormatUTC(this->Events[0]);
   d.Transit = FormatUTC(this->Events[1]);

@@ -421,14 +421,16 @@ int vtkApertureTerrainMesh::Execute(
   if (fit32)
   {
     vtkNew<vtkTypeInt32Array> offsets, connectivity;
-    fill(offsets.GetPointer(), connectivity.GetPointer(), [&](size_t j0, size_t j1, vtkTypeInt32* out) {
+    fill(offsets.GetPointer(), connectivity.GetPointer(),
+      [&](size_t j0, size_t j1, vtkTypeInt32* out) {
       ap_mesh_triangulate_rows_i32(&grid, j0, j1, out);
     });
   }
   else
   {
     vtkNew<vtkTypeInt64Array> offsets, connectivity;
-    fill(offsets.GetPointer(), connectivity.GetPointer(), [&](size_t j0, size_t j1, vtkTypeInt64* out) {
+    fill(offsets.GetPointer(), connectivity.GetPointer(),
+      [&](size_t j0, size_t j1, vtkTypeInt64* out) {
       ap_mesh_triangulate_rows(&grid, j0, j1, reinterpret_cast<int64_t*>(out));
     });
   }

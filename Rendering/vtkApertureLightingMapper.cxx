@@ -430,8 +430,8 @@ void vtkApertureLightingMapper::SetMapperShaderParameters(
 }
 
 //------------------------------------------------------------------------------
-bool vtkApertureLightingMapper::ComputeReference(
-  vtkPolyData* mesh, const double albedo[3], vtkDoubleArray* radiance, vtkUnsignedCharArray* display)
+bool vtkApertureLightingMapper::ComputeReference(vtkPolyData* mesh, const double albedo[3],
+  vtkDoubleArray* radiance, vtkUnsignedCharArray* display)
 {
   if (!mesh || !this->CheckInput(mesh))
   {

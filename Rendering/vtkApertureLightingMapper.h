@@ -157,8 +157,8 @@ public:
    * black at nodata) into `display`; either may be nullptr. False (GetInputProblem() says
    * why) if the arrays are missing or wrongly sized.
    */
-  bool ComputeReference(
-    vtkPolyData* mesh, const double albedo[3], vtkDoubleArray* radiance, vtkUnsignedCharArray* display);
+  bool ComputeReference(vtkPolyData* mesh, const double albedo[3], vtkDoubleArray* radiance,
+    vtkUnsignedCharArray* display);
 
   enum ShadingFrequencies
   {

@@ -9,7 +9,8 @@ set -euo pipefail
 source_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${APERTURE_BUILD_DIR:-$source_dir/build}
 
-mapfile -t packages < <(grep -v '^\s*#' "$source_dir/Utilities/debian-packages.txt" | grep -v '^\s*$')
+mapfile -t packages < <(grep -v '^\s*#' "$source_dir/Utilities/debian-packages.txt" |
+                          grep -v '^\s*$')
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
@@ -21,7 +22,8 @@ if ((${#missing[@]})); then
   sudo=""
   if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
   $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends \
+    "${missing[@]}"
 fi
 
 echo "== Configuring in $build_dir"

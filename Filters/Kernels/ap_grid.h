@@ -19,7 +19,8 @@ extern "C" {
 
 /** Read-only view of a grid of elevations (caller-owned memory; nothing is copied or kept). */
 typedef struct ap_grid_view {
-  const float *z;       /**< elevation (metres) of cell (i, j) at z[j * row_stride + i]; NaN = nodata */
+  const float *z;       /**< elevation (metres) of cell (i, j) at z[j * row_stride + i];
+                             NaN = nodata */
   size_t nx, ny;        /**< columns (west to east), rows (south to north) */
   ptrdiff_t row_stride; /**< elements between the starts of consecutive rows; |row_stride| >= nx */
 } ap_grid_view;

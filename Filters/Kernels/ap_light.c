@@ -317,7 +317,8 @@ void ap_light_sky_lookup(const ap_light_params *p, const double b[3], double rp,
   const double fa = az / (2.0 * PI) * na - 0.5;
   const double fe = el / HALF_PI * (ne - 1), fr = r / HALF_PI * (nr - 1);
   const double a0f = floor(fa);
-  const int e0 = (int)fmin(floor(fe), (double)(ne - 2)), r0 = (int)fmin(floor(fr), (double)(nr - 2));
+  const int e0 = (int)fmin(floor(fe), (double)(ne - 2));
+  const int r0 = (int)fmin(floor(fr), (double)(nr - 2));
   const double wa = fa - a0f, we = fe - e0, wr = fr - r0;
   const int a0 = (((int)a0f % na) + na) % na, a1 = (a0 + 1) % na;
   for (int c = 0; c < 3; ++c) {

@@ -145,7 +145,8 @@ ap_status ap_mesh_normals_validate(const double *xyz, size_t nx, size_t ny, cons
   if (nx < 2 || ny < 2) {
     return AP_ERR_GRID_TOO_SMALL;
   }
-  if (ap_size_mul(nx, ny, &nodes) != AP_OK || ap_size_mul(nodes, 3 * sizeof(double), &values) != AP_OK) {
+  if (ap_size_mul(nx, ny, &nodes) != AP_OK ||
+      ap_size_mul(nodes, 3 * sizeof(double), &values) != AP_OK) {
     return AP_ERR_SIZE_OVERFLOW;
   }
   return AP_OK;

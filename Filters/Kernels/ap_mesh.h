@@ -57,7 +57,8 @@ void ap_mesh_triangulate_rows(const ap_grid_view *g, size_t j0, size_t j1, int64
 /** The same with 32-bit ids; only when validate reported that ids fit in int32. */
 void ap_mesh_triangulate_rows_i32(const ap_grid_view *g, size_t j0, size_t j1, int32_t *tri);
 
-/** Check the arguments of ap_mesh_normals_rows once: non-NULL, at least 2 x 2, sizes addressable. */
+/** Check the arguments of ap_mesh_normals_rows once: non-NULL, at least 2 x 2, sizes
+ *  addressable. */
 ap_status ap_mesh_normals_validate(const double *xyz, size_t nx, size_t ny, const float *normals);
 
 /** Unit vertex normals for rows [j0, j1) of a grid of vertex positions.

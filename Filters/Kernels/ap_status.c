@@ -19,7 +19,8 @@ const char *ap_status_string(ap_status status)
   case AP_ERR_NOT_FOUND: return "not found";
   case AP_ERR_BAD_FILE: return "the file is corrupt or of an unknown format";
   case AP_ERR_TIME_NONEXISTENT: return "the local time does not exist (skipped by a clock change)";
-  case AP_ERR_TIME_AMBIGUOUS: return "the local time is ambiguous (it occurs twice at a clock change)";
+  case AP_ERR_TIME_AMBIGUOUS:
+    return "the local time is ambiguous (it occurs twice at a clock change)";
   }
   return "unknown status";
 }

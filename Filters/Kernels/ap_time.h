@@ -148,7 +148,8 @@ ap_status ap_time_parse_iso8601(const char *text, ap_parsed_time *out);
 typedef struct ap_tz ap_tz;
 
 #define AP_TZ_NAME_MAX 255  /**< longest accepted zone name, in bytes */
-#define AP_TZ_ABBR_SIZE 16  /**< size of an abbreviation buffer, NUL included; longer ones are cut */
+#define AP_TZ_ABBR_SIZE 16  /**< size of an abbreviation buffer, NUL included; longer ones
+                                 are cut */
 
 /** Load the zone `name` ("Europe/Zurich", "Etc/GMT-14", ...) from `zoneinfo_dir`/`name`.
  *  zoneinfo_dir NULL or "" means $TZDIR when set and not empty (read once, here), else

@@ -235,7 +235,8 @@ static int32_t offset_at(const ap_tz *tz, int64_t s)
 static ap_status local_to(const ap_tz *tz, ap_civil_time c, int64_t *s, ap_tz_local_result *r)
 {
   ap_instant t = instant(0);
-  const ap_status st = ap_tz_local_to_instant(tz, &c, AP_TZ_CHOOSE_ERROR, AP_TZ_CHOOSE_ERROR, &t, r);
+  const ap_status st =
+      ap_tz_local_to_instant(tz, &c, AP_TZ_CHOOSE_ERROR, AP_TZ_CHOOSE_ERROR, &t, r);
   *s = t.unix_seconds;
   return st;
 }

@@ -323,7 +323,8 @@ class TestBadInput(CommandLineTest):
         p = make_raster(self.path("one.tif"), np.ones((3, 3)), (500000, 30, 0, 4000000, 0, -30))
         self.assert_error("band 5 does not exist", "info", p, "--band", "5")
         for band in ("0", "-1"):
-            self.assert_error("--band must be 1 or more (%s given)" % band, "info", p, "--band", band)
+            self.assert_error("--band must be 1 or more (%s given)" % band,
+                              "info", p, "--band", band)
 
     def test_complex_band(self):
         p = self.path("complex.tif")

@@ -100,7 +100,8 @@ void TestZoneEdge()
   mesher->Update();
   vtkPolyData* mesh = mesher->GetOutput();
   const int n = 201, c = 100;
-  auto point = [&](int i, int j, double p[3]) { mesh->GetPoint(static_cast<vtkIdType>(j) * n + i, p); };
+  auto point = [&](int i, int j, double p[3])
+  { mesh->GetPoint(static_cast<vtkIdType>(j) * n + i, p); };
   double xp[3], xm[3], yp[3], ym[3];
   point(c + 1, c, xp);
   point(c - 1, c, xm);

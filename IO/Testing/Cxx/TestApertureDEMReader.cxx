@@ -43,7 +43,10 @@ struct Read
     this->Ok = this->Reader->GetExecutive()->Update();
     return this->Reader->GetOutput();
   }
-  double Z(int i, int j) { return this->Reader->GetOutput()->GetPointData()->GetScalars()->GetTuple1(this->Index(i, j)); }
+  double Z(int i, int j)
+  {
+    return this->Reader->GetOutput()->GetPointData()->GetScalars()->GetTuple1(this->Index(i, j));
+  }
   vtkIdType Index(int i, int j)
   {
     int ext[6];

@@ -12,7 +12,8 @@ values stay below 1, no multisampling):
 - GPU against the CPU reference (ap_light.c, double precision) at every vertex, for both
   intersection modes and both Lambert modes, with a sky table, and shading per vertex; and
   with every aperture rim crossing the real sun's disc (the lens formulas in float);
-- moving the sun or switching a mode re-uploads no geometry; bad input gives an error and a documented fallback.
+- moving the sun or switching a mode re-uploads no geometry; bad input gives an error and a
+  documented fallback.
 """
 import math
 import sys
