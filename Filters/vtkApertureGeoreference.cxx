@@ -142,6 +142,24 @@ struct vtkApertureGeoreference::Internals
     return true;
   }
 
+  // A local (engineering) CRS: a site grid with no geographic coordinates.
+  bool IsLocal() const { return this->CRS && OSRIsLocal(this->CRS); }
+
+  // The cell size (m) of a local CRS's grid: its spacing in the CRS's linear unit, the same
+  // for every cell. False without a usable unit.
+  bool LocalCellSize(const double spacing[2], double size[2])
+  {
+    if (!(this->UnitMetres > 0) || !std::isfinite(this->UnitMetres))
+    {
+      this->Error = "the local CRS '" + this->Name + "' has no linear unit";
+      return false;
+    }
+    size[0] = spacing[0] * this->UnitMetres;
+    size[1] = spacing[1] * this->UnitMetres;
+    this->Error.clear();
+    return true;
+  }
+
   // Ground lengths (m) of the geodesics across the cell of geo's grid centred at CRS point
   // (xc, yc), from its west edge's centre to its east edge's and from its south edge's to its
   // north edge's, and the cosine of the angle between them (from their chords in Earth-centred
@@ -424,6 +442,12 @@ bool vtkApertureGeoreference::IsGeographic()
 }
 
 //------------------------------------------------------------------------------
+bool vtkApertureGeoreference::IsLocal()
+{
+  return this->Impl->IsLocal();
+}
+
+//------------------------------------------------------------------------------
 bool vtkApertureGeoreference::HasMeridianColumns()
 {
   if (!this->Impl->CRS)
@@ -431,7 +455,7 @@ bool vtkApertureGeoreference::HasMeridianColumns()
     this->Impl->Error = "no coordinate reference system is set";
     return false;
   }
-  if (OSRIsGeographic(this->Impl->CRS))
+  if (OSRIsGeographic(this->Impl->CRS) || this->Impl->IsLocal())
   {
     return true;
   }
@@ -724,6 +748,10 @@ bool vtkApertureGeoreference::GetCellSizeMetres(double size[2])
 //------------------------------------------------------------------------------
 bool vtkApertureGeoreference::GetCellSizeMetresAt(double xc, double yc, double size[2])
 {
+  if (this->Impl->IsLocal())
+  {
+    return this->Impl->LocalCellSize(this->GridSpacing, size);
+  }
   double cosine;
   return this->Impl->CellVectors(this, xc, yc, size, cosine);
 }
@@ -731,8 +759,9 @@ bool vtkApertureGeoreference::GetCellSizeMetresAt(double xc, double yc, double s
 //------------------------------------------------------------------------------
 bool vtkApertureGeoreference::GetCellMetricAt(double xc, double yc, double metric[3])
 {
-  double size[2], cosine;
-  if (!this->Impl->CellVectors(this, xc, yc, size, cosine))
+  double size[2], cosine = 0.0; // (a local grid's axes are perpendicular)
+  if (this->Impl->IsLocal() ? !this->Impl->LocalCellSize(this->GridSpacing, size)
+                            : !this->Impl->CellVectors(this, xc, yc, size, cosine))
   {
     return false;
   }
@@ -773,6 +802,17 @@ double vtkApertureGeoreference::ComputeMeridianConvergence(double lon, double la
 //------------------------------------------------------------------------------
 bool vtkApertureGeoreference::GetRowCellSizesMetres(double* dx, double* dy)
 {
+  if (this->Impl->IsLocal())
+  {
+    double size[2];
+    if (!this->Impl->LocalCellSize(this->GridSpacing, size))
+    {
+      return false;
+    }
+    std::fill(dx, dx + this->GridSize[1], size[0]);
+    std::fill(dy, dy + this->GridSize[1], size[1]);
+    return true;
+  }
   double ell[2];
   if (!this->CheckLongitudeSpan() || !this->GetEllipsoid(ell))
   {

@@ -20,8 +20,9 @@
  * geographic coordinates of any CRS point (on the CRS's own datum and ellipsoid, in degrees,
  * longitude east of Greenwich), lat/lon bounds, the grid centre, the cell size in metres
  * (geodesic distances on the CRS's ellipsoid), and the ellipsoid itself. Lat/lon (geographic)
- * and projected CRSs are both handled; a CRS with no geographic equivalent (a local or
- * engineering CRS) is an error.
+ * and projected CRSs are both handled. A local (engineering) CRS, a site grid with no
+ * geographic equivalent, answers only what its linear unit says (IsLocal): every geographic
+ * question about it is an error.
  *
  * Queries return false on failure and leave the reason in GetErrorMessage(); they never call
  * vtkErrorMacro, so callers decide how to report.
@@ -106,11 +107,22 @@ public:
   bool IsGeographic();
 
   /**
+   * True when the CRS is local (engineering: LOCAL_CS, a site or mine grid): it has no
+   * geographic coordinates, so CRSToLonLat, GetCentreLonLat, GetBoundsLonLat, GetEllipsoid and
+   * ComputeMeridianConvergence fail, but its linear unit gives metric cells: every cell
+   * measures the spacing times GetCRSUnitMetres (GetCellSizeMetres[At], GetCellMetricAt with
+   * E·N = 0, GetRowCellSizesMetres), and HasMeridianColumns is true (the grid's axes are taken
+   * as east and north). False without a CRS.
+   */
+  bool IsLocal();
+
+  /**
    * True when the grid's columns are meridians and its rows parallels: a geographic CRS, or a
    * normal-aspect cylindrical projection (Mercator, Web Mercator, equirectangular, cylindrical
-   * equal-area), with longitude linear in x. Checked on the cells of the first, middle and
-   * last rows and columns (to a millionth of a cell). Ground cell sizes then depend on the row
-   * alone, so GetRowCellSizesMetres holds for every cell, and the meridian convergence is 0.
+   * equal-area), with longitude linear in x, or a local CRS (IsLocal). Checked on the cells of
+   * the first, middle and last rows and columns (to a millionth of a cell). Ground cell sizes
+   * then depend on the row alone, so GetRowCellSizesMetres holds for every cell, and the
+   * meridian convergence is 0.
    * False for other projections (transverse Mercator, conic, polar, sinusoidal), and without
    * a CRS or a grid of at least 2 x 2 cells.
    */
@@ -122,8 +134,8 @@ public:
   /** Name of the horizontal unit of the CRS ("degree", "metre", "US survey foot"). */
   const char* GetCRSUnitName();
 
-  /** Metres per horizontal unit of a projected CRS (1 for metres, 0.3048 for feet); 0 for a
-   *  geographic CRS or none. */
+  /** Metres per horizontal unit of a projected or local CRS (1 for metres, 0.3048 for feet);
+   *  0 for a geographic CRS or none. */
   double GetCRSUnitMetres();
 
   ///@{

@@ -66,6 +66,9 @@ constexpr double ConformalTurn = 1e-4;
 // most this much (rad, 0.006 degree) at the lattice cell's centre, else each cell's own
 // (within some lattice cells of a pole).
 constexpr double GammaTolerance = 1e-4;
+// The Earth's mean radius (m, IUGG's R1 of GRS 80): the curvature of a DEM in a local CRS,
+// which has no ellipsoid and no place on it.
+constexpr double MeanEarthRadius = 6371008.8;
 // Cells of the grid above which a sector's phases run in slices, reporting progress between
 // them (RequestData): some 0.1-0.4 s of a sector's costliest phase on two threads.
 constexpr double SliceCells = 8.0 * 1024 * 1024;
@@ -622,9 +625,11 @@ int vtkApertureSkyVisibility::Execute(
   // (from here on geo describes the whole grid; AttachToImage below uses only its CRS)
   SetWholeGrid(geo, origin, spacing, wholeExt);
   std::vector<double> dx(static_cast<size_t>(nyWhole)), dy(static_cast<size_t>(nyWhole));
-  double centre[2], ellipsoid[2];
-  if (!geo->GetRowCellSizesMetres(dx.data(), dy.data()) || !geo->GetCentreLonLat(centre) ||
-    !geo->GetEllipsoid(ellipsoid))
+  // (a local CRS: a sphere of the mean radius, the grid's axes east and north)
+  const bool local = geo->IsLocal();
+  double centre[2] = { 0.0, 0.0 }, ellipsoid[2] = { MeanEarthRadius, 0.0 };
+  if (!geo->GetRowCellSizesMetres(dx.data(), dy.data()) ||
+    (!local && (!geo->GetCentreLonLat(centre) || !geo->GetEllipsoid(ellipsoid))))
   {
     vtkErrorMacro(<< "no metric cell size: " << geo->GetErrorMessage());
     return 0;

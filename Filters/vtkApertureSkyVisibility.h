@@ -63,7 +63,10 @@
  * reaching off the projection's domain), every cell takes the centre's cell size instead, and a
  * size change of more than 0.5% (a corner's or an edge midpoint's against the centre's) is warned
  * about. Earth curvature uses the ellipsoid's radius of curvature in each azimuth at the DEM
- * centre.
+ * centre. A DEM in a local CRS (a site or mine grid, vtkApertureGeoreference::IsLocal: no
+ * place on the Earth) has cells of its spacing in the CRS's unit, its grid's +y axis taken as
+ * north (the sectors' azimuths, BentNormal and HorizonAngles are the grid's) and curvature on
+ * a sphere of the Earth's mean radius, 6,371,008.8 m.
  *
  * Terrain beyond the DEM edge is invisible; EdgeTruncated marks the cells where that may
  * matter for the sky above the horizontal (A, rp, BentNormal, both sky-view factors).

@@ -370,9 +370,32 @@ class TestBadInput(CommandLineTest):
                           "a grid; set its corners first (gdal_edit.py -a_ullr)" % p, "info", p)
 
     def test_local_crs(self):
-        p = make_raster(self.path("local.tif"), np.ones((3, 3)), (0, 1, 0, 3, 0, -1),
-                        srs='LOCAL_CS["mine grid",UNIT["metre",1]]')
-        self.assert_error("no geographic coordinates", "info", p)
+        # A site grid: metric cells from its unit, no place on the Earth. info and bake work
+        # (the bake in the grid's axes, on a sphere of the mean radius: TestSkyVisibility);
+        # what needs a place (the sun, the mesh's East-North-Up) says why it cannot.
+        p = make_raster(self.path("local.tif"), [[1.0, 2.0, 3.0], [2.0, 5.0, 4.0]],
+                        (0, 10, 0, 20, 0, -10), srs='LOCAL_CS["mine grid",UNIT["foot",0.3048]]')
+        d, _ = self.info(p)
+        self.assertTrue(d["local"])
+        self.assertFalse(d["geographic"])
+        self.assertEqual(d["cell_size_m"], [3.048, 3.048])
+        self.assertIsNone(d["bounds_lonlat"])
+        self.assertIsNone(d["centre_lonlat"])
+        status, out, err = run("info", p)
+        self.assertEqual(status, 0, err)
+        self.assertIn("CRS:        mine grid (local: a site grid)", out)
+        self.assertIn("Bounds:     none in degrees (a local CRS has no geographic coordinates)",
+                      out)
+        baked = self.path("local-sky.tif")
+        status, _, err = run("bake", p, baked, "-q", "--zfactor", "ft")
+        self.assertEqual((status, err), (0, ""))
+        ds = gdal.Open(baked)
+        self.assertIn("clockwise from the grid's +y axis", ds.GetMetadataItem("SECTORS"))
+        self.assertIn("mean Earth radius", ds.GetMetadataItem("EARTH_CURVATURE"))
+        self.assertTrue(ds.GetSpatialRef().IsLocal())
+        ds = None
+        self.assert_error("no geographic coordinates", "sun", "--dem", p, "--zfactor", "ft",
+                          "--at", "2026-06-21T12:00Z")
 
     def test_geocentric_crs(self):
         # PROJ takes a geocentric CRS's x, y as X, Y at Z = 0 (the equator): refused by name.

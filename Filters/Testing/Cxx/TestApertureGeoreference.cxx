@@ -385,8 +385,44 @@ void TestCellMetric()
   AP_CHECK(std::string(geo->GetErrorMessage()) == "the cell has no geographic coordinates");
 }
 
+// A local (site) CRS: metric cells from its unit, nothing geographic.
+void TestLocal()
+{
+  vtkNew<vtkApertureGeoreference> geo;
+  AP_CHECK(geo->SetCRS("LOCAL_CS[\"mine grid\",UNIT[\"US survey foot\",0.304800609601219]]"));
+  AP_CHECK(geo->IsLocal() && !geo->IsGeographic());
+  geo->SetGrid(1000.0, 2000.0, 10.0, 20.0, 4, 3);
+  double size[2], metric[3], ll[2], ellipsoid[2], bounds[4];
+  AP_CHECK(geo->GetCellSizeMetres(size));
+  AP_CHECK_NEAR(size[0], 10.0 * 1200.0 / 3937.0, 1e-12);
+  AP_CHECK_NEAR(size[1], 20.0 * 1200.0 / 3937.0, 1e-12);
+  AP_CHECK(geo->GetCellSizeMetresAt(-5e6, 7e6, size)); // the same everywhere
+  AP_CHECK_NEAR(size[0], 10.0 * 1200.0 / 3937.0, 1e-12);
+  AP_CHECK(geo->GetCellMetricAt(1000.0, 2000.0, metric));
+  AP_CHECK_NEAR(metric[0], size[0] * size[0], 1e-9);
+  AP_CHECK(metric[1] == 0.0);
+  AP_CHECK_NEAR(metric[2], size[1] * size[1], 1e-9);
+  double dx[3] = { 0, 0, 0 }, dy[3] = { 0, 0, 0 };
+  AP_CHECK(geo->GetRowCellSizesMetres(dx, dy));
+  for (int j = 0; j < 3; ++j)
+  {
+    AP_CHECK(dx[j] == size[0] && dy[j] == size[1]);
+  }
+  AP_CHECK(geo->HasMeridianColumns());
+  AP_CHECK(!geo->CRSToLonLat(1000.0, 2000.0, ll));
+  AP_CHECK(!geo->GetCentreLonLat(ll));
+  AP_CHECK(!geo->GetBoundsLonLat(bounds));
+  AP_CHECK(!geo->GetEllipsoid(ellipsoid));
+  AP_CHECK(std::string(geo->GetErrorMessage()).find("no geographic coordinates") !=
+    std::string::npos);
+  AP_CHECK(std::isnan(geo->ComputeMeridianConvergence(0.0, 0.0)));
+  AP_CHECK(geo->SetCRS("EPSG:32633") && !geo->IsLocal());
+  AP_CHECK(geo->SetCRS("EPSG:4326") && !geo->IsLocal());
+}
+
 int TestApertureGeoreference(int, char*[])
 {
+  TestLocal();
   TestProjected();
   TestGeographic();
   TestGradsFromParis();

@@ -933,6 +933,48 @@ class TestSkyVisibility(Testing.vtkTest):
                 self.assertLess(err, 2e-4, "EPSG:%d row %d: %.5f deg" % (epsg, j, err))
                 self.assertLess(abs(bent[j, nx // 2, 0]), 1e-6)  # (no convergence to rotate)
 
+    def testLocalCRS(self):
+        # A site grid in a local CRS (no place on the Earth): cells of its spacing in its unit,
+        # its +y axis north, curvature on a sphere of the mean Earth radius R1.
+        from aperture.errors import Watcher
+        R1, k = 6371008.8, 0.13
+        # A 1000 m peak 100 km east of a cell on flat ground, as in the kernel's test: the
+        # peak's top seen over a sphere of effective radius R1 / (1 - k), in metres and in US
+        # survey feet (the same grid of 50 m cells).
+        z = np.zeros((5, 2001))
+        z[2, 2000] = 1000.0
+        Re = R1 / (1 - k)
+        a = 100000.0 / Re
+        exact = math.degrees(math.atan2((Re + 1000.0) * math.cos(a) - Re,
+                                        (Re + 1000.0) * math.sin(a)))
+        for unit, metres in (("metre", 1.0), ("US survey foot", 1200.0 / 3937.0)):
+            w = Watcher()
+            f = w.watch(aperture.vtkApertureSkyVisibility())
+            f.SetInputData(make_image(z, 0.0, 0.0, 50.0 / metres, 50.0 / metres,
+                                      'LOCAL_CS["site",UNIT["%s",%.17g]]' % (unit, metres)))
+            f.SetNumberOfDirections(4)
+            f.SetComputeHorizonAngles(True)
+            f.Update()
+            self.assertEqual((w.errors, w.warnings), ([], []))
+            east = math.degrees(array(f.GetOutput(), "HorizonAngles").reshape(5, 2001, 4)[2, 0, 1])
+            self.assertAlmostEqual(east, exact, delta=0.01, msg=unit)
+            # (without curvature atan(H / d) = 0.573 degree; with it about 0.08 lower)
+            self.assertGreater(abs(east - math.degrees(math.atan(0.01))), 0.05)
+        # Rough terrain: every product as on the same grid laid on the equator of that sphere
+        # (equirectangular: rows are parallels, cells of 30 m to within 1e-7 there).
+        y, x = np.mgrid[0:90, 0:100] * 30.0
+        z = (300 * np.sin(x / 900) * np.cos(y / 700) + 120 * np.sin(x / 230 + 1.3) *
+             np.sin(y / 310) + 40 * np.cos(x / 70 - y / 90))
+        names = ("VisibleSolidAngle", "ApertureRadius", "BentNormal", "SkyViewFactor",
+                 "DiffuseSkyFactor", "PositiveOpenness", "HorizonAngles", "EdgeTruncated")
+        out = {}
+        for crs in ('LOCAL_CS["site",UNIT["metre",1]]', "+proj=eqc +R=6371008.8 +units=m"):
+            f = sky(make_image(z, 0.0, 0.0, 30.0, 30.0, crs), MaximumDistance=2000.0,
+                    ComputeHorizonAngles=True)
+            out[crs] = [array(f.GetOutput(), name) for name in names]
+        for name, local, sphere in zip(names, *out.values()):
+            self.assertLess(np.abs(local - sphere).max(), 1e-5, name)
+
     def testMemoryLimit(self):
         # Refused before allocating when the estimate exceeds MemoryLimit: bytes per cell of
         # the default products 33 (five floats, BentNormal 12, EdgeTruncated 1), the float

@@ -280,8 +280,9 @@ def describe(reader, image):
     cell_m = [0.0, 0.0]
     bounds = [0.0] * 4
     centre = [0.0, 0.0]
-    if not (geo.GetCellSizeMetres(cell_m) and geo.GetBoundsLonLat(bounds)
-            and geo.GetCentreLonLat(centre)):
+    local = geo.IsLocal()  # (a site grid: metric cells, no place on the Earth)
+    if not (geo.GetCellSizeMetres(cell_m) and (local or (
+            geo.GetBoundsLonLat(bounds) and geo.GetCentreLonLat(centre)))):
         raise ApertureError(geo.GetErrorMessage())
     return {
         "file": _full_name(reader.GetFileName()),
@@ -291,11 +292,12 @@ def describe(reader, image):
         "size": [nx, ny],
         "crs": geo.GetCRSName(),
         "geographic": bool(geo.IsGeographic()),
+        "local": bool(local),
         "crs_unit": geo.GetCRSUnitName(),
         "cell_size": list(geo.GetGridSpacing()),
         "cell_size_m": cell_m,
-        "bounds_lonlat": bounds,
-        "centre_lonlat": centre,
+        "bounds_lonlat": None if local else bounds,
+        "centre_lonlat": None if local else centre,
         "elevation_range": [float(z[valid].min()), float(z[valid].max())],
         # metres per unit of the file's elevations, and where that came from
         "elevation_unit_m": reader.GetElevationUnitRead(),
@@ -315,12 +317,17 @@ def _format_info(d):
     lines = [
         "File:       %s (%s, band %d of %d)" % (d["file"], d["driver"], d["band"], d["bands"]),
         "Size:       %d x %d cells (columns x rows)" % tuple(d["size"]),
-        "CRS:        %s (%s)" % (d["crs"], "geographic" if d["geographic"] else "projected"),
+        "CRS:        %s (%s)" % (d["crs"], "geographic" if d["geographic"] else
+                                 "local: a site grid" if d["local"] else "projected"),
         "Cell size:  %.9g x %.9g %s (%.2f m east x %.2f m north at the centre)"
         % (d["cell_size"][0], d["cell_size"][1], unit, d["cell_size_m"][0], d["cell_size_m"][1]),
+    ] + ([
+        "Bounds:     none in degrees (a local CRS has no geographic coordinates)",
+    ] if d["local"] else [
         "Bounds:     west %s, south %s, east %s, north %s (degrees)"
         % tuple(deg(v) for v in d["bounds_lonlat"]),
         "Centre:     longitude %s, latitude %s" % tuple(deg(v) for v in d["centre_lonlat"]),
+    ]) + [
         "Elevation:  %.2f .. %.2f m (unit: %.10g m, %s)"
         % (*d["elevation_range"], d["elevation_unit_m"], d["elevation_unit_source"]),
         "Nodata:     %d cells%s" % (d["nodata_count"], "" if d["nodata_value"] is None
@@ -659,10 +666,15 @@ def _provenance(args, products, reader):
                         vtkApertureSkyVisibility.GetMarchColumns(),
                         vtkApertureSkyVisibility.GetFarMarchColumns()),
         "DIRECTIONS": str(args.directions),
-        "SECTORS": "sector d centred on true azimuth 360 d / %d degrees, clockwise from north"
+        "SECTORS": ("sector d centred on grid azimuth 360 d / %d degrees, clockwise from the "
+                    "grid's +y axis (a local CRS: no true north; BentNormal_E and _N along "
+                    "the grid's x and y)" if _local_crs(reader) else
+                    "sector d centred on true azimuth 360 d / %d degrees, clockwise from north")
                    % args.directions,
         "MAX_DISTANCE_M": "unlimited" if not args.radius else repr(args.radius),
-        "EARTH_CURVATURE": "off" if args.no_curvature else "on",
+        "EARTH_CURVATURE": "off" if args.no_curvature else
+                           "on, a sphere of the mean Earth radius 6371008.8 m (a local CRS has "
+                           "no ellipsoid)" if _local_crs(reader) else "on",
         "REFRACTION_COEFFICIENT": "n/a" if args.no_curvature else repr(args.refraction),
         "ANGLE_UNIT": "degree",
         "EDGES": "terrain beyond the DEM edge is treated as invisible; see EdgeTruncated",
@@ -670,6 +682,14 @@ def _provenance(args, products, reader):
         # what of the DEM was read: a product of a window or a decimated grid says so
         **_read_provenance(args, reader),
     }
+
+
+def _local_crs(reader):
+    """Whether the reader's DEM (after its UpdateInformation) is in a local CRS."""
+    from aperture import vtkApertureGeoreference
+    geo = vtkApertureGeoreference()
+    crs = reader.GetOutputInformation(0).Get(vtkApertureGeoreference.CRS_KEY())
+    return bool(crs) and geo.SetCRS(crs) and geo.IsLocal()
 
 
 def _read_provenance(args, reader):
