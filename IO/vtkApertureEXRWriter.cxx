@@ -244,6 +244,9 @@ exr_result_t DeflateChunk(exr_encode_pipeline_t* encoder)
   auto* job = static_cast<ChunkJob*>(encoder->encoding_user_data);
   const auto* packed = static_cast<const uint8_t*>(encoder->packed_buffer);
   const size_t n = encoder->packed_bytes;
+  // (the compressor and scratch are made per chunk on purpose, as is EncodeChunk's: kept in
+  // each job instead, ZIP writes of a 1024^2 DEM's nine channels took 1.3-1.9 times as long,
+  // the same bytes; freed per chunk, malloc hands the memory back still in the cache)
   struct Free
   {
     void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
