@@ -30,6 +30,12 @@ def _warn(message):
 # Reading
 
 
+# The reading options' defaults: each leaves the file as it is (sun checks that none is given
+# without --dem).
+_READ_DEFAULTS = {"band": None, "srcwin": None, "overview": -1, "decimate": 1, "srs": None,
+                  "zfactor": 0.0}
+
+
 def _add_read_options(parser, dem_required=False, srcwin_help=None, dem_option=None):
     """The DEM (a positional argument, or with dem_option, that option with its help) and the
     options that read it."""
@@ -47,14 +53,15 @@ def _add_read_options(parser, dem_required=False, srcwin_help=None, dem_option=N
                    help=(srcwin_help or "read only this window, in pixels from the top-left "
                                         "corner (as gdal_translate -srcwin)") +
                    "; a size of 0 reaches the raster's edge")
-    g.add_argument("--overview", type=int, default=-1, metavar="K",
+    g.add_argument("--overview", type=int, default=_READ_DEFAULTS["overview"], metavar="K",
                    help="read GDAL overview level K (0-based) instead of full resolution")
-    g.add_argument("--decimate", type=int, default=1, metavar="F",
+    g.add_argument("--decimate", type=int, default=_READ_DEFAULTS["decimate"], metavar="F",
                    help="average F x F blocks of cells (nodata ignored), aligned to the "
                         "raster's top-left corner (a --srcwin gets every block it touches)")
     g.add_argument("--srs", metavar="CRS",
                    help="use this CRS instead of the file's (EPSG:xxxx, WKT or PROJ string)")
-    g.add_argument("--zfactor", type=_parse_zfactor, default=0.0, metavar="Z",
+    g.add_argument("--zfactor", type=_parse_zfactor, default=_READ_DEFAULTS["zfactor"],
+                   metavar="Z",
                    help="metres per elevation unit, for a DEM whose unit is missing or wrong: "
                         "a number, or ft (0.3048), us-ft (1200/3937) or m (default: the "
                         "band's unit, else a compound CRS's height unit, else metres)")
@@ -646,6 +653,7 @@ def _parse_products(text):
 
 def _provenance(args, products, reader):
     from aperture import __version__, vtkApertureSkyVisibility
+    local = _local_crs(reader)
     return {
         "APERTURE_VERSION": __version__,
         "APERTURE_COMMAND": "aperture bake",
@@ -668,13 +676,13 @@ def _provenance(args, products, reader):
         "DIRECTIONS": str(args.directions),
         "SECTORS": ("sector d centred on grid azimuth 360 d / %d degrees, clockwise from the "
                     "grid's +y axis (a local CRS: no true north; BentNormal_E and _N along "
-                    "the grid's x and y)" if _local_crs(reader) else
+                    "the grid's x and y)" if local else
                     "sector d centred on true azimuth 360 d / %d degrees, clockwise from north")
                    % args.directions,
         "MAX_DISTANCE_M": "unlimited" if not args.radius else repr(args.radius),
         "EARTH_CURVATURE": "off" if args.no_curvature else
                            "on, a sphere of the mean Earth radius 6371008.8 m (a local CRS has "
-                           "no ellipsoid)" if _local_crs(reader) else "on",
+                           "no ellipsoid)" if local else "on",
         "REFRACTION_COEFFICIENT": "n/a" if args.no_curvature else repr(args.refraction),
         "ANGLE_UNIT": "degree",
         "EDGES": "terrain beyond the DEM edge is treated as invisible; see EdgeTruncated",
@@ -1247,10 +1255,8 @@ def cmd_sun(args):
         raise ApertureError("give the place: --lat DEG --lon DEG, or --dem DEM")
     if args.dem is not None and (args.lat is not None or args.lon is not None):
         raise ApertureError("give either --lat/--lon or --dem, not both")
-    reading = [name for name, given in (
-        ("--band", args.band is not None), ("--srcwin", args.srcwin is not None),
-        ("--overview", args.overview != -1), ("--decimate", args.decimate != 1),
-        ("--srs", args.srs is not None), ("--zfactor", args.zfactor != 0.0)) if given]
+    reading = ["--" + name for name, default in _READ_DEFAULTS.items()
+               if getattr(args, name) != default]
     if args.dem is None and reading:
         raise ApertureError("%s read%s the DEM: give one with --dem" % (
             ", ".join(reading), "s" if len(reading) == 1 else ""))
