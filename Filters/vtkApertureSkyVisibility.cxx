@@ -276,6 +276,7 @@ vtkApertureSkyVisibility::vtkApertureSkyVisibility()
   , NearField(0)
   , NumberOfThreads(0)
   , NumberOfThreadsUsed(0)
+  , InputAllNodata(false)
   , MemoryLimit(0)
   , ComputeVisibleSolidAngle(true)
   , ComputeApertureRadius(true)
@@ -489,6 +490,7 @@ int vtkApertureSkyVisibility::Execute(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outputVector);
   this->NumberOfThreadsUsed = 0;
+  this->InputAllNodata = false;
   if (!input || input->GetNumberOfPoints() == 0)
   {
     return 1;
@@ -716,12 +718,15 @@ int vtkApertureSkyVisibility::Execute(
     sheared = params.scale_metric && turn > ConformalTurn;
   }
   ap_status st = ap_horizon_validate(&grid, &params);
-  if (st == AP_ERR_ALL_NODATA)
+  // Nodata everywhere: an error for the whole DEM; a piece of one (a stretch of sea and its
+  // halo) gets nodata products, as the whole run's cells there do.
+  const bool allNodata = st == AP_ERR_ALL_NODATA;
+  if (allNodata && nx == nxWhole && ny == nyWhole)
   {
     vtkErrorMacro(<< "every cell of the DEM is nodata");
     return 0;
   }
-  if (st != AP_OK)
+  if (st != AP_OK && !allNodata)
   {
     vtkErrorMacro(<< "horizon parameters: " << ap_status_string(st));
     return 0;
@@ -778,6 +783,66 @@ int vtkApertureSkyVisibility::Execute(
     ? edgeBytes.data()
     : static_cast<vtkUnsignedCharArray*>(products[6].Array.Get())->GetPointer(0);
   out.horizon_angles = fptr(7);
+
+  // 7. The output, made last (at once for a piece of nodata): the input's arrays and geometry
+  //    over the requested extent, plus ours.
+  const auto attach = [&]() {
+    output->SetExtent(outExt);
+    output->SetOrigin(input->GetOrigin());
+    output->SetSpacing(input->GetSpacing());
+    if (whole)
+    {
+      output->GetPointData()->PassData(input->GetPointData());
+    }
+    else
+    {
+      output->GetPointData()->CopyAllocate(input->GetPointData(), static_cast<vtkIdType>(outN));
+      output->GetPointData()->CopyStructuredData(input->GetPointData(), inExt, outExt);
+    }
+    output->GetFieldData()->PassData(input->GetFieldData());
+    geo->AttachToImage(output); // the GeoTransform of the output's extent
+    for (Product& pr : products)
+    {
+      if (!pr.Array)
+      {
+        continue;
+      }
+      vtkDataArray* arr = pr.Array;
+      if (std::string(pr.Name) == "BentNormal")
+      {
+        arr->SetComponentName(0, "E");
+        arr->SetComponentName(1, "N");
+        arr->SetComponentName(2, "U");
+      }
+      if (std::string(pr.Name) == "HorizonAngles")
+      {
+        for (int d = 0; d < D; ++d)
+        {
+          char label[32];
+          std::snprintf(label, sizeof(label), "az%06.2f", 360.0 * d / D);
+          arr->SetComponentName(d, label);
+        }
+      }
+      output->GetPointData()->AddArray(arr);
+    }
+    return 1;
+  };
+  if (allNodata)
+  {
+    for (Product& pr : products)
+    {
+      if (pr.Array)
+      {
+        // (EdgeTruncated as bytes: 0, as the kernel gives a nodata cell)
+        pr.Array->Fill(pr.Array->GetDataType() == VTK_UNSIGNED_CHAR
+            ? 0.0
+            : std::numeric_limits<double>::quiet_NaN());
+      }
+    }
+    this->InputAllNodata = true;
+    this->UpdateProgress(1.0);
+    return attach();
+  }
 
   // 4. The sweep, sector by sector; each sector's lines and rows in parallel.
   ap_horizon* hz = nullptr;
@@ -1062,7 +1127,9 @@ int vtkApertureSkyVisibility::Execute(
               const double wx = -std::sin(g) * eastStep, wy = std::cos(g) * northStep;
               rotation = -std::atan2(S[0] * wx + S[1] * wy, S[1] * wx + S[2] * wy);
             }
-            if (out.bent_normal)
+            // (a nodata cell's NaN stays as it is: -e sin would make the north one -NaN,
+            // other bits than the same cell's in a piece of nodata, filled above)
+            if (out.bent_normal && !std::isnan(out.bent_normal[3 * k]))
             {
               float* v = out.bent_normal + 3 * k;
               const double e = v[0], nn = v[1];
@@ -1167,46 +1234,7 @@ int vtkApertureSkyVisibility::Execute(
     });
   }
 
-  // 7. The output: the input's arrays and geometry over the requested extent, plus ours.
-  output->SetExtent(outExt);
-  output->SetOrigin(input->GetOrigin());
-  output->SetSpacing(input->GetSpacing());
-  if (whole)
-  {
-    output->GetPointData()->PassData(input->GetPointData());
-  }
-  else
-  {
-    output->GetPointData()->CopyAllocate(input->GetPointData(), static_cast<vtkIdType>(outN));
-    output->GetPointData()->CopyStructuredData(input->GetPointData(), inExt, outExt);
-  }
-  output->GetFieldData()->PassData(input->GetFieldData());
-  geo->AttachToImage(output); // the GeoTransform of the output's extent
-  for (Product& pr : products)
-  {
-    if (!pr.Array)
-    {
-      continue;
-    }
-    vtkDataArray* arr = pr.Array;
-    if (std::string(pr.Name) == "BentNormal")
-    {
-      arr->SetComponentName(0, "E");
-      arr->SetComponentName(1, "N");
-      arr->SetComponentName(2, "U");
-    }
-    if (std::string(pr.Name) == "HorizonAngles")
-    {
-      for (int d = 0; d < D; ++d)
-      {
-        char label[32];
-        std::snprintf(label, sizeof(label), "az%06.2f", 360.0 * d / D);
-        arr->SetComponentName(d, label);
-      }
-    }
-    output->GetPointData()->AddArray(arr);
-  }
-  return 1;
+  return attach();
 }
 
 //------------------------------------------------------------------------------

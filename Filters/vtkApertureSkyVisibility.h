@@ -94,8 +94,13 @@
  * edge, so a horizon may round its last bit differently: 2 of 5,500 random pieces in a stress
  * test, by 4e-8 rad).
  *
+ * A piece whose input (its extent and halo) is nodata in every cell, a stretch of sea in a
+ * coastal DEM, is no error: its products are nodata (NaN; EdgeTruncated 0, or NaN as float),
+ * as the whole run's are there, and GetInputAllNodata() says so.
+ *
  * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, no CRS
- * or no metric cell size, every cell nodata, NumberOfDirections outside 4..360, a negative
+ * or no metric cell size, every cell nodata in an input that is the whole DEM (an update of
+ * all of it, or an unlimited distance), NumberOfDirections outside 4..360, a negative
  * MaximumDistance, a refraction coefficient outside [0, 1), and not enough memory for the
  * outputs and the sweep: refused before allocating when the estimate exceeds MemoryLimit
  * (default: the physical memory beside the input image, since past it Linux kills the process
@@ -227,6 +232,11 @@ public:
    *  NumberOfThreads when that is set). */
   vtkGetMacro(NumberOfThreadsUsed, int);
 
+  /** Whether the last update's input, a part of the DEM (the requested extent and its halo),
+   *  was nodata in every cell, so that every product is nodata (false before any update). A
+   *  caller streaming a DEM in pieces learns from it whether any piece had data. */
+  vtkGetMacro(InputAllNodata, bool);
+
   ///@{
   /** Which products to add. All derived products default on; HorizonAngles off. */
   vtkSetMacro(ComputeVisibleSolidAngle, bool);
@@ -298,6 +308,7 @@ protected:
   int NearField;
   int NumberOfThreads;
   int NumberOfThreadsUsed;
+  bool InputAllNodata;
   vtkTypeInt64 MemoryLimit;
   bool ComputeVisibleSolidAngle;
   bool ComputeApertureRadius;

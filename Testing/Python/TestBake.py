@@ -530,6 +530,58 @@ class TestBake(unittest.TestCase):
             self.assertEqual(status, 2, err)
             self.assertIn("is not a size (512, 300K, 1.5G, 2T)", err)
 
+    def test_sea(self):
+        # Parts of a DEM may be nodata alone, with the DEM they read around them (a coastal
+        # tile's strips and windows out at sea): their products are nodata, as the whole
+        # bake's are there; only a DEM with no data at all is an error. The strips and windows
+        # below were each refused ("every cell of the DEM is nodata") before 2026-12-05.
+        # Rough land in the northern 200 of 700 rows, the rest sea; 1500 m: a halo of 52 rows.
+        dem = rough_dem(self.path("coast.tif"), (700, 150), 11, np.s_[200:, :])
+        options = ["--radius", 1500, "-d", 8, "--products", "all"]
+        at_once, in_strips = self.path("coast-whole.tif"), self.path("coast-strips.tif")
+        exr_once, exr_strips = self.path("coast-whole.exr"), self.path("coast-strips.exr")
+        status, _, err = run("bake", dem, at_once, *options, "--exr", exr_once)
+        self.assertEqual((status, err), (0, ""))
+        status, stdout, err = run("bake", dem, in_strips, *options, "--max-memory", "5M",
+                                  "--exr", exr_strips)
+        self.assertEqual((status, err), (0, ""))  # (the southern two strips: sea alone)
+        self.assertIn("in 3 strips of 256 rows", stdout)
+        whole, _, _, _ = bands(at_once)
+        strips, _, _, _ = bands(in_strips)
+        for name in whole:
+            np.testing.assert_array_equal(strips[name][0], whole[name][0], err_msg=name)
+        self.assertTrue(np.isnan(whole["SkyViewFactor"][0][200:]).all())
+        self.assertTrue(np.isnan(whole["EdgeTruncated"][0][200:]).all())
+        self.assertTrue(np.isfinite(whole["SkyViewFactor"][0][:200]).all())
+        with open(exr_once, "rb") as a, open(exr_strips, "rb") as b:
+            self.assertEqual(a.read(), b.read())
+        # a window out at sea (its rows 400..599 and the 52 around them: no data) is written,
+        # nodata, with a warning; one reaching within 1500 m of the shore is not warned about
+        sea = self.path("coast-sea.tif")
+        status, _, err = run("bake", dem, sea, *options, "--srcwin", 10, 400, 100, 200,
+                             "--exr", self.path("coast-sea.exr"))
+        self.assertEqual(status, 0, err)
+        self.assertEqual(err, "aperture: warning: every cell of the DEM read for --srcwin 10 400 "
+                         "100 200 (the window and 1500 m around it) is nodata, and so is every "
+                         "product\n")
+        window, _, _, _ = bands(sea)
+        self.assertEqual(sorted(window), sorted(whole))
+        for name in whole:
+            np.testing.assert_array_equal(window[name][0], whole[name][0][400:600, 10:110],
+                                          err_msg=name)
+        status, _, err = run("bake", dem, sea, *options, "--srcwin", 10, 240, 100, 200)
+        self.assertEqual((status, err), (0, ""))
+        # no data anywhere: an error at once (the reader's) and in strips (after the last
+        # strip: each alone is a part of the DEM), neither output left
+        void = rough_dem(self.path("void.tif"), (700, 150), 11, np.s_[:, :])
+        for extra in ([], ["--max-memory", "5M"]):
+            out, exr = self.path("void-out.tif"), self.path("void-out.exr")
+            status, _, err = run("bake", void, out, *options, "--exr", exr, *extra)
+            self.assertEqual((status, err), (1, "aperture: error: every cell of '%s' band 1 is "
+                                                "nodata\n" % void), extra)
+            self.assertFalse(os.path.exists(out))
+            self.assertFalse(os.path.exists(exr))
+
     def test_reader_refusal_in_options(self):
         # The reader's own refusal (a grid past the machine's memory, reached here by a
         # --max-memory beyond it) is worded in the command's options, as every other message.

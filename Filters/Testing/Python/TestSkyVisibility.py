@@ -437,6 +437,74 @@ class TestSkyVisibility(Testing.vtkTest):
                 covered[e[2]:e[3] + 1, e[0]:e[1] + 1] = True
             self.assertTrue(covered.all())
 
+    def testPiecesOfNodata(self):
+        # A piece whose input (its extent and halo) has no data, a stretch of sea, gets nodata
+        # products, bit for bit the whole run's there (NaN; EdgeTruncated 0 as bytes, NaN as
+        # float), and InputAllNodata says so; before 2026-12-05 it failed the update ("every
+        # cell of the DEM is nodata"), which broke a coastal DEM's streaming. Only an input of
+        # the whole DEM with no data is an error. Data in the northern 20 of 60 rows; 300 m of
+        # 30 m cells: a halo of 12 rows, so rows 0..20 read rows 0..32, all nodata. (Through
+        # the reader: the halo needs the CRS before data flows.)
+        import tempfile
+        from aperture.errors import Watcher
+        z = np.random.default_rng(8).uniform(0, 300, (60, 70))
+        z[:40] = np.nan
+        names = ("VisibleSolidAngle", "ApertureRadius", "BentNormal", "SkyViewFactor",
+                 "DiffuseSkyFactor", "PositiveOpenness", "EdgeTruncated", "HorizonAngles")
+
+        def dem(z, path):
+            writer = aperture.vtkApertureDEMWriter()
+            writer.SetInputData(make_image(z, 400000, 5000000, 30, 30, "EPSG:32633"))
+            writer.SetFileName(path)
+            self.assertEqual(writer.Write(), 1)
+            return path
+
+        def run(path, extent, distance=300.0, floats=False):
+            w = Watcher()
+            reader = w.watch(aperture.vtkApertureDEMReader())
+            w.watch(reader.GetExecutive())
+            reader.SetFileName(path)
+            f = w.watch(aperture.vtkApertureSkyVisibility())
+            w.watch(f.GetExecutive())
+            f.SetInputConnection(reader.GetOutputPort())
+            f.SetMaximumDistance(distance)
+            f.SetFloatEdgeTruncated(floats)
+            f.ComputeHorizonAnglesOn()
+            f.UpdateInformation()
+            f.UpdateExtent(extent)
+            data = {name: vtk_to_numpy(f.GetOutput().GetPointData().GetArray(name)).copy()
+                    for name in names} if not w.errors else None
+            return data, f.GetInputAllNodata(), w.errors
+
+        with tempfile.TemporaryDirectory() as tmp:
+            coast = dem(z, os.path.join(tmp, "coast.tif"))
+            for floats in (False, True):
+                whole, nodata, errors = run(coast, (0, 69, 0, 59, 0, 0), floats=floats)
+                self.assertEqual((nodata, errors), (False, []))
+                for extent, expected in (((0, 69, 0, 20, 0, 0), True),
+                                         ((0, 69, 21, 40, 0, 0), False),
+                                         ((5, 30, 3, 15, 0, 0), True)):
+                    got, nodata, errors = run(coast, extent, floats=floats)
+                    self.assertEqual((nodata, errors), (expected, []), extent)
+                    i0, i1, j0, j1 = extent[:4]
+                    for name in names:
+                        values = whole[name].reshape(60, 70, -1)[j0:j1 + 1, i0:i1 + 1]
+                        # every bit, NaN's too (the EXR writer copies them)
+                        self.assertEqual(got[name].tobytes(), values.tobytes(), (name, extent))
+                edge = got["EdgeTruncated"]
+                self.assertTrue(np.isnan(edge).all() if floats else (edge == 0).all())
+                self.assertTrue(np.isnan(got["HorizonAngles"]).all())
+            # no data at all: a piece with a radius cannot know it (nodata, no error); the
+            # whole DEM, or a piece without a radius (its halo: the whole DEM), is an error
+            void = dem(np.full((60, 70), np.nan), os.path.join(tmp, "void.tif"))
+            _, nodata, errors = run(void, (0, 69, 0, 20, 0, 0))
+            self.assertEqual((nodata, errors), (True, []))
+            for extent, distance in (((0, 69, 0, 59, 0, 0), 300.0), ((0, 69, 0, 20, 0, 0), 0.0)):
+                _, nodata, errors = run(void, extent, distance)
+                self.assertFalse(nodata)
+                self.assertIn("band 1 is nodata", errors[0])  # (the reader's, reading it all)
+        # the sky filter's own refusal of a whole DEM of nodata: testErrors
+
     def testEmptyRequest(self):
         # An empty update extent (max < min: VTK's request for nothing) gives an empty output
         # and reads nothing; it used to copy a block of negative width (a crash) once the halo

@@ -836,7 +836,8 @@ def _extent_size(e):
 def _plan_bake(args, watcher, sky):
     """Set up the reader for the sky filter and plan the bake before anything is read:
     returns (reader, the extent of the grid to bake (--srcwin's cells, else all), the extent
-    the sky filter reads for it (with its halo), rows per strip or 0 for all at once).
+    the sky filter reads for it (with its halo), rows per strip or 0 for all at once, the
+    grid's whole extent).
 
     --srcwin bakes the window's cells with horizons from the DEM around it (so that windows
     tile a DEM), reading the DEM within the radius around it (without one, all of it). When the
@@ -853,7 +854,7 @@ def _plan_bake(args, watcher, sky):
     nx, ny = _extent_size(window)
     whole_problem = problem(read, nx, ny)
     if not whole_problem:
-        return reader, window, read, 0
+        return reader, window, read, 0, whole
     advice = ("bake a window with --srcwin and a --radius (only the DEM within the radius "
               "around it is read), use --decimate or --overview, or bake fewer --products")
     from aperture import vtkApertureDEMWriter
@@ -883,7 +884,7 @@ def _plan_bake(args, watcher, sky):
         raise ApertureError("%s, and strips of %d rows (the GeoTIFF's tiles) would not "
                             "fit either: %s; %s" % (whole_problem, tile, strip_problem(1),
                                                     advice))
-    return reader, window, read, tile * fits
+    return reader, window, read, tile * fits, whole
 
 
 def _write_strips(watcher, clip, window, extents, outputs, guard, started):
@@ -1026,7 +1027,11 @@ def _bake(args, products, progress):
 
     if args.max_memory is not None:
         sky.SetMemoryLimit(args.max_memory)
-    reader, window, read, rows = _plan_bake(args, watcher, sky)
+    reader, window, read, rows, whole = _plan_bake(args, watcher, sky)
+    # whether each update of the sky filter (one, or a strip's) read nodata alone: a part of
+    # the DEM may (a window or a strip out at sea); all of it is an error
+    nodata = []
+    sky.AddObserver("EndEvent", lambda obj, _: nodata.append(obj.GetInputAllNodata()))
     provenance = _provenance(args, products, reader)
     definitions = {name: (unit, text) for name, unit, text in PRODUCTS}
     writer.SetFileName(args.output)
@@ -1052,6 +1057,12 @@ def _bake(args, products, progress):
     outputs = [(writer, args.output)] + ([(exr, args.exr)] if exr else [])
     writers = [output for output, _ in outputs]
     started = []  # the outputs begun: an interrupt removes them (a writer also removes its own)
+
+    def remove_started():
+        for path in started:
+            if os.path.isfile(path):  # (never a device or a pipe: _check_outputs refused them)
+                os.remove(path)
+
     try:
         if rows:
             # In strips, north first: the sky filter computes each (reading it and its halo)
@@ -1107,10 +1118,17 @@ def _bake(args, products, progress):
                         # (the writer removed its file; the ones before it are whole)
                         raise _outputs_left(e, written=started[:-1]) from None
     except KeyboardInterrupt:
-        for path in started:
-            if os.path.isfile(path):  # (never a device or a pipe: _check_outputs refused them)
-                os.remove(path)
+        remove_started()
         raise
+    if nodata and all(nodata):
+        if list(read) == list(whole):  # (in strips: read at once, the reader refuses it)
+            remove_started()
+            raise ApertureError("every cell of '%s' band %d is nodata"
+                                % (_dem_path(args), args.band or 1))
+        # (a part of the DEM is read only for a window, with a radius)
+        _warn("every cell of the DEM read for --srcwin %s (the window and %s around it) is "
+              "nodata, and so is every product" % (" ".join(map(str, args.srcwin or ())),
+                                                   "%g m" % (args.radius or 0)))
     written = [os.path.abspath(path) for _, path in outputs]
     if progress:
         progress(1.0)
