@@ -126,6 +126,33 @@ class TestLauncher(CommandLineTest):
         self.assertTrue(line.endswith("): No module named 'aperture'"), line)
 
 
+    def test_closed_stdout(self):
+        # A reader that stops early (`aperture info --json x | head -1`): the command ends
+        # quietly with the status of a tool that SIGPIPE ends, 141, as gdalinfo does; it
+        # printed a BrokenPipeError traceback before 2026-12-05. The bake's outputs, written
+        # before its summary line, are whole.
+        dem = self.path("pipe.tif")
+        make_raster(dem, np.add.outer(np.arange(20.0), np.arange(30.0)),
+                    (500000, 30, 0, 4000000, 0, -30))
+        out = self.path("pipe-out.tif")
+        for args in (("info", "--json", dem), ("bake", "--help"),
+                     ("bake", dem, out, "--radius", 300, "-d", 8)):
+            read, write = os.pipe()
+            os.close(read)  # (every write to the pipe now fails: EPIPE)
+            try:
+                p = subprocess.run([APERTURE] + [str(a) for a in args], stdout=write,
+                                   stderr=subprocess.PIPE, text=True, timeout=120)
+            finally:
+                os.close(write)
+            self.assertEqual((p.returncode, p.stderr), (141, ""), args)
+        status, _, err = run("info", out, "--band", 4)  # (the bake's file, whole)
+        self.assertEqual(status, 0, err)
+        ds = gdal.Open(out)
+        self.assertEqual(ds.RasterCount, 9)
+        self.assertTrue(np.isfinite(ds.GetRasterBand(4).ReadAsArray()).all())
+        ds = None
+
+
 class TestInfo(CommandLineTest):
     def test_default_dem_json(self):
         d, err = self.info()

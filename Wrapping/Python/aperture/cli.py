@@ -1581,7 +1581,20 @@ def build_parser():
 
 
 def main(argv=None):
-    argv = sys.argv[1:] if argv is None else argv
+    try:
+        return _main(sys.argv[1:] if argv is None else argv)
+    except BrokenPipeError:
+        # stdout closed before the report was written (`aperture info --json x | head -1`):
+        # end quietly, as a tool that SIGPIPE ends does (the report comes after the outputs,
+        # which are whole), with its status; stdout to /dev/null, or the interpreter's final
+        # flush would fail again, with a message
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        import signal
+        return 128 + signal.SIGPIPE
+
+
+def _main(argv):
     parser = build_parser()
     if not argv:
         parser.print_help()
