@@ -153,6 +153,24 @@ class TestLauncher(CommandLineTest):
         ds = None
 
 
+    def test_closed_stderr(self):
+        # Run with stderr closed (`2>&-`), warnings and errors went to stdout (Python's
+        # sys.stderr is then None, and print(file=None) prints to stdout), into the JSON of
+        # `info --json`; and the first file opened took descriptor 2, for GDAL's and VTK's
+        # messages to land in. The launcher puts /dev/null there.
+        dem = self.path("closed.tif")
+        make_raster(dem, np.ones((6, 7)), (500000, 30, 0, 4000000, 0, -30), bands=2)
+        for args, status in ((("info", "--json", dem), 0),
+                             (("info", "--json", self.path("missing.tif")), 1)):
+            p = subprocess.run([APERTURE] + list(args), stdout=subprocess.PIPE, text=True,
+                               preexec_fn=lambda: os.close(2), timeout=120)
+            self.assertEqual(p.returncode, status, p.stdout)
+            if status == 0:  # (the note on the second band is gone, not in the JSON)
+                self.assertEqual(json.loads(p.stdout)["size"], [7, 6])
+            else:
+                self.assertEqual(p.stdout, "")
+
+
 class TestInfo(CommandLineTest):
     def test_default_dem_json(self):
         d, err = self.info()
