@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Internal (not installed, not wrapped): sizing arrays so that a failed allocation can be
 // reported (with huge pages asked for large ones), the size of the input behind a failed
-// update, the machine's physical memory (the readers' and the sky filter's default size
-// limit) and byte counts for messages.
+// update, the memory this process may use (the readers' and the sky filter's default size
+// limit: physical memory, or a control group's limit) and byte counts for messages.
 #ifndef vtkApertureMemory_h
 #define vtkApertureMemory_h
 
@@ -12,8 +12,6 @@
 #include "vtkType.h"
 
 #include "ap_memory.h"
-
-#include <unistd.h>
 
 #include <new>
 #include <sstream>
@@ -62,16 +60,26 @@ inline void vtkApertureInputDimensions(vtkInformationVector* inputs, int dims[3]
   }
 }
 
-// Bytes of physical memory (sysconf); VTK_TYPE_INT64_MAX when the system does not say.
-inline vtkTypeInt64 vtkAperturePhysicalMemory()
+// Bytes of memory this process may use (ap_memory_usable): the physical memory, or its
+// control group's limit where lower (a container run with a memory limit); *grouped (unless
+// null) says which. VTK_TYPE_INT64_MAX when the system does not say.
+inline vtkTypeInt64 vtkApertureUsableMemory(bool* grouped = nullptr)
 {
-  const long pages = sysconf(_SC_PHYS_PAGES);
-  const long pageSize = sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || pageSize <= 0)
+  int group = 0;
+  const unsigned long long bytes = ap_memory_usable(&group);
+  if (grouped)
   {
-    return VTK_TYPE_INT64_MAX;
+    *grouped = group != 0;
   }
-  return static_cast<vtkTypeInt64>(pages) * static_cast<vtkTypeInt64>(pageSize);
+  return bytes == 0 || bytes > static_cast<unsigned long long>(VTK_TYPE_INT64_MAX)
+    ? VTK_TYPE_INT64_MAX
+    : static_cast<vtkTypeInt64>(bytes);
+}
+
+// What messages call that memory: "the 3.2 GiB of memory " + this.
+inline const char* vtkApertureUsableMemoryOwner(bool grouped)
+{
+  return grouped ? "this process may use under its control group's limit" : "this machine has";
 }
 
 // A byte count for messages: "512 bytes", "1.500 KiB", ... "3.353 GiB".

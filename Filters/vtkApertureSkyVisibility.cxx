@@ -431,6 +431,20 @@ double vtkApertureSkyVisibility::EstimateBytes(double n, double outN) const
 }
 
 //------------------------------------------------------------------------------
+vtkTypeInt64 vtkApertureSkyVisibility::GetUsableMemory()
+{
+  return vtkApertureUsableMemory();
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureSkyVisibility::IsMemoryGrouped()
+{
+  bool grouped = false;
+  vtkApertureUsableMemory(&grouped);
+  return grouped;
+}
+
+//------------------------------------------------------------------------------
 std::string vtkApertureSkyVisibility::CheckMemory(int nx, int ny, double held) const
 {
   return this->CheckMemory(nx, ny, nx, ny, held);
@@ -442,9 +456,10 @@ std::string vtkApertureSkyVisibility::CheckMemory(
 {
   const double n = static_cast<double>(nx) * ny, outN = static_cast<double>(outNx) * outNy;
   const double need = this->EstimateBytes(n, outN);
-  const double limit = this->MemoryLimit > 0
-    ? static_cast<double>(this->MemoryLimit)
-    : static_cast<double>(vtkAperturePhysicalMemory()) - held;
+  bool grouped = false;
+  const double usable = static_cast<double>(vtkApertureUsableMemory(&grouped));
+  const double limit =
+    this->MemoryLimit > 0 ? static_cast<double>(this->MemoryLimit) : usable - held;
   if (need <= limit)
   {
     return std::string();
@@ -458,11 +473,10 @@ std::string vtkApertureSkyVisibility::CheckMemory(
   if (limit <= 0.0) // (nothing left to compare with: say what does not fit)
   {
     return needs + ", and the DEM's " + vtkApertureHumanBytes(held) + " alone exceed the " +
-      vtkApertureHumanBytes(static_cast<double>(vtkAperturePhysicalMemory())) +
-      " of memory this machine has";
+      vtkApertureHumanBytes(usable) + " of memory " + vtkApertureUsableMemoryOwner(grouped);
   }
-  return needs + ", more than the " + vtkApertureHumanBytes(limit) +
-    " of memory this machine has beside the DEM's " + vtkApertureHumanBytes(held);
+  return needs + ", more than the " + vtkApertureHumanBytes(limit) + " of memory " +
+    vtkApertureUsableMemoryOwner(grouped) + " beside the DEM's " + vtkApertureHumanBytes(held);
 }
 
 //------------------------------------------------------------------------------

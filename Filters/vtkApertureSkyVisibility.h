@@ -103,9 +103,10 @@
  * all of it, or an unlimited distance), NumberOfDirections outside 4..360, a negative
  * MaximumDistance, a refraction coefficient outside [0, 1), and not enough memory for the
  * outputs and the sweep: refused before allocating when the estimate exceeds MemoryLimit
- * (default: the physical memory beside the input image, since past it Linux kills the process
- * rather than fail an allocation), or an allocation that fails (e.g. under `ulimit -v`); the
- * message gives the estimated need (HorizonAngles take 4 bytes per cell and direction).
+ * (default: the memory the process may use, physical or its control group's limit, beside the
+ * input image, since past it Linux kills the process rather than fail an allocation), or an
+ * allocation that fails (e.g. under `ulimit -v`); the message gives the estimated need
+ * (HorizonAngles take 4 bytes per cell and direction).
  *
  * Progress and abort: ProgressEvent at the end of each sector d ((d + 1) / (D + 1)), and on
  * DEMs of more than 8 Mi cells also inside it (its phases run in slices of about that many
@@ -193,11 +194,20 @@ public:
 
   ///@{
   /** Most bytes one update may allocate for its outputs and the sweep's state (estimated as
-   *  the error message gives them); 0 (default) = the machine's physical memory less the
-   *  input image's size. */
+   *  the error message gives them); 0 (default) = GetUsableMemory() less the input image's
+   *  size. */
   vtkSetClampMacro(MemoryLimit, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
   vtkGetMacro(MemoryLimit, vtkTypeInt64);
   ///@}
+
+  /** The bytes of memory this process may use: the machine's physical memory, or the memory
+   *  limit of the Linux control group it runs in, less 128 MiB (at most half of it) for what
+   *  the process holds before its data, where that is lower (a container run with a limit:
+   *  past it the kernel ends the process, as past physical memory); IsMemoryGrouped() is
+   *  then true, and messages say "of memory this process may use under its control group's
+   *  limit" instead of "of memory this machine has". Read at each call. */
+  static vtkTypeInt64 GetUsableMemory();
+  static bool IsMemoryGrouped();
 
   /** Bytes an update over n input cells allocates with the current products and
    *  NumberOfDirections: the outputs, the filter's float copy of the elevations and the
@@ -211,8 +221,8 @@ public:
   double EstimateBytes(double n, double outN) const;
 
   /** Why an update over an nx x ny input would be refused for memory, or "" when it fits:
-   *  EstimateBytes(nx * ny) against MemoryLimit, or (MemoryLimit 0) against the physical
-   *  memory less `held` bytes, what the input occupies (4 x nx x ny for float elevations not
+   *  EstimateBytes(nx * ny) against MemoryLimit, or (MemoryLimit 0) against
+   *  GetUsableMemory() less `held` bytes, what the input occupies (4 x nx x ny for float elevations not
    *  yet read; when that alone exceeds the memory, the text says so). The update refuses with
    *  this text and advice; a caller can ask before reading a DEM and add its own advice. */
   std::string CheckMemory(int nx, int ny, double held) const;

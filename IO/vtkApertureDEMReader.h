@@ -26,7 +26,8 @@
  *   one raster read cells of one grid.
  * - OverrideCRS: a CRS (WKT, "EPSG:xxxx", PROJ string) used instead of the file's.
  * - MemoryLimit: the most bytes one update may allocate for the output; 0 (default) means the
- *   machine's physical memory.
+ *   memory the process may use: the machine's physical memory, or its control group's limit
+ *   where lower (vtkApertureSkyVisibility::GetUsableMemory).
  * - MetresPerElevationUnit: metres per elevation unit, for a file whose unit is missing or
  *   wrong; 0 (default): the file's. A band without a unit in a projected CRS in feet warns
  *   (such DEMs' heights are often feet: read as metres, their slopes would be 3.28 times too
@@ -105,7 +106,8 @@ public:
   ///@}
 
   ///@{
-  /** Largest output one update may allocate, bytes; 0 (default) = physical memory. */
+  /** Largest output one update may allocate, bytes; 0 (default) = the memory the process may
+   *  use (physical, or its control group's limit). */
   vtkSetClampMacro(MemoryLimit, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
   vtkGetMacro(MemoryLimit, vtkTypeInt64);
   ///@}

@@ -320,11 +320,15 @@ int vtkApertureEXRReader::RequestInformation(
   // Every channel is read as float: refuse a window no machine of this size can hold (a huge
   // image, or a damaged header) before allocating anything.
   d.Channels = channels->num_channels;
-  if (d.FloatBytes() > static_cast<double>(vtkAperturePhysicalMemory()) ||
+  bool grouped = false;
+  if (d.FloatBytes() > static_cast<double>(vtkApertureUsableMemory(&grouped)) ||
     static_cast<double>(d.Size[0]) * d.Size[1] > static_cast<double>(VTK_ID_MAX))
   {
     vtkErrorMacro(<< "'" << name << "' has a data window of " << d.SizeText()
-                  << ": more than this machine's memory (or a damaged header)");
+                  << ": more than "
+                  << (grouped ? "the memory this process may use under its control group's limit"
+                              : "this machine's memory")
+                  << " (or a damaged header)");
     return 0;
   }
 

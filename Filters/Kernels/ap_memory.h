@@ -22,6 +22,28 @@ void ap_advise_huge_pages(void *p, size_t bytes);
  * whole huge page of memory); smaller sizes come from malloc. */
 void *ap_alloc_huge(size_t bytes);
 
+/* The lowest memory limit, in bytes, of the Linux control group a process runs in or of any
+ * group above it: cgroup v2's memory.max, v1's memory.limit_in_bytes. `cgroups` is the
+ * process's /proc/<pid>/cgroup (lines "0::/path", v2, and "N:memory:/path" or
+ * "N:cpu,memory:/path", v1), `root` where the hierarchies are mounted (v2 at root, v1's memory
+ * controller at root/memory: "/sys/fs/cgroup" on Debian). Each group's file is looked for at
+ * its path under the mount and at every ancestor up to the mount's own root, which in a
+ * container (a cgroup namespace) is the container's group even where the file lists the
+ * host's path. 0 when no limit applies ("max", v1's "no limit" of 2^63 less a page, no such
+ * files: not Linux, or no memory controller). Past this limit the kernel ends the process,
+ * as past physical memory, rather than fail an allocation. */
+unsigned long long ap_memory_cgroup_limit(const char *cgroups, const char *root);
+
+/* The bytes of memory this process may use: the physical memory (sysconf), or the limit of
+ * its control group (ap_memory_cgroup_limit of /proc/self/cgroup under /sys/fs/cgroup) less
+ * AP_MEMORY_GROUP_RESERVE (at most half of it) where that is lower, as in a container run with
+ * a memory limit; *grouped (unless NULL) is then 1, else 0. 0 when the system does not say.
+ * (The reserve is what the process itself holds before its data, its interpreter and
+ * libraries, which count against the group's limit; against physical memory there is
+ * swap and the page cache to give.) */
+#define AP_MEMORY_GROUP_RESERVE (128ULL << 20)
+unsigned long long ap_memory_usable(int *grouped);
+
 #ifdef __cplusplus
 }
 #endif

@@ -2,7 +2,11 @@
 /* Unit tests of ap_memory: the huge-page hint leaves every byte as it was, ignores what it
  * should (NULL, small buffers), and, where Linux offers transparent huge pages on request,
  * reaches the kernel (the advised buffer is a THP-eligible mapping in /proc/self/smaps);
- * ap_alloc_huge gives large buffers on 2 MiB boundaries, advised, and small ones as malloc. */
+ * ap_alloc_huge gives large buffers on 2 MiB boundaries, advised, and small ones as malloc;
+ * control groups' memory limits are found as cgroup v1 and v2 lay them out (a made-up
+ * /proc/self/cgroup and /sys/fs/cgroup in a temporary folder). */
+#define _DEFAULT_SOURCE 1 /* (mkdtemp, mkdir, rmdir: POSIX) */
+
 #include "ap_memory.h"
 #include "aptest.h"
 
@@ -10,6 +14,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 /* Whether /sys says THP can be asked for with madvise: 1 for "[madvise]" (only then), 2 for
  * "[always]", 0 otherwise. */
@@ -135,10 +141,121 @@ static void test_alloc_huge(void)
   }
 }
 
+/* The made-up tree: files written (made with their folders) and removed in reverse order. */
+static char tree[64];
+static char made[32][256];
+static int nmade = 0;
+
+/* Write `text` to tree/rel, making its folders. */
+static void put(const char *rel, const char *text)
+{
+  char path[256];
+  size_t i;
+  FILE *f;
+  snprintf(path, sizeof path, "%s/%s", tree, rel);
+  for (i = strlen(tree) + 1; path[i]; ++i) {
+    if (path[i] == '/') {
+      path[i] = '\0';
+      if (mkdir(path, 0700) == 0 && nmade < 32) {
+        snprintf(made[nmade++], sizeof made[0], "%s", path);
+      }
+      path[i] = '/';
+    }
+  }
+  f = fopen(path, "w");
+  AP_CHECK(f != NULL);
+  if (f) {
+    fputs(text, f);
+    fclose(f);
+    if (nmade < 32) {
+      snprintf(made[nmade++], sizeof made[0], "%s", path);
+    }
+  }
+}
+
+/* ap_memory_cgroup_limit of tree/cgroup under tree/sys. */
+static unsigned long long limit_here(void)
+{
+  char cgroups[128], root[128];
+  snprintf(cgroups, sizeof cgroups, "%s/cgroup", tree);
+  snprintf(root, sizeof root, "%s/sys", tree);
+  return ap_memory_cgroup_limit(cgroups, root);
+}
+
+/* Remove every file and folder made. */
+static void clear_tree(void)
+{
+  while (nmade > 0) {
+    const char *p = made[--nmade];
+    if (remove(p) != 0) {
+      rmdir(p);
+    }
+  }
+}
+
+static void test_cgroup_limits(void)
+{
+  const unsigned long long GiB = 1ULL << 30;
+  int grouped = -1;
+  unsigned long long usable;
+  snprintf(tree, sizeof tree, "/tmp/ap-cgroup-XXXXXX");
+  AP_CHECK(mkdtemp(tree) != NULL);
+  /* no such files (not Linux): no limit */
+  AP_CHECK_EQ_INT(limit_here(), 0);
+  /* v2: the group's own "max", its parent's 1 GiB applies; the root has no file */
+  put("cgroup", "0::/user.slice/app.scope\n");
+  put("sys/user.slice/app.scope/memory.max", "max\n");
+  put("sys/user.slice/memory.max", "1073741824\n");
+  AP_CHECK_EQ_INT(limit_here(), GiB);
+  /* the lower of two (the group's own 768 MiB) */
+  put("sys/user.slice/app.scope/memory.max", "805306368\n");
+  AP_CHECK_EQ_INT(limit_here(), 768ULL << 20);
+  clear_tree();
+  /* v2 in a container: the host's path listed, the container's group at the mount's root */
+  put("cgroup", "0::/system.slice/docker-0123abcd.scope\n");
+  put("sys/memory.max", "536870912\n");
+  AP_CHECK_EQ_INT(limit_here(), 512ULL << 20);
+  clear_tree();
+  /* v1 (and other hierarchies beside it): the memory controller's mount; "no limit" is
+   * 2^63 less a page, the parent's 2 GiB applies */
+  put("cgroup", "9:name=systemd:/\n8:pids:/a/b\n4:memory:/a/b\n0::/\n");
+  put("sys/memory/a/b/memory.limit_in_bytes", "9223372036854771712\n");
+  put("sys/memory/a/memory.limit_in_bytes", "2147483648\n");
+  put("sys/memory/memory.limit_in_bytes", "9223372036854771712\n");
+  put("sys/pids/a/b/memory.limit_in_bytes", "1024\n"); /* (not the memory controller's) */
+  AP_CHECK_EQ_INT(limit_here(), 2 * GiB);
+  clear_tree();
+  /* v1 with controllers mounted together ("cpu,memory"), and v2 beside it: the lower */
+  put("cgroup", "3:cpu,memory:/z\n0::/z\n");
+  put("sys/memory/z/memory.limit_in_bytes", "3221225472\n");
+  put("sys/z/memory.max", "4294967296\n");
+  AP_CHECK_EQ_INT(limit_here(), 3 * GiB);
+  clear_tree();
+  /* what is not a limit: empty, malformed, negative, "max" everywhere */
+  put("cgroup", "0::/q\n");
+  put("sys/q/memory.max", "12abc\n");
+  put("sys/memory.max", "-5\n");
+  AP_CHECK_EQ_INT(limit_here(), 0);
+  put("sys/q/memory.max", "");
+  AP_CHECK_EQ_INT(limit_here(), 0);
+  clear_tree();
+  rmdir(tree);
+  /* this machine: at most its physical memory, and said whether a group set it */
+  usable = ap_memory_usable(&grouped);
+  AP_CHECK(grouped == 0 || grouped == 1);
+#if defined(__linux__)
+  AP_CHECK(usable > 0);
+  AP_CHECK(usable <= (unsigned long long)sysconf(_SC_PHYS_PAGES) *
+                       (unsigned long long)sysconf(_SC_PAGE_SIZE));
+#endif
+  AP_CHECK_EQ_INT(ap_memory_usable(NULL), usable);
+}
+
 int main(void)
 {
   test_contents_and_no_ops();
   test_reaches_the_kernel();
   test_alloc_huge();
+  test_cgroup_limits();
   AP_TEST_MAIN_END();
 }

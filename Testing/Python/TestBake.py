@@ -51,6 +51,16 @@ def zeros_vrt(path, n):
     return path
 
 
+def usable_memory():
+    """The memory a bake plans with, bytes (the machine's physical memory, or the process's
+    control group's limit less 128 MiB where lower), and what its messages call it ("of memory
+    ...")."""
+    import aperture
+    sky = aperture.vtkApertureSkyVisibility
+    return sky.GetUsableMemory(), ("this process may use under its control group's limit"
+                                   if sky.IsMemoryGrouped() else "this machine has")
+
+
 def human_bytes(n):
     """n bytes as the filters print them: 3 decimals of the largest unit up to TiB."""
     units = ("bytes", "KiB", "MiB", "GiB", "TiB")
@@ -407,7 +417,7 @@ class TestBake(unittest.TestCase):
         # float copy 4, the sweep's state 17) and 41 a cell of the window (the products 37,
         # EdgeTruncated as float beside its byte flags, and the window's copy of the
         # elevations 4): 75600328000 bytes = 70.408 GiB, beside the elevations' 13.411 GiB.
-        memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+        memory, owner = usable_memory()
         def refused(text, *args):
             status, _, err = run("bake", *args)
             self.assertEqual(status, 1, err)
@@ -423,19 +433,19 @@ class TestBake(unittest.TestCase):
         if memory < 4.0 * 2000000 ** 2:
             refused("the products of 100 x 100 cells, with the 2000000 x 2000000 cells of DEM "
                     "around them, need about %s, and the DEM's 14.552 TiB alone exceed the %s "
-                    "of memory this machine has" % (human_bytes(21.0 * 4e12 + 41.0 * 1e4),
-                                                     human_bytes(memory)),
+                    "of memory %s" % (human_bytes(21.0 * 4e12 + 41.0 * 1e4), human_bytes(memory),
+                                      owner),
                     huge, huge_out, "--srcwin", 0, 0, 100, 100)
             refused("a 2000000 x 2000000 DEM with these products needs about %s, and the DEM's "
-                    "14.552 TiB alone exceed the %s of memory this machine has"
-                    % (human_bytes((21.0 + 41.0 - 4.0) * 4e12), human_bytes(memory)),
+                    "14.552 TiB alone exceed the %s of memory %s"
+                    % (human_bytes((21.0 + 41.0 - 4.0) * 4e12), human_bytes(memory), owner),
                     huge, huge_out)
             self.assertFalse(os.path.exists(huge_out))
         if memory > 84 << 30:
             self.skipTest("this machine has the memory to bake it")
         refused("the products of 100 x 80 cells, with the 60000 x 60000 cells of DEM around "
-                "them, need about 70.408 GiB, more than the %s of memory this machine has "
-                "beside the DEM's 13.411 GiB" % human_bytes(memory - 4.0 * 60000 ** 2),
+                "them, need about 70.408 GiB, more than the %s of memory %s beside the DEM's "
+                "13.411 GiB" % (human_bytes(memory - 4.0 * 60000 ** 2), owner),
                 big, out, "--srcwin", 30000, 20000, 100, 80, "-d", 8)
 
     def test_strips(self):
@@ -596,7 +606,7 @@ class TestBake(unittest.TestCase):
     def test_reader_refusal_in_options(self):
         # The reader's own refusal (a grid past the machine's memory, reached here by a
         # --max-memory beyond it) is worded in the command's options, as every other message.
-        memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+        memory, owner = usable_memory()
         if memory > 4.0 * 100000 ** 2:
             self.skipTest("this machine could read 100000^2 floats")
         huge = zeros_vrt(self.path("huge.vrt"), 100000)
@@ -835,12 +845,84 @@ class TestBake(unittest.TestCase):
             self.assertEqual(sorted(os.listdir(self.tmp)), before, what)
             self.assertLess(used - sent, 1.0, what)
 
+    def memory_group(self, limit):
+        """A new Linux control group limited to `limit` bytes of memory (cgroup v2 under the
+        root group, or v1 under this process's own memory group), removed at the test's end;
+        its cgroup.procs file. Skips the test where none can be made (not root, a container
+        without its own cgroup namespace)."""
+        name = "aperture-test-%d" % os.getpid()
+        own = ""
+        try:
+            with open("/proc/self/cgroup") as f:
+                lines = [line.rstrip("\n").split(":", 2) for line in f]
+        except OSError:
+            lines = []
+        for _, controllers, path in lines:
+            if "memory" in controllers.split(","):
+                own = path
+        if os.path.isfile("/sys/fs/cgroup/memory/memory.limit_in_bytes"):  # v1
+            group = "/sys/fs/cgroup/memory%s/%s" % (own.rstrip("/"), name)
+            limit_file = "memory.limit_in_bytes"
+        else:  # v2
+            group = "/sys/fs/cgroup/" + name
+            limit_file = "memory.max"
+        try:
+            os.mkdir(group)
+        except OSError as e:
+            self.skipTest("no control group can be made here: %s" % e)
+        self.addCleanup(os.rmdir, group)
+        procs = os.path.join(group, "cgroup.procs")
+        try:
+            with open(os.path.join(group, limit_file), "w") as f:
+                f.write("%d\n" % limit)
+            subprocess.run(["true"], check=True, preexec_fn=lambda: self.join(procs))
+        except (OSError, subprocess.SubprocessError) as e:
+            self.skipTest("no memory limit can be set here: %s" % e)
+        return procs
+
+    @staticmethod
+    def join(procs):
+        """Move the calling process into the control group of `procs` (its cgroup.procs)."""
+        with open(procs, "w") as f:
+            f.write("%d\n" % os.getpid())
+
+    def test_control_group_memory_limit(self):
+        # Inside a control group with a memory limit (a container run with --memory), the
+        # machine's physical memory is not what the bake may use: past the group's limit the
+        # kernel ends the process. The bake plans with the lower of the two: a DEM whose bake
+        # needs about 560 MiB (3000^2 cells of 30 m, the default products) is baked in strips
+        # under a limit of 400 MiB. Before 2026-12-05 it was baked at once and the process
+        # killed (status -9).
+        procs = self.memory_group(400 << 20)
+
+        def join():
+            self.join(procs)
+
+        dem = zeros_vrt(self.path("group.vrt"), 3000)
+        out = self.path("group.tif")
+        p = subprocess.run([APERTURE, "bake", dem, out, "--radius", "300", "-d", "4"],
+                           capture_output=True, text=True, timeout=300, preexec_fn=join)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertIn("for 3000 x 3000 cells", p.stdout)
+        self.assertIn("strips of", p.stdout)
+        self.assertIn("the whole did not fit in memory", p.stdout)
+        ds = gdal.Open(out)
+        self.assertEqual((ds.RasterXSize, ds.RasterYSize), (3000, 3000))
+        ds = None
+        # and a process in it says what it may use: the limit less 128 MiB for itself
+        code = ("import aperture; s = aperture.vtkApertureSkyVisibility; "
+                "print(s.GetUsableMemory(), s.IsMemoryGrouped())")
+        p = subprocess.run([os.path.join(BUILD, "bin", "aperture-python"), "-c", code],
+                           capture_output=True, text=True, timeout=120, preexec_fn=join)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertEqual(p.stdout.split(), [str(272 << 20), "True"])
+
     def test_out_of_memory(self):
         # A DEM that fits the machine's memory but not the process's address space (ulimit -v):
         # a one-line error naming the size and what to do, not an abort on std::bad_alloc
         # (the reader, and the terrain mesh behind a reader that succeeded, used to abort).
         import resource
-        if os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") < 8 << 30:
+        if usable_memory()[0] < 8 << 30:
             self.skipTest("the reader refuses 3.4 GiB on this machine before allocating")
         limit = 3 << 30
 
@@ -865,7 +947,7 @@ class TestBake(unittest.TestCase):
         # 1.3482e12 bytes = 1.226 TiB, beside the elevations' 4 bytes a cell, 3.353 GiB. In
         # strips of 256 rows (no radius: each reads the whole DEM) 21 bytes a cell of the DEM
         # and 1481 of the strip's: 3.0274e10 bytes = 28.195 GiB.
-        memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+        memory, owner = usable_memory()
         if memory > 3.0274e10 + 4.0 * 30000 ** 2:
             self.skipTest("this machine could bake it in strips")
         left = human_bytes(memory - 4.0 * 30000 ** 2)
@@ -874,15 +956,14 @@ class TestBake(unittest.TestCase):
         self.assertEqual(p.returncode, 1, p.stderr)
         self.assertEqual(p.stderr.strip(), "aperture: error: a 30000 x 30000 DEM with these "
                          "products needs about 1.226 TiB (HorizonAngles take 4 bytes per cell "
-                         "and direction), more than the %s of memory this machine has "
-                         "beside the DEM's 3.353 GiB, and strips of 256 rows (the GeoTIFF's "
-                         "tiles) would not fit either: the products of 30000 x 256 cells, with "
-                         "the 30000 x 30000 cells of DEM around them, need about 28.195 GiB "
-                         "(HorizonAngles take 4 bytes per cell and direction), more than the "
-                         "%s of memory this machine has beside the DEM's 3.353 GiB; bake a "
-                         "window with --srcwin and a --radius (only the DEM within the radius "
-                         "around it is read), use --decimate or --overview, or bake fewer "
-                         "--products" % (left, left))
+                         "and direction), more than the %s of memory %s beside the DEM's "
+                         "3.353 GiB, and strips of 256 rows (the GeoTIFF's tiles) would not fit "
+                         "either: the products of 30000 x 256 cells, with the 30000 x 30000 "
+                         "cells of DEM around them, need about 28.195 GiB (HorizonAngles take 4 "
+                         "bytes per cell and direction), more than the %s of memory %s beside "
+                         "the DEM's 3.353 GiB; bake a window with --srcwin and a --radius (only "
+                         "the DEM within the radius around it is read), use --decimate or "
+                         "--overview, or bake fewer --products" % (left, owner, left, owner))
         self.assertFalse(os.path.exists(out))
         # 12000^2: the reader's 0.54 GiB fits, the mesh's points, normals and triangles do not
         script = ("import aperture, sys\n"

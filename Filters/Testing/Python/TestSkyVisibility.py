@@ -69,6 +69,15 @@ def sky(image, **options):
     return f
 
 
+def usable_memory():
+    """The sky filter's default memory limit before the input's size, bytes (the machine's
+    physical memory, or the process's control group's limit less 128 MiB where lower), and what
+    its messages call it ("of memory ...")."""
+    sky = aperture.vtkApertureSkyVisibility
+    return sky.GetUsableMemory(), ("this process may use under its control group's limit"
+                                   if sky.IsMemoryGrouped() else "this machine has")
+
+
 def array(data, name):
     a = data.GetPointData().GetArray(name)
     return vtk_to_numpy(a).astype(np.float64)
@@ -1059,18 +1068,18 @@ class TestSkyVisibility(Testing.vtkTest):
         f.SetMemoryLimit(21599)
         self.assertEqual(f.CheckMemory(20, 20, 0.0), "a 20 x 20 DEM with these products needs "
                          "about 21.094 KiB, more than the 21.093 KiB MemoryLimit")
-        f.SetMemoryLimit(0)  # the machine's memory beside what the input holds
-        memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+        f.SetMemoryLimit(0)  # the machine's memory (or a control group's) beside the input
+        memory, owner = usable_memory()
         self.assertEqual(f.CheckMemory(20, 20, memory - 21600.0), "")
-        self.assertIn("needs about 21.094 KiB, more than the 21.092 KiB of memory this machine "
-                      "has beside the DEM's ", f.CheckMemory(20, 20, memory - 21598.0))
+        self.assertIn("needs about 21.094 KiB, more than the 21.092 KiB of memory %s beside the "
+                      "DEM's " % owner, f.CheckMemory(20, 20, memory - 21598.0))
         # an input as large as the memory leaves nothing to compare with: the message says so
         units = ("bytes", "KiB", "MiB", "GiB", "TiB")
         u = max(k for k in range(5) if memory >= 1024 ** k)
         self.assertEqual(f.CheckMemory(20, 20, memory), "a 20 x 20 DEM with these products "
                          "needs about 21.094 KiB, and the DEM's %.3f %s alone exceed the "
-                         "%.3f %s of memory this machine has" % ((memory / 1024.0 ** u,
-                                                                  units[u]) * 2))
+                         "%.3f %s of memory %s" % ((memory / 1024.0 ** u, units[u]) * 2
+                                                   + (owner,)))
         self.assertTrue(np.all(array(f.GetOutput(), "SkyViewFactor") == 1.0))
         # A sub-extent's outputs cover it alone (5 x 5 cells of 33 bytes, not 20 x 20), and the
         # elevations passed on are copied to it (4 bytes a cell): 21600 - 375 x 33 + 25 x 4.
@@ -1091,9 +1100,8 @@ class TestSkyVisibility(Testing.vtkTest):
         f.SetMemoryLimit(9324)
         self.assertEqual(f.CheckMemory(20, 20, 5, 5, 0.0), region)
         self.assertEqual(f.CheckMemory(20, 20, 20, 20, 0.0), f.CheckMemory(20, 20, 0.0))
-        # The default limit is the physical memory less the input's size: 360 directions of
+        # The default limit is the usable memory less the input's size: 360 directions of
         # HorizonAngles (1494 bytes a cell) on a grid of a little more cells than that allows.
-        memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
         side = int(math.sqrt(memory / 1494.0 * 1.02)) + 1
         if side * side * 4 > 1 << 30:
             self.skipTest("more than 1 GiB of elevations to exceed this machine's memory")
@@ -1104,7 +1112,7 @@ class TestSkyVisibility(Testing.vtkTest):
             "a %d x %d DEM with these products needs about " % (side, side)), message)
         self.assertIn("(HorizonAngles take 4 bytes per cell and direction), more than the ",
                       message)
-        self.assertIn(" of memory this machine has beside the DEM's ", message)
+        self.assertIn(" of memory %s beside the DEM's " % owner, message)
         # the elevation array must have a value for every point
         short = make_image(np.ones((4, 5)), 400000, 5000000, 30, 30, "EPSG:32633")
         short.GetPointData().GetArray("Elevation").SetNumberOfTuples(19)

@@ -854,10 +854,10 @@ def _plan_bake(args, watcher, sky):
 
     --srcwin bakes the window's cells with horizons from the DEM around it (so that windows
     tile a DEM), reading the DEM within the radius around it (without one, all of it). When the
-    sky filter cannot hold it all (beside the elevations, 4 bytes a cell: past physical memory
-    Linux kills the process instead of failing an allocation), the outputs are baked in
-    strips of whole 256-row tiles, each reading its own halo, as many rows as fit; refused when
-    not even one tile row fits."""
+    sky filter cannot hold it all (beside the elevations, 4 bytes a cell: past physical memory,
+    or its control group's limit, Linux kills the process instead of failing an allocation),
+    the outputs are baked in strips of whole 256-row tiles, each reading its own halo, as many
+    rows as fit; refused when not even one tile row fits."""
     reader, window, read, whole = _window_reading(args, watcher, sky)
 
     def problem(read, nx, ny):  # the sky filter's refusal of an update, or ""
@@ -885,7 +885,7 @@ def _plan_bake(args, watcher, sky):
         inner = [one[0], one[1], 0, min(rows + 2 * halo, whole_rows) - 1, 0, 0]
         return problem(inner, nx, rows)
 
-    memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    memory = sky.GetUsableMemory()  # (physical, or the control group's limit)
     one_columns = _extent_size(one)[0]
     if not args.max_memory and 4.0 * one_columns * min(tile + 2 * halo, whole_rows) >= memory:
         raise ApertureError("%s; %s" % (whole_problem, advice))  # (a strip's DEM alone)
@@ -1454,9 +1454,10 @@ def build_parser():
     p.add_argument("--max-memory", type=_memory_size, metavar="SIZE",
                    help="most memory for the products and the sweep's state, beside the DEM's "
                         "elevations (4 bytes a cell): a number of MiB, or with K, M, G or T "
-                        "(default: the machine's physical memory less the elevations); a bake "
-                        "that needs more is "
-                        "written in strips of rows that fit, with the same results")
+                        "(default: the machine's physical memory, or a control group's memory "
+                        "limit less 128 MiB where lower, as in a container, less the "
+                        "elevations); a bake that needs more is written in strips of rows that "
+                        "fit, with the same results")
     p.add_argument("--near-field", type=int, default=0, metavar="K",
                    help="columns of each cell's ray evaluated exactly, 1..64 (default 0: 32 "
                         "where the horizon sweep runs, 8 where rays are sampled at every "
