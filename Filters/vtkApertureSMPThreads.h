@@ -6,6 +6,8 @@
 
 #include "vtkSMPTools.h"
 
+#include "ap_memory.h"
+
 #include <algorithm>
 #include <mutex>
 #include <set>
@@ -13,10 +15,12 @@
 #include <system_error>
 #include <thread>
 
-/** Cores of this machine (at least 1). */
+/** Cores this process may run on (at least 1): the machine's, or fewer where its affinity
+ *  mask or its control group's CPU quota allows fewer (ap_cpu_usable: a container run with
+ *  --cpus or --cpuset-cpus, taskset). */
 inline int vtkApertureCores()
 {
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return std::max(1, ap_cpu_usable());
 }
 
 /** A LocalScope configuration that runs on `requested` threads: 0 = all cores, larger counts

@@ -437,6 +437,12 @@ vtkTypeInt64 vtkApertureSkyVisibility::GetUsableMemory()
 }
 
 //------------------------------------------------------------------------------
+int vtkApertureSkyVisibility::GetUsableCores()
+{
+  return vtkApertureCores();
+}
+
+//------------------------------------------------------------------------------
 bool vtkApertureSkyVisibility::IsMemoryGrouped()
 {
   bool grouped = false;

@@ -182,12 +182,13 @@ public:
   ///@}
 
   ///@{
-  /** Threads; 0 (default) = all cores, which also cap larger values. Results do not depend
-   *  on it. They run on vtkSMPTools' STDThread backend whatever VTK's default backend is: the
-   *  TBB backend of Debian's VTK 9.1 applies a scope's thread count only when it differs from
-   *  the previous scope's (a second update on one thread ran on every core). One thread
-   *  runs in the calling thread (Sequential backend), starting none; threads the system
-   *  refuses to start (no memory for their stacks) fail the update with an error saying so. */
+  /** Threads; 0 (default) = all the cores the process may use (GetUsableCores), which also cap
+   *  larger values. Results do not depend on it. They run on vtkSMPTools' STDThread backend
+   *  whatever VTK's default backend is: the TBB backend of Debian's VTK 9.1 applies a scope's
+   *  thread count only when it differs from the previous scope's (a second update on one thread ran
+   *  on every core). One thread runs in the calling thread (Sequential backend), starting none;
+   *  threads the system refuses to start (no memory for their stacks) fail the update with an error
+   *  saying so. */
   vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
@@ -209,6 +210,11 @@ public:
   static vtkTypeInt64 GetUsableMemory();
   static bool IsMemoryGrouped();
 
+  /** The cores this process may run on, NumberOfThreads 0's count (and the cap of larger
+   *  ones): the machine's, or fewer where its CPU affinity (taskset, a container's
+   *  --cpuset-cpus) or its control group's CPU quota rounded up (--cpus) allows fewer. */
+  static int GetUsableCores();
+
   /** Bytes an update over n input cells allocates with the current products and
    *  NumberOfDirections: the outputs, the filter's float copy of the elevations and the
    *  sweep's state (ap_horizon_state_bytes_per_cell); the estimate MemoryLimit is compared
@@ -221,10 +227,10 @@ public:
   double EstimateBytes(double n, double outN) const;
 
   /** Why an update over an nx x ny input would be refused for memory, or "" when it fits:
-   *  EstimateBytes(nx * ny) against MemoryLimit, or (MemoryLimit 0) against
-   *  GetUsableMemory() less `held` bytes, what the input occupies (4 x nx x ny for float elevations not
-   *  yet read; when that alone exceeds the memory, the text says so). The update refuses with
-   *  this text and advice; a caller can ask before reading a DEM and add its own advice. */
+   *  EstimateBytes(nx * ny) against MemoryLimit, or (MemoryLimit 0) against GetUsableMemory() less
+   *  `held` bytes, what the input occupies (4 x nx x ny for float elevations not yet read; when
+   *  that alone exceeds the memory, the text says so). The update refuses with this text and
+   *  advice; a caller can ask before reading a DEM and add its own advice. */
   std::string CheckMemory(int nx, int ny, double held) const;
 
   /** The same for an update extent of outNx x outNy cells whose input (the extent with its

@@ -4,6 +4,7 @@
 #include "vtkApertureGDALErrorTrap.h"
 #include "vtkApertureGeoreference.h"
 #include "vtkApertureOutputFile.h"
+#include "vtkApertureSMPThreads.h"
 #include "vtkApertureStripDriver.h"
 
 #include "vtkDataArray.h"
@@ -504,8 +505,10 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
   if (compression != "NONE")
   {
     // GDAL compresses whole tiles on worker threads and writes them in order: same bytes.
-    const std::string threads =
-      this->NumberOfThreads > 0 ? std::to_string(this->NumberOfThreads) : "ALL_CPUS";
+    // (0: the cores this process may use, which GDAL's ALL_CPUS does not know in a container
+    // with a CPU quota)
+    const std::string threads = std::to_string(
+      this->NumberOfThreads > 0 ? this->NumberOfThreads : vtkApertureCores());
     options = CSLSetNameValue(options, "NUM_THREADS", threads.c_str());
   }
   d.Type = anyDouble ? GDT_Float64 : GDT_Float32;

@@ -87,9 +87,9 @@ public:
   bool CheckCompression();
 
   ///@{
-  /** Threads compressing tiles (GDAL's NUM_THREADS): 0 (default) = all cores, 1 = on the
-   * writing thread alone.
-   * Negative values are clamped to 0. Has no effect without compression. */
+  /** Threads compressing tiles (GDAL's NUM_THREADS): 0 (default) = all the cores this
+   *  process may use (vtkApertureSkyVisibility::GetUsableCores), 1 = on the writing thread
+   *  alone. Negative values are clamped to 0. Has no effect without compression. */
   vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfThreads, int);
   ///@}

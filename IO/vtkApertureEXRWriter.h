@@ -167,8 +167,9 @@ public:
   ///@{
   /** Threads converting and compressing chunks of scanlines (vtkSMPTools' STDThread backend,
    *  as in vtkApertureSkyVisibility; one runs in the calling thread, and threads the system
-   *  refuses to start are an error): 0 (default) = all cores (which also cap larger values).
-   *  The file's bytes do not depend on it. */
+   *  refuses to start are an error): 0 (default) = all the cores the process may use
+   *  (vtkApertureSkyVisibility::GetUsableCores; they also cap larger values). The file's
+   *  bytes do not depend on it. */
   vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfThreads, int);
   ///@}

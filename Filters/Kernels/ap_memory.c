@@ -1,15 +1,18 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* madvise is not C11: ask for the system's declarations (this file only). */
-#define _DEFAULT_SOURCE 1
+/* madvise and sched_getaffinity are not C11: ask for the system's declarations (this file
+ * only). */
+#define _GNU_SOURCE 1
 
 #include "ap_memory.h"
 
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #if defined(__linux__)
+#include <sched.h>
 #include <sys/mman.h>
 #include <unistd.h>
 #endif
@@ -78,21 +81,80 @@ static unsigned long long limit_file(const char *path)
   return v;
 }
 
-/* The lowest limit in `file` of the group at `path` (from "/") under `mount` and of its
+/* A group's limit read from its folder `dir` (0 for none). */
+typedef double (*group_reader)(const char *dir);
+
+static double memory_v2(const char *dir)
+{
+  char at[4200];
+  return snprintf(at, sizeof at, "%s/memory.max", dir) < (int)sizeof at
+    ? (double)limit_file(at) : 0.0;
+}
+
+static double memory_v1(const char *dir)
+{
+  char at[4200];
+  return snprintf(at, sizeof at, "%s/memory.limit_in_bytes", dir) < (int)sizeof at
+    ? (double)limit_file(at) : 0.0;
+}
+
+/* CPUs of a quota of `quota` us in every `period` us; 0 for none (a quota of -1, "max"). */
+static double cpu_share(const char *quota, const char *period)
+{
+  char *end = NULL;
+  const double q = strtod(quota, &end), p = end != quota ? strtod(period, NULL) : 0.0;
+  return end != quota && q > 0.0 && p > 0.0 ? q / p : 0.0;
+}
+
+/* The first line of dir/file into text (at most size bytes, "" when the file cannot be
+ * read); 0 when it cannot be opened. */
+static int first_line(const char *dir, const char *file, char *text, size_t size)
+{
+  char at[4200];
+  FILE *f;
+  text[0] = '\0';
+  if (snprintf(at, sizeof at, "%s/%s", dir, file) >= (int)sizeof at || !(f = fopen(at, "r"))) {
+    return 0;
+  }
+  if (!fgets(text, (int)size, f)) {
+    text[0] = '\0';
+  }
+  fclose(f);
+  return 1;
+}
+
+static double cpu_v2(const char *dir)
+{
+  char text[128];
+  const char *space = first_line(dir, "cpu.max", text, sizeof text) ? strchr(text, ' ') : NULL;
+  /* "quota period", or "max period" */
+  return space && text[0] >= '0' && text[0] <= '9' ? cpu_share(text, space + 1) : 0.0;
+}
+
+static double cpu_v1(const char *dir)
+{
+  char quota[64], period[64];
+  if (!first_line(dir, "cpu.cfs_quota_us", quota, sizeof quota) ||
+      !first_line(dir, "cpu.cfs_period_us", period, sizeof period)) {
+    return 0.0;
+  }
+  return quota[0] >= '0' && quota[0] <= '9' ? cpu_share(quota, period) : 0.0;
+}
+
+/* The lowest limit `read` finds for the group at `path` (from "/") under `mount` and for its
  * ancestors up to the mount's root; 0 for none. */
-static unsigned long long group_limit(const char *mount, const char *path, const char *file)
+static double group_limit(const char *mount, const char *path, group_reader read)
 {
   char at[4096];
-  unsigned long long lowest = 0;
+  double lowest = 0.0;
   size_t n = strlen(path);
   while (n > 0 && path[n - 1] == '/') {
     --n;
   }
   for (;;) {
-    unsigned long long v;
-    if (snprintf(at, sizeof at, "%s%.*s/%s", mount, (int)n, path, file) < (int)sizeof at) {
-      v = limit_file(at);
-      lowest = v && (!lowest || v < lowest) ? v : lowest;
+    if (snprintf(at, sizeof at, "%s%.*s", mount, (int)n, path) < (int)sizeof at) {
+      const double v = read(at);
+      lowest = v > 0.0 && (lowest == 0.0 || v < lowest) ? v : lowest;
     }
     if (n == 0) {
       return lowest;
@@ -106,18 +168,22 @@ static unsigned long long group_limit(const char *mount, const char *path, const
   }
 }
 
-unsigned long long ap_memory_cgroup_limit(const char *cgroups, const char *root)
+/* The lowest limit over the groups `cgroups` lists: v2 ones read by `v2` under root, v1 ones
+ * of the controller `controller` by `v1` under root/controller. */
+static double cgroup_limit(const char *cgroups, const char *root, const char *controller,
+                           group_reader v2, group_reader v1)
 {
   char line[4096], mount[4096];
-  unsigned long long lowest = 0;
+  const size_t clen = strlen(controller);
+  double lowest = 0.0;
   FILE *f = fopen(cgroups, "r");
   if (!f) {
-    return 0;
+    return 0.0;
   }
   while (fgets(line, sizeof line, f)) {
     /* "id:controllers:path" */
     char *a = strchr(line, ':'), *b = a ? strchr(a + 1, ':') : NULL, *nl;
-    unsigned long long v = 0;
+    double v = 0.0;
     if (!b || b[1] != '/') {
       continue;
     }
@@ -127,23 +193,53 @@ unsigned long long ap_memory_cgroup_limit(const char *cgroups, const char *root)
     }
     *b = '\0';
     if (a + 1 == b) { /* v2: no controllers named */
-      v = group_limit(root, b + 1, "memory.max");
+      v = group_limit(root, b + 1, v2);
     } else {
       const char *c = a + 1;
-      int memory = 0;
+      int named = 0;
       while (*c) { /* the controllers, comma-separated */
         const size_t len = strcspn(c, ",");
-        memory |= len == 6 && strncmp(c, "memory", 6) == 0;
+        named |= len == clen && strncmp(c, controller, clen) == 0;
         c += len + (c[len] == ',');
       }
-      if (memory && snprintf(mount, sizeof mount, "%s/memory", root) < (int)sizeof mount) {
-        v = group_limit(mount, b + 1, "memory.limit_in_bytes");
+      if (named && snprintf(mount, sizeof mount, "%s/%s", root, controller) < (int)sizeof mount) {
+        v = group_limit(mount, b + 1, v1);
       }
     }
-    lowest = v && (!lowest || v < lowest) ? v : lowest;
+    lowest = v > 0.0 && (lowest == 0.0 || v < lowest) ? v : lowest;
   }
   fclose(f);
   return lowest;
+}
+
+unsigned long long ap_memory_cgroup_limit(const char *cgroups, const char *root)
+{
+  return (unsigned long long)cgroup_limit(cgroups, root, "memory", memory_v2, memory_v1);
+}
+
+double ap_cpu_cgroup_limit(const char *cgroups, const char *root)
+{
+  return cgroup_limit(cgroups, root, "cpu", cpu_v2, cpu_v1);
+}
+
+int ap_cpu_usable(void)
+{
+  long n = 1;
+#if defined(__linux__)
+  cpu_set_t set;
+  double quota;
+  n = sysconf(_SC_NPROCESSORS_ONLN);
+  n = n < 1 ? 1 : n;
+  if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) >= 1 &&
+      CPU_COUNT(&set) < n) {
+    n = CPU_COUNT(&set);
+  }
+  quota = ap_cpu_cgroup_limit("/proc/self/cgroup", "/sys/fs/cgroup");
+  if (quota > 0.0 && ceil(quota) < (double)n) {
+    n = (long)ceil(quota);
+  }
+#endif
+  return n > 65536 ? 65536 : (int)n;
 }
 
 unsigned long long ap_memory_usable(int *grouped)

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
-/* Internal (not installed): memory hints shared by the C core and the VTK modules. */
+/* Internal (not installed): memory hints shared by the C core and the VTK modules, and
+ * the memory and CPUs a process may use. */
 #ifndef AP_MEMORY_H
 #define AP_MEMORY_H
 
@@ -43,6 +44,17 @@ unsigned long long ap_memory_cgroup_limit(const char *cgroups, const char *root)
  * swap and the page cache to give.) */
 #define AP_MEMORY_GROUP_RESERVE (128ULL << 20)
 unsigned long long ap_memory_usable(int *grouped);
+
+/* The CPUs a control group's quota grants a process, its group's and every group above it's
+ * (as ap_memory_cgroup_limit finds them): cgroup v2's cpu.max ("quota period"), v1's
+ * cpu.cfs_quota_us / cpu.cfs_period_us under root/cpu; the lowest, as a fraction (1.5 for
+ * `docker --cpus 1.5`); 0 when no quota applies ("max", -1, no such files). */
+double ap_cpu_cgroup_limit(const char *cgroups, const char *root);
+
+/* The CPUs this process may run on at once, at least 1: the online CPUs, or fewer where its
+ * affinity mask (taskset, `docker --cpuset-cpus`) or its control group's quota rounded up
+ * (`docker --cpus`) allows fewer. */
+int ap_cpu_usable(void);
 
 #ifdef __cplusplus
 }

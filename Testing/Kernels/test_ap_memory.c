@@ -3,8 +3,8 @@
  * should (NULL, small buffers), and, where Linux offers transparent huge pages on request,
  * reaches the kernel (the advised buffer is a THP-eligible mapping in /proc/self/smaps);
  * ap_alloc_huge gives large buffers on 2 MiB boundaries, advised, and small ones as malloc;
- * control groups' memory limits are found as cgroup v1 and v2 lay them out (a made-up
- * /proc/self/cgroup and /sys/fs/cgroup in a temporary folder). */
+ * control groups' memory limits and CPU quotas are found as cgroup v1 and v2 lay them out (a
+ * made-up /proc/self/cgroup and /sys/fs/cgroup in a temporary folder). */
 #define _DEFAULT_SOURCE 1 /* (mkdtemp, mkdir, rmdir: POSIX) */
 
 #include "ap_memory.h"
@@ -251,11 +251,57 @@ static void test_cgroup_limits(void)
   AP_CHECK_EQ_INT(ap_memory_usable(NULL), usable);
 }
 
+/* ap_cpu_cgroup_limit of tree/cgroup under tree/sys. */
+static double cpus_here(void)
+{
+  char cgroups[128], root[128];
+  snprintf(cgroups, sizeof cgroups, "%s/cgroup", tree);
+  snprintf(root, sizeof root, "%s/sys", tree);
+  return ap_cpu_cgroup_limit(cgroups, root);
+}
+
+static void test_cgroup_cpus(void)
+{
+  int usable;
+  snprintf(tree, sizeof tree, "/tmp/ap-cgroup-XXXXXX");
+  AP_CHECK(mkdtemp(tree) != NULL);
+  AP_CHECK_EQ_INT(cpus_here() == 0.0, 1);
+  /* v2: 1.5 CPUs in the group; "max" at the root */
+  put("cgroup", "0::/a\n");
+  put("sys/a/cpu.max", "150000 100000\n");
+  put("sys/cpu.max", "max 100000\n");
+  AP_CHECK_NEAR(cpus_here(), 1.5, 1e-12);
+  clear_tree();
+  /* v1 ("cpu,cpuacct" mounted at cpu): the group's -1 (none), its parent's 2 CPUs; a line of
+   * cpuacct alone is not the cpu controller's */
+  put("cgroup", "5:cpuacct:/k8s/pod\n2:cpu,cpuacct:/k8s/pod\n");
+  put("sys/cpu/k8s/pod/cpu.cfs_quota_us", "-1\n");
+  put("sys/cpu/k8s/pod/cpu.cfs_period_us", "100000\n");
+  put("sys/cpu/k8s/cpu.cfs_quota_us", "200000\n");
+  put("sys/cpu/k8s/cpu.cfs_period_us", "100000\n");
+  put("sys/cpuacct/k8s/pod/cpu.cfs_quota_us", "1000\n");
+  put("sys/cpuacct/k8s/pod/cpu.cfs_period_us", "100000\n");
+  AP_CHECK_NEAR(cpus_here(), 2.0, 1e-12);
+  clear_tree();
+  /* malformed: nothing */
+  put("cgroup", "0::/b\n");
+  put("sys/b/cpu.max", "100000\n"); /* (no period) */
+  AP_CHECK_EQ_INT(cpus_here() == 0.0, 1);
+  clear_tree();
+  rmdir(tree);
+  usable = ap_cpu_usable();
+  AP_CHECK(usable >= 1);
+#if defined(__linux__)
+  AP_CHECK(usable <= sysconf(_SC_NPROCESSORS_ONLN));
+#endif
+}
+
 int main(void)
 {
   test_contents_and_no_ops();
   test_reaches_the_kernel();
   test_alloc_huge();
   test_cgroup_limits();
+  test_cgroup_cpus();
   AP_TEST_MAIN_END();
 }

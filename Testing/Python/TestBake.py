@@ -845,12 +845,13 @@ class TestBake(unittest.TestCase):
             self.assertEqual(sorted(os.listdir(self.tmp)), before, what)
             self.assertLess(used - sent, 1.0, what)
 
-    def memory_group(self, limit):
-        """A new Linux control group limited to `limit` bytes of memory (cgroup v2 under the
-        root group, or v1 under this process's own memory group), removed at the test's end;
-        its cgroup.procs file. Skips the test where none can be made (not root, a container
-        without its own cgroup namespace)."""
-        name = "aperture-test-%d" % os.getpid()
+    def control_group(self, controller, v1_limits, v2_limits):
+        """A new Linux control group with limits of `controller` ("memory", "cpu"): files and
+        values written in it, `v1_limits` under cgroup v1 (below this process's own group of
+        that controller) or `v2_limits` under v2 (below the root group); removed at the test's
+        end. Its cgroup.procs file. Skips the test where none can be made (not root, a
+        container without its own cgroup namespace)."""
+        name = "aperture-test-%s-%d" % (controller, os.getpid())
         own = ""
         try:
             with open("/proc/self/cgroup") as f:
@@ -858,14 +859,13 @@ class TestBake(unittest.TestCase):
         except OSError:
             lines = []
         for _, controllers, path in lines:
-            if "memory" in controllers.split(","):
+            if controller in controllers.split(","):
                 own = path
         if os.path.isfile("/sys/fs/cgroup/memory/memory.limit_in_bytes"):  # v1
-            group = "/sys/fs/cgroup/memory%s/%s" % (own.rstrip("/"), name)
-            limit_file = "memory.limit_in_bytes"
+            group, limits = "/sys/fs/cgroup/%s%s/%s" % (controller, own.rstrip("/"), name), \
+                v1_limits
         else:  # v2
-            group = "/sys/fs/cgroup/" + name
-            limit_file = "memory.max"
+            group, limits = "/sys/fs/cgroup/" + name, v2_limits
         try:
             os.mkdir(group)
         except OSError as e:
@@ -873,12 +873,18 @@ class TestBake(unittest.TestCase):
         self.addCleanup(os.rmdir, group)
         procs = os.path.join(group, "cgroup.procs")
         try:
-            with open(os.path.join(group, limit_file), "w") as f:
-                f.write("%d\n" % limit)
+            for file, value in limits:
+                with open(os.path.join(group, file), "w") as f:
+                    f.write("%s\n" % value)
             subprocess.run(["true"], check=True, preexec_fn=lambda: self.join(procs))
         except (OSError, subprocess.SubprocessError) as e:
-            self.skipTest("no memory limit can be set here: %s" % e)
+            self.skipTest("no %s limit can be set here: %s" % (controller, e))
         return procs
+
+    def memory_group(self, limit):
+        """control_group with a memory limit of `limit` bytes."""
+        return self.control_group("memory", [("memory.limit_in_bytes", limit)],
+                                  [("memory.max", limit)])
 
     @staticmethod
     def join(procs):
@@ -916,6 +922,41 @@ class TestBake(unittest.TestCase):
                            capture_output=True, text=True, timeout=120, preexec_fn=join)
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertEqual(p.stdout.split(), [str(272 << 20), "True"])
+
+    def test_usable_cores(self):
+        # --threads 0 (the default) is every core the process may use: the machine's, or fewer
+        # where its CPU affinity (taskset, a container's --cpuset-cpus) or its control group's
+        # CPU quota (--cpus) allows fewer; before 2026-12-05 it was the machine's, which in a
+        # container with a quota of one CPU started a thread per host core.
+        code = ("import aperture, numpy as np; from vtkmodules.vtkCommonDataModel import "
+                "vtkImageData; from vtkmodules.util.numpy_support import numpy_to_vtk; "
+                "s = aperture.vtkApertureSkyVisibility; im = vtkImageData(); "
+                "im.SetDimensions(300, 300, 1); im.SetSpacing(30, 30, 1); "
+                "im.SetOrigin(400000, 5000000, 0); a = numpy_to_vtk(np.random.default_rng(1)"
+                ".uniform(0, 300, 90000).astype(np.float32), deep=1); a.SetName('Elevation'); "
+                "im.GetPointData().SetScalars(a); g = aperture.vtkApertureGeoreference(); "
+                "g.SetCRS('EPSG:32633'); g.AttachToImage(im); f = s(); f.SetInputData(im); "
+                "f.SetMaximumDistance(600); f.Update(); "
+                "print(s.GetUsableCores(), f.GetNumberOfThreadsUsed())")
+        python = os.path.join(BUILD, "bin", "aperture-python")
+
+        def cores(preexec=None):
+            p = subprocess.run([python, "-c", code], capture_output=True, text=True,
+                               timeout=120, preexec_fn=preexec)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            return [int(v) for v in p.stdout.split()]
+
+        usable, used = cores()
+        self.assertLessEqual(used, usable)
+        self.assertLessEqual(usable, len(os.sched_getaffinity(0)))
+        first = min(os.sched_getaffinity(0))
+        self.assertEqual(cores(lambda: os.sched_setaffinity(0, {first})), [1, 1])
+        if usable < 2:
+            self.skipTest("one core here: a CPU quota could not lower the count")
+        procs = self.control_group("cpu", [("cpu.cfs_period_us", 100000),
+                                           ("cpu.cfs_quota_us", 100000)],
+                                   [("cpu.max", "100000 100000")])
+        self.assertEqual(cores(lambda: self.join(procs)), [1, 1])
 
     def test_out_of_memory(self):
         # A DEM that fits the machine's memory but not the process's address space (ulimit -v):

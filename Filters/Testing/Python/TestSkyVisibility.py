@@ -319,7 +319,9 @@ class TestSkyVisibility(Testing.vtkTest):
         counts = (1, 2, 0, 1)
         filters = [sky(image, NumberOfThreads=t, MaximumDistance=distance,
                        ComputeHorizonAngles=True) for t in counts]
-        cores = os.cpu_count() or 1
+        cores = aperture.vtkApertureSkyVisibility.GetUsableCores()  # (affinity, CPU quota)
+        self.assertLessEqual(cores, os.cpu_count() or 1)
+        self.assertLessEqual(cores, len(os.sched_getaffinity(0)))
         used = [f.GetNumberOfThreadsUsed() for f in filters]
         for t, u in zip(counts, used):
             self.assertGreaterEqual(u, 1)

@@ -1435,8 +1435,9 @@ def build_parser():
                    help="refraction coefficient (default 0.13)")
     p.add_argument("--threads", type=int, default=0, metavar="N",
                    help="threads for the sweep and for compressing the GeoTIFF and EXR "
-                        "(default 0: all cores, which also cap larger values); results and "
-                        "file contents do not depend on it")
+                        "(default 0: all cores, or those a CPU affinity or a container's CPU "
+                        "quota allows, which also cap larger values); results and file "
+                        "contents do not depend on it")
     p.add_argument("--products", metavar="LIST",
                    help="comma-separated products: %s; 'all' adds HorizonAngles (default: all "
                         "but HorizonAngles)" % ", ".join(n for n, *_ in PRODUCTS))
