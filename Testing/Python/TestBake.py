@@ -776,7 +776,9 @@ class TestBake(unittest.TestCase):
         # handler only when asked to check, and a VTK update holds the GIL to its end, so the
         # bake used to run to its end before exiting 130 (this test's flake, 1 run in ~10).
         # SIGTERM (`timeout`, a batch system) likewise, exiting 143: it used to end the process
-        # at once, leaving the strips' outputs begun.
+        # at once, leaving the strips' outputs begun; and SIGHUP (the terminal or ssh session
+        # closed), exiting 129, which until 2026-12-05 left the GeoTIFF half written under its
+        # own name and OpenEXR's temporary file.
         import ctypes
         import errno
         import signal
@@ -808,7 +810,8 @@ class TestBake(unittest.TestCase):
         two = ["--threads", "2"]  # (a worker thread on any machine)
         for options, to_worker, number, code in (
                 ([], False, signal.SIGINT, 130), (two, True, signal.SIGINT, 130),
-                (strips + two, True, signal.SIGINT, 130), (strips, False, signal.SIGTERM, 143)):
+                (strips + two, True, signal.SIGINT, 130), (strips, False, signal.SIGTERM, 143),
+                (strips, False, signal.SIGHUP, 129)):
             p = subprocess.Popen([APERTURE, "bake", dem, out, "-q"] + options,
                                  stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
             start = time.perf_counter()

@@ -755,19 +755,25 @@ def _product_image(sky, products):
 
 
 class _Terminated(KeyboardInterrupt):
-    """SIGTERM during a step that _abort_on_interrupt guards: the step stopped as for Ctrl-C,
-    and the command exits 143 (128 + 15), as the signal's default action would have."""
+    """SIGTERM or SIGHUP during a step that _abort_on_interrupt guards: the step stopped as for
+    Ctrl-C, and the command exits 128 + the signal's number (143, 129), as the signal's default
+    action would have."""
+
+    def __init__(self, signum):
+        super().__init__()
+        self.signum = signum
 
 
 class _abort_on_interrupt:
-    """Ctrl-C (SIGINT), or SIGTERM (`timeout`, a batch system's time limit), during long filters
-    and writers: Python runs its signal handler only when it gets control, which a VTK update
+    """Ctrl-C (SIGINT), SIGTERM (`timeout`, a batch system's time limit) or SIGHUP (the terminal
+    or ssh session of a long bake closed) during long filters and writers: Python runs its signal handler only when it gets control, which a VTK update
     gives it only through observers. Observers of the algorithms' progress (every azimuth
     sector for the sky filter, or slice of one on large DEMs, every band for the GeoTIFF
     writer) let the handler run; it sets AbortExecute on all of them, the one running stops (a
-    writer removing its file), and KeyboardInterrupt follows (exit 130; _Terminated, exit 143,
-    for SIGTERM) instead of the whole computation first. Without it a SIGTERM would end the
-    process at once, leaving the outputs a bake in strips had begun."""
+    writer removing its file), and KeyboardInterrupt follows (exit 130; _Terminated, exit 143
+    or 129, for SIGTERM and SIGHUP) instead of the whole computation first. Without it those
+    signals would end the process at once, leaving the outputs a bake in strips had begun (the
+    GeoTIFF partly written under its own name)."""
 
     def __init__(self, *algorithms):
         self.algorithms = algorithms
@@ -802,7 +808,7 @@ class _abort_on_interrupt:
         self.observers = [a.AddObserver("ProgressEvent", self._progress)
                           for a in self.algorithms]
         self.previous = {number: signal.signal(number, self._handler)
-                         for number in (signal.SIGINT, signal.SIGTERM)}
+                         for number in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
         return self
 
     def __exit__(self, kind, value, traceback):
@@ -811,8 +817,11 @@ class _abort_on_interrupt:
             signal.signal(number, handler)
         for algorithm, observer in zip(self.algorithms, self.observers):
             algorithm.RemoveObserver(observer)
+        ended = [n for n in (signal.SIGTERM, signal.SIGHUP) if n in self.received]
+        if ended:
+            raise _Terminated(ended[0])
         if self.interrupted:
-            raise _Terminated if signal.SIGTERM in self.received else KeyboardInterrupt
+            raise KeyboardInterrupt
         return False
 
 
@@ -1616,7 +1625,7 @@ def _main(argv):
         print("%s: error: out of memory; %s" % (PROG, _SMALLER_READ), file=sys.stderr)
         return 1
     except KeyboardInterrupt as e:
-        return 143 if isinstance(e, _Terminated) else 130
+        return 128 + e.signum if isinstance(e, _Terminated) else 130
 
 
 if __name__ == "__main__":
