@@ -171,6 +171,48 @@ class TestLauncher(CommandLineTest):
                 self.assertEqual(p.stdout, "")
 
 
+    def test_names_not_utf8(self):
+        # File names that are not UTF-8 (Latin-1 from an older system): VTK's Python wrapping
+        # cannot pass them as strings, and `info` and `bake` stopped with a UnicodeEncodeError
+        # traceback before 2026-12-05. They are read and written now, printed as the bytes
+        # they are; a missing one is named, and a reader's error that names one (which VTK
+        # cannot pass on to Python) names the file.
+        folder = os.fsencode(self.tmp)
+        dem = os.path.join(folder, b"h\xf6he.tif")  # "hoehe" with o-umlaut in Latin-1
+        make_raster(self.path("utf8.tif"), np.add.outer(np.arange(20.0), np.arange(30.0)),
+                    (500000, 30, 0, 4000000, 0, -30))
+        os.rename(self.path("utf8.tif"), dem)  # (GDAL's Python bindings take str names only)
+
+        def run_bytes(*args):
+            p = subprocess.run([os.fsencode(APERTURE)] + list(args), capture_output=True,
+                               timeout=120)
+            return p.returncode, p.stdout, p.stderr
+
+        status, out, err = run_bytes(b"info", dem)
+        self.assertEqual((status, err), (0, b""))
+        self.assertIn(b"File:       " + dem + b" (GTiff, band 1 of 1)", out)
+        tif, exr = os.path.join(folder, b"\xe9t\xe9.tif"), os.path.join(folder, b"\xe9t\xe9.exr")
+        status, out, err = run_bytes(b"bake", dem, tif, b"--exr", exr, b"--radius", b"300")
+        self.assertEqual((status, err), (0, b""))
+        self.assertTrue(out.startswith(b"wrote " + tif + b" and " + exr + b": "), out)
+        self.assertGreater(os.path.getsize(tif), 0)
+        self.assertGreater(os.path.getsize(exr), 0)
+        status, out, err = run_bytes(b"info", tif, b"--band", b"4")  # (its SkyViewFactor)
+        self.assertEqual((status, err), (0, b""))
+        missing = os.path.join(folder, b"m\xfcde.tif")
+        status, out, err = run_bytes(b"info", missing)
+        self.assertEqual((status, out, err),
+                         (1, b"", b"aperture: error: file '" + missing + b"' does not exist\n"))
+        garbage = os.path.join(folder, b"m\xfcll.tif")
+        with open(garbage, "wb") as f:
+            f.write(b"not a raster")
+        status, out, err = run_bytes(b"info", garbage)
+        self.assertEqual((status, out), (1, b""))
+        self.assertEqual(err, b"aperture: error: vtkApertureDEMReader failed on '" + garbage +
+                         b"' (its message could not be passed on: the file name is not "
+                         b"UTF-8)\n")
+
+
 class TestInfo(CommandLineTest):
     def test_default_dem_json(self):
         d, err = self.info()

@@ -17,7 +17,7 @@ import os
 import re
 import sys
 
-from aperture.errors import ApertureError, Watcher, quiet_vtk_output
+from aperture.errors import ApertureError, Watcher, native_path, quiet_vtk_output
 
 PROG = "aperture"
 
@@ -212,6 +212,9 @@ def _dem_path(args):
         if not args.dem:
             # (not the default DEM: an empty variable in a script is a mistake, not a choice)
             raise ApertureError("the DEM path is empty")
+        if native_path(args.dem) is not args.dem and not os.path.exists(args.dem):
+            # (a name that is not UTF-8: the reader's own message could not reach us)
+            raise ApertureError("file '%s' does not exist" % args.dem)
         return args.dem
     from aperture import default_dem
     try:
@@ -256,7 +259,7 @@ def _dem_reader(args, watcher, subwindow=True):
     if args.overview < -1:
         raise ApertureError("--overview must be 0 or more")
     reader = watcher.watch(vtkApertureDEMReader())
-    reader.SetFileName(_dem_path(args))
+    reader.SetFileName(native_path(_dem_path(args)))
     reader.SetBandIndex(args.band or 0)  # 0: the reader's default, band 1 with a note
     if args.srcwin and min(args.srcwin) < 0:
         raise ApertureError("--srcwin values must not be negative")
@@ -320,7 +323,7 @@ def describe(reader, image):
             geo.GetBoundsLonLat(bounds) and geo.GetCentreLonLat(centre)))):
         raise ApertureError(geo.GetErrorMessage())
     return {
-        "file": _full_name(reader.GetFileName()),
+        "file": _full_name(os.fsdecode(reader.GetFileName())),
         "driver": reader.GetDriverName(),
         "bands": reader.GetNumberOfBands(),
         "band": reader.GetBandRead(),
@@ -554,7 +557,7 @@ def cmd_render(args):
         if image_reader is None:
             raise ApertureError("cannot read the albedo image %s (PNG, JPEG, TIFF, BMP)"
                                 % args.albedo)
-        image_reader.SetFileName(args.albedo)
+        image_reader.SetFileName(native_path(args.albedo))
         image_reader.Update()
         texture = vtkTexture()
         texture.SetInputConnection(image_reader.GetOutputPort())
@@ -608,7 +611,7 @@ def _write_linear_exr(args, window, mapper, sun, watcher):
         raise ApertureError("could not read the float framebuffer back for %s" % args.exr)
     writer = watcher.watch(vtkApertureEXRWriter())
     writer.SetInputData(image)
-    writer.SetFileName(args.exr)
+    writer.SetFileName(native_path(args.exr))
     writer.SetColorArrayName("Radiance")
     writer.AddArrayName("Radiance")
     if args.exr_type == "half":
@@ -685,7 +688,8 @@ def _provenance(args, products, reader):
     return {
         "APERTURE_VERSION": __version__,
         "APERTURE_COMMAND": "aperture bake",
-        "SOURCE_DEM": _full_name(args.dem),
+        # (metadata is UTF-8 text: a name that is not UTF-8 with its odd bytes as \xNN)
+        "SOURCE_DEM": os.fsencode(_full_name(args.dem)).decode("utf-8", "backslashreplace"),
         "ALGORITHM": "convex-hull line sweep (Timonen & Westerholm 2010) of the terrain horizon "
                      "in every azimuth sector, each cell's own ray exact on the bilinear surface "
                      "for the first %s columns; in sectors where the search distance spans at "
@@ -1083,7 +1087,7 @@ def _bake(args, products, progress):
                                 % (_dem_path(args), args.band or 1))
     provenance = _provenance(args, products, reader)
     definitions = {name: (unit, text) for name, unit, text in PRODUCTS}
-    writer.SetFileName(args.output)
+    writer.SetFileName(native_path(args.output))
     writer.SetNumberOfThreads(args.threads)  # tiles compressed in parallel; same bytes
     for key, value in provenance.items():
         writer.AddMetadata(key, value)
@@ -1094,7 +1098,7 @@ def _bake(args, products, progress):
     exr = None
     if args.exr:
         exr = watcher.watch(vtkApertureEXRWriter())
-        exr.SetFileName(args.exr)
+        exr.SetFileName(native_path(args.exr))
         exr.SetNumberOfThreads(args.threads)  # chunks compressed in parallel; same bytes
         if args.exr_type == "half":
             exr.SetPixelTypeToHalf()
@@ -1607,6 +1611,10 @@ def build_parser():
 
 
 def main(argv=None):
+    # file names that are not UTF-8 (held with surrogates) print as the bytes they are
+    for stream in (sys.stdout, sys.stderr):
+        if hasattr(stream, "reconfigure"):
+            stream.reconfigure(errors="surrogateescape")
     try:
         return _main(sys.argv[1:] if argv is None else argv)
     except BrokenPipeError:

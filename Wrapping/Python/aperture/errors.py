@@ -4,6 +4,7 @@
 vtkErrorMacro text looks like "ERROR: In file.cxx, line N\\nvtkClass (0x...): message"; the
 command line and scripts want just "message".
 """
+import os
 import re
 
 from vtkmodules.util.misc import calldata_type
@@ -23,10 +24,36 @@ _HEADER = re.compile(r"^(?:ERROR|Warning): In .*?, line \d+\s*\n[^\n]*?\(0x[0-9a
                      re.S)
 
 
+def native_path(path):
+    """A file name for a VTK object's SetFileName: `path` itself, or its bytes where it is not
+    UTF-8 (a name from an older system, in Latin-1, which Python holds with surrogates and
+    VTK's wrapping cannot pass as a string)."""
+    try:
+        path.encode("utf-8")
+        return path
+    except UnicodeEncodeError:
+        return os.fsencode(path)
+    except AttributeError:  # (None, bytes)
+        return path
+
+
 def clean_message(text):
-    """The message part of a vtkErrorMacro / vtkWarningMacro text."""
+    """The message part of a vtkErrorMacro / vtkWarningMacro text (bytes, where it names a file
+    that is not UTF-8, decoded as Python decodes file names)."""
+    if isinstance(text, bytes):
+        text = os.fsdecode(text)
     text = _HEADER.sub("", text or "")
     return " ".join(text.split())
+
+
+def _unpassed(obj):
+    """What to say for a message VTK could not pass to Python: one that is not UTF-8, as a file
+    name in it may be (VTK then passes None)."""
+    name = obj.GetFileName() if hasattr(obj, "GetFileName") else None
+    if name is None:
+        return "%s failed (its message is not UTF-8 text)" % obj.GetClassName()
+    return ("%s failed on '%s' (its message could not be passed on: the file name is not "
+            "UTF-8)" % (obj.GetClassName(), os.fsdecode(name)))
 
 
 class Watcher:
@@ -49,11 +76,11 @@ class Watcher:
 
     @calldata_type(VTK_STRING)
     def _error(self, obj, event, text):
-        self.errors.append(clean_message(text))
+        self.errors.append(clean_message(text) if text is not None else _unpassed(obj))
 
     @calldata_type(VTK_STRING)
     def _warning(self, obj, event, text):
-        message = clean_message(text)
+        message = clean_message(text) if text is not None else _unpassed(obj)
         self.warnings.append(message)
         if self._on_warning:
             self._on_warning(message)

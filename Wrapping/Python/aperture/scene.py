@@ -264,8 +264,9 @@ def rgb_pixels(window):
 
 def write_png(window, path):
     """Render and write the window's pixels to a PNG; returns the absolute path."""
+    from aperture.errors import native_path
     writer = vtkPNGWriter()
-    writer.SetFileName(path)
+    writer.SetFileName(native_path(path))
     writer.SetInputData(grab(window))
     writer.Write()
     if writer.GetErrorCode():
