@@ -784,15 +784,16 @@ class _Terminated(KeyboardInterrupt):
 
 
 class _abort_on_interrupt:
-    """Ctrl-C (SIGINT), SIGTERM (`timeout`, a batch system's time limit) or SIGHUP (the terminal
-    or ssh session of a long bake closed) during long filters and writers: Python runs its signal handler only when it gets control, which a VTK update
-    gives it only through observers. Observers of the algorithms' progress (every azimuth
-    sector for the sky filter, or slice of one on large DEMs, every band for the GeoTIFF
-    writer) let the handler run; it sets AbortExecute on all of them, the one running stops (a
-    writer removing its file), and KeyboardInterrupt follows (exit 130; _Terminated, exit 143
-    or 129, for SIGTERM and SIGHUP) instead of the whole computation first. Without it those
-    signals would end the process at once, leaving the outputs a bake in strips had begun (the
-    GeoTIFF partly written under its own name)."""
+    """Ctrl-C (SIGINT), SIGTERM (`timeout`, a batch system's time limit) or SIGHUP (the
+    terminal or ssh session of a long bake closed) during long filters and writers: Python runs
+    its signal handler only when it gets control, which a VTK update gives it only through
+    observers. Observers of the algorithms' progress (every azimuth sector for the sky filter,
+    or slice of one on large DEMs, every band for the GeoTIFF writer) let the handler run; it
+    sets AbortExecute on all of them, the one running stops (a writer removing its file), and
+    KeyboardInterrupt follows (exit 130; _Terminated, exit 143 or 129, for SIGTERM and SIGHUP)
+    instead of the whole computation first. Without it those signals would end the process at
+    once, leaving the outputs a bake in strips had begun (the GeoTIFF partly written under its
+    own name)."""
 
     def __init__(self, *algorithms):
         self.algorithms = algorithms
