@@ -462,8 +462,9 @@ std::string vtkApertureSkyVisibility::CheckMemory(
 {
   const double n = static_cast<double>(nx) * ny, outN = static_cast<double>(outNx) * outNy;
   const double need = this->EstimateBytes(n, outN);
-  bool grouped = false;
-  const double usable = static_cast<double>(vtkApertureUsableMemory(&grouped));
+  bool grouped = false; // (the usable memory is read only when no MemoryLimit is set)
+  const double usable =
+    this->MemoryLimit > 0 ? 0.0 : static_cast<double>(vtkApertureUsableMemory(&grouped));
   const double limit =
     this->MemoryLimit > 0 ? static_cast<double>(this->MemoryLimit) : usable - held;
   if (need <= limit)

@@ -584,8 +584,8 @@ int vtkApertureDEMReader::Execute(vtkInformationVector* outputVector)
   // Memory: refuse before allocating anything large.
   size_t cells = 0, bytes = 0;
   bool grouped = false;
-  const vtkTypeInt64 usable = vtkApertureUsableMemory(&grouped);
-  const vtkTypeInt64 limit = this->MemoryLimit > 0 ? this->MemoryLimit : usable;
+  const vtkTypeInt64 limit =
+    this->MemoryLimit > 0 ? this->MemoryLimit : vtkApertureUsableMemory(&grouped);
   if (ap_size_mul(ncols, nrows, &cells) != AP_OK ||
     ap_size_mul(cells, sizeof(float), &bytes) != AP_OK ||
     bytes > static_cast<size_t>(limit))
@@ -595,10 +595,9 @@ int vtkApertureDEMReader::Execute(vtkInformationVector* outputVector)
                   << vtkApertureHumanBytes(static_cast<double>(ncols) * nrows * 4.0)
                   << " as float32, more than the "
                   << vtkApertureHumanBytes(static_cast<double>(limit))
-                  << (this->MemoryLimit > 0 ? " MemoryLimit"
-                       : grouped
-                       ? " of memory this process may use under its control group's limit"
-                       : " of memory on this machine")
+                  << (this->MemoryLimit > 0 ? std::string(" MemoryLimit")
+                       : grouped ? std::string(" of memory ") + vtkApertureUsableMemoryOwner(true)
+                                 : std::string(" of memory on this machine"))
                   << "; read a SubWindow, or use Decimation or an OverviewLevel");
     return 0;
   }

@@ -326,8 +326,8 @@ int vtkApertureEXRReader::RequestInformation(
   {
     vtkErrorMacro(<< "'" << name << "' has a data window of " << d.SizeText()
                   << ": more than "
-                  << (grouped ? "the memory this process may use under its control group's limit"
-                              : "this machine's memory")
+                  << (grouped ? std::string("the memory ") + vtkApertureUsableMemoryOwner(true)
+                              : std::string("this machine's memory"))
                   << " (or a damaged header)");
     return 0;
   }

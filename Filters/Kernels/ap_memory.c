@@ -56,47 +56,8 @@ void *ap_alloc_huge(size_t bytes)
   return p;
 }
 
-/* A limit file's value: bytes, or 0 for none ("max"; v1's "no limit", 2^63 less a page, and
- * anything as large; an unreadable or malformed file). */
-static unsigned long long limit_file(const char *path)
-{
-  char text[64] = "";
-  char *end = NULL;
-  unsigned long long v;
-  FILE *f = fopen(path, "r");
-  if (!f) {
-    return 0;
-  }
-  if (!fgets(text, sizeof text, f)) {
-    text[0] = '\0';
-  }
-  fclose(f);
-  if (text[0] < '0' || text[0] > '9') {
-    return 0; /* ("max", or nothing) */
-  }
-  v = strtoull(text, &end, 10);
-  if (end == text || (*end != '\0' && *end != '\n') || v >= (1ULL << 62)) {
-    return 0;
-  }
-  return v;
-}
-
 /* A group's limit read from its folder `dir` (0 for none). */
 typedef double (*group_reader)(const char *dir);
-
-static double memory_v2(const char *dir)
-{
-  char at[4200];
-  return snprintf(at, sizeof at, "%s/memory.max", dir) < (int)sizeof at
-    ? (double)limit_file(at) : 0.0;
-}
-
-static double memory_v1(const char *dir)
-{
-  char at[4200];
-  return snprintf(at, sizeof at, "%s/memory.limit_in_bytes", dir) < (int)sizeof at
-    ? (double)limit_file(at) : 0.0;
-}
 
 /* CPUs of a quota of `quota` us in every `period` us; 0 for none (a quota of -1, "max"). */
 static double cpu_share(const char *quota, const char *period)
@@ -121,6 +82,30 @@ static int first_line(const char *dir, const char *file, char *text, size_t size
   }
   fclose(f);
   return 1;
+}
+
+/* The limit dir/file holds: bytes, or 0 for none ("max"; v1's "no limit", 2^63 less a page,
+ * and anything as large; an unreadable or malformed file). */
+static double limit_file(const char *dir, const char *file)
+{
+  char text[64];
+  char *end = NULL;
+  unsigned long long v;
+  if (!first_line(dir, file, text, sizeof text) || text[0] < '0' || text[0] > '9') {
+    return 0.0; /* ("max", or nothing) */
+  }
+  v = strtoull(text, &end, 10);
+  return end == text || (*end != '\0' && *end != '\n') || v >= (1ULL << 62) ? 0.0 : (double)v;
+}
+
+static double memory_v2(const char *dir)
+{
+  return limit_file(dir, "memory.max");
+}
+
+static double memory_v1(const char *dir)
+{
+  return limit_file(dir, "memory.limit_in_bytes");
 }
 
 static double cpu_v2(const char *dir)

@@ -1111,7 +1111,6 @@ def _bake(args, products, progress):
     outputs = [(writer, args.output)] + ([(exr, args.exr)] if exr else [])
     writers = [output for output, _ in outputs]
     started = []  # the outputs begun: an interrupt removes them (a writer also removes its own)
-
     try:
         if rows:
             # In strips, north first: the sky filter computes each (reading it and its halo)
