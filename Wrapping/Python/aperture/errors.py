@@ -38,10 +38,7 @@ def native_path(path):
 
 
 def clean_message(text):
-    """The message part of a vtkErrorMacro / vtkWarningMacro text (bytes, where it names a file
-    that is not UTF-8, decoded as Python decodes file names)."""
-    if isinstance(text, bytes):
-        text = os.fsdecode(text)
+    """The message part of a vtkErrorMacro / vtkWarningMacro text."""
     text = _HEADER.sub("", text or "")
     return " ".join(text.split())
 
