@@ -56,6 +56,52 @@ std::string FormatUTC(double seconds)
   return buf;
 }
 
+/** A number as %g gives it, so that 1e20 reads as 1e+20 and not as twenty digits. */
+std::string Number(double value)
+{
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%g", value);
+  return buf;
+}
+
+/** An instant for a message: ISO 8601 UTC, or the year when the formatter's range ends. */
+std::string TimeText(double seconds)
+{
+  const std::string iso = FormatUTC(seconds);
+  const double days = std::floor(seconds / 86400.0);
+  if (!iso.empty() || !(std::fabs(days) < 1e15))
+  {
+    return iso.empty() ? Number(seconds) + " s after 1970" : iso;
+  }
+  int64_t year;
+  int month, day;
+  ap_time_civil_from_days(static_cast<int64_t>(days), &year, &month, &day);
+  return "in the year " + std::to_string(year);
+}
+
+/** Which of the atmosphere and time-scale parameters ap_sun_params_validate refused. */
+std::string ParameterProblem(const ap_sun_params& p)
+{
+  if (!(p.pressure >= 0.0 && p.pressure <= 5000.0))
+  {
+    return "the pressure " + Number(p.pressure) + " hPa is outside 0..5000 hPa";
+  }
+  if (!(p.temperature > -273.0 && p.temperature <= 6000.0))
+  {
+    return "the temperature " + Number(p.temperature) + " C is outside -273..6000 C";
+  }
+  if (!std::isnan(p.delta_t) && !(std::fabs(p.delta_t) <= 100000.0))
+  {
+    return "delta T " + Number(p.delta_t) + " s is outside -100000..100000 s";
+  }
+  if (!(std::fabs(p.delta_ut1) < 1.0))
+  {
+    return "delta UT1 " + Number(p.delta_ut1) + " s is outside -1..1 s";
+  }
+  return "the refraction at the horizon " + Number(p.atmos_refract) +
+    " deg is outside 0..4 deg";
+}
+
 /** Local wall-clock text "2026-03-29T02:30" (minutes; seconds when not zero). */
 std::string FormatCivil(const ap_civil_time& c)
 {
@@ -378,8 +424,7 @@ bool vtkApertureSolarPosition::Compute()
   const ap_sun_params p = d.Params(this);
   if (problem.empty() && ap_sun_params_validate(&p) != AP_OK)
   {
-    problem = "pressure (0..5000 hPa), temperature (-273..6000 C), delta T (|s| <= 100000) or "
-              "delta UT1 (|s| < 1) is out of range";
+    problem = ParameterProblem(p);
   }
   ap_sun_position_result& r = d.Sun;
   if (problem.empty())
@@ -388,10 +433,10 @@ bool vtkApertureSolarPosition::Compute()
       ap_sun_position(&p, this->UnixTime, this->Latitude, this->Longitude, this->Height, &r);
     if (st != AP_OK)
     {
-      const std::string when = this->GetTimeString();
-      problem = "the time " + (when.empty() ? std::to_string(this->UnixTime) + " s" : when) +
-        " or the height (" + std::to_string(this->Height) +
-        " m) is outside the algorithm's range (years -2000..6000, heights -6500..100000 km)";
+      problem = !(this->Height >= -6.5e6 && this->Height <= 1e8)
+        ? "the height " + Number(this->Height) + " m is outside -6500..100000 km"
+        : "the time " + TimeText(this->UnixTime) +
+          " is outside the years the algorithm covers (-2000..6000)";
     }
   }
   if (!problem.empty())

@@ -196,6 +196,23 @@ class CommandLineSunTest(unittest.TestCase):
                                "--step", 360, "--json")
         self.assertEqual(status, 0, err)
         self.assertEqual(len(json.loads(out)), 4)
+        # A step longer than the series: the start alone (was no row at all); a step that does
+        # not divide the days: every time before the end.
+        for extra, times in ((["--step", 2000], ["2026-06-21T00:00:00Z"]),
+                             (["--step", 1000], ["2026-06-21T00:00:00Z", "2026-06-21T16:40:00Z"]),
+                             (["--step", 1000, "--json"], ["2026-06-21T00:00:00Z",
+                                                           "2026-06-21T16:40:00Z"])):
+            status, out, err = run("--at", "2026-06-21T00:00Z", "--lat", 0, "--lon", 0, *extra)
+            self.assertEqual(status, 0, err)
+            if "--json" in extra:
+                got = [r["time_utc"] for r in json.loads(out)]
+            else:
+                got = [l.split("\t")[0] for l in out.strip().splitlines()[1:]]
+            self.assertEqual(got, times, extra)
+        # The JSON list is streamed, as json.dumps(records, indent=1) prints it.
+        status, out, err = run("--at", "2026-06-21T00:00Z", "--lat", 0, "--lon", 0,
+                               "--step", 360, "--json")
+        self.assertEqual(out, json.dumps(json.loads(out), indent=1) + "\n")
 
     def test_errors(self):
         place = ["--lat", 47, "--lon", 8]
@@ -212,11 +229,21 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertIn("--lat DEG --lon DEG", self.error_of("--at", "2026-06-21T12:00Z"))
         self.assertIn("not both", self.error_of("--at", "2026-06-21T12:00Z", "--dem", "x.tif",
                                                 *place))
-        self.assertIn("pressure", self.error_of("--at", "2026-06-21T12:00Z", "--pressure", -1,
-                                                *place))
         self.assertIn("Turbidity", self.error_of("--at", "2026-06-21T12:00Z", "--turbidity", 50,
                                                  *place))
         self.assertIn("--days", self.error_of("--at", "2026-06-21T12:00Z", "--days", 0, *place))
+        # A step below a second would print one time over and over (1e-300 minutes: for ever).
+        self.assertIn("--step must be a number of minutes of at least 1/60",
+                      self.error_of("--at", "2026-06-21T12:00Z", "--step", "1e-300", *place))
+        # A series running past the year 6000 fails before it prints a row (it failed after
+        # 1.9 million rows) and names the year it reaches.
+        status, out, err = run("--at", "2026-06-21T12:00Z", "--days", 2000000, "--step", 1,
+                               *place)
+        self.assertEqual((status, out), (1, ""))
+        self.assertIn("the series over 2000000 days from 2026-06-21T12:00Z ends too late: the "
+                      "time in the year 7502 is outside the years the algorithm covers", err)
+        self.assertIn("the pressure -1 hPa is outside 0..5000 hPa",
+                      self.error_of("--at", "2026-06-21T12:00Z", "--pressure", -1, *place))
         self.assertIn("does not exist", self.error_of("--at", "2026-06-21T12:00Z",
                                                       "--dem", "/nonexistent/dem.tif"))
 

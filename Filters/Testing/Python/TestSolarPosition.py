@@ -214,6 +214,27 @@ class TestSolarPosition(Testing.vtkTest):
         self.assertTrue(s.Compute())
         self.assertEqual(s.GetElevation(), s.GetElevationTrue())
 
+    def testOutOfRange(self):
+        # Each parameter out of range is named with its value and its range; a time past the
+        # years the ISO formatter covers by its year (mid-year -2001: 3970.5 mean Gregorian
+        # years before 1970).
+        before = -3970.5 * 365.2425 * 86400.0
+        cases = [("SetPressure", -5.0, "the pressure -5 hPa is outside 0..5000 hPa"),
+                 ("SetTemperature", -300.0, "the temperature -300 C is outside -273..6000 C"),
+                 ("SetDeltaT", float("inf"), "delta T inf s is outside -100000..100000 s"),
+                 ("SetDeltaUT1", 1.5, "delta UT1 1.5 s is outside -1..1 s"),
+                 ("SetHeight", 1e20, "the height 1e+20 m is outside -6500..100000 km"),
+                 ("SetUnixTime", unix("6001-01-01 00:00:00"), "the time in the year 6001 is "
+                  "outside the years the algorithm covers (-2000..6000)"),
+                 ("SetUnixTime", before, "the time in the year -2001 is outside"),
+                 ("SetUnixTime", -1e300, "the time -1e+300 s after 1970 is outside")]
+        for setter, value, message in cases:
+            s = self.sun(47.3769, 8.5417, 408, "2024-06-20 10:00:00")
+            getattr(s, setter)(value)
+            self.assertFalse(s.Compute(), setter)
+            self.assertIn(message, s.GetErrorMessage())
+        # The last second of the range is in it.
+        self.sun(47.3769, 8.5417, 408, "6000-12-31 23:59:59")
 
 if __name__ == "__main__":
     Testing.main([(TestSolarPosition, "test")])

@@ -1326,8 +1326,9 @@ def cmd_sun(args):
             ", ".join(reading), "s" if len(reading) == 1 else ""))
     if args.days is not None and args.days < 1:
         raise ApertureError("--days must be 1 or more")
-    if args.step is not None and not (args.step > 0 and math.isfinite(args.step)):
-        raise ApertureError("--step must be a positive number of minutes")
+    if args.step is not None and not (args.step >= 1.0 / 60.0 and math.isfinite(args.step)):
+        raise ApertureError("--step must be a number of minutes of at least 1/60 (one second: "
+                            "times are given to the second)")
     watcher = Watcher(on_warning=_warn)
     sun = watcher.watch(vtkApertureSolarPosition())
     if args.tz and not sun.SetTimeZone(args.tz):
@@ -1367,13 +1368,20 @@ def cmd_sun(args):
             _print_sun(record, args.dem)
         return 0
 
-    # A time series from --at: --days days in steps of --step minutes.
+    # A time series from --at: every --step minutes before --days days have passed (at least
+    # the start). The last time is computed first, so that a series running past the
+    # algorithm's years fails before it prints, and JSON is streamed, as the text is.
     days = args.days or 1
     step = args.step or 60.0
     start = sun.GetUnixTime()
-    count = int(math.floor(days * 1440.0 / step + 1e-9))
-    records = []
-    if not args.json:
+    count = max(1, int(math.ceil(days * 1440.0 / step - 1e-9)))
+    sun.SetUnixTime(start + (count - 1) * step * 60.0)
+    if not sun.Compute():
+        raise ApertureError("the series over %d day%s from %s ends too late: %s" % (
+            days, "" if days == 1 else "s", args.at, sun.GetErrorMessage()))
+    if args.json:
+        print("[")
+    else:
         header = ["time_utc", "time_local", "azimuth", "elevation", "elev_true"]
         if args.dem is not None:
             header.append("grid_azimuth")
@@ -1382,7 +1390,8 @@ def cmd_sun(args):
         sun.SetUnixTime(start + k * step * 60.0)
         record = compute()
         if args.json:
-            records.append(record)
+            text = json.dumps(record, indent=1).replace("\n", "\n ")
+            print(" " + text + ("," if k + 1 < count else ""))
             continue
         row = [record["time_utc"], record["time_local"] or "n/a",
                "%.4f" % record["azimuth_deg"], "%.4f" % record["elevation_deg"],
@@ -1391,7 +1400,7 @@ def cmd_sun(args):
             row.append("%.4f" % record["grid_azimuth_deg"])
         print("\t".join(row))
     if args.json:
-        print(json.dumps(records, indent=1))
+        print("]")
     return 0
 
 
@@ -1529,7 +1538,8 @@ def build_parser():
     p.add_argument("--days", type=int, metavar="N",
                    help="a time series from --at over N days (default 1 with --step)")
     p.add_argument("--step", type=float, metavar="MIN",
-                   help="time-series step in minutes (default 60 with --days)")
+                   help="time-series step in minutes, at least 1/60 (default 60 with --days); "
+                        "the series has every step before --days days have passed")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (a list for a time series) with keys "
                         "azimuth_deg, elevation_deg, zenith_deg, elevation_true_deg, "
