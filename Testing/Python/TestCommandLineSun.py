@@ -81,6 +81,26 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertIn("2026-06-21T12:00:00Z (local 2026-06-21T14:00:00+02:00)", out)
         self.assertIn("Azimuth:", out)
         self.assertIn("sunrise", out)
+        self.assertNotIn("Note:", out)
+        # At Anchorage (149.9 W) the UTC day runs from 14:00 to 14:00 local solar time: its
+        # sunset (07:42Z) ends the night before its sunrise (12:20Z), which the text notes; at
+        # the place's offset the events are in order and there is no note.
+        status, out, err = run("--at", "2026-06-21T12:00Z", "--lat", 61.2, "--lon", -149.9)
+        self.assertEqual(status, 0, err)
+        self.assertIn("sunset 2026-06-21T07:42", out)
+        note = " ".join(out.split("Note:", 1)[1].split())
+        self.assertEqual(note, "the day of the clock at +00:00 is 10.0 h ahead of the solar time "
+                         "at longitude -149.9000, so its events are not in the order sunrise, "
+                         "transit, sunset; for the place's own day give --tz with its time zone, "
+                         "or its UTC offset in --at")
+        status, out, err = run("--at", "2026-06-21T12:00-08:00", "--lat", 61.2, "--lon", -149.9)
+        self.assertIn("sunset 2026-06-22T07:42", out)
+        self.assertNotIn("Note:", out)
+        # A zone far from the place: Zurich on Tokyo's clock is 8.5 h behind it.
+        status, out, err = run("--at", "2026-06-21T12:00", "--tz", "Asia/Tokyo", "--lat", 47,
+                               "--lon", 8)
+        self.assertIn("at +09:00 is 8.5 h ahead of the solar time at longitude 8.0000",
+                      " ".join(out.split()))
 
     def test_time_zones(self):
         summer = self.json_of("--at", "2026-06-21T14:00", "--tz", "Europe/Zurich",

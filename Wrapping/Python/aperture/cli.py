@@ -16,6 +16,7 @@ import math
 import os
 import re
 import sys
+import textwrap
 
 from aperture.errors import ApertureError, Watcher, native_path, quiet_vtk_output
 
@@ -1268,7 +1269,21 @@ def _sun_record(sun, with_dem):
     return record
 
 
-def _print_sun(record, dem):
+def _day_order_note(sun, record):
+    """A note for a day whose events are not in the order sunrise, transit, sunset: the day is
+    the clock's (the UTC day, for --at ...Z) and the place's solar time is hours from it."""
+    events = (sun.GetSunrise(), sun.GetTransit(), sun.GetSunset())
+    if record["day_kind"] != "normal" or events[0] < events[1] < events[2]:
+        return None
+    hours = sun.GetLocalOffset() / 3600.0 - record["longitude_deg"] / 15.0
+    return ("the day of the clock at %s is %.1f h %s of the solar time at longitude %.4f, so "
+            "its events are not in the order sunrise, transit, sunset; for the place's own day "
+            "give --tz with its time zone, or its UTC offset in --at" % (
+                record["utc_offset"], abs(hours), "ahead" if hours > 0 else "behind",
+                record["longitude_deg"]))
+
+
+def _print_sun(record, dem, note=None):
     rows = [
         ("Time", "%s (local %s)" % (record["time_utc"], record["time_local"] or "n/a")),
         ("Place", "latitude %.6f, longitude %.6f, height %.1f m%s"
@@ -1310,6 +1325,9 @@ def _print_sun(record, dem):
             "set" if record["day_kind"] == "polar_day" else "rise", record["transit"])))
     for label, text in rows:
         print("%-13s%s" % (label + (":" if label else ""), text))
+    if note:
+        print(textwrap.fill(note, width=100, initial_indent="%-13s" % "Note:",
+                            subsequent_indent=" " * 13))
 
 
 def cmd_sun(args):
@@ -1365,7 +1383,7 @@ def cmd_sun(args):
         if args.json:
             print(json.dumps(record, indent=2))
         else:
-            _print_sun(record, args.dem)
+            _print_sun(record, args.dem, _day_order_note(sun, record))
         return 0
 
     # A time series from --at: every --step minutes before --days days have passed (at least
