@@ -802,6 +802,19 @@ double vtkApertureGeoreference::ComputeMeridianConvergence(double lon, double la
 //------------------------------------------------------------------------------
 bool vtkApertureGeoreference::GetRowCellSizesMetres(double* dx, double* dy)
 {
+  return this->GetRowCellSizesMetres(0, this->GridSize[1], dx, dy);
+}
+
+bool vtkApertureGeoreference::GetRowCellSizesMetres(int first, int count, double* dx, double* dy)
+{
+  if (first < 0 || count < 0 || first > this->GridSize[1] - count)
+  {
+    std::ostringstream msg;
+    msg << "rows " << first << " to " << static_cast<long long>(first) + count - 1
+        << " are not rows of the grid's " << this->GridSize[1];
+    this->Impl->Error = msg.str();
+    return false;
+  }
   if (this->Impl->IsLocal())
   {
     double size[2];
@@ -809,8 +822,8 @@ bool vtkApertureGeoreference::GetRowCellSizesMetres(double* dx, double* dy)
     {
       return false;
     }
-    std::fill(dx, dx + this->GridSize[1], size[0]);
-    std::fill(dy, dy + this->GridSize[1], size[1]);
+    std::fill(dx, dx + count, size[0]);
+    std::fill(dy, dy + count, size[1]);
     return true;
   }
   double ell[2];
@@ -818,20 +831,12 @@ bool vtkApertureGeoreference::GetRowCellSizesMetres(double* dx, double* dy)
   {
     return false;
   }
-  const int nx = this->GridSize[0], ny = this->GridSize[1];
+  const int nx = this->GridSize[0];
   const double xc = this->GridOrigin[0] + 0.5 * (nx - 1) * this->GridSpacing[0];
   const double hx = 0.5 * this->GridSpacing[0], hy = 0.5 * this->GridSpacing[1];
-  std::vector<double> xy(8 * static_cast<size_t>(ny)), ll(8 * static_cast<size_t>(ny));
-  for (int j = 0; j < ny; ++j)
-  {
-    const double y = this->GridOrigin[1] + j * this->GridSpacing[1];
-    const double pts[8] = { xc - hx, y, xc + hx, y, xc, y - hy, xc, y + hy };
-    std::copy(pts, pts + 8, xy.begin() + 8 * j);
-  }
-  if (!this->CRSToLonLatPoints(4 * static_cast<vtkIdType>(ny), xy.data(), ll.data()))
-  {
-    return false;
-  }
+  // (rows in chunks, so that the points' arrays stay small on a grid of millions of rows)
+  const int chunk = std::min(count, 4096);
+  std::vector<double> xy(8 * static_cast<size_t>(chunk)), ll(8 * static_cast<size_t>(chunk));
   try
   {
     const GeographicLib::Geodesic geod(ell[0], ell[1]);
@@ -841,42 +846,57 @@ bool vtkApertureGeoreference::GetRowCellSizesMetres(double* dx, double* dy)
           << " (grid row " << j << ", counted from the south)";
       return msg;
     };
-    for (int j = 0; j < ny; ++j)
+    for (int c0 = 0; c0 < count; c0 += chunk)
     {
-      double* q = &ll[8 * static_cast<size_t>(j)];
-      for (int k = 0; k < 8; ++k)
+      const int rows = std::min(chunk, count - c0);
+      for (int r = 0; r < rows; ++r)
       {
-        if (std::isnan(q[k]))
-        {
-          std::ostringstream msg;
-          row(msg, j) << " has no geographic coordinates";
-          this->Impl->Error = msg.str();
-          return false;
-        }
+        const double y = this->GridOrigin[1] + (first + c0 + r) * this->GridSpacing[1];
+        const double pts[8] = { xc - hx, y, xc + hx, y, xc, y - hy, xc, y + hy };
+        std::copy(pts, pts + 8, xy.begin() + 8 * r);
       }
-      for (int k = 1; k < 8; k += 2)
+      if (!this->CRSToLonLatPoints(4 * static_cast<vtkIdType>(rows), xy.data(), ll.data()))
       {
-        // A cell edge on a pole comes out a rounding error beyond it (88.025 + 39 * 0.05 +
-        // 0.025 = 90.00000000000001), where GeographicLib gives NaN: clamp that, refuse more.
-        const double beyond = std::fabs(q[k]) - 90.0;
-        if (beyond > 1e-9)
-        {
-          std::ostringstream msg;
-          row(msg, j) << " reaches latitude " << q[k] << ", beyond the pole";
-          this->Impl->Error = msg.str();
-          return false;
-        }
-        q[k] = std::max(-90.0, std::min(90.0, q[k]));
-      }
-      geod.Inverse(q[1], q[0], q[3], q[2], dx[j]);
-      geod.Inverse(q[5], q[4], q[7], q[6], dy[j]);
-      if (!(std::isfinite(dx[j]) && dx[j] > 0.0 && std::isfinite(dy[j]) && dy[j] > 0.0))
-      {
-        std::ostringstream msg;
-        row(msg, j) << " has no positive ground cell size (" << dx[j]
-            << " m east-west, " << dy[j] << " m north-south)";
-        this->Impl->Error = msg.str();
         return false;
+      }
+      for (int r = 0; r < rows; ++r)
+      {
+        const int j = first + c0 + r, k0 = c0 + r;
+        double* q = &ll[8 * static_cast<size_t>(r)];
+        for (int k = 0; k < 8; ++k)
+        {
+          if (std::isnan(q[k]))
+          {
+            std::ostringstream msg;
+            row(msg, j) << " has no geographic coordinates";
+            this->Impl->Error = msg.str();
+            return false;
+          }
+        }
+        for (int k = 1; k < 8; k += 2)
+        {
+          // A cell edge on a pole comes out a rounding error beyond it (88.025 + 39 * 0.05 +
+          // 0.025 = 90.00000000000001), where GeographicLib gives NaN: clamp that, refuse more.
+          const double beyond = std::fabs(q[k]) - 90.0;
+          if (beyond > 1e-9)
+          {
+            std::ostringstream msg;
+            row(msg, j) << " reaches latitude " << q[k] << ", beyond the pole";
+            this->Impl->Error = msg.str();
+            return false;
+          }
+          q[k] = std::max(-90.0, std::min(90.0, q[k]));
+        }
+        geod.Inverse(q[1], q[0], q[3], q[2], dx[k0]);
+        geod.Inverse(q[5], q[4], q[7], q[6], dy[k0]);
+        if (!(std::isfinite(dx[k0]) && dx[k0] > 0.0 && std::isfinite(dy[k0]) && dy[k0] > 0.0))
+        {
+          std::ostringstream msg;
+          row(msg, j) << " has no positive ground cell size (" << dx[k0] << " m east-west, "
+                      << dy[k0] << " m north-south)";
+          this->Impl->Error = msg.str();
+          return false;
+        }
       }
     }
   }

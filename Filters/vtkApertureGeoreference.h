@@ -223,6 +223,13 @@ public:
    */
   VTK_WRAPEXCLUDE bool GetRowCellSizesMetres(double* dx, double* dy);
 
+  /**
+   * GetRowCellSizesMetres for `count` rows from row `first` (0 = south) alone, the same values
+   * (still at the whole grid's central column) into dx[0..count-1] and dy[0..count-1]: a window
+   * of a grid of millions of rows needs only its own. False also for rows outside the grid.
+   */
+  VTK_WRAPEXCLUDE bool GetRowCellSizesMetres(int first, int count, double* dx, double* dy);
+
   /** Why the last failing call failed ("" after a success). */
   const char* GetErrorMessage();
 

@@ -212,25 +212,67 @@ void MetricChange(const std::vector<double>& metric, double dx0, double dy0, dou
   }
 }
 
-// Halo (in cells along i and j) that a search distance needs, from the smallest metric
-// cell sizes of the grid; -1 when it cannot be known.
-bool HaloCells(vtkApertureGeoreference* geo, double distance, int halo[2])
+// Halo (in cells along i and j) that a search distance needs around grid rows j0..j1 (0 = the
+// grid's south row), from the smallest metric cell sizes of the rows within the distance: the
+// rows are measured outwards from the region (as GetRowCellSizesMetres, a chunk at a time) until
+// the rows the halo spans are all measured, or it spans the whole grid. A window of a grid of
+// millions of rows measures its own rows and those around it, not all. False when a row has no
+// metric cell size.
+bool HaloCells(vtkApertureGeoreference* geo, double distance, int j0, int j1, int halo[2])
 {
   int size[2];
   geo->GetGridSize(size);
-  std::vector<double> dx(static_cast<size_t>(size[1])), dy(static_cast<size_t>(size[1]));
-  if (!geo->GetRowCellSizesMetres(dx.data(), dy.data()))
+  const auto cells = [distance](double m) {
+    return static_cast<int>(std::min(1e9, std::ceil(distance / m))) + 2;
+  };
+  double mx = std::numeric_limits<double>::infinity(), my = mx;
+  const int chunk = 4096;
+  std::vector<double> dx(chunk), dy(chunk);
+  const auto measure = [&](int first, int count) {
+    for (int c = 0; c < count; c += chunk)
+    {
+      const int n = std::min(chunk, count - c);
+      if (!geo->GetRowCellSizesMetres(first + c, n, dx.data(), dy.data()))
+      {
+        return false;
+      }
+      mx = std::min(mx, *std::min_element(dx.begin(), dx.begin() + n));
+      my = std::min(my, *std::min_element(dy.begin(), dy.begin() + n));
+    }
+    return true;
+  };
+  j0 = std::max(0, std::min(j0, size[1] - 1));
+  j1 = std::max(j0, std::min(j1, size[1] - 1));
+  int lo = j0, hi = j1; // the rows measured
+  if (!measure(lo, hi - lo + 1))
   {
     return false;
   }
-  const double mx = *std::min_element(dx.begin(), dx.end());
-  const double my = *std::min_element(dy.begin(), dy.end());
-  if (!(mx > 0) || !(my > 0))
+  for (;;)
   {
-    return false;
+    if (!(mx > 0) || !(my > 0))
+    {
+      return false;
+    }
+    const int rows = cells(my);
+    const int want0 = static_cast<int>(std::max<long long>(0, static_cast<long long>(j0) - rows));
+    const int want1 =
+      static_cast<int>(std::min<long long>(size[1] - 1, static_cast<long long>(j1) + rows));
+    if ((want0 == lo && want1 == hi) || (cells(mx) >= size[0] && rows >= size[1]))
+    {
+      break; // (the halo's rows are all measured, or it covers the grid whatever they hold)
+    }
+    // one chunk further on each side at a time, so that a halo covering the grid stops early
+    const int south = std::min(lo - want0, chunk), north = std::min(want1 - hi, chunk);
+    if ((south > 0 && !measure(lo - south, south)) || (north > 0 && !measure(hi + 1, north)))
+    {
+      return false;
+    }
+    lo -= south;
+    hi += north;
   }
-  halo[0] = static_cast<int>(std::min(1e9, std::ceil(distance / mx))) + 2;
-  halo[1] = static_cast<int>(std::min(1e9, std::ceil(distance / my))) + 2;
+  halo[0] = cells(mx);
+  halo[1] = cells(my);
   return true;
 }
 
@@ -255,12 +297,17 @@ void InputExtent(vtkInformation* inInfo, double distance, const int ext[6], int 
     if (geo->SetCRS(crs))
     {
       SetWholeGrid(geo, origin, spacing, whole);
-      if (HaloCells(geo, distance, halo))
+      if (HaloCells(geo, distance, ext[2] - whole[2], ext[3] - whole[2], halo))
       {
-        in[0] = std::max(whole[0], ext[0] - halo[0]);
-        in[1] = std::min(whole[1], ext[1] + halo[0]);
-        in[2] = std::max(whole[2], ext[2] - halo[1]);
-        in[3] = std::min(whole[3], ext[3] + halo[1]);
+        // (in 64 bits: a halo beside an extent at the end of int's range)
+        const auto grown = [](int bound, long long e, long long h, bool low) {
+          return static_cast<int>(low ? std::max<long long>(bound, e - h)
+                                      : std::min<long long>(bound, e + h));
+        };
+        in[0] = grown(whole[0], ext[0], halo[0], true);
+        in[1] = grown(whole[1], ext[1], halo[0], false);
+        in[2] = grown(whole[2], ext[2], halo[1], true);
+        in[3] = grown(whole[3], ext[3], halo[1], false);
       }
     }
   }
@@ -462,6 +509,14 @@ std::string vtkApertureSkyVisibility::CheckMemory(
 {
   const double n = static_cast<double>(nx) * ny, outN = static_cast<double>(outNx) * outNy;
   const double need = this->EstimateBytes(n, outN);
+  return this->BeyondMemory(need, held,
+    NeedsText(nx, ny, outNx, outNy, vtkApertureHumanBytes(need), this->ComputeHorizonAngles));
+}
+
+//------------------------------------------------------------------------------
+std::string vtkApertureSkyVisibility::BeyondMemory(
+  double need, double held, const std::string& needs) const
+{
   bool grouped = false; // (the usable memory is read only when no MemoryLimit is set)
   const double usable =
     this->MemoryLimit > 0 ? 0.0 : static_cast<double>(vtkApertureUsableMemory(&grouped));
@@ -471,8 +526,6 @@ std::string vtkApertureSkyVisibility::CheckMemory(
   {
     return std::string();
   }
-  const std::string needs =
-    NeedsText(nx, ny, outNx, outNy, vtkApertureHumanBytes(need), this->ComputeHorizonAngles);
   if (this->MemoryLimit > 0)
   {
     return needs + ", more than the " + vtkApertureHumanBytes(limit) + " MemoryLimit";
@@ -642,31 +695,55 @@ int vtkApertureSkyVisibility::Execute(
   }
   const int nxWhole = wholeExt[1] - wholeExt[0] + 1, nyWhole = wholeExt[3] - wholeExt[2] + 1;
   const int pieceI = inExt[0] - wholeExt[0], pieceJ = inExt[2] - wholeExt[2];
+  if (nxWhole - 1 > AP_HORIZON_MAX_ORIGIN || nyWhole - 1 > AP_HORIZON_MAX_ORIGIN)
+  {
+    vtkErrorMacro(<< "the DEM's grid of " << nxWhole << " x " << nyWhole
+                  << " cells has more than the " << AP_HORIZON_MAX_ORIGIN + 1
+                  << " cells a side the sweep can place its pieces in; bake a decimated DEM");
+    return 0;
+  }
   double origin[3], spacing[3];
   input->GetOrigin(origin);
   input->GetSpacing(spacing);
   // (from here on geo describes the whole grid; AttachToImage below uses only its CRS)
   SetWholeGrid(geo, origin, spacing, wholeExt);
-  std::vector<double> dx(static_cast<size_t>(nyWhole)), dy(static_cast<size_t>(nyWhole));
+  // Grids whose columns are meridians and rows parallels (lat/lon, Mercator, equirectangular)
+  // get their cell sizes row by row, exact for every cell, and the sweep's lattice needs those
+  // of every row of the whole grid; other projected grids are metric to within the
+  // projection's scale factor, taken at the centre row alone.
+  const bool rowSizes = geo->HasMeridianColumns();
+  const size_t sizedRows = rowSizes ? static_cast<size_t>(nyWhole) : 1;
+  if (rowSizes)
+  {
+    // (per row of the whole grid: its two cell sizes here, the lattice's Ψ and steps in the
+    // kernel; a window of a grid of a billion rows would take them past any memory)
+    const double rowBytes = 32.0 * nyWhole;
+    const std::string problem = this->BeyondMemory(rowBytes, 4.0 * static_cast<double>(n),
+      "the sweep's lattice needs " + vtkApertureHumanBytes(rowBytes) +
+        " for the cell sizes of every one of the grid's " + std::to_string(nyWhole) + " rows");
+    if (!problem.empty())
+    {
+      vtkErrorMacro(<< problem << "; bake a decimated DEM");
+      return 0;
+    }
+  }
+  std::vector<double> dx(sizedRows), dy(sizedRows);
   // (a local CRS: a sphere of the mean radius, the grid's axes east and north)
   const bool local = geo->IsLocal();
   double centre[2] = { 0.0, 0.0 }, ellipsoid[2] = { MeanEarthRadius, 0.0 };
-  if (!geo->GetRowCellSizesMetres(dx.data(), dy.data()) ||
+  if (!geo->GetRowCellSizesMetres(rowSizes ? 0 : nyWhole / 2, static_cast<int>(sizedRows),
+        dx.data(), dy.data()) ||
     (!local && (!geo->GetCentreLonLat(centre) || !geo->GetEllipsoid(ellipsoid))))
   {
     vtkErrorMacro(<< "no metric cell size: " << geo->GetErrorMessage());
     return 0;
   }
-  // Grids whose columns are meridians and rows parallels (lat/lon, Mercator, equirectangular)
-  // get their cell sizes row by row, exact for every cell; other projected grids are metric to
-  // within the projection's scale factor, taken at the centre.
-  const bool rowSizes = geo->HasMeridianColumns();
   ap_horizon_grid grid;
   grid.z = zview;
   grid.dx = rowSizes ? dx.data() + pieceJ : nullptr;
   grid.dy = rowSizes ? dy.data() + pieceJ : nullptr;
-  grid.dx0 = dx[static_cast<size_t>(nyWhole) / 2];
-  grid.dy0 = dy[static_cast<size_t>(nyWhole) / 2];
+  grid.dx0 = dx[rowSizes ? static_cast<size_t>(nyWhole) / 2 : 0];
+  grid.dy0 = dy[rowSizes ? static_cast<size_t>(nyWhole) / 2 : 0];
 
   ap_horizon_params params;
   ap_horizon_params_init(&params);

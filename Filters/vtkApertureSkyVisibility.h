@@ -92,7 +92,9 @@
  * a piece is bit-identical to the whole run there, projected or lat/lon, swept or marched (the
  * tests compare every bit; the sweep measures distances along its lines from the piece's own
  * edge, so a horizon may round its last bit differently: 2 of 5,500 random pieces in a stress
- * test, by 4e-8 rad).
+ * test, by 4e-8 rad). The DEM may have at most 10^9 + 1 cells a side (AP_HORIZON_MAX_ORIGIN),
+ * and on lat/lon DEMs the lattice takes 32 bytes for each of the whole DEM's rows: a window of a
+ * larger grid is refused with the reason.
  *
  * A piece whose input (its extent and halo) is nodata in every cell, a stretch of sea in a
  * coastal DEM, is no error: its products are nodata (NaN; EdgeTruncated 0, or NaN as float),
@@ -238,10 +240,11 @@ public:
   std::string CheckMemory(int nx, int ny, int outNx, int outNy, double held) const;
 
   /** The extent of the input an update of `extent` reads (after UpdateInformation): the
-   *  extent grown by the halo of MaximumDistance (its cells at the smallest metric cell sizes,
-   *  and 2 more), clipped to the input's whole extent; the whole extent when the distance is
-   *  unlimited or the input publishes no CRS. False, with an error, without input
-   *  information. For sizing a request before anything runs (CheckMemory). */
+   *  extent grown by the halo of MaximumDistance (its cells at the smallest metric cell sizes
+   *  of the rows within the distance, and 2 more), clipped to the input's whole extent; the
+   *  whole extent when the distance is unlimited, the input publishes no CRS, or a row there
+   *  has no metric cell size. False, with an error, without input information. For sizing a
+   *  request before anything runs (CheckMemory). */
   bool ComputeInputExtent(const int extent[6], int input[6]);
 
   /** Threads that ran the last update's parallel work (0 before any; at most
@@ -301,6 +304,10 @@ public:
   ///@}
 
 protected:
+  /** "" when `need` bytes fit within MemoryLimit, or the usable memory less `held` bytes; else
+   *  `needs` (what needs them) and the memory they exceed, as CheckMemory words it. */
+  std::string BeyondMemory(double need, double held, const std::string& needs) const;
+
   vtkApertureSkyVisibility();
   ~vtkApertureSkyVisibility() override;
 

@@ -782,7 +782,8 @@ static ap_status validate(const ap_horizon_grid *g, const ap_horizon_params *p,
       !positive_finite(p->radius_normal) || p->near_field < 0 || p->near_field > 64 ||
       p->march_columns < 0 || p->march_columns > 64 || p->far_march_columns < 0 ||
       p->far_march_columns > 65536 || !isfinite(p->azimuth_offset) ||
-      labs(p->origin_col) > 1000000000L || labs(p->origin_row) > 1000000000L) {
+      labs(p->origin_col) > AP_HORIZON_MAX_ORIGIN ||
+      labs(p->origin_row) > AP_HORIZON_MAX_ORIGIN) {
     return AP_ERR_INVALID_ARGUMENT;
   }
   if ((!g->dx && !positive_finite(g->dx0)) || (!g->dy && !positive_finite(g->dy0))) {

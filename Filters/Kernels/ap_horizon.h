@@ -162,6 +162,11 @@ typedef struct ap_horizon_grid {
 #define AP_HORIZON_NEAR_FIELD_SWEPT 32
 #define AP_HORIZON_NEAR_FIELD_MARCHED 8
 
+/** The largest |origin_col| and |origin_row| of ap_horizon_params: a piece of a larger DEM
+ *  starts within 10^9 cells of its corner, so a DEM of more cells a side cannot be cut into
+ *  pieces everywhere (none is that large: 10^9 cells of 1 mm are 1000 km). */
+#define AP_HORIZON_MAX_ORIGIN 1000000000L
+
 /** Options; always start from ap_horizon_params_init(). */
 typedef struct ap_horizon_params {
   int directions;         /**< D azimuth sectors, 4..360 (default 32) */
@@ -196,7 +201,8 @@ typedef struct ap_horizon_params {
                                runs.
                                0..65536, 0 = never (default 1024) */
   long origin_col;        /**< the grid is a piece of a larger DEM whose cell (origin_col,
-                               origin_row) is the grid's cell (0, 0), |values| <= 10^9; the
+                               origin_row) is the grid's cell (0, 0), |values| at most
+                               AP_HORIZON_MAX_ORIGIN; the
                                sweep's lines lie on that DEM's lattice of lines, so a piece
                                cut with a margin of max_distance around a region gets the
                                larger DEM's results there (up to the rounding of a last bit:

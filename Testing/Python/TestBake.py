@@ -10,6 +10,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 
 import numpy as np
@@ -390,6 +391,57 @@ class TestBake(unittest.TestCase):
         # they touch (the first: columns 3..19, rows 6..19 of the decimated grid)
         check(rough, ["--radius", "1500", "-d", "8", "--decimate", "3"],
               [(10, 20, 50, 40), (180, 150, 0, 0)], block=3)
+
+    def test_grids_of_billions_of_cells(self):
+        # VRTs of 2^31 - 1 cells a side, no sources. The halo of a window came from the cell
+        # sizes of every row of the grid, 128 bytes a row at once (the process was killed for
+        # memory), and at the grid's last row it overflowed int (a negative extent, a
+        # traceback); it now comes from the rows within the radius, and the sweep, which places
+        # pieces within 10^9 cells of the grid's corner, refuses such grids by name.
+        def vrt(name, crs, gt):
+            path = self.path(name)
+            with open(path, "w") as f:
+                f.write('<VRTDataset rasterXSize="2147483647" rasterYSize="2147483647">'
+                        "<SRS>%s</SRS><GeoTransform>%s</GeoTransform>"
+                        '<VRTRasterBand dataType="Float32" band="1">'
+                        "<NoDataValue>-9999</NoDataValue></VRTRasterBand></VRTDataset>"
+                        % (crs, ", ".join(str(v) for v in gt)))
+            return path
+
+        latlon = vrt("billions-latlon.vrt", "EPSG:4326", (0, 1e-8, 0, 10, 0, -1e-8))
+        # (its central column on the zone's central meridian, where the scale is 0.9996)
+        utm = vrt("billions-utm.vrt", "EPSG:32616",
+                  (500000 - 0.0005 * 2147483647, 0.001, 0, 4000000, 0, -0.001))
+        import aperture
+        from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
+        # cell sizes east and north: at 10 N (WGS 84's radii of curvature), and 1 mm
+        a, e2, lat = 6378137.0, 0.00669437999014, math.radians(10.0)
+        w = math.sqrt(1 - e2 * math.sin(lat) ** 2)
+        step = math.radians(1e-8)
+        for path, cell in ((latlon, (a / w * math.cos(lat) * step, a * (1 - e2) / w ** 3 * step)),
+                           (utm, (0.001 / 0.9996, 0.001 / 0.9996))):
+            reader = aperture.vtkApertureDEMReader()
+            reader.SetFileName(path)
+            sky = aperture.vtkApertureSkyVisibility()
+            sky.SetInputConnection(reader.GetOutputPort())
+            sky.SetMaximumDistance(1.0)
+            sky.UpdateInformation()
+            whole = reader.GetOutputInformation(0).Get(sddp.WHOLE_EXTENT())
+            self.assertEqual(whole, (0, 2147483646, 0, 2147483646, 0, 0))
+            read = [0] * 6
+            start = time.monotonic()
+            self.assertTrue(sky.ComputeInputExtent((0, 99, 2147483547, 2147483646, 0, 0), read))
+            self.assertLess(time.monotonic() - start, 5.0)
+            # 1 m over the cells (1.096 mm east and 1.106 mm north at 10 N for lat/lon, 1.0004
+            # mm in UTM), and 2
+            hx, hy = (math.ceil(1.0 / c) + 2 for c in cell)
+            self.assertEqual(tuple(read), (0, 99 + hx, 2147483547 - hy, 2147483646, 0, 0), path)
+            status, out, err = run("bake", path, self.path("billions.tif"),
+                                   "--srcwin", 0, 0, 100, 100, "--radius", 1)
+            self.assertEqual((status, out), (1, ""), err)
+            self.assertEqual(err.strip(), "aperture: error: bake: the DEM's grid of 2147483647 x "
+                             "2147483647 cells has more than the 1000000001 cells a side the "
+                             "sweep can place its pieces in; bake a decimated DEM")
 
     def test_window_of_a_large_dem(self):
         # A window of a 60000^2 DEM (13.4 GiB of elevations, a 75 GB bake) with a radius reads

@@ -16,9 +16,11 @@
 
 #include <GeographicLib/TransverseMercator.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -251,6 +253,19 @@ void TestRowSizes()
     AP_CHECK_NEAR(dy[j], a * (1 - e2) / (w * w * w) * cell * kDeg, 1e-5);
   }
   AP_CHECK(dx[100] < dx[0]);
+  // Rows from a given one: the same values, bit for bit (chunks of 4096 rows inside), also on a
+  // grid of 10000 rows; rows outside the grid are refused.
+  geo->SetGrid(10.0, -40.0, cell, cell, 5, 10000);
+  std::vector<double> wdx(10000), wdy(10000), sdx(5000), sdy(5000);
+  AP_CHECK(geo->GetRowCellSizesMetres(wdx.data(), wdy.data()));
+  AP_CHECK(geo->GetRowCellSizesMetres(4321, 5000, sdx.data(), sdy.data()));
+  AP_CHECK(std::equal(sdx.begin(), sdx.end(), wdx.begin() + 4321) &&
+    std::equal(sdy.begin(), sdy.end(), wdy.begin() + 4321));
+  AP_CHECK(geo->GetRowCellSizesMetres(9999, 1, sdx.data(), sdy.data()) && sdx[0] == wdx[9999]);
+  AP_CHECK(!geo->GetRowCellSizesMetres(9999, 2, sdx.data(), sdy.data()));
+  AP_CHECK_CONTAINS(
+    std::string(geo->GetErrorMessage()), "rows 9999 to 10000 are not rows of the grid's 10000");
+  AP_CHECK(!geo->GetRowCellSizesMetres(-1, 1, sdx.data(), sdy.data()));
 }
 
 // A grid whose last row's north edge is the pole (90.00000000000001 after rounding): sizes from

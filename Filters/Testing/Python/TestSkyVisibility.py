@@ -298,21 +298,28 @@ class TestSkyVisibility(Testing.vtkTest):
         self.check_threads_and_piece((250, 250), 600.0, (30, 59, 170, 199), latlon=True)
         self.check_threads_and_piece((250, 250), 2000.0, (100, 129, 100, 129), latlon=True)
         self.check_threads_and_piece((250, 250), 2000.0, (30, 59, 170, 199), latlon=True)
+        # a tall lat/lon DEM (60-63 N, 0.001 deg): the halo's columns come from the rows within
+        # the distance of the piece (55.5 m east at its northern edge: 39 columns), not from the
+        # DEM's smallest cells far north (50.7 m: 42), which a window of a grid of millions of
+        # rows could not measure
+        self.check_threads_and_piece((3000, 120), 2000.0, (40, 69, 100, 129), latlon=True,
+                                     south=60.0, step=0.001, band_columns=39)
 
-    def check_threads_and_piece(self, shape, distance, piece_extent, latlon=False):
+    def check_threads_and_piece(self, shape, distance, piece_extent, latlon=False, south=45.0,
+                                step=0.0003, band_columns=None):
         ny, nx = shape
         rng = np.random.default_rng(3)
         z = (np.cumsum(np.cumsum(rng.normal(size=shape), 0), 1) * 3.0).astype(np.float32)
         z[40, 50] = np.nan
         if latlon:
-            image = make_image(z, 10.0, 45.0, 0.0003, 0.0003, "EPSG:4326")
-            # the halo: the distance over the smallest metric cell size east, and north
-            lat = np.radians(45.0 + 0.0003 * np.arange(ny))
+            image = make_image(z, 10.0, south, step, step, "EPSG:4326")
+            # the rows' metric cell sizes east and north
+            lat = np.radians(south + step * np.arange(ny))
             m, n = radii(lat)
-            cell = (np.min(n * np.cos(lat)) * np.radians(0.0003), np.min(m) * np.radians(0.0003))
+            rows_dx, rows_dy = n * np.cos(lat) * np.radians(step), m * np.radians(step)
         else:
             image = make_image(z, 400000, 5000000, 25, 25, "EPSG:32633")
-            cell = (25.0, 25.0)
+            rows_dx, rows_dy = np.full(ny, 25.0), np.full(ny, 25.0)
         names = ("SkyViewFactor", "BentNormal", "HorizonAngles", "EdgeTruncated")
         # The thread count is honoured on every update, not only the first in the process
         # (Debian's VTK 9.1 TBB backend ran a second LocalScope(1) on every core).
@@ -364,7 +371,18 @@ class TestSkyVisibility(Testing.vtkTest):
             piece = f.GetOutput()
             read = reader.GetOutput().GetExtent()
         self.assertEqual(piece.GetExtent(), (x0, x1, y0, y1, 0, 0))
-        hx, hy = (math.ceil(distance / c) + 2 for c in cell)
+        # the halo: the distance over the smallest metric cell sizes east and north of the rows
+        # it spans around the piece, and 2 cells more
+        hy, band = -1, slice(y0, y1 + 1)
+        while True:
+            grown = math.ceil(distance / np.min(rows_dy[band])) + 2
+            if grown == hy:
+                break
+            hy, band = grown, slice(max(0, y0 - grown), min(ny - 1, y1 + grown) + 1)
+        hx = math.ceil(distance / np.min(rows_dx[band])) + 2
+        if band_columns is not None:
+            self.assertEqual(hx, band_columns)
+            self.assertLess(hx, math.ceil(distance / np.min(rows_dx)) + 2)
         self.assertEqual(read, (max(0, x0 - hx), min(nx - 1, x1 + hx),
                                 max(0, y0 - hy), min(ny - 1, y1 + hy), 0, 0))
         self.assertEqual(tuple(planned), read)
