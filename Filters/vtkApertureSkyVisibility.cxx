@@ -678,6 +678,17 @@ int vtkApertureSkyVisibility::Execute(
                     << " m): a nodata value the DEM does not declare, or heights not in "
                        "metres? Sky products computed from them are meaningless");
   }
+  // Abort checkpoints in the serial set-up, which takes seconds on a DEM of 10^8 cells and more
+  // before the first sector reports: a ProgressEvent at 0 (whose observers may abort), then
+  // AbortExecute, as after each sector.
+  const auto stopped = [this]() {
+    this->UpdateProgress(0.0);
+    return this->GetAbortExecute() != 0;
+  };
+  if (stopped())
+  {
+    return 0;
+  }
   // What depends on the DEM as a whole (its centre's cell size, curvature radii and meridian
   // convergence, and the lattice of the sweep's lines) comes from the whole extent, so that a
   // streamed piece gets the whole run's values (the piece starts at its column pieceI, row pieceJ).
@@ -830,6 +841,11 @@ int vtkApertureSkyVisibility::Execute(
     return 0;
   }
 
+  if (stopped())
+  {
+    return 0;
+  }
+
   // 3. Outputs: the output's arrays, over its extent.
   const int D = this->NumberOfDirections;
   struct Product
@@ -957,6 +973,10 @@ int vtkApertureSkyVisibility::Execute(
   if (st != AP_OK)
   {
     vtkErrorMacro(<< "horizon computation: " << ap_status_string(st));
+    return 0;
+  }
+  if (stopped())
+  {
     return 0;
   }
   std::atomic<int> failure(AP_OK);

@@ -110,7 +110,9 @@
  * allocation that fails (e.g. under `ulimit -v`); the message gives the estimated need
  * (HorizonAngles take 4 bytes per cell and direction).
  *
- * Progress and abort: ProgressEvent at the end of each sector d ((d + 1) / (D + 1)), and on
+ * Progress and abort: ProgressEvent at 0 three times in the serial set-up (after the
+ * elevations' copy, before the outputs, after the sweep's state: seconds apart on a DEM of 10^8
+ * cells), at the end of each sector d ((d + 1) / (D + 1)), and on
  * DEMs of more than 8 Mi cells also inside it (its phases run in slices of about that many
  * cells); then twice in the last part, the end (after the sums' finish, (D + 0.5) / (D + 1),
  * and after the bent normals' rotation, (D + 0.9) / (D + 1)), which takes about as long as a

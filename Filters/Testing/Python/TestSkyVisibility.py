@@ -578,6 +578,27 @@ class TestSkyVisibility(Testing.vtkTest):
         self.assertGreaterEqual(len(progress), 10)
         self.assertEqual(progress, sorted(progress))
         self.assertEqual(progress[-1], 1.0)
+        # The serial set-up (seconds on a DEM of 10^8 cells, before the first sector reports)
+        # reports progress 0 at three checkpoints and stops at any of them when aborted there:
+        # no sector runs, the output stays empty (the update fails, as for any abort).
+        from aperture.errors import Watcher
+        for stop in range(2, 5):
+            w = Watcher()
+            g = w.watch(aperture.vtkApertureSkyVisibility())
+            w.watch(g.GetExecutive())
+            g.SetInputData(make_image(z, 400000, 5000000, 30, 30, "EPSG:32633"))
+            seen = []
+
+            def abort_at(o, e, stop=stop, seen=seen):
+                seen.append(o.GetProgress())
+                if len(seen) == stop:
+                    o.SetAbortExecute(1)
+            g.AddObserver("ProgressEvent", abort_at)
+            g.Update()
+            self.assertEqual(seen, [0.0] * stop, stop)  # (the first is the executive's)
+            self.assertEqual(g.GetOutput().GetNumberOfPoints(), 0)
+            self.assertEqual(len(w.errors), 1, w.errors)  # (the executive's, no error of ours)
+            self.assertIn("returned failure for request", w.errors[0])
 
     def testProgressWithinSectors(self):
         # A DEM of more than 8 Mi cells runs each sector's three phases in slices, reporting
