@@ -721,7 +721,8 @@ int vtkApertureSkyVisibility::Execute(
   // Grids whose columns are meridians and rows parallels (lat/lon, Mercator, equirectangular)
   // get their cell sizes row by row, exact for every cell, and the sweep's lattice needs those
   // of every row of the whole grid; other projected grids are metric to within the
-  // projection's scale factor, taken at the centre row alone.
+  // projection's scale factor, taken at the centre row (its first and last rows are measured
+  // too, so that a grid reaching off its projection's domain is refused, as a lat/lon one is).
   const bool rowSizes = geo->HasMeridianColumns();
   const size_t sizedRows = rowSizes ? static_cast<size_t>(nyWhole) : 1;
   if (rowSizes)
@@ -742,8 +743,12 @@ int vtkApertureSkyVisibility::Execute(
   // (a local CRS: a sphere of the mean radius, the grid's axes east and north)
   const bool local = geo->IsLocal();
   double centre[2] = { 0.0, 0.0 }, ellipsoid[2] = { MeanEarthRadius, 0.0 };
+  double ends[2][2];
   if (!geo->GetRowCellSizesMetres(rowSizes ? 0 : nyWhole / 2, static_cast<int>(sizedRows),
         dx.data(), dy.data()) ||
+    (!rowSizes &&
+      (!geo->GetRowCellSizesMetres(0, 1, ends[0], ends[1]) ||
+        !geo->GetRowCellSizesMetres(nyWhole - 1, 1, ends[0], ends[1]))) ||
     (!local && (!geo->GetCentreLonLat(centre) || !geo->GetEllipsoid(ellipsoid))))
   {
     vtkErrorMacro(<< "no metric cell size: " << geo->GetErrorMessage());

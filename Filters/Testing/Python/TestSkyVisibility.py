@@ -996,6 +996,19 @@ class TestSkyVisibility(Testing.vtkTest):
         self.assertGreater(worst, 0.5)
         warnings = warnings_of(x0, y0, dx, dy, n)
         self.assertEqual(len(warnings), 1, warnings)
+        # A DEM whose rows reach off the globe's disc on its central column (the top row's
+        # centre 100 km beyond it) is refused, as when every row's sizes were measured there;
+        # since only the centre row's are used, the first and last rows are measured too.
+        w = Watcher()
+        f = w.watch(aperture.vtkApertureSkyVisibility())
+        w.watch(f.GetExecutive())
+        f.SetInputData(make_image(np.full((41, 11), 100.0), -50000.0, R - 300000.0, 10000.0,
+                                  10000.0, ortho))
+        f.SetMaximumDistance(30000.0)
+        f.Update()
+        self.assertEqual(len(w.errors), 2, w.errors)  # (ours, then the executive's failure)
+        self.assertIn("no metric cell size: the row of cells at y = 6.471e+06 (grid row 40, "
+                      "counted from the south) has no geographic coordinates", w.errors[0])
         self.assertIn("the projection's scale changes across this DEM: its cells measure ",
                       warnings[0])
         self.assertIn("against %.0f x %.0f m at its centre, which the sweep uses for every "
