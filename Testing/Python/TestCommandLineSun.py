@@ -264,6 +264,10 @@ class CommandLineSunTest(unittest.TestCase):
                       "time in the year 7502 is outside the years the algorithm covers", err)
         self.assertIn("the pressure -1 hPa is outside 0..5000 hPa",
                       self.error_of("--at", "2026-06-21T12:00Z", "--pressure", -1, *place))
+        # (in a series too, as itself, not as the series' end)
+        self.assertEqual("aperture: error: the pressure -1 hPa is outside 0..5000 hPa\n",
+                         self.error_of("--at", "2026-06-21T12:00Z", "--pressure", -1, "--days",
+                                       2, *place))
         self.assertIn("does not exist", self.error_of("--at", "2026-06-21T12:00Z",
                                                       "--dem", "/nonexistent/dem.tif"))
 

@@ -1393,6 +1393,7 @@ def cmd_sun(args):
     step = args.step or 60.0
     start = sun.GetUnixTime()
     count = max(1, int(math.ceil(days * 1440.0 / step - 1e-9)))
+    compute()  # (the start: any other problem is named as for one time)
     sun.SetUnixTime(start + (count - 1) * step * 60.0)
     if not sun.Compute():
         raise ApertureError("the series over %d day%s from %s ends too late: %s" % (
