@@ -140,6 +140,14 @@ struct vtkApertureDEMReader::Internals
       error = "file '" + name + "' does not exist";
       return false;
     }
+    if (name.compare(0, 4, "/vsi") != 0 && (S_ISFIFO(sb.st_mode) || S_ISSOCK(sb.st_mode)))
+    {
+      // (GDAL opens a file more than once and seeks in it: on a named pipe the open waits for
+      // a writer, for ever when none comes)
+      error = "'" + name + "' is a pipe, not a file: GDAL reads a DEM by seeking in it; save " +
+        "the DEM to a file first";
+      return false;
+    }
     GDALAllRegister();
     vtkApertureGDALErrorTrap trap;
     ds.H = GDALOpenEx(fileName, GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);

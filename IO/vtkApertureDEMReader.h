@@ -36,8 +36,9 @@
  * The reader honours the pipeline's update extent: a sub-extent request reads only those rows
  * and columns from the file.
  *
- * Errors (vtkErrorMacro, failed update, empty output): a missing file, a file GDAL cannot
- * open, a band that does not exist or holds complex numbers, no georeference (no
+ * Errors (vtkErrorMacro, failed update, empty output): a missing file, a named pipe or a
+ * socket (GDAL seeks in its files; its open of a pipe would wait for a writer), a file GDAL
+ * cannot open, a band that does not exist or holds complex numbers, no georeference (no
  * geotransform, or ground control points only), a rotated or mirrored geotransform, or one
  * with a pixel size of 0, no CRS (without OverrideCRS), a negative, NaN or infinite
  * MetresPerElevationUnit, fewer than 2 x 2 output cells, a whole raster of nodata, an output

@@ -96,7 +96,11 @@ class TestCommandLineRender(unittest.TestCase):
 
     def test_bad_options(self):
         with tempfile.TemporaryDirectory() as tmp:
+            pipe = os.path.join(tmp, "baked.tif")  # (GDAL's open of it waited for ever)
+            os.mkfifo(pipe)
             for args, expected in ((("--light-el", "95"), "--sun-el must be within"),
+                                   (("--baked", pipe), "cannot read the baked file %s: it is a "
+                                    "pipe, not a file" % pipe),
                                    (("--sun-scale", "0"), "--sun-scale must be"),
                                    (("--at", "2026-06-21T12:00Z", "--sun-az", "10"), "not both"),
                                    (("--albedo", "/nonexistent.png"), "does not exist"),

@@ -540,6 +540,13 @@ void TestBadInput()
   ExpectError(tmp + "/no-such-file.tif", "does not exist");
   AP_CHECK(aptest::WriteText(tmp + "/notes.tif", "this is not a raster\n"));
   ExpectError(tmp + "/notes.tif", "GDAL cannot open");
+  // a named pipe: GDAL's open waited for a writer, for ever (and one writer is not enough: GDAL
+  // opens a file more than once); refused by name
+  const std::string pipe = tmp + "/pipe.tif";
+  unlink(pipe.c_str());
+  AP_CHECK(mkfifo(pipe.c_str(), 0644) == 0);
+  ExpectError(pipe, "'" + pipe + "' is a pipe, not a file: GDAL reads a DEM by seeking in it");
+  unlink(pipe.c_str());
 
   aptest::RasterSpec tiny;
   tiny.nx = 1;
