@@ -182,6 +182,13 @@ struct vtkApertureEXRReader::Internals
       error = "file '" + name + "' does not exist";
       return false;
     }
+    if (S_ISFIFO(sb.st_mode) || S_ISSOCK(sb.st_mode))
+    {
+      // (the magic number's read below and OpenEXR's own open each open it: on a named pipe
+      // the first waits for a writer, the second for another)
+      error = "'" + name + "' is a pipe, not a file: OpenEXR reads a file by seeking in it";
+      return false;
+    }
     // Every OpenEXR file starts with the magic number 20000630 (little-endian).
     unsigned char magic[4] = { 0, 0, 0, 0 };
     FILE* f = std::fopen(fileName, "rb");

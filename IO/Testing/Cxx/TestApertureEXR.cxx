@@ -1193,6 +1193,11 @@ void TestReaderErrors()
   const std::string text = tmp + "/text.exr";
   AP_CHECK(aptest::WriteText(text, "not an image\n"));
   ExpectReaderError(text, "'" + text + "' is not an OpenEXR file");
+  const std::string pipe = tmp + "/pipe.exr"; // (its open waited for a writer, for ever)
+  unlink(pipe.c_str());
+  AP_CHECK(mkfifo(pipe.c_str(), 0644) == 0);
+  ExpectReaderError(pipe, "'" + pipe + "' is a pipe, not a file: OpenEXR reads a file by seeking");
+  unlink(pipe.c_str());
   const std::string damaged = tmp + "/damaged.exr";
   AP_CHECK(aptest::WriteText(damaged, std::string("\x76\x2f\x31\x01\x02\0\0\0garbage", 15)));
   ExpectReaderError(damaged, "OpenEXR cannot read the header of '" + damaged + "': ");
