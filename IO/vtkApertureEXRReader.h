@@ -33,10 +33,10 @@
  *
  * Errors (vtkErrorMacro, failed update, empty output): no file name, a missing file, a named
  * pipe or socket (its open would wait for a writer), a file that is not OpenEXR (or whose
- * header is damaged), a multi-part, tiled, deep scanline or deep
- * tiled file (the message says which), no channels or an empty data window, a channel that is
- * subsampled (x or y sampling other than 1), a data window larger than the machine's memory
- * as float (a huge image or a damaged header), an `aperture:geotransform` that is not a north-up
+ * header is damaged), a multi-part, tiled, deep scanline or deep tiled file (the message says
+ * which), no channels or an empty data window, a channel that is subsampled (x or y sampling
+ * other than 1), a data window larger than the machine's memory as float (a huge image or a
+ * damaged header), an `aperture:geotransform` that is not a north-up
  * geotransform, an `aperture:crs` GDAL cannot parse, OpenEXR failing to decode the pixels (its
  * own message is included), and pixels the process cannot allocate (a huge or corrupt data
  * window; out of memory, with the size).
