@@ -101,6 +101,8 @@ class TestCommandLineRender(unittest.TestCase):
             for args, expected in ((("--light-el", "95"), "--sun-el must be within"),
                                    (("--baked", pipe), "cannot read the baked file %s: it is a "
                                     "pipe, not a file" % pipe),
+                                   (("--albedo", pipe), "the albedo image %s is a pipe, not a "
+                                    "file" % pipe),
                                    (("--sun-scale", "0"), "--sun-scale must be"),
                                    (("--at", "2026-06-21T12:00Z", "--sun-az", "10"), "not both"),
                                    (("--albedo", "/nonexistent.png"), "does not exist"),

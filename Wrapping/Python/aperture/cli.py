@@ -529,7 +529,9 @@ def cmd_render(args):
     if args.exposure is not None and not math.isfinite(args.exposure):
         raise ApertureError("--exposure must be a number of EV")
     if args.albedo and not os.path.isfile(args.albedo):
-        raise ApertureError("the albedo image %s does not exist" % args.albedo)
+        raise ApertureError("the albedo image %s %s" % (args.albedo, "does not exist" if not
+                            os.path.exists(args.albedo) else "is %s, not a file"
+                            % _file_kind(os.stat(args.albedo).st_mode)))
     _check_radius(args.radius)
     watcher = Watcher(on_warning=_warn)
     bake_here = args.lighting == "aperture" and not args.baked
