@@ -4,6 +4,7 @@
 #include "vtkApertureGDALErrorTrap.h"
 #include "vtkApertureGeoreference.h"
 #include "vtkApertureMemory.h"
+#include "vtkApertureOutputFile.h"
 
 #include "vtkDataObject.h"
 #include "vtkFloatArray.h"
@@ -140,12 +141,11 @@ struct vtkApertureDEMReader::Internals
       error = "file '" + name + "' does not exist";
       return false;
     }
-    if (name.compare(0, 4, "/vsi") != 0 && (S_ISFIFO(sb.st_mode) || S_ISSOCK(sb.st_mode)))
+    if (name.compare(0, 4, "/vsi") != 0 && vtkApertureUnreadableStream(sb))
     {
-      // (GDAL opens a file more than once and seeks in it: on a named pipe the open waits for
-      // a writer, for ever when none comes)
-      error = "'" + name + "' is a pipe, not a file: GDAL reads a DEM by seeking in it; save " +
-        "the DEM to a file first";
+      // (GDAL also opens a file more than once: one writer to a pipe would not do)
+      error = "'" + name + "' is " + vtkApertureFileKind(sb) +
+        ", not a file: GDAL reads a DEM by seeking in it; save the DEM to a file first";
       return false;
     }
     GDALAllRegister();

@@ -3,6 +3,7 @@
 
 #include "vtkApertureGeoreference.h"
 #include "vtkApertureMemory.h"
+#include "vtkApertureOutputFile.h"
 
 #include "vtkDataObject.h"
 #include "vtkFloatArray.h"
@@ -182,11 +183,12 @@ struct vtkApertureEXRReader::Internals
       error = "file '" + name + "' does not exist";
       return false;
     }
-    if (S_ISFIFO(sb.st_mode) || S_ISSOCK(sb.st_mode))
+    if (vtkApertureUnreadableStream(sb))
     {
       // (the magic number's read below and OpenEXR's own open each open it: on a named pipe
       // the first waits for a writer, the second for another)
-      error = "'" + name + "' is a pipe, not a file: OpenEXR reads a file by seeking in it";
+      error = "'" + name + "' is " + vtkApertureFileKind(sb) +
+        ", not a file: OpenEXR reads a file by seeking in it";
       return false;
     }
     // Every OpenEXR file starts with the magic number 20000630 (little-endian).

@@ -420,11 +420,10 @@ def _attach_baked(image, path, reader):
     from osgeo import gdal
     from vtkmodules.util.numpy_support import numpy_to_vtk
     gdal.UseExceptions()
-    import stat
-    if os.path.exists(path) and not path.startswith("/vsi") and \
-            (stat.S_ISFIFO(os.stat(path).st_mode) or stat.S_ISSOCK(os.stat(path).st_mode)):
+    kind = _file_kind(os.stat(path).st_mode) if os.path.exists(path) else None
+    if kind in ("a pipe", "a socket") and not path.startswith("/vsi"):
         # (as the DEM reader: GDAL's open of a named pipe waits for a writer, for ever)
-        raise ApertureError("cannot read the baked file %s: it is a pipe, not a file" % path)
+        raise ApertureError("cannot read the baked file %s: it is %s, not a file" % (path, kind))
     try:
         ds = gdal.Open(path)
     except RuntimeError as e:
