@@ -392,6 +392,30 @@ class TestBake(unittest.TestCase):
         check(rough, ["--radius", "1500", "-d", "8", "--decimate", "3"],
               [(10, 20, 50, 40), (180, 150, 0, 0)], block=3)
 
+    def test_strips_of_a_lat_lon_window(self):
+        # The sky filter's halo comes from the cell sizes of the rows near what it computes, so
+        # on a lat/lon DEM a strip near the pole reads more columns than one in the middle
+        # (84 to 60 N here: 448 columns around a 100-column window at the top, fewer lower
+        # down). The plan took the middle row's halo for every strip, so with 6 MiB it planned
+        # strips of 512 rows that the sky filter then refused at the top; it now plans from
+        # the widest, and the strips equal the bake at once.
+        rng = np.random.default_rng(2)
+        z = np.cumsum(np.cumsum(rng.normal(0, 1, (2400, 600)), 0), 1).astype(np.float32)
+        dem = self.path("strips-latlon.tif")
+        make_dem(dem, z, (10, 0.01, 0, 84, 0, -0.01), 4326)
+        common = ["--srcwin", 200, 0, 100, 2400, "--radius", 20000, "-d", 8]
+        status, _, err = run("bake", dem, self.path("strips-latlon-once.tif"), *common)
+        self.assertEqual(status, 0, err)
+        once, _, _, _ = bands(self.path("strips-latlon-once.tif"))
+        for memory in ("6M", "8M"):
+            out = self.path("strips-latlon-%s.tif" % memory)
+            status, stdout, err = run("bake", dem, out, *common, "--max-memory", memory)
+            self.assertEqual(status, 0, err)
+            self.assertIn(" strips of ", stdout)
+            got, _, _, _ = bands(out)
+            for name, (values, _) in once.items():
+                np.testing.assert_array_equal(got[name][0], values, name)
+
     def test_grids_of_billions_of_cells(self):
         # VRTs of 2^31 - 1 cells a side, no sources. The halo of a window came from the cell
         # sizes of every row of the grid, 128 bytes a row at once (the process was killed for

@@ -910,10 +910,13 @@ def _plan_bake(args, watcher, sky):
     tile = vtkApertureDEMWriter.GetTileSize()  # (the strips are whole tile rows of the GeoTIFF)
     if ny <= tile:  # (one tile row: strips would be the same request)
         raise ApertureError("%s; %s" % (whole_problem, advice))
-    # the halo of a strip inside the grid, from a row in the middle
-    middle = (window[2] + window[3]) // 2
-    one = _input_extent(watcher, sky, [window[0], window[1], middle, middle, 0, 0])
-    halo = max(one[3] - middle, middle - one[2])
+    # the halo of a strip inside the grid: the widest of those of the window's end rows and
+    # middle row (the sky filter's halo comes from the cell sizes of the rows near a strip, and
+    # lat/lon cells narrow towards a pole, so a strip there reads more columns)
+    rows_asked = (window[2], (window[2] + window[3]) // 2, window[3])
+    ones = [_input_extent(watcher, sky, [window[0], window[1], r, r, 0, 0]) for r in rows_asked]
+    one = [min(e[0] for e in ones), max(e[1] for e in ones), 0, 0, 0, 0]  # (its columns)
+    halo = max(max(e[3] - r, r - e[2]) for e, r in zip(ones, rows_asked))
     whole_rows = _extent_size(whole)[1]
 
     def strip_problem(tiles):  # for strips of this many tile rows
