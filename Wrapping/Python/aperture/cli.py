@@ -910,23 +910,24 @@ def _plan_bake(args, watcher, sky):
     tile = vtkApertureDEMWriter.GetTileSize()  # (the strips are whole tile rows of the GeoTIFF)
     if ny <= tile:  # (one tile row: strips would be the same request)
         raise ApertureError("%s; %s" % (whole_problem, advice))
-    # the halo of a strip inside the grid: the widest of those of the window's end rows and
-    # middle row (the sky filter's halo comes from the cell sizes of the rows near a strip, and
-    # lat/lon cells narrow towards a pole, so a strip there reads more columns)
+    # the halo of a strip inside the grid. The sky filter's comes from the smallest cell sizes
+    # of the rows near what it computes (on a lat/lon DEM a strip near a pole reads more
+    # columns than one in the middle): every strip reads at most the columns the whole window
+    # does (`read`), and its rows at most the widest row halo of the window's end and middle
+    # rows (on a lat/lon DEM the north-south cell size changes by under 1% from equator to pole)
     rows_asked = (window[2], (window[2] + window[3]) // 2, window[3])
-    ones = [_input_extent(watcher, sky, [window[0], window[1], r, r, 0, 0]) for r in rows_asked]
-    one = [min(e[0] for e in ones), max(e[1] for e in ones), 0, 0, 0, 0]  # (its columns)
-    halo = max(max(e[3] - r, r - e[2]) for e, r in zip(ones, rows_asked))
+    halo = max(max(e[3] - r, r - e[2]) for e, r in (
+        (_input_extent(watcher, sky, [window[0], window[1], r, r, 0, 0]), r) for r in rows_asked))
     whole_rows = _extent_size(whole)[1]
 
     def strip_problem(tiles):  # for strips of this many tile rows
         rows = min(tile * tiles, ny)
-        inner = [one[0], one[1], 0, min(rows + 2 * halo, whole_rows) - 1, 0, 0]
+        inner = [read[0], read[1], 0, min(rows + 2 * halo, whole_rows) - 1, 0, 0]
         return problem(inner, nx, rows)
 
     memory = sky.GetUsableMemory()  # (physical, or the control group's limit)
-    one_columns = _extent_size(one)[0]
-    if not args.max_memory and 4.0 * one_columns * min(tile + 2 * halo, whole_rows) >= memory:
+    columns = _extent_size(read)[0]
+    if not args.max_memory and 4.0 * columns * min(tile + 2 * halo, whole_rows) >= memory:
         raise ApertureError("%s; %s" % (whole_problem, advice))  # (a strip's DEM alone)
     fits, tiles = 0, -(-ny // tile)
     while fits + 1 < tiles:  # the most tiles that fit: 'fits' fit, 'tiles' do not
