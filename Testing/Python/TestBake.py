@@ -1316,23 +1316,11 @@ class TestBake(unittest.TestCase):
     def test_progress_on_a_terminal(self):
         # As gdaldem: GDAL's progress line on stderr when it is a terminal, none with -q or
         # when it is not (every other test here reads stderr through a pipe: nothing there).
-        import pty
+        from terminal import run_with_terminal_stderr
         out = self.path("progress.tif")
         for quiet in (False, True):
-            master, slave = pty.openpty()
-            p = subprocess.run([APERTURE, "bake", self.dem, out] + (["-q"] if quiet else []),
-                               stdout=subprocess.PIPE, stderr=slave, text=True, timeout=300)
-            os.close(slave)
-            seen = b""
-            while True:
-                try:
-                    chunk = os.read(master, 4096)
-                except OSError:  # EIO: the child's end is closed
-                    break
-                if not chunk:
-                    break
-                seen += chunk
-            os.close(master)
+            p, seen = run_with_terminal_stderr([APERTURE, "bake", self.dem, out] +
+                                               (["-q"] if quiet else []), timeout=300)
             self.assertEqual(p.returncode, 0)
             # (-q also drops the summary line, as gdaldem -q its non-error output)
             self.assertEqual(p.stdout.startswith("wrote %s: " % out), not quiet, p.stdout)

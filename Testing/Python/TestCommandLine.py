@@ -499,19 +499,89 @@ class TestBadInput(CommandLineTest):
                         (500000, 30, 0, 4000000, 0, -30), nodata=-1)
         self.assert_error("is nodata", "info", p)
 
-    def test_too_large_for_memory(self):
-        small = make_raster(self.path("small.tif"), np.ones((3, 3)),
+    def huge_vrt(self, name, size):
+        """A VRT of size x size cells of 1 m in UTM 11N, nodata -1, whose top-left 3 x 3 cells
+        come from a file (1, 2, 3 in the top row, 4 in the others; a NaN) and the rest is
+        nodata; nothing of it is on disk but those 9 cells."""
+        small = make_raster(self.path(name + "-source.tif"),
+                            [[1, 2, 3], [4, float("nan"), 4], [4, 4, 4]],
                             (500000, 1, 0, 4000000, 0, -1))
-        vrt = self.path("huge.vrt")
+        vrt = self.path(name + ".vrt")
         with open(vrt, "w") as f:
-            f.write('<VRTDataset rasterXSize="1000000" rasterYSize="1000000">\n'
+            f.write('<VRTDataset rasterXSize="%d" rasterYSize="%d">\n'
                     '  <SRS>EPSG:32611</SRS>\n'
                     '  <GeoTransform>500000, 1, 0, 4000000, 0, -1</GeoTransform>\n'
-                    '  <VRTRasterBand dataType="Float32" band="1"><SimpleSource>\n'
+                    '  <VRTRasterBand dataType="Float32" band="1">\n'
+                    '    <NoDataValue>-1</NoDataValue><SimpleSource>\n'
                     '    <SourceFilename relativeToVRT="0">%s</SourceFilename>\n'
                     '    <SourceBand>1</SourceBand></SimpleSource></VRTRasterBand>\n'
-                    '</VRTDataset>\n' % small)
-        self.assert_error("1000000 x 1000000 cells", "info", vrt)
+                    '</VRTDataset>\n' % (size, size, small))
+        return vrt
+
+    def test_larger_than_memory(self):
+        # A DEM of 10^12 cells (3.6 TiB as float32) is described from its header at once with
+        # --no-stats (before: refused, as info read every cell at once), its statistics null.
+        vrt = self.huge_vrt("huge", 1000000)
+        d, err = self.info(vrt, "--no-stats")
+        self.assertEqual(err, "")
+        self.assertEqual(d["size"], [1000000, 1000000])
+        self.assertEqual(d["cell_size"], [1.0, 1.0])
+        self.assertEqual((d["elevation_range"], d["nodata_count"], d["nodata_value"]),
+                         (None, None, -1.0))
+        status, out, err = run("info", vrt, "--no-stats")
+        self.assertEqual((status, err), (0, ""))
+        self.assertIn("1000000 x 1000000 cells", out)
+        self.assertIn("Elevation:  not read (--no-stats) (unit: 1 m, none in the file: metres)",
+                      out)
+        self.assertIn("Nodata:     not counted (--no-stats) (nodata value -1.0)", out)
+
+    def test_statistics_in_strips(self):
+        # Without --no-stats the elevations are read in strips of rows (256 MiB, or
+        # --max-memory): past 1 GiB with a note naming the way out. 16500^2 cells (1.01 GiB):
+        # the range of the 8 cells with data and the count of the rest, read in 5 strips.
+        vrt = self.huge_vrt("large", 16500)
+        d, err = self.info(vrt)
+        self.assertEqual(err, "aperture: note: reading the elevations of all 16500 x 16500 "
+                              "cells (1.014 GiB as float32) for their range and nodata count, "
+                              "in strips; --no-stats describes the DEM without reading them\n")
+        self.assertEqual((d["elevation_range"], d["nodata_count"]), ([1.0, 4.0], 16500 ** 2 - 8))
+        # Strips of one row up to the whole DEM give the same facts, for cells with data in
+        # some strips and none in others (the nodata rows at the top, and in the middle).
+        rows = np.full((9, 300), -9999.0)
+        rows[4, 7], rows[4, 8], rows[6, 299], rows[8, 0] = 17.5, -3.25, 12.0, float("nan")
+        p = make_raster(self.path("strips.tif"), rows, (500000, 30, 0, 4000000, 0, -30),
+                        nodata=-9999)
+        whole, err = self.info(p)
+        self.assertEqual(err, "")
+        self.assertEqual((whole["elevation_range"], whole["nodata_count"]),
+                         ([-3.25, 17.5], 9 * 300 - 3))
+        for limit in ("1.2K", "3K", "5K", "100K"):  # (1200 bytes a row: 1, 2, 4 rows, all)
+            with self.subTest(limit=limit):
+                d, err = self.info(p, "--max-memory", limit)
+                self.assertEqual((d, err), (whole, ""))
+        # a row beyond --max-memory, and every strip of nodata: refused by name
+        self.assert_error("reading 300 x 1 cells of '%s' needs 1.172 KiB as float32, more than "
+                          "--max-memory 1.000 KiB" % p, "info", p, "--max-memory", "1K")
+        empty = make_raster(self.path("strips-empty.tif"), np.full((9, 300), -9999.0),
+                            (500000, 30, 0, 4000000, 0, -30), nodata=-9999)
+        for limit in ([], ["--max-memory", "2K"]):
+            self.assert_error("every cell of '%s' band 1 is nodata" % empty, "info", empty,
+                              *limit)
+
+    def test_progress_on_a_terminal(self):
+        # GDAL's progress line on stderr, when it is a terminal and the DEM is read in more
+        # than one strip (as gdalinfo -stats); no note below 1 GiB.
+        from terminal import run_with_terminal_stderr
+        rows = np.arange(40 * 300, dtype=float).reshape(40, 300)
+        p = make_raster(self.path("progress.tif"), rows, (500000, 30, 0, 4000000, 0, -30))
+        for limit, expected in ((["--max-memory", "3K"],
+                                 "0...10...20...30...40...50...60...70...80...90...100 - "
+                                 "done.\r\n"), ([], "")):
+            r, seen = run_with_terminal_stderr([APERTURE, "info", "--json", p] + limit,
+                                               timeout=120)
+            self.assertEqual(r.returncode, 0)
+            self.assertEqual(json.loads(r.stdout)["elevation_range"], [0.0, 40 * 300 - 1.0])
+            self.assertEqual(seen.decode(), expected)
 
     def test_bad_options(self):
         self.assert_error("--decimate must be 1 or more", "info", "--decimate", "0")

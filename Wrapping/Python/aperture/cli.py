@@ -304,18 +304,36 @@ def read_dem(args, watcher):
 # info
 
 
-def describe(reader, image):
-    """The facts `aperture info` prints, as a dict (the --json object)."""
+# `aperture info` reads the elevations for their statistics in strips of whole rows of at most
+# this many bytes as float32 (--max-memory lowers it), so that a DEM larger than memory is
+# described too; past _INFO_NOTE_BYTES a note says that they are all being read.
+_INFO_STRIP_BYTES = 256 * 2 ** 20
+_INFO_NOTE_BYTES = 2 ** 30
+
+
+def describe(reader, watcher, stats=True, strip_bytes=_INFO_STRIP_BYTES, progress=None):
+    """The facts `aperture info` prints, as a dict (the --json object): the grid's from the
+    reader's information, nothing read; with `stats`, also the elevation range and nodata
+    count, from the elevations read in strips of whole rows (north first) of at most
+    `strip_bytes` as float32 each, reporting the fraction read to `progress` after each.
+    Without `stats` those two are None."""
     import numpy as np
     from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkCommonDataModel import vtkDataObject
+    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
     from aperture import vtkApertureGeoreference
 
+    watcher.update_information(reader)
+    info = reader.GetOutputInformation(0)
+    whole = info.Get(sddp.WHOLE_EXTENT())
+    origin, spacing = info.Get(vtkDataObject.ORIGIN()), info.Get(vtkDataObject.SPACING())
+    nx, ny = _extent_size(whole)
     geo = vtkApertureGeoreference()
-    if not geo.SetFromImage(image):
-        raise ApertureError(geo.GetErrorMessage())
-    z = vtk_to_numpy(image.GetPointData().GetArray("Elevation"))
-    valid = ~np.isnan(z)
-    nx, ny = geo.GetGridSize()
+    if not geo.SetCRS(info.Get(vtkApertureGeoreference.CRS_KEY()) or ""):
+        raise ApertureError(geo.GetErrorMessage() or "the DEM has no CRS")
+    # (as SetFromImage takes the grid of an image of the whole extent)
+    geo.SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],
+                spacing[0], spacing[1], nx, ny)
     cell_m = [0.0, 0.0]
     bounds = [0.0] * 4
     centre = [0.0, 0.0]
@@ -323,6 +341,23 @@ def describe(reader, image):
     if not (geo.GetCellSizeMetres(cell_m) and (local or (
             geo.GetBoundsLonLat(bounds) and geo.GetCentreLonLat(centre)))):
         raise ApertureError(geo.GetErrorMessage())
+    elevation_range = nodata_count = None
+    if stats:
+        low, high, nodata_count = math.inf, -math.inf, 0
+        rows = max(1, min(ny, strip_bytes // (4 * nx)))
+        for top in range(whole[3], whole[2] - 1, -rows):
+            bottom = max(whole[2], top - rows + 1)
+            image = _read(watcher, reader, [whole[0], whole[1], bottom, top, 0, 0])
+            array = image.GetPointData().GetArray("Elevation")
+            a, b = array.GetRange()  # (NaN, the reader's nodata, skipped)
+            low, high = min(low, a), max(high, b)
+            nodata_count += int(np.count_nonzero(np.isnan(vtk_to_numpy(array))))
+            if progress:
+                progress((whole[3] - bottom + 1) / ny)
+        if not low <= high:  # (the reader's message, which reads it at once)
+            raise ApertureError("every cell of '%s' band %d is nodata"
+                                % (os.fsdecode(reader.GetFileName()), reader.GetBandRead()))
+        elevation_range = [low, high]
     return {
         "file": _full_name(os.fsdecode(reader.GetFileName())),
         "driver": reader.GetDriverName(),
@@ -337,11 +372,11 @@ def describe(reader, image):
         "cell_size_m": cell_m,
         "bounds_lonlat": None if local else bounds,
         "centre_lonlat": None if local else centre,
-        "elevation_range": [float(z[valid].min()), float(z[valid].max())],
+        "elevation_range": elevation_range,
         # metres per unit of the file's elevations, and where that came from
         "elevation_unit_m": reader.GetElevationUnitRead(),
         "elevation_unit_source": _as_options(reader.GetElevationUnitSource()),
-        "nodata_count": int(z.size - np.count_nonzero(valid)),
+        "nodata_count": nodata_count,
         # JSON has no NaN: a NaN nodata value is reported as the string "nan".
         "nodata_value": (None if not reader.GetHasNoDataValue()
                          else "nan" if math.isnan(reader.GetNoDataValue())
@@ -353,6 +388,7 @@ def _format_info(d):
     def deg(v):
         return "%.6f" % v
     unit = d["crs_unit"] or "unit"
+    nodata = "" if d["nodata_value"] is None else " (nodata value %s)" % d["nodata_value"]
     lines = [
         "File:       %s (%s, band %d of %d)" % (d["file"], d["driver"], d["band"], d["bands"]),
         "Size:       %d x %d cells (columns x rows)" % tuple(d["size"]),
@@ -366,19 +402,53 @@ def _format_info(d):
         "Bounds:     west %s, south %s, east %s, north %s (degrees)"
         % tuple(deg(v) for v in d["bounds_lonlat"]),
         "Centre:     longitude %s, latitude %s" % tuple(deg(v) for v in d["centre_lonlat"]),
-    ]) + [
+    ]) + ([
         "Elevation:  %.2f .. %.2f m (unit: %.10g m, %s)"
         % (*d["elevation_range"], d["elevation_unit_m"], d["elevation_unit_source"]),
-        "Nodata:     %d cells%s" % (d["nodata_count"], "" if d["nodata_value"] is None
-                                    else " (nodata value %s)" % d["nodata_value"]),
-    ]
+        "Nodata:     %d cells%s" % (d["nodata_count"], nodata),
+    ] if d["elevation_range"] is not None else [
+        "Elevation:  not read (--no-stats) (unit: %.10g m, %s)"
+        % (d["elevation_unit_m"], d["elevation_unit_source"]),
+        "Nodata:     not counted (--no-stats)%s" % nodata,
+    ])
     return "\n".join(lines)
 
 
+def _bytes_text(n):
+    """A byte count for messages, as the C++ side writes them: "512 bytes", "3.353 GiB"."""
+    units = ("bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB")
+    u = 0
+    while n >= 1024.0 and u < len(units) - 1:
+        n /= 1024.0
+        u += 1
+    return "%d bytes" % n if u == 0 else "%.3f %s" % (n, units[u])
+
+
 def cmd_info(args):
+    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
     watcher = Watcher(on_warning=_warn)
-    reader, image = read_dem(args, watcher)
-    facts = describe(reader, image)
+    reader = _dem_reader(args, watcher)
+    if args.max_memory is not None:
+        reader.SetMemoryLimit(args.max_memory)  # (a row larger than it is refused by name)
+    strip_bytes = min(_INFO_STRIP_BYTES, args.max_memory or _INFO_STRIP_BYTES)
+    watcher.update_information(reader)
+    nx, ny = _extent_size(reader.GetOutputInformation(0).Get(sddp.WHOLE_EXTENT()))
+    size = 4.0 * nx * ny  # (bytes as float32)
+    progress = None
+    if not args.no_stats and size > strip_bytes:
+        if size > _INFO_NOTE_BYTES:  # (minutes, or more: say what it is doing, and the way out)
+            print("%s: note: reading the elevations of all %d x %d cells (%s as float32) for "
+                  "their range and nodata count, in strips; --no-stats describes the DEM "
+                  "without reading them" % (PROG, nx, ny, _bytes_text(size)), file=sys.stderr)
+        if sys.stderr.isatty():
+            progress = _TermProgress(sys.stderr)
+    try:
+        facts = describe(reader, watcher, stats=not args.no_stats, strip_bytes=strip_bytes,
+                         progress=progress)
+    except ApertureError:
+        if progress and progress.open:
+            sys.stderr.write("\n")
+        raise
     if args.json:
         print(json.dumps(facts, indent=2, allow_nan=False))
     else:
@@ -1476,6 +1546,14 @@ def build_parser():
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (keys size, cell_size_m, crs, bounds_lonlat, "
                         "elevation_range, nodata_count, centre_lonlat, ...)")
+    p.add_argument("--no-stats", action="store_true",
+                   help="describe the DEM from its header alone, without reading the "
+                        "elevations for their range and nodata count (null in --json): at "
+                        "once on any size")
+    p.add_argument("--max-memory", type=_memory_size, metavar="SIZE",
+                   help="most memory for the elevations read at once: a number of MiB, or "
+                        "with K, M, G or T (default 256 MiB); they are read in strips of rows "
+                        "that fit, so a DEM larger than memory is described too")
     p.set_defaults(func=cmd_info)
 
     p = sub.add_parser("bake", help="horizons, sky-view factors, bent normals -> GeoTIFF/EXR",
