@@ -1051,9 +1051,10 @@ class TestBake(unittest.TestCase):
 
         big = zeros_vrt(self.path("big.vrt"), 30000)  # 3.35 GiB of elevations
         out = self.path("big-out.tif")
-        # (bake refuses this DEM before reading it on machines with less than 50 GiB: below)
-        p = subprocess.run([APERTURE, "info", big], capture_output=True, text=True,
-                           timeout=300, preexec_fn=capped)
+        # (bake refuses this DEM before reading it on machines with less than 50 GiB: below;
+        # info reads it in strips of 256 MiB, unless --max-memory allows more)
+        p = subprocess.run([APERTURE, "info", big, "--max-memory", "4G"], capture_output=True,
+                           text=True, timeout=300, preexec_fn=capped)
         self.assertEqual(p.returncode, 1, p.stderr)
         self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
         self.assertIn("out of memory reading 30000 x 30000 cells of '%s' (the elevations "

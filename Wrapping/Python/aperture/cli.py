@@ -305,7 +305,7 @@ def read_dem(args, watcher):
 
 
 # `aperture info` reads the elevations for their statistics in strips of whole rows of at most
-# this many bytes as float32 (--max-memory lowers it), so that a DEM larger than memory is
+# this many bytes as float32 (else --max-memory's), so that a DEM larger than memory is
 # described too; past _INFO_NOTE_BYTES a note says that they are all being read.
 _INFO_STRIP_BYTES = 256 * 2 ** 20
 _INFO_NOTE_BYTES = 2 ** 30
@@ -430,7 +430,7 @@ def cmd_info(args):
     reader = _dem_reader(args, watcher)
     if args.max_memory is not None:
         reader.SetMemoryLimit(args.max_memory)  # (a row larger than it is refused by name)
-    strip_bytes = min(_INFO_STRIP_BYTES, args.max_memory or _INFO_STRIP_BYTES)
+    strip_bytes = args.max_memory or _INFO_STRIP_BYTES
     watcher.update_information(reader)
     nx, ny = _extent_size(reader.GetOutputInformation(0).Get(sddp.WHOLE_EXTENT()))
     size = 4.0 * nx * ny  # (bytes as float32)
