@@ -662,16 +662,32 @@ int vtkApertureSkyVisibility::Execute(
   {
     throw std::bad_alloc();
   }
-  for (size_t k = 0; k < n; ++k)
+  const auto finite = [](float v) {
+    return std::isfinite(v) ? v : std::numeric_limits<float>::quiet_NaN();
+  };
+  if (vtkFloatArray* floats = vtkFloatArray::FastDownCast(elevation))
   {
-    const float v = static_cast<float>(elevation->GetComponent(static_cast<vtkIdType>(k), 0));
-    z[k] = std::isfinite(v) ? v : std::numeric_limits<float>::quiet_NaN();
+    // (the reader's type: read in place, not through a virtual call per value)
+    std::transform(floats->GetPointer(0), floats->GetPointer(0) + n, z.get(), finite);
+  }
+  else
+  {
+    for (size_t k = 0; k < n; ++k)
+    {
+      z[k] = finite(static_cast<float>(elevation->GetComponent(static_cast<vtkIdType>(k), 0)));
+    }
   }
   const ap_grid_view zview =
     ap_grid_view_make(z.get(), static_cast<size_t>(nx), static_cast<size_t>(ny));
+  // (the one statistics pass here: the kernel's validation in ap_horizon_create is the other)
   ap_grid_stats range;
-  if (ap_grid_stats_compute(&zview, &range) == AP_OK && range.valid > 0 &&
-    (range.min < EarthLowest || range.max > EarthHighest))
+  ap_status st = ap_grid_stats_compute(&zview, &range);
+  if (st != AP_OK)
+  {
+    vtkErrorMacro(<< "elevation statistics: " << ap_status_string(st));
+    return 0;
+  }
+  if (range.valid > 0 && (range.min < EarthLowest || range.max > EarthHighest))
   {
     vtkWarningMacro(<< "elevations range from " << range.min << " to " << range.max
                     << " m, beyond any on Earth (" << EarthLowest << " to " << EarthHighest
@@ -831,18 +847,13 @@ int vtkApertureSkyVisibility::Execute(
     }
     sheared = params.scale_metric && turn > ConformalTurn;
   }
-  ap_status st = ap_horizon_validate(&grid, &params);
   // Nodata everywhere: an error for the whole DEM; a piece of one (a stretch of sea and its
-  // halo) gets nodata products, as the whole run's cells there do.
-  const bool allNodata = st == AP_ERR_ALL_NODATA;
+  // halo) gets nodata products, as the whole run's cells there do. (The parameters are
+  // validated by ap_horizon_create, with the elevations' second statistics pass.)
+  const bool allNodata = range.valid == 0;
   if (allNodata && nx == nxWhole && ny == nyWhole)
   {
     vtkErrorMacro(<< "every cell of the DEM is nodata");
-    return 0;
-  }
-  if (st != AP_OK && !allNodata)
-  {
-    vtkErrorMacro(<< "horizon parameters: " << ap_status_string(st));
     return 0;
   }
 

@@ -725,6 +725,30 @@ class TestSkyVisibility(Testing.vtkTest):
         # the highest and lowest places on Earth are not warned about
         _, warnings = run(np.where(z > 300.0, 8848.9, -10935.0))
         self.assertEqual(warnings, [])
+        # Elevations of other array types (a VTK pipeline's, not the reader's float32): the
+        # same products as their values as float32; doubles beyond the float range are nodata.
+        whole = np.round(z)
+        expected, _ = run(whole)
+        for dtype in (np.float64, np.int16, np.int32, np.uint16):
+            image = make_image(whole, 400000, 5000000, 30, 30, "EPSG:32633")
+            values = numpy_to_vtk(whole.astype(dtype).ravel(), deep=1)
+            values.SetName("Elevation")
+            image.GetPointData().SetScalars(values)
+            f = sky(image)
+            for name in expected:
+                np.testing.assert_array_equal(array(f.GetOutput(), name), expected[name],
+                                              err_msg="%s %s" % (dtype.__name__, name))
+        beyond = z.astype(np.float64)
+        beyond[12, 17], beyond[3, 0] = 1e300, -np.inf
+        image = make_image(z, 400000, 5000000, 30, 30, "EPSG:32633")
+        values = numpy_to_vtk(beyond.ravel(), deep=1)
+        values.SetName("Elevation")
+        image.GetPointData().SetScalars(values)
+        f = sky(image)
+        expected, _ = run(holes)
+        for name in expected:
+            np.testing.assert_array_equal(array(f.GetOutput(), name), expected[name],
+                                          err_msg="beyond float " + name)
 
     def testProjectionScaleChangesPerCell(self):
         # A projection's scale changes across a large DEM (7% over north polar stereographic
