@@ -141,6 +141,55 @@ class TestSolarPosition(Testing.vtkTest):
             self.assertAlmostEqual(at_transit.GetEquationOfTime(), 720.0 - minutes, delta=0.02,
                                    msg=day)
 
+    def testEventsFollowEveryInput(self):
+        # One object computing a sequence of times and places (as a time series reuses one):
+        # each day's events are those a new object gives for the same inputs, bit for bit,
+        # whichever input changed since the last Compute (it keeps the last day's events).
+        def start(s):
+            s.SetLatitude(47.3769)
+            s.SetLongitude(8.5417)
+            s.SetUnixTime(unix("2026-03-28 22:30:00"))
+
+        def later(seconds):
+            return lambda s: s.SetUnixTime(s.GetUnixTime() + seconds)
+
+        steps = [("an hour later, the same day", later(3600)),
+                 ("the next day", later(86400)),
+                 ("a time zone whose day is another (UTC+1, then DST)",
+                  lambda s: s.SetTimeZone("Europe/Zurich")),
+                 ("the same zone's next day, in summer time", later(86400)),
+                 ("latitude", lambda s: s.SetLatitude(-33.9)),
+                 ("longitude", lambda s: s.SetLongitude(18.4)),
+                 ("pressure", lambda s: s.SetPressure(700.0)),
+                 ("temperature", lambda s: s.SetTemperature(-30.0)),
+                 ("no refraction", lambda s: s.SetRefraction(False)),
+                 ("delta T", lambda s: s.SetDeltaT(300.0)),
+                 ("delta UT1", lambda s: s.SetDeltaUT1(0.9)),
+                 ("a polar night", lambda s: s.SetLatitude(-80.0)),
+                 ("back to the first latitude", lambda s: s.SetLatitude(47.3769))]
+
+        def events(s):
+            self.assertTrue(s.Compute(), s.GetErrorMessage())
+            return [s.GetSunrise(), s.GetTransit(), s.GetSunset(), s.GetDayKind(),
+                    s.GetSunriseString(), s.GetTransitString(), s.GetSunsetString()]
+
+        reused = aperture.vtkApertureSolarPosition()
+        start(reused)
+        previous = events(reused)
+        changed = 0
+        for k, (name, change) in enumerate(steps):
+            change(reused)
+            got = events(reused)
+            new = aperture.vtkApertureSolarPosition()
+            start(new)
+            for _, c in steps[:k + 1]:
+                c(new)
+            expected = events(new)
+            self.assertEqual(str(got), str(expected), name)  # (str: NaN equals NaN)
+            changed += str(got) != str(previous)
+            previous = got
+        self.assertGreaterEqual(changed, 8)  # (most steps move the events)
+
     def testAngularRadius(self):
         # 2025 perihelion (Jan 4) and aphelion (Jul 4): 0.27108 and 0.26220 deg (959.63"/r).
         for when, expected in [("2025-01-04 13:00:00", 0.27108), ("2025-07-04 20:00:00", 0.26220)]:
