@@ -3,6 +3,7 @@
 // (written here independently of GeographicLib), cell sizes of lat/lon and UTM DEMs against
 // closed forms, nodata holes, carried arrays, exaggeration, and every documented error.
 #include "aptest.hxx"
+#include "aptest_dem.hxx"
 
 #include "vtkApertureGeoreference.h"
 #include "vtkApertureTerrainMesh.h"
@@ -68,38 +69,6 @@ double Distance(const double a[3], const double b[3])
 {
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
     (a[2] - b[2]) * (a[2] - b[2]));
-}
-
-// A DEM image: nx x ny points, CRS, origin/spacing in CRS units, elevation f(i, j).
-template <typename F>
-vtkSmartPointer<vtkImageData> MakeDEM(const char* crs, double x0, double y0, double dx, double dy,
-  int nx, int ny, F elevation)
-{
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(nx, ny, 1);
-  image->SetOrigin(x0, y0, 0.0);
-  image->SetSpacing(dx, dy, 1.0);
-  vtkNew<vtkFloatArray> z;
-  z->SetName("Elevation");
-  z->SetNumberOfTuples(static_cast<vtkIdType>(nx) * ny);
-  for (int j = 0; j < ny; ++j)
-  {
-    for (int i = 0; i < nx; ++i)
-    {
-      z->SetValue(static_cast<vtkIdType>(j) * nx + i, elevation(i, j));
-    }
-  }
-  image->GetPointData()->SetScalars(z);
-  if (crs)
-  {
-    vtkNew<vtkApertureGeoreference> geo;
-    if (!geo->SetCRS(crs) || !geo->AttachToImage(image))
-    {
-      std::fprintf(stderr, "cannot attach CRS %s: %s\n", crs, geo->GetErrorMessage());
-      ++aptest::Failures();
-    }
-  }
-  return image;
 }
 
 vtkSmartPointer<vtkPolyData> Mesh(vtkImageData* dem, double exaggeration = 1.0)
