@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # README command 2 (and CI): set up, build with warnings as errors, run the whole test suite,
 # then build the C core, the modules and their C/C++ tests a second time with
-# AddressSanitizer + UndefinedBehaviorSanitizer and run those tests again.
+# AddressSanitizer + UndefinedBehaviorSanitizer and run those tests again (labels unit and
+# render: the Rendering module's C++ test runs in its own Xvfb there too).
 #   APERTURE_SKIP_SANITIZERS=1  skip the second build
 set -euo pipefail
 source_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -23,6 +24,6 @@ if [ "${APERTURE_SKIP_SANITIZERS:-0}" != 1 ]; then
   ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1" \
   LSAN_OPTIONS="suppressions=$source_dir/Utilities/lsan.supp:print_suppressions=0" \
   UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
-    ctest --test-dir "$san_dir" --output-on-failure -j "$(nproc)" -L unit
+    ctest --test-dir "$san_dir" --output-on-failure -j "$(nproc)" -L "unit|render"
 fi
 echo "== All tests passed"
