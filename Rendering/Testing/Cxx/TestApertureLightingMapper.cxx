@@ -204,11 +204,13 @@ void TestFlatGround()
 // the GPU's radiance at every inner vertex against the CPU reference's, for each mode, a
 // widened sun, a sky table and per-vertex shading: median within 1e-5, 99% within 1e-3, each
 // within 2e-2. (Measured: medians 1-9e-6; the largest at a few of the 900 vertices, where the
-// real sun's disc straddles the aperture's rim (CENTROID: up to 1.2% at visible fractions of
-// 0.16-0.2) or the surface's plane (EXACT_CAP: the GPU gives that sliver nothing, the CPU
-// 4e-4 of the full sun's radiance), beyond the float bounds ap_light.h documents for the lens
-// (4e-4 relative) and the clipped cap (1.2e-5 of the full sun): a candidate to look into. The
-// Python test's 8-bit comparisons do not resolve it.)
+// real sun's disc straddles the aperture's rim or the surface's plane. CENTROID there is off
+// by up to 1.2% on the GPU, where the CPU matches a brute-force integration over the disc to
+// 1e-5: the lens moment's aperture terms, ~3e-3 each, cancel to ~1e-5, so the float error of
+// the lens angle a1 (~1e-5 near tangency) turns the centroid by a few milliradians. EXACT_CAP
+// on the GPU gives a sun straddling the surface's plane nothing above it, where the CPU gives
+// 4e-4 of the full sun. Both exceed the float bounds ap_light.h documents: candidates to fix.
+// The Python test's 8-bit comparisons do not resolve them.)
 void TestAgainstReference()
 {
   std::mt19937 rng(7);
