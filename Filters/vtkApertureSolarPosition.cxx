@@ -480,8 +480,8 @@ bool vtkApertureSolarPosition::Compute()
   // The local day's events.
   const int32_t offset = d.DayOffset(this->UnixTime);
   ap_civil_time day;
-  if (ap_instant_to_civil(ToInstant(this->UnixTime + offset), &day) == AP_OK &&
-    !d.LastDay.Same(p, day, offset, this->Latitude, this->Longitude))
+  const bool dayKnown = ap_instant_to_civil(ToInstant(this->UnixTime + offset), &day) == AP_OK;
+  if (dayKnown && !d.LastDay.Same(p, day, offset, this->Latitude, this->Longitude))
   {
     d.LastDay.Status = ap_sun_rise_transit_set(&p, day.year, day.month, day.day,
       offset / 3600.0, this->Latitude, this->Longitude, &d.LastDay.Rts);
@@ -492,7 +492,7 @@ bool vtkApertureSolarPosition::Compute()
     d.LastDay.Longitude = this->Longitude;
     d.LastDay.Valid = true;
   }
-  if (d.LastDay.Same(p, day, offset, this->Latitude, this->Longitude) &&
+  if (dayKnown && d.LastDay.Same(p, day, offset, this->Latitude, this->Longitude) &&
     d.LastDay.Status == AP_OK)
   {
     const ap_sun_rts_result& rts = d.LastDay.Rts;
