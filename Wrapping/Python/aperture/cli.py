@@ -311,14 +311,10 @@ _INFO_STRIP_BYTES = 256 * 2 ** 20
 _INFO_NOTE_BYTES = 2 ** 30
 
 
-def describe(reader, watcher, stats=True, strip_bytes=_INFO_STRIP_BYTES, progress=None):
-    """The facts `aperture info` prints, as a dict (the --json object): the grid's from the
-    reader's information, nothing read; with `stats`, also the elevation range and nodata
-    count, from the elevations read in strips of whole rows (north first) of at most
-    `strip_bytes` as float32 each, reporting the fraction read to `progress` after each.
-    Without `stats` those two are None."""
-    import numpy as np
-    from vtkmodules.util.numpy_support import vtk_to_numpy
+def describe(reader, watcher):
+    """The facts `aperture info` prints, as a dict (the --json object), from the reader's
+    information alone (nothing read): elevation_range and nodata_count are None
+    (elevation_statistics gives them). Also returns the grid's whole extent."""
     from vtkmodules.vtkCommonDataModel import vtkDataObject
     from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
     from aperture import vtkApertureGeoreference
@@ -341,23 +337,6 @@ def describe(reader, watcher, stats=True, strip_bytes=_INFO_STRIP_BYTES, progres
     if not (geo.GetCellSizeMetres(cell_m) and (local or (
             geo.GetBoundsLonLat(bounds) and geo.GetCentreLonLat(centre)))):
         raise ApertureError(geo.GetErrorMessage())
-    elevation_range = nodata_count = None
-    if stats:
-        low, high, nodata_count = math.inf, -math.inf, 0
-        rows = max(1, min(ny, strip_bytes // (4 * nx)))
-        for top in range(whole[3], whole[2] - 1, -rows):
-            bottom = max(whole[2], top - rows + 1)
-            image = _read(watcher, reader, [whole[0], whole[1], bottom, top, 0, 0])
-            array = image.GetPointData().GetArray("Elevation")
-            a, b = array.GetRange()  # (NaN, the reader's nodata, skipped)
-            low, high = min(low, a), max(high, b)
-            nodata_count += int(np.count_nonzero(np.isnan(vtk_to_numpy(array))))
-            if progress:
-                progress((whole[3] - bottom + 1) / ny)
-        if not low <= high:  # (the reader's message, which reads it at once)
-            raise ApertureError("every cell of '%s' band %d is nodata"
-                                % (os.fsdecode(reader.GetFileName()), reader.GetBandRead()))
-        elevation_range = [low, high]
     return {
         "file": _full_name(os.fsdecode(reader.GetFileName())),
         "driver": reader.GetDriverName(),
@@ -372,16 +351,41 @@ def describe(reader, watcher, stats=True, strip_bytes=_INFO_STRIP_BYTES, progres
         "cell_size_m": cell_m,
         "bounds_lonlat": None if local else bounds,
         "centre_lonlat": None if local else centre,
-        "elevation_range": elevation_range,
+        "elevation_range": None,
         # metres per unit of the file's elevations, and where that came from
         "elevation_unit_m": reader.GetElevationUnitRead(),
         "elevation_unit_source": _as_options(reader.GetElevationUnitSource()),
-        "nodata_count": nodata_count,
+        "nodata_count": None,
         # JSON has no NaN: a NaN nodata value is reported as the string "nan".
         "nodata_value": (None if not reader.GetHasNoDataValue()
                          else "nan" if math.isnan(reader.GetNoDataValue())
                          else reader.GetNoDataValue()),
-    }
+    }, whole
+
+
+def elevation_statistics(reader, watcher, whole, strip_bytes, progress=None):
+    """The elevation range [low, high] and the nodata count of the grid's `whole` extent, read
+    in strips of whole rows (north first) of at most `strip_bytes` as float32 each, reporting
+    the fraction read to `progress` after each; every cell nodata is an error."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    nx, ny = _extent_size(whole)
+    low, high, nodata_count = math.inf, -math.inf, 0
+    rows = max(1, min(ny, strip_bytes // (4 * nx)))
+    for top in range(whole[3], whole[2] - 1, -rows):
+        bottom = max(whole[2], top - rows + 1)
+        image = _read(watcher, reader, [whole[0], whole[1], bottom, top, 0, 0])
+        array = image.GetPointData().GetArray("Elevation")
+        a, b = array.GetRange()  # (NaN, the reader's nodata, skipped)
+        low, high = min(low, a), max(high, b)
+        nodata_count += int(np.count_nonzero(np.isnan(vtk_to_numpy(array))))
+        if progress:
+            progress((whole[3] - bottom + 1) / ny)
+    if not low <= high:  # (the reader's message, which reads it at once)
+        raise ApertureError("every cell of '%s' band %d is nodata"
+                            % (os.fsdecode(reader.GetFileName()), reader.GetBandRead()))
+    return [low, high], nodata_count
 
 
 def _format_info(d):
@@ -425,30 +429,31 @@ def _bytes_text(n):
 
 
 def cmd_info(args):
-    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
     watcher = Watcher(on_warning=_warn)
     reader = _dem_reader(args, watcher)
     if args.max_memory is not None:
         reader.SetMemoryLimit(args.max_memory)  # (a row larger than it is refused by name)
-    strip_bytes = args.max_memory or _INFO_STRIP_BYTES
-    watcher.update_information(reader)
-    nx, ny = _extent_size(reader.GetOutputInformation(0).Get(sddp.WHOLE_EXTENT()))
-    size = 4.0 * nx * ny  # (bytes as float32)
-    progress = None
-    if not args.no_stats and size > strip_bytes:
-        if size > _INFO_NOTE_BYTES:  # (minutes, or more: say what it is doing, and the way out)
-            print("%s: note: reading the elevations of all %d x %d cells (%s as float32) for "
-                  "their range and nodata count, in strips; --no-stats describes the DEM "
-                  "without reading them" % (PROG, nx, ny, _bytes_text(size)), file=sys.stderr)
-        if sys.stderr.isatty():
-            progress = _TermProgress(sys.stderr)
-    try:
-        facts = describe(reader, watcher, stats=not args.no_stats, strip_bytes=strip_bytes,
-                         progress=progress)
-    except ApertureError:
-        if progress and progress.open:
-            sys.stderr.write("\n")
-        raise
+    facts, whole = describe(reader, watcher)
+    if not args.no_stats:
+        strip_bytes = args.max_memory or _INFO_STRIP_BYTES
+        nx, ny = facts["size"]
+        size = 4.0 * nx * ny  # (bytes as float32)
+        progress = None
+        if size > strip_bytes:
+            if size > _INFO_NOTE_BYTES:  # (minutes, or more: what it does, and the way out)
+                print("%s: note: reading the elevations of all %d x %d cells (%s as float32) "
+                      "for their range and nodata count, in strips; --no-stats describes the "
+                      "DEM without reading them" % (PROG, nx, ny, _bytes_text(size)),
+                      file=sys.stderr)
+            if sys.stderr.isatty():
+                progress = _TermProgress(sys.stderr)
+        try:
+            facts["elevation_range"], facts["nodata_count"] = elevation_statistics(
+                reader, watcher, whole, strip_bytes, progress)
+        except ApertureError:
+            if progress and progress.open:
+                sys.stderr.write("\n")
+            raise
     if args.json:
         print(json.dumps(facts, indent=2, allow_nan=False))
     else:
