@@ -175,7 +175,6 @@ struct vtkApertureSolarPosition::Internals
     ap_civil_time Day;
     int32_t Offset;
     double Latitude, Longitude;
-    ap_status Status;
     ap_sun_rts_result Rts;
 
     bool Same(const ap_sun_params& p, const ap_civil_time& day, int32_t offset, double lat,
@@ -190,6 +189,21 @@ struct vtkApertureSolarPosition::Internals
         same(this->P.atmos_refract, p.atmos_refract) && this->P.refraction == p.refraction &&
         this->Day.year == day.year && this->Day.month == day.month && this->Day.day == day.day &&
         this->Offset == offset && this->Latitude == lat && this->Longitude == lon;
+    }
+
+    /** Computes and keeps the events of `day`; whether they were computed. */
+    bool Compute(const ap_sun_params& p, const ap_civil_time& day, int32_t offset, double lat,
+      double lon)
+    {
+      this->Valid = ap_sun_rise_transit_set(
+                      &p, day.year, day.month, day.day, offset / 3600.0, lat, lon, &this->Rts) ==
+        AP_OK;
+      this->P = p;
+      this->Day = day;
+      this->Offset = offset;
+      this->Latitude = lat;
+      this->Longitude = lon;
+      return this->Valid;
     }
   } LastDay;
 
@@ -480,20 +494,9 @@ bool vtkApertureSolarPosition::Compute()
   // The local day's events.
   const int32_t offset = d.DayOffset(this->UnixTime);
   ap_civil_time day;
-  const bool dayKnown = ap_instant_to_civil(ToInstant(this->UnixTime + offset), &day) == AP_OK;
-  if (dayKnown && !d.LastDay.Same(p, day, offset, this->Latitude, this->Longitude))
-  {
-    d.LastDay.Status = ap_sun_rise_transit_set(&p, day.year, day.month, day.day,
-      offset / 3600.0, this->Latitude, this->Longitude, &d.LastDay.Rts);
-    d.LastDay.P = p;
-    d.LastDay.Day = day;
-    d.LastDay.Offset = offset;
-    d.LastDay.Latitude = this->Latitude;
-    d.LastDay.Longitude = this->Longitude;
-    d.LastDay.Valid = true;
-  }
-  if (dayKnown && d.LastDay.Same(p, day, offset, this->Latitude, this->Longitude) &&
-    d.LastDay.Status == AP_OK)
+  if (ap_instant_to_civil(ToInstant(this->UnixTime + offset), &day) == AP_OK &&
+    (d.LastDay.Same(p, day, offset, this->Latitude, this->Longitude) ||
+      d.LastDay.Compute(p, day, offset, this->Latitude, this->Longitude)))
   {
     const ap_sun_rts_result& rts = d.LastDay.Rts;
     this->Events[0] = rts.sunrise;
