@@ -759,12 +759,12 @@ int vtkApertureSkyVisibility::Execute(
   // (a local CRS: a sphere of the mean radius, the grid's axes east and north)
   const bool local = geo->IsLocal();
   double centre[2] = { 0.0, 0.0 }, ellipsoid[2] = { MeanEarthRadius, 0.0 };
-  double ends[2][2];
+  double endDx, endDy; // (whether the first and last rows have sizes, not their values)
   if (!geo->GetRowCellSizesMetres(rowSizes ? 0 : nyWhole / 2, static_cast<int>(sizedRows),
         dx.data(), dy.data()) ||
     (!rowSizes &&
-      (!geo->GetRowCellSizesMetres(0, 1, ends[0], ends[1]) ||
-        !geo->GetRowCellSizesMetres(nyWhole - 1, 1, ends[0], ends[1]))) ||
+      (!geo->GetRowCellSizesMetres(0, 1, &endDx, &endDy) ||
+        !geo->GetRowCellSizesMetres(nyWhole - 1, 1, &endDx, &endDy))) ||
     (!local && (!geo->GetCentreLonLat(centre) || !geo->GetEllipsoid(ellipsoid))))
   {
     vtkErrorMacro(<< "no metric cell size: " << geo->GetErrorMessage());

@@ -43,6 +43,13 @@ const char* const kLocal = "LOCAL_CS[\"site grid\",UNIT[\"metre\",1]]";
 
 using Setup = std::function<void(vtkApertureSkyVisibility*)>;
 
+// A DEM's grid: its CRS, the centre of its south-west cell and its cell size in CRS units.
+struct Grid
+{
+  const char* crs;
+  double x0, y0, dx, dy;
+};
+
 // The sky filter's output for `dem` (every product, HorizonAngles too), set up by `setup`.
 vtkSmartPointer<vtkImageData> Sky(vtkImageData* dem, const Setup& setup)
 {
@@ -143,11 +150,6 @@ float Rough(int i, int j)
 // search mode.
 void TestPlanes()
 {
-  struct Grid
-  {
-    const char* crs;
-    double x0, y0, dx, dy;
-  };
   const Grid grids[] = { { "EPSG:32633", 400000, 5000000, 30, 30 },
     { "EPSG:4326", 15.0, 60.0, 1.0 / 1200, 1.0 / 1200 }, // (15.5 x 30.9 m cells)
     { "EPSG:3035", 4800000, 2800000, 30, 30 },           // (not conformal: the ground lattice)
@@ -212,19 +214,20 @@ void TestWall()
 {
   const double a = 6378137.0, f = 1.0 / 298.257223563, e2 = f * (2.0 - f);
   const double meridian = a * (1.0 - e2); // (at the equator)
-  struct Grid
+  struct WallGrid
   {
-    const char* crs;
-    double x0, y0, dx, dy, metresNorth, radius;
+    Grid grid;
+    double metresNorth, radius; // (a row's ground step; the radius of curvature northwards)
   };
   const double arc = 1.0 / 1200.0;
-  const Grid grids[] = { { kLocal, 1000, 2000, 30, 30, 30, 6371008.8 },
-    { "EPSG:4326", 10.0, -20 * arc, arc, arc, meridian * arc * kPi / 180.0, meridian } };
-  for (const Grid& g : grids)
+  const WallGrid grids[] = { { { kLocal, 1000, 2000, 30, 30 }, 30, 6371008.8 },
+    { { "EPSG:4326", 10.0, -20 * arc, arc, arc }, meridian * arc * kPi / 180.0, meridian } };
+  for (const WallGrid& w : grids)
   {
+    const Grid& g = w.grid;
     auto dem = MakeDEM(g.crs, g.x0, g.y0, g.dx, g.dy, 41, 60,
       [](int, int j) { return j >= 40 ? 100.0f : 0.0f; });
-    for (double distance : { 25.0 * g.metresNorth, 80.0 * g.metresNorth, 0.0 })
+    for (double distance : { 25.0 * w.metresNorth, 80.0 * w.metresNorth, 0.0 })
     {
       for (bool curvature : { false, true })
       {
@@ -238,11 +241,11 @@ void TestWall()
           });
           for (int n : { 3, 20 })
           {
-            const double d = n * g.metresNorth;
-            const double drop = curvature ? (1.0 - 0.13) * d / (2.0 * g.radius) : 0.0;
+            const double d = n * w.metresNorth;
+            const double drop = curvature ? (1.0 - 0.13) * d / (2.0 * w.radius) : 0.0;
             const double expected = 100.0 / d - drop;
             const double got = std::tan(At(out, "HorizonAngles", 20, 40 - n, 0));
-            const bool patterns = nearField != 1 || distance == 25.0 * g.metresNorth;
+            const bool patterns = nearField != 1 || distance == 25.0 * w.metresNorth;
             if (!(std::fabs(got / expected - 1.0) <= (patterns ? 6e-5 : 1e-6)))
             {
               std::fprintf(stderr,
@@ -264,11 +267,6 @@ void TestWall()
 // swept.
 void TestPiecesAndThreads()
 {
-  struct Grid
-  {
-    const char* crs;
-    double x0, y0, dx, dy;
-  };
   const Grid grids[] = { { "EPSG:32633", 400000, 5000000, 30, 30 },
     { "EPSG:4326", 15.0, 60.0, 1.0 / 1200, 1.0 / 1200 } };
   for (const Grid& g : grids)

@@ -43,14 +43,14 @@ def meridian_arc(lat0, lat):
     return ((w[:, None] * radii(t)[0]).sum(0) * (lat.ravel() - lat0) / 192).reshape(lat.shape)
 
 
-def make_image(z, x0, y0, dx, dy, crs):
-    """A DEM image (row 0 south) with its CRS attached."""
+def make_image(z, x0, y0, dx, dy, crs, dtype=np.float32):
+    """A DEM image (row 0 south) with its CRS attached; elevations of `dtype`."""
     ny, nx = z.shape
     image = vtkImageData()
     image.SetDimensions(nx, ny, 1)
     image.SetOrigin(x0, y0, 0)
     image.SetSpacing(dx, dy, 1)
-    values = numpy_to_vtk(np.ascontiguousarray(z, dtype=np.float32).ravel(), deep=1)
+    values = numpy_to_vtk(np.ascontiguousarray(z, dtype=dtype).ravel(), deep=1)
     values.SetName("Elevation")
     image.GetPointData().SetScalars(values)
     if crs:
@@ -730,21 +730,13 @@ class TestSkyVisibility(Testing.vtkTest):
         whole = np.round(z)
         expected, _ = run(whole)
         for dtype in (np.float64, np.int16, np.int32, np.uint16):
-            image = make_image(whole, 400000, 5000000, 30, 30, "EPSG:32633")
-            values = numpy_to_vtk(whole.astype(dtype).ravel(), deep=1)
-            values.SetName("Elevation")
-            image.GetPointData().SetScalars(values)
-            f = sky(image)
+            f = sky(make_image(whole, 400000, 5000000, 30, 30, "EPSG:32633", dtype))
             for name in expected:
                 np.testing.assert_array_equal(array(f.GetOutput(), name), expected[name],
                                               err_msg="%s %s" % (dtype.__name__, name))
         beyond = z.astype(np.float64)
         beyond[12, 17], beyond[3, 0] = 1e300, -np.inf
-        image = make_image(z, 400000, 5000000, 30, 30, "EPSG:32633")
-        values = numpy_to_vtk(beyond.ravel(), deep=1)
-        values.SetName("Elevation")
-        image.GetPointData().SetScalars(values)
-        f = sky(image)
+        f = sky(make_image(beyond, 400000, 5000000, 30, 30, "EPSG:32633", np.float64))
         expected, _ = run(holes)
         for name in expected:
             np.testing.assert_array_equal(array(f.GetOutput(), name), expected[name],
