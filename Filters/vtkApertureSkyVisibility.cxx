@@ -739,7 +739,12 @@ int vtkApertureSkyVisibility::Execute(
   // of every row of the whole grid; other projected grids are metric to within the
   // projection's scale factor, taken at the centre row (its first and last rows are measured
   // too, so that a grid reaching off its projection's domain is refused, as a lat/lon one is).
-  const bool rowSizes = geo->HasMeridianColumns();
+  // A local CRS (a sphere of the mean radius, the grid's axes east and north) has cells all of
+  // one size: the constant size is exact there, and the kernel's per-row steps, rounded so that
+  // rows share their patterns, would only cost time and accuracy.
+  const bool local = geo->IsLocal();
+  const bool rowSizes = !local && geo->HasMeridianColumns();
+  const bool northUp = rowSizes || local; // (the meridian convergence is 0 at every cell)
   const size_t sizedRows = rowSizes ? static_cast<size_t>(nyWhole) : 1;
   if (rowSizes)
   {
@@ -756,8 +761,6 @@ int vtkApertureSkyVisibility::Execute(
     }
   }
   std::vector<double> dx(sizedRows), dy(sizedRows);
-  // (a local CRS: a sphere of the mean radius, the grid's axes east and north)
-  const bool local = geo->IsLocal();
   double centre[2] = { 0.0, 0.0 }, ellipsoid[2] = { MeanEarthRadius, 0.0 };
   double endDx, endDy; // (whether the first and last rows have sizes, not their values)
   if (!geo->GetRowCellSizesMetres(rowSizes ? 0 : nyWhole / 2, static_cast<int>(sizedRows),
@@ -806,7 +809,7 @@ int vtkApertureSkyVisibility::Execute(
     params.radius_meridian = a * (1 - e2) / (w2 * std::sqrt(w2));
   }
   const double gammaCentre = // (0 where the columns are meridians)
-    rowSizes ? 0.0 : geo->ComputeMeridianConvergence(centre[0], centre[1]);
+    northUp ? 0.0 : geo->ComputeMeridianConvergence(centre[0], centre[1]);
   if (std::isnan(gammaCentre))
   {
     vtkErrorMacro(<< "meridian convergence: " << geo->GetErrorMessage());
@@ -821,7 +824,7 @@ int vtkApertureSkyVisibility::Execute(
   // ScaleChangeWarning.
   std::vector<double> metric;
   bool sheared = false; // (the lattice is applied and turns directions: ConformalTurn)
-  if (!rowSizes)
+  if (!northUp)
   {
     const int lx = std::min(nxWhole, LatticeNodes), ly = std::min(nyWhole, LatticeNodes);
     double scale = 0.0, turn = 0.0;
@@ -1112,7 +1115,7 @@ int vtkApertureSkyVisibility::Execute(
   //    w_N the grid step towards true north (grid bearing −γ); and sector d points at the
   //    ground azimuth of S u(ψ_d) after it, u(ψ_d) the sector's grid direction.
   float* const horizons = out.horizon_angles;
-  if ((out.bent_normal || horizons) && !rowSizes)
+  if ((out.bent_normal || horizons) && !northUp)
   {
     const int lx = std::min(nxWhole, LatticeNodes), ly = std::min(nyWhole, LatticeNodes);
     // γ (rad) at the whole DEM's cell (i, j), counted from its first column and row

@@ -205,11 +205,11 @@ void TestPlanes()
 // (1 - k) d^2 / 2R at ground distance d: atan(100 / d - (1 - k) d / 2R). In a local CRS (R the
 // Earth's mean radius) and on a lat/lon DEM at the equator (dy the meridian arc of 3
 // arc-seconds there, R the meridian radius of curvature a (1 - e^2)), in each search mode.
-// Their slopes tan h match to float rounding (1e-6) beyond the near field (NearField 1) where
-// the rays are swept or far-marched, and within 6e-5 in the near field and where they are
-// marched: on grids with per-row cell sizes the steps of those rays are rounded to 1e-4 in
-// log(length), so that pieces share their patterns (ap_horizon.c, "Near-field patterns"):
-// 5e-5 of the step at most.
+// Their slopes tan h match to float rounding (1e-6), except on the lat/lon grid in the near
+// field (NearField 1) and where the rays are marched: on grids with per-row cell sizes the
+// steps of those rays are rounded to 1e-4 in log(length), so that pieces share their patterns
+// (ap_horizon.c, "Near-field patterns"): within 6e-5 there (5e-5 of the step at most). The
+// local grid's cells are all of one size, and exact.
 void TestWall()
 {
   const double a = 6378137.0, f = 1.0 / 298.257223563, e2 = f * (2.0 - f);
@@ -245,7 +245,8 @@ void TestWall()
             const double drop = curvature ? (1.0 - 0.13) * d / (2.0 * w.radius) : 0.0;
             const double expected = 100.0 / d - drop;
             const double got = std::tan(At(out, "HorizonAngles", 20, 40 - n, 0));
-            const bool patterns = nearField != 1 || distance == 25.0 * w.metresNorth;
+            const bool patterns = g.crs != kLocal &&
+              (nearField != 1 || distance == 25.0 * w.metresNorth);
             if (!(std::fabs(got / expected - 1.0) <= (patterns ? 6e-5 : 1e-6)))
             {
               std::fprintf(stderr,
