@@ -84,18 +84,39 @@ static double intersection_smoothstep(double r1, double r2, double d)
   return amin * x * x * (3.0 - 2.0 * x);
 }
 
-/* ALGORITHMS.md (1.4): first moment of the lens (partial overlap, sin d > 0), from the lens
- * angles a1, a2 of lens_angles; cd = cos d, sd = sin d of the unit axes c1, c2. */
-static void lens_moment_partial(double r1, double r2, double a1, double a2, const double c1[3],
-                                const double c2[3], double cd, double sd, double B[3])
+/* a − sin a for a lens angle a in [0, π]: below 0.5, where the difference cancels, the series
+ * a³/6 (1 − a²/(4·5) (1 − a²/(6·7) (...))) to double precision (the shader's apAngleLessSine
+ * stops three terms earlier, at float's). */
+static double angle_less_sine(double a)
 {
-  double s1 = sin(r1), s2 = sin(r2);
-  double w1 = s1 * a1 * s1, v1 = s1 * sin(a1) * cos(r1);
-  double w2 = s2 * a2 * s2, v2 = s2 * sin(a2) * cos(r2);
+  if (a >= 0.5) {
+    return a - sin(a);
+  }
+  double q = a * a, sum = 1.0;
+  for (int k = 8; k >= 2; --k) {
+    sum = 1.0 - q / ((2.0 * k) * (2.0 * k + 1.0)) * sum;
+  }
+  return a * q / 6.0 * sum;
+}
+
+/* ALGORITHMS.md (1.4): first moment of the lens (partial overlap, sin d > 0), from the lens
+ * angles a1, a2 of lens_angles; cd = cos d, sd = sin d, d of the unit axes c1, c2. Taken about
+ * the smaller cap's axis (ap_light.h, 3), so that no term is larger than the lens. */
+static void lens_moment_partial(double r1, double r2, double a1, double a2, const double c1[3],
+                                const double c2[3], double cd, double sd, double d, double B[3])
+{
+  int one = r1 <= r2; /* cap 1 is the smaller: the moment about c1 */
+  double rs = one ? r1 : r2, ro = one ? r2 : r1, as = one ? a1 : a2, ao = one ? a2 : a1;
+  const double *cs = one ? c1 : c2, *co = one ? c2 : c1;
+  double hs = sin(0.5 * rs), srs = sin(rs), sro = sin(ro), sao = sin(ao);
+  double dif = sin(0.5 * (ro - d)), sum = sin(0.5 * (ro + d)), cos_sum = cos(0.5 * (ro + d));
+  double ks = srs * as * srs, kt = 2.0 * srs * hs * hs * sin(as);
+  double ko = sro * (angle_less_sine(ao) * sro + 2.0 * sao * cos_sum * dif);
+  double kto = sro * 2.0 * sao * sum * dif;
   for (int i = 0; i < 3; ++i) {
-    double t1 = (c2[i] - cd * c1[i]) / sd; /* tangent at c1 toward c2 */
-    double t2 = (c1[i] - cd * c2[i]) / sd; /* tangent at c2 toward c1 */
-    B[i] = w1 * c1[i] - v1 * t1 + w2 * c2[i] - v2 * t2;
+    double ts = (co[i] - cd * cs[i]) / sd; /* tangent at cs toward co */
+    double to = (cs[i] - cd * co[i]) / sd; /* tangent at co toward cs */
+    B[i] = ks * cs[i] + kt * ts + ko * co[i] + kto * to;
   }
 }
 
@@ -163,7 +184,7 @@ static void light_terms(const light_setup *u, const double n[3], const double b[
       } else if (ov == AP_LIGHT_PARTIAL) {
         double a_p, a_l, e, B[3];
         lens_angles(rp, rl, d, &a_p, &a_l, &e);
-        lens_moment_partial(rp, rl, a_p, a_l, b, s, cd, sd, B);
+        lens_moment_partial(rp, rl, a_p, a_l, b, s, cd, sd, d, B);
         double len = sqrt(dot3(B, B));
         if (len > 0.0) {
           c[0] = B[0] / len;
@@ -455,7 +476,7 @@ int ap_light_lens_moment(double r1, double r2, const double c1[3], const double 
   if (c == AP_LIGHT_PARTIAL && sd > 0.0) {
     double a1, a2, e;
     lens_angles(r1, r2, d, &a1, &a2, &e);
-    lens_moment_partial(r1, r2, a1, a2, c1, c2, cd, sd, B);
+    lens_moment_partial(r1, r2, a1, a2, c1, c2, cd, sd, d, B);
     return c;
   }
   /* Cap moments π sin² r · c: the smaller cap (contained, or concentric), both (union). */

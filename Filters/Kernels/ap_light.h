@@ -47,10 +47,19 @@
  *     * AP_LIGHT_CENTROID (Oat & Sander 2007 §3.3, with the exact centroid):
  *           S = A_vis · max(0, n · ĉ),
  *       ĉ = B_lens / |B_lens| for a partial overlap, B_lens = ∫_lens ω dω the lens's first
- *       moment (ALGORITHMS.md (1.4), from ∫_R ω dω = ½ ∮ ω × dω):
- *           t1 = (c2 − cos d · c1)/sin d,   t2 = (c1 − cos d · c2)/sin d
- *           B_lens = Σ_i sin r_i (α_i sin r_i · c_i − sin α_i cos r_i · t_i)
- *       (α_i as in 2); contained: ĉ = the axis of the smaller cap (also when sin d = 0: the caps
+ *       moment (ALGORITHMS.md (1.4), from ∫_R ω dω = ½ ∮ ω × dω), taken about the axis c_s of
+ *       the smaller cap, ½ ∮ (ω − c_s) × dω (the same vector: ∮ dω = 0), with c_o, r_o, α_o
+ *       the other cap's and α_i as in 2:
+ *           t_s = (c_o − cos d · c_s)/sin d,   t_o = (c_s − cos d · c_o)/sin d
+ *           B_lens = sin r_s (α_s sin r_s · c_s + 2 sin²(r_s/2) sin α_s · t_s)
+ *                  + sin r_o ([(α_o − sin α_o) sin r_o + 2 sin α_o cos u sin v] · c_o
+ *                             + 2 sin α_o sin u sin v · t_o)
+ *       with u = (r_o + d)/2, v = (r_o − d)/2 (sin r_o − sin d = 2 cos u sin v, cos d − cos r_o
+ *       = 2 sin u sin v), and α − sin α by its series below α = 0.5. Every term is of the
+ *       lens's size: about the sphere's centre, Σ_i sin r_i (α_i sin r_i · c_i − sin α_i cos r_i
+ *       · t_i), the larger cap's rim gives two terms of ~ sin r_o α_o that cancel to the lens's
+ *       ~ rl², and a float centroid of the sun straddling an aperture's rim turns by several
+ *       rl. Contained: ĉ = the axis of the smaller cap (also when sin d = 0: the caps
  *       are concentric); disjoint: S = 0. Note: a fully visible sun gives S = Ω_l cos θ, so a
  *       facing surface receives Esun / cos²(rl/2), not Esun (1 + 5.4e-6 for the real sun,
  *       1 + 1.9e-3 for rl = 5°): area × cosine overestimates the cosine integral of a cap.
@@ -82,9 +91,13 @@
  *  (sin, cos, tan, atan(y, x) for atan2, atan, acos, sqrt, exp, exp2, pow, min, max, clamp,
  *  round, dot, cross, length, normalize); the public wrappers add the domain checks, which
  *  the shader does by construction. A float port must keep the half-angle forms above, the
- *  sin² forms of Ω and 1 − cos r, and atan2 for d. (C itself cancels in float when a small
- *  cap grazes the plane: cot σ · sin²σ against σ; measured for the sun within ±rl of grazing,
- *  an absolute error <= 1.2e-5 of the full-sun π sin² rl, invisible.) The uniforms of the
+ *  sin² forms of Ω and 1 − cos r, atan2 for d, and the moment about the smaller cap's axis;
+ *  and its atan2 must be good to a few float roundings at every size (the shader has its own,
+ *  for acos too: GLSL leaves the built-in's precision to the implementation, and Mesa's, 2e-5
+ *  relative near 0, costs the lens's cancelling terms a percent near the rim and C its
+ *  grazing sliver). (C itself cancels in float when a small cap grazes the plane: cot σ ·
+ *  sin²σ against σ; measured for the sun within ±rl of grazing, an absolute error <= 1.2e-5
+ *  of the full-sun π sin² rl, invisible.) The uniforms of the
  *  port are what ap_light.c calls the setup: normalised s, rl, sin² rl, Ω_l, L_sun, Lsky, 2^EV,
  *  the modes.
  *

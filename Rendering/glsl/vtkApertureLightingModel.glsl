@@ -34,6 +34,24 @@ const float AP_PI = 3.14159265358979;
 // (the sun's computed once per draw, the aperture's from one sine, d's from the dot and cross
 // products of the unit axes); 1 - cos r = 2 sin^2(r/2) and sin r = 2 sin(r/2) cos(r/2).
 
+// atan2(y, x) in [-pi, pi], within 2.5e-7 relative of the exact angle at every size (float
+// roundings): the built-in atan's precision is the implementation's, and Mesa's (a polynomial,
+// 2e-5 relative near 0) makes the lens's small angles, whose terms cancel by factors of 50 and
+// more near tangency, off by a percent. |y| / |x| or its inverse is brought within tan(pi/8)
+// (atan q = pi/4 + atan((q - 1) / (q + 1))), then u + u^3 P(u^2): P minimax in relative error.
+float apAtan2(float y, float x)
+{
+  float ax = abs(x), ay = abs(y), big = max(ax, ay);
+  float q = big > 0.0 ? min(ax, ay) / big : 0.0;
+  bool far = q > 0.41421356;
+  float u = far ? (q - 1.0) / (q + 1.0) : q, z = u * u;
+  float r = u + u * z * (((0.08053719 * z - 0.13877678) * z + 0.19977710) * z - 0.33332949);
+  r = far ? 0.78539816 + r : r;
+  r = ay > ax ? 1.5707963 - r : r;
+  r = x < 0.0 ? 3.1415927 - r : r;
+  return y < 0.0 ? -r : r;
+}
+
 // The half-angle sine and cosine of d, from cos d = b.s and sin d = |b x s| (d in [0, pi]):
 // the square root where it does not cancel, the other from sin d = 2 sin(d/2) cos(d/2).
 vec2 apHalfAngle(float cosD, float sinD)
@@ -70,11 +88,38 @@ void apCapLens(vec4 sn, float cosR1, float cosR2, float cosD,
   out float a1, out float a2, out float sinA1, out float sinA2, out float e)
 {
   float k = sqrt(max(0.0, sn.y * sn.z * sn.w / max(sn.x, 1e-30)));
-  a1 = 2.0 * atan(k, sn.z);
-  a2 = 2.0 * atan(k, sn.y);
+  a1 = 2.0 * apAtan2(k, sn.z);
+  a2 = 2.0 * apAtan2(k, sn.y);
   sinA1 = 2.0 * k * sn.z / max(k * k + sn.z * sn.z, 1e-30);
   sinA2 = 2.0 * k * sn.y / max(k * k + sn.y * sn.y, 1e-30);
-  e = 2.0 * atan(2.0 * k * sn.x, 1.0 + cosR1 + cosR2 + cosD);
+  e = 2.0 * apAtan2(2.0 * k * sn.x, 1.0 + cosR1 + cosR2 + cosD);
+}
+
+// a - sin a for a lens angle a in [0, pi] with its sine: the series below 0.5 (to 1e-9
+// relative), where the difference would lose its digits.
+float apAngleLessSine(float a, float sinA)
+{
+  float q = a * a;
+  float series = a * q / 6.0 * (1.0 - q / 20.0 * (1.0 - q / 42.0 * (1.0 - q / 72.0)));
+  return a < 0.5 ? series : a - sinA;
+}
+
+// The lens's first moment B (ap_light.h, 3) about the axis cS of the smaller cap: the rim
+// arc of that cap (half-angle aS about the tangent tS towards the other axis) and the other
+// cap's (aO about tO towards cS), from half-angle pairs (sin, cos) of rS, rO and d. Every term
+// is of the lens's size; about the sphere's centre the big cap's rim gives two terms of
+// ~ aO sin rO that cancel to the lens's ~ rl^2, turning a float centroid by several rl.
+vec3 apLensMoment(vec3 cS, vec3 tS, float aS, float sinAS, vec2 halfS, vec3 cO, vec3 tO,
+  float aO, float sinAO, vec2 halfO, vec2 halfD)
+{
+  float sinRS = 2.0 * halfS.x * halfS.y, sinRO = 2.0 * halfO.x * halfO.y;
+  // sin((rO - d)/2), sin((rO + d)/2), cos((rO + d)/2)
+  float dif = halfO.x * halfD.y - halfO.y * halfD.x;
+  float sum = halfO.x * halfD.y + halfO.y * halfD.x;
+  float cosSum = halfO.y * halfD.y - halfO.x * halfD.x;
+  return sinRS * (aS * sinRS * cS + 2.0 * halfS.x * halfS.x * sinAS * tS) +
+    sinRO * ((apAngleLessSine(aO, sinAO) * sinRO + 2.0 * sinAO * cosSum * dif) * cO +
+              2.0 * sinAO * sum * dif * tO);
 }
 
 // Intersection area (sr) of caps whose lens sines are sn (apLensSines), ALGORITHMS.md 1.1/1.2:
@@ -114,9 +159,9 @@ float apCapCosineIntegral(float cosT, float sinS, float cosS)
   if (cosT * cosT >= sin2s) { return AP_PI * sin2s * max(cosT, 0.0); }
   float sinT = sqrt(max(0.0, 1.0 - cosT * cosT));
   float y = -cosS * cosT / (sinS * sinT);
-  float sy = sinT * sqrt(max(0.0, 1.0 - y * y));
-  float t = atan(sy * sinS, cosS);
-  return max(0.0, cosT * acos(clamp(y, -1.0, 1.0)) * sin2s - cosS * sinS * sy + t);
+  float w = sqrt(max(0.0, (1.0 - y) * (1.0 + y))), sy = sinT * w; // (w = sin acos y)
+  float t = apAtan2(sy * sinS, cosS);
+  return max(0.0, cosT * apAtan2(w, y) * sin2s - cosS * sinS * sy + t);
 }
 
 #ifdef AP_SKY_TABLE
@@ -131,9 +176,9 @@ vec3 apSkyTexel(int i, int j, int k)
 vec3 apSkyLookup(vec3 b, float rp)
 {
   int na = apertureSkyTableSize[0], ne = apertureSkyTableSize[1], nr = apertureSkyTableSize[2];
-  float az = atan(b.x, b.y);
+  float az = apAtan2(b.x, b.y);
   if (az < 0.0) { az += 2.0 * AP_PI; }
-  float el = clamp(asin(clamp(b.z / length(b), -1.0, 1.0)), 0.0, 0.5 * AP_PI);
+  float el = clamp(apAtan2(b.z, length(b.xy)), 0.0, 0.5 * AP_PI);
   float r = clamp(rp, 0.0, 0.5 * AP_PI);
   float fa = az / (2.0 * AP_PI) * float(na) - 0.5;
   float fe = el / (0.5 * AP_PI) * float(ne - 1), fr = r / (0.5 * AP_PI) * float(nr - 1);
@@ -192,13 +237,14 @@ vec3 apIrradiance(vec3 apN, vec3 apB, float apRp)
     // 2. the visible part of the sun: aperture cap (b, rp) against the sun cap (s, rl), axes
     //    d apart: cos d = b.s, sin d = |b x s|
     float apCd = dot(apB, apS), apSd = length(cross(apB, apS));
-    vec4 apSn = apLensSines(apHalf, apertureSunHalf, apHalfAngle(apCd, apSd));
+    vec2 apHd = apHalfAngle(apCd, apSd);
+    vec4 apSn = apLensSines(apHalf, apertureSunHalf, apHd);
     float apA1, apA2, apSinA1, apSinA2, apE3;
     apCapLens(apSn, apCosRp, apertureSunCos, apCd, apA1, apA2, apSinA1, apSinA2, apE3);
     bool apPartial;
     float apVis = apCapIntersectionExact(apSn, apHp, apHl, apA1, apA2, apE3, apPartial);
 #ifdef AP_SMOOTHSTEP
-    apVis = apCapIntersectionSmoothstep(apRp, apRl, atan(apSd, apCd), apHp, apHl);
+    apVis = apCapIntersectionSmoothstep(apRp, apRl, apAtan2(apSd, apCd), apHp, apHl);
 #endif
     if (apRp <= 0.0)
     {
@@ -213,15 +259,18 @@ vec3 apIrradiance(vec3 apN, vec3 apB, float apRp)
 #else
     {
       // centroid: area times the cosine of the lens centroid (first moment, 1.6); in
-      // containment the smaller cap's axis, else the lens' moment from the tangents
-      // t1 = (s - cos d b) / sin d, t2 = (b - cos d s) / sin d
+      // containment the smaller cap's axis, else the lens's moment about the smaller cap's
+      // axis, with the tangents t1 = (s - cos d b) / sin d at b and t2 = (b - cos d s) / sin d
+      // at s
       vec3 apC = apRp < apRl ? apB : apS;
       if (apPartial)
       {
         vec3 apT1 = (apS - apCd * apB) / apSd, apT2 = (apB - apCd * apS) / apSd;
-        vec3 apM = apSinRp * (apA1 * apSinRp * apB - apSinA1 * apCosRp * apT1) +
-          apertureSunSin * (apA2 * apertureSunSin * apS - apSinA2 * apertureSunCos * apT2);
-        apC = normalize(apM);
+        apC = normalize(apRp <= apRl
+            ? apLensMoment(apB, apT1, apA1, apSinA1, apHalf, apS, apT2, apA2, apSinA2,
+                apertureSunHalf, apHd)
+            : apLensMoment(apS, apT2, apA2, apSinA2, apertureSunHalf, apB, apT1, apA1, apSinA1,
+                apHalf, apHd));
       }
       apS_ = apVis * max(0.0, dot(apN, apC));
     }
