@@ -116,6 +116,11 @@ public:
    */
   bool IsLocal();
 
+  /** Radius (m) of the sphere a local CRS is placed on, its grid's centre at latitude and
+   *  longitude 0 and +y north: the Earth's mean radius, IUGG's R1 of GRS 80 (6,371,008.8 m).
+   *  vtkApertureSkyVisibility's curvature and vtkApertureTerrainMesh's geometry use it. */
+  static double GetLocalSphereRadius() { return 6371008.8; }
+
   /**
    * True when the grid's columns are meridians and its rows parallels: a geographic CRS, or a
    * normal-aspect cylindrical projection (Mercator, Web Mercator, equirectangular, cylindrical

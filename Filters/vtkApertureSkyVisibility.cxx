@@ -66,9 +66,6 @@ constexpr double ConformalTurn = 1e-4;
 // most this much (rad, 0.006 degree) at the lattice cell's centre, else each cell's own
 // (within some lattice cells of a pole).
 constexpr double GammaTolerance = 1e-4;
-// The Earth's mean radius (m, IUGG's R1 of GRS 80): the curvature of a DEM in a local CRS,
-// which has no ellipsoid and no place on it.
-constexpr double MeanEarthRadius = 6371008.8;
 // Cells of the grid above which a sector's phases run in slices, reporting progress between
 // them (RequestData): some 0.1-0.4 s of a sector's costliest phase on two threads.
 constexpr double SliceCells = 8.0 * 1024 * 1024;
@@ -761,7 +758,9 @@ int vtkApertureSkyVisibility::Execute(
     }
   }
   std::vector<double> dx(sizedRows), dy(sizedRows);
-  double centre[2] = { 0.0, 0.0 }, ellipsoid[2] = { MeanEarthRadius, 0.0 };
+  // (a local CRS: its sphere, the centre at latitude 0)
+  double centre[2] = { 0.0, 0.0 };
+  double ellipsoid[2] = { vtkApertureGeoreference::GetLocalSphereRadius(), 0.0 };
   double endDx, endDy; // (whether the first and last rows have sizes, not their values)
   if (!geo->GetRowCellSizesMetres(rowSizes ? 0 : nyWhole / 2, static_cast<int>(sizedRows),
         dx.data(), dy.data()) ||

@@ -142,9 +142,11 @@ std::string FormatOffset(int32_t offset)
 
 /** The meridian convergence (degrees) at lon/lat in the DEM's projection: 0 without a DEM
  *  (a place given by latitude and longitude only), NaN where the projection fails. */
+// γ at (lon, lat) on the DEM's projection; 0 without a DEM and on a local CRS, whose grid's
+// +y axis is north by convention.
 double ConvergenceAt(vtkApertureGeoreference* geo, double lon, double lat)
 {
-  return geo ? geo->ComputeMeridianConvergence(lon, lat) : 0.0;
+  return geo && !geo->IsLocal() ? geo->ComputeMeridianConvergence(lon, lat) : 0.0;
 }
 
 struct ZoneDeleter
@@ -381,8 +383,9 @@ bool vtkApertureSolarPosition::SetPlaceFromImage(vtkImageData* dem)
     return true;
   }
   vtkNew<vtkApertureGeoreference> geo;
-  double lonlat[2];
-  if (!geo->SetFromImage(dem) || !geo->GetCentreLonLat(lonlat))
+  // (a site grid in a local CRS has no place on the Earth: no latitude and longitude)
+  double lonlat[2] = { kNaN, kNaN };
+  if (!geo->SetFromImage(dem) || (!geo->IsLocal() && !geo->GetCentreLonLat(lonlat)))
   {
     d.Error = std::string("the DEM has no usable georeference: ") + geo->GetErrorMessage();
     vtkErrorMacro(<< d.Error);
@@ -450,7 +453,13 @@ bool vtkApertureSolarPosition::Compute()
   this->ClearResults();
 
   std::string problem;
-  if (!(std::fabs(this->Latitude) <= 90.0))
+  if (d.Geo && d.Geo->IsLocal() && (std::isnan(this->Latitude) || std::isnan(this->Longitude)))
+  {
+    problem = "the DEM is in a local CRS (a site grid, no place on the Earth), so the sun has "
+              "no position for a time there: set the site's Latitude and Longitude, or give "
+              "the sun's direction (ComputeForDirection)";
+  }
+  else if (!(std::fabs(this->Latitude) <= 90.0))
   {
     problem = "the latitude must be within -90..90 degrees";
   }

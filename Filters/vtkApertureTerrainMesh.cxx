@@ -29,7 +29,9 @@
 #include "ap_grid.h"
 #include "ap_mesh.h"
 
+#include <GeographicLib/AzimuthalEquidistant.hpp>
 #include <GeographicLib/Geocentric.hpp>
+#include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/LocalCartesian.hpp>
 
 #include <algorithm>
@@ -187,11 +189,16 @@ int vtkApertureTerrainMesh::Execute(
   const vtkIdType n = static_cast<vtkIdType>(nx * ny);
 
   vtkNew<vtkApertureGeoreference> geo;
-  if (!geo->SetFromImage(input) || !geo->CheckLongitudeSpan())
+  if (!geo->SetFromImage(input) || (!geo->IsLocal() && !geo->CheckLongitudeSpan()))
   {
     vtkErrorMacro(<< geo->GetErrorMessage());
     return 0;
   }
+  // A site grid in a local CRS lies on the sphere of GetLocalSphereRadius, its centre at
+  // latitude and longitude 0, +y north: each point at its azimuthal equidistant place there
+  // (its distance and direction from the centre on the ground are the grid's).
+  const bool site = geo->IsLocal();
+  const double siteUnit = site ? geo->GetCRSUnitMetres() : 0.0;
 
   // 2. Frame origin: the centre of the whole extent (shared by every piece of a streamed DEM).
   double origin[3], spacing[3];
@@ -199,8 +206,9 @@ int vtkApertureTerrainMesh::Execute(
   input->GetSpacing(spacing);
   const double centre[2] = { origin[0] + 0.5 * (whole[0] + whole[1]) * spacing[0],
     origin[1] + 0.5 * (whole[2] + whole[3]) * spacing[1] };
-  double lonlat0[2], ellipsoid[2];
-  if (!geo->CRSToLonLat(centre[0], centre[1], lonlat0) || !geo->GetEllipsoid(ellipsoid))
+  double lonlat0[2] = { 0.0, 0.0 };
+  double ellipsoid[2] = { vtkApertureGeoreference::GetLocalSphereRadius(), 0.0 };
+  if (!site && (!geo->CRSToLonLat(centre[0], centre[1], lonlat0) || !geo->GetEllipsoid(ellipsoid)))
   {
     vtkErrorMacro(<< geo->GetErrorMessage());
     return 0;
@@ -274,10 +282,12 @@ int vtkApertureTerrainMesh::Execute(
   {
     const GeographicLib::Geocentric earth(ellipsoid[0], ellipsoid[1]);
     const GeographicLib::LocalCartesian frame(lonlat0[1], lonlat0[0], 0.0, earth);
+    const GeographicLib::Geodesic sphere(ellipsoid[0], site ? 0.0 : ellipsoid[1]);
+    const GeographicLib::AzimuthalEquidistant siteMap(sphere);
     const vtkIdType grain = std::max<vtkIdType>(1, 65536 / static_cast<vtkIdType>(nx));
     vtkSMPTools::For(0, static_cast<vtkIdType>(ny), grain, [&](vtkIdType j0, vtkIdType j1) {
       vtkApertureGeoreference* local = transformers.Local();
-      if (!local->HasCRS() && !local->SetCRS(crs.c_str()))
+      if (!site && !local->HasCRS() && !local->SetCRS(crs.c_str()))
       {
         failed = true;
         return;
@@ -292,7 +302,15 @@ int vtkApertureTerrainMesh::Execute(
         xy[2 * q] = origin[0] + (ext[0] + static_cast<double>(i)) * spacing[0];
         xy[2 * q + 1] = origin[1] + (ext[2] + static_cast<double>(j)) * spacing[1];
       }
-      if (!local->CRSToLonLatPoints(static_cast<vtkIdType>(count), xy.data(), ll.data()))
+      if (site)
+      {
+        for (size_t q = 0; q < count; ++q)
+        {
+          siteMap.Reverse(0.0, 0.0, (xy[2 * q] - centre[0]) * siteUnit,
+            (xy[2 * q + 1] - centre[1]) * siteUnit, ll[2 * q + 1], ll[2 * q]);
+        }
+      }
+      else if (!local->CRSToLonLatPoints(static_cast<vtkIdType>(count), xy.data(), ll.data()))
       {
         failed = true;
         return;

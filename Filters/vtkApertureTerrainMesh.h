@@ -9,7 +9,12 @@
  * coordinates on the CRS's own ellipsoid, then with GeographicLib's LocalCartesian to a local
  * East-North-Up frame (x east, y north, z up, metres) whose origin is the centre of the DEM's
  * whole extent at height 0 on that ellipsoid. Earth curvature is therefore in the geometry:
- * far from the origin the surface drops below z = elevation by about d^2 / (2 R).
+ * far from the origin the surface drops below z = elevation by about d^2 / (2 R). A DEM in a
+ * local CRS (a site grid, vtkApertureGeoreference::IsLocal) lies on the sphere of
+ * vtkApertureGeoreference::GetLocalSphereRadius, its centre at latitude and longitude 0 and its
+ * +y axis north, each point at its azimuthal equidistant place about the centre (so its ground
+ * distance and direction from the centre are the grid's), as vtkApertureSkyVisibility bakes it;
+ * FrameOrigin is then (0, 0, 0) and FrameEllipsoid that sphere.
  *
  * Output: one vertex per input point, vertex id = input point id (i + j * columns), so every
  * input point array (Elevation and later products) is carried over, unchanged except
@@ -38,8 +43,9 @@
  *
  * Errors (vtkErrorMacro and a failed update): no elevation array or one that is not a
  * one-component float/double array, a whole DEM smaller than 2 x 2 (a streamed piece that thin
- * just gives an empty mesh), no CRS or one without geographic coordinates, every point
- * nodata, or a mesh the process cannot allocate (out of memory; the message gives the size).
+ * just gives an empty mesh), no CRS or one without geographic coordinates (other than a local
+ * one), every point nodata, or a mesh the process cannot allocate (out of memory; the message
+ * gives the size).
  *
  * @warning Heights are used as given (usually orthometric, above the geoid) as heights above
  * the ellipsoid; over one DEM the geoid separation is nearly constant and shifts the whole mesh

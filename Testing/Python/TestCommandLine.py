@@ -459,7 +459,8 @@ class TestBadInput(CommandLineTest):
     def test_local_crs(self):
         # A site grid: metric cells from its unit, no place on the Earth. info and bake work
         # (the bake in the grid's axes, on a sphere of the mean radius: TestSkyVisibility);
-        # what needs a place (the sun, the mesh's East-North-Up) says why it cannot.
+        # the sun for a time needs a place and says so (render with --sun-az/--sun-el:
+        # TestCommandLineRender).
         p = make_raster(self.path("local.tif"), [[1.0, 2.0, 3.0], [2.0, 5.0, 4.0]],
                         (0, 10, 0, 20, 0, -10), srs='LOCAL_CS["mine grid",UNIT["foot",0.3048]]')
         d, _ = self.info(p)
@@ -481,8 +482,9 @@ class TestBadInput(CommandLineTest):
         self.assertIn("mean Earth radius", ds.GetMetadataItem("EARTH_CURVATURE"))
         self.assertTrue(ds.GetSpatialRef().IsLocal())
         ds = None
-        self.assert_error("no geographic coordinates", "sun", "--dem", p, "--zfactor", "ft",
-                          "--at", "2026-06-21T12:00Z")
+        self.assert_error("the DEM %s is in a local CRS (a site grid, no place on the Earth); "
+                          "give the site's place with --lat/--lon" % p, "sun", "--dem", p,
+                          "--zfactor", "ft", "--at", "2026-06-21T12:00Z")
 
     def test_geocentric_crs(self):
         # PROJ takes a geocentric CRS's x, y as X, Y at Z = 0 (the equator): refused by name.

@@ -177,6 +177,42 @@ class TestCommandLineRender(unittest.TestCase):
         self.assertNotAlmostEqual(halves["180,35"][0] - halves["180,35"][1],
                                   halves["0,35"][0] - halves["0,35"][1], delta=3.0)
 
+    def test_local_crs(self):
+        # A site grid in a local CRS renders with the sun given by its direction, as the same
+        # grid on UTM's central meridian does (grid north true north there; ground cells 0.04%
+        # larger); a time needs a place, which it has not: refused, as is `sun --dem` of it.
+        import numpy as np
+        from osgeo import gdal
+        gdal.UseExceptions()
+        y, x = np.mgrid[0:90, 0:120] * 30.0
+        z = (250 * np.sin(x / 500) * np.cos(y / 400) + 80 * np.sin(x / 150 + y / 210) + 400)
+        pictures = {}
+        with tempfile.TemporaryDirectory() as tmp:
+            for name, crs in (("local", 'LOCAL_CS["mine grid",UNIT["metre",1]]'),
+                              ("utm", "EPSG:32631")):
+                path = os.path.join(tmp, name + ".tif")
+                ds = gdal.GetDriverByName("GTiff").Create(path, 120, 90, 1, gdal.GDT_Float32)
+                ds.SetGeoTransform((500000.0 - 1800.0, 30.0, 0.0, 1000000.0, 0.0, -30.0))
+                ds.SetProjection(crs)
+                ds.GetRasterBand(1).WriteArray(z.astype(np.float32))
+                ds = None
+                pictures[name] = render_rgb(self, os.path.join(tmp, name + ".png"), path)
+            diff = np.abs(pictures["local"] - pictures["utm"]).max(axis=1)
+            self.assertGreater(pictures["local"].std(), 20.0)  # terrain, lit
+            self.assertLess(diff.mean(), 0.05)
+            # (the outline moves by 0.04%: a few of its pixels change)
+            self.assertLess((diff > 2).mean(), 0.002)
+            local = os.path.join(tmp, "local.tif")
+            status, _, stderr = run("render", local, "-o", os.path.join(tmp, "x.png"),
+                                    "--at", "2026-06-21T12:00Z")
+            self.assertEqual(status, 1, stderr)
+            self.assertIn("local CRS (a site grid, no place on the Earth), where the sun has no "
+                          "position for a time: give its direction with --sun-az/--sun-el", stderr)
+            status, _, stderr = run("sun", "--dem", local, "--at", "2026-06-21T12:00Z")
+            self.assertEqual(status, 1, stderr)
+            self.assertIn("is in a local CRS (a site grid, no place on the Earth); give the "
+                          "site's place with --lat/--lon", stderr)
+
     def test_baked(self):
         # A bake of this DEM lights it as the render's own bake does (the GeoTIFF keeps the
         # aperture radius in degrees as float32: a level at most); a bake of another grid of

@@ -201,6 +201,48 @@ void TestTimeZones()
   AP_CHECK(std::string(sun->GetTimeZone()) == "Europe/Zurich"); // kept
 }
 
+// A site grid in a local CRS: no place on the Earth. The place is taken (its height too),
+// latitude and longitude NaN; Compute() fails saying why until they are set, while a sun given
+// by its direction needs none: the grid's +y axis is north (no convergence), and the mesh's
+// frame is the grid's (east along +x, the DEM's centre at the origin).
+void TestLocalGrid()
+{
+  auto dem = MakeUTM(0.0, 0.0);
+  vtkNew<vtkApertureGeoreference> geo;
+  AP_CHECK(geo->SetCRS("LOCAL_CS[\"site grid\",UNIT[\"metre\",1]]") &&
+    geo->AttachToImage(dem));
+  vtkNew<vtkApertureSolarPosition> sun;
+  vtkNew<vtkTest::ErrorObserver> errors;
+  sun->AddObserver(vtkCommand::ErrorEvent, errors);
+  AP_CHECK(sun->SetTime("2026-06-21T12:00Z"));
+  AP_CHECK(sun->SetPlaceFromImage(dem));
+  AP_CHECK(std::isnan(sun->GetLatitude()) && std::isnan(sun->GetLongitude()));
+  AP_CHECK_NEAR(sun->GetHeight(), 250.0, 0.0);
+  AP_CHECK(!sun->Compute());
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "local CRS");
+  AP_CHECK(sun->ComputeForDirection(300.0, 20.0));
+  AP_CHECK_NEAR(sun->GetGridConvergence(), 0.0, 0.0);
+  AP_CHECK_NEAR(sun->GetGridAzimuth(), 300.0, 1e-12);
+  AP_CHECK(std::isfinite(sun->GetDirectNormalIrradiance()) &&
+    sun->GetDirectNormalIrradiance() > 100.0);
+  vtkNew<vtkApertureTerrainMesh> mesher;
+  mesher->SetInputData(dem);
+  mesher->Update();
+  double centre[3], east[3];
+  mesher->GetOutput()->GetPoint(100 * 201 + 100, centre);
+  mesher->GetOutput()->GetPoint(100 * 201 + 101, east);
+  AP_CHECK_NEAR(centre[0], 0.0, 1e-3);
+  const double R = vtkApertureGeoreference::GetLocalSphereRadius();
+  AP_CHECK_NEAR(east[0] - centre[0], 100.0 * (1.0 + 250.0 / R), 1e-4); // (at 250 m up)
+  AP_CHECK_NEAR(east[1] - centre[1], 0.0, 1e-3);
+  // placed by hand, the site has a sun for a time again (the grid still north)
+  sun->SetLatitude(46.0);
+  sun->SetLongitude(7.0);
+  AP_CHECK(sun->Compute());
+  AP_CHECK_NEAR(sun->GetGridConvergence(), 0.0, 0.0);
+  AP_CHECK(sun->GetElevation() > 60.0); // midsummer noon at 46 N: 67 degrees
+}
+
 void TestBadInput()
 {
   vtkNew<vtkApertureSolarPosition> sun;
@@ -246,5 +288,6 @@ int TestApertureSolarPosition(int, char*[])
   TestSPACase();
   TestTimeZones();
   TestBadInput();
+  TestLocalGrid();
   return aptest::Result();
 }

@@ -569,6 +569,10 @@ def _render_sun(args, image, watcher):
     if args.at:
         if args.sun_az is not None or args.sun_el is not None:
             raise ApertureError("give either --at or --sun-az/--sun-el, not both")
+        if math.isnan(sun.GetLatitude()):
+            raise ApertureError("the DEM is in a local CRS (a site grid, no place on the Earth), "
+                                "where the sun has no position for a time: give its direction "
+                                "with --sun-az/--sun-el instead of --at")
         if args.tz and not sun.SetTimeZone(args.tz):
             raise ApertureError(sun.GetErrorMessage())
         if not sun.SetTime(args.at) or not sun.Compute():
@@ -1442,6 +1446,9 @@ def cmd_sun(args):
         _, image = read_dem(args, watcher)
         if not sun.SetPlaceFromImage(image):
             raise ApertureError(sun.GetErrorMessage())
+        if math.isnan(sun.GetLatitude()):
+            raise ApertureError("the DEM %s is in a local CRS (a site grid, no place on the "
+                                "Earth); give the site's place with --lat/--lon" % args.dem)
         if args.height is not None:
             sun.SetHeight(args.height)
     else:
