@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkApertureSkyVisibility.h"
 
+#include "vtkApertureElevation.h"
 #include "vtkApertureGeoreference.h"
 #include "vtkApertureMemory.h"
 #include "vtkApertureSMPThreads.h"
@@ -41,10 +42,6 @@ vtkStandardNewMacro(vtkApertureSkyVisibility);
 
 namespace
 {
-// The range of the Earth's surface with a margin (m): Challenger Deep about -10,935 m, Everest
-// 8,849 m, orthometric or ellipsoidal (the geoid stays within about 110 m of the ellipsoid).
-constexpr float EarthLowest = -11100.0f;
-constexpr float EarthHighest = 9000.0f;
 // A projected DEM's ground cell size may differ from its centre's by this much (relative) at
 // its corners and edge midpoints before the filter warns: a horizon's tangent there is off by
 // as much (a 45-degree horizon by 0.14 degree at 0.5%; a whole UTM zone changes by 0.1%).
@@ -659,21 +656,7 @@ int vtkApertureSkyVisibility::Execute(
   {
     throw std::bad_alloc();
   }
-  const auto finite = [](float v) {
-    return std::isfinite(v) ? v : std::numeric_limits<float>::quiet_NaN();
-  };
-  if (vtkFloatArray* floats = vtkFloatArray::FastDownCast(elevation))
-  {
-    // (the reader's type: read in place, not through a virtual call per value)
-    std::transform(floats->GetPointer(0), floats->GetPointer(0) + n, z.get(), finite);
-  }
-  else
-  {
-    for (size_t k = 0; k < n; ++k)
-    {
-      z[k] = finite(static_cast<float>(elevation->GetComponent(static_cast<vtkIdType>(k), 0)));
-    }
-  }
+  vtkApertureCopyElevations(elevation, 0, static_cast<vtkIdType>(n), z.get());
   const ap_grid_view zview =
     ap_grid_view_make(z.get(), static_cast<size_t>(nx), static_cast<size_t>(ny));
   // (the one statistics pass here: the kernel's validation in ap_horizon_create is the other)
@@ -684,12 +667,12 @@ int vtkApertureSkyVisibility::Execute(
     vtkErrorMacro(<< "elevation statistics: " << ap_status_string(st));
     return 0;
   }
-  if (range.valid > 0 && (range.min < EarthLowest || range.max > EarthHighest))
+  const std::string implausible = range.valid > 0
+    ? vtkApertureElevationWarning(range.min, range.max, "Sky products computed from them")
+    : std::string();
+  if (!implausible.empty())
   {
-    vtkWarningMacro(<< "elevations range from " << range.min << " to " << range.max
-                    << " m, beyond any on Earth (" << EarthLowest << " to " << EarthHighest
-                    << " m): a nodata value the DEM does not declare, or heights not in "
-                       "metres? Sky products computed from them are meaningless");
+    vtkWarningMacro(<< implausible);
   }
   // Abort checkpoints in the serial set-up, which takes seconds on a DEM of 10^8 cells and more
   // before the first sector reports: a ProgressEvent at 0 (whose observers may abort), then

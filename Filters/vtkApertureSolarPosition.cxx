@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -556,9 +557,33 @@ bool vtkApertureSolarPosition::ComputeLight(double distance)
     ap_sky_sunlight_compute(&sp, this->GetZenith() * kDeg, &d.Beam) != AP_OK ||
     ap_sky_prepare(&sp, sunDir, &d.Sky) != AP_OK)
   {
-    d.Error = "the light: Turbidity must be within 2..10, LinkeTurbidity within 1..8 and the "
-              "height within -1000..10000 m (it is " +
-      std::to_string(this->Height) + " m)";
+    // (the ranges of ap_sky_params_validate that these properties reach)
+    std::ostringstream msg;
+    msg << "the light: ";
+    if (!(this->Turbidity >= 2.0 && this->Turbidity <= 10.0))
+    {
+      msg << "Turbidity must be within 2..10, not " << this->Turbidity;
+    }
+    else if (!(this->LinkeTurbidity >= 1.0 && this->LinkeTurbidity <= 8.0))
+    {
+      msg << "LinkeTurbidity must be within 1..8, not " << this->LinkeTurbidity;
+    }
+    else if (!(this->Height >= -1000.0 && this->Height <= 10000.0))
+    {
+      msg << "the site's height, " << this->Height << " m";
+      if (d.Geo)
+      {
+        msg << " (the DEM's elevation at its centre: a nodata value the DEM does not declare, "
+               "or heights not in metres?)";
+      }
+      msg << ", is outside -1000..10000 m";
+    }
+    else
+    {
+      msg << "DiffuseHorizontalIrradiance must be finite, not "
+          << this->DiffuseHorizontalIrradiance;
+    }
+    d.Error = msg.str();
     vtkErrorMacro(<< d.Error);
     return false;
   }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkApertureTerrainMesh.h"
 
+#include "vtkApertureElevation.h"
 #include "vtkApertureGeoreference.h"
 #include "vtkApertureMemory.h"
 
@@ -214,21 +215,13 @@ int vtkApertureTerrainMesh::Execute(
     return 0;
   }
 
-  // 3. Elevations as contiguous float with NaN for nodata (a copy: the input may be double or
-  //    not array-of-structs, and points outside the CRS's domain become nodata below).
+  // 3. Elevations as contiguous float with NaN for nodata, and for any that is not finite, as
+  //    the reader makes them (a copy: the input may be double or not array-of-structs, and
+  //    points outside the CRS's domain become nodata below).
   std::unique_ptr<float[]> zBuffer(new float[static_cast<size_t>(n)]);
   float* z = zBuffer.get();
-  vtkFloatArray* floatElevation = vtkFloatArray::SafeDownCast(elevation);
   vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    if (floatElevation)
-    {
-      std::copy(floatElevation->GetPointer(begin), floatElevation->GetPointer(end), z + begin);
-      return;
-    }
-    for (vtkIdType k = begin; k < end; ++k)
-    {
-      z[k] = static_cast<float>(elevation->GetComponent(k, 0));
-    }
+    vtkApertureCopyElevations(elevation, begin, end, z);
   });
   const ap_grid_view grid = ap_grid_view_make(z, nx, ny);
   ap_grid_stats stats;
@@ -242,6 +235,12 @@ int vtkApertureTerrainMesh::Execute(
   {
     vtkErrorMacro(<< "every point of the DEM is nodata; there is no terrain to mesh");
     return 0;
+  }
+  const std::string implausible =
+    vtkApertureElevationWarning(stats.min, stats.max, "A mesh and pictures made of them");
+  if (!implausible.empty())
+  {
+    vtkWarningMacro(<< implausible);
   }
   this->UpdateProgress(0.1);
 
@@ -419,6 +418,15 @@ int vtkApertureTerrainMesh::Execute(
     rowStart[j] += rowStart[j - 1];
   }
   const vtkIdType ntri = static_cast<vtkIdType>(rowStart.back());
+  if (ntri == 0 && std::equal(ext, ext + 6, whole))
+  {
+    // (a streamed piece of nodata has none; the whole DEM must have a triangle to draw)
+    vtkErrorMacro(<< "no 2 x 2 block of the DEM's points has three valid corners, which a "
+                     "triangle needs: its valid points ("
+                  << stats.valid
+                  << ") are each isolated among nodata; there is no terrain to mesh");
+    return 0;
+  }
   vtkNew<vtkCellArray> polys;
   auto fill = [&](auto* offsets, auto* connectivity, auto writeRows) {
     vtkApertureAllocate(offsets, nullptr, 1, ntri + 1);

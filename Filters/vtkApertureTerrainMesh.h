@@ -5,6 +5,9 @@
  *
  * Input: a DEM image as vtkApertureDEMReader produces it (point array `Elevation` in metres,
  * NaN = nodata, `CRS` in the field data; see vtkApertureGeoreference for the conventions).
+ * Any elevation that is not finite is nodata too, as the reader makes it; finite ones beyond
+ * any on the Earth (below -11,100 or above 9,000 m: an undeclared nodata value such as -32768,
+ * heights not in metres) are meshed as they are, with a warning naming their range.
  * Lat/lon and projected DEMs are both handled: every cell centre is converted to geographic
  * coordinates on the CRS's own ellipsoid, then with GeographicLib's LocalCartesian to a local
  * East-North-Up frame (x east, y north, z up, metres) whose origin is the centre of the DEM's
@@ -44,8 +47,9 @@
  * Errors (vtkErrorMacro and a failed update): no elevation array or one that is not a
  * one-component float/double array, a whole DEM smaller than 2 x 2 (a streamed piece that thin
  * just gives an empty mesh), no CRS or one without geographic coordinates (other than a local
- * one), every point nodata, or a mesh the process cannot allocate (out of memory; the message
- * gives the size).
+ * one), every point nodata or no triangle at all (each valid point isolated among nodata; a
+ * streamed piece just gives an empty mesh), or a mesh the process cannot allocate (out of
+ * memory; the message gives the size).
  *
  * @warning Heights are used as given (usually orthometric, above the geoid) as heights above
  * the ellipsoid; over one DEM the geoid separation is nearly constant and shifts the whole mesh

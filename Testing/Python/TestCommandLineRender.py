@@ -213,6 +213,35 @@ class TestCommandLineRender(unittest.TestCase):
             self.assertIn("is in a local CRS (a site grid, no place on the Earth); give the "
                           "site's place with --lat/--lon", stderr)
 
+    def test_no_picture_to_make(self):
+        # A DEM whose valid cells are all isolated among nodata has no triangle to draw, and one
+        # whose centre holds an undeclared nodata value no height for the light: each refused
+        # by name instead of a blank or meaningless picture.
+        import numpy as np
+        from osgeo import gdal
+        gdal.UseExceptions()
+        with tempfile.TemporaryDirectory() as tmp:
+            for name, z, expected in (
+                    ("checkerboard", np.where(np.indices((30, 40)).sum(axis=0) % 2, -9999.0, 5.0),
+                     "meshing: no 2 x 2 block of the DEM's points has three valid corners, which "
+                     "a triangle needs: its valid points (600) are each isolated among nodata"),
+                    ("voids", np.full((30, 40), -32768.0),
+                     "the light: the site's height, -32768 m (the DEM's elevation at its centre: "
+                     "a nodata value the DEM does not declare, or heights not in metres?), is "
+                     "outside -1000..10000 m")):
+                path = os.path.join(tmp, name + ".tif")
+                ds = gdal.GetDriverByName("GTiff").Create(path, 40, 30, 1, gdal.GDT_Float32)
+                ds.SetGeoTransform((400000.0, 30.0, 0.0, 5000000.0, 0.0, -30.0))
+                ds.SetProjection("EPSG:32633")
+                ds.GetRasterBand(1).SetNoDataValue(-9999.0)
+                ds.GetRasterBand(1).WriteArray(z.astype(np.float32))
+                ds = None
+                out = os.path.join(tmp, name + ".png")
+                status, _, stderr = run("render", path, "-o", out)
+                self.assertEqual(status, 1, stderr)
+                self.assertIn(expected, stderr)
+                self.assertFalse(os.path.exists(out))
+
     def test_baked(self):
         # A bake of this DEM lights it as the render's own bake does (the GeoTIFF keeps the
         # aperture radius in degrees as float32: a level at most); a bake of another grid of

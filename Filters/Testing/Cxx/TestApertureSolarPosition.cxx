@@ -273,6 +273,30 @@ void TestBadInput()
   // 1e15 s / 31556952 s per mean Gregorian year = 31688738 years after 1970
   AP_CHECK_CONTAINS(sun->GetErrorMessage(),
     "the year 31690708 is outside the years the algorithm covers (-2000..6000)");
+  // the light's parameters, each named
+  sun->SetUnixTime(1.78e9);
+  sun->SetTurbidity(11.0);
+  AP_CHECK(!sun->Compute());
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "the light: Turbidity must be within 2..10, not 11");
+  sun->SetTurbidity(3.0);
+  sun->SetLinkeTurbidity(0.5);
+  AP_CHECK(!sun->ComputeForDirection(180.0, 30.0));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "LinkeTurbidity must be within 1..8, not 0.5");
+  sun->SetLinkeTurbidity(3.0);
+  sun->SetHeight(20000.0);
+  AP_CHECK(!sun->Compute());
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "the site's height, 20000 m, is outside -1000..10000");
+  // a DEM's undeclared nodata at its centre: named as the likely cause
+  auto voids = MakeUTM(500000.0, 5000000.0);
+  vtkFloatArray::SafeDownCast(voids->GetPointData()->GetScalars())->FillValue(-32768.0f);
+  AP_CHECK(sun->SetPlaceFromImage(voids));
+  AP_CHECK(!sun->ComputeForDirection(180.0, 30.0));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(),
+    "the site's height, -32768 m (the DEM's elevation at its centre: a nodata value the DEM "
+    "does not declare, or heights not in metres?), is outside -1000..10000 m");
+  AP_CHECK(sun->SetPlaceFromImage(nullptr));
+  sun->SetHeight(0.0);
+  AP_CHECK(sun->Compute());
   vtkNew<vtkImageData> bare;
   bare->SetDimensions(3, 3, 1);
   AP_CHECK(!sun->SetPlaceFromImage(bare));

@@ -231,6 +231,41 @@ void TestLocalGeometry()
   AP_CHECK(sphere && sphere->GetValue(0) == R && sphere->GetValue(1) == 0.0);
 }
 
+// Elevations that are not finite are nodata, as the reader makes them: +-inf give the mesh
+// NaN does, point for point, with no warning; finite ones beyond any on the Earth are meshed,
+// with a warning naming their range.
+void TestNonFiniteAndImplausible()
+{
+  const auto mesh = [](float hole, vtkTest::ErrorObserver* warnings) {
+    auto dem = MakeDEM("EPSG:32633", 400000.0, 5000000.0, 10.0, 10.0, 5, 4,
+      [hole](int i, int j) { return i == 2 && j == 1 ? hole : static_cast<float>(i * j); });
+    vtkNew<vtkApertureTerrainMesh> mesher;
+    mesher->AddObserver(vtkCommand::WarningEvent, warnings);
+    mesher->SetInputData(dem);
+    mesher->Update();
+    return vtkSmartPointer<vtkPolyData>(mesher->GetOutput());
+  };
+  vtkNew<vtkTest::ErrorObserver> quiet, loud;
+  auto expected = mesh(NAN, quiet);
+  for (float hole : { INFINITY, -INFINITY })
+  {
+    auto got = mesh(hole, quiet);
+    AP_CHECK(got->GetNumberOfCells() == expected->GetNumberOfCells());
+    for (vtkIdType k = 0; k < expected->GetNumberOfPoints(); ++k)
+    {
+      double a[3], b[3];
+      expected->GetPoint(k, a);
+      got->GetPoint(k, b);
+      AP_CHECK(a[0] == b[0] && a[1] == b[1] && a[2] == b[2]);
+    }
+  }
+  AP_CHECK(!quiet->GetWarning());
+  auto pit = mesh(-32768.0f, loud);
+  AP_CHECK(pit->GetNumberOfCells() == 24);
+  AP_CHECK(loud->GetWarning());
+  AP_CHECK_CONTAINS(loud->GetWarningMessage(), "elevations range from -32768 to 12 m, beyond any");
+}
+
 // Nodata leaves holes; arrays are carried vertex for vertex; normals and texture coordinates.
 void TestHolesAndArrays()
 {
@@ -415,6 +450,11 @@ void TestErrors()
   ExpectError(MakeDEM("EPSG:4326", 0, 0, 1, 1, 1, 5, ok), "at least 2 x 2");
   ExpectError(MakeDEM("EPSG:4326", 0, 0, 1, 1, 3, 3, [](int, int) { return NAN; }),
     "every point of the DEM is nodata");
+  // valid points, each isolated (a checkerboard's blocks have two valid corners at most)
+  ExpectError(MakeDEM("EPSG:4326", 0, 0, 1, 1, 4, 3,
+                [](int i, int j) { return (i + j) % 2 ? NAN : 1.0f; }),
+    "no 2 x 2 block of the DEM's points has three valid corners, which a triangle needs: its "
+    "valid points (6) are each isolated among nodata; there is no terrain to mesh");
   auto vec = MakeDEM("EPSG:4326", 0, 0, 1, 1, 3, 3, ok);
   vtkNew<vtkFloatArray> v3;
   v3->SetName("Elevation");
@@ -435,6 +475,7 @@ int TestApertureTerrainMesh(int, char*[])
   TestLocalGeometry();
   TestBentNormalFrame();
   TestHolesAndArrays();
+  TestNonFiniteAndImplausible();
   TestExaggeration();
   TestErrors();
   return aptest::Result();
