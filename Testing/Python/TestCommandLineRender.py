@@ -176,6 +176,31 @@ class TestCommandLineRender(unittest.TestCase):
                 halves[camera] = (g[:, :100].mean(), g[:, 100:].mean())
         self.assertNotAlmostEqual(halves["180,35"][0] - halves["180,35"][1],
                                   halves["0,35"][0] - halves["0,35"][1], delta=3.0)
+        # a negative azimuth after --camera (argparse alone took it for an option) is the
+        # same camera as its positive turn
+        with tempfile.TemporaryDirectory() as tmp:
+            pictures = [render_rgb(self, os.path.join(tmp, "%d.png" % k), "--camera", camera)
+                        for k, camera in enumerate(("-150,35", "210,35"))]
+        self.assertTrue((pictures[0] == pictures[1]).all())
+
+    def test_night(self):
+        # The sun below the horizon lights nothing (no twilight in the sky models): a black
+        # picture, with a warning saying why.
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "night.png")
+            status, stdout, stderr = run("render", "-o", out, "--size", "200x120",
+                                         "--sun-el", "-5")
+            self.assertEqual(status, 0, stderr)
+            self.assertIn("aperture: warning: the sun is 5.00 degrees below the horizon: the "
+                          "terrain is unlit (the sky models have no twilight), a black picture",
+                          stderr)
+            reader = vtkPNGReader()
+            reader.SetFileName(out)
+            reader.Update()
+            rgb = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3]
+            self.assertGreater((rgb.sum(axis=1) == 0).mean(), 0.3)  # the terrain, black
+            status, _, stderr = run("render", "-o", out, "--size", "200x120", "--sun-el", "1")
+            self.assertEqual((status, "warning" in stderr), (0, False), stderr)
 
     def test_local_crs(self):
         # A site grid in a local CRS renders with the sun given by its direction, as the same

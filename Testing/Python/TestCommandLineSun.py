@@ -54,6 +54,15 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertTrue(err.startswith("aperture: error: "), err)
         return err
 
+    def test_values_starting_with_a_minus(self):
+        # A year before 1 (ISO 8601's -1000 is 1001 BC) after --at, as written after --at=:
+        # argparse alone took it for an option and stopped ("expected one argument").
+        first = self.json_of("--at", "-1000-06-21T12:00Z", "--lat", -33.9, "--lon", -18.4)
+        self.assertEqual(first["time_utc"], "-1000-06-21T12:00:00Z")
+        self.assertEqual((first["latitude_deg"], first["longitude_deg"]), (-33.9, -18.4))
+        self.assertEqual(self.json_of("--at=-1000-06-21T12:00Z", "--lat=-33.9", "--lon=-18.4"),
+                         first)
+
     def test_spa_case(self):
         r = self.json_of("--at", "2003-10-17T12:30:30-07:00", "--lat", 39.742476,
                          "--lon", -105.1786, "--height", 1830.14, "--pressure", 820,

@@ -630,6 +630,10 @@ def cmd_render(args):
             _attach_baked(image, args.baked, reader)
         source = image
     sun = _render_sun(args, image, watcher)
+    if sun.GetElevation() <= 0.0:  # (the beam and the sky models end at the horizon)
+        _warn("the sun is %.2f degrees below the horizon%s: the terrain is unlit (the sky models "
+              "have no twilight), a black picture" % (-sun.GetElevation(),
+                                                      " at that time" if args.at else ""))
     mesher = watcher.watch(vtkApertureTerrainMesh())
     mesher.SetInputData(source)
     mesher.SetVerticalExaggeration(args.exaggeration)
@@ -1757,12 +1761,34 @@ def main(argv=None):
         return 128 + signal.SIGPIPE
 
 
+def _negative_values(parser, argv):
+    """argv with a value that starts with '-' and a digit joined to its option (`--at
+    -2000-01-01T12:00Z`, `--camera -30,20` become `--at=...`, `--camera=...`): argparse takes
+    such a value, not a plain negative number, for an option of its own and stops."""
+    takes_value = set()
+    pending = [parser]
+    while pending:
+        p = pending.pop()
+        for action in p._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                pending.extend(action.choices.values())
+            elif action.option_strings and action.nargs is None:
+                takes_value.update(o for o in action.option_strings if o.startswith("--"))
+    out = []
+    for arg in argv:
+        if out and out[-1] in takes_value and re.match(r"-[0-9.]", arg):
+            out[-1] = out[-1] + "=" + arg
+        else:
+            out.append(arg)
+    return out
+
+
 def _main(argv):
     parser = build_parser()
     if not argv:
         parser.print_help()
         return 0
-    args = parser.parse_args(argv)
+    args = parser.parse_args(_negative_values(parser, argv))
     if not getattr(args, "func", None):
         parser.print_help()
         return 0
