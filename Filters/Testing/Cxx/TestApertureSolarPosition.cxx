@@ -201,6 +201,47 @@ void TestTimeZones()
   AP_CHECK(std::string(sun->GetTimeZone()) == "Europe/Zurich"); // kept
 }
 
+// The sky is prepared on first use after a Compute, from that Compute's parameters: the values
+// of one object asked at any time equal a fresh object's asked at once, a second Compute's
+// sky is its own (not the first's), and a property set after a Compute waits for the next.
+void TestSkyOnDemand()
+{
+  const auto fresh = [](double unixTime, double turbidity, double rgb[3]) {
+    vtkNew<vtkApertureSolarPosition> sun;
+    sun->SetLatitude(46.0);
+    sun->SetLongitude(7.0);
+    sun->SetUnixTime(unixTime);
+    sun->SetTurbidity(turbidity);
+    AP_CHECK(sun->Compute());
+    const double up[3] = { 0.2, 0.1, 1.0 };
+    AP_CHECK(sun->GetSkyRadiance(up, rgb));
+    return sun->GetSkyHorizontalIrradiance();
+  };
+  vtkNew<vtkApertureSolarPosition> sun;
+  AP_CHECK(std::isnan(sun->GetSkyHorizontalIrradiance())); // (before any Compute)
+  sun->SetLatitude(46.0);
+  sun->SetLongitude(7.0);
+  const double morning = 1781931600.0, noon = morning + 5 * 3600.0; // 2026-06-20, 05 and 10 UTC
+  sun->SetUnixTime(morning);
+  AP_CHECK(sun->Compute());
+  double rgb[3], expected[3];
+  AP_CHECK_NEAR(sun->GetSkyHorizontalIrradiance(), fresh(morning, 3.0, expected), 0.0);
+  sun->SetUnixTime(noon);
+  AP_CHECK(sun->Compute()); // (the morning's sky was prepared: noon's replaces it)
+  sun->SetTurbidity(6.0); // (set after the Compute: the sky is still noon's at turbidity 3)
+  const double up[3] = { 0.2, 0.1, 1.0 };
+  AP_CHECK(sun->GetSkyRadiance(up, rgb));
+  AP_CHECK_NEAR(sun->GetSkyHorizontalIrradiance(), fresh(noon, 3.0, expected), 0.0);
+  for (int c = 0; c < 3; ++c)
+  {
+    AP_CHECK_NEAR(rgb[c], expected[c], 0.0);
+  }
+  AP_CHECK(sun->Compute()); // turbidity 6 now
+  AP_CHECK_NEAR(sun->GetSkyHorizontalIrradiance(), fresh(noon, 6.0, expected), 0.0);
+  AP_CHECK(std::fabs(fresh(noon, 6.0, expected) - fresh(noon, 3.0, rgb)) > 1.0);
+  AP_CHECK(std::fabs(fresh(morning, 3.0, expected) - fresh(noon, 3.0, rgb)) > 1.0);
+}
+
 // A site grid in a local CRS: no place on the Earth. The place is taken (its height too),
 // latitude and longitude NaN; Compute() fails saying why until they are set, while a sun given
 // by its direction needs none: the grid's +y axis is north (no convergence), and the mesh's
@@ -313,5 +354,6 @@ int TestApertureSolarPosition(int, char*[])
   TestTimeZones();
   TestBadInput();
   TestLocalGrid();
+  TestSkyOnDemand();
   return aptest::Result();
 }

@@ -1503,16 +1503,19 @@ def cmd_sun(args):
         print("\t".join(header))
     for k in range(count):
         sun.SetUnixTime(start + k * step * 60.0)
-        record = compute()
         if args.json:
-            text = json.dumps(record, indent=1).replace("\n", "\n ")
+            text = json.dumps(compute(), indent=1).replace("\n", "\n ")
             print(" " + text + ("," if k + 1 < count else ""))
             continue
-        row = [record["time_utc"], record["time_local"] or "n/a",
-               "%.4f" % record["azimuth_deg"], "%.4f" % record["elevation_deg"],
-               "%.4f" % record["elevation_true_deg"]]
+        # (the table's columns alone: the sky, which the JSON's light keys need, is prepared
+        # only when asked for, and would take 13 times the position's time)
+        if not sun.Compute():
+            raise ApertureError(sun.GetErrorMessage())
+        row = [sun.GetTimeString(), _local_text(sun, sun.GetUnixTime()) or "n/a",
+               "%.4f" % sun.GetAzimuth(), "%.4f" % sun.GetElevation(),
+               "%.4f" % sun.GetElevationTrue()]
         if args.dem is not None:
-            row.append("%.4f" % record["grid_azimuth_deg"])
+            row.append("%.4f" % sun.GetGridAzimuth())
         print("\t".join(row))
     if args.json:
         print("]")
