@@ -673,6 +673,18 @@ bool vtkApertureGeoreference::GetCentreLonLat(double lonlat[2])
 }
 
 //------------------------------------------------------------------------------
+bool vtkApertureGeoreference::WrapsAround()
+{
+  Internals& d = *this->Impl;
+  if (!d.CRS || !OSRIsGeographic(d.CRS) || !d.EnsureGeographic())
+  {
+    return false;
+  }
+  const double span = this->GridSize[0] * std::fabs(this->GridSpacing[0]) * d.UnitToDegrees;
+  return std::fabs(span - 360.0) <= 360.0 * 1e-9;
+}
+
+//------------------------------------------------------------------------------
 bool vtkApertureGeoreference::CheckLongitudeSpan()
 {
   Internals& d = *this->Impl;

@@ -175,6 +175,13 @@ public:
    */
   bool CheckLongitudeSpan();
 
+  /**
+   * True when the CRS is geographic and the grid's columns span 360 degrees of longitude (to
+   * 1e-9 of it), so that its east and west edges meet: a global DEM, whose last column's
+   * eastern neighbour is its first. False otherwise, and without a CRS or grid.
+   */
+  bool WrapsAround();
+
   /** Longitude and latitude (degrees) of the grid centre (the centre of its outer bounds). */
   bool GetCentreLonLat(double lonlat[2]);
 

@@ -302,6 +302,15 @@ void InputExtent(vtkInformation* inInfo, double distance, const int ext[6], int 
         in[1] = grown(whole[1], ext[1], halo[0], false);
         in[2] = grown(whole[2], ext[2], halo[1], true);
         in[3] = grown(whole[3], ext[3], halo[1], false);
+        if (geo->WrapsAround() &&
+          (static_cast<long long>(ext[0]) - halo[0] < whole[0] ||
+            static_cast<long long>(ext[1]) + halo[0] > whole[1]))
+        {
+          // a global DEM's halo across its antimeridian: the terrain on the other side, in
+          // every column (an extent cannot wrap; RequestData joins the edges)
+          in[0] = whole[0];
+          in[1] = whole[1];
+        }
       }
     }
   }
@@ -755,8 +764,53 @@ int vtkApertureSkyVisibility::Execute(
     vtkErrorMacro(<< "no metric cell size: " << geo->GetErrorMessage());
     return 0;
   }
+  // A global DEM (360 degrees of longitude, vtkApertureGeoreference::WrapsAround) read across
+  // all its columns has no east and west edges: the sweep runs on a copy with `wrap` columns
+  // of the other side added to each (the search distance's halo, at most half the globe; half
+  // of it without a distance), its region the DEM's columns, as a piece of the endless
+  // periodic DEM (origin_col -wrap). A piece whose halo stays inside reads and computes as any.
+  int wrap = 0;
+  std::unique_ptr<float[], Free> zWrapped;
+  ap_grid_view kernelZ = zview;
+  if (nx == nxWhole && geo->WrapsAround())
+  {
+    int halo[2] = { nxWhole, nyWhole };
+    if (this->MaximumDistance > 0 &&
+      !HaloCells(geo, this->MaximumDistance, pieceJ, pieceJ + ny - 1, halo))
+    {
+      halo[0] = nxWhole;
+    }
+    wrap = std::min((nxWhole + 1) / 2, halo[0]);
+    const int wnx = nx + 2 * wrap;
+    const std::string problem = this->CheckMemory(
+      wnx, ny, onx, ony, 1024.0 * static_cast<double>(input->GetActualMemorySize()));
+    if (!problem.empty())
+    {
+      vtkErrorMacro(<< problem << " (a global DEM with " << wrap
+                    << " columns of the other side on each: its edges join); bake a part of the "
+                       "DEM, a decimated one, or fewer products");
+      return 0;
+    }
+    zWrapped.reset(static_cast<float*>(
+      ap_alloc_huge(static_cast<size_t>(wnx) * static_cast<size_t>(ny) * sizeof(float))));
+    if (!zWrapped)
+    {
+      throw std::bad_alloc();
+    }
+    vtkSMPTools::For(0, ny, [&](vtkIdType j0, vtkIdType j1) {
+      for (vtkIdType j = j0; j < j1; ++j)
+      {
+        const float* row = z.get() + static_cast<size_t>(j) * nx;
+        float* to = zWrapped.get() + static_cast<size_t>(j) * wnx;
+        std::copy(row + nx - wrap, row + nx, to);
+        std::copy(row, row + nx, to + wrap);
+        std::copy(row, row + wrap, to + wrap + nx);
+      }
+    });
+    kernelZ = ap_grid_view_make(zWrapped.get(), static_cast<size_t>(wnx), static_cast<size_t>(ny));
+  }
   ap_horizon_grid grid;
-  grid.z = zview;
+  grid.z = kernelZ;
   grid.dx = rowSizes ? dx.data() + pieceJ : nullptr;
   grid.dy = rowSizes ? dy.data() + pieceJ : nullptr;
   grid.dx0 = dx[rowSizes ? static_cast<size_t>(nyWhole) / 2 : 0];
@@ -770,9 +824,9 @@ int vtkApertureSkyVisibility::Execute(
   params.curvature = this->EarthCurvature ? 1 : 0;
   params.refraction = this->RefractionCoefficient;
   params.near_field = this->NearField;
-  params.origin_col = pieceI;
+  params.origin_col = pieceI - wrap;
   params.origin_row = pieceJ;
-  params.region_i0 = static_cast<size_t>(outExt[0] - inExt[0]);
+  params.region_i0 = static_cast<size_t>(outExt[0] - inExt[0] + wrap);
   params.region_j0 = static_cast<size_t>(outExt[2] - inExt[2]);
   params.region_nx = static_cast<size_t>(onx);
   params.region_ny = static_cast<size_t>(ony);
@@ -999,7 +1053,7 @@ int vtkApertureSkyVisibility::Execute(
   // reports: about as long as a sector takes.
   using Clock = std::chrono::steady_clock;
   const double parts = D + 1.0;
-  const double cells = static_cast<double>(nx) * ny;
+  const double cells = static_cast<double>(nx + 2 * wrap) * ny;
   double share[3] = { 1.0 / 3, 1.0 / 3, 1.0 / 3 }; // (of the sector's time, per phase)
   double seconds[3] = { 0.0, 0.0, 0.0 };            // (of the sector in progress)
   auto sliced = [&](int d, int phase, vtkIdType units, vtkIdType grain,
@@ -1344,7 +1398,7 @@ int vtkApertureSkyVisibility::Execute(
         {
           // (the cell's elevation: output cell k in the input's grid)
           const size_t zk = (static_cast<size_t>(k / onx) + params.region_j0) * nx +
-            static_cast<size_t>(k % onx) + params.region_i0;
+            static_cast<size_t>(k % onx) + params.region_i0 - static_cast<size_t>(wrap);
           edgeFloat[k] = std::isnan(z[zk])
             ? std::numeric_limits<float>::quiet_NaN()
             : static_cast<float>(edgeBytes[static_cast<size_t>(k)]);

@@ -69,7 +69,14 @@
  * a sphere of the Earth's mean radius, 6,371,008.8 m.
  *
  * Terrain beyond the DEM edge is invisible; EdgeTruncated marks the cells where that may
- * matter for the sky above the horizontal (A, rp, BentNormal, both sky-view factors).
+ * matter for the sky above the horizontal (A, rp, BentNormal, both sky-view factors). A global
+ * lat/lon DEM, whose columns span 360 degrees of longitude (vtkApertureGeoreference::
+ * WrapsAround), has no east and west edges: they join, and the cells beside the antimeridian
+ * see the terrain on its other side (within the search distance, and at most half the globe's
+ * columns either way; a sub-extent whose halo crosses it reads every column); the products do
+ * not depend on where the grid's seam lies. (The sweep's copy of the elevations and its state
+ * then cover those columns too: up to twice the DEM's without a distance. CheckMemory, given
+ * the extent's sizes alone, does not count them; the update refuses what does not fit.)
  * PositiveOpenness and HorizonAngles below the horizontal may differ near the edge on
  * unflagged cells too (a sector whose ray leaves the DEM at once has horizon -90 degrees).
  * Nodata (NaN, and any elevation that is not finite, as vtkApertureDEMReader makes it) never

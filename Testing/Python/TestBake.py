@@ -616,6 +616,43 @@ class TestBake(unittest.TestCase):
             self.assertEqual(status, 2, err)
             self.assertIn("is not a size (512, 300K, 1.5G, 2T)", err)
 
+    def test_global_dem(self):
+        # A global lat/lon DEM (720 columns of 0.5 degree, 75 S to 75 N): its east and west
+        # edges join. The same products with the grid's seam 300 columns further on; in strips
+        # (each reading every column: their halos cross the antimeridian) and for a window at
+        # the seam as at once; no EdgeTruncated cell at either side; EDGES says so.
+        lon = -180 + 0.5 * (np.arange(720) + 0.5)
+        lat = 75 - 0.5 * (np.arange(300) + 0.5)
+        hills = 2500 * np.exp(-((lon[None, :] - 179.0) ** 2 + (lat[:, None] - 10) ** 2) / 2.0)
+        rng = np.random.default_rng(4)
+        z = (hills + 300 * rng.random((300, 720))).astype(np.float32)
+        dem, rolled = self.path("globe.tif"), self.path("globe-seam-elsewhere.tif")
+        make_dem(dem, z, (-180, 0.5, 0, 75, 0, -0.5), 4326)
+        make_dem(rolled, np.roll(z, -300, axis=1), (-30, 0.5, 0, 75, 0, -0.5), 4326)
+        options = ["--radius", 300000, "-d", 8, "--products", "all"]
+        outs = {name: self.path("globe-%s.tif" % name) for name in
+                ("whole", "rolled", "strips", "window")}
+        for name, args in (("whole", (dem,)), ("rolled", (rolled,)),
+                           ("strips", (dem, "--max-memory", "17.5M")),
+                           ("window", (dem, "--srcwin", 0, 100, 12, 50))):
+            status, stdout, err = run("bake", *args, outs[name], *options)
+            self.assertEqual(status, 0, err)
+            self.assertEqual(name == "strips", "in 2 strips of 256 rows" in stdout, stdout)
+        whole, meta, _, _ = bands(outs["whole"])
+        self.assertIn("the DEM spans 360 degrees of longitude: its east and west edges join",
+                      meta["EDGES"])
+        self.assertEqual(whole["EdgeTruncated"][0][20:280, [0, -1]].max(), 0.0)
+        rolled_bands = bands(outs["rolled"])[0]
+        strips, window = bands(outs["strips"])[0], bands(outs["window"])[0]
+        for name in whole:
+            np.testing.assert_array_equal(np.roll(rolled_bands[name][0], 300, axis=1),
+                                          whole[name][0], err_msg=name)
+            np.testing.assert_array_equal(strips[name][0], whole[name][0], err_msg=name)
+            np.testing.assert_array_equal(window[name][0], whole[name][0][100:150, 0:12],
+                                          err_msg=name)
+        # the hills just east of the antimeridian, seen westwards from its other side
+        self.assertGreater(whole["HorizonAngles_az270.00"][0][130, 0], 1.0)
+
     def test_sea(self):
         # Parts of a DEM may be nodata alone, with the DEM they read around them (a coastal
         # tile's strips and windows out at sea): their products are nodata, as the whole

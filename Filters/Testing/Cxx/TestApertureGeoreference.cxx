@@ -357,6 +357,41 @@ void TestMeridianColumns()
   AP_CHECK(!none->HasMeridianColumns());
 }
 
+// WrapsAround: a lat/lon grid whose columns span 360 degrees (in degrees or in grads, whose
+// unit the CRS names), wherever it starts; not one column fewer, nor a projected world grid.
+void TestWrapsAround()
+{
+  struct Case
+  {
+    const char* CRS;
+    double X0, Cell;
+    int N;
+    bool Expected;
+  };
+  const char* grads = "GEOGCS[\"WGS 84 in grads\",DATUM[\"WGS_1984\",SPHEROID[\"WGS 84\","
+                      "6378137,298.257223563]],PRIMEM[\"Greenwich\",0],UNIT[\"grad\","
+                      "0.015707963267949]]";
+  const Case cases[] = { { "EPSG:4326", -179.875, 0.25, 1440, true },
+    { "EPSG:4326", 0.125, 0.25, 1440, true }, { "EPSG:4326", -179.875, 0.25, 1439, false },
+    { "EPSG:4326", -179.9, 0.2, 1800, true }, { grads, -199.75, 0.5, 800, true },
+    { grads, -199.75, 0.5, 720, false }, { "EPSG:3857", -20037508.34 + 5000.0, 10000.0, 4008,
+                                            false } };
+  for (const Case& c : cases)
+  {
+    vtkNew<vtkApertureGeoreference> geo;
+    AP_CHECK(geo->SetCRS(c.CRS));
+    geo->SetGrid(c.X0, -50.0, c.Cell, c.Cell, c.N, 40);
+    if (geo->WrapsAround() != c.Expected)
+    {
+      std::printf("WrapsAround of %d columns of %g from %g: %d\n", c.N, c.Cell, c.X0,
+        !c.Expected);
+      AP_CHECK(false);
+    }
+  }
+  vtkNew<vtkApertureGeoreference> none;
+  AP_CHECK(!none->WrapsAround());
+}
+
 // GetCellMetricAt: on UTM (conformal) the steps along the row and the column are as long as
 // GetCellSizeMetresAt says and at right angles; on the sinusoidal projection of a sphere
 // (x = R lon cos lat, y = R lat: not conformal) a step of d along the row runs d along the
@@ -448,6 +483,7 @@ int TestApertureGeoreference(int, char*[])
   TestRowSizesAtPole();
   TestLongitudeSpan();
   TestMeridianColumns();
+  TestWrapsAround();
   TestCellMetric();
   return aptest::Result();
 }

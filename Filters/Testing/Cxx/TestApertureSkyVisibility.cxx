@@ -4,7 +4,8 @@
 // TestSkyVisibility.py checks it in depth. Closed forms: planes in a projected, a lat/lon, a
 // non-conformal and a local CRS, and a wall seen from flat ground (with and without curvature),
 // in each search mode (rays marched, far-marched, hull sweep); sub-extents through a streaming
-// source and other thread counts bit for bit against the whole run; nodata (a piece of it),
+// source and other thread counts bit for bit against the whole run; a global DEM's joined
+// edges; nodata (a piece of it),
 // other array types, degrees, abort, and the documented errors.
 #include "aptest.hxx"
 #include "aptest_dem.hxx"
@@ -309,6 +310,68 @@ void TestPiecesAndThreads()
   }
 }
 
+// A global lat/lon DEM (240 columns of 1.5 degrees) has no east and west edges: a mountain just
+// east of the antimeridian raises the horizon west of a cell just west of it; no cell at
+// either side is EdgeTruncated; the products equal, bit for bit, those of the same DEM with
+// its seam 100 columns further on (rolled, its columns' longitudes with them); and a piece
+// beside the seam reads every column (its halo the other side's), one inside its own halo
+// alone, each the whole run's values. At 400 km and unlimited.
+void TestAntimeridian()
+{
+  const int nx = 240, ny = 60, roll = 100;
+  const auto terrain = [](int i, int j) {
+    const double lon = -180.0 + 1.5 * (i + 0.5), lat = -45.0 + 1.5 * (j + 0.5);
+    return static_cast<float>(
+      3000.0 * std::exp(-((lon - 178.5) * (lon - 178.5) + lat * lat) / 4.0) + Rough(i, j) / 2);
+  };
+  auto dem = MakeDEM("EPSG:4326", -179.25, -44.25, 1.5, 1.5, nx, ny, terrain);
+  auto rolled = MakeDEM("EPSG:4326", -179.25 + 1.5 * roll, -44.25, 1.5, 1.5, nx, ny,
+    [&](int i, int j) { return terrain((i + roll) % nx, j); });
+  for (double distance : { 400000.0, 0.0 })
+  {
+    const Setup setup = [distance](vtkApertureSkyVisibility* s) {
+      s->SetMaximumDistance(distance);
+      s->SetNumberOfDirections(16);
+    };
+    auto whole = Sky(dem, setup);
+    auto other = Sky(rolled, setup);
+    int differ = 0;
+    for (const char* name : kProducts)
+    {
+      const int components = whole->GetPointData()->GetArray(name)->GetNumberOfComponents();
+      for (int j = 0; j < ny; ++j)
+      {
+        for (int i = 0; i < nx; ++i)
+        {
+          for (int c = 0; c < components; ++c)
+          {
+            differ += At(whole, name, i, j, c) != At(other, name, (i - roll + nx) % nx, j, c);
+          }
+        }
+      }
+    }
+    AP_CHECK(differ == 0);
+    for (int j = 5; j < ny - 5; ++j)
+    {
+      AP_CHECK(At(whole, "EdgeTruncated", 0, j) == 0.0);
+      AP_CHECK(At(whole, "EdgeTruncated", nx - 1, j) == 0.0);
+    }
+    // west (sector 12 of 16) of the westernmost cell at the equator: the mountain 2.5 deg away
+    AP_CHECK(At(whole, "HorizonAngles", 0, 30, 12) > 0.005);
+
+    Streamed streamed(dem, setup);
+    const int pieces[][6] = { { 0, 9, 25, 34, 0, 0 }, { 100, 139, 20, 39, 0, 0 } };
+    for (const auto& piece : pieces)
+    {
+      streamed.Sky->UpdateExtent(piece);
+      CheckSameBits(streamed.Sky->GetOutput(), whole, "a piece of a global DEM");
+      const std::vector<int>& asked = streamed.Source->Requests.back();
+      const bool everyColumn = asked[0] == 0 && asked[1] == nx - 1;
+      AP_CHECK(everyColumn == (distance == 0.0 || piece[0] == 0));
+    }
+  }
+}
+
 // Nodata: NaN products at the nodata cells, finite ones around; a piece whose input (with its
 // halo) is all nodata gives nodata products (EdgeTruncated 0) and says so; a DEM of nodata
 // alone is an error (TestErrors).
@@ -481,6 +544,7 @@ int TestApertureSkyVisibility(int, char*[])
   TestPlanes();
   TestWall();
   TestPiecesAndThreads();
+  TestAntimeridian();
   TestNodata();
   TestArrayTypesAndUnits();
   TestAbort();

@@ -775,6 +775,7 @@ def _parse_products(text):
 def _provenance(args, products, reader):
     from aperture import __version__, vtkApertureSkyVisibility
     local = _local_crs(reader)
+    global_dem = _wraps_around(reader)
     return {
         "APERTURE_VERSION": __version__,
         "APERTURE_COMMAND": "aperture bake",
@@ -807,7 +808,10 @@ def _provenance(args, products, reader):
                            "no ellipsoid)" if local else "on",
         "REFRACTION_COEFFICIENT": "n/a" if args.no_curvature else repr(args.refraction),
         "ANGLE_UNIT": "degree",
-        "EDGES": "terrain beyond the DEM edge is treated as invisible; see EdgeTruncated",
+        "EDGES": ("the DEM spans 360 degrees of longitude: its east and west edges join (the "
+                  "cells beside the antimeridian see across it); terrain beyond its north and "
+                  "south edges is treated as invisible; see EdgeTruncated" if global_dem else
+                  "terrain beyond the DEM edge is treated as invisible; see EdgeTruncated"),
         "PRODUCTS": ",".join(products),
         # what of the DEM was read: a product of a window or a decimated grid says so
         **_read_provenance(args, reader),
@@ -820,6 +824,24 @@ def _local_crs(reader):
     geo = vtkApertureGeoreference()
     crs = reader.GetOutputInformation(0).Get(vtkApertureGeoreference.CRS_KEY())
     return bool(crs) and geo.SetCRS(crs) and geo.IsLocal()
+
+
+def _wraps_around(reader):
+    """Whether the reader's DEM (after its UpdateInformation) is a global lat/lon grid, whose
+    east and west edges join (vtkApertureGeoreference.WrapsAround)."""
+    from aperture import vtkApertureGeoreference
+    from vtkmodules.vtkCommonDataModel import vtkDataObject
+    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
+    info = reader.GetOutputInformation(0)
+    crs = info.Get(vtkApertureGeoreference.CRS_KEY())
+    geo = vtkApertureGeoreference()
+    if not crs or not geo.SetCRS(crs):
+        return False
+    whole, origin = info.Get(sddp.WHOLE_EXTENT()), info.Get(vtkDataObject.ORIGIN())
+    spacing = info.Get(vtkDataObject.SPACING())
+    geo.SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],
+                spacing[0], spacing[1], whole[1] - whole[0] + 1, whole[3] - whole[2] + 1)
+    return geo.WrapsAround()
 
 
 def _read_provenance(args, reader):
