@@ -270,6 +270,24 @@ bool HaloCells(vtkApertureGeoreference* geo, double distance, int j0, int j1, in
   return true;
 }
 
+// The columns of the other side a global DEM's sweep adds to each side for an input extent
+// `in` of the whole extent `whole`, which geo's grid describes (vtkApertureSkyVisibility.h,
+// GetWrapColumns): 0 unless its grid wraps around and `in` spans every column.
+int WrapColumns(vtkApertureGeoreference* geo, double distance, const int in[6], const int whole[6])
+{
+  const int nxWhole = whole[1] - whole[0] + 1, nyWhole = whole[3] - whole[2] + 1;
+  if (in[0] != whole[0] || in[1] != whole[1] || !geo->WrapsAround())
+  {
+    return 0;
+  }
+  int halo[2] = { nxWhole, nyWhole };
+  if (distance > 0 && !HaloCells(geo, distance, in[2] - whole[2], in[3] - whole[2], halo))
+  {
+    halo[0] = nxWhole;
+  }
+  return std::min((nxWhole + 1) / 2, halo[0]);
+}
+
 // The extent of the input (whose pipeline information is inInfo) that an update of `ext`
 // reads: `ext` grown by the halo of the search distance, clipped to the whole extent. A region
 // sees terrain up to the search distance away; unlimited distance, or no way to know metres
@@ -424,6 +442,31 @@ bool vtkApertureSkyVisibility::ComputeInputExtent(const int extent[6], int input
   }
   InputExtent(inInfo, this->MaximumDistance, extent, input);
   return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureSkyVisibility::GetWrapColumns(const int input[6])
+{
+  vtkInformation* inInfo =
+    this->GetNumberOfInputConnections(0) > 0 ? this->GetInputInformation(0, 0) : nullptr;
+  const char* crs = inInfo ? inInfo->Get(vtkApertureGeoreference::CRS_KEY()) : nullptr;
+  if (!crs || !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()) ||
+    !inInfo->Has(vtkDataObject::SPACING()) || !inInfo->Has(vtkDataObject::ORIGIN()))
+  {
+    return 0;
+  }
+  int whole[6];
+  double spacing[3], origin[3];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  inInfo->Get(vtkDataObject::SPACING(), spacing);
+  inInfo->Get(vtkDataObject::ORIGIN(), origin);
+  vtkNew<vtkApertureGeoreference> geo;
+  if (!geo->SetCRS(crs))
+  {
+    return 0;
+  }
+  SetWholeGrid(geo, origin, spacing, whole);
+  return WrapColumns(geo, this->MaximumDistance, input, whole);
 }
 
 //------------------------------------------------------------------------------
@@ -769,18 +812,11 @@ int vtkApertureSkyVisibility::Execute(
   // of the other side added to each (the search distance's halo, at most half the globe; half
   // of it without a distance), its region the DEM's columns, as a piece of the endless
   // periodic DEM (origin_col -wrap). A piece whose halo stays inside reads and computes as any.
-  int wrap = 0;
+  const int wrap = WrapColumns(geo, this->MaximumDistance, inExt, wholeExt);
   std::unique_ptr<float[], Free> zWrapped;
   ap_grid_view kernelZ = zview;
-  if (nx == nxWhole && geo->WrapsAround())
+  if (wrap > 0)
   {
-    int halo[2] = { nxWhole, nyWhole };
-    if (this->MaximumDistance > 0 &&
-      !HaloCells(geo, this->MaximumDistance, pieceJ, pieceJ + ny - 1, halo))
-    {
-      halo[0] = nxWhole;
-    }
-    wrap = std::min((nxWhole + 1) / 2, halo[0]);
     const int wnx = nx + 2 * wrap;
     const std::string problem = this->CheckMemory(
       wnx, ny, onx, ony, 1024.0 * static_cast<double>(input->GetActualMemorySize()));

@@ -75,8 +75,8 @@
  * see the terrain on its other side (within the search distance, and at most half the globe's
  * columns either way; a sub-extent whose halo crosses it reads every column); the products do
  * not depend on where the grid's seam lies. (The sweep's copy of the elevations and its state
- * then cover those columns too: up to twice the DEM's without a distance. CheckMemory, given
- * the extent's sizes alone, does not count them; the update refuses what does not fit.)
+ * then cover those columns too, GetWrapColumns on each side: up to twice the DEM's without a
+ * distance.)
  * PositiveOpenness and HorizonAngles below the horizontal may differ near the edge on
  * unflagged cells too (a sector whose ray leaves the DEM at once has horizon -90 degrees).
  * Nodata (NaN, and any elevation that is not finite, as vtkApertureDEMReader makes it) never
@@ -255,6 +255,13 @@ public:
    *  has no metric cell size. False, with an error, without input information. For sizing a
    *  request before anything runs (CheckMemory). */
   bool ComputeInputExtent(const int extent[6], int input[6]);
+
+  /** Columns of the other side an update whose input extent is `input` (ComputeInputExtent's)
+   *  adds to each side of a global DEM (vtkApertureGeoreference::WrapsAround) so that its
+   *  east and west edges join: the distance's halo in columns, at most half the DEM's (half
+   *  without a distance); 0 for other DEMs, an input without every column, or no input
+   *  information. The update's memory is CheckMemory's for nx + 2 x this columns. */
+  int GetWrapColumns(const int input[6]);
 
   /** Threads that ran the last update's parallel work (0 before any; at most
    *  NumberOfThreads when that is set). */

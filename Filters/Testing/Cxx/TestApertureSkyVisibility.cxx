@@ -360,6 +360,13 @@ void TestAntimeridian()
     AP_CHECK(At(whole, "HorizonAngles", 0, 30, 12) > 0.005);
 
     Streamed streamed(dem, setup);
+    // the columns joined on each side: the halo of 400 km at the widest row's smallest cells
+    // (1.5 degrees of the parallel at 44.25 degrees, 119.8 km: 4 and 2 more), half the DEM's
+    // without a distance; none for an input without every column
+    streamed.Sky->UpdateInformation();
+    const int all[6] = { 0, nx - 1, 0, ny - 1, 0, 0 }, some[6] = { 0, nx - 2, 0, ny - 1, 0, 0 };
+    AP_CHECK(streamed.Sky->GetWrapColumns(all) == (distance == 0.0 ? nx / 2 : 6));
+    AP_CHECK(streamed.Sky->GetWrapColumns(some) == 0);
     const int pieces[][6] = { { 0, 9, 25, 34, 0, 0 }, { 100, 139, 20, 39, 0, 0 } };
     for (const auto& piece : pieces)
     {
