@@ -98,4 +98,30 @@ inline std::string vtkApertureHumanBytes(double bytes)
   return s.str();
 }
 
+// "" when `need` bytes fit within `limit` (> 0: a MemoryLimit property), or (limit 0) within
+// the memory this process may use less `held` bytes (what its input occupies); else `needs`
+// (what needs the bytes, with their count) and the memory they exceed.
+inline std::string vtkApertureBeyondMemory(
+  double need, double held, vtkTypeInt64 limit, const std::string& needs)
+{
+  bool grouped = false; // (the usable memory is read only when no limit is set)
+  const double usable = limit > 0 ? 0.0 : static_cast<double>(vtkApertureUsableMemory(&grouped));
+  const double allowed = limit > 0 ? static_cast<double>(limit) : usable - held;
+  if (need <= allowed)
+  {
+    return std::string();
+  }
+  if (limit > 0)
+  {
+    return needs + ", more than the " + vtkApertureHumanBytes(allowed) + " MemoryLimit";
+  }
+  if (allowed <= 0.0) // (nothing left to compare with: say what does not fit)
+  {
+    return needs + ", and the DEM's " + vtkApertureHumanBytes(held) + " alone exceed the " +
+      vtkApertureHumanBytes(usable) + " of memory " + vtkApertureUsableMemoryOwner(grouped);
+  }
+  return needs + ", more than the " + vtkApertureHumanBytes(allowed) + " of memory " +
+    vtkApertureUsableMemoryOwner(grouped) + " beside the DEM's " + vtkApertureHumanBytes(held);
+}
+
 #endif

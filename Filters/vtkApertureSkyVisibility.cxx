@@ -563,26 +563,7 @@ std::string vtkApertureSkyVisibility::CheckMemory(
 std::string vtkApertureSkyVisibility::BeyondMemory(
   double need, double held, const std::string& needs) const
 {
-  bool grouped = false; // (the usable memory is read only when no MemoryLimit is set)
-  const double usable =
-    this->MemoryLimit > 0 ? 0.0 : static_cast<double>(vtkApertureUsableMemory(&grouped));
-  const double limit =
-    this->MemoryLimit > 0 ? static_cast<double>(this->MemoryLimit) : usable - held;
-  if (need <= limit)
-  {
-    return std::string();
-  }
-  if (this->MemoryLimit > 0)
-  {
-    return needs + ", more than the " + vtkApertureHumanBytes(limit) + " MemoryLimit";
-  }
-  if (limit <= 0.0) // (nothing left to compare with: say what does not fit)
-  {
-    return needs + ", and the DEM's " + vtkApertureHumanBytes(held) + " alone exceed the " +
-      vtkApertureHumanBytes(usable) + " of memory " + vtkApertureUsableMemoryOwner(grouped);
-  }
-  return needs + ", more than the " + vtkApertureHumanBytes(limit) + " of memory " +
-    vtkApertureUsableMemoryOwner(grouped) + " beside the DEM's " + vtkApertureHumanBytes(held);
+  return vtkApertureBeyondMemory(need, held, this->MemoryLimit, needs);
 }
 
 //------------------------------------------------------------------------------

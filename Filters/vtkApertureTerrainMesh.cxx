@@ -41,6 +41,7 @@
 #include <limits>
 #include <memory>
 #include <new>
+#include <sstream>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -56,6 +57,7 @@ vtkApertureTerrainMesh::vtkApertureTerrainMesh()
   , OutputPointsPrecision(SINGLE_PRECISION)
   , ComputeNormals(true)
   , GenerateTextureCoordinates(true)
+  , MemoryLimit(0)
 {
   this->SetElevationArrayName("Elevation");
 }
@@ -115,11 +117,9 @@ int vtkApertureTerrainMesh::RequestData(
     // (VTK's arrays, std::vector and new throw; a process limit such as ulimit -v makes them)
     int dims[3];
     vtkApertureInputDimensions(inputVector[0], dims);
-    const double n = double(dims[0]) * dims[1];
-    const double pointBytes = this->OutputPointsPrecision == DOUBLE_PRECISION ? 24.0 : 12.0;
-    // elevations, ENU scratch, points, normals, texture coordinates; two triangles a cell of
-    // three 32-bit ids and an offset (64-bit ids above 2^31 take twice that)
-    const double bytes = n * (4.0 + 24.0 + pointBytes + 12.0 + 8.0) + n * 2.0 * 4.0 * 4.0;
+    vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+    const double bytes = this->EstimateBytes(double(dims[0]) * dims[1],
+      input && input->GetPointData()->GetArray("BentNormal"));
     vtkPolyData* output = vtkPolyData::GetData(outputVector);
     if (output)
     {
@@ -130,6 +130,17 @@ int vtkApertureTerrainMesh::RequestData(
                   << " MiB; decimate the DEM");
     return 0;
   }
+}
+
+//------------------------------------------------------------------------------
+double vtkApertureTerrainMesh::EstimateBytes(double n, bool bentNormal) const
+{
+  const double pointBytes = this->OutputPointsPrecision == DOUBLE_PRECISION ? 24.0 : 12.0;
+  const double idBytes = n > 2147483647.0 ? 8.0 : 4.0;
+  // elevations, ENU scratch, points, normals, texture coordinates, a rotated bent normal; two
+  // triangles a cell of three ids and an offset
+  return n * (4.0 + 24.0 + pointBytes + 12.0 + 8.0 + (bentNormal ? 12.0 : 0.0)) +
+    n * 2.0 * 4.0 * idBytes;
 }
 
 //------------------------------------------------------------------------------
@@ -188,6 +199,22 @@ int vtkApertureTerrainMesh::Execute(
     return 0;
   }
   const vtkIdType n = static_cast<vtkIdType>(nx * ny);
+  {
+    // refused before allocating: past physical memory Linux kills the process instead
+    const double need = this->EstimateBytes(
+      static_cast<double>(n), input->GetPointData()->GetArray("BentNormal") != nullptr);
+    std::ostringstream needs;
+    needs << "a mesh of " << nx << " x " << ny << " points needs about "
+          << vtkApertureHumanBytes(need);
+    const std::string problem = vtkApertureBeyondMemory(need,
+      1024.0 * static_cast<double>(input->GetActualMemorySize()), this->MemoryLimit,
+      needs.str());
+    if (!problem.empty())
+    {
+      vtkErrorMacro(<< problem << "; decimate the DEM");
+      return 0;
+    }
+  }
 
   vtkNew<vtkApertureGeoreference> geo;
   if (!geo->SetFromImage(input) || (!geo->IsLocal() && !geo->CheckLongitudeSpan()))
@@ -540,4 +567,5 @@ void vtkApertureTerrainMesh::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OutputPointsPrecision: " << this->OutputPointsPrecision << "\n";
   os << indent << "ComputeNormals: " << this->ComputeNormals << "\n";
   os << indent << "GenerateTextureCoordinates: " << this->GenerateTextureCoordinates << "\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
 }

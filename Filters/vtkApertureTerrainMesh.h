@@ -48,8 +48,8 @@
  * one-component float/double array, a whole DEM smaller than 2 x 2 (a streamed piece that thin
  * just gives an empty mesh), no CRS or one without geographic coordinates (other than a local
  * one), every point nodata or no triangle at all (each valid point isolated among nodata; a
- * streamed piece just gives an empty mesh), or a mesh the process cannot allocate (out of
- * memory; the message gives the size).
+ * streamed piece just gives an empty mesh), or a mesh beyond MemoryLimit or the process's
+ * memory (the message gives the size).
  *
  * @warning Heights are used as given (usually orthometric, above the geoid) as heights above
  * the ellipsoid; over one DEM the geoid separation is nearly constant and shifts the whole mesh
@@ -103,6 +103,20 @@ public:
   vtkBooleanMacro(GenerateTextureCoordinates, bool);
   ///@}
 
+  ///@{
+  /**
+   * Most bytes one update may allocate (estimated: per point the elevations' float copy 4, the
+   * East-North-Up scratch 24, the points 12 or 24, normals 12, texture coordinates 8, a rotated
+   * BentNormal 12 when the input has one; two triangles of three ids and an offset, 4 bytes
+   * each, 8 past 2^31 points). 0 (default): the memory this process may use (the machine's, or
+   * its control group's limit) less the input image's size. An update beyond it is refused
+   * before allocating, naming the size: Linux does not fail an allocation past physical
+   * memory, it kills the process later.
+   */
+  vtkSetClampMacro(MemoryLimit, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
+  vtkGetMacro(MemoryLimit, vtkTypeInt64);
+  ///@}
+
 protected:
   vtkApertureTerrainMesh();
   ~vtkApertureTerrainMesh() override;
@@ -120,6 +134,10 @@ protected:
   int OutputPointsPrecision;
   bool ComputeNormals;
   bool GenerateTextureCoordinates;
+  vtkTypeInt64 MemoryLimit;
+
+  /** The estimate of MemoryLimit's documentation for a mesh of n points. */
+  double EstimateBytes(double n, bool bentNormal) const;
 
 private:
   vtkApertureTerrainMesh(const vtkApertureTerrainMesh&) = delete;

@@ -1033,6 +1033,15 @@ class TestBake(unittest.TestCase):
         ds = gdal.Open(out)
         self.assertEqual((ds.RasterXSize, ds.RasterYSize), (3000, 3000))
         ds = None
+        # render's mesh of that DEM (9 million points, about 790 MiB) is refused by name
+        # before anything is allocated, instead of the process being killed (the mesh is made
+        # before any window: no display is needed to get there)
+        p = subprocess.run([APERTURE, "render", dem, "-o", self.path("group.png"),
+                            "--lighting", "standard"], capture_output=True, text=True,
+                           timeout=300, preexec_fn=join, env=dict(os.environ, DISPLAY=":99"))
+        self.assertEqual(p.returncode, 1, p.stderr)
+        self.assertIn("meshing: a mesh of 3000 x 3000 points needs about 789.642 MiB", p.stderr)
+        self.assertIn("; decimate the DEM", p.stderr)
         # and a process in it says what it may use: the limit less 128 MiB for itself
         code = ("import aperture; s = aperture.vtkApertureSkyVisibility; "
                 "print(s.GetUsableMemory(), s.IsMemoryGrouped())")

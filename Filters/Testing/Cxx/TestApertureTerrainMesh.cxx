@@ -441,6 +441,45 @@ void ExpectError(vtkImageData* dem, const std::string& expected, const char* arr
   }
 }
 
+// MemoryLimit: a 3 x 3 mesh's estimate, 9 points x (4 + 24 + 12 + 12 + 8) bytes and two
+// triangles a point (the mesh has 8) of three ids and an offset of 4 bytes, is 828 bytes, 936
+// with a BentNormal to rotate; refused by name one byte short, made at the limit.
+void TestMemoryLimit()
+{
+  for (bool bent : { false, true })
+  {
+    auto dem = MakeDEM("EPSG:32633", 400000.0, 5000000.0, 10.0, 10.0, 3, 3,
+      [](int i, int j) { return static_cast<float>(i + j); });
+    if (bent)
+    {
+      vtkNew<vtkFloatArray> b;
+      b->SetName("BentNormal");
+      b->SetNumberOfComponents(3);
+      b->SetNumberOfTuples(9);
+      b->Fill(0.0);
+      dem->GetPointData()->AddArray(b);
+    }
+    const vtkTypeInt64 need = bent ? 936 : 828;
+    for (vtkTypeInt64 limit : { need - 1, need })
+    {
+      vtkNew<vtkApertureTerrainMesh> mesher;
+      vtkNew<vtkTest::ErrorObserver> errors, executiveErrors;
+      mesher->AddObserver(vtkCommand::ErrorEvent, errors);
+      mesher->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+      mesher->SetInputData(dem);
+      mesher->SetMemoryLimit(limit);
+      const int ok = mesher->GetExecutive()->Update();
+      AP_CHECK(ok == (limit == need ? 1 : 0));
+      if (limit < need)
+      {
+        AP_CHECK_CONTAINS(errors->GetErrorMessage(),
+          "a mesh of 3 x 3 points needs about " + std::to_string(need) + " bytes, more than the " +
+            std::to_string(limit) + " bytes MemoryLimit; decimate the DEM");
+      }
+    }
+  }
+}
+
 void TestErrors()
 {
   auto ok = [](int, int) { return 1.0f; };
@@ -478,5 +517,6 @@ int TestApertureTerrainMesh(int, char*[])
   TestNonFiniteAndImplausible();
   TestExaggeration();
   TestErrors();
+  TestMemoryLimit();
   return aptest::Result();
 }
