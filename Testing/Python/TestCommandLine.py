@@ -237,6 +237,19 @@ class TestInfo(CommandLineTest):
         self.assertAlmostEqual(d["cell_size_m"][1], a * (1 - e2) / w ** 3 * math.radians(CELL3),
                                places=4)
 
+    def test_global_dem(self):
+        # A lat/lon grid of all longitudes says its east and west edges join (the bake sees
+        # across them); one column fewer, or the default DEM, does not.
+        for columns, wraps in ((144, True), (143, False)):
+            p = make_raster(self.path("globe%d.tif" % columns), np.ones((30, columns)),
+                            (-180, 2.5, 0, 37.5, 0, -2.5), srs="EPSG:4326")
+            d, _ = self.info(p)
+            self.assertIs(d["wraps_around"], wraps)
+            status, out, err = run("info", p)
+            self.assertEqual(status, 0, err)
+            self.assertEqual("all longitudes: the east and west edges join" in out, wraps, out)
+        self.assertIs(self.info()[0]["wraps_around"], False)
+
     def test_default_dem_text(self):
         status, out, _ = run("info")
         self.assertEqual(status, 0)

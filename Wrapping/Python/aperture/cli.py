@@ -311,25 +311,39 @@ _INFO_STRIP_BYTES = 256 * 2 ** 20
 _INFO_NOTE_BYTES = 2 ** 30
 
 
+def _whole_grid(reader):
+    """(a vtkApertureGeoreference of the reader's CRS and whole grid, as SetFromImage takes it
+    from an image of the whole extent; the whole extent), after the reader's
+    UpdateInformation; the georeference is None when the DEM has no CRS it can take."""
+    from vtkmodules.vtkCommonDataModel import vtkDataObject
+    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
+    from aperture import vtkApertureGeoreference
+    info = reader.GetOutputInformation(0)
+    whole = info.Get(sddp.WHOLE_EXTENT())
+    origin, spacing = info.Get(vtkDataObject.ORIGIN()), info.Get(vtkDataObject.SPACING())
+    geo = vtkApertureGeoreference()
+    if not geo.SetCRS(info.Get(vtkApertureGeoreference.CRS_KEY()) or ""):
+        return None, whole
+    nx, ny = _extent_size(whole)
+    geo.SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],
+                spacing[0], spacing[1], nx, ny)
+    return geo, whole
+
+
 def describe(reader, watcher):
     """The facts `aperture info` prints, as a dict (the --json object), from the reader's
     information alone (nothing read): elevation_range and nodata_count are None
     (elevation_statistics gives them). Also returns the grid's whole extent."""
-    from vtkmodules.vtkCommonDataModel import vtkDataObject
-    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
     from aperture import vtkApertureGeoreference
 
     watcher.update_information(reader)
-    info = reader.GetOutputInformation(0)
-    whole = info.Get(sddp.WHOLE_EXTENT())
-    origin, spacing = info.Get(vtkDataObject.ORIGIN()), info.Get(vtkDataObject.SPACING())
+    geo, whole = _whole_grid(reader)
+    if geo is None:
+        crs = reader.GetOutputInformation(0).Get(vtkApertureGeoreference.CRS_KEY())
+        probe = vtkApertureGeoreference()
+        probe.SetCRS(crs or "")
+        raise ApertureError(probe.GetErrorMessage() or "the DEM has no CRS")
     nx, ny = _extent_size(whole)
-    geo = vtkApertureGeoreference()
-    if not geo.SetCRS(info.Get(vtkApertureGeoreference.CRS_KEY()) or ""):
-        raise ApertureError(geo.GetErrorMessage() or "the DEM has no CRS")
-    # (as SetFromImage takes the grid of an image of the whole extent)
-    geo.SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],
-                spacing[0], spacing[1], nx, ny)
     cell_m = [0.0, 0.0]
     bounds = [0.0] * 4
     centre = [0.0, 0.0]
@@ -351,6 +365,8 @@ def describe(reader, watcher):
         "cell_size_m": cell_m,
         "bounds_lonlat": None if local else bounds,
         "centre_lonlat": None if local else centre,
+        # all longitudes: the east and west edges join (the bake sees across them)
+        "wraps_around": bool(geo.WrapsAround()),
         "elevation_range": None,
         # metres per unit of the file's elevations, and where that came from
         "elevation_unit_m": reader.GetElevationUnitRead(),
@@ -403,8 +419,9 @@ def _format_info(d):
     ] + ([
         "Bounds:     none in degrees (a local CRS has no geographic coordinates)",
     ] if d["local"] else [
-        "Bounds:     west %s, south %s, east %s, north %s (degrees)"
-        % tuple(deg(v) for v in d["bounds_lonlat"]),
+        "Bounds:     west %s, south %s, east %s, north %s (degrees)%s"
+        % (*(deg(v) for v in d["bounds_lonlat"]),
+           "; all longitudes: the east and west edges join" if d["wraps_around"] else ""),
         "Centre:     longitude %s, latitude %s" % tuple(deg(v) for v in d["centre_lonlat"]),
     ]) + ([
         "Elevation:  %.2f .. %.2f m (unit: %.10g m, %s)"
@@ -833,19 +850,8 @@ def _local_crs(reader):
 def _wraps_around(reader):
     """Whether the reader's DEM (after its UpdateInformation) is a global lat/lon grid, whose
     east and west edges join (vtkApertureGeoreference.WrapsAround)."""
-    from aperture import vtkApertureGeoreference
-    from vtkmodules.vtkCommonDataModel import vtkDataObject
-    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
-    info = reader.GetOutputInformation(0)
-    crs = info.Get(vtkApertureGeoreference.CRS_KEY())
-    geo = vtkApertureGeoreference()
-    if not crs or not geo.SetCRS(crs):
-        return False
-    whole, origin = info.Get(sddp.WHOLE_EXTENT()), info.Get(vtkDataObject.ORIGIN())
-    spacing = info.Get(vtkDataObject.SPACING())
-    geo.SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],
-                spacing[0], spacing[1], whole[1] - whole[0] + 1, whole[3] - whole[2] + 1)
-    return geo.WrapsAround()
+    geo, _ = _whole_grid(reader)
+    return geo is not None and bool(geo.WrapsAround())
 
 
 def _read_provenance(args, reader):
