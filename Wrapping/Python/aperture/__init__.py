@@ -13,7 +13,25 @@ import os as _os
 from ._version import __version__  # noqa: F401
 from .ApertureFilters import *  # noqa: F401,F403
 from .ApertureIO import *  # noqa: F401,F403
-from .ApertureRendering import *  # noqa: F401,F403
+
+
+# The Rendering module's classes are imported when first asked for (`aperture.vtkAperture...`,
+# `from aperture import ...`, `from aperture import *`): that module and the OpenGL libraries
+# it loads cost every command that does not render some 30 ms. (TestImport checks this list
+# against the module.)
+_RENDERING = ("vtkApertureLightingMapper", "vtkApertureLinearCapture")
+__all__ = sorted([n for n in dir() if n.startswith("vtk")] + list(_RENDERING)) + ["default_dem"]
+
+
+def __getattr__(name):
+    if name in _RENDERING:
+        from . import ApertureRendering
+        return getattr(ApertureRendering, name)
+    raise AttributeError("module %r has no attribute %r" % (__name__, name))
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_RENDERING))
 
 
 def default_dem():
