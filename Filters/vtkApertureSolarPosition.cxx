@@ -142,9 +142,8 @@ std::string FormatOffset(int32_t offset)
 }
 
 /** The meridian convergence (degrees) at lon/lat in the DEM's projection: 0 without a DEM
- *  (a place given by latitude and longitude only), NaN where the projection fails. */
-// γ at (lon, lat) on the DEM's projection; 0 without a DEM and on a local CRS, whose grid's
-// +y axis is north by convention.
+ *  (a place given by latitude and longitude only) and on a local CRS (its grid's +y axis is
+ *  north by convention), NaN where the projection fails. */
 double ConvergenceAt(vtkApertureGeoreference* geo, double lon, double lat)
 {
   return geo && !geo->IsLocal() ? geo->ComputeMeridianConvergence(lon, lat) : 0.0;

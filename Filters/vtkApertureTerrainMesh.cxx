@@ -308,7 +308,7 @@ int vtkApertureTerrainMesh::Execute(
   {
     const GeographicLib::Geocentric earth(ellipsoid[0], ellipsoid[1]);
     const GeographicLib::LocalCartesian frame(lonlat0[1], lonlat0[0], 0.0, earth);
-    const GeographicLib::Geodesic sphere(ellipsoid[0], site ? 0.0 : ellipsoid[1]);
+    const GeographicLib::Geodesic sphere(ellipsoid[0], ellipsoid[1]); // (a site's: a sphere)
     const GeographicLib::AzimuthalEquidistant siteMap(sphere);
     const vtkIdType grain = std::max<vtkIdType>(1, 65536 / static_cast<vtkIdType>(nx));
     vtkSMPTools::For(0, static_cast<vtkIdType>(ny), grain, [&](vtkIdType j0, vtkIdType j1) {

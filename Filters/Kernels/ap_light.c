@@ -84,13 +84,13 @@ static double intersection_smoothstep(double r1, double r2, double d)
   return amin * x * x * (3.0 - 2.0 * x);
 }
 
-/* a − sin a for a lens angle a in [0, π]: below 0.5, where the difference cancels, the series
- * a³/6 (1 − a²/(4·5) (1 − a²/(6·7) (...))) to double precision (the shader's apAngleLessSine
- * stops three terms earlier, at float's). */
-static double angle_less_sine(double a)
+/* a − sin a for a lens angle a in [0, π] with its sine: below 0.5, where the difference
+ * cancels, the series a³/6 (1 − a²/(4·5) (1 − a²/(6·7) (...))) to double precision (the
+ * shader's apAngleLessSine stops three terms earlier, at float's). */
+static double angle_less_sine(double a, double sin_a)
 {
   if (a >= 0.5) {
-    return a - sin(a);
+    return a - sin_a;
   }
   double q = a * a, sum = 1.0;
   for (int k = 8; k >= 2; --k) {
@@ -111,7 +111,7 @@ static void lens_moment_partial(double r1, double r2, double a1, double a2, cons
   double hs = sin(0.5 * rs), srs = sin(rs), sro = sin(ro), sao = sin(ao);
   double dif = sin(0.5 * (ro - d)), sum = sin(0.5 * (ro + d)), cos_sum = cos(0.5 * (ro + d));
   double ks = srs * as * srs, kt = 2.0 * srs * hs * hs * sin(as);
-  double ko = sro * (angle_less_sine(ao) * sro + 2.0 * sao * cos_sum * dif);
+  double ko = sro * (angle_less_sine(ao, sao) * sro + 2.0 * sao * cos_sum * dif);
   double kto = sro * 2.0 * sao * sum * dif;
   for (int i = 0; i < 3; ++i) {
     double ts = (co[i] - cd * cs[i]) / sd; /* tangent at cs toward co */

@@ -314,7 +314,8 @@ _INFO_NOTE_BYTES = 2 ** 30
 def _whole_grid(reader):
     """(a vtkApertureGeoreference of the reader's CRS and whole grid, as SetFromImage takes it
     from an image of the whole extent; the whole extent), after the reader's
-    UpdateInformation; the georeference is None when the DEM has no CRS it can take."""
+    UpdateInformation; without a CRS it can take, the georeference has none (HasCRS false) and
+    says why (GetErrorMessage)."""
     from vtkmodules.vtkCommonDataModel import vtkDataObject
     from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
     from aperture import vtkApertureGeoreference
@@ -323,7 +324,7 @@ def _whole_grid(reader):
     origin, spacing = info.Get(vtkDataObject.ORIGIN()), info.Get(vtkDataObject.SPACING())
     geo = vtkApertureGeoreference()
     if not geo.SetCRS(info.Get(vtkApertureGeoreference.CRS_KEY()) or ""):
-        return None, whole
+        return geo, whole
     nx, ny = _extent_size(whole)
     geo.SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],
                 spacing[0], spacing[1], nx, ny)
@@ -334,15 +335,10 @@ def describe(reader, watcher):
     """The facts `aperture info` prints, as a dict (the --json object), from the reader's
     information alone (nothing read): elevation_range and nodata_count are None
     (elevation_statistics gives them). Also returns the grid's whole extent."""
-    from aperture import vtkApertureGeoreference
-
     watcher.update_information(reader)
     geo, whole = _whole_grid(reader)
-    if geo is None:
-        crs = reader.GetOutputInformation(0).Get(vtkApertureGeoreference.CRS_KEY())
-        probe = vtkApertureGeoreference()
-        probe.SetCRS(crs or "")
-        raise ApertureError(probe.GetErrorMessage() or "the DEM has no CRS")
+    if not geo.HasCRS():
+        raise ApertureError(geo.GetErrorMessage() or "the DEM has no CRS")
     nx, ny = _extent_size(whole)
     cell_m = [0.0, 0.0]
     bounds = [0.0] * 4
@@ -795,8 +791,8 @@ def _parse_products(text):
 
 def _provenance(args, products, reader):
     from aperture import __version__, vtkApertureSkyVisibility
-    local = _local_crs(reader)
-    global_dem = _wraps_around(reader)
+    geo, _ = _whole_grid(reader)
+    local, global_dem = geo.IsLocal(), geo.WrapsAround()
     return {
         "APERTURE_VERSION": __version__,
         "APERTURE_COMMAND": "aperture bake",
@@ -837,21 +833,6 @@ def _provenance(args, products, reader):
         # what of the DEM was read: a product of a window or a decimated grid says so
         **_read_provenance(args, reader),
     }
-
-
-def _local_crs(reader):
-    """Whether the reader's DEM (after its UpdateInformation) is in a local CRS."""
-    from aperture import vtkApertureGeoreference
-    geo = vtkApertureGeoreference()
-    crs = reader.GetOutputInformation(0).Get(vtkApertureGeoreference.CRS_KEY())
-    return bool(crs) and geo.SetCRS(crs) and geo.IsLocal()
-
-
-def _wraps_around(reader):
-    """Whether the reader's DEM (after its UpdateInformation) is a global lat/lon grid, whose
-    east and west edges join (vtkApertureGeoreference.WrapsAround)."""
-    geo, _ = _whole_grid(reader)
-    return geo is not None and bool(geo.WrapsAround())
 
 
 def _read_provenance(args, reader):
