@@ -403,7 +403,20 @@ int vtkApertureSkyVisibility::RequestInformation(
   {
     return 0;
   }
-  outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  // the output is on the input's grid: its CRS, for the filters downstream (the pipeline does
+  // not pass our key on by itself)
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  const char* crs = inInfo ? inInfo->Get(vtkApertureGeoreference::CRS_KEY()) : nullptr;
+  if (crs)
+  {
+    outInfo->Set(vtkApertureGeoreference::CRS_KEY(), crs);
+  }
+  else
+  {
+    outInfo->Remove(vtkApertureGeoreference::CRS_KEY());
+  }
   return 1;
 }
 

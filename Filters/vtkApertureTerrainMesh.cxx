@@ -26,6 +26,7 @@
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
 
 #include "ap_grid.h"
 #include "ap_mesh.h"
@@ -91,9 +92,32 @@ int vtkApertureTerrainMesh::RequestUpdateExtent(
   std::copy(whole, whole + 6, ext);
   if (pieces > 1)
   {
+    // A global DEM's pieces are bands of whole rows, so that each joins its east and west
+    // edges (RequestData's seam). The CRS is known here when vtkApertureDEMReader published
+    // it, or from the data of a producer that holds them already (SetInputData).
+    const char* crs = inInfo->Get(vtkApertureGeoreference::CRS_KEY());
+    auto* held = vtkDataObject::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT()));
+    auto* heldCRS = held ? vtkStringArray::SafeDownCast(held->GetFieldData()->GetAbstractArray(
+                             vtkApertureGeoreference::GetCRSArrayName()))
+                         : nullptr;
+    if (!crs && heldCRS && heldCRS->GetNumberOfValues() == 1)
+    {
+      crs = heldCRS->GetValue(0).c_str();
+    }
+    bool wraps = false;
+    if (crs && inInfo->Has(vtkDataObject::SPACING()) && inInfo->Has(vtkDataObject::ORIGIN()))
+    {
+      vtkNew<vtkApertureGeoreference> geo;
+      double spacing[3], origin[3];
+      inInfo->Get(vtkDataObject::SPACING(), spacing);
+      inInfo->Get(vtkDataObject::ORIGIN(), origin);
+      geo->SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],
+        spacing[0], spacing[1], whole[1] - whole[0] + 1, whole[3] - whole[2] + 1);
+      wraps = geo->SetCRS(crs) && geo->WrapsAround();
+    }
     vtkNew<vtkExtentTranslator> translator;
-    translator->PieceToExtentThreadSafe(
-      piece, pieces, 0, whole, ext, vtkExtentTranslator::BLOCK_MODE, 0);
+    translator->PieceToExtentThreadSafe(piece, pieces, 0, whole, ext,
+      wraps ? vtkExtentTranslator::Y_SLAB_MODE : vtkExtentTranslator::BLOCK_MODE, 0);
   }
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext, 6);
   // The request is this extent, not a piece: the pipeline copies the piece request upstream,
@@ -119,7 +143,7 @@ int vtkApertureTerrainMesh::RequestData(
     vtkApertureInputDimensions(inputVector[0], dims);
     vtkImageData* input = vtkImageData::GetData(inputVector[0]);
     const double bytes = this->EstimateBytes(double(dims[0]) * dims[1],
-      input && input->GetPointData()->GetArray("BentNormal"));
+      input && input->GetPointData()->GetArray("BentNormal"), 0.0);
     vtkPolyData* output = vtkPolyData::GetData(outputVector);
     if (output)
     {
@@ -133,14 +157,14 @@ int vtkApertureTerrainMesh::RequestData(
 }
 
 //------------------------------------------------------------------------------
-double vtkApertureTerrainMesh::EstimateBytes(double n, bool bentNormal) const
+double vtkApertureTerrainMesh::EstimateBytes(double n, bool bentNormal, double copied) const
 {
   const double pointBytes = this->OutputPointsPrecision == DOUBLE_PRECISION ? 24.0 : 12.0;
   const double idBytes = n > 2147483647.0 ? 8.0 : 4.0;
   // elevations, ENU scratch, points, normals, texture coordinates, a rotated bent normal; two
-  // triangles a cell of three ids and an offset
+  // triangles a cell of three ids and an offset; a global DEM's copied point data
   return n * (4.0 + 24.0 + pointBytes + 12.0 + 8.0 + (bentNormal ? 12.0 : 0.0)) +
-    n * 2.0 * 4.0 * idBytes;
+    n * 2.0 * 4.0 * idBytes + copied;
 }
 
 //------------------------------------------------------------------------------
@@ -199,10 +223,21 @@ int vtkApertureTerrainMesh::Execute(
     return 0;
   }
   const vtkIdType n = static_cast<vtkIdType>(nx * ny);
+  vtkNew<vtkApertureGeoreference> geo;
+  if (!geo->SetFromImage(input) || (!geo->IsLocal() && !geo->CheckLongitudeSpan()))
+  {
+    vtkErrorMacro(<< geo->GetErrorMessage());
+    return 0;
+  }
+  // A global DEM (360 degrees of longitude) joins its east and west edges when this piece has
+  // every column: each row's copy of its column-0 point closes the seam (ap_mesh.h).
+  const bool seam = nx >= 3 && ext[0] == whole[0] && ext[1] == whole[1] && geo->WrapsAround();
+  const vtkIdType nv = n + (seam ? static_cast<vtkIdType>(ny) : 0);
   {
     // refused before allocating: past physical memory Linux kills the process instead
-    const double need = this->EstimateBytes(
-      static_cast<double>(n), input->GetPointData()->GetArray("BentNormal") != nullptr);
+    const double need = this->EstimateBytes(static_cast<double>(nv),
+      input->GetPointData()->GetArray("BentNormal") != nullptr,
+      seam ? 1024.0 * static_cast<double>(input->GetPointData()->GetActualMemorySize()) : 0.0);
     std::ostringstream needs;
     needs << "a mesh of " << nx << " x " << ny << " points needs about "
           << vtkApertureHumanBytes(need);
@@ -216,12 +251,6 @@ int vtkApertureTerrainMesh::Execute(
     }
   }
 
-  vtkNew<vtkApertureGeoreference> geo;
-  if (!geo->SetFromImage(input) || (!geo->IsLocal() && !geo->CheckLongitudeSpan()))
-  {
-    vtkErrorMacro(<< geo->GetErrorMessage());
-    return 0;
-  }
   // A site grid in a local CRS lies on the sphere of GetLocalSphereRadius, its centre at
   // latitude and longitude 0, +y north: each point at its azimuthal equidistant place there
   // (its distance and direction from the centre on the ground are the grid's).
@@ -284,7 +313,7 @@ int vtkApertureTerrainMesh::Execute(
   double* enu = enuBuffer.get();
   vtkNew<vtkPoints> points;
   points->SetDataType(this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT);
-  vtkApertureAllocate(points->GetData(), "Points", 3, n);
+  vtkApertureAllocate(points->GetData(), "Points", 3, nv);
   vtkDataArray* pointData = points->GetData();
   float* outFloat = this->OutputPointsPrecision == DOUBLE_PRECISION
     ? nullptr
@@ -298,7 +327,7 @@ int vtkApertureTerrainMesh::Execute(
   if (bentIn && bentIn->GetNumberOfComponents() == 3 && bentIn->GetNumberOfTuples() == n)
   {
     bentOut = vtkSmartPointer<vtkFloatArray>::New();
-    vtkApertureAllocate(bentOut, "BentNormal", 3, n);
+    vtkApertureAllocate(bentOut, "BentNormal", 3, nv);
   }
   float* bent = bentOut ? bentOut->GetPointer(0) : nullptr;
   vtkSMPThreadLocalObject<vtkApertureGeoreference> transformers;
@@ -414,6 +443,18 @@ int vtkApertureTerrainMesh::Execute(
     vtkWarningMacro(<< outside << " points lie outside the domain of the CRS '"
                     << geo->GetCRSName() << "' and are treated as nodata");
   }
+  // the seam's copies of column 0 (its points, rotated bent normals, normals: ap_mesh.h)
+  const auto copySeam = [&](vtkDataArray* array) {
+    for (size_t j = 0; seam && j < ny; ++j)
+    {
+      array->SetTuple(n + static_cast<vtkIdType>(j), static_cast<vtkIdType>(j * nx), array);
+    }
+  };
+  copySeam(pointData);
+  if (bentOut)
+  {
+    copySeam(bentOut);
+  }
   pointData->Modified();
   output->SetPoints(points);
   if (this->GetAbortExecute())
@@ -425,7 +466,7 @@ int vtkApertureTerrainMesh::Execute(
   // 6. Triangles, with holes at nodata: count per quad row, place rows by a prefix sum, fill
   //    in parallel (same order as a serial run). 32-bit ids whenever they fit.
   int fit32 = 0;
-  st = ap_mesh_triangulate_validate(&grid, &fit32);
+  st = ap_mesh_triangulate_validate(&grid, seam, &fit32);
   if (st != AP_OK)
   {
     vtkErrorMacro(<< "triangulation: " << ap_status_string(st));
@@ -437,14 +478,38 @@ int vtkApertureTerrainMesh::Execute(
     for (vtkIdType j = j0; j < j1; ++j)
     {
       rowStart[static_cast<size_t>(j) + 1] =
-        ap_mesh_count_rows(&grid, static_cast<size_t>(j), static_cast<size_t>(j) + 1);
+        ap_mesh_count_rows(&grid, seam, static_cast<size_t>(j), static_cast<size_t>(j) + 1);
     }
   });
   for (size_t j = 1; j < rowStart.size(); ++j)
   {
     rowStart[j] += rowStart[j - 1];
   }
-  const vtkIdType ntri = static_cast<vtkIdType>(rowStart.back());
+  // A seam's end rows that circle a pole (their outer edges at latitude +-90 degrees) close
+  // the hole there (ap_mesh_cap). Rows of the whole DEM only: a piece's inner rows are not.
+  std::vector<int64_t> caps;
+  for (int end = 0; seam && end < 2; ++end)
+  {
+    const size_t row = end ? ny - 1 : 0;
+    if (ext[2 + end] != whole[2 + end])
+    {
+      continue;
+    }
+    const double yEdge = origin[1] + (ext[2] + static_cast<double>(row) + (end ? 0.5 : -0.5)) *
+      spacing[1];
+    double north[2], south[2];
+    const bool atPole = (geo->LonLatToCRS(lonlat0[0], 90.0, north) &&
+                          std::fabs(yEdge - north[1]) <= 1e-6 * std::fabs(spacing[1])) ||
+      (geo->LonLatToCRS(lonlat0[0], -90.0, south) &&
+        std::fabs(yEdge - south[1]) <= 1e-6 * std::fabs(spacing[1]));
+    if (atPole)
+    {
+      const size_t at = caps.size();
+      caps.resize(at + 3 * ap_mesh_cap(&grid, row, nullptr));
+      ap_mesh_cap(&grid, row, caps.data() + at);
+    }
+  }
+  const vtkIdType ntri = static_cast<vtkIdType>(rowStart.back() + caps.size() / 3);
   if (ntri == 0 && std::equal(ext, ext + 6, whole))
   {
     // (a streamed piece of nodata has none; the whole DEM must have a triangle to draw)
@@ -463,6 +528,7 @@ int vtkApertureTerrainMesh::Execute(
     vtkSMPTools::For(0, quadRows, [&](vtkIdType j0, vtkIdType j1) {
       writeRows(static_cast<size_t>(j0), static_cast<size_t>(j1), ids + 3 * rowStart[j0]);
     });
+    std::copy(caps.begin(), caps.end(), ids + 3 * rowStart.back());
     vtkSMPTools::For(0, ntri + 1, [&](vtkIdType t0, vtkIdType t1) {
       for (vtkIdType t = t0; t < t1; ++t)
       {
@@ -476,7 +542,7 @@ int vtkApertureTerrainMesh::Execute(
     vtkNew<vtkTypeInt32Array> offsets, connectivity;
     fill(offsets.GetPointer(), connectivity.GetPointer(),
       [&](size_t j0, size_t j1, vtkTypeInt32* out) {
-      ap_mesh_triangulate_rows_i32(&grid, j0, j1, out);
+      ap_mesh_triangulate_rows_i32(&grid, seam, j0, j1, out);
     });
   }
   else
@@ -484,14 +550,28 @@ int vtkApertureTerrainMesh::Execute(
     vtkNew<vtkTypeInt64Array> offsets, connectivity;
     fill(offsets.GetPointer(), connectivity.GetPointer(),
       [&](size_t j0, size_t j1, vtkTypeInt64* out) {
-      ap_mesh_triangulate_rows(&grid, j0, j1, reinterpret_cast<int64_t*>(out));
+      ap_mesh_triangulate_rows(&grid, seam, j0, j1, reinterpret_cast<int64_t*>(out));
     });
   }
   output->SetPolys(polys);
 
   // 7. Point data: the DEM's arrays (vertex id = point id; BentNormal rotated above), then ours.
   vtkPointData* outPD = output->GetPointData();
-  outPD->PassData(input->GetPointData());
+  if (seam)
+  {
+    // (copies: the seam's vertices repeat column 0's values)
+    vtkPointData* inPD = input->GetPointData();
+    outPD->CopyAllocate(inPD, nv);
+    outPD->CopyData(inPD, 0, n, 0);
+    for (size_t j = 0; j < ny; ++j)
+    {
+      outPD->CopyData(inPD, static_cast<vtkIdType>(j * nx), n + static_cast<vtkIdType>(j));
+    }
+  }
+  else
+  {
+    outPD->PassData(input->GetPointData());
+  }
   if (bentOut)
   {
     outPD->RemoveArray("BentNormal");
@@ -500,23 +580,25 @@ int vtkApertureTerrainMesh::Execute(
   if (this->ComputeNormals)
   {
     vtkNew<vtkFloatArray> normals;
-    vtkApertureAllocate(normals, "Normals", 3, n);
+    vtkApertureAllocate(normals, "Normals", 3, nv);
     float* nptr = normals->GetPointer(0);
-    st = ap_mesh_normals_validate(enu, nx, ny, nptr);
+    st = ap_mesh_normals_validate(enu, nx, ny, seam, nptr);
     if (st != AP_OK)
     {
       vtkErrorMacro(<< "normals: " << ap_status_string(st));
       return 0;
     }
     vtkSMPTools::For(0, static_cast<vtkIdType>(ny), [&](vtkIdType j0, vtkIdType j1) {
-      ap_mesh_normals_rows(enu, nx, ny, static_cast<size_t>(j0), static_cast<size_t>(j1), nptr);
+      ap_mesh_normals_rows(
+        enu, nx, ny, seam, static_cast<size_t>(j0), static_cast<size_t>(j1), nptr);
     });
+    copySeam(normals);
     outPD->SetNormals(normals);
   }
   if (this->GenerateTextureCoordinates)
   {
     vtkNew<vtkFloatArray> tcoords;
-    vtkApertureAllocate(tcoords, "TextureCoordinates", 2, n);
+    vtkApertureAllocate(tcoords, "TextureCoordinates", 2, nv);
     const double wnx = whole[1] - whole[0] + 1, wny = whole[3] - whole[2] + 1;
     float* t = tcoords->GetPointer(0);
     for (size_t j = 0; j < ny; ++j)
@@ -526,6 +608,13 @@ int vtkApertureTerrainMesh::Execute(
       {
         const size_t k = j * nx + i;
         t[2 * k] = static_cast<float>((ext[0] + static_cast<double>(i) - whole[0] + 0.5) / wnx);
+        t[2 * k + 1] = v;
+      }
+      if (seam)
+      {
+        // past the east edge: an image covering the globe continues across the seam
+        const size_t k = static_cast<size_t>(n) + j;
+        t[2 * k] = static_cast<float>((static_cast<double>(nx) + 0.5) / wnx);
         t[2 * k + 1] = v;
       }
     }

@@ -27,10 +27,22 @@
  * (with NaN normals, at the lowest valid elevation) so ids stay aligned with the grid; no
  * triangle uses them.
  *
+ * A global DEM (vtkApertureGeoreference::WrapsAround: 360 degrees of longitude, at least 3
+ * columns) is closed: its east and west edges are joined by a column of quads to one more
+ * vertex per row after the grid's (id columns * rows + j: a copy of row j's point in column 0,
+ * every point array's values included, with texture coordinate u = 1 + 0.5 / columns so that
+ * an image covering the globe continues across the seam); normals there take the neighbours
+ * across the seam. An end row whose outer edge is at latitude +-90 (the DEM reaches a pole) is
+ * closed by a fan of triangles over its ring of points when none of them is nodata
+ * (ap_mesh_cap), so that a pole-to-pole DEM is a closed surface.
+ *
  * Streaming: a request for piece p of n is translated into the input extent of that piece
  * (vtkExtentTranslator, pieces sharing their boundary rows or columns), so the reader reads and
  * the mesh holds only that part, and the pieces' meshes join without gaps. Every piece uses the
- * frame of the whole extent, so their vertices coincide with those of the whole mesh.
+ * frame of the whole extent, so their vertices coincide with those of the whole mesh. A global
+ * DEM's pieces are bands of whole rows, each with its seam, when its CRS is known while the
+ * request is planned (published by vtkApertureDEMReader and passed on by
+ * vtkApertureSkyVisibility, or in the field data of an input given with SetInputData).
  *
  * Point arrays added: `Normals` (unit, ENU, of the output geometry including the vertical
  * exaggeration; active normals) and `TextureCoordinates` (u east, v north, spanning the outer
@@ -108,7 +120,7 @@ public:
    * Most bytes one update may allocate (estimated: per point the elevations' float copy 4, the
    * East-North-Up scratch 24, the points 12 or 24, normals 12, texture coordinates 8, a rotated
    * BentNormal 12 when the input has one; two triangles of three ids and an offset, 4 bytes
-   * each, 8 past 2^31 points). 0 (default): the memory this process may use (the machine's, or
+   * each, 8 past 2^31 points; a global DEM's seam copies the input's point arrays). 0 (default): the memory this process may use (the machine's, or
    * its control group's limit) less the input image's size. An update beyond it is refused
    * before allocating, naming the size: Linux does not fail an allocation past physical
    * memory, it kills the process later.
@@ -136,8 +148,9 @@ protected:
   bool GenerateTextureCoordinates;
   vtkTypeInt64 MemoryLimit;
 
-  /** The estimate of MemoryLimit's documentation for a mesh of n points. */
-  double EstimateBytes(double n, bool bentNormal) const;
+  /** The estimate of MemoryLimit's documentation for a mesh of n points, and `copied` bytes of
+   *  point data copied (a global DEM's: its seam's vertices repeat column 0's). */
+  double EstimateBytes(double n, bool bentNormal, double copied) const;
 
 private:
   vtkApertureTerrainMesh(const vtkApertureTerrainMesh&) = delete;

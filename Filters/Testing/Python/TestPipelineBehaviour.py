@@ -3,9 +3,13 @@
 a property changes (and only then), and streaming: a DEM meshed piece by piece (the reader
 reading only each piece's rows) gives exactly the vertices of the whole mesh, in the same
 frame."""
+import os
+import shutil
 import sys
+import tempfile
 
 import numpy as np
+from osgeo import gdal, osr
 from vtkmodules.test import Testing
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
@@ -87,6 +91,70 @@ class TestPipelineBehaviour(Testing.vtkTest):
                 covered[ext[2]:ext[3] + 1, ext[0]:ext[1] + 1] = True
             self.assertTrue(covered.all(), "%d pieces miss %d cells"
                             % (pieces, np.count_nonzero(~covered)))
+
+    def testStreamingGlobalDEM(self):
+        # A global DEM (2-degree cells, pole to pole) read piece by piece: its pieces are bands
+        # of whole rows (the CRS the reader publishes says the DEM wraps around), so each joins
+        # its east and west edges with one copied vertex a row, the first and last close their
+        # poles, and every vertex (the copies too) is the whole mesh's. Through the sky filter
+        # as well. With blocks, the pieces at the antimeridian would leave a gap.
+        tmp = tempfile.mkdtemp(prefix="aperture-globe-")
+        self.addCleanup(shutil.rmtree, tmp, True)
+        path = os.path.join(tmp, "globe.tif")
+        nx, ny = 180, 90
+        rng = np.random.default_rng(7)
+        ds = gdal.GetDriverByName("GTiff").Create(path, nx, ny, 1, gdal.GDT_Float32)
+        ds.SetGeoTransform((-180, 2, 0, 90, 0, -2))
+        srs = osr.SpatialReference()
+        srs.ImportFromEPSG(4326)
+        ds.SetSpatialRef(srs)
+        ds.GetRasterBand(1).WriteArray((3000 * rng.random((ny, nx))).astype(np.float32))
+        ds = None
+
+        def pipeline(sky):
+            r = aperture.vtkApertureDEMReader()
+            r.SetFileName(path)
+            m = aperture.vtkApertureTerrainMesh()
+            if sky:
+                s = aperture.vtkApertureSkyVisibility()
+                s.SetInputConnection(r.GetOutputPort())
+                s.SetNumberOfDirections(8)
+                s.SetMaximumDistance(500000.0)
+                m.SetInputConnection(s.GetOutputPort())
+            else:
+                m.SetInputConnection(r.GetOutputPort())
+            return r, m
+
+        for sky in (False, True):
+            _, whole = pipeline(sky)
+            whole.Update()
+            full = vtk_to_numpy(whole.GetOutput().GetPoints().GetData())
+            self.assertEqual(len(full), nx * ny + ny)
+            self.assertEqual(whole.GetOutput().GetNumberOfCells(),
+                             2 * nx * (ny - 1) + 2 * (nx - 2))
+            grid, seam = full[:nx * ny].reshape(ny, nx, 3), full[nx * ny:]
+            np.testing.assert_array_equal(seam, grid[:, 0])
+            cells = 0
+            for piece in range(3):
+                r, m = pipeline(sky)
+                m.UpdatePiece(piece, 3, 0)
+                out = m.GetOutput()
+                self.assertEqual(r.GetOutput().GetExtent()[:2], (0, nx - 1))
+                # the piece's rows: whole rows and their seam copies
+                rows = out.GetNumberOfPoints() // (nx + 1)
+                self.assertEqual(out.GetNumberOfPoints(), rows * (nx + 1))
+                self.assertLess(rows, ny)
+                pts = vtk_to_numpy(out.GetPoints().GetData())
+                # (its first row in the whole mesh; the heights are random)
+                j0 = int(np.flatnonzero((grid[:, 0] == pts[0]).all(axis=1))[0])
+                np.testing.assert_array_equal(pts[:rows * nx], grid[j0:j0 + rows].reshape(-1, 3))
+                np.testing.assert_array_equal(pts[rows * nx:], seam[j0:j0 + rows])
+                poles = (j0 == 0) + (j0 + rows == ny)
+                self.assertEqual(poles, 0 if piece == 1 else 1)
+                self.assertEqual(out.GetNumberOfCells(), 2 * nx * (rows - 1) + poles * (nx - 2))
+                cells += out.GetNumberOfCells()
+            # (neighbouring bands share a row of points, not of quads)
+            self.assertEqual(cells, whole.GetOutput().GetNumberOfCells())
 
     def testStreamingSkyProductsOntoMesh(self):
         # reader -> sky visibility (2 km) -> mesh, piece by piece: the mesh asks the sky filter
