@@ -340,7 +340,7 @@ int vtkApertureTerrainMesh::Execute(
     const GeographicLib::Geodesic sphere(ellipsoid[0], ellipsoid[1]); // (a site's: a sphere)
     const GeographicLib::AzimuthalEquidistant siteMap(sphere);
     const vtkIdType grain = std::max<vtkIdType>(1, 65536 / static_cast<vtkIdType>(nx));
-    vtkSMPTools::For(0, static_cast<vtkIdType>(ny), grain, [&](vtkIdType j0, vtkIdType j1) {
+    const auto placeRows = [&](vtkIdType j0, vtkIdType j1) {
       vtkApertureGeoreference* local = transformers.Local();
       if (!site && !local->HasCRS() && !local->SetCRS(crs.c_str()))
       {
@@ -420,7 +420,21 @@ int vtkApertureTerrainMesh::Execute(
           std::copy(stored, stored + 3, outDouble + 3 * k);
         }
       }
-    });
+    };
+    // in up to 20 bands of rows, with progress and a check for an abort (Ctrl-C in the
+    // command line) after each: a DEM of 10^8 points takes half a minute here
+    const vtkIdType bands = std::min<vtkIdType>(20, static_cast<vtkIdType>(ny));
+    for (vtkIdType band = 0; band < bands && !failed; ++band)
+    {
+      const vtkIdType rows = static_cast<vtkIdType>(ny);
+      vtkSMPTools::For(band * rows / bands, (band + 1) * rows / bands, grain, placeRows);
+      this->UpdateProgress(0.1 + 0.6 * static_cast<double>(band + 1) / bands);
+      if (this->GetAbortExecute())
+      {
+        output->Initialize(); // no half-built mesh
+        return 0;
+      }
+    }
   }
   catch (const std::exception& e)
   {
@@ -457,11 +471,6 @@ int vtkApertureTerrainMesh::Execute(
   }
   pointData->Modified();
   output->SetPoints(points);
-  if (this->GetAbortExecute())
-  {
-    return 0;
-  }
-  this->UpdateProgress(0.7);
 
   // 6. Triangles, with holes at nodata: count per quad row, place rows by a prefix sum, fill
   //    in parallel (same order as a serial run). 32-bit ids whenever they fit.
@@ -554,6 +563,12 @@ int vtkApertureTerrainMesh::Execute(
     });
   }
   output->SetPolys(polys);
+  this->UpdateProgress(0.85);
+  if (this->GetAbortExecute())
+  {
+    output->Initialize();
+    return 0;
+  }
 
   // 7. Point data: the DEM's arrays (vertex id = point id; BentNormal rotated above), then ours.
   vtkPointData* outPD = output->GetPointData();

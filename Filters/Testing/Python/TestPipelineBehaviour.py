@@ -59,6 +59,37 @@ class TestPipelineBehaviour(Testing.vtkTest):
         self.assertEqual(len(runs), 3)
         self.assertEqual(mesher.GetOutput().GetNumberOfPoints(), 201 * 172)
 
+    def testAbortWhileMeshing(self):
+        # AbortExecute set from a progress observer (the command line's Ctrl-C) stops the
+        # mesher within the band of rows after it (a twentieth of the points' work), leaving
+        # an empty mesh; it used to be checked only once every point was placed, so a DEM of
+        # 10^8 points ran on for half a minute.
+        reader = aperture.vtkApertureDEMReader()
+        reader.SetFileName(self.path)
+        reader.Update()
+        mesher = aperture.vtkApertureTerrainMesh()
+        mesher.SetInputConnection(reader.GetOutputPort())
+        progress = []
+
+        def observe(obj, _):
+            progress.append(obj.GetProgress())
+            if 0.1 < obj.GetProgress() < 1.0:
+                obj.SetAbortExecute(1)
+
+        mesher.AddObserver("ProgressEvent", observe)
+        failures = []  # (the update fails, as the sky filter's does when aborted)
+        executive = mesher.GetExecutive()
+        executive.AddObserver("ErrorEvent", lambda o, e: failures.append(e))
+        mesher.Update()
+        self.assertEqual(len(failures), 1)
+        self.assertEqual(mesher.GetOutput().GetNumberOfPoints(), 0)
+        self.assertTrue(any(0.1 < p < 1.0 for p in progress), progress)
+        self.assertLessEqual(max(progress), 0.1 + 0.6 / 20 + 1e-9, progress)
+        mesher.RemoveAllObservers()
+        mesher.Modified()
+        mesher.Update()  # (and runs to its end again)
+        self.assertEqual(mesher.GetOutput().GetNumberOfPoints(), 344 * 403)
+
     def testStreamingPieces(self):
         reader = aperture.vtkApertureDEMReader()
         reader.SetFileName(self.path)

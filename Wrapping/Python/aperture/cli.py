@@ -654,7 +654,8 @@ def cmd_render(args):
     mesher = mesh_watcher.watch(vtkApertureTerrainMesh())
     mesher.SetInputData(source)
     mesher.SetVerticalExaggeration(args.exaggeration)
-    mesh = mesh_watcher.update(mesher, "meshing")
+    with _abort_on_interrupt(mesher):  # (half a minute for 10^8 points)
+        mesh = mesh_watcher.update(mesher, "meshing")
 
     texture = None
     if args.albedo:
