@@ -399,6 +399,32 @@ int vtkApertureDEMReader::RequestInformation(
     d.SouthUp ? firstRowEdge : firstRowEdge + static_cast<double>(d.Out[1]) * d.Factor * levelDy;
   d.Origin[0] = west + 0.5 * d.Spacing[0];
   d.Origin[1] = south + 0.5 * d.Spacing[1];
+  const int dropped = levelX % d.Factor;
+  if (dropped && d.Window[0] == 0 && d.Window[2] == levelX - dropped)
+  {
+    // A global DEM's east and west edges join (vtkApertureGeoreference::WrapsAround); a
+    // partial block dropped at its east edge leaves a grid that no longer spans 360 degrees.
+    geo->SetGrid(gt[0] + 0.5 * levelDx, 0.0, levelDx, 1.0, levelX, 2);
+    if (geo->WrapsAround())
+    {
+      int below = d.Factor, above = d.Factor;
+      while (levelX % below)
+      {
+        --below;
+      }
+      while (above < levelX && levelX % above)
+      {
+        ++above;
+      }
+      vtkWarningMacro(<< "'" << name << "' spans 360 degrees of longitude, but decimation by "
+                      << d.Factor << " drops its last " << dropped << " of " << levelX
+                      << " columns (a partial block): the grid read does not, so its east and "
+                         "west edges do not join; a factor dividing "
+                      << levelX << " keeps them joined (" << below
+                      << (above < levelX ? " or " + std::to_string(above) : std::string())
+                      << ")");
+    }
+  }
 
   // Sample conversion: nodata, scale/offset and vertical unit, from the base band.
   int has = 0;

@@ -23,7 +23,10 @@
  *   f x f block (nodata ignored; all-nodata blocks stay nodata); a partial block at the east or
  *   south edge is dropped. Applied to the overview level; the blocks align to its top-left
  *   corner, not to the SubWindow's, which gets every block it touches, so that the windows of
- *   one raster read cells of one grid.
+ *   one raster read cells of one grid. A global DEM (360 degrees of longitude) read across its
+ *   width by a factor that does not divide its columns then spans less, so its east and west
+ *   edges no longer join (vtkApertureGeoreference::WrapsAround): a warning says so and names
+ *   the dividing factors nearest.
  * - OverrideCRS: a CRS (WKT, "EPSG:xxxx", PROJ string) used instead of the file's.
  * - MemoryLimit: the most bytes one update may allocate for the output; 0 (default) means the
  *   memory the process may use: the machine's physical memory, or its control group's limit

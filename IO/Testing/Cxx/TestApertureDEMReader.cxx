@@ -345,6 +345,53 @@ void TestWindowsAndLevels()
   }
 }
 
+// A global DEM (36 x 18 cells of 10 degrees) decimated by a factor that does not divide 36 loses
+// its last partial block and with it the join of its east and west edges: a warning says so
+// and names the dividing factors around it. Dividing factors, a window short of the width and
+// a DEM short of 360 degrees are quiet.
+void TestGlobalDecimation()
+{
+  aptest::RasterSpec s;
+  s.nx = 36;
+  s.ny = 18;
+  s.crs = "EPSG:4326";
+  const double gt[6] = { -180.0, 10.0, 0.0, 90.0, 0.0, -10.0 };
+  std::copy(gt, gt + 6, s.gt);
+  const std::string path = tmp + "/global.tif";
+  AP_CHECK(aptest::WriteRaster(path, s));
+  s.nx = 35;
+  const std::string shortPath = tmp + "/almost-global.tif";
+  AP_CHECK(aptest::WriteRaster(shortPath, s));
+  struct Case
+  {
+    const std::string* file;
+    int factor, window;
+    const char* warning;
+  };
+  const Case cases[] = {
+    { &path, 5, 0, "global.tif' spans 360 degrees of longitude, but decimation by 5 drops its "
+                   "last 1 of 36 columns (a partial block): the grid read does not, so its east "
+                   "and west edges do not join; a factor dividing 36 keeps them joined (4 or 6)" },
+    { &path, 7, 36, "decimation by 7 drops its last 1 of 36 columns" },
+    { &path, 4, 0, nullptr }, { &path, 5, 20, nullptr }, { &shortPath, 5, 0, nullptr } };
+  for (const Case& c : cases)
+  {
+    Read r(*c.file);
+    r.Reader->SetDecimation(c.factor);
+    if (c.window)
+    {
+      r.Reader->SetSubWindow(0, 0, c.window, 18);
+    }
+    r.Update();
+    AP_CHECK(r.Ok == 1);
+    AP_CHECK(!!r.Warnings->GetWarning() == (c.warning != nullptr));
+    if (c.warning)
+    {
+      AP_CHECK_CONTAINS(r.Warnings->GetWarningMessage(), c.warning);
+    }
+  }
+}
+
 // A multi-band raster reads band 1 and says so; BandIndex picks another quietly.
 void TestBands()
 {
@@ -676,6 +723,7 @@ int TestApertureDEMReader(int argc, char* argv[])
   TestNaNSamples();
   TestUnits();
   TestWindowsAndLevels();
+  TestGlobalDecimation();
   TestBands();
   TestWindowExtent();
   TestBadInput();
