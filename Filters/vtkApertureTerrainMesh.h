@@ -129,6 +129,11 @@ public:
   vtkGetMacro(MemoryLimit, vtkTypeInt64);
   ///@}
 
+  /** The bytes MemoryLimit's estimate gives an update of n points (with the current
+   *  OutputPointsPrecision), an input with a `BentNormal` array or not, and `copied` bytes of
+   *  input point data copied (a global DEM's seam: 0 otherwise): for planning beforehand. */
+  double EstimateBytes(double n, bool bentNormal, double copied) const;
+
 protected:
   vtkApertureTerrainMesh();
   ~vtkApertureTerrainMesh() override;
@@ -148,9 +153,6 @@ protected:
   bool GenerateTextureCoordinates;
   vtkTypeInt64 MemoryLimit;
 
-  /** The estimate of MemoryLimit's documentation for a mesh of n points, and `copied` bytes of
-   *  point data copied (a global DEM's: its seam's vertices repeat column 0's). */
-  double EstimateBytes(double n, bool bentNormal, double copied) const;
 
 private:
   vtkApertureTerrainMesh(const vtkApertureTerrainMesh&) = delete;

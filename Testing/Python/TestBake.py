@@ -6,6 +6,7 @@ not depend on --threads, the products carried onto the terrain mesh, and one-lin
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -19,6 +20,7 @@ from osgeo import gdal, osr
 gdal.UseExceptions()
 BUILD = os.environ.get("APERTURE_BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 APERTURE = os.path.join(BUILD, "bin", "aperture")
+SOURCE = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 
 
 def run(*args):
@@ -1033,15 +1035,28 @@ class TestBake(unittest.TestCase):
         ds = gdal.Open(out)
         self.assertEqual((ds.RasterXSize, ds.RasterYSize), (3000, 3000))
         ds = None
-        # render's mesh of that DEM (9 million points, about 790 MiB) is refused by name
-        # before anything is allocated, instead of the process being killed (the mesh is made
-        # before any window: no display is needed to get there)
-        p = subprocess.run([APERTURE, "render", dem, "-o", self.path("group.png"),
-                            "--lighting", "standard"], capture_output=True, text=True,
-                           timeout=300, preexec_fn=join, env=dict(os.environ, DISPLAY=":99"))
-        self.assertEqual(p.returncode, 1, p.stderr)
-        self.assertIn("meshing: a mesh of 3000 x 3000 points needs about 789.642 MiB", p.stderr)
-        self.assertIn("; decimate the DEM", p.stderr)
+        # render of that DEM (a mesh of 9 million points, about 790 MiB, and drawing it) is
+        # refused by name before anything is allocated, instead of the process being killed;
+        # so is one of 1200^2 points, whose mesh would fit but not its drawing (the process was
+        # killed while rendering, status -9), and the factor the refusal names renders in the
+        # same group. (Under Xvfb, itself in the group: a few MiB.)
+        xvfb = os.path.join(SOURCE, "Utilities", "with-xvfb.sh")
+        small = zeros_vrt(self.path("group-small.vrt"), 1200)
+        for n, grid in ((3000, dem), (1200, small)):
+            p = subprocess.run([xvfb, APERTURE, "render", grid, "-o", self.path("group.png"),
+                                "--lighting", "standard", "--size", "400x300"],
+                               capture_output=True, text=True, timeout=300, preexec_fn=join)
+            self.assertEqual(p.returncode, 1, p.stderr)
+            self.assertIn("rendering a mesh of %d x %d points needs about" % (n, n), p.stderr)
+            self.assertIn("under its control group's limit", p.stderr)
+            factor = re.search(r"; --decimate (\d+) would fit$", p.stderr.strip())
+            self.assertTrue(factor, p.stderr)
+        self.assertIn("(the mesh 126.343 MiB, drawing it and the rest", p.stderr)
+        p = subprocess.run([xvfb, APERTURE, "render", small, "-o", self.path("group.png"),
+                            "--lighting", "standard", "--size", "400x300", "--decimate",
+                            factor.group(1)], capture_output=True, text=True, timeout=300,
+                           preexec_fn=join)
+        self.assertEqual(p.returncode, 0, p.stderr)
         # and a process in it says what it may use: the limit less 128 MiB for itself
         code = ("import aperture; s = aperture.vtkApertureSkyVisibility; "
                 "print(s.GetUsableMemory(), s.IsMemoryGrouped())")

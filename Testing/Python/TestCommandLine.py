@@ -607,6 +607,12 @@ class TestBadInput(CommandLineTest):
         env = dict(os.environ)
         env.pop("DISPLAY", None)
         self.assert_error("needs an X display", "render", "-o", self.path("x.png"), env=env)
+        # a DISPLAY no server answers (a stale ssh one): VTK aborted the process (status -6)
+        # with its message silenced; now named first (no X server runs on :4242 here)
+        env["DISPLAY"] = ":4242"
+        self.assert_error("cannot connect to the X display ':4242' (DISPLAY): no X server "
+                          "answers there; run under xvfb-run -a", "render", "-o",
+                          self.path("x.png"), env=env)
 
     def test_render_does_not_overwrite(self):
         # checked before anything is read or rendered, so no display is needed

@@ -601,6 +601,77 @@ def _render_sun(args, image, watcher):
     return sun
 
 
+# What drawing a mesh costs this process beyond the mesh, measured with Mesa's llvmpipe (peak
+# resident memory over that before the first frame, 2,500 to 9 million points, standard and
+# aperture lighting alike: 91 MiB to 959 MiB): OpenGL's fixed start, the vertex and index
+# buffers and their driver copies per point, and the rasteriser's bins, which grow with the
+# triangles up to a bound. Within 60 MiB below the measurements at 0.4-1.4 million points,
+# above them elsewhere (by half at 9 million); a real GPU keeps its buffers off this process.
+_DRAW_FIXED_BYTES = 100 << 20
+_DRAW_BYTES_PER_POINT = 100
+_DRAW_BINS_PER_POINT, _DRAW_BINS_MAX = 120, 512 << 20
+
+
+def _resident_bytes():
+    """This process's resident memory, bytes (0 where /proc does not say)."""
+    try:
+        with open("/proc/self/statm") as f:
+            return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
+    except (OSError, ValueError, IndexError):
+        return 0
+
+
+def _check_render_memory(args, nx, ny, baked):
+    """Refuse by name, before it is made, a render of nx x ny points whose mesh and drawing
+    would not fit in the memory this process may use (past it Linux kills the process): the
+    mesher's own estimate, what drawing adds (_DRAW_*), what the process holds already, and
+    with `baked` the aperture's products still to be made (16 bytes a point) and meshed.
+    Suggests the --decimate factor that fits."""
+    from aperture import vtkApertureSkyVisibility as sky
+    from aperture import vtkApertureTerrainMesh
+    estimate = vtkApertureTerrainMesh()  # (render's mesher: the default precision)
+
+    def need(n):  # the mesh, drawing it, the products
+        return (estimate.EstimateBytes(float(n), baked, 0.0) + _DRAW_FIXED_BYTES
+                + _DRAW_BYTES_PER_POINT * n + min(_DRAW_BINS_PER_POINT * n, _DRAW_BINS_MAX)
+                + (16 * n if baked else 0))
+
+    held, usable = _resident_bytes(), float(sky.GetUsableMemory())
+    mesh = estimate.EstimateBytes(float(nx * ny), baked, 0.0)
+    if held + need(nx * ny) <= usable:
+        return
+    owner = ("this process may use under its control group's limit" if sky.IsMemoryGrouped()
+             else "this machine has")
+    message = ("rendering a mesh of %d x %d points needs about %s (the mesh %s, drawing it and "
+               "the rest %s), more than the %s of memory %s beside the %s this process holds"
+               % (nx, ny, _bytes_text(need(nx * ny)), _bytes_text(mesh),
+                  _bytes_text(need(nx * ny) - mesh), _bytes_text(max(0.0, usable - held)), owner,
+                  _bytes_text(held)))
+    for f in range(2, max(nx, ny) // 2 + 1):
+        if held + need((nx // f) * (ny // f)) <= usable:
+            raise ApertureError("%s; --decimate %d would fit" % (message, f * args.decimate))
+    raise ApertureError(message)
+
+
+def _check_display():
+    """Refuse by name a DISPLAY no X server answers (a stale one of an ssh session, a stopped
+    Xvfb): VTK would abort the process (SIGABRT) when it opens its window, its message
+    silenced with the rest of its console output. Xlib's XOpenDisplay is asked first."""
+    import ctypes
+    try:
+        x11 = ctypes.CDLL("libX11.so.6")
+    except OSError:
+        return  # (no Xlib to ask: VTK's own try decides)
+    x11.XOpenDisplay.restype = ctypes.c_void_p
+    x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
+    x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
+    display = x11.XOpenDisplay(None)
+    if not display:
+        raise ApertureError("cannot connect to the X display %r (DISPLAY): no X server answers "
+                            "there; run under xvfb-run -a" % os.environ.get("DISPLAY"))
+    x11.XCloseDisplay(display)
+
+
 def cmd_render(args):
     from aperture import vtkApertureSkyVisibility, vtkApertureTerrainMesh
     from aperture import scene
@@ -611,6 +682,7 @@ def cmd_render(args):
     if not os.environ.get("DISPLAY"):
         raise ApertureError("rendering needs an X display (VTK on Debian renders through GLX); "
                             "run under xvfb-run -a")
+    _check_display()
     if not (0.0 <= args.exaggeration <= 1000.0):
         raise ApertureError("--exaggeration must be within [0, 1000]")
     if not 0 <= args.multisamples <= 16:
@@ -634,6 +706,7 @@ def cmd_render(args):
         # the aperture of a --srcwin window sees the DEM around it, as bake --srcwin's does
         reader, window, read, _ = _window_reading(args, watcher, sky)
         _read(watcher, reader, read)
+        _check_render_memory(args, window[1] - window[0] + 1, window[3] - window[2] + 1, True)
         _render_sun(args, reader.GetOutput(), watcher)  # (bad --at, --tz: before the bake)
         with _abort_on_interrupt(sky):
             image = source = watcher.update(sky, "bake", extent=window)
@@ -642,6 +715,7 @@ def cmd_render(args):
         if args.baked:
             _attach_baked(image, args.baked, reader)
         source = image
+        _check_render_memory(args, *image.GetDimensions()[:2], bool(args.baked))
     sun = _render_sun(args, image, watcher)
     if sun.GetElevation() <= 0.0:  # (the beam and the sky models end at the horizon)
         _warn("the sun is %.2f degrees below the horizon%s: the terrain is unlit (the sky models "
