@@ -557,6 +557,18 @@ bool vtkApertureSkyVisibility::IsMemoryGrouped()
 }
 
 //------------------------------------------------------------------------------
+std::string vtkApertureSkyVisibility::GetUsableMemoryOwner()
+{
+  return vtkApertureUsableMemoryOwner(IsMemoryGrouped());
+}
+
+//------------------------------------------------------------------------------
+std::string vtkApertureSkyVisibility::FormatBytes(double bytes)
+{
+  return vtkApertureHumanBytes(bytes);
+}
+
+//------------------------------------------------------------------------------
 std::string vtkApertureSkyVisibility::CheckMemory(int nx, int ny, double held) const
 {
   return this->CheckMemory(nx, ny, nx, ny, held);

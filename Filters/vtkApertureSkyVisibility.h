@@ -136,7 +136,7 @@
 #include "ApertureFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
 
-#include <string> // for CheckMemory
+#include <string> // for CheckMemory, FormatBytes
 
 class APERTUREFILTERS_EXPORT vtkApertureSkyVisibility : public vtkImageAlgorithm
 {
@@ -220,6 +220,14 @@ public:
    *  limit" instead of "of memory this machine has". Read at each call. */
   static vtkTypeInt64 GetUsableMemory();
   static bool IsMemoryGrouped();
+
+  /** Whose memory GetUsableMemory() is, as the messages say it: "this process may use under
+   *  its control group's limit" or "this machine has". */
+  static std::string GetUsableMemoryOwner();
+
+  /** A byte count as every message of Aperture writes it: "512 bytes", "1.500 KiB", ...,
+   *  "3.353 GiB" (binary units, three decimals). */
+  static std::string FormatBytes(double bytes);
 
   /** The cores this process may run on, NumberOfThreads 0's count (and the cap of larger
    *  ones): the machine's, or fewer where its CPU affinity (taskset, a container's

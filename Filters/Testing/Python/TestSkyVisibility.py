@@ -1126,6 +1126,16 @@ class TestSkyVisibility(Testing.vtkTest):
         for name, local, sphere in zip(names, *out.values()):
             self.assertLess(np.abs(local - sphere).max(), 1e-5, name)
 
+    def testFormatBytes(self):
+        # the one formatter of byte counts (the command line's messages use it too)
+        V = aperture.vtkApertureSkyVisibility
+        for n, text in ((0, "0 bytes"), (512, "512 bytes"), (1023, "1023 bytes"),
+                        (1024, "1.000 KiB"), (1536, "1.500 KiB"), (21600, "21.094 KiB"),
+                        (828 * 1024 ** 2 * 1.0, "828.000 MiB"), (3.353 * 1024 ** 3, "3.353 GiB"),
+                        (2.0 * 1024 ** 6, "2.000 EiB"), (5000.0 * 1024 ** 6, "5000.000 EiB")):
+            self.assertEqual(V.FormatBytes(float(n)), text)
+        self.assertEqual(V.GetUsableMemoryOwner(), usable_memory()[1])
+
     def testMemoryLimit(self):
         # Refused before allocating when the estimate exceeds MemoryLimit: bytes per cell of
         # the default products 33 (five floats, BentNormal 12, EdgeTruncated 1), the float

@@ -433,12 +433,8 @@ def _format_info(d):
 
 def _bytes_text(n):
     """A byte count for messages, as the C++ side writes them: "512 bytes", "3.353 GiB"."""
-    units = ("bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB")
-    u = 0
-    while n >= 1024.0 and u < len(units) - 1:
-        n /= 1024.0
-        u += 1
-    return "%d bytes" % n if u == 0 else "%.3f %s" % (n, units[u])
+    from aperture import vtkApertureSkyVisibility
+    return vtkApertureSkyVisibility.FormatBytes(float(n))
 
 
 def cmd_info(args):
@@ -621,27 +617,26 @@ def _resident_bytes():
         return 0
 
 
-def _check_render_memory(args, nx, ny, baked):
+def _check_render_memory(args, nx, ny, bent, to_bake):
     """Refuse by name, before it is made, a render of nx x ny points whose mesh and drawing
     would not fit in the memory this process may use (past it Linux kills the process): the
-    mesher's own estimate, what drawing adds (_DRAW_*), what the process holds already, and
-    with `baked` the aperture's products still to be made (16 bytes a point) and meshed.
-    Suggests the --decimate factor that fits."""
+    mesher's own estimate (`bent`: with a BentNormal to carry), what drawing adds (_DRAW_*),
+    what the process holds already, and with `to_bake` the aperture's products still to be
+    made (16 bytes a point). Suggests the --decimate factor that fits."""
     from aperture import vtkApertureSkyVisibility as sky
     from aperture import vtkApertureTerrainMesh
     estimate = vtkApertureTerrainMesh()  # (render's mesher: the default precision)
 
     def need(n):  # the mesh, drawing it, the products
-        return (estimate.EstimateBytes(float(n), baked, 0.0) + _DRAW_FIXED_BYTES
+        return (estimate.EstimateBytes(float(n), bent, 0.0) + _DRAW_FIXED_BYTES
                 + _DRAW_BYTES_PER_POINT * n + min(_DRAW_BINS_PER_POINT * n, _DRAW_BINS_MAX)
-                + (16 * n if baked else 0))
+                + (16 * n if to_bake else 0))
 
     held, usable = _resident_bytes(), float(sky.GetUsableMemory())
-    mesh = estimate.EstimateBytes(float(nx * ny), baked, 0.0)
+    mesh = estimate.EstimateBytes(float(nx * ny), bent, 0.0)
     if held + need(nx * ny) <= usable:
         return
-    owner = ("this process may use under its control group's limit" if sky.IsMemoryGrouped()
-             else "this machine has")
+    owner = sky.GetUsableMemoryOwner()
     message = ("rendering a mesh of %d x %d points needs about %s (the mesh %s, drawing it and "
                "the rest %s), more than the %s of memory %s beside the %s this process holds"
                % (nx, ny, _bytes_text(need(nx * ny)), _bytes_text(mesh),
@@ -706,7 +701,8 @@ def cmd_render(args):
         # the aperture of a --srcwin window sees the DEM around it, as bake --srcwin's does
         reader, window, read, _ = _window_reading(args, watcher, sky)
         _read(watcher, reader, read)
-        _check_render_memory(args, window[1] - window[0] + 1, window[3] - window[2] + 1, True)
+        _check_render_memory(args, window[1] - window[0] + 1, window[3] - window[2] + 1,
+                             True, True)
         _render_sun(args, reader.GetOutput(), watcher)  # (bad --at, --tz: before the bake)
         with _abort_on_interrupt(sky):
             image = source = watcher.update(sky, "bake", extent=window)
@@ -715,7 +711,7 @@ def cmd_render(args):
         if args.baked:
             _attach_baked(image, args.baked, reader)
         source = image
-        _check_render_memory(args, *image.GetDimensions()[:2], bool(args.baked))
+        _check_render_memory(args, *image.GetDimensions()[:2], bool(args.baked), False)
     sun = _render_sun(args, image, watcher)
     if sun.GetElevation() <= 0.0:  # (the beam and the sky models end at the horizon)
         _warn("the sun is %.2f degrees below the horizon%s: the terrain is unlit (the sky models "
