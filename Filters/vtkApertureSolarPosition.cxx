@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -80,27 +81,31 @@ std::string TimeText(double seconds)
   return "in the year " + std::to_string(year);
 }
 
-/** Which of the atmosphere and time-scale parameters ap_sun_params_validate refused. */
+/** Which of the atmosphere and time-scale parameters ap_sun_params_validate refused, with its
+ *  range as ap_sun_params_invalid gives it. */
 std::string ParameterProblem(const ap_sun_params& p)
 {
-  if (!(p.pressure >= 0.0 && p.pressure <= 5000.0))
+  double lo = 0.0, hi = 0.0;
+  const char* field = ap_sun_params_invalid(&p, &lo, &hi);
+  const struct
   {
-    return "the pressure " + Number(p.pressure) + " hPa is outside 0..5000 hPa";
-  }
-  if (!(p.temperature > -273.0 && p.temperature <= 6000.0))
+    const char *field, *label;
+    double value;
+    const char* unit;
+  } texts[] = { { "pressure", "the pressure", p.pressure, "hPa" },
+    { "temperature", "the temperature", p.temperature, "C" },
+    { "delta_t", "delta T", p.delta_t, "s" }, { "delta_ut1", "delta UT1", p.delta_ut1, "s" },
+    { "atmos_refract", "the refraction at the horizon", p.atmos_refract, "deg" } };
+  for (const auto& t : texts)
   {
-    return "the temperature " + Number(p.temperature) + " C is outside -273..6000 C";
+    if (field && std::strcmp(field, t.field) == 0)
+    {
+      return std::string(t.label) + " " + Number(t.value) + " " + t.unit + " is outside " +
+        Number(lo) + ".." + Number(hi) + " " + t.unit;
+    }
   }
-  if (!std::isnan(p.delta_t) && !(std::fabs(p.delta_t) <= 100000.0))
-  {
-    return "delta T " + Number(p.delta_t) + " s is outside -100000..100000 s";
-  }
-  if (!(std::fabs(p.delta_ut1) < 1.0))
-  {
-    return "delta UT1 " + Number(p.delta_ut1) + " s is outside -1..1 s";
-  }
-  return "the refraction at the horizon " + Number(p.atmos_refract) +
-    " deg is outside 0..4 deg";
+  return std::string("the solar position's parameter ") + (field ? field : "(unknown)") +
+    " is outside " + Number(lo) + ".." + Number(hi);
 }
 
 /** Local wall-clock text "2026-03-29T02:30" (minutes; seconds when not zero). */
@@ -559,21 +564,26 @@ bool vtkApertureSolarPosition::ComputeLight(double distance)
   sunDir[1] = std::cos(e) * std::cos(a);
   sunDir[2] = std::sin(e);
   d.SkyReady = false;
-  if (ap_sky_params_validate(&sp) != AP_OK ||
-    ap_sky_sunlight_compute(&sp, this->GetZenith() * kDeg, &d.Beam) != AP_OK)
+  double lo = 0.0, hi = 0.0;
+  const char* field = ap_sky_params_invalid(&sp, &lo, &hi);
+  const ap_status st = field ? AP_ERR_INVALID_ARGUMENT
+                             : ap_sky_sunlight_compute(&sp, this->GetZenith() * kDeg, &d.Beam);
+  if (st != AP_OK)
   {
-    // (the ranges of ap_sky_params_validate that these properties reach)
+    // (the fields these properties reach, with the kernel's ranges)
+    const std::string name = field ? field : "";
+    const std::string range = Number(lo) + ".." + Number(hi);
     std::ostringstream msg;
     msg << "the light: ";
-    if (!(this->Turbidity >= 2.0 && this->Turbidity <= 10.0))
+    if (name == "turbidity")
     {
-      msg << "Turbidity must be within 2..10, not " << this->Turbidity;
+      msg << "Turbidity must be within " << range << ", not " << this->Turbidity;
     }
-    else if (!(this->LinkeTurbidity >= 1.0 && this->LinkeTurbidity <= 8.0))
+    else if (name == "linke_turbidity")
     {
-      msg << "LinkeTurbidity must be within 1..8, not " << this->LinkeTurbidity;
+      msg << "LinkeTurbidity must be within " << range << ", not " << this->LinkeTurbidity;
     }
-    else if (!(this->Height >= -1000.0 && this->Height <= 10000.0))
+    else if (name == "site_height")
     {
       msg << "the site's height, " << this->Height << " m";
       if (d.Geo)
@@ -581,12 +591,21 @@ bool vtkApertureSolarPosition::ComputeLight(double distance)
         msg << " (the DEM's elevation at its centre: a nodata value the DEM does not declare, "
                "or heights not in metres?)";
       }
-      msg << ", is outside -1000..10000 m";
+      msg << ", is outside " << range << " m";
     }
-    else
+    else if (name == "diffuse_horizontal")
     {
       msg << "DiffuseHorizontalIrradiance must be finite, not "
           << this->DiffuseHorizontalIrradiance;
+    }
+    else if (field)
+    {
+      msg << "the sky's " << name << " is outside " << range;
+    }
+    else
+    {
+      msg << "the direct beam at a zenith angle of " << this->GetZenith()
+          << " degrees: " << ap_status_string(st);
     }
     d.Error = msg.str();
     vtkErrorMacro(<< d.Error);

@@ -255,19 +255,50 @@ ap_status ap_sky_params_validate(const ap_sky_params *p)
   if (!p) {
     return AP_ERR_NULL_POINTER;
   }
-  if (p->model != AP_SKY_UNIFORM && p->model != AP_SKY_CIE_OVERCAST &&
-      p->model != AP_SKY_CIE_CLEAR && p->model != AP_SKY_PREETHAM) {
-    return AP_ERR_INVALID_ARGUMENT;
+  return ap_sky_params_invalid(p, NULL, NULL) ? AP_ERR_INVALID_ARGUMENT : AP_OK;
+}
+
+const char *ap_sky_params_invalid(const ap_sky_params *p, double *lo, double *hi)
+{
+  size_t i;
+  if (!p) {
+    return NULL;
   }
-  if (!in_range(p->turbidity, 2.0, 10.0) || !in_range(p->linke_turbidity, 1.0, 8.0) ||
-      !in_range(p->earth_sun_distance, 0.9, 1.1) || !in_range(p->site_height, -1000.0, 10000.0) ||
-      !(p->solar_constant > 0.0 && p->solar_constant <= 2000.0) || !in_range(p->ozone, 0.0, 1.0) ||
-      !isfinite(p->diffuse_horizontal) || !in_range(p->luminous_efficacy, 50.0, 683.0) ||
-      p->cap_rings < 1 || p->cap_rings > AP_SKY_MAX_RINGS || p->cap_sectors < AP_SKY_PSI_ORDER ||
-      p->cap_sectors > 4096) {
-    return AP_ERR_INVALID_ARGUMENT;
+  /* each field's range, its ends included unless open (solar_constant's lower end; both of
+   * diffuse_horizontal's, which must be finite) */
+  const struct {
+    const char *name;
+    double value, lo, hi;
+    int lo_open, hi_open;
+  } fields[] = {
+    { "model", (double)p->model, (double)AP_SKY_UNIFORM, (double)AP_SKY_PREETHAM, 0, 0 },
+    { "turbidity", p->turbidity, 2.0, 10.0, 0, 0 },
+    { "linke_turbidity", p->linke_turbidity, 1.0, 8.0, 0, 0 },
+    { "earth_sun_distance", p->earth_sun_distance, 0.9, 1.1, 0, 0 },
+    { "site_height", p->site_height, -1000.0, 10000.0, 0, 0 },
+    { "solar_constant", p->solar_constant, 0.0, 2000.0, 1, 0 },
+    { "ozone", p->ozone, 0.0, 1.0, 0, 0 },
+    { "diffuse_horizontal", p->diffuse_horizontal, -INFINITY, INFINITY, 1, 1 },
+    { "luminous_efficacy", p->luminous_efficacy, 50.0, 683.0, 0, 0 },
+    { "cap_rings", (double)p->cap_rings, 1.0, (double)AP_SKY_MAX_RINGS, 0, 0 },
+    { "cap_sectors", (double)p->cap_sectors, (double)AP_SKY_PSI_ORDER, 4096.0, 0, 0 },
+  };
+  for (i = 0; i < sizeof fields / sizeof fields[0]; ++i) {
+    const double v = fields[i].value;
+    const int low_ok = fields[i].lo_open ? v > fields[i].lo : v >= fields[i].lo; /* NaN: no */
+    const int high_ok = fields[i].hi_open ? v < fields[i].hi : v <= fields[i].hi;
+    /* (the model: one of the enumerators, which run from UNIFORM to PREETHAM) */
+    if (!low_ok || !high_ok || (i == 0 && v != floor(v))) {
+      if (lo) {
+        *lo = fields[i].lo;
+      }
+      if (hi) {
+        *hi = fields[i].hi;
+      }
+      return fields[i].name;
+    }
   }
-  return AP_OK;
+  return NULL;
 }
 
 ap_status ap_sky_enu_direction(double azimuth, double elevation, double v[3])

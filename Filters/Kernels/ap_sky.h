@@ -219,6 +219,13 @@ void ap_sky_params_init(ap_sky_params *p);
 /** AP_OK, AP_ERR_NULL_POINTER, or AP_ERR_INVALID_ARGUMENT for a field outside its range. */
 ap_status ap_sky_params_validate(const ap_sky_params *p);
 
+/** The first field of p that ap_sky_params_validate refuses, for messages: its name in the
+ *  struct ("turbidity", "linke_turbidity", "site_height", "diffuse_horizontal", ... in the
+ *  struct's order; "model" for an unknown model), its range in *lo and *hi (either may be
+ *  NULL; -inf..inf for diffuse_horizontal, which must be finite; the model's enumerators for
+ *  "model"). NULL when every field is valid, or p is NULL. */
+const char *ap_sky_params_invalid(const ap_sky_params *p, double *lo, double *hi);
+
 /** Unit ENU direction from a compass azimuth (radians, clockwise from north) and an elevation
  *  (radians): (cos e sin φ, cos e cos φ, sin e). AP_ERR_INVALID_ARGUMENT for non-finite input. */
 ap_status ap_sky_enu_direction(double azimuth, double elevation, double v[3]);

@@ -402,15 +402,42 @@ ap_status ap_sun_params_validate(const ap_sun_params *p)
   if (!p) {
     return AP_ERR_NULL_POINTER;
   }
-  if (!isnan(p->delta_t) && !in_range(p->delta_t, -100000.0, 100000.0)) {
-    return AP_ERR_OUT_OF_RANGE;
+  return ap_sun_params_invalid(p, NULL, NULL) ? AP_ERR_OUT_OF_RANGE : AP_OK;
+}
+
+const char *ap_sun_params_invalid(const ap_sun_params *p, double *lo, double *hi)
+{
+  size_t i;
+  if (!p) {
+    return NULL;
   }
-  if (!(p->delta_ut1 > -1.0 && p->delta_ut1 < 1.0) || !in_range(p->pressure, 0.0, 5000.0) ||
-      !(p->temperature > -273.0 && p->temperature <= 6000.0) ||
-      !in_range(p->atmos_refract, 0.0, 4.0)) {
-    return AP_ERR_OUT_OF_RANGE;
+  /* each field's range, its ends included unless open; delta_t NaN: estimated */
+  const struct {
+    const char *name;
+    double value, lo, hi;
+    int lo_open, hi_open;
+  } fields[] = {
+    { "delta_t", isnan(p->delta_t) ? 0.0 : p->delta_t, -100000.0, 100000.0, 0, 0 },
+    { "delta_ut1", p->delta_ut1, -1.0, 1.0, 1, 1 },
+    { "pressure", p->pressure, 0.0, 5000.0, 0, 0 },
+    { "temperature", p->temperature, -273.0, 6000.0, 1, 0 },
+    { "atmos_refract", p->atmos_refract, 0.0, 4.0, 0, 0 },
+  };
+  for (i = 0; i < sizeof fields / sizeof fields[0]; ++i) {
+    const double v = fields[i].value;
+    const int low_ok = fields[i].lo_open ? v > fields[i].lo : v >= fields[i].lo; /* NaN: no */
+    const int high_ok = fields[i].hi_open ? v < fields[i].hi : v <= fields[i].hi;
+    if (!low_ok || !high_ok) {
+      if (lo) {
+        *lo = fields[i].lo;
+      }
+      if (hi) {
+        *hi = fields[i].hi;
+      }
+      return fields[i].name;
+    }
   }
-  return AP_OK;
+  return NULL;
 }
 
 ap_status ap_sun_unix_time(int year, int month, int day, int hour, int minute, double second,

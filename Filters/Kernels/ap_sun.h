@@ -98,6 +98,12 @@ void ap_sun_params_init(ap_sun_params *p);
  *  range or not finite; delta_t may be NaN) or AP_OK. */
 ap_status ap_sun_params_validate(const ap_sun_params *p);
 
+/** The first field of p that ap_sun_params_validate refuses, for messages: its name in the
+ *  struct ("delta_t", "delta_ut1", "pressure", "temperature", "atmos_refract"), its range in
+ *  *lo and *hi (either may be NULL; delta_ut1's ends and temperature's lower end excluded).
+ *  NULL when every field is valid, or p is NULL. */
+const char *ap_sun_params_invalid(const ap_sun_params *p, double *lo, double *hi);
+
 /** POSIX seconds of the UTC civil time year-month-day hour:minute:second (proleptic Gregorian).
  *  Requires AP_SUN_YEAR_MIN <= year <= AP_SUN_YEAR_MAX, 1 <= month <= 12, 1 <= day <= days in
  *  that month, 0 <= hour <= 23, 0 <= minute <= 59, 0 <= second < 61 (a leap second 23:59:60

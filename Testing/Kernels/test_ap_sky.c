@@ -578,25 +578,56 @@ static void test_bad_input(void)
   ap_sky_params_init(&p);
   AP_CHECK_EQ_INT(ap_sky_params_validate(&p), AP_OK);
   /* one field at a time outside its range */
+  /* (with the field ap_sky_params_invalid names and its documented range) */
   struct {
     double *field;
     double value;
+    const char *name;
+    double lo, hi;
   } bad[] = {
-    { &p.turbidity, 1.9 }, { &p.turbidity, 10.5 }, { &p.turbidity, NAN },
-    { &p.linke_turbidity, 0.5 }, { &p.linke_turbidity, 8.5 }, { &p.earth_sun_distance, 0.0 },
-    { &p.earth_sun_distance, 1.496e8 }, { &p.site_height, 2e4 }, { &p.solar_constant, 0.0 },
-    { &p.ozone, -0.1 }, { &p.diffuse_horizontal, NAN }, { &p.diffuse_horizontal, INFINITY },
-    { &p.luminous_efficacy, 0.0 },
+    { &p.turbidity, 1.9, "turbidity", 2, 10 }, { &p.turbidity, 10.5, "turbidity", 2, 10 },
+    { &p.turbidity, NAN, "turbidity", 2, 10 },
+    { &p.linke_turbidity, 0.5, "linke_turbidity", 1, 8 },
+    { &p.linke_turbidity, 8.5, "linke_turbidity", 1, 8 },
+    { &p.earth_sun_distance, 0.0, "earth_sun_distance", 0.9, 1.1 },
+    { &p.earth_sun_distance, 1.496e8, "earth_sun_distance", 0.9, 1.1 },
+    { &p.site_height, 2e4, "site_height", -1000, 10000 },
+    { &p.site_height, -1000.5, "site_height", -1000, 10000 },
+    { &p.solar_constant, 0.0, "solar_constant", 0, 2000 },
+    { &p.ozone, -0.1, "ozone", 0, 1 },
+    { &p.diffuse_horizontal, NAN, "diffuse_horizontal", -INFINITY, INFINITY },
+    { &p.diffuse_horizontal, INFINITY, "diffuse_horizontal", -INFINITY, INFINITY },
+    { &p.diffuse_horizontal, -INFINITY, "diffuse_horizontal", -INFINITY, INFINITY },
+    { &p.luminous_efficacy, 0.0, "luminous_efficacy", 50, 683 },
   };
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+    double lo = 7.0, hi = 7.0;
+    const char *name;
     ap_sky_params_init(&p);
     *bad[i].field = bad[i].value;
     AP_CHECK_EQ_INT(ap_sky_params_validate(&p), AP_ERR_INVALID_ARGUMENT);
     AP_CHECK_EQ_INT(ap_sky_prepare(&p, up, &s), AP_ERR_INVALID_ARGUMENT);
+    name = ap_sky_params_invalid(&p, &lo, &hi);
+    AP_CHECK(name != NULL && !strcmp(name, bad[i].name));
+    AP_CHECK(lo == bad[i].lo && hi == bad[i].hi);
   }
+  /* the ends that are in range, and the integer fields */
+  ap_sky_params_init(&p);
+  p.turbidity = 10.0;
+  p.site_height = -1000.0;
+  p.diffuse_horizontal = 1e300;
+  p.cap_rings = AP_SKY_MAX_RINGS;
+  p.cap_sectors = 4096;
+  AP_CHECK(ap_sky_params_invalid(&p, NULL, NULL) == NULL);
+  p.cap_sectors = 4097;
+  AP_CHECK(!strcmp(ap_sky_params_invalid(&p, NULL, NULL), "cap_sectors"));
+  p.cap_rings = 0;
+  AP_CHECK(!strcmp(ap_sky_params_invalid(&p, NULL, NULL), "cap_rings"));
+  AP_CHECK(ap_sky_params_invalid(NULL, NULL, NULL) == NULL);
   ap_sky_params_init(&p);
   p.model = (ap_sky_model)17;
   AP_CHECK_EQ_INT(ap_sky_params_validate(&p), AP_ERR_INVALID_ARGUMENT);
+  AP_CHECK(!strcmp(ap_sky_params_invalid(&p, NULL, NULL), "model"));
   ap_sky_params_init(&p);
   p.cap_rings = 0;
   AP_CHECK_EQ_INT(ap_sky_params_validate(&p), AP_ERR_INVALID_ARGUMENT);

@@ -7,6 +7,7 @@
 #include "aptest.h"
 
 #include <math.h>
+#include <string.h>
 #include <stddef.h>
 
 /* The report's site and atmosphere (ALGORITHMS.md §4.1). */
@@ -461,6 +462,44 @@ static void test_bad_input(void)
   p = good;
   p.pressure = 0.0; /* limits are inclusive where documented */
   AP_CHECK_EQ_INT(ap_sun_params_validate(&p), AP_OK);
+
+  /* Which field, and its documented range, for messages; each end on both sides. */
+  {
+    struct {
+      double *field;
+      double value;
+      const char *name;
+      double lo, hi;
+      int ok;
+    } cases[] = {
+      { &p.delta_t, NAN, NULL, 0, 0, 1 }, { &p.delta_t, 100000.0, NULL, 0, 0, 1 },
+      { &p.delta_t, -100000.5, "delta_t", -100000.0, 100000.0, 0 },
+      { &p.delta_ut1, 0.999, NULL, 0, 0, 1 }, { &p.delta_ut1, -1.0, "delta_ut1", -1.0, 1.0, 0 },
+      { &p.pressure, 5000.0, NULL, 0, 0, 1 }, { &p.pressure, -0.1, "pressure", 0.0, 5000.0, 0 },
+      { &p.temperature, -272.9, NULL, 0, 0, 1 },
+      { &p.temperature, -273.0, "temperature", -273.0, 6000.0, 0 },
+      { &p.temperature, INFINITY, "temperature", -273.0, 6000.0, 0 },
+      { &p.atmos_refract, 4.0, NULL, 0, 0, 1 },
+      { &p.atmos_refract, NAN, "atmos_refract", 0.0, 4.0, 0 },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+      double lo = 7.0, hi = 7.0;
+      const char *name;
+      p = good;
+      *cases[i].field = cases[i].value;
+      name = ap_sun_params_invalid(&p, &lo, &hi);
+      AP_CHECK_EQ_INT(ap_sun_params_validate(&p), cases[i].ok ? AP_OK : AP_ERR_OUT_OF_RANGE);
+      AP_CHECK(cases[i].ok ? name == NULL : name != NULL && !strcmp(name, cases[i].name));
+      if (!cases[i].ok) {
+        AP_CHECK_NEAR(lo, cases[i].lo, 0.0);
+        AP_CHECK_NEAR(hi, cases[i].hi, 0.0);
+      }
+    }
+    AP_CHECK(ap_sun_params_invalid(NULL, NULL, NULL) == NULL);
+    p = good;
+    p.pressure = -1.0;
+    AP_CHECK(!strcmp(ap_sun_params_invalid(&p, NULL, NULL), "pressure"));
+  }
 
   /* Incidence. */
   AP_CHECK_EQ_INT(ap_sun_position(&good, t, SPA_LAT, SPA_LON, SPA_HEIGHT, &r), AP_OK);
