@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: BSD-3-Clause */
 /* Sun and sky radiometry; formulas and sources are in ap_sky.h. */
 #include "ap_sky.h"
+
+#include "ap_range.h"
 #include "ap_vec.h"
 
 #include <math.h>
@@ -260,17 +262,13 @@ ap_status ap_sky_params_validate(const ap_sky_params *p)
 
 const char *ap_sky_params_invalid(const ap_sky_params *p, double *lo, double *hi)
 {
-  size_t i;
   if (!p) {
     return NULL;
   }
   /* each field's range, its ends included unless open (solar_constant's lower end; both of
-   * diffuse_horizontal's, which must be finite) */
-  const struct {
-    const char *name;
-    double value, lo, hi;
-    int lo_open, hi_open;
-  } fields[] = {
+   * diffuse_horizontal's, which must be finite); the model one of the enumerators, which run
+   * from UNIFORM to PREETHAM */
+  const ap_range_field fields[] = {
     { "model", (double)p->model, (double)AP_SKY_UNIFORM, (double)AP_SKY_PREETHAM, 0, 0 },
     { "turbidity", p->turbidity, 2.0, 10.0, 0, 0 },
     { "linke_turbidity", p->linke_turbidity, 1.0, 8.0, 0, 0 },
@@ -283,22 +281,7 @@ const char *ap_sky_params_invalid(const ap_sky_params *p, double *lo, double *hi
     { "cap_rings", (double)p->cap_rings, 1.0, (double)AP_SKY_MAX_RINGS, 0, 0 },
     { "cap_sectors", (double)p->cap_sectors, (double)AP_SKY_PSI_ORDER, 4096.0, 0, 0 },
   };
-  for (i = 0; i < sizeof fields / sizeof fields[0]; ++i) {
-    const double v = fields[i].value;
-    const int low_ok = fields[i].lo_open ? v > fields[i].lo : v >= fields[i].lo; /* NaN: no */
-    const int high_ok = fields[i].hi_open ? v < fields[i].hi : v <= fields[i].hi;
-    /* (the model: one of the enumerators, which run from UNIFORM to PREETHAM) */
-    if (!low_ok || !high_ok || (i == 0 && v != floor(v))) {
-      if (lo) {
-        *lo = fields[i].lo;
-      }
-      if (hi) {
-        *hi = fields[i].hi;
-      }
-      return fields[i].name;
-    }
-  }
-  return NULL;
+  return ap_range_first_outside(fields, sizeof fields / sizeof fields[0], lo, hi);
 }
 
 ap_status ap_sky_enu_direction(double azimuth, double elevation, double v[3])

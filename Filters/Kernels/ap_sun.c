@@ -4,6 +4,8 @@
  * Appendix A. The periodic-term tables are the report's published data, checked term by term
  * against the full VSOP87D Earth series and Meeus' Table 22.A. */
 #include "ap_sun.h"
+
+#include "ap_range.h"
 #include "ap_time.h" /* the calendar: days <-> civil dates */
 #include "ap_vec.h"
 
@@ -407,37 +409,18 @@ ap_status ap_sun_params_validate(const ap_sun_params *p)
 
 const char *ap_sun_params_invalid(const ap_sun_params *p, double *lo, double *hi)
 {
-  size_t i;
   if (!p) {
     return NULL;
   }
   /* each field's range, its ends included unless open; delta_t NaN: estimated */
-  const struct {
-    const char *name;
-    double value, lo, hi;
-    int lo_open, hi_open;
-  } fields[] = {
+  const ap_range_field fields[] = {
     { "delta_t", isnan(p->delta_t) ? 0.0 : p->delta_t, -100000.0, 100000.0, 0, 0 },
     { "delta_ut1", p->delta_ut1, -1.0, 1.0, 1, 1 },
     { "pressure", p->pressure, 0.0, 5000.0, 0, 0 },
     { "temperature", p->temperature, -273.0, 6000.0, 1, 0 },
     { "atmos_refract", p->atmos_refract, 0.0, 4.0, 0, 0 },
   };
-  for (i = 0; i < sizeof fields / sizeof fields[0]; ++i) {
-    const double v = fields[i].value;
-    const int low_ok = fields[i].lo_open ? v > fields[i].lo : v >= fields[i].lo; /* NaN: no */
-    const int high_ok = fields[i].hi_open ? v < fields[i].hi : v <= fields[i].hi;
-    if (!low_ok || !high_ok) {
-      if (lo) {
-        *lo = fields[i].lo;
-      }
-      if (hi) {
-        *hi = fields[i].hi;
-      }
-      return fields[i].name;
-    }
-  }
-  return NULL;
+  return ap_range_first_outside(fields, sizeof fields / sizeof fields[0], lo, hi);
 }
 
 ap_status ap_sun_unix_time(int year, int month, int day, int hour, int minute, double second,
