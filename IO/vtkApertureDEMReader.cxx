@@ -58,7 +58,7 @@ double MetresPerUnit(const char* unitType)
 {
   std::string u(unitType ? unitType : "");
   std::transform(u.begin(), u.end(), u.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (u.empty() || u == "m" || u == "metre" || u == "meter" || u == "metres" || u == "meters")
+  if (u == "m" || u == "metre" || u == "meter" || u == "metres" || u == "meters")
   {
     return 1.0;
   }
@@ -204,6 +204,12 @@ const char* vtkApertureDEMReader::GetDriverName()
 const char* vtkApertureDEMReader::GetElevationUnitSource()
 {
   return this->Impl->UnitSource.c_str();
+}
+
+//------------------------------------------------------------------------------
+double vtkApertureDEMReader::GetMetresPerUnit(const char* name)
+{
+  return MetresPerUnit(name);
 }
 
 //------------------------------------------------------------------------------
@@ -455,7 +461,7 @@ int vtkApertureDEMReader::RequestInformation(
   }
   else if (!bandUnit.empty())
   {
-    metres = MetresPerUnit(unit);
+    metres = MetresPerUnit(unit); // (not empty here)
     d.UnitSource = "the band's unit '" + bandUnit + "'";
     if (metres == 0.0)
     {

@@ -123,6 +123,12 @@ public:
   vtkGetMacro(MetresPerElevationUnit, double);
   ///@}
 
+  /** Metres per unit of an elevation unit's name as bands carry them (case ignored): 1 for
+   *  "m", "metre", "meters", ...; 0.3048 for "ft", "foot", "feet", "international foot";
+   *  1200/3937 for "US survey foot", "us-ft", "ftUS", "foot_us", ...; 0 for a name it does not
+   *  know, and for "" or null. The reader reads a band's unit with it. */
+  static double GetMetresPerUnit(const char* name);
+
   ///@{
   /** Valid after UpdateInformation(): the metres per elevation unit applied, and where it came
    *  from ("MetresPerElevationUnit", "the band's unit 'ft'", "the CRS's height unit 'US survey

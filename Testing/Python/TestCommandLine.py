@@ -362,8 +362,10 @@ class TestInfo(CommandLineTest):
         self.assertEqual(d["elevation_unit_m"], 1.0)
         self.assertEqual(d["elevation_unit_source"], "none in the file: metres")
         us_foot = 1200.0 / 3937.0
+        # (the unit names the reader knows for bands, one table: vtkApertureDEMReader)
         for z, metres in (("us-ft", us_foot), ("US-FT", us_foot), ("ft", 0.3048),
-                          ("0.3048", 0.3048), ("1", 1.0), ("m", 1.0)):
+                          ("0.3048", 0.3048), ("1", 1.0), ("m", 1.0),
+                          ("US survey foot", us_foot), ("feet", 0.3048), ("metre", 1.0)):
             d, err = self.info(p, "--zfactor", z)
             self.assertEqual(err, "")
             self.assertEqual(d["elevation_unit_m"], metres)
@@ -385,11 +387,13 @@ class TestInfo(CommandLineTest):
         self.assertEqual(d["elevation_range"], [1000.0, 1000.0])
 
     def test_bad_zfactor(self):
-        for z in ("0", "-0.3048", "nan", "inf", "feet", ""):
+        # ("feet" is a unit's name the reader knows: accepted since 2026-12-05)
+        for z in ("0", "-0.3048", "nan", "inf", "furlong", ""):
             status, out, err = run("info", "--zfactor", z)
             self.assertEqual(status, 2, err)
             self.assertIn("argument --zfactor: must be a positive number of metres per "
-                          "elevation unit, or ft, us-ft or m, not %r" % z, err)
+                          "elevation unit, or a unit: m, ft or us-ft (or their names: metre, "
+                          "foot, US survey foot), not %r" % z, err)
             self.assertEqual(out, "")
 
 

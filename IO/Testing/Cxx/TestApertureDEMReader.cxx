@@ -159,6 +159,19 @@ void TestNaNSamples()
 // Feet become metres; an unknown unit warns and is taken as metres.
 void TestUnits()
 {
+  // the table of unit names, as the command line's --zfactor also reads it
+  const struct
+  {
+    const char* name;
+    double metres;
+  } names[] = { { "m", 1.0 }, { "Metres", 1.0 }, { "FEET", 0.3048 }, { "ft", 0.3048 },
+    { "international foot", 0.3048 }, { "us-ft", 1200.0 / 3937.0 },
+    { "US survey foot", 1200.0 / 3937.0 }, { "ftUS", 1200.0 / 3937.0 }, { "cubits", 0.0 },
+    { "", 0.0 }, { nullptr, 0.0 } };
+  for (const auto& n : names)
+  {
+    AP_CHECK(vtkApertureDEMReader::GetMetresPerUnit(n.name) == n.metres);
+  }
   aptest::RasterSpec s;
   s.unit = "ft";
   s.raw = [](int, int, int) { return 1000.0; };
