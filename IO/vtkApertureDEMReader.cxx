@@ -28,6 +28,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <new>
 #include <sstream>
 #include <string>
@@ -73,6 +74,20 @@ double MetresPerUnit(const char* unitType)
     return 1200.0 / 3937.0;
   }
   return 0.0;
+}
+
+// Whether a file begins with OpenEXR's magic number (0x762f3101, little-endian).
+bool IsOpenEXR(const char* fileName)
+{
+  unsigned char magic[4] = { 0, 0, 0, 0 };
+  FILE* f = std::fopen(fileName, "rb");
+  if (!f)
+  {
+    return false;
+  }
+  const size_t got = std::fread(magic, 1, 4, f);
+  std::fclose(f);
+  return got == 4 && magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01;
 }
 
 // Why a window (x offset, y offset, columns, rows; 0 columns or rows: to the edge) of full-
@@ -155,6 +170,13 @@ struct vtkApertureDEMReader::Internals
     {
       error = "GDAL cannot open '" + name + "' as a raster: " +
         trap.Message("not a raster format GDAL recognises");
+      if (IsOpenEXR(fileName))
+      {
+        // (as `aperture bake --exr` writes them; Debian's GDAL has no EXR driver)
+        error += " (it is an OpenEXR file, which this GDAL does not read: the products of "
+                 "'aperture bake --exr' are read by vtkApertureEXRReader; bake from the DEM "
+                 "or its GeoTIFF)";
+      }
       return false;
     }
     if (warning)

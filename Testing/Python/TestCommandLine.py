@@ -414,6 +414,21 @@ class TestBadInput(CommandLineTest):
         with open(p, "w") as f:
             f.write("not a raster\n")
         self.assert_error("GDAL cannot open", "info", p)
+        self.assertNotIn("OpenEXR", run("info", p)[2])
+
+    def test_exr_given_as_dem(self):
+        # The bake's own EXR given where a DEM goes (Debian's GDAL reads no EXR): the message
+        # says what the file is and what reads it, instead of only "not a raster format".
+        dem = make_raster(self.path("small.tif"), np.random.default_rng(2).random((20, 30)) * 50,
+                          (500000, 30, 0, 4000000, 0, -30))
+        exr = self.path("small.exr")
+        status, _, err = run("bake", dem, self.path("small-out.tif"), "--exr", exr, "-q")
+        self.assertEqual(status, 0, err)
+        self.assert_error("GDAL cannot open '%s' as a raster: not a raster format GDAL "
+                          "recognises (it is an OpenEXR file, which this GDAL does not read: "
+                          "the products of 'aperture bake --exr' are read by "
+                          "vtkApertureEXRReader; bake from the DEM or its GeoTIFF)" % exr,
+                          "info", exr)
 
     def test_truncated_file(self):
         # A GeoTIFF cut in half (its header survives, its pixels do not).
