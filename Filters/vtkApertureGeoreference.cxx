@@ -12,6 +12,7 @@
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
 #include <GeographicLib/Geocentric.hpp>
@@ -393,6 +394,33 @@ bool vtkApertureGeoreference::SetFromImage(vtkImageData* image)
   this->SetGrid(origin[0] + extent[0] * spacing[0], origin[1] + extent[2] * spacing[1],
     spacing[0], spacing[1], extent[1] - extent[0] + 1, extent[3] - extent[2] + 1);
   return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::SetFromInformation(vtkInformation* info)
+{
+  Internals& d = *this->Impl;
+  if (!info || !info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()) ||
+    !info->Has(vtkDataObject::ORIGIN()) || !info->Has(vtkDataObject::SPACING()))
+  {
+    d.Error = "no grid in the pipeline information (its whole extent, origin and spacing)";
+    return false;
+  }
+  int whole[6];
+  double origin[3], spacing[3];
+  info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  info->Get(vtkDataObject::ORIGIN(), origin);
+  info->Get(vtkDataObject::SPACING(), spacing);
+  this->SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],
+    spacing[0], spacing[1], whole[1] - whole[0] + 1, whole[3] - whole[2] + 1);
+  const char* crs = info->Get(CRS_KEY());
+  if (!crs || !*crs)
+  {
+    this->SetCRS(nullptr);
+    d.Error = "no CRS in the pipeline information (vtkApertureDEMReader publishes it)";
+    return false;
+  }
+  return this->SetCRS(crs);
 }
 
 //------------------------------------------------------------------------------

@@ -39,6 +39,7 @@
 
 class vtkDataObject;
 class vtkImageData;
+class vtkInformation;
 class vtkInformationStringKey;
 
 class APERTUREFILTERS_EXPORT vtkApertureGeoreference : public vtkObject
@@ -97,6 +98,16 @@ public:
    * a non-identity direction matrix, or non-positive spacing.
    */
   bool SetFromImage(vtkImageData* image);
+
+  /**
+   * The georeference of a whole grid before any data flows: the CRS from CRS_KEY and the grid
+   * from the extent, origin and spacing (WHOLE_EXTENT, ORIGIN, SPACING) of pipeline
+   * information, as vtkApertureDEMReader publishes them during RequestInformation (the grid an
+   * image of the whole extent gives SetFromImage). False, with a message, when the
+   * information lacks the grid (nothing changes), or lacks the CRS or has one GDAL cannot
+   * parse (the grid is set, and the CRS cleared or, unparsable, kept as it was).
+   */
+  bool SetFromInformation(vtkInformation* info);
 
   /**
    * Store the CRS and the GeoTransform of the image's current extent in the image's field

@@ -297,18 +297,12 @@ void InputExtent(vtkInformation* inInfo, double distance, const int ext[6], int 
   int whole[6];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   std::copy(whole, whole + 6, in);
-  const char* crs = inInfo->Get(vtkApertureGeoreference::CRS_KEY());
-  if (distance > 0 && crs && inInfo->Has(vtkDataObject::SPACING()) &&
-    inInfo->Has(vtkDataObject::ORIGIN()))
+  if (distance > 0)
   {
     vtkNew<vtkApertureGeoreference> geo;
-    double spacing[3], origin[3];
-    inInfo->Get(vtkDataObject::SPACING(), spacing);
-    inInfo->Get(vtkDataObject::ORIGIN(), origin);
     int halo[2];
-    if (geo->SetCRS(crs))
+    if (geo->SetFromInformation(inInfo))
     {
-      SetWholeGrid(geo, origin, spacing, whole);
       if (HaloCells(geo, distance, ext[2] - whole[2], ext[3] - whole[2], halo))
       {
         // (in 64 bits: a halo beside an extent at the end of int's range)
@@ -462,23 +456,13 @@ int vtkApertureSkyVisibility::GetWrapColumns(const int input[6])
 {
   vtkInformation* inInfo =
     this->GetNumberOfInputConnections(0) > 0 ? this->GetInputInformation(0, 0) : nullptr;
-  const char* crs = inInfo ? inInfo->Get(vtkApertureGeoreference::CRS_KEY()) : nullptr;
-  if (!crs || !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()) ||
-    !inInfo->Has(vtkDataObject::SPACING()) || !inInfo->Has(vtkDataObject::ORIGIN()))
+  vtkNew<vtkApertureGeoreference> geo;
+  if (!geo->SetFromInformation(inInfo))
   {
     return 0;
   }
   int whole[6];
-  double spacing[3], origin[3];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  inInfo->Get(vtkDataObject::SPACING(), spacing);
-  inInfo->Get(vtkDataObject::ORIGIN(), origin);
-  vtkNew<vtkApertureGeoreference> geo;
-  if (!geo->SetCRS(crs))
-  {
-    return 0;
-  }
-  SetWholeGrid(geo, origin, spacing, whole);
   return WrapColumns(geo, this->MaximumDistance, input, whole);
 }
 

@@ -95,26 +95,19 @@ int vtkApertureTerrainMesh::RequestUpdateExtent(
     // A global DEM's pieces are bands of whole rows, so that each joins its east and west
     // edges (RequestData's seam). The CRS is known here when vtkApertureDEMReader published
     // it, or from the data of a producer that holds them already (SetInputData).
-    const char* crs = inInfo->Get(vtkApertureGeoreference::CRS_KEY());
-    auto* held = vtkDataObject::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT()));
-    auto* heldCRS = held ? vtkStringArray::SafeDownCast(held->GetFieldData()->GetAbstractArray(
-                             vtkApertureGeoreference::GetCRSArrayName()))
-                         : nullptr;
-    if (!crs && heldCRS && heldCRS->GetNumberOfValues() == 1)
+    vtkNew<vtkApertureGeoreference> geo;
+    if (!geo->SetFromInformation(inInfo) && !geo->HasCRS())
     {
-      crs = heldCRS->GetValue(0).c_str();
+      auto* held = vtkDataObject::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT()));
+      auto* heldCRS = held ? vtkStringArray::SafeDownCast(held->GetFieldData()->GetAbstractArray(
+                               vtkApertureGeoreference::GetCRSArrayName()))
+                           : nullptr;
+      if (heldCRS && heldCRS->GetNumberOfValues() == 1)
+      {
+        geo->SetCRS(heldCRS->GetValue(0).c_str());
+      }
     }
-    bool wraps = false;
-    if (crs && inInfo->Has(vtkDataObject::SPACING()) && inInfo->Has(vtkDataObject::ORIGIN()))
-    {
-      vtkNew<vtkApertureGeoreference> geo;
-      double spacing[3], origin[3];
-      inInfo->Get(vtkDataObject::SPACING(), spacing);
-      inInfo->Get(vtkDataObject::ORIGIN(), origin);
-      geo->SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],
-        spacing[0], spacing[1], whole[1] - whole[0] + 1, whole[3] - whole[2] + 1);
-      wraps = geo->SetCRS(crs) && geo->WrapsAround();
-    }
+    const bool wraps = geo->WrapsAround(); // (false without a CRS or a grid)
     vtkNew<vtkExtentTranslator> translator;
     translator->PieceToExtentThreadSafe(piece, pieces, 0, whole, ext,
       wraps ? vtkExtentTranslator::Y_SLAB_MODE : vtkExtentTranslator::BLOCK_MODE, 0);

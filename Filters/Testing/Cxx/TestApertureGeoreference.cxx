@@ -6,13 +6,16 @@
 
 #include "vtkApertureGeoreference.h"
 
+#include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <GeographicLib/TransverseMercator.hpp>
 
@@ -357,6 +360,40 @@ void TestMeridianColumns()
   AP_CHECK(!none->HasMeridianColumns());
 }
 
+// SetFromInformation: the whole grid of pipeline information as an image of the whole extent
+// gives it to SetFromImage (extent starting at 10: its first cell, not the origin), the CRS
+// from CRS_KEY; without the key the grid is set and the CRS cleared; without a grid nothing.
+void TestFromInformation()
+{
+  vtkNew<vtkInformation> info;
+  vtkNew<vtkApertureGeoreference> geo;
+  AP_CHECK(!geo->SetFromInformation(info));
+  AP_CHECK_CONTAINS(geo->GetErrorMessage(), "no grid in the pipeline information");
+  const int whole[6] = { 10, 19, 0, 4, 0, 0 };
+  info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+  info->Set(vtkDataObject::ORIGIN(), 500000.0, 4000000.0, 0.0);
+  info->Set(vtkDataObject::SPACING(), 30.0, 20.0, 1.0);
+  geo->SetCRS("EPSG:4326");
+  AP_CHECK(!geo->SetFromInformation(info));
+  AP_CHECK(!geo->HasCRS());
+  AP_CHECK_CONTAINS(geo->GetErrorMessage(), "no CRS in the pipeline information");
+  double origin[2], spacing[2];
+  int size[2];
+  geo->GetGridOrigin(origin);
+  geo->GetGridSpacing(spacing);
+  geo->GetGridSize(size);
+  AP_CHECK_NEAR(origin[0], 500000.0 + 10 * 30.0, 0.0);
+  AP_CHECK_NEAR(origin[1], 4000000.0, 0.0);
+  AP_CHECK_NEAR(spacing[0], 30.0, 0.0);
+  AP_CHECK_NEAR(spacing[1], 20.0, 0.0);
+  AP_CHECK(size[0] == 10 && size[1] == 5);
+  info->Set(vtkApertureGeoreference::CRS_KEY(), "EPSG:32611");
+  AP_CHECK(geo->SetFromInformation(info));
+  AP_CHECK(std::string(geo->GetCRSName()) == "WGS 84 / UTM zone 11N");
+  info->Set(vtkApertureGeoreference::CRS_KEY(), "EPSG:999999999");
+  AP_CHECK(!geo->SetFromInformation(info));
+}
+
 // WrapsAround: a lat/lon grid whose columns span 360 degrees (in degrees or in grads, whose
 // unit the CRS names), wherever it starts; not one column fewer, nor a projected world grid.
 void TestWrapsAround()
@@ -484,6 +521,7 @@ int TestApertureGeoreference(int, char*[])
   TestLongitudeSpan();
   TestMeridianColumns();
   TestWrapsAround();
+  TestFromInformation();
   TestCellMetric();
   return aptest::Result();
 }

@@ -316,19 +316,12 @@ def _whole_grid(reader):
     from an image of the whole extent; the whole extent), after the reader's
     UpdateInformation; without a CRS it can take, the georeference has none (HasCRS false) and
     says why (GetErrorMessage)."""
-    from vtkmodules.vtkCommonDataModel import vtkDataObject
     from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
     from aperture import vtkApertureGeoreference
     info = reader.GetOutputInformation(0)
-    whole = info.Get(sddp.WHOLE_EXTENT())
-    origin, spacing = info.Get(vtkDataObject.ORIGIN()), info.Get(vtkDataObject.SPACING())
     geo = vtkApertureGeoreference()
-    if not geo.SetCRS(info.Get(vtkApertureGeoreference.CRS_KEY()) or ""):
-        return geo, whole
-    nx, ny = _extent_size(whole)
-    geo.SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],
-                spacing[0], spacing[1], nx, ny)
-    return geo, whole
+    geo.SetFromInformation(info)
+    return geo, info.Get(sddp.WHOLE_EXTENT())
 
 
 def describe(reader, watcher):
