@@ -6,7 +6,6 @@ exposure 0 matches VTK's own mapper exactly."""
 import sys
 
 from vtkmodules.test import Testing
-from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkFiltersSources import vtkPlaneSource
 from vtkmodules.vtkRenderingCore import (
     vtkActor,
@@ -14,11 +13,11 @@ from vtkmodules.vtkRenderingCore import (
     vtkPolyDataMapper,
     vtkRenderer,
     vtkRenderWindow,
-    vtkWindowToImageFilter,
 )
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (OpenGL factory overrides)
 
 import aperture
+from aperture import scene
 
 
 def render(mapper, size=64):
@@ -46,13 +45,7 @@ def render(mapper, size=64):
     window.AddRenderer(renderer)
     renderer.ResetCamera()
     renderer.GetActiveCamera().Zoom(3.0)  # the plane fills the window
-    window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.ReadFrontBufferOff()
-    grab.Update()
-    rgb = vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars())
-    return rgb[:, :3].astype(float).mean(axis=0)
+    return scene.rgb_pixels(window).reshape(-1, 3).astype(float).mean(axis=0)
 
 
 class TestLightingMapperExposure(Testing.vtkTest):

@@ -6,7 +6,6 @@ south of the DEM centre) must project into the lower half of the image."""
 import sys
 
 from vtkmodules.test import Testing
-from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import aperture
@@ -37,11 +36,7 @@ class TestRenderDefaultDEM(Testing.vtkTest):
         self.assertLess(y, 150 - 40, "the summit is not in the southern part of the picture")
         self.assertGreater(x, 150, "the summit is not east of the centre")
         # The summit is drawn in the light summit colour.
-        grab = vtkWindowToImageFilter()
-        grab.SetInput(window)
-        grab.ReadFrontBufferOff()
-        grab.Update()
-        rgb = vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars()).reshape(300, 300, -1)
+        rgb = scene.rgb_pixels(window)
         pixel = rgb[int(round(y)), int(round(x)), :3]
         self.assertGreater(int(pixel.min()), 140, "summit pixel %s is not light" % (pixel,))
 

@@ -10,13 +10,14 @@ whole image into that column. Both poles, seen from
 their sides, are closed too."""
 import numpy as np
 from vtkmodules.test import Testing
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk
 from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderer,
-                                         vtkRenderWindow, vtkTexture, vtkWindowToImageFilter)
+                                         vtkRenderWindow, vtkTexture)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL implementations)
 
 import aperture
+from aperture import scene
 
 NX, NY, SIZE = 180, 90, 400
 A = 6378137.0  # WGS 84; the frame's origin (latitude 0, longitude 0) lies A above the centre
@@ -79,13 +80,7 @@ def picture(mesh, position, up):
     camera.SetViewUp(*up)
     camera.SetViewAngle(30.0)
     renderer.ResetCameraClippingRange()
-    window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.ReadFrontBufferOff()
-    grab.Update()
-    rgb = vtk_to_numpy(grab.GetOutput().GetPointData().GetScalars())
-    return window, rgb.reshape(SIZE, SIZE, -1)[:, :, :3].astype(int)
+    return window, scene.rgb_pixels(window).astype(int)
 
 
 class TestRenderGlobalDEM(Testing.vtkTest):
