@@ -7,6 +7,7 @@
 #define vtkApertureElevation_h
 
 #include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkFloatArray.h"
 
 #include <algorithm>
@@ -37,6 +38,46 @@ inline void vtkApertureCopyElevations(vtkDataArray* a, vtkIdType begin, vtkIdTyp
   {
     z[k] = finite(static_cast<float>(a->GetComponent(k, 0)));
   }
+}
+
+// The elevation array of point data `pd`: the array named `name`, or, when there is none so
+// named and `name` is the filters' default "Elevation", the active scalars (an image made by
+// hand, as VTK's imaging filters take it). Any numeric type, one component. nullptr when there
+// is none, with *problem naming what the point data hold instead.
+inline vtkDataArray* vtkApertureElevationArray(
+  vtkDataSetAttributes* pd, const char* name, std::string* problem)
+{
+  name = name ? name : "";
+  vtkDataArray* a = pd ? pd->GetArray(name) : nullptr;
+  if (!a && pd && std::string(name) == "Elevation")
+  {
+    a = pd->GetScalars();
+  }
+  std::ostringstream msg;
+  if (a && a->GetNumberOfComponents() == 1)
+  {
+    return a;
+  }
+  if (a)
+  {
+    msg << "the elevation array '" << (a->GetName() ? a->GetName() : "") << "' has "
+        << a->GetNumberOfComponents() << " components; elevations need one";
+  }
+  else
+  {
+    msg << "the input has no point array named '" << name << "'";
+    const int n = pd ? pd->GetNumberOfArrays() : 0;
+    msg << (n ? " (its point arrays: " : " and no point scalars: it has no point arrays");
+    for (int k = 0; k < n; ++k)
+    {
+      vtkAbstractArray* other = pd->GetAbstractArray(k);
+      const char* o = other && other->GetName() ? other->GetName() : "";
+      msg << (k ? ", '" : "'") << o << "'";
+    }
+    msg << (n ? "); SetElevationArrayName names the one holding elevations in metres" : "");
+  }
+  *problem = msg.str();
+  return nullptr;
 }
 
 // The warning for valid elevations from min to max (m), "" when the Earth has such; `what`

@@ -645,13 +645,15 @@ int vtkApertureSkyVisibility::Execute(
     return 0;
   }
   const int nx = inExt[1] - inExt[0] + 1, ny = inExt[3] - inExt[2] + 1;
-  const char* name = this->ElevationArrayName ? this->ElevationArrayName : "";
-  vtkDataArray* elevation = input->GetPointData()->GetArray(name);
-  if (!elevation || elevation->GetNumberOfComponents() != 1)
+  std::string missing;
+  vtkDataArray* elevation =
+    vtkApertureElevationArray(input->GetPointData(), this->ElevationArrayName, &missing);
+  if (!elevation)
   {
-    vtkErrorMacro(<< "the input has no one-component point array named '" << name << "'");
+    vtkErrorMacro(<< missing);
     return 0;
   }
+  const char* name = elevation->GetName() ? elevation->GetName() : "";
   if (nx < 2 || ny < 2)
   {
     vtkErrorMacro(<< "the DEM has " << nx << " x " << ny << " cells; at least 2 x 2 are needed");

@@ -322,7 +322,9 @@ public:
   ///@}
 
   ///@{
-  /** Name of the input elevation array (metres). Default "Elevation". */
+  /** Name of the input's point array of elevations (metres; one component, any numeric type).
+   *  Default "Elevation", which an input without an array so named takes from its active point
+   *  scalars; a name the input lacks is an error naming the arrays it has. */
   vtkSetStringMacro(ElevationArrayName);
   vtkGetStringMacro(ElevationArrayName);
   ///@}

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkApertureSolarPosition.h"
 
+#include "vtkApertureElevation.h"
 #include "vtkApertureGeoreference.h"
 
 #include "vtkDataArray.h"
@@ -406,11 +407,8 @@ bool vtkApertureSolarPosition::SetPlaceFromImage(vtkImageData* dem)
   double height = 0.0;
   int dims[3];
   dem->GetDimensions(dims);
-  vtkDataArray* z = dem->GetPointData()->GetScalars();
-  if (!z)
-  {
-    z = dem->GetPointData()->GetArray("Elevation");
-  }
+  std::string missing; // (no elevations: the height is 0)
+  vtkDataArray* z = vtkApertureElevationArray(dem->GetPointData(), "Elevation", &missing);
   if (z && z->GetNumberOfTuples() == static_cast<vtkIdType>(dims[0]) * dims[1])
   {
     const double ic = 0.5 * (dims[0] - 1), jc = 0.5 * (dims[1] - 1);

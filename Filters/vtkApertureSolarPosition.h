@@ -101,7 +101,8 @@ public:
   /**
    * Take the place from a DEM image (as vtkApertureDEMReader produces it): its centre, which is
    * the origin of vtkApertureTerrainMesh's frame, at the height of the DEM there (the nearest
-   * valid cell; 0 if none). Also remembers the DEM's georeference for GetGridAzimuth and
+   * valid cell of its point array "Elevation", else of its one-component active scalars; 0 if
+   * none). Also remembers the DEM's georeference for GetGridAzimuth and
    * GetGridConvergence. False (with the reason) when the image has no CRS, or a CRS with no
    * geographic equivalent other than a local one (vtkApertureGeoreference::IsLocal: a site
    * grid, its +y axis north, γ = 0), which has no place on the Earth: Latitude and Longitude

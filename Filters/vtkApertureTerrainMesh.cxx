@@ -201,18 +201,12 @@ int vtkApertureTerrainMesh::Execute(
                   << " points; a mesh needs at least 2 x 2");
     return 0;
   }
-  const char* name = this->ElevationArrayName ? this->ElevationArrayName : "";
-  vtkDataArray* elevation = input->GetPointData()->GetArray(name);
+  std::string missing;
+  vtkDataArray* elevation =
+    vtkApertureElevationArray(input->GetPointData(), this->ElevationArrayName, &missing);
   if (!elevation)
   {
-    vtkErrorMacro(<< "the input has no point array named '" << name << "'");
-    return 0;
-  }
-  if (elevation->GetNumberOfComponents() != 1 ||
-    (elevation->GetDataType() != VTK_FLOAT && elevation->GetDataType() != VTK_DOUBLE))
-  {
-    vtkErrorMacro(<< "the elevation array '" << name
-                  << "' must have one float or double component");
+    vtkErrorMacro(<< missing);
     return 0;
   }
   const vtkIdType n = static_cast<vtkIdType>(nx * ny);

@@ -82,7 +82,9 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /** Name of the input point array holding elevations in metres. Default "Elevation". */
+  /** Name of the input's point array of elevations (metres; one component, any numeric type).
+   *  Default "Elevation", which an input without an array so named takes from its active point
+   *  scalars; a name the input lacks is an error naming the arrays it has. */
   vtkSetStringMacro(ElevationArrayName);
   vtkGetStringMacro(ElevationArrayName);
   ///@}

@@ -431,6 +431,14 @@ void TestArrayTypesAndUnits()
     typed->GetPointData()->SetScalars(values);
     CheckSameBits(Sky(typed, setup), expected, values->GetClassName());
   }
+  // an image without an "Elevation" array (made by hand, VTK's way): its active scalars
+  auto unnamed = MakeDEM("EPSG:32633", 400000, 5000000, 30, 30, 30, 20, rounded);
+  vtkNew<vtkShortArray> dem16;
+  dem16->DeepCopy(shorts);
+  dem16->SetName("band1");
+  unnamed->GetPointData()->RemoveArray("Elevation");
+  unnamed->GetPointData()->SetScalars(dem16);
+  CheckSameBits(Sky(unnamed, setup), expected, "the active scalars 'band1'");
   // doubles beyond the float range (and infinities) are nodata, as NaN is
   auto holes = MakeDEM("EPSG:32633", 400000, 5000000, 30, 30, 30, 20, [&](int i, int j) {
     return i == 7 && j == 5 ? std::numeric_limits<float>::quiet_NaN() : rounded(i, j);
@@ -530,7 +538,22 @@ void TestErrors()
   ExpectError(dem, [](vtkApertureSkyVisibility* s) { s->SetRefractionCoefficient(-0.1); },
     "RefractionCoefficient must be within [0, 1)");
   ExpectError(dem, [](vtkApertureSkyVisibility* s) { s->SetElevationArrayName("Height"); },
-    "no one-component point array named 'Height'");
+    "the input has no point array named 'Height' (its point arrays: 'Elevation'); "
+    "SetElevationArrayName names the one holding elevations in metres");
+  auto vectors = MakeDEM("EPSG:32633", 400000, 5000000, 30, 30, 10, 10, Rough);
+  vtkNew<vtkFloatArray> v3;
+  v3->SetName("Elevation");
+  v3->SetNumberOfComponents(3);
+  v3->SetNumberOfTuples(100);
+  v3->Fill(0.0);
+  vectors->GetPointData()->AddArray(v3); // (replaces the scalars of that name)
+  ExpectError(
+    vectors, none, "the elevation array 'Elevation' has 3 components; elevations need one");
+  auto bare = MakeDEM("EPSG:32633", 400000, 5000000, 30, 30, 10, 10, Rough);
+  bare->GetPointData()->RemoveArray("Elevation");
+  ExpectError(bare, none,
+    "the input has no point array named 'Elevation' and no point scalars: it has no point "
+    "arrays");
   ExpectError(dem, [](vtkApertureSkyVisibility* s) { s->SetMemoryLimit(1000); },
     "more than the 1000 bytes MemoryLimit");
   ExpectError(MakeDEM(nullptr, 0, 0, 30, 30, 10, 10, Rough), none, "no metric cell size");

@@ -259,6 +259,19 @@ void TestLocalGrid()
   AP_CHECK(sun->SetPlaceFromImage(dem));
   AP_CHECK(std::isnan(sun->GetLatitude()) && std::isnan(sun->GetLongitude()));
   AP_CHECK_NEAR(sun->GetHeight(), 250.0, 0.0);
+  // the height is the "Elevation" array's, whatever the active scalars are (a sky product
+  // made active downstream); an image without that array gives it from its scalars
+  auto layered = MakeUTM(500000.0, 5000000.0);
+  vtkNew<vtkFloatArray> svf;
+  svf->SetName("SkyViewFactor");
+  svf->SetNumberOfTuples(layered->GetNumberOfPoints());
+  svf->FillValue(0.75f);
+  layered->GetPointData()->AddArray(svf);
+  layered->GetPointData()->SetActiveScalars("SkyViewFactor");
+  AP_CHECK(sun->SetPlaceFromImage(layered) && sun->GetHeight() == 250.0);
+  layered->GetPointData()->RemoveArray("Elevation");
+  AP_CHECK(sun->SetPlaceFromImage(layered) && sun->GetHeight() == 0.75);
+  AP_CHECK(sun->SetPlaceFromImage(dem) && sun->GetHeight() == 250.0);
   AP_CHECK(!sun->Compute());
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "local CRS");
   AP_CHECK(sun->ComputeForDirection(300.0, 20.0));

@@ -19,6 +19,7 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkShortArray.h"
 #include "vtkSmartPointer.h"
 #include "vtkTestErrorObserver.h"
 
@@ -329,6 +330,40 @@ void TestHolesAndArrays()
   AP_CHECK(mesh->GetFieldData()->GetAbstractArray("CRS") != nullptr);
 }
 
+// Elevations as 16-bit integers in the active scalars of an image without an "Elevation"
+// array (made by hand, VTK's way): the float DEM's points, normals and triangles exactly.
+void TestScalarsOfAnyType()
+{
+  const int nx = 7, ny = 6;
+  auto height = [](int i, int j) { return static_cast<float>(40 * i - 25 * j + (i * j) % 7); };
+  auto dem = MakeDEM("EPSG:32633", 400000.0, 5000000.0, 30.0, 30.0, nx, ny, height);
+  auto expected = Mesh(dem);
+  auto shorts = MakeDEM("EPSG:32633", 400000.0, 5000000.0, 30.0, 30.0, nx, ny, height);
+  vtkNew<vtkShortArray> dem16;
+  dem16->SetName("band1");
+  dem16->SetNumberOfTuples(nx * ny);
+  for (vtkIdType k = 0; k < nx * ny; ++k)
+  {
+    const int i = static_cast<int>(k % nx), j = static_cast<int>(k / nx);
+    dem16->SetValue(k, static_cast<short>(height(i, j)));
+  }
+  shorts->GetPointData()->RemoveArray("Elevation");
+  shorts->GetPointData()->SetScalars(dem16);
+  auto got = Mesh(shorts);
+  AP_CHECK(got->GetNumberOfPoints() == nx * ny &&
+    got->GetNumberOfCells() == expected->GetNumberOfCells());
+  for (vtkIdType k = 0; k < got->GetNumberOfPoints() && k < nx * ny; ++k)
+  {
+    double a[3], b[3];
+    got->GetPoint(k, a);
+    expected->GetPoint(k, b);
+    AP_CHECK(a[0] == b[0] && a[1] == b[1] && a[2] == b[2]);
+    got->GetPointData()->GetNormals()->GetTuple(k, a);
+    expected->GetPointData()->GetNormals()->GetTuple(k, b);
+    AP_CHECK(a[0] == b[0] && a[1] == b[1] && a[2] == b[2]);
+  }
+}
+
 // The vertex a global mesh's id stands for: the seam's copies (after the grid's) are column 0.
 vtkIdType GridVertex(vtkIdType id, vtkIdType nx, vtkIdType ny)
 {
@@ -593,7 +628,9 @@ void TestMemoryLimit()
 void TestErrors()
 {
   auto ok = [](int, int) { return 1.0f; };
-  ExpectError(MakeDEM("EPSG:4326", 0, 0, 1, 1, 3, 3, ok), "no point array named 'Height'",
+  ExpectError(MakeDEM("EPSG:4326", 0, 0, 1, 1, 3, 3, ok),
+    "the input has no point array named 'Height' (its point arrays: 'Elevation'); "
+    "SetElevationArrayName names the one holding elevations in metres",
     "Height");
   ExpectError(MakeDEM(nullptr, 0, 0, 1, 1, 3, 3, ok), "has no CRS");
   ExpectError(MakeDEM("EPSG:4326", 0, 0, 1, 1, 1, 5, ok), "at least 2 x 2");
@@ -612,7 +649,7 @@ void TestErrors()
   v3->Fill(0.0);
   vec->GetPointData()->RemoveArray("Elevation");
   vec->GetPointData()->AddArray(v3);
-  ExpectError(vec, "must have one float or double component");
+  ExpectError(vec, "the elevation array 'Elevation' has 3 components; elevations need one");
 }
 } // namespace
 
@@ -624,6 +661,7 @@ int TestApertureTerrainMesh(int, char*[])
   TestLocalGeometry();
   TestBentNormalFrame();
   TestHolesAndArrays();
+  TestScalarsOfAnyType();
   TestGlobal();
   TestNonFiniteAndImplausible();
   TestExaggeration();
