@@ -1056,13 +1056,14 @@ def _plan_bake(args, watcher, sky):
     rows as fit; refused when not even one tile row fits."""
     reader, window, read, whole = _window_reading(args, watcher, sky)
     # a global DEM's sweep adds columns of the other side to each of its own (its edges join):
-    # as many as the widest halo of the window's rows needs, for the whole and every strip
+    # as many as the widest halo of the window's rows needs (0 unless the DEM wraps around and
+    # `read` spans every column, as each strip's read then does too), for the whole and every
+    # strip
     wrap = sky.GetWrapColumns(read)
 
     def problem(read, nx, ny):  # the sky filter's refusal of an update, or ""
         rx, ry = _extent_size(read)
-        return sky.CheckMemory(rx + 2 * wrap if read[0] == whole[0] and read[1] == whole[1]
-                               else rx, ry, nx, ny, 4.0 * rx * ry)
+        return sky.CheckMemory(rx + 2 * wrap, ry, nx, ny, 4.0 * rx * ry)
 
     nx, ny = _extent_size(window)
     whole_problem = problem(read, nx, ny)
