@@ -3041,15 +3041,16 @@ AP_INLINE unsigned shore_rises(float Z, const float *zq, const float *b, long n,
   return r;
 }
 
-/* The void flags of 16 cells' column samples at one step: vm[c] != 0 where the ray of lane c
- * reads a nodata cell there (shore_void for 16 cells at once), from its two rows of cells, lo
- * (weight 1 - f) and hi (lo + 1 in a view column; f != 0 only), also or-ed into acc[c].
- * Returns whether any is set. */
+/* The void flags of 16 cells' column samples at one step, as bits: bit c set where the ray
+ * of lane c reads a nodata cell there (shore_void for 16 cells at once), from its two rows of
+ * cells, lo (weight 1 - f) and hi (lo + 1 in a view column; f != 0 only). */
 #if defined(__GNUC__)
-AP_INLINE int shore_voids(const float *lo, const float *hi, float f, int *vm, int *acc)
+AP_INLINE unsigned shore_voids(const float *lo, const float *hi, float f)
 {
   fm_v8 a0, a1;
-  fm_i8 m0, m1, c0, c1;
+  fm_i8 m0, m1;
+  int v[8], c;
+  unsigned bits = 0;
   AP_FM_LOAD(a0, lo);
   AP_FM_LOAD(a1, lo + 8);
   m0 = a0 != a0;
@@ -3061,67 +3062,69 @@ AP_INLINE int shore_voids(const float *lo, const float *hi, float f, int *vm, in
     m0 |= b0 != b0;
     m1 |= b1 != b1;
   }
-  memcpy(vm, &m0, sizeof m0);
-  memcpy(vm + 8, &m1, sizeof m1);
-  memcpy(&c0, acc, sizeof c0);
-  memcpy(&c1, acc + 8, sizeof c1);
-  c0 |= m0;
-  c1 |= m1;
-  memcpy(acc, &c0, sizeof c0);
-  memcpy(acc + 8, &c1, sizeof c1);
-  return AP_FM_ANY(m0 | m1);
+  {
+    const fm_i8 w0 = { 1, 2, 4, 8, 16, 32, 64, 128 };
+    const fm_i8 w1 = { 256, 512, 1024, 2048, 4096, 8192, 16384, 32768 };
+    const fm_i8 w = (m0 & w0) | (m1 & w1);
+    memcpy(v, &w, sizeof w);
+  }
+  for (c = 0; c < 8; ++c) {
+    bits |= (unsigned)v[c];
+  }
+  return bits;
 }
 #else
-AP_INLINE int shore_voids(const float *lo, const float *hi, float f, int *vm, int *acc)
+AP_INLINE unsigned shore_voids(const float *lo, const float *hi, float f)
 {
-  int c, any = 0;
+  unsigned bits = 0;
+  int c;
   for (c = 0; c < AP_FM_LANES; ++c) {
-    vm[c] = isnan(lo[c]) || (f != 0.0f && isnan(hi[c]));
-    acc[c] |= vm[c];
-    any |= vm[c];
+    bits |= (unsigned)(isnan(lo[c]) || (f != 0.0f && isnan(hi[c]))) << c;
   }
-  return any;
+  return bits;
 }
 #endif
+
+/* The lowest set bit's index of m != 0. */
+AP_INLINE int shore_lowest(unsigned m)
+{
+#if defined(__GNUC__)
+  return __builtin_ctz(m);
+#else
+  int c = 0;
+  while (!((m >> c) & 1u)) {
+    ++c;
+  }
+  return c;
+#endif
+}
 
 /* For the cells `lanes` (bits) of a group of 16 (cell c: view row base + c by columns, grid
  * column base + c by rows; height zq[c], slope b[c]) whose rays stay on the grid over steps
  * [ka, kb]: shore_stretch on each stretch [k, k + 1] in [ka, kb) where the column sample at
- * either end reads nodata, from the void flags vm[k - ka] of the steps (shore_voids): the
- * same stretches as shore_scan's. */
+ * either end reads nodata, from the void bits vm[k - ka] of the steps (shore_voids): the
+ * same stretches as shore_scan's, each cell's in the same order. */
 static void shore_lanes(shore_ray *ry, const fm_step *fm, const double *t, double len, long ka,
-                        long kb, int (*vm)[AP_FM_LANES], unsigned lanes, long base,
-                        const float *zq, float *b)
+                        long kb, const unsigned *vm, unsigned lanes, long base, const float *zq,
+                        float *b)
 {
-  long c, k;
+  long k;
   for (k = ka; k < kb; ++k) {
-    const int *v0 = vm[k - ka], *v1 = vm[k + 1 - ka];
-    if (!shore_crosses(&fm[k], &fm[k + 1])) {
+    unsigned m = (vm[k - ka] | vm[k + 1 - ka]) & lanes;
+    if (!m || !shore_crosses(&fm[k], &fm[k + 1])) {
       continue; /* (the same steps for the 16 rays) */
     }
-    for (c = 0; c < AP_FM_LANES; ++c) {
-      if ((v0[c] | v1[c]) && ((lanes >> c) & 1u)) {
-        if (ry->rows) {
-          ry->p = (size_t)(base + c);
-        } else {
-          ry->s = base + c;
-        }
-        shore_stretch(ry, k, shore_y(&fm[k]), shore_y(&fm[k + 1]), shore_t(t, len, k),
-                      shore_t(t, len, k + 1), zq[c], b + c);
+    for (; m; m &= m - 1u) {
+      const int c = shore_lowest(m);
+      if (ry->rows) {
+        ry->p = (size_t)(base + c);
+      } else {
+        ry->s = base + c;
       }
+      shore_stretch(ry, k, shore_y(&fm[k]), shore_y(&fm[k + 1]), shore_t(t, len, k),
+                    shore_t(t, len, k + 1), zq[c], b + c);
     }
   }
-}
-
-/* The lanes (bits) among r whose flag is set in acc. */
-AP_INLINE unsigned shore_void_lanes(const int *acc, unsigned r)
-{
-  unsigned out = 0;
-  int c;
-  for (c = 0; c < AP_FM_LANES; ++c) {
-    out |= (unsigned)(acc[c] != 0) << c;
-  }
-  return out & r;
 }
 
 /* DEMs with nodata, after the far march of cells [sa, sb) of view column p (steps fm[0..kmax];
@@ -3206,15 +3209,15 @@ static void far_shore_column(const ap_horizon *hz, const fm_step *fm, const doub
         }
         if (n == AP_FM_LANES && s0 + fm_lo(&fm[kf1]) >= 0 && s0 + n - 1 + fm_hi(&fm[kf1]) <= ns) {
           /* (the outer rays on the grid at kf1: every ray at every step up to it) */
-          int vm[AP_FM_FINE + 1][AP_FM_LANES], acc[AP_FM_LANES] = { 0 }, any = 0;
+          unsigned vm[AP_FM_FINE + 1], acc = 0;
           long j;
           for (j = kf; j <= kf1; ++j) {
             const float *z = view_column(hz, p + (size_t)j) + s0 + fm[j].o;
-            any |= shore_voids(z, z + 1, fm[j].f, vm[j - kf], acc);
+            vm[j - kf] = shore_voids(z, z + 1, fm[j].f);
+            acc |= vm[j - kf];
           }
-          if (any) {
-            shore_lanes(&ry, fm, t, len, kf, kf1, vm, shore_void_lanes(acc, r), s0, col + s0,
-                        best + s0);
+          if (acc & r) {
+            shore_lanes(&ry, fm, t, len, kf, kf1, vm, acc & r, s0, col + s0, best + s0);
           }
           continue;
         }
@@ -3460,17 +3463,17 @@ static void far_shore_row(const ap_horizon *hz, const fm_step *fm, const double 
         }
         if (n == AP_FM_LANES && kf1 <= side && kf1 <= (dir > 0 ? nx - 1 - (q0 + n - 1) : q0)) {
           /* (every ray of the 16 on the grid up to kf1) */
-          int vm[AP_FM_FINE + 1][AP_FM_LANES], acc[AP_FM_LANES] = { 0 }, any = 0;
+          unsigned vm[AP_FM_FINE + 1], acc = 0;
           long j;
           for (j = kf; j <= kf1; ++j) {
             const long qk = q0 + dir * j;
             const float *lo = grid_row(hz, s + fm[j].o) + qk;
             const float *hi = fm[j].f != 0.0f ? grid_row(hz, s + fm[j].o + 1) + qk : lo;
-            any |= shore_voids(lo, hi, fm[j].f, vm[j - kf], acc);
+            vm[j - kf] = shore_voids(lo, hi, fm[j].f);
+            acc |= vm[j - kf];
           }
-          if (any) {
-            shore_lanes(&ry, fm, t, 0.0, kf, kf1, vm, shore_void_lanes(acc, r), q0, zrow + q0,
-                        best + q0);
+          if (acc & r) {
+            shore_lanes(&ry, fm, t, 0.0, kf, kf1, vm, acc & r, q0, zrow + q0, best + q0);
           }
           continue;
         }
