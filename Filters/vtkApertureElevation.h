@@ -49,7 +49,8 @@ inline vtkDataArray* vtkApertureElevationArray(
 {
   name = name ? name : "";
   vtkDataArray* a = pd ? pd->GetArray(name) : nullptr;
-  if (!a && pd && std::string(name) == "Elevation")
+  const bool scalars = !a && pd && std::string(name) == "Elevation";
+  if (scalars)
   {
     a = pd->GetScalars();
   }
@@ -60,7 +61,9 @@ inline vtkDataArray* vtkApertureElevationArray(
   }
   if (a)
   {
-    msg << "the elevation array '" << (a->GetName() ? a->GetName() : "") << "' has "
+    msg << (scalars ? "the input has no point array named 'Elevation', and its active scalars '"
+                    : "the elevation array '")
+        << (a->GetName() ? a->GetName() : "") << (scalars ? "' have " : "' has ")
         << a->GetNumberOfComponents() << " components; elevations need one";
   }
   else

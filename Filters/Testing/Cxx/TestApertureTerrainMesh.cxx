@@ -650,6 +650,12 @@ void TestErrors()
   vec->GetPointData()->RemoveArray("Elevation");
   vec->GetPointData()->AddArray(v3);
   ExpectError(vec, "the elevation array 'Elevation' has 3 components; elevations need one");
+  auto rgb = MakeDEM("EPSG:4326", 0, 0, 1, 1, 3, 3, ok);
+  v3->SetName("RGB");
+  rgb->GetPointData()->RemoveArray("Elevation");
+  rgb->GetPointData()->SetScalars(v3);
+  ExpectError(rgb, "the input has no point array named 'Elevation', and its active scalars 'RGB' "
+                   "have 3 components; elevations need one");
 }
 } // namespace
 
