@@ -384,7 +384,9 @@ bool vtkApertureGeoreference::SetFromImage(vtkImageData* image)
   if (!crs || crs->GetNumberOfValues() < 1 || crs->GetValue(0).empty())
   {
     d.Error = "the image has no CRS (field data array 'CRS'); read DEMs with "
-              "vtkApertureDEMReader or attach one with vtkApertureGeoreference";
+              "vtkApertureDEMReader or attach one with vtkApertureGeoreference (SetCRS, such as "
+              "'EPSG:32633', or for a grid in metres that is nowhere in particular "
+              "'LOCAL_CS[\"grid\",UNIT[\"metre\",1]]'; then AttachToImage)";
     return false;
   }
   if (!this->SetCRS(crs->GetValue(0).c_str()))

@@ -556,7 +556,15 @@ void TestErrors()
     "arrays");
   ExpectError(dem, [](vtkApertureSkyVisibility* s) { s->SetMemoryLimit(1000); },
     "more than the 1000 bytes MemoryLimit");
-  ExpectError(MakeDEM(nullptr, 0, 0, 30, 30, 10, 10, Rough), none, "no metric cell size");
+  // (the advice's local CRS is one SetCRS takes: the sky filter runs on it, below)
+  ExpectError(MakeDEM(nullptr, 0, 0, 30, 30, 10, 10, Rough), none,
+    "no metric cell size: the image has no CRS (field data array 'CRS'); read DEMs with "
+    "vtkApertureDEMReader or attach one with vtkApertureGeoreference (SetCRS, such as "
+    "'EPSG:32633', or for a grid in metres that is nowhere in particular "
+    "'LOCAL_CS[\"grid\",UNIT[\"metre\",1]]'; then AttachToImage)");
+  AP_CHECK(Sky(MakeDEM("LOCAL_CS[\"grid\",UNIT[\"metre\",1]]", 0, 0, 30, 30, 10, 10, Rough), none)
+             ->GetPointData()
+             ->GetArray("SkyViewFactor") != nullptr);
   ExpectError(MakeDEM("EPSG:32633", 400000, 5000000, 30, 30, 1, 5, Rough), none,
     "at least 2 x 2");
   ExpectError(MakeDEM("EPSG:32633", 400000, 5000000, 30, 30, 10, 10,
