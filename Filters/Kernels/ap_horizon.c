@@ -29,6 +29,16 @@
 #define AP_PI 3.14159265358979323846
 #define AP_HALF_PI 1.57079632679489661923
 
+/* GCC's and Clang's vector extensions and bit builtins for the far march's groups of 16 cells
+ * (fm_lanes, shore_voids, shore_lowest); other compilers, and a build with
+ * AP_HORIZON_NO_VECTORS (the test Kernels-portable-equality, which compares its results with
+ * the library's bit for bit), take the plain C loops beside them. */
+#if defined(__GNUC__) && !defined(AP_HORIZON_NO_VECTORS)
+#define AP_FM_VECTORS 1
+#else
+#define AP_FM_VECTORS 0
+#endif
+
 /* Software prefetch (a hint: no effect on results), and how many view columns ahead the sweep
  * fetches. */
 #if defined(__GNUC__)
@@ -2453,7 +2463,7 @@ AP_INLINE float fm_box_max(const ap_horizon *hz, const fm_step *fm, int l, size_
                                                         : ((Z) - (zq)) * (sb)->it) -          \
     (sa)->ct) > (b))
 
-#if defined(__GNUC__)
+#if AP_FM_VECTORS
 /* 16 cells as two vectors of 8 (GCC/Clang vector extensions: AVX2 in the avx2 clone, pairs of
  * SSE2 operations in the default one; the same IEEE operations per cell as the scalar code). */
 typedef float fm_v8 __attribute__((vector_size(32)));
@@ -2566,7 +2576,7 @@ static void fm_march_one(const ap_horizon *hz, const fm_step *fm, size_t p, long
   }
 }
 
-#if !defined(__GNUC__)
+#if !AP_FM_VECTORS
 AP_INLINE void fm_lanes_march(const ap_horizon *hz, const fm_step *fm, size_t p, long s0,
                               long ka, long kb, fm_lanes *g)
 {
@@ -3044,7 +3054,7 @@ AP_INLINE unsigned shore_rises(float Z, const float *zq, const float *b, long n,
 /* The void flags of 16 cells' column samples at one step, as bits: bit c set where the ray
  * of lane c reads a nodata cell there (shore_void for 16 cells at once), from its two rows of
  * cells, lo (weight 1 - f) and hi (lo + 1 in a view column; f != 0 only). */
-#if defined(__GNUC__)
+#if AP_FM_VECTORS
 AP_INLINE unsigned shore_voids(const float *lo, const float *hi, float f)
 {
   fm_v8 a0, a1;
@@ -3088,7 +3098,7 @@ AP_INLINE unsigned shore_voids(const float *lo, const float *hi, float f)
 /* The lowest set bit's index of m != 0. */
 AP_INLINE int shore_lowest(unsigned m)
 {
-#if defined(__GNUC__)
+#if AP_FM_VECTORS
   return __builtin_ctz(m);
 #else
   int c = 0;
@@ -3308,7 +3318,7 @@ static void fm_march_one_rows(const ap_horizon *hz, const fm_step *fm, long s, l
   }
 }
 
-#if defined(__GNUC__)
+#if AP_FM_VECTORS
 AP_INLINE void fm_lanes_march_rows(const ap_horizon *hz, const fm_step *fm, long s, long q0,
                                    long dir, long ka, long kb, fm_lanes *g)
 {
