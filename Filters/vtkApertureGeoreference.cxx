@@ -248,6 +248,17 @@ const char* vtkApertureGeoreference::GetCRSArrayName()
 }
 
 //------------------------------------------------------------------------------
+const char* vtkApertureGeoreference::GetAttachedCRS(vtkDataObject* data)
+{
+  vtkStringArray* crs = data
+    ? vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray(GetCRSArrayName()))
+    : nullptr;
+  return crs && crs->GetNumberOfValues() > 0 && !crs->GetValue(0).empty()
+    ? crs->GetValue(0).c_str()
+    : nullptr;
+}
+
+//------------------------------------------------------------------------------
 const char* vtkApertureGeoreference::GetGeoTransformArrayName()
 {
   return "GeoTransform";
@@ -379,9 +390,8 @@ bool vtkApertureGeoreference::SetFromImage(vtkImageData* image)
   }
   int extent[6];
   image->GetExtent(extent);
-  vtkStringArray* crs =
-    vtkStringArray::SafeDownCast(image->GetFieldData()->GetAbstractArray(GetCRSArrayName()));
-  if (!crs || crs->GetNumberOfValues() < 1 || crs->GetValue(0).empty())
+  const char* crs = GetAttachedCRS(image);
+  if (!crs)
   {
     d.Error = "the image has no CRS (field data array 'CRS'); read DEMs with "
               "vtkApertureDEMReader or attach one with vtkApertureGeoreference (SetCRS, such as "
@@ -389,7 +399,7 @@ bool vtkApertureGeoreference::SetFromImage(vtkImageData* image)
               "'LOCAL_CS[\"grid\",UNIT[\"metre\",1]]'; then AttachToImage)";
     return false;
   }
-  if (!this->SetCRS(crs->GetValue(0).c_str()))
+  if (!this->SetCRS(crs))
   {
     return false;
   }

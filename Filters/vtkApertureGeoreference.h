@@ -63,6 +63,11 @@ public:
   static const char* GetGeoTransformArrayName();
   ///@}
 
+  /** The CRS a data object carries in its field data (the array GetCRSArrayName(), as
+   *  AttachToImage stores it), or nullptr when it has none (no such string array, or an empty
+   *  value). Points into that array: valid while the array is unchanged. */
+  static const char* GetAttachedCRS(vtkDataObject* data);
+
   /**
    * Set the CRS from anything GDAL's OSRSetFromUserInput accepts: WKT, "EPSG:32611", a PROJ
    * string. Stored as WKT2:2019. Returns false (and keeps the previous CRS) if GDAL cannot

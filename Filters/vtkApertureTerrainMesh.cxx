@@ -26,7 +26,6 @@
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
-#include "vtkStringArray.h"
 
 #include "ap_grid.h"
 #include "ap_mesh.h"
@@ -94,20 +93,9 @@ int vtkApertureTerrainMesh::RequestUpdateExtent(
   {
     // A global DEM's pieces are bands of whole rows, so that each joins its east and west
     // edges (RequestData's seam). The CRS is known here when vtkApertureDEMReader published
-    // it, or from the data of a producer that holds them already (SetInputData).
+    // it (an input given with SetInputData is whole in every piece: no producer crops it).
     vtkNew<vtkApertureGeoreference> geo;
-    if (!geo->SetFromInformation(inInfo) && !geo->HasCRS())
-    {
-      auto* held = vtkDataObject::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT()));
-      auto* heldCRS = held ? vtkStringArray::SafeDownCast(held->GetFieldData()->GetAbstractArray(
-                               vtkApertureGeoreference::GetCRSArrayName()))
-                           : nullptr;
-      if (heldCRS && heldCRS->GetNumberOfValues() == 1)
-      {
-        geo->SetCRS(heldCRS->GetValue(0).c_str());
-      }
-    }
-    const bool wraps = geo->WrapsAround(); // (false without a CRS or a grid)
+    const bool wraps = geo->SetFromInformation(inInfo) && geo->WrapsAround();
     vtkNew<vtkExtentTranslator> translator;
     translator->PieceToExtentThreadSafe(piece, pieces, 0, whole, ext,
       wraps ? vtkExtentTranslator::Y_SLAB_MODE : vtkExtentTranslator::BLOCK_MODE, 0);

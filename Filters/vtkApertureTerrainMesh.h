@@ -42,7 +42,7 @@
  * frame of the whole extent, so their vertices coincide with those of the whole mesh. A global
  * DEM's pieces are bands of whole rows, each with its seam, when its CRS is known while the
  * request is planned (published by vtkApertureDEMReader and passed on by
- * vtkApertureSkyVisibility, or in the field data of an input given with SetInputData).
+ * vtkApertureSkyVisibility).
  *
  * Point arrays added: `Normals` (unit, ENU, of the output geometry including the vertical
  * exaggeration; active normals) and `TextureCoordinates` (u east, v north, spanning the outer

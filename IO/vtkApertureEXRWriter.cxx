@@ -8,7 +8,6 @@
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
-#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -16,7 +15,6 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
-#include "vtkStringArray.h"
 
 #include <libdeflate.h>
 #include <openexr.h>
@@ -731,9 +729,7 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
 
   // 2. Header attributes: metadata, then the georeference (which wins on equal keys).
   std::vector<std::pair<std::string, std::string>> attributes = d.Metadata;
-  vtkStringArray* crsArray = vtkStringArray::SafeDownCast(
-    input->GetFieldData()->GetAbstractArray(vtkApertureGeoreference::GetCRSArrayName()));
-  if (crsArray && crsArray->GetNumberOfValues() > 0 && !crsArray->GetValue(0).empty())
+  if (vtkApertureGeoreference::GetAttachedCRS(input))
   {
     vtkNew<vtkApertureGeoreference> geo;
     if (!geo->SetFromImage(input))

@@ -176,7 +176,11 @@ void TestErrors()
   AP_CHECK(!geo->SetFromImage(image));
   AP_CHECK(std::string(geo->GetErrorMessage()).find("has no CRS") != std::string::npos);
   AP_CHECK(!geo->AttachToImage(image));
+  AP_CHECK(!vtkApertureGeoreference::GetAttachedCRS(image));
+  AP_CHECK(!vtkApertureGeoreference::GetAttachedCRS(nullptr));
   AP_CHECK(geo->SetCRS("EPSG:4326") && geo->AttachToImage(image));
+  AP_CHECK(vtkApertureGeoreference::GetAttachedCRS(image) &&
+    std::string(vtkApertureGeoreference::GetAttachedCRS(image)) == geo->GetCRS());
   AP_CHECK(geo->SetFromImage(image));
   image->SetSpacing(0.0, 1.0, 1.0);
   AP_CHECK(!geo->SetFromImage(image));
