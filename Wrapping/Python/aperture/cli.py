@@ -626,14 +626,14 @@ def _check_render_memory(args, nx, ny, bent, to_bake):
                 + (16 * n if to_bake else 0))
 
     held, usable = _resident_bytes(), float(sky.GetUsableMemory())
-    mesh = estimate.EstimateBytes(float(nx * ny), bent, 0.0)
-    if held + need(nx * ny) <= usable:
+    total = need(nx * ny)
+    if held + total <= usable:
         return
-    owner = sky.GetUsableMemoryOwner()
+    mesh = estimate.EstimateBytes(float(nx * ny), bent, 0.0)
     message = ("rendering a mesh of %d x %d points needs about %s (the mesh %s, drawing it and "
                "the rest %s), more than the %s of memory %s beside the %s this process holds"
-               % (nx, ny, _bytes_text(need(nx * ny)), _bytes_text(mesh),
-                  _bytes_text(need(nx * ny) - mesh), _bytes_text(max(0.0, usable - held)), owner,
+               % (nx, ny, _bytes_text(total), _bytes_text(mesh), _bytes_text(total - mesh),
+                  _bytes_text(max(0.0, usable - held)), sky.GetUsableMemoryOwner(),
                   _bytes_text(held)))
     for f in range(2, max(nx, ny) // 2 + 1):
         if held + need((nx // f) * (ny // f)) <= usable:
