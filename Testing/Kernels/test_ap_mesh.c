@@ -19,6 +19,17 @@ static double tri_up(size_t nx, const int64_t *t)
 }
 
 /* A full grid gives 2 (nx-1)(ny-1) counter-clockwise triangles covering each quad. */
+/* The two triangles of a quad with four valid nodes at t: (SW, SE, NE) and (SW, NE, NW). */
+static void check_quad(const int64_t *t, int64_t sw, int64_t se, int64_t ne, int64_t nw)
+{
+  AP_CHECK_EQ_INT(t[0], sw);
+  AP_CHECK_EQ_INT(t[1], se);
+  AP_CHECK_EQ_INT(t[2], ne);
+  AP_CHECK_EQ_INT(t[3], sw);
+  AP_CHECK_EQ_INT(t[4], ne);
+  AP_CHECK_EQ_INT(t[5], nw);
+}
+
 static void test_full_grid(void)
 {
   float z[5 * 4] = { 0 };
@@ -36,12 +47,7 @@ static void test_full_grid(void)
     AP_CHECK_NEAR(tri_up(5, tri + 3 * k), 1.0, 0.0); /* area 1/2, CCW */
   }
   /* The first quad: (SW, SE, NE) = (0, 1, 6) and (SW, NE, NW) = (0, 6, 5). */
-  AP_CHECK_EQ_INT(tri[0], 0);
-  AP_CHECK_EQ_INT(tri[1], 1);
-  AP_CHECK_EQ_INT(tri[2], 6);
-  AP_CHECK_EQ_INT(tri[3], 0);
-  AP_CHECK_EQ_INT(tri[4], 6);
-  AP_CHECK_EQ_INT(tri[5], 5);
+  check_quad(tri, 0, 1, 6, 5);
   /* Too small a buffer is an error, not an overflow. */
   AP_CHECK_EQ_INT(ap_mesh_triangulate(&g, tri, 23, &n), AP_ERR_BUFFER_TOO_SMALL);
   AP_CHECK_EQ_INT(n, 0);
@@ -222,12 +228,7 @@ static void test_seam_and_caps(void)
   AP_CHECK_EQ_INT(n, 2 * NX * (NY - 1));
   ap_mesh_triangulate_rows(&g, 1, 0, NY - 1, tri);
   /* row 0's seam quad: SW = 5, SE = copy 30, NE = copy 31, NW = 11 */
-  AP_CHECK_EQ_INT(tri[30], 5);
-  AP_CHECK_EQ_INT(tri[31], 30);
-  AP_CHECK_EQ_INT(tri[32], 31);
-  AP_CHECK_EQ_INT(tri[33], 5);
-  AP_CHECK_EQ_INT(tri[34], 31);
-  AP_CHECK_EQ_INT(tri[35], 11);
+  check_quad(tri + 30, 5, 30, 31, 11);
   AP_CHECK_EQ_INT(ap_mesh_cap(&g, 0, NULL), NX - 2);
   AP_CHECK_EQ_INT(ap_mesh_cap(&g, 0, tri + 3 * n), NX - 2);
   AP_CHECK_EQ_INT(ap_mesh_cap(&g, NY - 1, tri + 3 * (n + NX - 2)), NX - 2);
