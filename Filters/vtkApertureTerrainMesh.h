@@ -122,10 +122,11 @@ public:
    * Most bytes one update may allocate (estimated: per point the elevations' float copy 4, the
    * East-North-Up scratch 24, the points 12 or 24, normals 12, texture coordinates 8, a rotated
    * BentNormal 12 when the input has one; two triangles of three ids and an offset, 4 bytes
-   * each, 8 past 2^31 points; a global DEM's seam copies the input's point arrays). 0 (default): the memory this process may use (the machine's, or
-   * its control group's limit) less the input image's size. An update beyond it is refused
-   * before allocating, naming the size: Linux does not fail an allocation past physical
-   * memory, it kills the process later.
+   * each, 8 past 2^31 points; a global DEM's seam copies the input's point arrays).
+   * 0 (default): the memory this process may use (the machine's, or its control group's
+   * limit) less the input image's size. An update beyond it is refused before allocating,
+   * naming the size: Linux does not fail an allocation past physical memory, it kills the
+   * process later.
    */
   vtkSetClampMacro(MemoryLimit, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
   vtkGetMacro(MemoryLimit, vtkTypeInt64);

@@ -465,10 +465,11 @@ void TestGlobal()
   auto holed = MakeDEM("EPSG:4326", -179.0, -89.0, 2.0, 2.0, nx, ny,
     [](int i, int j) { return (i == 7 && j == 89) ? NAN : 0.0f; });
   AP_CHECK(Mesh(holed)->GetNumberOfCells() == 2 * nx * (ny - 1) - 2 + (nx - 2));
-  auto narrow = MakeDEM("EPSG:4326", -179.0, -89.0, 2.0, 2.0, nx - 1, ny, [](int, int) { return 0.0f; });
+  const auto sea = [](int, int) { return 0.0f; };
+  auto narrow = MakeDEM("EPSG:4326", -179.0, -89.0, 2.0, 2.0, nx - 1, ny, sea);
   AP_CHECK(Mesh(narrow)->GetNumberOfPoints() == (nx - 1) * ny);
   AP_CHECK(Mesh(narrow)->GetNumberOfCells() == 2 * (nx - 2) * (ny - 1));
-  auto band = MakeDEM("EPSG:4326", -179.0, -87.0, 2.0, 2.0, nx, ny - 2, [](int, int) { return 0.0f; });
+  auto band = MakeDEM("EPSG:4326", -179.0, -87.0, 2.0, 2.0, nx, ny - 2, sea);
   AP_CHECK(Mesh(band)->GetNumberOfCells() == 2 * nx * (ny - 3));
 }
 
