@@ -83,6 +83,28 @@ inline vtkDataArray* vtkApertureElevationArray(
   return nullptr;
 }
 
+// "" when every point array of `pd` (elevations, and what the filters pass on) holds one
+// tuple per point of an nx x ny image, else the problem, naming the first that does not: an
+// image assembled by hand can disagree with itself, and copies of a short array read past it.
+inline std::string vtkApertureCheckPointArrays(
+  vtkDataSetAttributes* pd, vtkIdType nx, vtkIdType ny)
+{
+  const int n = pd ? pd->GetNumberOfArrays() : 0;
+  for (int k = 0; k < n; ++k)
+  {
+    vtkAbstractArray* a = pd->GetAbstractArray(k);
+    if (a && a->GetNumberOfTuples() != nx * ny)
+    {
+      std::ostringstream msg;
+      msg << "the point array '" << (a->GetName() ? a->GetName() : "") << "' has "
+          << a->GetNumberOfTuples() << " tuples for the " << nx << " x " << ny
+          << " points of the input's extent";
+      return msg.str();
+    }
+  }
+  return std::string();
+}
+
 // The warning for valid elevations from min to max (m), "" when the Earth has such; `what`
 // names what is made of them ("sky products computed from them").
 inline std::string vtkApertureElevationWarning(double min, double max, const char* what)

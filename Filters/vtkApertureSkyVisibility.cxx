@@ -653,17 +653,15 @@ int vtkApertureSkyVisibility::Execute(
     vtkErrorMacro(<< missing);
     return 0;
   }
-  const char* name = elevation->GetName() ? elevation->GetName() : "";
   if (nx < 2 || ny < 2)
   {
     vtkErrorMacro(<< "the DEM has " << nx << " x " << ny << " cells; at least 2 x 2 are needed");
     return 0;
   }
-  if (elevation->GetNumberOfTuples() != static_cast<vtkIdType>(nx) * ny)
+  const std::string inconsistent = vtkApertureCheckPointArrays(input->GetPointData(), nx, ny);
+  if (!inconsistent.empty())
   {
-    vtkErrorMacro(<< "the elevation array '" << name << "' has "
-                  << elevation->GetNumberOfTuples() << " values for the " << nx << " x " << ny
-                  << " points of the input's extent");
+    vtkErrorMacro(<< inconsistent);
     return 0;
   }
   vtkNew<vtkApertureGeoreference> geo;

@@ -107,15 +107,16 @@
  * coastal DEM, is no error: its products are nodata (NaN; EdgeTruncated 0, or NaN as float),
  * as the whole run's are there, and GetInputAllNodata() says so.
  *
- * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, no CRS
- * or no metric cell size, every cell nodata in an input that is the whole DEM (an update of
- * all of it, or an unlimited distance), NumberOfDirections outside 4..360, a negative
- * MaximumDistance, a refraction coefficient outside [0, 1), and not enough memory for the
- * outputs and the sweep: refused before allocating when the estimate exceeds MemoryLimit
- * (default: the memory the process may use, physical or its control group's limit, beside the
- * input image, since past it Linux kills the process rather than fail an allocation), or an
- * allocation that fails (e.g. under `ulimit -v`); the message gives the estimated need
- * (HorizonAngles take 4 bytes per cell and direction).
+ * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, a point
+ * array without one tuple per point of the input, no CRS or no metric cell size, every cell
+ * nodata in an input that is the whole DEM (an update of all of it, or an unlimited distance),
+ * NumberOfDirections outside 4..360, a negative MaximumDistance, a refraction coefficient
+ * outside [0, 1), and not enough memory for the outputs and the sweep: refused before
+ * allocating when the estimate exceeds MemoryLimit (default: the memory the process may use,
+ * physical or its control group's limit, beside the input image, since past it Linux kills the
+ * process rather than fail an allocation), or an allocation that fails (e.g. under `ulimit
+ * -v`); the message gives the estimated need (HorizonAngles take 4 bytes per cell and
+ * direction).
  *
  * Progress and abort: ProgressEvent at 0 three times in the serial set-up (after the
  * elevations' copy, before the outputs, after the sweep's state: seconds apart on a DEM of 10^8

@@ -198,6 +198,13 @@ int vtkApertureTerrainMesh::Execute(
     return 0;
   }
   const vtkIdType n = static_cast<vtkIdType>(nx * ny);
+  const std::string inconsistent = vtkApertureCheckPointArrays(
+    input->GetPointData(), static_cast<vtkIdType>(nx), static_cast<vtkIdType>(ny));
+  if (!inconsistent.empty())
+  {
+    vtkErrorMacro(<< inconsistent);
+    return 0;
+  }
   vtkNew<vtkApertureGeoreference> geo;
   if (!geo->SetFromImage(input) || (!geo->IsLocal() && !geo->CheckLongitudeSpan()))
   {

@@ -56,10 +56,10 @@
  * origin), `FrameEllipsoid` (semi-major axis in metres, flattening) and
  * `VerticalExaggeration`; the input's `CRS` and `GeoTransform` are passed through.
  *
- * Errors (vtkErrorMacro and a failed update): no elevation array or one that is not a
- * one-component float/double array, a whole DEM smaller than 2 x 2 (a streamed piece that thin
- * just gives an empty mesh), no CRS or one without geographic coordinates (other than a local
- * one), every point nodata or no triangle at all (each valid point isolated among nodata; a
+ * Errors (vtkErrorMacro and a failed update): no elevation array or one of several components,
+ * a whole DEM smaller than 2 x 2 (a streamed piece that thin just gives an empty mesh), a point
+ * array without one tuple per point of the input, no CRS or one without geographic coordinates
+ * (other than a local one), every point nodata or no triangle at all (each valid point isolated among nodata; a
  * streamed piece just gives an empty mesh), or a mesh beyond MemoryLimit or the process's
  * memory (the message gives the size).
  *

@@ -586,12 +586,18 @@ bool vtkApertureDEMWriter::WriteRows(vtkImageData* input, int j0, int j1)
   {
     const Internals::Band& band = d.Bands[b];
     vtkDataArray* array = input->GetPointData()->GetArray(band.ArrayName.c_str());
-    if (!array || array->GetNumberOfComponents() != band.Components ||
-      array->GetNumberOfTuples() != input->GetNumberOfPoints())
+    if (!array || array->GetNumberOfComponents() != band.Components)
     {
       vtkErrorMacro(<< "the input of rows " << j0 << " to " << j1 << " has no point array '"
                     << band.ArrayName << "' of " << band.Components
-                    << " components for every point (as the first rows had)");
+                    << " components (as the first rows had)");
+      return false;
+    }
+    if (array->GetNumberOfTuples() != input->GetNumberOfPoints())
+    {
+      vtkErrorMacro(<< "the point array '" << band.ArrayName << "' has "
+                    << array->GetNumberOfTuples() << " tuples for the " << width << " x "
+                    << (ext[3] - ext[2] + 1) << " points of the input's extent");
       return false;
     }
     const int nc = band.Components;

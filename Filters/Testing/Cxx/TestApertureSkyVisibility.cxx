@@ -554,6 +554,15 @@ void TestErrors()
   ExpectError(bare, none,
     "the input has no point array named 'Elevation' and no point scalars: it has no point "
     "arrays");
+  // an image that disagrees with itself (made by hand; too few heights: TestSkyVisibility.py):
+  // another array, passed on or copied over a requested extent
+  auto more = MakeDEM("EPSG:32633", 400000, 5000000, 30, 30, 10, 10, Rough);
+  vtkNew<vtkFloatArray> extra;
+  extra->SetName("Class");
+  extra->SetNumberOfTuples(101);
+  extra->Fill(1.0f);
+  more->GetPointData()->AddArray(extra);
+  ExpectError(more, none, "the point array 'Class' has 101 tuples for the 10 x 10 points");
   ExpectError(dem, [](vtkApertureSkyVisibility* s) { s->SetMemoryLimit(1000); },
     "more than the 1000 bytes MemoryLimit");
   // (the advice's local CRS is one SetCRS takes: the sky filter runs on it, below)

@@ -657,6 +657,22 @@ void TestErrors()
   rgb->GetPointData()->SetScalars(v3);
   ExpectError(rgb, "the input has no point array named 'Elevation', and its active scalars 'RGB' "
                    "have 3 components; elevations need one");
+  // an image that disagrees with itself (made by hand): copies would read past a short array
+  auto few = MakeDEM("EPSG:4326", 0, 0, 1, 1, 4, 3, ok);
+  few->GetPointData()->GetArray("Elevation")->SetNumberOfTuples(5);
+  ExpectError(few, "the point array 'Elevation' has 5 tuples for the 4 x 3 points of the input's "
+                   "extent");
+  vtkNew<vtkShortArray> extra;
+  extra->SetName("Class");
+  extra->SetNumberOfTuples(13);
+  extra->Fill(1);
+  auto more = MakeDEM("EPSG:4326", 0, 0, 1, 1, 4, 3, ok);
+  more->GetPointData()->AddArray(extra);
+  ExpectError(more, "the point array 'Class' has 13 tuples for the 4 x 3 points");
+  extra->SetNumberOfTuples(3); // a global DEM copies its arrays' column 0 to the seam
+  auto globe = MakeDEM("EPSG:4326", -175.0, -80.0, 10.0, 10.0, 36, 17, ok);
+  globe->GetPointData()->AddArray(extra);
+  ExpectError(globe, "the point array 'Class' has 3 tuples for the 36 x 17 points");
 }
 } // namespace
 

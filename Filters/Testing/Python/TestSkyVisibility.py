@@ -1200,7 +1200,7 @@ class TestSkyVisibility(Testing.vtkTest):
         # the elevation array must have a value for every point
         short = make_image(np.ones((4, 5)), 400000, 5000000, 30, 30, "EPSG:32633")
         short.GetPointData().GetArray("Elevation").SetNumberOfTuples(19)
-        self.assertEqual(self.error(short), "the elevation array 'Elevation' has 19 values "
+        self.assertEqual(self.error(short), "the point array 'Elevation' has 19 tuples "
                          "for the 5 x 4 points of the input's extent")
 
     def testOutOfMemory(self):

@@ -34,6 +34,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -608,6 +609,21 @@ void TestErrors()
     w->SetInputData(MakeImage(true));
     w->SetFileName("/nonexistent-folder/x.tif");
     ExpectError(w, "GDAL cannot create '/nonexistent-folder/x.tif'");
+  }
+  {
+    // an image that disagrees with itself (made by hand): a band's array too short
+    vtkNew<vtkApertureDEMWriter> w;
+    auto image = MakeImage(true);
+    image->GetPointData()->GetArray("Count")->SetNumberOfTuples(NX);
+    w->SetInputData(image);
+    const std::string path = tmp + "/short.tif";
+    w->SetFileName(path.c_str());
+    std::ostringstream expected;
+    expected << "the point array 'Count' has " << NX << " tuples for the " << NX << " x " << NY
+             << " points of the input's extent";
+    ExpectError(w, expected.str());
+    struct stat sb;
+    AP_CHECK(stat(path.c_str(), &sb) != 0); // nothing left behind
   }
   const struct
   {
