@@ -137,6 +137,44 @@ const char* StorageName(exr_storage_t storage)
       return "unknown";
   }
 }
+
+// A dotted group's channels (`prefix.suffix`, all of one prefix) in their components' order:
+// a colour's R, G, B (A) as a colour has them (`diffuse.R`...: OpenEXR's sorted header gives
+// A, B, G, R), numbered ones by number (`v.2` before `v.10`), any other group as the header has
+// them (sorted by name).
+void OrderComponents(std::vector<std::string>& members, size_t prefixLength)
+{
+  std::vector<std::string> suffixes;
+  for (const std::string& m : members)
+  {
+    suffixes.push_back(m.substr(prefixLength + 1));
+  }
+  std::sort(suffixes.begin(), suffixes.end());
+  using Names = std::vector<std::string>;
+  const bool colour = suffixes == Names{ "B", "G", "R" } ||
+    suffixes == Names{ "A", "B", "G", "R" } || suffixes == Names{ "b", "g", "r" } ||
+    suffixes == Names{ "a", "b", "g", "r" };
+  const bool numbered = std::all_of(suffixes.begin(), suffixes.end(), [](const std::string& x) {
+    return x.find_first_not_of("0123456789") == std::string::npos;
+  });
+  // the key a suffix sorts by: a colour's place, or a number's digits without leading zeros
+  // after a character of their count (shorter is smaller), or nothing (the header's order)
+  const auto key = [&](const std::string& member) {
+    const std::string x = member.substr(prefixLength + 1);
+    if (colour)
+    {
+      return std::string(1, static_cast<char>('0' + std::string("RGBArgba").find(x[0]) % 4));
+    }
+    if (numbered)
+    {
+      const size_t first = std::min(x.find_first_not_of('0'), x.size());
+      return std::string(1, static_cast<char>(x.size() - first)) + x.substr(first);
+    }
+    return std::string();
+  };
+  std::stable_sort(members.begin(), members.end(),
+    [&](const std::string& a, const std::string& b) { return key(a) < key(b); });
+}
 } // namespace
 
 // What RequestInformation found in the header; RequestData reuses it.
@@ -419,7 +457,8 @@ int vtkApertureEXRReader::RequestInformation(
       Internals::ArraySpec spec;
       spec.Name = g.Prefix;
       spec.Channels = g.Members;
-      for (const std::string& channel : g.Members)
+      OrderComponents(spec.Channels, g.Prefix.size());
+      for (const std::string& channel : spec.Channels)
       {
         spec.ComponentNames.push_back(channel.substr(g.Prefix.size() + 1));
       }

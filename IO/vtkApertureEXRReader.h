@@ -20,8 +20,9 @@
  * - The channels R, G, B, when all three exist, become one array `RGB` with components R, G, B,
  *   or `RGBA` with A as well. It is the active scalars.
  * - Channels that share the prefix before their last '.' (`Vector.E`, `Vector.N`) become one
- *   multi-component array named by the prefix, with the suffixes as component names, in the
- *   header's order (OpenEXR keeps channels sorted by name, so `v.10` comes before `v.2`).
+ *   multi-component array named by the prefix, with the suffixes as component names: R, G, B
+ *   (A), or r, g, b (a), in a colour's order (a renderer's `diffuse.R`...), numbers in their
+ *   order (`v.2` before `v.10`), any others in the header's (OpenEXR sorts channels by name).
  * - Every other channel becomes a one-component array named like the channel: a lone `a.b`,
  *   and the members of a group whose prefix is itself a channel name (`V` beside `V.x`, `V.y`
  *   gives three arrays `V`, `V.x`, `V.y`) or the name of the color array. Without RGB, the first

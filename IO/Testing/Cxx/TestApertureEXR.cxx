@@ -172,7 +172,8 @@ enum class RawKind
   Deep,       // deep scanline, no samples
   MultiPart,  // two scanline parts
   Subsampled, // channel C sampled every 2 x 2 pixels
-  Channels,   // R G B A, Z (HALF), N (UINT), layer.x layer.y, lone.dot, V V.x V.y
+  Channels,   // R G B A, Z (HALF), N (UINT), layer.x layer.y, lone.dot, V V.x V.y, and groups
+              // diffuse.(A R B G), v.(10 2 002 1), m.(b 1)
   BadGeo,     // aperture:geotransform "1,2,3"
   BadCRS      // aperture:crs "not a CRS"
 };
@@ -213,7 +214,12 @@ bool WriteRaw(const std::string& path, RawKind kind)
       { "N", EXR_PIXEL_UINT, 1 }, { "R", EXR_PIXEL_FLOAT, 1 }, { "Z", EXR_PIXEL_HALF, 1 },
       { "layer.x", EXR_PIXEL_FLOAT, 1 }, { "layer.y", EXR_PIXEL_FLOAT, 1 },
       { "lone.dot", EXR_PIXEL_FLOAT, 1 }, { "V", EXR_PIXEL_FLOAT, 1 },
-      { "V.x", EXR_PIXEL_FLOAT, 1 }, { "V.y", EXR_PIXEL_FLOAT, 1 } };
+      { "V.x", EXR_PIXEL_FLOAT, 1 }, { "V.y", EXR_PIXEL_FLOAT, 1 },
+      { "diffuse.A", EXR_PIXEL_FLOAT, 1 }, { "diffuse.R", EXR_PIXEL_FLOAT, 1 },
+      { "diffuse.B", EXR_PIXEL_FLOAT, 1 }, { "diffuse.G", EXR_PIXEL_FLOAT, 1 },
+      { "v.10", EXR_PIXEL_FLOAT, 1 }, { "v.2", EXR_PIXEL_FLOAT, 1 },
+      { "v.002", EXR_PIXEL_FLOAT, 1 }, { "v.1", EXR_PIXEL_FLOAT, 1 },
+      { "m.b", EXR_PIXEL_FLOAT, 1 }, { "m.1", EXR_PIXEL_FLOAT, 1 } };
   }
   bool ok = true;
   for (int p = 0; ok && p < parts; ++p)
@@ -1007,8 +1013,10 @@ void TestReaderGrouping()
   vtkImageData* img = rd.Update();
   AP_CHECK(rd.Ok == 1 && !rd.Errors->GetError());
   vtkPointData* pd = img->GetPointData();
-  AP_CHECK(pd->GetNumberOfArrays() == 8); // RGBA, N, V, V.x, V.y, Z, layer, lone.dot
-  // Channel k of WriteRaw's list: A0 B1 G2 N3 R4 Z5 layer.x6 layer.y7 lone.dot8 V9 V.x10 V.y11.
+  // RGBA, N, V, V.x, V.y, Z, layer, lone.dot, diffuse, v, m
+  AP_CHECK(pd->GetNumberOfArrays() == 11);
+  // Channel k of WriteRaw's list: A0 B1 G2 N3 R4 Z5 layer.x6 layer.y7 lone.dot8 V9 V.x10 V.y11
+  // diffuse.A12 .R13 .B14 .G15 v.10 16 v.2 17 v.002 18 v.1 19 m.b20 m.1 21.
   // VTK point (x, j) is scanline 3 - j.
   vtkDataArray* color = pd->GetScalars();
   AP_CHECK(color && std::string(color->GetName()) == "RGBA" && color->GetNumberOfComponents() == 4);
@@ -1028,6 +1036,27 @@ void TestReaderGrouping()
   AP_CHECK(half && std::fabs(half->GetTuple1(15) - RawValue(5, 3, 0)) <= 2.0);
   vtkDataArray* uint = pd->GetArray("N");
   AP_CHECK(vtkFloatArray::SafeDownCast(uint) && uint->GetTuple1(4) == RawValue(3, 0, 2));
+  // groups' components: a colour's order, numbers' order (v.2 and v.002 as the header has them),
+  // or the header's (sorted by name)
+  const struct
+  {
+    const char* Name;
+    std::vector<std::string> Components;
+    std::vector<int> Channels;
+  } groups[3] = { { "diffuse", { "R", "G", "B", "A" }, { 13, 15, 14, 12 } },
+    { "v", { "1", "002", "2", "10" }, { 19, 18, 17, 16 } }, { "m", { "1", "b" }, { 21, 20 } } };
+  for (const auto& g : groups)
+  {
+    vtkDataArray* a = pd->GetArray(g.Name);
+    const int nc = static_cast<int>(g.Components.size());
+    AP_CHECK(a && a->GetNumberOfComponents() == nc);
+    for (int c = 0; a && c < nc && c < a->GetNumberOfComponents(); ++c)
+    {
+      const char* got = a->GetComponentName(c);
+      AP_CHECK(got && got == g.Components[c]);
+      AP_CHECK(a->GetComponent(6, c) == RawValue(g.Channels[c], 2, 3 - 1));
+    }
+  }
   const char* apart[3] = { "V", "V.x", "V.y" };
   for (int k = 0; k < 3; ++k)
   {
