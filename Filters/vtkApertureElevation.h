@@ -105,19 +105,35 @@ inline std::string vtkApertureCheckPointArrays(
   return std::string();
 }
 
-// The warning for valid elevations from min to max (m), "" when the Earth has such; `what`
-// names what is made of them ("sky products computed from them").
-inline std::string vtkApertureElevationWarning(double min, double max, const char* what)
+// The warning for valid elevations from min to max (m) on a grid of nx x ny cells of cell[0] x
+// cell[1] m (nullptr: unknown), "" when they could be terrain: heights beyond any on the Earth
+// (an undeclared nodata value, or heights not in metres), else a relief more than ten times
+// the grid's larger side, which no terrain has (a mean slope beyond 84 degrees across the
+// grid) while coordinates in degrees taken for metres (a projected CRS given to a lat/lon DEM)
+// make cells of a millimetre and such a relief. `what` names what is made of them ("Sky
+// products computed from them").
+inline std::string vtkApertureElevationWarning(
+  double min, double max, int nx, int ny, const double* cell, const char* what)
 {
-  if (!(min < vtkApertureEarthLowest || max > vtkApertureEarthHighest))
+  std::ostringstream msg;
+  if (min < vtkApertureEarthLowest || max > vtkApertureEarthHighest)
+  {
+    msg << "elevations range from " << min << " to " << max << " m, beyond any on Earth ("
+        << vtkApertureEarthLowest << " to " << vtkApertureEarthHighest
+        << " m): a nodata value the DEM does not declare, or heights not in metres? ";
+  }
+  else if (cell && max - min > 10.0 * std::max(nx * cell[0], ny * cell[1]))
+  {
+    msg << "elevations range over " << max - min << " m on a grid of " << nx * cell[0] << " x "
+        << ny * cell[1] << " m (cells of " << cell[0] << " x " << cell[1]
+        << " m), steeper than any terrain: a CRS whose unit does not fit the grid's "
+           "coordinates (degrees taken for metres?), or heights not in metres? ";
+  }
+  else
   {
     return std::string();
   }
-  std::ostringstream msg;
-  msg << "elevations range from " << min << " to " << max << " m, beyond any on Earth ("
-      << vtkApertureEarthLowest << " to " << vtkApertureEarthHighest
-      << " m): a nodata value the DEM does not declare, or heights not in metres? " << what
-      << " are meaningless";
+  msg << what << " are meaningless";
   return msg.str();
 }
 

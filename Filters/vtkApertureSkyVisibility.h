@@ -84,7 +84,8 @@
  * lines between two of them (ap_horizon.h says how closely each search follows it). Finite
  * elevations are taken as they are, but those beyond the Earth's range (below -11,100 m or
  * above 9,000 m: undeclared nodata values such as -32768, or heights not in metres) raise a
- * warning naming the range.
+ * warning naming the range, as does a relief over ten times the input's larger side, which no
+ * terrain has (coordinates in degrees taken for metres: a projected CRS given to a lat/lon DEM).
  *
  * Streaming: a request for a sub-extent reads the input extent grown by the search distance
  * on every side (the whole extent when the distance is unlimited, or when the CRS is not known

@@ -7,7 +7,9 @@
  * NaN = nodata, `CRS` in the field data; see vtkApertureGeoreference for the conventions).
  * Any elevation that is not finite is nodata too, as the reader makes it; finite ones beyond
  * any on the Earth (below -11,100 or above 9,000 m: an undeclared nodata value such as -32768,
- * heights not in metres) are meshed as they are, with a warning naming their range.
+ * heights not in metres) are meshed as they are, with a warning naming their range, as is a
+ * relief over ten times the input's larger side (degrees taken for metres: a projected CRS
+ * given to a lat/lon DEM).
  * Lat/lon and projected DEMs are both handled: every cell centre is converted to geographic
  * coordinates on the CRS's own ellipsoid, then with GeographicLib's LocalCartesian to a local
  * East-North-Up frame (x east, y north, z up, metres) whose origin is the centre of the DEM's

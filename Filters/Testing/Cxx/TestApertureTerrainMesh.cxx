@@ -267,6 +267,19 @@ void TestNonFiniteAndImplausible()
   AP_CHECK(pit->GetNumberOfCells() == 24);
   AP_CHECK(loud->GetWarning());
   AP_CHECK_CONTAINS(loud->GetWarningMessage(), "elevations range from -32768 to 12 m, beyond any");
+  // a relief over ten times the grid's side: 3 arc-second cells in a CRS in metres
+  vtkNew<vtkApertureTerrainMesh> mesher;
+  vtkNew<vtkTest::ErrorObserver> steep;
+  mesher->AddObserver(vtkCommand::WarningEvent, steep);
+  mesher->SetInputData(MakeDEM("EPSG:32633", 400000.0, 5000000.0, 1 / 1200.0, 1 / 1200.0, 5, 4,
+    [](int i, int j) { return static_cast<float>(i * j); }));
+  mesher->Update();
+  AP_CHECK(mesher->GetOutput()->GetNumberOfCells() == 24);
+  AP_CHECK_CONTAINS(steep->GetWarningMessage(), "elevations range over 12 m on a grid of ");
+  AP_CHECK_CONTAINS(steep->GetWarningMessage(),
+    " steeper than any terrain: a CRS whose unit does not fit the grid's coordinates (degrees "
+    "taken for metres?), or heights not in metres? A mesh and pictures made of them are "
+    "meaningless");
 }
 
 // Nodata leaves holes; arrays are carried vertex for vertex; normals and texture coordinates.

@@ -690,10 +690,10 @@ class TestSkyVisibility(Testing.vtkTest):
         rng = np.random.default_rng(5)
         z = rng.uniform(200.0, 400.0, (30, 40))
 
-        def run(values):
+        def run(values, cell=30, crs="EPSG:32633"):
             w = Watcher()
             f = w.watch(aperture.vtkApertureSkyVisibility())
-            f.SetInputData(make_image(values, 400000, 5000000, 30, 30, "EPSG:32633"))
+            f.SetInputData(make_image(values, 400000, 5000000, cell, cell, crs))
             f.Update()
             self.assertEqual(w.errors, [])
             return {name: array(f.GetOutput(), name) for name in
@@ -722,9 +722,27 @@ class TestSkyVisibility(Testing.vtkTest):
             self.assertIn(text, warnings[0])
             self.assertIn("beyond any on Earth (-11100 to 9000 m)", warnings[0])
             self.assertFalse(np.isnan(got["SkyViewFactor"][12 * 40 + 17]))
-        # the highest and lowest places on Earth are not warned about
-        _, warnings = run(np.where(z > 300.0, 8848.9, -10935.0))
+        # the highest and lowest places on Earth are not warned about (on a grid of 40 x 30
+        # cells of 100 m, 4 km wide)
+        _, warnings = run(np.where(z > 300.0, 8848.9, -10935.0), cell=100)
         self.assertEqual(warnings, [])
+        # A relief over ten times the grid's larger side is no terrain: degrees taken for
+        # metres (3 arc-second cells in a CRS in metres); 40 x 30 cells of 1 m (a 40 m grid):
+        # 400 m of relief passes, 401 m is warned about.
+        _, warnings = run(z, cell=1 / 1200.0)
+        self.assertEqual(len(warnings), 1, warnings)
+        self.assertTrue(warnings[0].startswith("elevations range over "), warnings[0])
+        self.assertIn("steeper than any terrain: a CRS whose unit does not fit the grid's "
+                      "coordinates (degrees taken for metres?), or heights not in metres? Sky "
+                      "products computed from them are meaningless", warnings[0])
+        local = 'LOCAL_CS["grid",UNIT["metre",1]]'
+        for relief, count in ((400.0, 0), (401.0, 1)):
+            _, warnings = run(np.where(z > 300.0, relief, 0.0), cell=1, crs=local)
+            self.assertEqual(len(warnings), count, (relief, warnings))
+        self.assertEqual(warnings[0], "elevations range over 401 m on a grid of 40 x 30 m "
+                         "(cells of 1 x 1 m), steeper than any terrain: a CRS whose unit does "
+                         "not fit the grid's coordinates (degrees taken for metres?), or heights "
+                         "not in metres? Sky products computed from them are meaningless")
         # Elevations of other array types (a VTK pipeline's, not the reader's float32): the
         # same products as their values as float32; doubles beyond the float range are nodata.
         whole = np.round(z)
