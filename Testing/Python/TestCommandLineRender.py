@@ -125,6 +125,87 @@ class TestCommandLineRender(unittest.TestCase):
                 self.assertEqual(status, 2, stderr)
                 self.assertIn(expected, stderr)
 
+    def test_albedo(self):
+        # A picture draped over the DEM, read with GDAL: quadrants north-west red, north-east
+        # green, south-west blue, south-east white land where the top view puts them, as 8-bit
+        # RGB, as 16-bit RGB and as a palette alike.
+        import numpy as np
+        from osgeo import gdal
+        h, w = 60, 80
+        north, west = np.arange(h)[:, None] < h // 2, np.arange(w)[None, :] < w // 2
+        rgb = np.zeros((h, w, 3), np.uint8)  # row 0 north
+        rgb[north & west] = (255, 0, 0)
+        rgb[north & ~west] = (0, 255, 0)
+        rgb[~north & west] = (0, 0, 255)
+        rgb[~north & ~west] = (255, 255, 255)
+
+        def write(path, driver, planes, kind=gdal.GDT_Byte, palette=None):
+            mem = gdal.GetDriverByName("MEM").Create("", w, h, len(planes), kind)
+            for k, plane in enumerate(planes):
+                mem.GetRasterBand(k + 1).WriteArray(plane)
+            if palette:
+                table = gdal.ColorTable()
+                for k, colour in enumerate(palette):
+                    table.SetColorEntry(k, colour + (255,))
+                mem.GetRasterBand(1).SetRasterColorTable(table)
+            gdal.GetDriverByName(driver).CreateCopy(path, mem)
+
+        with tempfile.TemporaryDirectory() as tmp:
+            paths = {k: os.path.join(tmp, k) for k in ("rgb.png", "rgb16.tif", "palette.png")}
+            write(paths["rgb.png"], "PNG", [rgb[:, :, k] for k in range(3)])
+            write(paths["rgb16.tif"], "GTiff", [rgb[:, :, k].astype(np.uint16) * 257
+                                                for k in range(3)], gdal.GDT_UInt16)
+            index = (north & ~west) + 2 * (~north & west) + 3 * (~north & ~west)
+            write(paths["palette.png"], "PNG", [index.astype(np.uint8)],
+                  palette=[(255, 0, 0), (0, 255, 0), (0, 0, 255), (255, 255, 255)])
+            pictures = {k: render_rgb(self, os.path.join(tmp, k + ".out.png"), "--view", "top",
+                                      "--albedo", path) for k, path in paths.items()}
+        for k in ("rgb16.tif", "palette.png"):
+            np.testing.assert_array_equal(pictures[k], pictures["rgb.png"], err_msg=k)
+        picture = pictures["rgb.png"].reshape(120, 200, 3)[::-1]  # (PNG rows from the bottom)
+        r, g, b = (picture[:, :, k] for k in range(3))
+        rows, cols = np.mgrid[0:120, 0:200]
+        terrain = picture.sum(axis=2) < 700  # (not the white background)
+        middle = (cols[terrain].mean(), rows[terrain].mean())
+        for name, where, left, top in (("red", (r > 2 * g + 20) & (r > 2 * b + 20), True, True),
+                                       ("green", (g > 2 * r + 20) & (g > 2 * b + 20), False,
+                                        True),
+                                       ("blue", (b > 2 * r + 20) & (b > 2 * g + 20), True,
+                                        False)):
+            self.assertGreater(where.sum(), 0.15 * terrain.sum(), name)
+            self.assertEqual(cols[where].mean() < middle[0], left, name)
+            self.assertEqual(rows[where].mean() < middle[1], top, name)
+
+    def test_albedo_errors(self):
+        # A damaged picture (VTK's PNG reader crashed on it), elevations, too many bands: one line
+        # each, before anything is baked.
+        import numpy as np
+        from osgeo import gdal
+        with tempfile.TemporaryDirectory() as tmp:
+            whole, cut = os.path.join(tmp, "whole.png"), os.path.join(tmp, "cut.png")
+            mem = gdal.GetDriverByName("MEM").Create("", 64, 64, 3, gdal.GDT_Byte)
+            for k in range(3):
+                mem.GetRasterBand(k + 1).WriteArray(
+                    np.random.default_rng(k).integers(0, 255, (64, 64)).astype(np.uint8))
+            gdal.GetDriverByName("PNG").CreateCopy(whole, mem)
+            with open(whole, "rb") as f, open(cut, "wb") as g:
+                g.write(f.read()[:300])
+            heights = os.path.join(tmp, "heights.tif")
+            gdal.GetDriverByName("GTiff").Create(heights, 8, 8, 1, gdal.GDT_Float32)
+            five = os.path.join(tmp, "five.tif")
+            gdal.GetDriverByName("GTiff").Create(five, 8, 8, 5, gdal.GDT_Byte)
+            for path, expected in (
+                    (cut, "cannot read the albedo image %s: " % cut),
+                    (heights, "the albedo image %s has Float32 samples (elevations?); --albedo "
+                              "takes a picture of 8- or 16-bit samples" % heights),
+                    (five, "the albedo image %s has 5 bands; --albedo takes 1 (grey), 2 (grey, "
+                           "alpha), 3 (RGB) or 4 (RGBA)" % five)):
+                status, _, stderr = run("render", "-o", os.path.join(tmp, "x.png"),
+                                        "--albedo", path)
+                self.assertEqual(status, 1, stderr)
+                self.assertEqual(len(stderr.strip().splitlines()), 1, stderr)
+                self.assertIn(expected, stderr)
+
     def test_sky_model(self):
         import numpy as np
         # The sky model averaged over each aperture lights the shade towards the sun more than

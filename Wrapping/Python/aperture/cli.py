@@ -684,6 +684,7 @@ def cmd_render(args):
                             os.path.exists(args.albedo) else "is %s, not a file"
                             % _file_kind(os.stat(args.albedo).st_mode)))
     _check_radius(args.radius)
+    albedo = _read_albedo(args.albedo) if args.albedo else None  # (before the bake)
     watcher = Watcher(on_warning=_warn)
     bake_here = args.lighting == "aperture" and not args.baked
     if bake_here:
@@ -721,17 +722,10 @@ def cmd_render(args):
         mesh = mesh_watcher.update(mesher, "meshing")
 
     texture = None
-    if args.albedo:
-        from vtkmodules.vtkIOImage import vtkImageReader2Factory
+    if albedo is not None:
         from vtkmodules.vtkRenderingCore import vtkTexture
-        image_reader = vtkImageReader2Factory.CreateImageReader2(args.albedo)
-        if image_reader is None:
-            raise ApertureError("cannot read the albedo image %s (PNG, JPEG, TIFF, BMP)"
-                                % args.albedo)
-        image_reader.SetFileName(native_path(args.albedo))
-        image_reader.Update()
         texture = vtkTexture()
-        texture.SetInputConnection(image_reader.GetOutputPort())
+        texture.SetInputData(albedo)
         texture.InterpolateOn()
     if args.lighting == "aperture":
         window, _, mapper = scene.build_aperture(
@@ -758,6 +752,60 @@ def cmd_render(args):
                                      sun, watcher)
         print("wrote %s (linear radiance, W/m2/sr, %s)" % (exr_path, args.exr_type))
     return 0
+
+
+ALBEDO_MAX_SIDE = 4096  # texels on the albedo texture's longer side
+
+
+def _read_albedo(path):
+    """The --albedo picture as a VTK image of RGB bytes, row 0 south (as the mesh's texture
+    coordinates), read with GDAL: 1 band grey (or a palette), 2 grey and alpha, 3 RGB, 4 RGBA
+    (alpha is ignored), 8- or 16-bit samples (16-bit scaled by 255/65535), at most
+    ALBEDO_MAX_SIDE pixels on its longer side (a larger one averaged down, through the file's
+    overviews when it has them)."""
+    import numpy as np
+    from osgeo import gdal
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    gdal.UseExceptions()
+    try:
+        ds = gdal.Open(path)
+    except RuntimeError as e:
+        raise ApertureError("cannot read the albedo image %s: %s" % (path, e))
+    bands = [ds.GetRasterBand(b) for b in range(1, ds.RasterCount + 1)]
+    if not 1 <= len(bands) <= 4:
+        raise ApertureError("the albedo image %s has %d bands; --albedo takes 1 (grey), 2 (grey, "
+                            "alpha), 3 (RGB) or 4 (RGBA)" % (path, len(bands)))
+    kind = gdal.GetDataTypeName(bands[0].DataType)
+    if kind not in ("Byte", "UInt16"):
+        raise ApertureError("the albedo image %s has %s samples (elevations?); --albedo takes a "
+                            "picture of 8- or 16-bit samples (PNG, JPEG, TIFF)" % (path, kind))
+    palette = bands[0].GetColorTable() if len(bands) == 1 else None
+    scale = min(1.0, ALBEDO_MAX_SIDE / max(ds.RasterXSize, ds.RasterYSize))
+    width = max(1, round(ds.RasterXSize * scale))
+    height = max(1, round(ds.RasterYSize * scale))
+    channels = 1 if len(bands) <= 2 else 3
+    try:
+        # (a palette's indices are picked, not averaged)
+        pixels = np.stack([b.ReadAsArray(buf_xsize=width, buf_ysize=height, resample_alg=(
+            gdal.GRIORA_NearestNeighbour if palette else gdal.GRIORA_Average))
+            for b in bands[:channels]], axis=-1)
+    except RuntimeError as e:
+        raise ApertureError("cannot read the albedo image %s: %s" % (path, e))
+    if palette is not None:
+        table = np.array([palette.GetColorEntry(k)[:3] for k in range(palette.GetCount())] or
+                         [(0, 0, 0)], dtype=np.uint8)
+        rgb = table[np.minimum(pixels[:, :, 0], len(table) - 1)]
+    else:
+        if kind == "UInt16":
+            pixels = np.round(pixels * (255.0 / 65535.0))
+        rgb = np.broadcast_to(pixels, (height, width, 3)).astype(np.uint8)
+    image = vtkImageData()
+    image.SetDimensions(width, height, 1)
+    values = numpy_to_vtk(np.ascontiguousarray(rgb[::-1]).reshape(-1, 3), deep=1)
+    values.SetName("Albedo")
+    image.GetPointData().SetScalars(values)
+    return image
 
 
 def _write_linear_exr(args, window, mapper, sun, watcher):
@@ -1808,8 +1856,9 @@ def build_parser():
                         "sun at about 80%% grey)")
     _add_atmosphere_options(p)
     p.add_argument("--albedo", metavar="IMAGE",
-                   help="an image (e.g. an orthophoto, PNG/JPEG/TIFF) draped over the whole "
-                        "DEM as its albedo, instead of the elevation colours")
+                   help="a picture (e.g. an orthophoto: grey, RGB, RGBA or a palette, 8- or "
+                        "16-bit, in any format GDAL reads) draped over the whole DEM, its top "
+                        "edge north, as its albedo instead of the elevation colours")
     p.add_argument("--shading", choices=("pixel", "vertex"), default="pixel",
                    help="evaluate the lighting at every pixel (default) or at the vertices, "
                         "interpolated (faster for meshes of about pixel-sized triangles)")
