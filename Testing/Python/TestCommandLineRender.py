@@ -349,30 +349,34 @@ class TestCommandLineRender(unittest.TestCase):
                 self.assertFalse(os.path.exists(out))
 
     def test_implausible_elevations_named_once(self):
-        # Spots of an undeclared nodata value: the picture is made, with one warning naming the
-        # range (the sky filter's; the mesher's would say the same), and the mesher's alone
-        # with VTK's lighting (no bake).
+        # Spots of an undeclared nodata value, or cells of 3 arc-seconds taken for metres: the
+        # picture is made, with one warning naming the range (the sky filter's; the mesher's
+        # would say the same), and the mesher's alone with VTK's lighting (no bake).
         import numpy as np
         from osgeo import gdal
         gdal.UseExceptions()
         with tempfile.TemporaryDirectory() as tmp:
-            path = os.path.join(tmp, "spots.tif")
             z = np.add.outer(np.arange(60.0), np.arange(80.0)) * 3
-            z[5:7, 5:7] = -32768
-            ds = gdal.GetDriverByName("GTiff").Create(path, 80, 60, 1, gdal.GDT_Float32)
-            ds.SetGeoTransform((400000.0, 30.0, 0.0, 5000000.0, 0.0, -30.0))
-            ds.SetProjection("EPSG:32633")
-            ds.GetRasterBand(1).WriteArray(z.astype(np.float32))
-            ds = None
-            for lighting, what in (("aperture", "Sky products computed from them"),
-                                   ("standard", "A mesh and pictures made of them")):
-                status, _, stderr = run("render", path, "-o", os.path.join(tmp, "x.png"),
-                                        "--size", "200x120", "--lighting", lighting)
-                self.assertEqual(status, 0, stderr)
-                lines = stderr.strip().splitlines()
-                self.assertEqual(len(lines), 1, stderr)
-                self.assertIn("aperture: warning: elevations range from -32768 to 414 m", lines[0])
-                self.assertIn(what, lines[0])
+            spots = z.copy()
+            spots[5:7, 5:7] = -32768
+            for heights, cell, expected in (
+                    (spots, 30.0, "elevations range from -32768 to 414 m, beyond any on Earth"),
+                    (z, 1 / 1200.0, "elevations range over 414 m on a grid of ")):
+                path = os.path.join(tmp, "dem.tif")
+                ds = gdal.GetDriverByName("GTiff").Create(path, 80, 60, 1, gdal.GDT_Float32)
+                ds.SetGeoTransform((400000.0, cell, 0.0, 5000000.0, 0.0, -cell))
+                ds.SetProjection("EPSG:32633")
+                ds.GetRasterBand(1).WriteArray(heights.astype(np.float32))
+                ds = None
+                for lighting, what in (("aperture", "Sky products computed from them"),
+                                       ("standard", "A mesh and pictures made of them")):
+                    status, _, stderr = run("render", path, "-o", os.path.join(tmp, "x.png"),
+                                            "--size", "200x120", "--lighting", lighting)
+                    self.assertEqual(status, 0, stderr)
+                    lines = stderr.strip().splitlines()
+                    self.assertEqual(len(lines), 1, stderr)
+                    self.assertIn("aperture: warning: " + expected, lines[0])
+                    self.assertIn(what, lines[0])
 
     def test_baked(self):
         # A bake of this DEM lights it as the render's own bake does (the GeoTIFF keeps the

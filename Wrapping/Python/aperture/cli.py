@@ -711,10 +711,11 @@ def cmd_render(args):
         _warn("the sun is %.2f degrees below the horizon%s: the terrain is unlit (the sky models "
               "have no twilight), a black picture" % (-sun.GetElevation(),
                                                       " at that time" if args.at else ""))
-    # (the mesher names implausible elevations as the sky filter does: said once is enough)
-    named = [w for w in watcher.warnings if w.startswith("elevations range from")]
+    # (the mesher names implausible elevations, beyond the Earth's or steeper than terrain, as
+    # the sky filter does: said once is enough)
+    named = [w for w in watcher.warnings if w.startswith("elevations range ")]
     mesh_watcher = Watcher(on_warning=lambda m: None if named and m.startswith(
-        "elevations range from") else _warn(m))
+        "elevations range ") else _warn(m))
     mesher = mesh_watcher.watch(vtkApertureTerrainMesh())
     mesher.SetInputData(source)
     mesher.SetVerticalExaggeration(args.exaggeration)
