@@ -63,6 +63,23 @@ double MetresPerUnit(const char* unitType)
   {
     return 1.0;
   }
+  // the metre's multiples that DEMs of integers use (centimetres, decimetres) and their kin
+  const struct
+  {
+    const char* Symbol;
+    const char* Prefix;
+    double Metres;
+  } multiples[] = { { "mm", "milli", 1e-3 }, { "cm", "centi", 1e-2 }, { "dm", "deci", 1e-1 },
+    { "km", "kilo", 1e3 } };
+  for (const auto& m : multiples)
+  {
+    const std::string p(m.Prefix);
+    if (u == m.Symbol || u == p + "metre" || u == p + "meter" || u == p + "metres" ||
+      u == p + "meters")
+    {
+      return m.Metres;
+    }
+  }
   if (u == "ft" || u == "foot" || u == "feet" || u == "international foot" ||
     u == "ft (international)")
   {

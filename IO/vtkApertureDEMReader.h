@@ -4,8 +4,9 @@
  * @brief   Read a single-band elevation raster (any format GDAL opens) as a 2-D DEM image.
  *
  * Output: a vtkImageData with one float32 point array `Elevation` in metres: the band's scale
- * and offset are applied, and feet or US survey feet are converted (the band's unit, else the
- * height unit of a compound CRS, else metres; MetresPerElevationUnit overrides them). Nodata
+ * and offset are applied, and feet, US survey feet and the metre's multiples (mm, cm, dm, km)
+ * are converted (the band's unit, else the height unit of a compound CRS, else metres;
+ * MetresPerElevationUnit overrides them). Nodata
  * (the band's nodata value, a GDAL mask, NaN, an infinity, or a value that does not fit a
  * float) becomes NaN. The grid follows vtkApertureGeoreference's conventions: origin and
  * spacing in CRS units, origin at the centre of the south-west cell, row 0 south, identity
@@ -124,9 +125,10 @@ public:
   ///@}
 
   /** Metres per unit of an elevation unit's name as bands carry them (case ignored): 1 for
-   *  "m", "metre", "meters", ...; 0.3048 for "ft", "foot", "feet", "international foot";
-   *  1200/3937 for "US survey foot", "us-ft", "ftUS", "foot_us", ...; 0 for a name it does not
-   *  know, and for "" or null. The reader reads a band's unit with it. */
+   *  "m", "metre", "meters", ...; 0.001, 0.01, 0.1 and 1000 for "mm", "cm", "dm", "km" and
+   *  their names ("centimetres", "centimeter", ...); 0.3048 for "ft", "foot", "feet",
+   *  "international foot"; 1200/3937 for "US survey foot", "us-ft", "ftUS", "foot_us", ...; 0
+   *  for a name it does not know, and for "" or null. The reader reads a band's unit with it. */
   static double GetMetresPerUnit(const char* name);
 
   ///@{

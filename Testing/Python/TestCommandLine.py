@@ -365,7 +365,8 @@ class TestInfo(CommandLineTest):
         # (the unit names the reader knows for bands, one table: vtkApertureDEMReader)
         for z, metres in (("us-ft", us_foot), ("US-FT", us_foot), ("ft", 0.3048),
                           ("0.3048", 0.3048), ("1", 1.0), ("m", 1.0),
-                          ("US survey foot", us_foot), ("feet", 0.3048), ("metre", 1.0)):
+                          ("US survey foot", us_foot), ("feet", 0.3048), ("metre", 1.0),
+                          ("cm", 0.01), ("centimetres", 0.01), ("dm", 0.1)):
             d, err = self.info(p, "--zfactor", z)
             self.assertEqual(err, "")
             self.assertEqual(d["elevation_unit_m"], metres)
@@ -392,8 +393,9 @@ class TestInfo(CommandLineTest):
             status, out, err = run("info", "--zfactor", z)
             self.assertEqual(status, 2, err)
             self.assertIn("argument --zfactor: must be a positive number of metres per "
-                          "elevation unit, or a unit: m, ft or us-ft (or their names: metre, "
-                          "foot, US survey foot), not %r" % z, err)
+                          "elevation unit, or a unit: m, ft, us-ft, cm, dm, mm or km (or their "
+                          "names: metre, foot, US survey foot, centimetre, ...), not %r" % z,
+                          err)
             self.assertEqual(out, "")
 
 

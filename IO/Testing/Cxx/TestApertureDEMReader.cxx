@@ -166,7 +166,9 @@ void TestUnits()
     double metres;
   } names[] = { { "m", 1.0 }, { "Metres", 1.0 }, { "FEET", 0.3048 }, { "ft", 0.3048 },
     { "international foot", 0.3048 }, { "us-ft", 1200.0 / 3937.0 },
-    { "US survey foot", 1200.0 / 3937.0 }, { "ftUS", 1200.0 / 3937.0 }, { "cubits", 0.0 },
+    { "US survey foot", 1200.0 / 3937.0 }, { "ftUS", 1200.0 / 3937.0 }, { "cm", 0.01 },
+    { "Centimetres", 0.01 }, { "millimeter", 0.001 }, { "dm", 0.1 }, { "decimetre", 0.1 },
+    { "KM", 1000.0 }, { "kilometers", 1000.0 }, { "cubits", 0.0 }, { "centimetre s", 0.0 },
     { "", 0.0 }, { nullptr, 0.0 } };
   for (const auto& n : names)
   {
@@ -186,6 +188,13 @@ void TestUnits()
   Read us(tmp + "/usfeet.tif");
   us.Update();
   AP_CHECK_NEAR(us.Z(0, 0), 1000.0 * 1200.0 / 3937.0, 1e-4);
+  s.unit = "cm"; // (integer DEMs in centimetres)
+  AP_CHECK(aptest::WriteRaster(tmp + "/centimetres.tif", s));
+  Read cm(tmp + "/centimetres.tif");
+  cm.Update();
+  AP_CHECK(cm.Ok == 1 && !cm.Warnings->GetWarning());
+  AP_CHECK_NEAR(cm.Z(0, 0), 10.0, 1e-6);
+  AP_CHECK(std::string(cm.Reader->GetElevationUnitSource()) == "the band's unit 'cm'");
   s.unit = "cubits";
   AP_CHECK(aptest::WriteRaster(tmp + "/cubits.tif", s));
   Read cu(tmp + "/cubits.tif");

@@ -64,14 +64,15 @@ def _add_read_options(parser, dem_required=False, srcwin_help=None, dem_option=N
     g.add_argument("--zfactor", type=_parse_zfactor, default=_READ_DEFAULTS["zfactor"],
                    metavar="Z",
                    help="metres per elevation unit, for a DEM whose unit is missing or wrong: "
-                        "a number, or ft (0.3048), us-ft (1200/3937) or m, or another name "
-                        "bands give those units (foot, US survey foot, metre, ...) (default: "
-                        "the band's unit, else a compound CRS's height unit, else metres)")
+                        "a number, or ft (0.3048), us-ft (1200/3937), m, cm, dm, mm, km, or "
+                        "another name bands give those units (foot, US survey foot, metre, "
+                        "centimetres, ...) (default: the band's unit, else a compound CRS's "
+                        "height unit, else metres)")
 
 
 def _parse_zfactor(text):
     """--zfactor: metres per elevation unit, or a unit's name as the reader knows band units
-    (vtkApertureDEMReader::GetMetresPerUnit: m, ft, us-ft, foot, US survey foot, ...)."""
+    (vtkApertureDEMReader::GetMetresPerUnit: m, cm, ft, us-ft, foot, US survey foot, ...)."""
     from aperture import vtkApertureDEMReader
     value = vtkApertureDEMReader.GetMetresPerUnit(text.strip()) if text.strip() else 0.0
     if value == 0.0:
@@ -81,8 +82,9 @@ def _parse_zfactor(text):
             value = math.nan
     if not (0.0 < value < math.inf):
         raise argparse.ArgumentTypeError(
-            "must be a positive number of metres per elevation unit, or a unit: m, ft or us-ft "
-            "(or their names: metre, foot, US survey foot), not %r" % text)
+            "must be a positive number of metres per elevation unit, or a unit: m, ft, us-ft, "
+            "cm, dm, mm or km (or their names: metre, foot, US survey foot, centimetre, ...), "
+            "not %r" % text)
     return value
 
 
