@@ -658,7 +658,14 @@ bool vtkApertureEXRWriter::ResolveChannels(vtkImageData* input, const std::strin
   }
   if (channels.empty())
   {
-    vtkErrorMacro(<< "the image has no numeric point arrays to write to '" << path << "'");
+    bool unnamed = false; // numeric arrays, all without a name
+    for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+    {
+      unnamed = unnamed || pd->GetArray(a) != nullptr;
+    }
+    vtkErrorMacro(<< "the image has no " << (unnamed ? "named " : "")
+                  << "numeric point arrays to write to '" << path << "'"
+                  << (unnamed ? " (a channel is named by its array)" : ""));
     return false;
   }
   for (size_t k = 0; k < channels.size(); ++k)

@@ -1161,6 +1161,12 @@ void TestWriterErrors()
     w->SetInputData(strings);
     w->SetFileName((tmp + "/strings.exr").c_str());
     ExpectWriterError(w, "the image has no numeric point arrays to write");
+    vtkNew<vtkFloatArray> nameless; // (numbers without a name: no channel name either)
+    nameless->SetNumberOfValues(4);
+    nameless->Fill(1.0f);
+    strings->GetPointData()->AddArray(nameless);
+    ExpectWriterError(w, "the image has no named numeric point arrays to write to '" + tmp +
+        "/strings.exr' (a channel is named by its array)");
   }
   {
     auto rotated = MakeImage(true);
