@@ -160,6 +160,37 @@ class TestCommandLineRender(unittest.TestCase):
                   palette=[(255, 0, 0), (0, 255, 0), (0, 0, 255), (255, 255, 255)])
             pictures = {k: render_rgb(self, os.path.join(tmp, k + ".out.png"), "--view", "top",
                                       "--albedo", path) for k, path in paths.items()}
+            # A georeferenced picture is draped the same way: without a word when it covers
+            # the DEM (the embedded one: its bounds), with a warning when it covers more.
+            for name, grow, warned in (("fits.tif", 0.0, False), ("larger.tif", 0.5, True)):
+                path = os.path.join(tmp, name)
+                west, south, east, north = -84.41375, 36.1595833333, -84.0779166667, 36.44625
+                write(path, "GTiff", [rgb[:, :, k] for k in range(3)])
+                ds = gdal.Open(path, gdal.GA_Update)
+                dx, dy = (east - west) / w, (north - south) / h
+                ds.SetGeoTransform((west - grow * w * dx, (1 + 2 * grow) * dx, 0.0, north, 0.0,
+                                    -(1 + grow) * dy))
+                ds.SetProjection("EPSG:4326")
+                ds = None
+                out = os.path.join(tmp, name + ".png")
+                status, _, stderr = run("render", "-o", out, "--size", "200x120", "--sun-az",
+                                        "225", "--sun-el", "20", "--view", "top", "--albedo", path)
+                self.assertEqual(status, 0, stderr)
+                if warned:
+                    self.assertEqual(stderr, "aperture: warning: the albedo image %s covers "
+                                     "longitude -84.581667..-83.910000, latitude "
+                                     "36.016250..36.446250, the DEM -84.413750..-84.077917, "
+                                     "36.159583..36.446250: the picture is stretched over the "
+                                     "whole DEM, not placed by its georeference (clip it to the "
+                                     "DEM's bounds, e.g. with gdalwarp -te)\n" % path)
+                else:
+                    self.assertEqual(stderr, "")
+                    reader = vtkPNGReader()
+                    reader.SetFileName(out)
+                    reader.Update()
+                    np.testing.assert_array_equal(vtk_to_numpy(
+                        reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int),
+                        pictures["rgb.png"])
         for k in ("rgb16.tif", "palette.png"):
             np.testing.assert_array_equal(pictures[k], pictures["rgb.png"], err_msg=k)
         picture = pictures["rgb.png"].reshape(120, 200, 3)[::-1]  # (PNG rows from the bottom)

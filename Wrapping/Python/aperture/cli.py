@@ -686,7 +686,8 @@ def cmd_render(args):
                             os.path.exists(args.albedo) else "is %s, not a file"
                             % _file_kind(os.stat(args.albedo).st_mode)))
     _check_radius(args.radius)
-    albedo = _read_albedo(args.albedo) if args.albedo else None  # (before the bake)
+    # (the picture first: a bad one is refused before the bake)
+    albedo, albedo_bounds = _read_albedo(args.albedo) if args.albedo else (None, None)
     watcher = Watcher(on_warning=_warn)
     bake_here = args.lighting == "aperture" and not args.baked
     if bake_here:
@@ -708,6 +709,10 @@ def cmd_render(args):
             _attach_baked(image, args.baked, reader)
         source = image
         _check_render_memory(args, *image.GetDimensions()[:2], bool(args.baked), False)
+    misplaced = _albedo_placement_warning(args.albedo, albedo_bounds, image) if args.albedo \
+        else None
+    if misplaced:
+        _warn(misplaced)
     sun = _render_sun(args, image, watcher)
     if sun.GetElevation() <= 0.0:  # (the beam and the sky models end at the horizon)
         _warn("the sun is %.2f degrees below the horizon%s: the terrain is unlit (the sky models "
@@ -765,7 +770,8 @@ def _read_albedo(path):
     coordinates), read with GDAL: 1 band grey (or a palette), 2 grey and alpha, 3 RGB, 4 RGBA
     (alpha is ignored), 8- or 16-bit samples (16-bit scaled by 255/65535), at most
     ALBEDO_MAX_SIDE pixels on its longer side (a larger one averaged down, through the file's
-    overviews when it has them)."""
+    overviews when it has them); and its bounds in degrees (west, south, east, north) when it
+    is georeferenced, else None."""
     import numpy as np
     from osgeo import gdal
     from vtkmodules.util.numpy_support import numpy_to_vtk
@@ -808,7 +814,48 @@ def _read_albedo(path):
     values = numpy_to_vtk(np.ascontiguousarray(rgb[::-1]).reshape(-1, 3), deep=1)
     values.SetName("Albedo")
     image.GetPointData().SetScalars(values)
-    return image
+    return image, _raster_bounds_lonlat(ds)
+
+
+def _raster_bounds_lonlat(ds):
+    """A GDAL dataset's bounds in degrees (west, south, east, north; its corners and edge
+    midpoints), or None without a geotransform and CRS, or with one PROJ cannot convert."""
+    from osgeo import osr
+    gt, srs = ds.GetGeoTransform(can_return_null=True), ds.GetSpatialRef()
+    if gt is None or srs is None:
+        return None
+    wgs84 = osr.SpatialReference()
+    wgs84.ImportFromEPSG(4326)
+    for crs in (srs, wgs84):
+        crs.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+    try:
+        to = osr.CoordinateTransformation(srs, wgs84)
+        points = [to.TransformPoint(gt[0] + u * gt[1] + v * gt[2], gt[3] + u * gt[4] + v * gt[5])
+                  for u in (0, ds.RasterXSize / 2, ds.RasterXSize)
+                  for v in (0, ds.RasterYSize / 2, ds.RasterYSize)]
+    except RuntimeError:
+        return None
+    lon, lat = [p[0] for p in points], [p[1] for p in points]
+    return min(lon), min(lat), max(lon), max(lat)
+
+
+def _albedo_placement_warning(path, bounds, image):
+    """The warning for a georeferenced --albedo picture whose bounds (degrees) differ from the
+    DEM image's by more than 1% of its size (it is stretched over the DEM all the same), else
+    None: a plain picture, or a DEM without a place on the Earth or around the globe."""
+    from aperture import vtkApertureGeoreference
+    geo = vtkApertureGeoreference()
+    dem = [0.0] * 4
+    if (bounds is None or not geo.SetFromImage(image) or geo.IsLocal() or geo.WrapsAround()
+            or not geo.GetBoundsLonLat(dem)):
+        return None
+    size = (dem[2] - dem[0], dem[3] - dem[1])
+    if all(abs(a - b) <= 0.01 * size[k % 2] for k, (a, b) in enumerate(zip(bounds, dem))):
+        return None
+    return ("the albedo image %s covers longitude %.6f..%.6f, latitude %.6f..%.6f, the DEM "
+            "%.6f..%.6f, %.6f..%.6f: the picture is stretched over the whole DEM, not placed by "
+            "its georeference (clip it to the DEM's bounds, e.g. with gdalwarp -te)"
+            % (path, bounds[0], bounds[2], bounds[1], bounds[3], dem[0], dem[2], dem[1], dem[3]))
 
 
 def _write_linear_exr(args, window, mapper, sun, watcher):
