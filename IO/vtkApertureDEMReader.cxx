@@ -19,6 +19,7 @@
 #include "ap_grid.h"
 
 #include <cpl_conv.h>
+#include <cpl_vsi.h>
 #include <gdal.h>
 #include <ogr_srs_api.h>
 
@@ -167,7 +168,7 @@ struct vtkApertureDEMReader::Internals
       return false;
     }
     const std::string name(fileName);
-    struct stat sb;
+    struct stat sb = {};
     if (name.compare(0, 4, "/vsi") != 0 && stat(fileName, &sb) != 0) // (GDAL's own paths)
     {
       error = "file '" + name + "' does not exist";
@@ -185,8 +186,19 @@ struct vtkApertureDEMReader::Internals
     ds.H = GDALOpenEx(fileName, GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
     if (!ds.H)
     {
+      VSIStatBufL vsb;
+      if (name.compare(0, 4, "/vsi") == 0 && VSIStatL(fileName, &vsb) != 0)
+      {
+        error = "file '" + name + "' does not exist"; // (said once GDAL has tried)
+        return false;
+      }
       error = "GDAL cannot open '" + name + "' as a raster: " +
         trap.Message("not a raster format GDAL recognises");
+      if (name.compare(0, 4, "/vsi") != 0 && S_ISDIR(sb.st_mode))
+      {
+        error += " (it is a folder, and not one GDAL reads as a raster, such as an ArcInfo "
+                 "grid's)";
+      }
       if (IsOpenEXR(fileName))
       {
         // (as `aperture bake --exr` writes them; Debian's GDAL has no EXR driver)

@@ -609,6 +609,12 @@ void TestBadInput()
   ExpectError(tmp + "/no-such-file.tif", "does not exist");
   AP_CHECK(aptest::WriteText(tmp + "/notes.tif", "this is not a raster\n"));
   ExpectError(tmp + "/notes.tif", "GDAL cannot open");
+  // GDAL's own paths are said to be missing once GDAL has tried them; a folder is named
+  ExpectError("/vsimem/no-such-file.tif", "file '/vsimem/no-such-file.tif' does not exist");
+  ExpectError("/vsizip/" + tmp + "/no-such.zip/dem.tif", "does not exist");
+  ExpectError(tmp, "GDAL cannot open '" + tmp + "' as a raster: ");
+  ExpectError(tmp, " (it is a folder, and not one GDAL reads as a raster, such as an ArcInfo "
+                   "grid's)");
   // a named pipe: GDAL's open waited for a writer, for ever (and one writer is not enough: GDAL
   // opens a file more than once); refused by name
   const std::string pipe = tmp + "/pipe.tif";
