@@ -333,10 +333,11 @@ class TestBake(unittest.TestCase):
         status, out, err = run("info", inside, "--json")  # relative to the working folder)
         self.assertEqual(status, 0, err)
         self.assertEqual(json.loads(out)["file"], inside)
-        # a member the archive does not have is GDAL's refusal, not a missing local file
+        # a member the archive does not have: GDAL tries it (no local stat of a virtual path),
+        # then the path is said not to exist (GDAL's VSIStatL), as a missing file is
         status, _, err = run("bake", inside + ".no", zipped)
         self.assertEqual(status, 1, err)
-        self.assertIn("GDAL cannot open '%s.no' as a raster" % inside, err)
+        self.assertEqual("aperture: error: file '%s.no' does not exist\n" % inside, err)
 
     def test_windows_tile_the_whole_bake(self):
         # --srcwin bakes the window's cells with horizons that see the DEM around it (the sky
