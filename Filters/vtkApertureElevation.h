@@ -2,7 +2,7 @@
 // Internal (not installed, not wrapped): elevations as the filters take them from their input.
 // Nodata is NaN, and so is every elevation that is not finite (as vtkApertureDEMReader makes
 // them, for an image built by hand); finite ones beyond any on the Earth are kept, and named
-// in a warning (an undeclared nodata value such as -32768, or heights not in metres).
+// in a warning (vtkApertureGeoreference::GetElevationWarning).
 #ifndef vtkApertureElevation_h
 #define vtkApertureElevation_h
 
@@ -15,11 +15,6 @@
 #include <limits>
 #include <sstream>
 #include <string>
-
-// The range of the Earth's surface with a margin (m): Challenger Deep about -10,935 m, Everest
-// 8,849 m, orthometric or ellipsoidal (the geoid stays within about 110 m of the ellipsoid).
-constexpr float vtkApertureEarthLowest = -11100.0f;
-constexpr float vtkApertureEarthHighest = 9000.0f;
 
 // Tuples [begin, end) of a one-component elevation array into z[begin, end) as float, NaN
 // where not finite (doubles beyond the float range included). A float array (the reader's) is
@@ -103,38 +98,6 @@ inline std::string vtkApertureCheckPointArrays(
     }
   }
   return std::string();
-}
-
-// The warning for valid elevations from min to max (m) on a grid of nx x ny cells of cell[0] x
-// cell[1] m (nullptr: unknown), "" when they could be terrain: heights beyond any on the Earth
-// (an undeclared nodata value, or heights not in metres), else a relief more than ten times
-// the grid's larger side, which no terrain has (a mean slope beyond 84 degrees across the
-// grid) while coordinates in degrees taken for metres (a projected CRS given to a lat/lon DEM)
-// make cells of a millimetre and such a relief. `what` names what is made of them ("Sky
-// products computed from them").
-inline std::string vtkApertureElevationWarning(
-  double min, double max, int nx, int ny, const double* cell, const char* what)
-{
-  std::ostringstream msg;
-  if (min < vtkApertureEarthLowest || max > vtkApertureEarthHighest)
-  {
-    msg << "elevations range from " << min << " to " << max << " m, beyond any on Earth ("
-        << vtkApertureEarthLowest << " to " << vtkApertureEarthHighest
-        << " m): a nodata value the DEM does not declare, or heights not in metres? ";
-  }
-  else if (cell && max - min > 10.0 * std::max(nx * cell[0], ny * cell[1]))
-  {
-    msg << "elevations range over " << max - min << " m on a grid of " << nx * cell[0] << " x "
-        << ny * cell[1] << " m (cells of " << cell[0] << " x " << cell[1]
-        << " m), steeper than any terrain: a CRS whose unit does not fit the grid's "
-           "coordinates (degrees taken for metres?), or heights not in metres? ";
-  }
-  else
-  {
-    return std::string();
-  }
-  msg << what << " are meaningless";
-  return msg.str();
 }
 
 #endif

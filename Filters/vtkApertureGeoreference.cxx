@@ -782,6 +782,38 @@ bool vtkApertureGeoreference::GetBoundsLonLat(double bounds[4])
 }
 
 //------------------------------------------------------------------------------
+std::string vtkApertureGeoreference::GetElevationWarning(
+  double min, double max, const char* what)
+{
+  // The range of the Earth's surface with a margin (m): Challenger Deep about -10,935 m,
+  // Everest 8,849 m, orthometric or ellipsoidal (the geoid is within about 110 m of it).
+  const double lowest = -11100.0, highest = 9000.0;
+  std::ostringstream msg;
+  double cell[2];
+  if (min < lowest || max > highest)
+  {
+    msg << "elevations range from " << min << " to " << max << " m, beyond any on Earth ("
+        << lowest << " to " << highest
+        << " m): a nodata value the DEM does not declare, or heights not in metres? ";
+  }
+  else if (this->GetCellSizeMetres(cell) &&
+    max - min > 10.0 * std::max(this->GridSize[0] * cell[0], this->GridSize[1] * cell[1]))
+  {
+    msg << "elevations range over " << max - min << " m on a grid of "
+        << this->GridSize[0] * cell[0] << " x " << this->GridSize[1] * cell[1]
+        << " m (cells of " << cell[0] << " x " << cell[1]
+        << " m), steeper than any terrain: a CRS whose unit does not fit the grid's "
+           "coordinates (degrees taken for metres?), or heights not in metres? ";
+  }
+  else
+  {
+    return std::string();
+  }
+  msg << (what ? what : "Products made of them") << " are meaningless";
+  return msg.str();
+}
+
+//------------------------------------------------------------------------------
 bool vtkApertureGeoreference::GetCellSizeMetres(double size[2])
 {
   const double xc = this->GridOrigin[0] + 0.5 * (this->GridSize[0] - 1) * this->GridSpacing[0];

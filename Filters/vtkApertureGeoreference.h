@@ -37,6 +37,8 @@
 #include "vtkObject.h"
 #include "vtkWrappingHints.h" // for VTK_WRAPEXCLUDE
 
+#include <string> // for GetElevationWarning
+
 class vtkDataObject;
 class vtkImageData;
 class vtkInformation;
@@ -214,6 +216,18 @@ public:
    * geodesic distances on the ellipsoid between the centres of the cell's opposite edges.
    */
   bool GetCellSizeMetres(double size[2]);
+
+  /**
+   * The warning for valid elevations from min to max (m) on this grid, "" when they could be
+   * terrain: heights beyond any on the Earth (below -11,100 or above 9,000 m: an undeclared
+   * nodata value, or heights not in metres), else a relief over ten times the grid's larger
+   * side at GetCellSizeMetres (a mean slope beyond 84 degrees across the grid, which no
+   * terrain has, while coordinates in degrees taken for metres, a projected CRS given to a
+   * lat/lon DEM, make cells of a millimetre and such a relief). `what` ends the message,
+   * naming what is made of them ("Sky products computed from them"); the filters and
+   * `aperture info` say it.
+   */
+  std::string GetElevationWarning(double min, double max, const char* what);
 
   /**
    * Ground size of one cell centred at CRS point (x, y), as GetCellSizeMetres (which is this at

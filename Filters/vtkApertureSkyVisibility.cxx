@@ -709,10 +709,8 @@ int vtkApertureSkyVisibility::Execute(
     vtkErrorMacro(<< "elevation statistics: " << ap_status_string(st));
     return 0;
   }
-  double cell[2];
   const std::string implausible = range.valid > 0
-    ? vtkApertureElevationWarning(range.min, range.max, nx, ny,
-        geo->GetCellSizeMetres(cell) ? cell : nullptr, "Sky products computed from them")
+    ? geo->GetElevationWarning(range.min, range.max, "Sky products computed from them")
     : std::string();
   if (!implausible.empty())
   {

@@ -274,10 +274,8 @@ int vtkApertureTerrainMesh::Execute(
     vtkErrorMacro(<< "every point of the DEM is nodata; there is no terrain to mesh");
     return 0;
   }
-  double cell[2];
-  const std::string implausible = vtkApertureElevationWarning(stats.min, stats.max,
-    static_cast<int>(nx), static_cast<int>(ny), geo->GetCellSizeMetres(cell) ? cell : nullptr,
-    "A mesh and pictures made of them");
+  const std::string implausible =
+    geo->GetElevationWarning(stats.min, stats.max, "A mesh and pictures made of them");
   if (!implausible.empty())
   {
     vtkWarningMacro(<< implausible);

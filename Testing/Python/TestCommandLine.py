@@ -343,8 +343,29 @@ class TestInfo(CommandLineTest):
         p = make_raster(self.path("nocrs.tif"), rows, (500000, 30, 0, 4000000, 0, -30), srs=None)
         self.assert_error("has no coordinate reference system; give one with --srs EPSG:xxxx",
                           "info", p)
-        d, _ = self.info(p, "--srs", "EPSG:32611")
+        d, err = self.info(p, "--srs", "EPSG:32611")
         self.assertEqual(d["crs"], "WGS 84 / UTM zone 11N")
+        self.assertEqual(err, "")
+        # A wrong guess: a projected CRS given to a lat/lon grid (cells of 3 arc-seconds taken
+        # for metres) makes a relief no terrain has, said as the filters say it; and heights
+        # beyond the Earth's (an undeclared nodata value) likewise.
+        ramp = np.add.outer(np.arange(4.0), np.arange(4.0)) * 50  # 0 .. 300 m
+        g = make_raster(self.path("degrees.tif"), ramp, (-84.4, 1 / 1200, 0, 36.4, 0, -1 / 1200),
+                        srs=None)
+        d, err = self.info(g, "--srs", "EPSG:32611")
+        self.assertTrue(err.startswith("aperture: warning: elevations range over 300 m on a "
+                                       "grid of "), err)
+        self.assertIn("steeper than any terrain: a CRS whose unit does not fit the grid's "
+                      "coordinates (degrees taken for metres?), or heights not in metres? Sky "
+                      "products and pictures made of them are meaningless", err)
+        self.assertEqual(len(err.splitlines()), 1, err)
+        _, err = self.info(g, "--srs", "EPSG:4326")
+        self.assertEqual(err, "")
+        pit = make_raster(self.path("pit.tif"), np.where(ramp > 100, ramp, -32768.0),
+                          (500000, 30, 0, 4000000, 0, -30), srs="EPSG:32611")
+        _, err = self.info(pit)
+        self.assertIn("aperture: warning: elevations range from -32768 to 300 m, beyond any on "
+                      "Earth", err)
 
     def test_elevation_unit(self):
         # A state-plane DEM in US survey feet whose band has no unit: its heights are read as
@@ -608,7 +629,7 @@ class TestBadInput(CommandLineTest):
         # GDAL's progress line on stderr, when it is a terminal and the DEM is read in more
         # than one strip (as gdalinfo -stats); no note below 1 GiB.
         from terminal import run_with_terminal_stderr
-        rows = np.arange(40 * 300, dtype=float).reshape(40, 300)
+        rows = np.arange(40 * 300, dtype=float).reshape(40, 300) / 2  # (heights of the Earth)
         p = make_raster(self.path("progress.tif"), rows, (500000, 30, 0, 4000000, 0, -30))
         for limit, expected in ((["--max-memory", "3K"],
                                  "0...10...20...30...40...50...60...70...80...90...100 - "
@@ -616,7 +637,7 @@ class TestBadInput(CommandLineTest):
             r, seen = run_with_terminal_stderr([APERTURE, "info", "--json", p] + limit,
                                                timeout=120)
             self.assertEqual(r.returncode, 0)
-            self.assertEqual(json.loads(r.stdout)["elevation_range"], [0.0, 40 * 300 - 1.0])
+            self.assertEqual(json.loads(r.stdout)["elevation_range"], [0.0, 5999.5])
             self.assertEqual(seen.decode(), expected)
 
     def test_bad_options(self):

@@ -458,6 +458,11 @@ def cmd_info(args):
             if progress and progress.open:
                 sys.stderr.write("\n")
             raise
+        if facts["elevation_range"]:  # (heights beyond the Earth's, a relief no terrain has)
+            implausible = _whole_grid(reader)[0].GetElevationWarning(
+                *facts["elevation_range"], "Sky products and pictures made of them")
+            if implausible:
+                _warn(implausible)
     if args.json:
         print(json.dumps(facts, indent=2, allow_nan=False))
     else:
