@@ -168,13 +168,14 @@ struct vtkApertureDEMReader::Internals
       return false;
     }
     const std::string name(fileName);
+    const bool virtualPath = name.compare(0, 4, "/vsi") == 0; // (GDAL's own: /vsizip/, ...)
     struct stat sb = {};
-    if (name.compare(0, 4, "/vsi") != 0 && stat(fileName, &sb) != 0) // (GDAL's own paths)
+    if (!virtualPath && stat(fileName, &sb) != 0)
     {
       error = "file '" + name + "' does not exist";
       return false;
     }
-    if (name.compare(0, 4, "/vsi") != 0 && vtkApertureUnreadableStream(sb))
+    if (!virtualPath && vtkApertureUnreadableStream(sb))
     {
       // (GDAL also opens a file more than once: one writer to a pipe would not do)
       error = "'" + name + "' is " + vtkApertureFileKind(sb) +
@@ -187,14 +188,14 @@ struct vtkApertureDEMReader::Internals
     if (!ds.H)
     {
       VSIStatBufL vsb;
-      if (name.compare(0, 4, "/vsi") == 0 && VSIStatL(fileName, &vsb) != 0)
+      if (virtualPath && VSIStatL(fileName, &vsb) != 0)
       {
         error = "file '" + name + "' does not exist"; // (said once GDAL has tried)
         return false;
       }
       error = "GDAL cannot open '" + name + "' as a raster: " +
         trap.Message("not a raster format GDAL recognises");
-      if (name.compare(0, 4, "/vsi") != 0 && S_ISDIR(sb.st_mode))
+      if (!virtualPath && S_ISDIR(sb.st_mode))
       {
         error += " (it is a folder, and not one GDAL reads as a raster, such as an ArcInfo "
                  "grid's)";
