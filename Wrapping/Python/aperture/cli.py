@@ -329,7 +329,8 @@ def _whole_grid(reader):
 def describe(reader, watcher):
     """The facts `aperture info` prints, as a dict (the --json object), from the reader's
     information alone (nothing read): elevation_range and nodata_count are None
-    (elevation_statistics gives them). Also returns the grid's whole extent."""
+    (elevation_statistics gives them). Also returns the grid's georeference and whole
+    extent."""
     watcher.update_information(reader)
     geo, whole = _whole_grid(reader)
     if not geo.HasCRS():
@@ -367,7 +368,7 @@ def describe(reader, watcher):
         "nodata_value": (None if not reader.GetHasNoDataValue()
                          else "nan" if math.isnan(reader.GetNoDataValue())
                          else reader.GetNoDataValue()),
-    }, whole
+    }, geo, whole
 
 
 def elevation_statistics(reader, watcher, whole, strip_bytes, progress=None):
@@ -437,7 +438,7 @@ def cmd_info(args):
     reader = _dem_reader(args, watcher)
     if args.max_memory is not None:
         reader.SetMemoryLimit(args.max_memory)  # (a row larger than it is refused by name)
-    facts, whole = describe(reader, watcher)
+    facts, geo, whole = describe(reader, watcher)
     if not args.no_stats:
         strip_bytes = args.max_memory or _INFO_STRIP_BYTES
         nx, ny = facts["size"]
@@ -459,8 +460,8 @@ def cmd_info(args):
                 sys.stderr.write("\n")
             raise
         if facts["elevation_range"]:  # (heights beyond the Earth's, a relief no terrain has)
-            implausible = _whole_grid(reader)[0].GetElevationWarning(
-                *facts["elevation_range"], "Sky products and pictures made of them")
+            implausible = geo.GetElevationWarning(*facts["elevation_range"],
+                                                  "Sky products and pictures made of them")
             if implausible:
                 _warn(implausible)
     if args.json:
