@@ -32,6 +32,22 @@ def render_rgb(test, out, *args):
     return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
 
 
+def write_picture(path, driver, planes, kind=None, palette=None):
+    """Write `planes` (2-D arrays, row 0 north) as the bands of a picture with GDAL's `driver`,
+    of GDAL type `kind` (default bytes), the first with a colour table of `palette` (RGB)."""
+    from osgeo import gdal
+    h, w = planes[0].shape
+    mem = gdal.GetDriverByName("MEM").Create("", w, h, len(planes), kind or gdal.GDT_Byte)
+    for k, plane in enumerate(planes):
+        mem.GetRasterBand(k + 1).WriteArray(plane)
+    if palette:
+        table = gdal.ColorTable()
+        for k, colour in enumerate(palette):
+            table.SetColorEntry(k, colour + (255,))
+        mem.GetRasterBand(1).SetRasterColorTable(table)
+    gdal.GetDriverByName(driver).CreateCopy(path, mem)
+
+
 class TestCommandLineRender(unittest.TestCase):
     def test_views(self):
         with tempfile.TemporaryDirectory() as tmp:
@@ -139,25 +155,14 @@ class TestCommandLineRender(unittest.TestCase):
         rgb[~north & west] = (0, 0, 255)
         rgb[~north & ~west] = (255, 255, 255)
 
-        def write(path, driver, planes, kind=gdal.GDT_Byte, palette=None):
-            mem = gdal.GetDriverByName("MEM").Create("", w, h, len(planes), kind)
-            for k, plane in enumerate(planes):
-                mem.GetRasterBand(k + 1).WriteArray(plane)
-            if palette:
-                table = gdal.ColorTable()
-                for k, colour in enumerate(palette):
-                    table.SetColorEntry(k, colour + (255,))
-                mem.GetRasterBand(1).SetRasterColorTable(table)
-            gdal.GetDriverByName(driver).CreateCopy(path, mem)
-
         with tempfile.TemporaryDirectory() as tmp:
             paths = {k: os.path.join(tmp, k) for k in ("rgb.png", "rgb16.tif", "palette.png")}
-            write(paths["rgb.png"], "PNG", [rgb[:, :, k] for k in range(3)])
-            write(paths["rgb16.tif"], "GTiff", [rgb[:, :, k].astype(np.uint16) * 257
-                                                for k in range(3)], gdal.GDT_UInt16)
+            write_picture(paths["rgb.png"], "PNG", [rgb[:, :, k] for k in range(3)])
+            write_picture(paths["rgb16.tif"], "GTiff", [rgb[:, :, k].astype(np.uint16) * 257
+                                                        for k in range(3)], gdal.GDT_UInt16)
             index = (north & ~west) + 2 * (~north & west) + 3 * (~north & ~west)
-            write(paths["palette.png"], "PNG", [index.astype(np.uint8)],
-                  palette=[(255, 0, 0), (0, 255, 0), (0, 0, 255), (255, 255, 255)])
+            write_picture(paths["palette.png"], "PNG", [index.astype(np.uint8)],
+                          palette=[(255, 0, 0), (0, 255, 0), (0, 0, 255), (255, 255, 255)])
             pictures = {k: render_rgb(self, os.path.join(tmp, k + ".out.png"), "--view", "top",
                                       "--albedo", path) for k, path in paths.items()}
             # A georeferenced picture is draped the same way: without a word when it covers
@@ -165,7 +170,7 @@ class TestCommandLineRender(unittest.TestCase):
             for name, grow, warned in (("fits.tif", 0.0, False), ("larger.tif", 0.5, True)):
                 path = os.path.join(tmp, name)
                 west, south, east, north = -84.41375, 36.1595833333, -84.0779166667, 36.44625
-                write(path, "GTiff", [rgb[:, :, k] for k in range(3)])
+                write_picture(path, "GTiff", [rgb[:, :, k] for k in range(3)])
                 ds = gdal.Open(path, gdal.GA_Update)
                 dx, dy = (east - west) / w, (north - south) / h
                 ds.SetGeoTransform((west - grow * w * dx, (1 + 2 * grow) * dx, 0.0, north, 0.0,
@@ -214,11 +219,8 @@ class TestCommandLineRender(unittest.TestCase):
         from osgeo import gdal
         with tempfile.TemporaryDirectory() as tmp:
             whole, cut = os.path.join(tmp, "whole.png"), os.path.join(tmp, "cut.png")
-            mem = gdal.GetDriverByName("MEM").Create("", 64, 64, 3, gdal.GDT_Byte)
-            for k in range(3):
-                mem.GetRasterBand(k + 1).WriteArray(
-                    np.random.default_rng(k).integers(0, 255, (64, 64)).astype(np.uint8))
-            gdal.GetDriverByName("PNG").CreateCopy(whole, mem)
+            write_picture(whole, "PNG", [np.random.default_rng(k).integers(0, 255, (64, 64))
+                                         .astype(np.uint8) for k in range(3)])
             with open(whole, "rb") as f, open(cut, "wb") as g:
                 g.write(f.read()[:300])
             heights = os.path.join(tmp, "heights.tif")
