@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkApertureEXRReader.h"
 
+#include "vtkApertureEXRErrorTrap.h"
 #include "vtkApertureGeoreference.h"
 #include "vtkApertureMemory.h"
 #include "vtkApertureOutputFile.h"
@@ -40,52 +41,6 @@ namespace
 {
 const char* const CRSAttribute = "aperture:crs";
 const char* const GeoTransformAttribute = "aperture:geotransform";
-
-// OpenEXR reports errors through a callback given when a context is created, on the thread
-// that made the failing call; its default callback prints to stderr. The callback cannot reach
-// this reader through exr_get_user_data() (for write contexts that call takes the lock the
-// failing call holds and deadlocks; vtkApertureEXRWriter has the same trap), so the calls run
-// under a trap that registers itself for the current thread and keeps the last message.
-class ErrorTrap
-{
-public:
-  ErrorTrap()
-    : Previous(Current)
-  {
-    Current = this;
-  }
-  ~ErrorTrap() { Current = this->Previous; }
-  ErrorTrap(const ErrorTrap&) = delete;
-  ErrorTrap& operator=(const ErrorTrap&) = delete;
-
-  static void Handler(exr_const_context_t, exr_result_t code, const char* message)
-  {
-    if (Current)
-    {
-      Current->Last = (message && *message) ? message : exr_get_default_error_message(code);
-    }
-  }
-
-  // Initializer for every context: our handler instead of the printing default.
-  static exr_context_initializer_t Initializer()
-  {
-    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.error_handler_fn = &ErrorTrap::Handler;
-    return init;
-  }
-
-  // Text for a failed call: the handler's message, else OpenEXR's text for the code.
-  std::string Message(exr_result_t code) const
-  {
-    return this->Last.empty() ? std::string(exr_get_default_error_message(code)) : this->Last;
-  }
-
-private:
-  static thread_local ErrorTrap* Current;
-  ErrorTrap* Previous;
-  std::string Last;
-};
-thread_local ErrorTrap* ErrorTrap::Current = nullptr;
 
 // Owns a read context.
 struct ContextHandle
@@ -207,7 +162,8 @@ struct vtkApertureEXRReader::Internals
   }
 
   // Open the file for reading with a clear message on failure.
-  static bool Open(const char* fileName, ContextHandle& ctx, ErrorTrap& trap, std::string& error)
+  static bool Open(
+    const char* fileName, ContextHandle& ctx, vtkApertureEXRErrorTrap& trap, std::string& error)
   {
     if (!fileName || !*fileName)
     {
@@ -242,7 +198,7 @@ struct vtkApertureEXRReader::Internals
       error = "'" + name + "' is not an OpenEXR file" + (f ? "" : " (it cannot be opened)");
       return false;
     }
-    const exr_context_initializer_t init = ErrorTrap::Initializer();
+    const exr_context_initializer_t init = vtkApertureEXRErrorTrap::Initializer();
     const exr_result_t rv = exr_start_read(&ctx.H, fileName, &init);
     if (rv != EXR_ERR_SUCCESS)
     {
@@ -311,7 +267,7 @@ int vtkApertureEXRReader::RequestInformation(
   d.Arrays.clear();
   d.CRS.clear();
   std::string error;
-  ErrorTrap trap;
+  vtkApertureEXRErrorTrap trap;
   ContextHandle ctx;
   if (!Internals::Open(this->FileName, ctx, trap, error))
   {
@@ -566,7 +522,7 @@ int vtkApertureEXRReader::Execute(vtkInformationVector* outputVector)
     return 0;
   }
   std::string error;
-  ErrorTrap trap;
+  vtkApertureEXRErrorTrap trap;
   ContextHandle ctx;
   if (!Internals::Open(this->FileName, ctx, trap, error))
   {

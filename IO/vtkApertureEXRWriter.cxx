@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkApertureEXRWriter.h"
 
+#include "vtkApertureEXRErrorTrap.h"
 #include "vtkApertureGeoreference.h"
 #include "vtkApertureOutputFile.h"
 #include "vtkApertureSMPThreads.h"
@@ -52,52 +53,6 @@ const char* const GeoTransformAttribute = "aperture:geotransform";
 // OpenEXR's limit for channel and attribute names without long-name support (EXR_SHORTNAME_MAXLEN).
 const size_t ShortNameLength = 31;
 
-// OpenEXR reports errors through a callback given when a context is created, on the thread
-// that made the failing call; its default callback prints to stderr. The callback cannot reach
-// this writer through exr_get_user_data(): in write mode that call takes the context lock the
-// failing call already holds, and deadlocks. So the calls run under a trap that registers
-// itself for the current thread and keeps the last message.
-class ErrorTrap
-{
-public:
-  ErrorTrap()
-    : Previous(Current)
-  {
-    Current = this;
-  }
-  ~ErrorTrap() { Current = this->Previous; }
-  ErrorTrap(const ErrorTrap&) = delete;
-  ErrorTrap& operator=(const ErrorTrap&) = delete;
-
-  static void Handler(exr_const_context_t, exr_result_t code, const char* message)
-  {
-    if (Current)
-    {
-      Current->Last = (message && *message) ? message : exr_get_default_error_message(code);
-    }
-  }
-
-  // Initializer for every context: our handler instead of the printing default.
-  static exr_context_initializer_t Initializer()
-  {
-    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.error_handler_fn = &ErrorTrap::Handler;
-    return init;
-  }
-
-  // Text for a failed call: the handler's message, else OpenEXR's text for the code.
-  std::string Message(exr_result_t code) const
-  {
-    return this->Last.empty() ? std::string(exr_get_default_error_message(code)) : this->Last;
-  }
-
-private:
-  static thread_local ErrorTrap* Current;
-  ErrorTrap* Previous;
-  std::string Last;
-};
-thread_local ErrorTrap* ErrorTrap::Current = nullptr;
-
 // Owns a write context. Finishing a context whose image was not completely written makes
 // OpenEXR delete its temporary file, so discarding a file begun leaves nothing behind.
 struct ContextHandle
@@ -111,7 +66,7 @@ struct ContextHandle
   {
     if (this->H)
     {
-      ErrorTrap trap; // (its complaint about missing chunks is expected)
+      vtkApertureEXRErrorTrap trap; // (its complaint about missing chunks is expected)
       exr_finish(&this->H);
       this->H = nullptr;
     }
@@ -298,7 +253,7 @@ exr_result_t DeflateChunk(exr_encode_pipeline_t* encoder)
 void EncodeChunk(exr_context_t ctx, int part, const std::vector<Channel>& channels,
   const std::map<std::string, size_t>& byName, const StripLayout& at, int nx, ChunkJob& job)
 {
-  ErrorTrap trap; // this thread's messages
+  vtkApertureEXRErrorTrap trap; // this thread's messages
   exr_encode_pipeline_t encoder = EXR_ENCODE_PIPELINE_INITIALIZER;
   exr_result_t rv = exr_encoding_initialize(ctx, part, &job.Info, &encoder);
   const bool initialized = rv == EXR_ERR_SUCCESS;
@@ -770,8 +725,8 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
   }
 
   // 3. Create the file (a temporary one, renamed by exr_finish when complete) and its header.
-  ErrorTrap trap;
-  const exr_context_initializer_t init = ErrorTrap::Initializer();
+  vtkApertureEXRErrorTrap trap;
+  const exr_context_initializer_t init = vtkApertureEXRErrorTrap::Initializer();
   exr_result_t rv =
     exr_start_write(&d.Context.H, path.c_str(), EXR_INTERMEDIATE_TEMP_FILE, &init);
   if (rv != EXR_ERR_SUCCESS)
@@ -859,7 +814,7 @@ int vtkApertureEXRWriter::WriteStrip(vtkImageData* strip)
   // chunk's channels to float in their own scratch (the encoder converts to HALF when asked)
   // and compress it into the chunk's buffer; this thread then writes the batch in order.
   // Compression is per chunk and deterministic, so the bytes do not depend on the threads.
-  ErrorTrap trap;
+  vtkApertureEXRErrorTrap trap;
   exr_context_t ctx = d.Context.H;
   const int chunkCount = (ny + lines - 1) / lines;
   const int firstChunk = y0 / lines, endChunk = (y1 + lines - 1) / lines;
@@ -966,7 +921,7 @@ int vtkApertureEXRWriter::EndStrips()
     return 0;
   }
   // Offsets table, close, and rename the temporary file to FileName.
-  ErrorTrap trap;
+  vtkApertureEXRErrorTrap trap;
   const exr_result_t rv = exr_finish(&d.Context.H);
   d.Context.H = nullptr;
   if (rv != EXR_ERR_SUCCESS)
