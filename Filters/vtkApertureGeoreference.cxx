@@ -777,6 +777,20 @@ bool vtkApertureGeoreference::GetBoundsLonLat(double bounds[4])
   bounds[1] = s * d.UnitToDegrees;
   bounds[2] = e * d.UnitToDegrees + d.PrimeMeridianDegrees;
   bounds[3] = n * d.UnitToDegrees;
+  // A geographic grid's coordinates pass through as they are: an edge beyond a pole (with the
+  // rounding slack GetRowCellSizesMetres allows) is no place on the Earth.
+  for (int k = 1; k < 4; k += 2)
+  {
+    if (std::fabs(bounds[k]) - 90.0 > 1e-9)
+    {
+      std::ostringstream msg;
+      msg << "the grid's " << (k == 1 ? "south" : "north") << " edge is at latitude "
+          << bounds[k] << ", beyond the " << (k == 1 ? "south" : "north")
+          << " pole: a wrong origin, cell size or unit?";
+      d.Error = msg.str();
+      return false;
+    }
+  }
   d.Error.clear();
   return true;
 }

@@ -173,7 +173,9 @@ public:
   /** Semi-major axis (m) and flattening of the CRS's ellipsoid. */
   bool GetEllipsoid(double ellipsoid[2]);
 
-  /** Geographic coordinates (longitude, latitude; degrees, Greenwich) of a CRS point. */
+  /** Geographic coordinates (longitude, latitude; degrees, Greenwich) of a CRS point. A
+   *  geographic CRS's are passed through unchecked (longitudes beyond 180 not wrapped,
+   *  latitudes beyond 90 not refused); PROJ normally gives a projected CRS's within -180..180. */
   bool CRSToLonLat(double x, double y, double lonlat[2]);
 
   /** CRS coordinates of a geographic point (degrees). */
@@ -207,7 +209,8 @@ public:
   /**
    * Geographic bounds of the grid's outer edges (cell edges, not centres): west, south, east,
    * north, degrees. For a projected CRS the edges are densified (21 points each), so curved
-   * edges are bounded correctly.
+   * edges are bounded correctly. A geographic grid's longitudes are its own (a 0..360 grid's
+   * east half beyond 180); one whose edge lies beyond a pole is an error.
    */
   bool GetBoundsLonLat(double bounds[4]);
 

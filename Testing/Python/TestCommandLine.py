@@ -250,6 +250,20 @@ class TestInfo(CommandLineTest):
             self.assertEqual("all longitudes: the east and west edges join" in out, wraps, out)
         self.assertIs(self.info()[0]["wraps_around"], False)
 
+    def test_beyond_the_pole(self):
+        # A lat/lon grid whose top rows lie beyond the north pole (a wrong origin) is described
+        # by no bounds on the Earth: an error, as the bake's; one ending on the pole is fine.
+        for north, error in ((90.2, "the grid's north edge is at latitude 90.2, beyond the "
+                                    "north pole: a wrong origin, cell size or unit?"),
+                             (90.0, None)):
+            p = make_raster(self.path("polar%g.tif" % north), np.ones((20, 20)),
+                            (10, 0.01, 0, north, 0, -0.01), srs="EPSG:4326")
+            if error:
+                self.assert_error(error, "info", p)
+                self.assert_error("reaches latitude", "bake", p, self.path("polar.tif"))
+            else:
+                self.assertAlmostEqual(self.info(p)[0]["bounds_lonlat"][3], 90.0, places=9)
+
     def test_default_dem_text(self):
         status, out, _ = run("info")
         self.assertEqual(status, 0)

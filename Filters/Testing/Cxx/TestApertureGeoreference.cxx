@@ -297,6 +297,19 @@ void TestRowSizesAtPole()
   AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
     "the row of cells at y = 90.025 (grid row 39, counted from the south) reaches latitude "
     "90.025, beyond the pole");
+  // Its bounds in degrees are no bounds on the Earth either (PROJ passes 90.05 through), while
+  // the grid that ends on the pole, its edge a rounding error beyond it, has bounds.
+  double bounds[4];
+  AP_CHECK(!geo->GetBoundsLonLat(bounds));
+  AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
+    "the grid's north edge is at latitude 90.05, beyond the north pole");
+  geo->SetGrid(-175.5, 88.025, 9.0, cell, 40, 40);
+  AP_CHECK(geo->GetBoundsLonLat(bounds));
+  AP_CHECK_NEAR(bounds[3], 90.0, 1e-9);
+  geo->SetGrid(-175.5, -90.025, 9.0, cell, 40, 40); // the first row's centre on the south pole
+  AP_CHECK(!geo->GetBoundsLonLat(bounds));
+  AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
+    "the grid's south edge is at latitude -90.05, beyond the south pole");
 }
 
 // A geographic grid may go once around the Earth (360 degrees plus rounding), not more: 40
