@@ -144,7 +144,7 @@ class TestCommandLineRender(unittest.TestCase):
     def test_albedo(self):
         # A picture draped over the DEM, read with GDAL: quadrants north-west red, north-east
         # green, south-west blue, south-east white land where the top view puts them, as 8-bit
-        # RGB, as 16-bit RGB and as a palette alike.
+        # RGB, as 16-bit RGB and as a palette (alone, or with an alpha band) alike.
         import numpy as np
         from osgeo import gdal
         h, w = 60, 80
@@ -156,13 +156,17 @@ class TestCommandLineRender(unittest.TestCase):
         rgb[~north & ~west] = (255, 255, 255)
 
         with tempfile.TemporaryDirectory() as tmp:
-            paths = {k: os.path.join(tmp, k) for k in ("rgb.png", "rgb16.tif", "palette.png")}
+            paths = {k: os.path.join(tmp, k)
+                     for k in ("rgb.png", "rgb16.tif", "palette.png", "palette-alpha.tif")}
             write_picture(paths["rgb.png"], "PNG", [rgb[:, :, k] for k in range(3)])
             write_picture(paths["rgb16.tif"], "GTiff", [rgb[:, :, k].astype(np.uint16) * 257
                                                         for k in range(3)], gdal.GDT_UInt16)
             index = (north & ~west) + 2 * (~north & west) + 3 * (~north & ~west)
-            write_picture(paths["palette.png"], "PNG", [index.astype(np.uint8)],
-                          palette=[(255, 0, 0), (0, 255, 0), (0, 0, 255), (255, 255, 255)])
+            colours = [(255, 0, 0), (0, 255, 0), (0, 0, 255), (255, 255, 255)]
+            write_picture(paths["palette.png"], "PNG", [index.astype(np.uint8)], palette=colours)
+            write_picture(paths["palette-alpha.tif"], "GTiff",
+                          [index.astype(np.uint8), np.full((h, w), 255, np.uint8)],
+                          palette=colours)
             pictures = {k: render_rgb(self, os.path.join(tmp, k + ".out.png"), "--view", "top",
                                       "--albedo", path) for k, path in paths.items()}
             # A georeferenced picture is draped the same way: without a word when it covers
@@ -196,7 +200,7 @@ class TestCommandLineRender(unittest.TestCase):
                     np.testing.assert_array_equal(vtk_to_numpy(
                         reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int),
                         pictures["rgb.png"])
-        for k in ("rgb16.tif", "palette.png"):
+        for k in ("rgb16.tif", "palette.png", "palette-alpha.tif"):
             np.testing.assert_array_equal(pictures[k], pictures["rgb.png"], err_msg=k)
         picture = pictures["rgb.png"].reshape(120, 200, 3)[::-1]  # (PNG rows from the bottom)
         r, g, b = (picture[:, :, k] for k in range(3))
