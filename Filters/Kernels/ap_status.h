@@ -30,7 +30,8 @@ typedef enum ap_status {
   AP_ERR_NOT_FOUND,            /**< a named resource (time zone) does not exist */
   AP_ERR_BAD_FILE,             /**< a file (TZif zone file) is corrupt or of an unknown format */
   AP_ERR_TIME_NONEXISTENT,     /**< a local time skipped by a clock change (daylight saving) */
-  AP_ERR_TIME_AMBIGUOUS        /**< a local time that occurs twice (clock set back) */
+  AP_ERR_TIME_AMBIGUOUS,       /**< a local time that occurs twice (clock set back) */
+  AP_STATUS_LAST = AP_ERR_TIME_AMBIGUOUS /**< the last status (for tests; keep it last) */
 } ap_status;
 
 /** Static English text for a status; never NULL (unknown codes give "unknown status"). */

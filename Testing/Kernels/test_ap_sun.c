@@ -104,6 +104,37 @@ static void test_spa_case(void)
   AP_CHECK_NEAR(r.obliquity, 23.440465, 5e-7);
   AP_CHECK_NEAR(r.zenith, 50.111622, 5e-7);
   AP_CHECK_NEAR(r.azimuth, 194.340241, 5e-7);
+  /* The equatorial coordinates, to the digits of the report's appendix (NREL/TP-560-34302,
+   * revised 2008): apparent longitude λ 204.0085519281, geocentric α 202.22741 and δ -9.31434,
+   * topocentric δ' -9.316179 (the conversion below reproduces each to those digits). */
+  AP_CHECK_NEAR(r.apparent_longitude, 204.0085519281, 5e-9);
+  AP_CHECK_NEAR(r.right_ascension, 202.22741, 5e-6);
+  AP_CHECK_NEAR(r.declination, -9.31434, 5e-6);
+  AP_CHECK_NEAR(r.topo_declination, -9.316179, 5e-7);
+  {
+    /* ... and, to rounding, from λ, β = -B and ε (each checked against the report above) by the
+     * textbook conversion (Meeus 13.3, 13.4), then the parallax of the observer's place (Meeus
+     * 11 and 40: the geocentric place on the IAU 1976 ellipsoid, the sun's horizontal parallax
+     * 8.794" / R). */
+    const double d2r = 3.14159265358979323846 / 180.0;
+    const double lam = r.apparent_longitude * d2r, beta = -r.helio_latitude * d2r;
+    const double eps = r.obliquity * d2r;
+    const double alpha = atan2(sin(lam) * cos(eps) - tan(beta) * sin(eps), cos(lam)) / d2r;
+    const double delta = asin(sin(beta) * cos(eps) + cos(beta) * sin(eps) * sin(lam)) / d2r;
+    AP_CHECK_NEAR(r.right_ascension, fmod(alpha + 360.0, 360.0), 1e-10);
+    AP_CHECK_NEAR(r.declination, delta, 1e-10);
+    const double xi = 8.794 / 3600.0 / r.distance * d2r, phi = SPA_LAT * d2r;
+    const double u = atan(0.99664719 * tan(phi));
+    const double x = cos(u) + SPA_HEIGHT / 6378140.0 * cos(phi);
+    const double y = 0.99664719 * sin(u) + SPA_HEIGHT / 6378140.0 * sin(phi);
+    const double h = r.hour_angle * d2r, dl = delta * d2r;
+    const double da = atan2(-x * sin(xi) * sin(h), cos(dl) - x * sin(xi) * cos(h));
+    const double dt = atan2((sin(dl) - y * sin(xi)) * cos(da), cos(dl) - x * sin(xi) * cos(h));
+    AP_CHECK_NEAR(r.topo_right_ascension, fmod(alpha + da / d2r + 360.0, 360.0), 1e-10);
+    AP_CHECK_NEAR(r.topo_declination, dt / d2r, 1e-10);
+    AP_CHECK_NEAR(r.topo_hour_angle, r.hour_angle - da / d2r, 1e-10);
+    AP_CHECK(r.topo_hour_angle - r.hour_angle > 3e-4); /* (the parallax moves it 0.00037 deg) */
+  }
   /* Consistency of the derived fields. */
   AP_CHECK_NEAR(r.zenith, 90.0 - r.elevation, 1e-12);
   AP_CHECK_NEAR(r.zenith_true, 90.0 - r.elevation_true, 1e-12);

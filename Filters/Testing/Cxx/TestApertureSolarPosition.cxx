@@ -166,6 +166,10 @@ void TestSPACase()
   AP_CHECK_NEAR(sun->GetZenith(), 50.111622, 5e-7);
   AP_CHECK_NEAR(sun->GetAzimuth(), 194.340241, 5e-7);
   AP_CHECK_NEAR(sun->GetIncidence(30.0, 170.0), 25.187000, 5e-7); // azm_rotation -10
+  // Declination and hour angle are the topocentric ones: δ' of the report's appendix, and the
+  // observer's hour angle H = 11.105902 moved by the parallax (0.00037 degree; geocentric 0).
+  AP_CHECK_NEAR(sun->GetDeclination(), -9.316179, 5e-7);
+  AP_CHECK(sun->GetHourAngle() - 11.105902 > 3e-4 && sun->GetHourAngle() - 11.105902 < 4e-4);
   // The local day (-07:00) of 2003-10-17: sunrise 06:12:43 local, as the report prints.
   AP_CHECK(std::string(sun->GetSunriseString()) == "2003-10-17T13:12:43Z");
   AP_CHECK(sun->GetDayKind() == 0);
