@@ -29,6 +29,7 @@
 
 #include <GeographicLib/TransverseMercator.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -246,6 +247,84 @@ void TestSkyOnDemand()
   AP_CHECK(std::fabs(fresh(morning, 3.0, expected) - fresh(noon, 3.0, rgb)) > 1.0);
 }
 
+// ComputeSkyTable's layout, ap_light_sky_lookup's: tuple (k ne + j) na + i holds the mean
+// radiance of the cap of azimuth (i + 1/2) 360 / na, elevation j 90 / (ne - 1) and radius
+// k 90 / (nr - 1) degrees, as GetSkyCap gives it. The sizes differ per axis (8, 4, 5), so that
+// swapped axes or a missing half-cell offset show, under a morning sun of the Preetham sky
+// (brighter towards the sun, so azimuths differ); the uniform sky's caps above the horizon
+// have its radiance, and half of it for a cap on the horizon that just reaches the zenith.
+void TestSkyTable()
+{
+  vtkNew<vtkApertureSolarPosition> sun;
+  vtkNew<vtkTest::ErrorObserver> errors;
+  sun->AddObserver(vtkCommand::ErrorEvent, errors);
+  vtkNew<vtkFloatArray> table;
+  sun->SetLatitude(46.0);
+  sun->SetLongitude(7.0);
+  sun->SetUnixTime(1781931600.0 + 2 * 3600.0); // 2026-06-20 07:00 UTC: sun in the east
+  AP_CHECK(!sun->ComputeSkyTable(table, 8, 3, 5));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "before a successful Compute()");
+  AP_CHECK(sun->Compute());
+  // (no cap of elevation = radius: its edge would touch the horizon, where the quadrature's
+  // choice of the whole or the clipped cap follows the angles' last bit, within its 5e-4 but
+  // not within 1e-6: 3 elevations and 5 radii give one at 45 degrees)
+  int na = 8, ne = 4, nr = 5;
+  AP_CHECK(sun->ComputeSkyTable(table, na, ne, nr));
+  AP_CHECK(table->GetNumberOfComponents() == 3 && table->GetNumberOfTuples() == na * ne * nr);
+  const auto at = [&](int i, int j, int k) {
+    return table->GetPointer(3 * ((static_cast<vtkIdType>(k) * ne + j) * na + i));
+  };
+  const double up[3] = { 0.0, 0.0, 1.0 };
+  double spread = 0.0;
+  for (int k = 0; k < nr; ++k)
+  {
+    for (int j = 0; j < ne; ++j)
+    {
+      for (int i = 0; i < na; ++i)
+      {
+        const double az = (i + 0.5) * 360.0 / na * kDeg, el = j * 90.0 / (ne - 1) * kDeg;
+        const double axis[3] = { std::cos(el) * std::sin(az), std::cos(el) * std::cos(az),
+          std::sin(el) };
+        double mean[3], irradiance[3];
+        AP_CHECK(sun->GetSkyCap(axis, k * 90.0 / (nr - 1), up, mean, irradiance));
+        for (int c = 0; c < 3; ++c)
+        {
+          AP_CHECK_NEAR(at(i, j, k)[c], std::max(0.0, mean[c]), 1e-6 * mean[c] + 1e-9);
+        }
+        spread = std::max(spread, std::fabs(at(i, j, k)[1] / at(0, j, k)[1] - 1.0));
+      }
+    }
+  }
+  AP_CHECK(spread > 0.2); // (the azimuths' caps differ: the test can tell them apart)
+  // Sizes outside 4..256, 2..256, 2..256 and no table are refused.
+  for (const auto& size : { std::array<int, 3>{ 3, 9, 9 }, std::array<int, 3>{ 257, 9, 9 },
+         std::array<int, 3>{ 32, 1, 9 }, std::array<int, 3>{ 32, 9, 1 },
+         std::array<int, 3>{ 32, 257, 9 }, std::array<int, 3>{ 32, 9, 257 } })
+  {
+    AP_CHECK(!sun->ComputeSkyTable(table, size[0], size[1], size[2]));
+    AP_CHECK_CONTAINS(sun->GetErrorMessage(), "sizes within 4..256");
+  }
+  AP_CHECK(!sun->ComputeSkyTable(nullptr, 32, 9, 9));
+  // The uniform sky: its zenith radiance in a point cap at the zenith and in the upper
+  // hemisphere, half of it in the cap of radius 90 degrees about a horizontal axis (half of
+  // that cap lies below the horizon, which counts as dark).
+  sun->SetSkyModelToUniform();
+  AP_CHECK(sun->Compute());
+  na = 4, ne = 2, nr = 2;
+  AP_CHECK(sun->ComputeSkyTable(table, na, ne, nr) && table->GetNumberOfTuples() == 16);
+  double zenith[3];
+  AP_CHECK(sun->GetSkyRadiance(up, zenith));
+  for (int i = 0; i < na; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      AP_CHECK_NEAR(at(i, 1, 0)[c], zenith[c], 1e-6 * zenith[c]);
+      AP_CHECK_NEAR(at(i, 1, 1)[c], zenith[c], 5e-4 * zenith[c]);
+      AP_CHECK_NEAR(at(i, 0, 1)[c], 0.5 * zenith[c], 5e-4 * zenith[c]);
+    }
+  }
+}
+
 // A site grid in a local CRS: no place on the Earth. The place is taken (its height too),
 // latitude and longitude NaN; Compute() fails saying why until they are set, while a sun given
 // by its direction needs none: the grid's +y axis is north (no convergence), and the mesh's
@@ -372,5 +451,6 @@ int TestApertureSolarPosition(int, char*[])
   TestBadInput();
   TestLocalGrid();
   TestSkyOnDemand();
+  TestSkyTable();
   return aptest::Result();
 }
