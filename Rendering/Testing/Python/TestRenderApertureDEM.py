@@ -4,8 +4,8 @@ code `aperture render` uses), each baseline looked at before it was committed, p
 that need no baseline:
 
 - summer midday (2026-06-21 13:40 EDT) is brighter than a low winter evening sun
-  (2026-12-21 16:15 EST), and in the evening the slopes facing the sun (south-west) are
-  brighter than those facing away;
+  (2026-12-21 16:15 EST) in linear radiance (the pictures are each auto-exposed), and in the
+  evening the slopes facing the sun (south-west) are brighter than those facing away;
 - smoothstep and exact intersections give nearly the same picture (mean within 3%) but not the
   same pixels;
 - a widened sun (x20) softens the evening's shadow edges: less local contrast;
@@ -94,6 +94,18 @@ def aspect_means(renderer, rgb, mesh):
     return np.mean(sw), np.mean(ne)
 
 
+def mean_radiance(window, renderer, rgb):
+    """Mean linear radiance (W/m2/sr, the mean of R, G and B) of the terrain pixels of a
+    rendered scene, read back unclamped at EV 0 without tone mapping."""
+    mapper = renderer.GetActors().GetLastActor().GetMapper()
+    mapper.SetExposure(0.0)
+    mapper.SetToneMapping(False)
+    image = aperture.vtkApertureLinearCapture().Capture(renderer)
+    radiance = vtk_to_numpy(image.GetPointData().GetArray("Radiance"))
+    radiance = radiance.reshape(SIZE[1], SIZE[0], 4)[::-1, :, :3]  # row 0 at the top
+    return radiance[rgb.sum(axis=2) < 750].mean()
+
+
 def local_contrast(rgb):
     g = rgb.mean(axis=2)
     return np.abs(np.diff(g, axis=1))[g[:, 1:] < 250].mean()
@@ -119,6 +131,12 @@ class TestRenderApertureDEM(Testing.vtkTest):
         self.assertGreater(terrain(s_rgb).std(axis=0).mean(), 1.0)
         sw, ne = aspect_means(wren, w_rgb, mesh)
         self.assertGreater(sw, ne + 20, (sw, ne))
+        # In radiance, the midday sun at 72 degrees lights the terrain several times as much
+        # as the evening's at 8 (on level ground sin 72 / sin 8 = 6.8 for the beam alone, whose
+        # clear-sky irradiance is also weaker through the evening's longer air path)
+        ratio = (mean_radiance(ws, ws.GetRenderers().GetFirstRenderer(), s_rgb) /
+                 mean_radiance(ww, wren, w_rgb))
+        self.assertGreater(ratio, 3.0)  # (4.5 measured)
 
     def testSmoothstepAndWideSun(self):
         winter = sun_at("2026-12-21T16:15-05:00")
