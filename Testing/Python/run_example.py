@@ -1,0 +1,107 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Run one of Examples/ as a user would and check what it wrote, so that an example which
+writes an empty mesh or a blank picture fails (its exit status alone would not):
+
+    run_example.py EXAMPLE.py OUTPUT [ARGUMENTS...]    (runs EXAMPLE.py ARGUMENTS -o OUTPUT)
+
+- read_and_mesh.py: the embedded DEM's mesh: 403 x 344 points, two triangles per cell, its
+  arrays, about 30 x 32 km (cells of 74.85 m x 92.47 m at the centre) and its 840 m of relief
+  (the Earth's curvature lowers the edges by up to 18 m more);
+- sky_products.py: SkyViewFactor and DiffuseSkyFactor side by side, 403 x 344 each, with the 4
+  white columns between them, each stretched from black (its 0.5th percentile) to white (1);
+- the rendering examples: a picture of the documented size in which the terrain covers a
+  tenth or more and is shaded (not uniform, not black).
+"""
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+NX, NY = 403, 344  # the embedded Jacksboro DEM
+PICTURES = {"render_terrain.py": (800, 500), "lit_terrain.py": (900, 600),
+            "time_of_day_viewer.py": (1000, 700)}
+
+
+def fail(message):
+    print("run_example: " + message, file=sys.stderr)
+    sys.exit(1)
+
+
+def check_mesh(path):
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+    reader = vtkXMLPolyDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    mesh = reader.GetOutput()
+    if mesh.GetNumberOfPoints() != NX * NY or mesh.GetNumberOfCells() != 2 * (NX - 1) * (NY - 1):
+        fail("%s: %d points and %d triangles, not %d and %d" % (
+            path, mesh.GetNumberOfPoints(), mesh.GetNumberOfCells(), NX * NY,
+            2 * (NX - 1) * (NY - 1)))
+    for name in ("Elevation", "Normals", "TextureCoordinates"):
+        if not mesh.GetPointData().GetArray(name):
+            fail("%s has no point array %s" % (path, name))
+    b = mesh.GetBounds()
+    east, north, relief = b[1] - b[0], b[3] - b[2], b[5] - b[4]
+    if not (abs(east / ((NX - 1) * 74.85) - 1) < 0.02 and abs(north / ((NY - 1) * 92.47) - 1) < 0.02
+            and 838.0 <= relief <= 860.0):
+        fail("%s spans %.0f m east, %.0f m north, %.1f m of relief" % (path, east, north, relief))
+
+
+def read_picture(path):
+    from osgeo import gdal
+    ds = gdal.Open(path)
+    if ds is None:
+        fail("cannot read the picture " + path)
+    pixels = ds.ReadAsArray().astype(float)
+    return pixels[None] if pixels.ndim == 2 else pixels[:3]  # bands, rows, columns
+
+
+def check_sky(path):
+    grey = read_picture(path)[0]
+    if grey.shape != (NY, 2 * NX + 4):
+        fail("%s is %d x %d pixels, not %d x %d" % (path, grey.shape[1], grey.shape[0],
+                                                  2 * NX + 4, NY))
+    if not (grey[:, NX:NX + 4] == 255).all():
+        fail("%s: the 4 columns between the two products are not white" % path)
+    for name, half in (("SkyViewFactor", grey[:, :NX]), ("DiffuseSkyFactor", grey[:, NX + 4:])):
+        black = (half == 0).mean()
+        if not (0.002 <= black <= 0.02 and half.max() >= 250 and half.std() > 10):
+            fail("%s: %s has %.2f%% black pixels, its brightest %d, spread %.1f" % (
+                path, name, 100 * black, half.max(), half.std()))
+
+
+def check_render(path, size):
+    rgb = read_picture(path)
+    if rgb.shape[0] != 3 or rgb.shape[1:] != (size[1], size[0]):
+        fail("%s is not a %d x %d RGB picture: %s" % (path, size[0], size[1], rgb.shape))
+    background = rgb[:, 0, 0]  # (a corner: the sky behind the terrain)
+    terrain = np.abs(rgb - background[:, None, None]).max(axis=0) > 3
+    luminance = rgb.mean(axis=0)[terrain]
+    if not (terrain.mean() >= 0.1 and luminance.std() > 10 and luminance.mean() > 20):
+        fail("%s: terrain on %.0f%% of the picture, luminance %.1f +- %.1f" % (
+            path, 100 * terrain.mean(), luminance.mean() if terrain.any() else 0,
+            luminance.std() if terrain.any() else 0))
+
+
+def main(argv):
+    example, output, arguments = argv[0], argv[1], argv[2:]
+    if os.path.exists(output):
+        os.remove(output)  # (the check reads what this run wrote)
+    status = subprocess.call([sys.executable, example] + arguments + ["-o", output])
+    if status != 0:
+        fail("%s exited with status %d" % (example, status))
+    name = os.path.basename(example)
+    if name == "read_and_mesh.py":
+        check_mesh(output)
+    elif name == "sky_products.py":
+        check_sky(output)
+    elif name in PICTURES:
+        check_render(output, PICTURES[name])
+    else:
+        fail("no check for the example " + name)
+    print("run_example: %s wrote %s, checked" % (name, output))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
