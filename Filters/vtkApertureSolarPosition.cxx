@@ -233,19 +233,17 @@ struct vtkApertureSolarPosition::Internals
     return p;
   }
 
-  /** UTC offset (s) that defines the local day of instant t. */
+  /** UTC offset (s) that defines the local day of instant t: the zone's at t (the zone is
+   *  what the caller named for the local day, whatever offset an instant was written with),
+   *  else the offset SetTime was given, else 0. */
   int32_t DayOffset(double t) const
   {
-    if (this->HasGivenOffset)
-    {
-      return this->GivenOffset;
-    }
     ap_tz_info info;
     if (this->Zone && ap_tz_lookup(this->Zone.get(), ToInstant(t), &info) == AP_OK)
     {
       return info.utc_offset;
     }
-    return 0;
+    return this->HasGivenOffset ? this->GivenOffset : 0;
   }
 };
 
@@ -717,7 +715,12 @@ double vtkApertureSolarPosition::GetIncidence(double slope, double aspect)
   double incidence = kNaN;
   if (this->Computed)
   {
-    ap_sun_incidence(&this->Impl->Sun, slope, aspect, &incidence);
+    // the position the getters give, Compute()'s or ComputeForDirection()'s (which has no
+    // ephemeris: the rest of the result is not filled)
+    ap_sun_position_result sun = ap_sun_position_result();
+    sun.zenith = this->GetZenith();
+    sun.azimuth = this->GetAzimuth();
+    ap_sun_incidence(&sun, slope, aspect, &incidence);
   }
   return incidence;
 }

@@ -112,8 +112,9 @@ public:
   bool SetPlaceFromImage(vtkImageData* dem);
 
   ///@{
-  /** Atmosphere for refraction: mean air pressure (hPa, default 1013.25) and temperature
-   *  (°C, default 15); Refraction off gives geometric elevations (default on). */
+  /** Atmosphere for refraction: mean air pressure (hPa, 0..5000, default 1013.25) and
+   *  temperature (°C, above −273 up to 6000, default 15); Refraction off gives geometric
+   *  elevations (default on). Values out of range make Compute() fail, naming them. */
   vtkSetMacro(Pressure, double);
   vtkGetMacro(Pressure, double);
   vtkSetMacro(Temperature, double);
@@ -124,8 +125,8 @@ public:
   ///@}
 
   ///@{
-  /** ΔT = TT − UT1 in seconds (default NaN: estimated for the date) and UT1 − UTC (s, default
-   *  0, |value| < 1). */
+  /** ΔT = TT − UT1 in seconds (|value| <= 100000; default NaN: estimated for the date) and
+   *  UT1 − UTC (s, default 0, |value| < 1). Values out of range make Compute() fail. */
   vtkSetMacro(DeltaT, double);
   vtkGetMacro(DeltaT, double);
   vtkSetMacro(DeltaUT1, double);
@@ -196,7 +197,9 @@ public:
   double GetDeltaTUsed() const { return this->Result[10]; }
 
   /** Angle of incidence (degrees) of sunlight on a plane of slope `slope` (degrees from
-   *  horizontal) facing azimuth `aspect` (degrees clockwise from north). NaN before Compute. */
+   *  horizontal) facing azimuth `aspect` (degrees clockwise from north), for the sun of the last
+   *  Compute() or ComputeForDirection() (its apparent zenith and azimuth). NaN before either,
+   *  or for a slope outside 0..180 or a non-finite aspect. */
   double GetIncidence(double slope, double aspect);
 
   ///@{
@@ -215,8 +218,8 @@ public:
   int GetDayKind() const { return this->DayKind; }
   ///@}
 
-  /** UTC offset (seconds east) of the local day above: the offset SetTime was given, else
-   *  TimeZone's offset at the instant, else 0. */
+  /** UTC offset (seconds east) of the local day above: TimeZone's offset at the instant, else
+   *  the offset SetTime was given, else 0. */
   int GetLocalOffset();
 
   /**
@@ -227,7 +230,8 @@ public:
 
   /**
    * Meridian convergence γ at the DEM centre (degrees; 0 for lat/lon DEMs and without a DEM):
-   * the angle from grid north to true north, positive when true north is east of grid north.
+   * the angle from true north to grid north, clockwise (positive when grid north lies east of
+   * true north, as east of a UTM zone's central meridian in the northern hemisphere).
    */
   double GetGridConvergence() const { return this->Convergence; }
 
@@ -242,8 +246,11 @@ public:
    * DEM (azimuth, elevation and γ): the position is computed exactly on a lattice of at most
    * 17 x 17 cells and interpolated bilinearly between them (the sun's direction changes by a
    * fraction of its angular radius between lattice points, even across a continent). Cells
-   * below the horizon get their direction too (z < 0). False if Compute fails at a lattice
-   * point or the DEM has no georeference.
+   * below the horizon get their direction too (z < 0). Uses the time (UnixTime) and the
+   * atmosphere set here, not the place (each cell is its own). False (GetErrorMessage) when
+   * the DEM has no georeference or only a local one (no place on the Earth), a lattice point
+   * has no geographic coordinates, or the sun's position fails there (a time or atmosphere
+   * out of range).
    */
   bool AddSunDirectionArray(vtkImageData* dem, const char* name = "SunDirection");
 
@@ -251,7 +258,8 @@ public:
   /**
    * The direct beam after Compute(): relative air mass (infinite below the horizon), direct
    * normal irradiance (W/m², 0 below the horizon) and its colour as linear Rec.709 RGB
-   * irradiance normal to the beam (W/m² per channel; luminance = DNI).
+   * irradiance normal to the beam (W/m² per channel; luminance = DNI). NaN before a successful
+   * Compute() or ComputeForDirection().
    */
   double GetAirMass() const { return this->Light[0]; }
   double GetDirectNormalIrradiance() const { return this->Light[1]; }
@@ -291,7 +299,8 @@ public:
   /**
    * Point `light` at the sun: a directional (non-positional) scene light coming from
    * GetDirection() in the mesh frame (focal point at the origin, position on the unit sphere),
-   * switched off when the sun is below the horizon. Colour and intensity are left as they are
+   * switched off once the sun's whole disc is below the horizon (apparent elevation at or below
+   * minus its angular radius). Colour and intensity are left as they are
    * (use the radiometry of ap_sky for physically scaled values). False before Compute.
    */
   bool ConfigureLight(vtkLight* light);

@@ -130,6 +130,13 @@ class CommandLineSunTest(unittest.TestCase):
                             "--lon", 8)
         self.assertIn("occurs twice", err)
         self.assertIn("2026-10-25T00:30:00Z", err)
+        # --tz names the local day even for an instant given in UTC: 23:30Z is 08:30 on the
+        # next day in Tokyo, whose sunrise (04:25 local) comes before its transit.
+        r = self.json_of("--at", "2026-06-21T23:30Z", "--tz", "Asia/Tokyo",
+                         "--lat", 35.68, "--lon", 139.69)
+        self.assertEqual(r["utc_offset"], "+09:00")
+        self.assertTrue(r["sunrise_local"].startswith("2026-06-22T04:25"), r["sunrise_local"])
+        self.assertTrue(r["sunset_local"].startswith("2026-06-22T19:0"), r["sunset_local"])
         # An explicit offset settles it.
         r = self.json_of("--at", "2026-10-25T02:30+01:00", "--tz", "Europe/Zurich",
                          "--lat", 47, "--lon", 8)

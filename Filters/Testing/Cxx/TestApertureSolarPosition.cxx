@@ -149,6 +149,12 @@ void TestZoneEdge()
   AP_CHECK(sun->ConfigureLight(light));
   AP_CHECK(!light->GetPositional() && light->GetSwitch());
   AP_CHECK_NEAR(light->GetPosition()[2], d[2], 1e-12);
+  // on while part of the disc (0.2666 degree in radius at 1 AU) is above the horizon
+  for (const double elevation : { 0.5, -0.2, -0.3, -10.0 })
+  {
+    AP_CHECK(sun->ComputeForDirection(200.0, elevation) && sun->ConfigureLight(light));
+    AP_CHECK(light->GetSwitch() == (elevation > -0.2666));
+  }
 }
 
 // The report's test case (Reda & Andreas 2004, ALGORITHMS.md 4.1) through the class.
@@ -175,6 +181,14 @@ void TestSPACase()
   AP_CHECK(std::string(sun->GetSunriseString()) == "2003-10-17T13:12:43Z");
   AP_CHECK(sun->GetDayKind() == 0);
   AP_CHECK(sun->GetLocalOffset() == -7 * 3600);
+  // A sun given by its direction has its own incidences, not the last Compute()'s: at 40
+  // degrees of elevation, a 30-degree slope facing it sees it at 90 - 40 - 30, one facing away
+  // at its zenith angle plus 30, level ground at its zenith angle.
+  AP_CHECK(sun->ComputeForDirection(170.0, 40.0));
+  AP_CHECK_NEAR(sun->GetIncidence(30.0, 170.0), 20.0, 1e-9);
+  AP_CHECK_NEAR(sun->GetIncidence(30.0, 350.0), 80.0, 1e-9);
+  AP_CHECK_NEAR(sun->GetIncidence(0.0, 123.0), 50.0, 1e-9);
+  AP_CHECK(std::isnan(sun->GetIncidence(-1.0, 0.0)));
 }
 
 void TestTimeZones()
@@ -204,6 +218,21 @@ void TestTimeZones()
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "unknown");
   AP_CHECK(!sun->SetTimeZone("../../etc/passwd"));
   AP_CHECK(std::string(sun->GetTimeZone()) == "Europe/Zurich"); // kept
+
+  // The zone names the local day, whatever offset the instant was written with: 23:30 UTC on
+  // 21 June is 08:30 on 22 June in Tokyo, whose day then runs sunrise 04:25, transit about
+  // 11:43, sunset 19:00 local (+09:00); without the zone, the day is the UTC day of the "Z".
+  vtkNew<vtkApertureSolarPosition> tokyo;
+  tokyo->SetLatitude(35.68);
+  tokyo->SetLongitude(139.69);
+  AP_CHECK(tokyo->SetTime("2026-06-21T23:30Z") && tokyo->Compute());
+  AP_CHECK(tokyo->GetLocalOffset() == 0);
+  AP_CHECK(std::string(tokyo->GetTransitString()).compare(0, 14, "2026-06-21T02:") == 0);
+  AP_CHECK(tokyo->SetTimeZone("Asia/Tokyo") && tokyo->Compute());
+  AP_CHECK(tokyo->GetLocalOffset() == 9 * 3600);
+  AP_CHECK_CONTAINS(tokyo->GetSunriseString(), "2026-06-21T19:2");
+  AP_CHECK_CONTAINS(tokyo->GetTransitString(), "2026-06-22T02:4");
+  AP_CHECK_CONTAINS(tokyo->GetSunsetString(), "2026-06-22T10:0");
 }
 
 // The sky is prepared on first use after a Compute, from that Compute's parameters: the values
