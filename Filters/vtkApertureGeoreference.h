@@ -251,11 +251,12 @@ public:
   bool GetCellMetricAt(double x, double y, double metric[3]);
 
   /**
-   * Meridian convergence γ at a geographic point (degrees): the angle from grid north to true
-   * north, positive when true north lies east of grid north (east of the central meridian of
-   * a transverse Mercator zone in the northern hemisphere). A true azimuth A has grid azimuth
-   * A − γ. Computed from the CRS itself by finite differences (the grid bearing of a short
-   * step north is −γ), so it holds for any projection; 0 for a geographic CRS. NaN on failure.
+   * Meridian convergence γ at a geographic point (degrees): the angle from true north to grid
+   * north, clockwise: positive when grid north lies east of true north (east of the central
+   * meridian of a transverse Mercator zone in the northern hemisphere, where the meridians
+   * lean towards the central one). A true azimuth A has grid azimuth A − γ. Computed from the
+   * CRS itself by finite differences (the grid bearing of a short step north is −γ), so it
+   * holds for any projection; 0 for a geographic CRS. NaN on failure.
    */
   double ComputeMeridianConvergence(double lon, double lat);
 

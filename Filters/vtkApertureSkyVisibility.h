@@ -154,12 +154,13 @@ public:
   ///@}
 
   ///@{
-  /** Search distance in metres; 0 (default) = unlimited. Negative values are an error. A
-   *  distance of at most GetMarchColumns() (64) steps of a sector (1.9 km on a 30 m grid) is
-   *  searched by marching every cell's ray exactly; one of at most GetFarMarchColumns()
-   *  (1024) steps (30 km) by sampling every cell's ray where it crosses the grid's columns
-   *  (the far march; on lat/lon DEMs along each ray's rhumb line); both are faster there
-   *  than the hull sweep, which searches longer distances and no limit (ap_horizon.h). */
+  /** Search distance in metres; 0 (default) = unlimited. Negative, infinite or NaN values are
+   *  an error at the update. A distance of at most GetMarchColumns() (64) steps of a sector
+   *  (1.9 km on a 30 m grid) is searched by marching every cell's ray exactly; one of at most
+   *  GetFarMarchColumns() (1024) steps (30 km) by sampling every cell's ray where it crosses
+   *  the grid's columns (the far march; on lat/lon DEMs along each ray's rhumb line); both are
+   *  faster there than the hull sweep, which searches longer distances and no limit
+   *  (ap_horizon.h). */
   vtkSetMacro(MaximumDistance, double);
   vtkGetMacro(MaximumDistance, double);
   ///@}

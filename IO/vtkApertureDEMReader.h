@@ -18,8 +18,9 @@
  * - SubWindow: (x offset, y offset, columns, rows) in full-resolution pixels of the file,
  *   GDAL's convention (offsets from the top-left corner, like `gdal_translate -srcwin`);
  *   columns or rows of 0 extend to the raster edge.
- * - OverviewLevel: read GDAL overview k (0 = the first, coarsest-but-one) instead of the full
- *   resolution; -1 (default) reads full resolution.
+ * - OverviewLevel: read GDAL overview k instead of the full resolution (0 = the first in the
+ *   file's order, usually the finest, as `gdal_translate -ovr 0`); -1 (default) reads full
+ *   resolution.
  * - Decimation: an integer factor f >= 1; each output cell is the mean of the valid cells of an
  *   f x f block (nodata ignored; all-nodata blocks stay nodata); a partial block at the east or
  *   south edge is dropped. Applied to the overview level; the blocks align to its top-left

@@ -30,8 +30,10 @@
  * LightingModel STANDARD draws with VTK's own lighting (times 2^Exposure) and needs no arrays.
  * With the default APERTURE model, missing or wrongly sized arrays are an error (vtkErrorMacro
  * once per render) and the mesh is drawn with VTK's standard lighting instead (documented
- * fallback; never a shader compile failure). NaN arrays (nodata) give black points. A zero or
- * non-finite sun direction is an error at the setter, which keeps the previous direction.
+ * fallback; never a shader compile failure). NaN arrays (nodata) give black points. A setter
+ * given a value outside its documented range (a zero or non-finite sun direction, say) reports
+ * an error (vtkErrorMacro) and keeps the previous value; the mode setters take an unknown value
+ * as their default (EXACT, CENTROID, PER_FRAGMENT).
  *
  * @sa vtkApertureSolarPosition vtkApertureSkyVisibility vtkApertureTerrainMesh
  */
@@ -91,10 +93,10 @@ public:
   ///@{
   /**
    * The sun: direction (towards it, any length > 0, normalised; in the mesh frame: see
-   * vtkApertureSolarPosition::GetDirection), apparent angular radius in degrees (default
-   * 0.26667, SPA's mean), a scale widening it into a soft area light (default 1; the widened
-   * radius is clamped to 90°), and its irradiance normal to the beam in W/m² per RGB channel
-   * (default 1000, 1000, 1000). A zero or non-finite direction is refused (vtkErrorMacro).
+   * vtkApertureSolarPosition::GetDirection), apparent angular radius in degrees, (0, 90]
+   * (default 0.26667, SPA's mean), a scale widening it into a soft area light (finite, > 0;
+   * default 1; the widened radius is clamped to 90°), and its irradiance normal to the beam in
+   * W/m² per RGB channel (finite, >= 0; default 1000, 1000, 1000). Other values are refused.
    */
   void SetSunDirection(double x, double y, double z);
   void SetSunDirection(const double d[3]) { this->SetSunDirection(d[0], d[1], d[2]); }
@@ -107,8 +109,8 @@ public:
   vtkGetVector3Macro(SunIrradiance, double);
   ///@}
 
-  /** Uniform sky radiance filling the aperture, W/m²/sr per RGB channel (default 30, 35, 45),
-   *  used when there is no sky table. */
+  /** Uniform sky radiance filling the aperture, W/m²/sr per RGB channel (finite, >= 0;
+   *  default 30, 35, 45), used when there is no sky table. */
   void SetSkyRadiance(double r, double g, double b);
 
   /**
@@ -118,7 +120,7 @@ public:
    * float texture (again only when the table or its MTime changes). nullptr: back to the
    * uniform SkyRadiance. Switching between a table and none compiles the other shader variant
    * (and uploads the geometry once); replacing one table by another, as when the sun moves,
-   * does not. Wrong sizes are an error (the table is then not used).
+   * does not. Wrong sizes are an error, and the previous sky (table or uniform) stays.
    */
   void SetSkyTable(vtkFloatArray* table, int azimuths, int elevations, int radii);
   vtkFloatArray* GetSkyTable() { return this->SkyTable; }
@@ -139,7 +141,7 @@ public:
   ///@{
   /**
    * Exposure in EV: the radiance is scaled by 2^Exposure before tone mapping (default 0;
-   * clamped to [-30, 30]; negative values darken, as on a camera). Tone mapping on (default):
+   * clamped to [-30, 30], NaN refused; negative values darken, as on a camera). Tone mapping on (default):
    * 1 − exp(−x) then sRGB encoding, for 8-bit display; off: the exposed linear value (clipped
    * at 1 by an 8-bit framebuffer).
    */

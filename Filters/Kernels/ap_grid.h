@@ -62,7 +62,8 @@ void ap_sample_params_init(ap_sample_params *p);
  *  equals the nodata value, or scales to a value outside the float range; otherwise
  *  out[k] = (float)(raw[k] * scale + offset). `raw` and `out` must not overlap.
  *  Never fails on data; returns AP_ERR_NULL_POINTER / AP_ERR_INVALID_ARGUMENT (non-finite
- *  scale or offset) / AP_ERR_OVERLAP only for bad arguments. */
+ *  scale or offset) / AP_ERR_SIZE_OVERFLOW (n doubles exceed the address space) /
+ *  AP_ERR_OVERLAP only for bad arguments. */
 ap_status ap_samples_to_elevation(const double *raw, size_t n, const ap_sample_params *p,
                                   float *out);
 
@@ -70,7 +71,9 @@ ap_status ap_samples_to_elevation(const double *raw, size_t n, const ap_sample_p
  *  `src` holds `factor` rows of `nx` values, rows `src_row_stride` elements apart; `dst`
  *  receives nx / factor values (a partial block at the east end is dropped). NaN cells are
  *  ignored; a block with no valid cell gives NaN. Each block is summed in row order in double
- *  precision, so the result does not depend on how the caller splits the work. */
+ *  precision, so the result does not depend on how the caller splits the work. Returns AP_OK,
+ *  or AP_ERR_NULL_POINTER (src or dst NULL), AP_ERR_INVALID_ARGUMENT (factor 0) or
+ *  AP_ERR_BAD_STRIDE (|src_row_stride| < nx), writing nothing. */
 ap_status ap_block_mean(const float *src, size_t nx, ptrdiff_t src_row_stride, size_t factor,
                         float *dst);
 

@@ -149,6 +149,20 @@ class TestRenderApertureDEM(Testing.vtkTest):
         self.compare(ww, "TestApertureWideSun")
         self.assertLess(local_contrast(wide), local_contrast(exact))
 
+    def testUnknownOptions(self):
+        # a misspelt mode is an error, not the default mode drawn without a word
+        mesh, _ = mesh_and_dem()
+        sun = sun_at(direction=(225.0, 30.0))
+        for options, named in (({"intersection": "smooth"}, "intersection must be exact or "
+                                "smoothstep, not 'smooth'"),
+                               ({"lambert": "exact"}, "lambert must be centroid or exactcap"),
+                               ({"shading": "fragment"}, "shading must be pixel or vertex"),
+                               ({"view": "side"}, "view must be one of"),
+                               ({"sky_mode": "tabled"}, "sky_mode must be constant or model")):
+            with self.assertRaises(ValueError) as caught:
+                scene.build_aperture(mesh, sun, size=SIZE, **options)
+            self.assertIn(named, str(caught.exception))
+
     def testSkyOnly(self):
         mesh, _ = mesh_and_dem()
         below = sun_at(direction=(225.0, -5.0))

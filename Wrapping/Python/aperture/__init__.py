@@ -35,7 +35,8 @@ def __dir__():
 
 
 def default_dem():
-    """Path of the embedded default DEM GeoTIFF (built with the package)."""
+    """Path of the embedded default DEM GeoTIFF (built with the package); FileNotFoundError
+    when the build had no python-matplotlib-data to make it from."""
     path = _os.path.join(_os.path.dirname(_os.path.abspath(__file__)), "data",
                          "jacksboro_fault_dem.tif")
     if not _os.path.exists(path):

@@ -47,6 +47,8 @@ def hypsometric_colors(zmin, zmax):
 
 
 def elevation_range(mesh, name="Elevation"):
+    """(lowest, highest) value of the mesh's point array `name` (metres for the Elevation of
+    vtkApertureTerrainMesh; NaN nodata skipped); ValueError when the mesh has no such array."""
     array = mesh.GetPointData().GetArray(name)
     if array is None:
         raise ValueError("the mesh has no point array '%s'" % name)
@@ -66,8 +68,11 @@ def color_by_elevation(mapper, mesh):
 
 def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_elevation=45.0,
           exposure=0.0, multisamples=8, background=(1.0, 1.0, 1.0), camera=None):
-    """A render window showing the mesh; returns (render_window, renderer). The window renders
-    off screen (an X display, e.g. Xvfb, is still needed by Debian's VTK)."""
+    """A render window showing the mesh with VTK's own lighting from light_azimuth and
+    light_elevation (degrees; from true north, above the horizon), scaled by 2^exposure (EV);
+    returns (render_window, renderer). The window renders off screen (an X display, e.g. Xvfb,
+    is still needed by Debian's VTK). ValueError for an unknown view, a light elevation outside
+    -90..90 or a mesh without an Elevation array."""
     if view not in VIEWS:
         raise ValueError("view must be one of %s, not %r" % (", ".join(VIEWS), view))
     if not -90.0 <= light_elevation <= 90.0:
@@ -120,7 +125,8 @@ def luminance(rgb):
 
 def sky_radiance(sun):
     """The uniform sky radiance (W/m2/sr, RGB) that gives the sun's sky model's irradiance on a
-    horizontal surface: the model's cosine-weighted hemisphere integral divided by pi."""
+    horizontal surface: the model's cosine-weighted hemisphere integral divided by pi.
+    ValueError when the sun has not been computed."""
     mean, irradiance = [0.0] * 3, [0.0] * 3
     if not sun.GetSkyCap([0.0, 0.0, 1.0], 90.0, [0.0, 0.0, 1.0], mean, irradiance):
         raise ValueError(sun.GetErrorMessage())
@@ -148,9 +154,17 @@ def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
     model's hemisphere average); "model": each aperture filled with the sun's sky model
     averaged over that aperture (a table of cap means, vtkApertureSolarPosition.
     ComputeSkyTable). shading "pixel" (default) or "vertex": where the lighting model runs.
-    Returns (render_window, renderer, mapper)."""
+    intersection "exact" or "smoothstep", lambert "centroid" or "exactcap" (the mapper's modes).
+    Returns (render_window, renderer, mapper). ValueError for an unknown view, sky_mode,
+    intersection, lambert or shading, a mesh without an Elevation array, or a sun whose sky
+    cannot be computed (not computed yet)."""
     if view not in VIEWS:
         raise ValueError("view must be one of %s, not %r" % (", ".join(VIEWS), view))
+    for name, value, choices in (("intersection", intersection, ("exact", "smoothstep")),
+                                 ("lambert", lambert, ("centroid", "exactcap")),
+                                 ("shading", shading, ("pixel", "vertex"))):
+        if value not in choices:
+            raise ValueError("%s must be %s, not %r" % (name, " or ".join(choices), value))
     elevation_range(mesh)  # the elevation colours need the array: fail before any work
     direction = [0.0] * 3
     sun.GetDirection(direction)
@@ -263,7 +277,8 @@ def rgb_pixels(window):
 
 
 def write_png(window, path):
-    """Render and write the window's pixels to a PNG; returns the absolute path."""
+    """Render and write the window's pixels to a PNG; returns the absolute path. OSError when
+    the file cannot be written."""
     from aperture.errors import native_path
     writer = vtkPNGWriter()
     writer.SetFileName(native_path(path))
