@@ -42,6 +42,9 @@ ap_status ap_grid_validate(const ap_grid_view *g, size_t min_nx, size_t min_ny)
   if (g->nx < min_nx || g->ny < min_ny || g->nx == 0 || g->ny == 0) {
     return AP_ERR_GRID_TOO_SMALL;
   }
+  if (g->nx > (size_t)PTRDIFF_MAX) { /* (no stride can span such a row) */
+    return AP_ERR_SIZE_OVERFLOW;
+  }
   if (abs_stride(g->row_stride) < g->nx) {
     return AP_ERR_BAD_STRIDE;
   }

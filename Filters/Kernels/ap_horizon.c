@@ -784,7 +784,10 @@ static ap_status validate(const ap_horizon_grid *g, const ap_horizon_params *p,
   if (st != AP_OK) {
     return st;
   }
-  if (ap_size_mul(g->z.nx, g->z.ny, &cells) != AP_OK || cells > SIZE_MAX / 32) {
+  /* (the sweep counts a line's columns and its rings in int: a side of at most 10^9 + 1 cells
+   * keeps them below 2^30) */
+  if (ap_size_mul(g->z.nx, g->z.ny, &cells) != AP_OK || cells > SIZE_MAX / 32 ||
+      g->z.nx > (size_t)AP_HORIZON_MAX_ORIGIN + 1 || g->z.ny > (size_t)AP_HORIZON_MAX_ORIGIN + 1) {
     return AP_ERR_SIZE_OVERFLOW;
   }
   if (p->directions < 4 || p->directions > 360 || !(p->max_distance > 0.0) ||
@@ -792,8 +795,8 @@ static ap_status validate(const ap_horizon_grid *g, const ap_horizon_params *p,
       !positive_finite(p->radius_normal) || p->near_field < 0 || p->near_field > 64 ||
       p->march_columns < 0 || p->march_columns > 64 || p->far_march_columns < 0 ||
       p->far_march_columns > 65536 || !isfinite(p->azimuth_offset) ||
-      labs(p->origin_col) > AP_HORIZON_MAX_ORIGIN ||
-      labs(p->origin_row) > AP_HORIZON_MAX_ORIGIN) {
+      p->origin_col < -AP_HORIZON_MAX_ORIGIN || p->origin_col > AP_HORIZON_MAX_ORIGIN ||
+      p->origin_row < -AP_HORIZON_MAX_ORIGIN || p->origin_row > AP_HORIZON_MAX_ORIGIN) {
     return AP_ERR_INVALID_ARGUMENT;
   }
   if ((!g->dx && !positive_finite(g->dx0)) || (!g->dy && !positive_finite(g->dy0))) {
@@ -4916,6 +4919,9 @@ ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1)
 
 void ap_horizon_finish(const ap_horizon *hz, size_t j0, size_t j1)
 {
+  if (!hz || hz->d < 0) {
+    return;
+  }
   const ap_sky_products *o = &hz->out;
   const double D = (double)hz->p.directions;
   float *B = o->bent_normal ? o->bent_normal : hz->bsum;

@@ -310,8 +310,9 @@ void ap_horizon_metric_root(const double m[3], double dx0, double dy0, double s[
 
 /** Check a grid and options without allocating: AP_OK or the first problem
  *  (AP_ERR_INVALID_ARGUMENT for an option out of range or a cell size that is not positive
- *  and finite, AP_ERR_GRID_TOO_SMALL, AP_ERR_ALL_NODATA, AP_ERR_OUT_OF_RANGE for an
- *  infinite elevation, ...). */
+ *  and finite, AP_ERR_GRID_TOO_SMALL, AP_ERR_SIZE_OVERFLOW for a side of more than
+ *  AP_HORIZON_MAX_ORIGIN + 1 cells or more than SIZE_MAX / 32 cells, AP_ERR_ALL_NODATA,
+ *  AP_ERR_OUT_OF_RANGE for an infinite elevation, ...). */
 ap_status ap_horizon_validate(const ap_horizon_grid *g, const ap_horizon_params *p);
 
 /** Validate, then allocate the state: a transposed copy of the elevations (4 bytes per
@@ -388,7 +389,8 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1);
 ap_status ap_horizon_accumulate(const ap_horizon *hz, size_t j0, size_t j1);
 
 /** After the last sector: turn the sums of grid rows [j0, j1) (the region's cells of them)
- *  into the products. */
+ *  into the products. Does nothing for a NULL hz or before any sector was prepared; the rows
+ *  must have been accumulated for every sector (the sequence above). */
 void ap_horizon_finish(const ap_horizon *hz, size_t j0, size_t j1);
 
 /** Everything on the calling thread: create, every sector, finish, destroy. */

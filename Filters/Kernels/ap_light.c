@@ -322,11 +322,12 @@ void ap_light_sky_lookup(const ap_light_params *p, const double b[3], double rp,
     rgb[2] = p->sky_radiance[2];
     return;
   }
-  if (!isfinite(b[0]) || !isfinite(b[1]) || !isfinite(b[2]) || isnan(rp)) {
+  const int na = p->sky_table_size[0], ne = p->sky_table_size[1], nr = p->sky_table_size[2];
+  if (!isfinite(b[0]) || !isfinite(b[1]) || !isfinite(b[2]) || isnan(rp) || na < 4 ||
+      na > 256 || ne < 2 || ne > 256 || nr < 2 || nr > 256) {
     set_nan(rgb, 3);
     return;
   }
-  const int na = p->sky_table_size[0], ne = p->sky_table_size[1], nr = p->sky_table_size[2];
   double az = atan2(b[0], b[1]);
   if (az < 0.0) {
     az += 2.0 * PI;

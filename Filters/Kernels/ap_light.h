@@ -180,7 +180,8 @@ void ap_light_params_init(ap_light_params *p);
  *  with azimuth (i + ½) 2π / na (cell-centred, wrapping around), elevation j (π/2) / (ne − 1)
  *  and radius k (π/2) / (nr − 1) (nodes at both ends), and the value is the trilinear
  *  interpolation between the eight nodes around (az, el, r). Writes rgb; NaN for a b that is
- *  not finite. Without a table (NULL), rgb = p->sky_radiance. */
+ *  not finite, a NaN rp, or table sizes out of range (see sky_table_size). Without a table
+ *  (NULL), rgb = p->sky_radiance. */
 void ap_light_sky_lookup(const ap_light_params *p, const double b[3], double rp, double rgb[3]);
 
 /** AP_OK, AP_ERR_NULL_POINTER, or AP_ERR_INVALID_ARGUMENT when a field is out of range: sun

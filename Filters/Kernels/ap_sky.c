@@ -970,6 +970,23 @@ ap_status ap_sky_cap(const ap_sky_state *s, const double axis[3], double radius,
     set_nan(irradiance, 3);
     return st;
   }
+  if (radius < AP_SKY_POINT_CAP) {
+    /* cos r = 1 - r²/2 keeps too few digits for the regions' depths (none at all below 1e-8):
+     * the cap is its axis */
+    double l[3];
+    sky_rgb(s, a, l);
+    const double sh = sin(0.5 * radius), omega = 4.0 * PI * sh * sh;
+    const double facing = irradiance ? fmax(0.0, dot3(n, a)) : 0.0;
+    for (int i = 0; i < 3; ++i) {
+      if (mean_radiance) {
+        mean_radiance[i] = l[i];
+      }
+      if (irradiance) {
+        irradiance[i] = l[i] * omega * facing;
+      }
+    }
+    return AP_OK;
+  }
   if (mean_radiance) {
     if (radius == 0.0) {
       sky_rgb(s, a, mean_radiance);

@@ -261,13 +261,19 @@ ap_status ap_sky_prepare(const ap_sky_params *p, const double sun[3], ap_sky_sta
  *  that ap_sky_prepare did not fill. */
 ap_status ap_sky_radiance(const ap_sky_state *s, const double dir[3], double rgb[3]);
 
+/** Caps of a smaller radius (rad; 21″) are taken as their axis by ap_sky_cap: below it the
+ *  quadrature's depths lose digits in 1 − cos r faster than the cap's mean departs from the
+ *  axis's radiance (4e-8 relative at this radius, 4e-6 at 1e-5; nothing left below 1e-8). */
+#define AP_SKY_POINT_CAP 1e-4
+
 /** Integrals of the sky over the cap of axis `axis` (ENU, any non-zero length) and angular
  *  radius `radius` in [0, π/2] (radians; an aperture is at most a hemisphere, ALGORITHMS.md
  *  §6.3), by the quadrature of the file comment:
  *  - mean_radiance: (1/Ω) ∫_cap L dω, Ω = 4π sin²(r/2) the whole cap's solid angle
- *    (directions below the horizon count as zero radiance); for r = 0, the radiance at the
- *    axis;
- *  - irradiance: ∫_cap L(ω) max(0, n·ω) dω onto a surface of normal `normal` (W/m²).
+ *    (directions below the horizon count as zero radiance); for r < AP_SKY_POINT_CAP (r = 0
+ *    included), the radiance at the axis;
+ *  - irradiance: ∫_cap L(ω) max(0, n·ω) dω onto a surface of normal `normal` (W/m²); for
+ *    r < AP_SKY_POINT_CAP, L(axis) Ω max(0, n·axis).
  *  Either output may be NULL (they must not overlap); `normal` (ENU, non-zero) is needed only
  *  with `irradiance`. AP_ERR_INVALID_ARGUMENT for a radius outside [0, π/2] or NaN, a NaN,
  *  infinite or zero-length axis or normal, or an unprepared state. */

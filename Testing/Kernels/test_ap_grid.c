@@ -49,6 +49,8 @@ static void test_validate(void)
   AP_CHECK_EQ_INT(ap_grid_validate(&g, 1, 1), AP_ERR_SIZE_OVERFLOW);
   g = ap_grid_view_make(z, SIZE_MAX / 2, 3); /* rows that cannot be addressed */
   AP_CHECK_EQ_INT(ap_grid_validate(&g, 1, 1), AP_ERR_SIZE_OVERFLOW);
+  g = ap_grid_view_make(z, SIZE_MAX, 1); /* (its stride wraps to -1: not a stride problem) */
+  AP_CHECK_EQ_INT(ap_grid_validate(&g, 1, 1), AP_ERR_SIZE_OVERFLOW);
 }
 
 /* Statistics ignore NaN, count it, and report NaN ranges for an all-nodata grid. */
@@ -130,6 +132,7 @@ static void test_samples(void)
   AP_CHECK_NEAR(out[0], -16374.0, 0.0);
 
   /* Argument errors. */
+  AP_CHECK_EQ_INT(ap_samples_to_elevation(raw, SIZE_MAX / 4, &p, out), AP_ERR_SIZE_OVERFLOW);
   p.scale = NAN;
   AP_CHECK_EQ_INT(ap_samples_to_elevation(raw, 1, &p, out), AP_ERR_INVALID_ARGUMENT);
   p.scale = 1.0;

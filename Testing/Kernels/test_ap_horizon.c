@@ -13,6 +13,7 @@
 #include "aptest.h"
 
 #include <float.h>
+#include <limits.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -1377,7 +1378,31 @@ static void test_errors(void)
   p.origin_col = 0;
   p.origin_row = 1000000001L;
   AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+  p.origin_row = LONG_MIN; /* (labs(LONG_MIN) overflowed, and passed) */
+  AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
   p.origin_row = 0;
+  p.origin_col = LONG_MIN;
+  AP_CHECK_EQ_INT(ap_horizon_validate(&g, &p), AP_ERR_INVALID_ARGUMENT);
+  p.origin_col = 0;
+  {
+    /* sides beyond AP_HORIZON_MAX_ORIGIN + 1 cells (the sweep counts columns in int) and more
+     * than SIZE_MAX / 32 cells are refused before any elevation is read (the views below
+     * claim far more storage than the terrain's: none of it is touched) */
+    ap_horizon_grid big = g;
+    big.z.nx = (size_t)AP_HORIZON_MAX_ORIGIN + 2;
+    big.z.ny = 2;
+    big.z.row_stride = (ptrdiff_t)big.z.nx;
+    big.dx = big.dy = NULL;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&big, &p), AP_ERR_SIZE_OVERFLOW);
+    big.z.nx = 2;
+    big.z.ny = (size_t)AP_HORIZON_MAX_ORIGIN + 2;
+    big.z.row_stride = 2;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&big, &p), AP_ERR_SIZE_OVERFLOW);
+    big.z.nx = big.z.ny = 800000000; /* sides within the limit, 6.4e17 > SIZE_MAX / 32 cells */
+    big.z.row_stride = (ptrdiff_t)big.z.nx;
+    AP_CHECK_EQ_INT(ap_horizon_validate(&big, &p), AP_ERR_SIZE_OVERFLOW);
+  }
+  ap_horizon_finish(NULL, 0, 10); /* (does nothing) */
   {
     /* the region: inside the 10 x 10 grid, both sizes or neither */
     static const size_t bad[][4] = { { 0, 0, 0, 5 }, { 0, 0, 5, 0 }, { 3, 0, 0, 0 },

@@ -7,6 +7,7 @@
  * float types) against double, which is what the GLSL port will do.
  * Run with -v to print the measured errors. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -804,6 +805,11 @@ static void test_batch(void)
                   AP_ERR_NULL_POINTER);
   AP_CHECK_EQ_INT(ap_light_points(&p, N, NULL, bent, rp, albedo, 3, lo, rgb), AP_ERR_NULL_POINTER);
   AP_CHECK_EQ_INT(ap_light_points(&p, 0, NULL, NULL, NULL, NULL, 3, NULL, NULL), AP_OK);
+  /* sizes whose bytes overflow: refused before anything is read */
+  AP_CHECK_EQ_INT(ap_light_points(&p, SIZE_MAX / 8, normals, bent, rp, albedo, 3, lo, rgb),
+                  AP_ERR_SIZE_OVERFLOW);
+  AP_CHECK_EQ_INT(ap_light_points(&p, 2, normals, bent, rp, albedo, SIZE_MAX / 2, lo, rgb),
+                  AP_ERR_SIZE_OVERFLOW);
   AP_CHECK_EQ_INT(ap_light_points(&p, N, normals, bent, rp, albedo, 2, lo, rgb),
                   AP_ERR_INVALID_ARGUMENT);
   AP_CHECK_EQ_INT(ap_light_points(&p, 2, normals, bent, rp, albedo, 3, normals + 3, NULL),
@@ -864,6 +870,20 @@ static void test_sky_table(void)
   ap_light_sky_lookup(&p, b4, 3.0, rgb);
   AP_CHECK_NEAR(rgb[1], 100.0, 1e-9);
   AP_CHECK_NEAR(rgb[2], 71.0, 1e-9);
+  /* sizes out of range (the defaults are 0: a division by zero before) give NaN */
+  {
+    ap_light_params q = p;
+    const int sizes[][3] = { { 0, 0, 0 }, { NA, 1, NR }, { NA, NE, 1 }, { 3, NE, NR },
+                             { 257, NE, NR } };
+    for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; ++k) {
+      memcpy(q.sky_table_size, sizes[k], sizeof q.sky_table_size);
+      rgb[0] = rgb[1] = rgb[2] = 1.0;
+      ap_light_sky_lookup(&q, b, 0.5, rgb);
+      AP_CHECK_NAN(rgb[0]);
+      AP_CHECK_NAN(rgb[2]);
+      AP_CHECK_EQ_INT(ap_light_params_validate(&q), AP_ERR_INVALID_ARGUMENT);
+    }
+  }
   /* a constant table gives exactly the uniform sky's light */
   static float flat[NA * NE * NR * 3];
   for (size_t q = 0; q < sizeof(flat) / sizeof(flat[0]); ++q) {

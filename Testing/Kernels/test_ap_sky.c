@@ -518,17 +518,24 @@ static void test_clear_and_preetham(void)
   ap_sky_radiance(&s, d, away);
   AP_CHECK(lum(toward) > 2.0 * lum(away));
 
-  /* a tiny cap is the point radiance (mean), and L π sin² r cos θ (irradiance) */
-  const double r = 1e-4;
+  /* a tiny cap is the point radiance (mean), and L π sin² r cos θ (irradiance): by the
+   * quadrature down to AP_SKY_POINT_CAP, as its axis below (where 1 - cos r has too few
+   * digits: the quadrature gave 0 below 1e-8) */
   ap_sky_enu_direction(2.0, 25.0 * DEG, d);
   double n[3];
   ap_sky_enu_direction(1.0, 50.0 * DEG, n);
   AP_CHECK_EQ_INT(ap_sky_radiance(&s, d, rgb), AP_OK);
-  AP_CHECK_EQ_INT(ap_sky_cap(&s, d, r, n, mean, irr), AP_OK);
-  double cosn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
-  for (int c = 0; c < 3; ++c) {
-    AP_CHECK_NEAR(mean[c], rgb[c], 1e-6 * rgb[c]);
-    AP_CHECK_NEAR(irr[c], rgb[c] * PI * sin(r) * sin(r) * cosn, 1e-5 * irr[c]);
+  const double cosn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+  const double radii[] = { 3e-4, 1.01 * AP_SKY_POINT_CAP, 0.99 * AP_SKY_POINT_CAP, 1e-7, 1e-8,
+                           1e-12 };
+  for (size_t k = 0; k < sizeof radii / sizeof radii[0]; ++k) {
+    const double r = radii[k];
+    AP_CHECK_EQ_INT(ap_sky_cap(&s, d, r, n, mean, irr), AP_OK);
+    for (int c = 0; c < 3; ++c) {
+      AP_CHECK_NEAR(mean[c], rgb[c], 1e-6 * rgb[c]);
+      AP_CHECK_NEAR(irr[c], rgb[c] * PI * sin(r) * sin(r) * cosn,
+                    1e-5 * rgb[c] * PI * sin(r) * sin(r));
+    }
   }
   AP_CHECK_EQ_INT(ap_sky_cap(&s, d, 0.0, n, mean, irr), AP_OK);
   AP_CHECK(mean[0] == rgb[0] && mean[2] == rgb[2] && irr[1] == 0.0);
