@@ -46,7 +46,7 @@
  *  O(distance) per cell and direction at worst (a bowl rising all the way out), yet faster
  *  than the sweep's sliding windows up to that limit on every DEM measured, and exact on the
  *  cell's own ray where the sweep evaluates it only at its lines' tangent columns (the rough
- *  DEM of the tests at 2500 m: p99 0.18 against 0.31 degree from the brute force).
+ *  DEM of the tests at 2500 m: p99 0.082 against 0.115 degree from the brute force).
  *
  *  Geometry: cell sizes are given per row in metres, so lat/lon DEMs are exact: the lines
  *  follow constant ground azimuth (rhumb lines) and bend in index space as the east-west cell

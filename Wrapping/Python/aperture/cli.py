@@ -1904,9 +1904,10 @@ def build_parser():
     p.add_argument("--sun-scale", type=float, default=1.0, metavar="S",
                    help="widen the sun's disc S times: softer, broader penumbrae (default 1)")
     p.add_argument("--sky", choices=("constant", "model"), default="constant",
-                   help="constant: one sky radiance (the Preetham sky's average over the "
-                        "hemisphere; default); model: each aperture filled with the Preetham "
-                        "sky averaged over that aperture (brighter towards the sun)")
+                   help="constant: one sky radiance (the uniform one giving the Preetham "
+                        "sky's irradiance on level ground; default); model: each aperture "
+                        "filled with the Preetham sky averaged over that aperture (brighter "
+                        "towards the sun)")
     p.add_argument("--exposure", type=float, metavar="EV",
                    help="exposure in EV (default: automatic, a flat open white surface in the "
                         "sun at about 80%% grey)")

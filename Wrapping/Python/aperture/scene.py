@@ -151,10 +151,11 @@ def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
     BentNormal and ApertureRadius point arrays (bake, then mesh). Albedo: the elevation
     colours, or `texture` (a vtkTexture draped by the mesh's TextureCoordinates). Exposure in
     EV, None: auto_exposure. sky_mode "constant": one sky radiance everywhere (`sky`, or the
-    model's hemisphere average); "model": each aperture filled with the sun's sky model
-    averaged over that aperture (a table of cap means, vtkApertureSolarPosition.
-    ComputeSkyTable). shading "pixel" (default) or "vertex": where the lighting model runs.
-    intersection "exact" or "smoothstep", lambert "centroid" or "exactcap" (the mapper's modes).
+    uniform radiance giving the model's irradiance on level ground, sky_radiance); "model":
+    each aperture filled with the sun's sky model averaged over that aperture (a table of cap
+    means, vtkApertureSolarPosition.ComputeSkyTable). shading "pixel" (default) or "vertex":
+    where the lighting model runs. intersection "exact" or "smoothstep", lambert "centroid" or
+    "exactcap" (the mapper's modes).
     Returns (render_window, renderer, mapper). ValueError for an unknown view, sky_mode,
     intersection, lambert or shading, a mesh without an Elevation array, or a sun whose sky
     cannot be computed (not computed yet)."""
