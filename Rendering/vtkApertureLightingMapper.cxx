@@ -122,19 +122,28 @@ void vtkApertureLightingMapper::ReleaseGraphicsResources(vtkWindow* window)
 //------------------------------------------------------------------------------
 void vtkApertureLightingMapper::SetNormalArrayName(const char* name)
 {
-  this->NormalName = name ? name : "";
-  this->Modified();
+  this->SetArrayName(this->NormalName, name);
 }
 
 void vtkApertureLightingMapper::SetBentNormalArrayName(const char* name)
 {
-  this->BentName = name ? name : "";
-  this->Modified();
+  this->SetArrayName(this->BentName, name);
 }
 
 void vtkApertureLightingMapper::SetApertureRadiusArrayName(const char* name)
 {
-  this->RadiusName = name ? name : "";
+  this->SetArrayName(this->RadiusName, name);
+}
+
+void vtkApertureLightingMapper::SetArrayName(std::string& field, const char* name)
+{
+  const std::string value = name ? name : "";
+  if (value == field)
+  {
+    return;
+  }
+  field = value;
+  this->MapArrays(); // (VTK's vertex attributes name the arrays: the next upload reads these)
   this->Modified();
 }
 
@@ -501,12 +510,14 @@ bool vtkApertureLightingMapper::ComputeReference(vtkPolyData* mesh, const double
     {
       radiance->SetValue(static_cast<vtkIdType>(k), lo[k]);
     }
+    radiance->Modified(); // (new values in an array of the same size: consumers must see them)
   }
   if (display)
   {
     display->SetNumberOfComponents(3);
     display->SetNumberOfTuples(n);
     std::copy(rgb.begin(), rgb.end(), display->GetPointer(0));
+    display->Modified();
   }
   return true;
 }
@@ -534,4 +545,17 @@ void vtkApertureLightingMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ToneMapping: " << this->ToneMapping << "\n";
   os << indent << "ShadingFrequency: "
      << (this->ShadingFrequency == PER_VERTEX ? "PER_VERTEX" : "PER_FRAGMENT") << "\n";
+  os << indent << "SkyTable: ";
+  if (this->SkyTable)
+  {
+    os << this->SkyTable << " (" << this->SkyTableSize[0] << " x " << this->SkyTableSize[1]
+       << " x " << this->SkyTableSize[2] << ")\n";
+  }
+  else
+  {
+    os << "(none: the uniform SkyRadiance)\n";
+  }
+  os << indent << "GeometryUploads: " << this->GeometryUploads << "\n";
+  os << indent << "InputProblem: " << (this->InputProblem.empty() ? "(none)" : this->InputProblem)
+     << "\n";
 }

@@ -21,8 +21,9 @@
  * outgoing radiance (W/m²/sr for irradiances in W/m²) is multiplied by 2^Exposure and, with
  * ToneMapping on (default), mapped by 1 − exp(−x) and the sRGB transfer function for display.
  *
- * Moving the sun, changing the sky or the exposure changes uniforms only: these setters do not
- * mark the mapper modified, so the next Render() uses them and no geometry is uploaded again
+ * Moving the sun, changing the sky, the exposure or the tone mapping changes uniforms only
+ * (SetSkyTable uploads its small texture, not the geometry): these setters do not mark the
+ * mapper modified, so the next Render() uses them and no geometry is uploaded again
  * (GetGeometryUploads() counts uploads, for tests). The modes, the shading frequency and
  * switching the sky table on or off select compiled shader variants: the next Render()
  * compiles (or takes from VTK's shader cache) the variant, again without a geometry upload.
@@ -202,7 +203,11 @@ protected:
   /** True when `mesh` (default: the input) has the APERTURE model's arrays; else
    *  InputProblem says why. */
   bool CheckInput(vtkPolyData* mesh = nullptr);
+  /** Map the three arrays to the shader's vertex attributes (none without the APERTURE
+   *  model in use). */
   void MapArrays();
+  /** Set one of the array names: remapped and re-uploaded when it changes. */
+  void SetArrayName(std::string& field, const char* name);
 
   int LightingModel = APERTURE;
   std::string NormalName = "Normals";

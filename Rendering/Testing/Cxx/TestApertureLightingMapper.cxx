@@ -258,6 +258,59 @@ void TestWideSun()
   AP_CHECK(!s.Errors->GetError());
 }
 
+// Naming other arrays after a render draws them: the geometry is uploaded again, from the new
+// arrays (a bent normal turned 60 degrees away from the sun and a narrow aperture: the sun
+// hidden, the picture that of the CPU reference with those arrays), and naming the same
+// arrays again uploads nothing.
+void TestArraysRenamedAfterRender()
+{
+  auto mesh = GridMesh(
+    [](int) { return kUp; }, [](int) { return kUp; }, [](int) { return kPi / 2; });
+  const double t = 60.0 * kPi / 180.0, away = 20.0 * kPi / 180.0;
+  vtkNew<vtkFloatArray> turned, narrow;
+  turned->SetName("Turned");
+  turned->SetNumberOfComponents(3);
+  narrow->SetName("Narrow");
+  for (int k = 0; k < N * N; ++k)
+  {
+    turned->InsertNextTuple3(std::sin(t) * std::sin(away), std::sin(t) * std::cos(away),
+      std::cos(t));
+    narrow->InsertNextValue(0.4f);
+  }
+  mesh->GetPointData()->AddArray(turned);
+  mesh->GetPointData()->AddArray(narrow);
+  Scene s(mesh, kGrey);
+  s.Mapper->SetSunDirection(SunDirection(200.0, 40.0).data());
+  const std::vector<Vec> before = s.Radiance();
+  const int uploads = s.Mapper->GetGeometryUploads();
+  s.Mapper->SetBentNormalArrayName("Turned");
+  s.Mapper->SetApertureRadiusArrayName("Narrow");
+  const std::vector<Vec> after = s.Radiance();
+  AP_CHECK(s.Mapper->GetGeometryUploads() == uploads + 1);
+  vtkNew<vtkDoubleArray> cpu;
+  AP_CHECK(s.Mapper->ComputeReference(mesh, kGrey, cpu, nullptr));
+  double worst = cpu->GetNumberOfTuples() == N * N ? 0.0 : 1.0;
+  for (int k = 0; worst < 1.0 && k < N * N; ++k)
+  {
+    for (int c = 0; Inner(k, 3) && c < 3; ++c)
+    {
+      const double want = cpu->GetComponent(k, c);
+      worst = std::max(worst, std::fabs(after[k][c] / want - 1.0));
+      worst = std::isnan(after[k][c]) ? 1.0 : worst;
+      AP_CHECK(after[k][c] < 0.5 * before[k][c]); // (the sun hidden)
+    }
+  }
+  if (!(worst <= 1e-4))
+  {
+    std::fprintf(stderr, "arrays renamed after a render: off by %g\n", worst);
+    ++aptest::Failures();
+  }
+  s.Mapper->SetBentNormalArrayName("Turned");
+  s.Radiance();
+  AP_CHECK(s.Mapper->GetGeometryUploads() == uploads + 1);
+  AP_CHECK(!s.Errors->GetError());
+}
+
 // Random normals (up to 50 degrees' tilt), bent normals (45) and apertures (9 to 83 degrees):
 // the GPU's radiance at every inner vertex against the CPU reference's, for each mode, a
 // widened sun, a sky table and per-vertex shading: median within 2e-6, 99% within 2e-4, each
@@ -441,6 +494,7 @@ int TestApertureLightingMapper(int, char*[])
 {
   TestFlatGround();
   TestWideSun();
+  TestArraysRenamedAfterRender();
   TestAgainstReference();
   TestBadInput();
   return aptest::Result();
