@@ -927,6 +927,9 @@ bool vtkApertureSolarPosition::ComputeSkyTable(
       }
     }
   }
+  // (a table refilled at the same size keeps its MTime through SetNumberOfTuples: the
+  // lighting mapper uploads it again only when that changes)
+  table->Modified();
   return true;
 }
 

@@ -67,7 +67,9 @@ public:
    * previous time kept) for text that does not parse, an impossible date, a year outside
    * −2000..6000, a local time without a TimeZone, or one that a clock change skips or repeats.
    * SetUnixTime sets POSIX seconds (UTC, no leap seconds) directly. GetTimeString gives the
-   * instant as ISO 8601 UTC ("2026-06-21T12:00:00Z").
+   * instant as ISO 8601 UTC ("2026-06-21T12:00:00Z"). The strings returned here and by
+   * Get{Sunrise,Transit,Sunset}String are owned by this object and valid until the next call
+   * of the same getter or the next Compute(): copy them to keep them.
    */
   bool SetTime(const char* iso8601);
   void SetUnixTime(double seconds);

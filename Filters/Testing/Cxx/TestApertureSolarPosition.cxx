@@ -352,6 +352,10 @@ void TestSkyTable()
       AP_CHECK_NEAR(at(i, 0, 1)[c], 0.5 * zenith[c], 5e-4 * zenith[c]);
     }
   }
+  // refilled at the same size, the table is modified (the mapper uploads it again only then)
+  const vtkMTimeType filled = table->GetMTime();
+  AP_CHECK(sun->ComputeSkyTable(table, na, ne, nr));
+  AP_CHECK(table->GetMTime() > filled);
 }
 
 // A site grid in a local CRS: no place on the Earth. The place is taken (its height too),
