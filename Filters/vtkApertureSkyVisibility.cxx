@@ -1460,4 +1460,5 @@ void vtkApertureSkyVisibility::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FloatEdgeTruncated: " << this->FloatEdgeTruncated << "\n";
   os << indent << "ElevationArrayName: "
      << (this->ElevationArrayName ? this->ElevationArrayName : "(none)") << "\n";
+  os << indent << "InputAllNodata: " << this->InputAllNodata << "\n";
 }

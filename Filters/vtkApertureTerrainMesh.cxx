@@ -461,6 +461,7 @@ int vtkApertureTerrainMesh::Execute(
   if (st != AP_OK)
   {
     vtkErrorMacro(<< "triangulation: " << ap_status_string(st));
+    output->Initialize(); // (no points without their triangles)
     return 0;
   }
   const vtkIdType quadRows = static_cast<vtkIdType>(ny - 1);
@@ -508,6 +509,7 @@ int vtkApertureTerrainMesh::Execute(
                      "triangle needs: its valid points ("
                   << stats.valid
                   << ") are each isolated among nodata; there is no terrain to mesh");
+    output->Initialize();
     return 0;
   }
   vtkNew<vtkCellArray> polys;
@@ -583,6 +585,7 @@ int vtkApertureTerrainMesh::Execute(
     if (st != AP_OK)
     {
       vtkErrorMacro(<< "normals: " << ap_status_string(st));
+      output->Initialize();
       return 0;
     }
     vtkSMPTools::For(0, static_cast<vtkIdType>(ny), [&](vtkIdType j0, vtkIdType j1) {

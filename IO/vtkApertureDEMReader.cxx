@@ -271,7 +271,13 @@ int vtkApertureDEMReader::RequestInformation(
   Internals& d = *this->Impl;
   d.Valid = false;
   d.UnitSource.clear();
+  // (the facts of a file that fails to open are not the previous file's)
+  d.Driver.clear();
   this->ElevationUnitRead = 0.0;
+  this->RasterSize[0] = this->RasterSize[1] = 0;
+  this->NumberOfBands = this->BandRead = 0;
+  this->HasNoDataValue = false;
+  this->NoDataValue = 0.0;
   std::string error, openWarning;
   DatasetHandle ds;
   if (!Internals::Open(this->FileName, ds, error, &openWarning))
@@ -839,6 +845,7 @@ void vtkApertureDEMReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OverrideCRS: " << (this->OverrideCRS ? this->OverrideCRS : "(none)") << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
   os << indent << "MetresPerElevationUnit: " << this->MetresPerElevationUnit << "\n";
+  os << indent << "DriverName: " << this->Impl->Driver << "\n";
   os << indent << "RasterSize: " << this->RasterSize[0] << ", " << this->RasterSize[1] << "\n";
   os << indent << "NumberOfBands: " << this->NumberOfBands << "\n";
   os << indent << "BandRead: " << this->BandRead << "\n";

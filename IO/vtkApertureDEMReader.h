@@ -142,7 +142,8 @@ public:
 
   ///@{
   /** Facts about the file, valid after UpdateInformation(): GDAL driver short name, raster
-   *  size in full-resolution pixels, band count, the band read, and its nodata value. */
+   *  size in full-resolution pixels, band count, the band read, and its nodata value ("", 0
+   *  and false while no file has been read, or when the last one could not be opened). */
   const char* GetDriverName();
   vtkGetVector2Macro(RasterSize, int);
   vtkGetMacro(NumberOfBands, int);

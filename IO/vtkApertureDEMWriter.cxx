@@ -647,17 +647,18 @@ bool vtkApertureDEMWriter::WriteRows(vtkImageData* input, int j0, int j1)
       const int k = std::min(Tile, fileEnd - r0);
       ok = (d.Type == GDT_Float32 ? writeStrip(stripF, r0, k) : writeStrip(stripD, r0, k)) &&
         GDALFlushRasterCache(hb) == CE_None;
-    }
-    // (progress over the file's rows: those above this strip, then this strip's band by band)
-    const double rows = static_cast<double>(whole[3]) - whole[2] + 1;
-    this->UpdateProgress((static_cast<double>(fileFirst) +
-                           (j1 - j0 + 1.0) * static_cast<double>(b + 1) /
-                             static_cast<double>(d.Bands.size())) /
-      rows);
-    if (ok && this->GetAbortExecute())
-    {
-      vtkErrorMacro(<< "writing '" << d.Path << "' was aborted");
-      return false;
+      // (progress over the file's rows: those above this strip, then this strip's band by
+      // band, each tile row by tile row; a large band is a long write)
+      const double rows = static_cast<double>(whole[3]) - whole[2] + 1;
+      const double done = (static_cast<double>(b) +
+                            static_cast<double>(r0 + k - fileFirst) / (fileEnd - fileFirst)) /
+        static_cast<double>(d.Bands.size());
+      this->UpdateProgress((static_cast<double>(fileFirst) + (j1 - j0 + 1.0) * done) / rows);
+      if (ok && this->GetAbortExecute())
+      {
+        vtkErrorMacro(<< "writing '" << d.Path << "' was aborted");
+        return false;
+      }
     }
   }
   if (!ok)

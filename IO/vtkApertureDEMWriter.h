@@ -133,8 +133,8 @@ public:
    * Each returns 1 on success and 0 after reporting the problem (vtkErrorMacro), except that
    * WriteStrip keeps GDAL's reason for a failed write (a full disk: known only once GDAL gives
    * up) for EndStrips to report; after a failure only EndStrips() or AbandonStrips() is
-   * useful. Progress events run over the rows of `whole`, and AbortExecute is checked after
-   * every band of a strip.
+   * useful. Progress events run over the rows of `whole`, and AbortExecute is checked, after
+   * every tile row (256 rows) of every band.
    */
   int BeginStrips(vtkImageData* image, const int whole[6]);
   int WriteStrip(vtkImageData* strip);

@@ -105,6 +105,11 @@ inline bool vtkApertureStripsComplete(
 template <class Writer>
 int vtkApertureWriteInStrips(Writer* writer, int rows, int multiple, const char* path)
 {
+  if (!path || !*path) // (before the first strip is computed, which may take long)
+  {
+    vtkErrorWithObjectMacro(writer, << "no file name was set");
+    return 0;
+  }
   if (writer->GetNumberOfInputConnections(0) < 1)
   {
     vtkErrorWithObjectMacro(writer, << "no input to write");

@@ -598,6 +598,9 @@ void ExpectError(vtkImageData* dem, const std::string& expected, const char* arr
       errors->GetErrorMessage().c_str());
     ++aptest::Failures();
   }
+  // a failed update leaves an empty mesh, not points without triangles
+  AP_CHECK(mesher->GetOutput()->GetNumberOfPoints() == 0);
+  AP_CHECK(mesher->GetOutput()->GetNumberOfCells() == 0);
 }
 
 // MemoryLimit: a 3 x 3 mesh's estimate, 9 points x (4 + 24 + 12 + 12 + 8) bytes and two

@@ -740,6 +740,17 @@ void TestBadInput()
   ExpectError(tmp + "/small.tif", "is not inside the 4 x 3 raster",
     [](vtkApertureDEMReader* r) { r->SetSubWindow(3, 0, 2, 1); });
   ExpectError("", "no file name was set");
+  {
+    // a file that cannot be opened leaves no facts of the one read before
+    Read rd(tmp + "/small.tif");
+    AP_CHECK(rd.Update() && rd.Ok == 1 && std::string(rd.Reader->GetDriverName()) == "GTiff");
+    AP_CHECK(rd.Reader->GetRasterSize()[0] == 4 && rd.Reader->GetNumberOfBands() == 1);
+    rd.Reader->SetFileName((tmp + "/nothing-here.tif").c_str());
+    rd.Update();
+    AP_CHECK(rd.Ok == 0 && std::string(rd.Reader->GetDriverName()).empty());
+    AP_CHECK(rd.Reader->GetRasterSize()[0] == 0 && rd.Reader->GetNumberOfBands() == 0);
+    AP_CHECK(rd.Reader->GetBandRead() == 0 && !rd.Reader->GetHasNoDataValue());
+  }
 }
 } // namespace
 

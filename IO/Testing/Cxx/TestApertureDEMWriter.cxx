@@ -9,6 +9,8 @@
 #include "vtkApertureDEMWriter.h"
 #include "vtkApertureGeoreference.h"
 
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
@@ -397,7 +399,23 @@ void TestStrips()
     vtkNew<vtkApertureDEMWriter> w;
     w->SetInputData(narrow);
     setup(w, tmp + "/narrow-whole.tif", 0);
+    // progress as each tile row of the band is written (256, 512 and 520 of the 520 rows),
+    // not once the band is done: a large one-band write is long
+    std::vector<double> progress;
+    vtkNew<vtkCallbackCommand> record;
+    record->SetClientData(&progress);
+    record->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+      static_cast<std::vector<double>*>(client)->push_back(*static_cast<double*>(call));
+    });
+    const unsigned long tag = w->AddObserver(vtkCommand::ProgressEvent, record);
     AP_CHECK(w->Write() == 1);
+    w->RemoveObserver(tag);
+    for (const double expected : { 256.0 / 520.0, 512.0 / 520.0, 1.0 })
+    {
+      AP_CHECK(std::any_of(progress.begin(), progress.end(),
+        [&](double v) { return std::fabs(v - expected) < 1e-12; }));
+    }
+    AP_CHECK(std::is_sorted(progress.begin(), progress.end()));
     setup(w, tmp + "/narrow-strips.tif", 1);
     AP_CHECK(w->Write() == 1);
     AP_CHECK(SameContents(tmp + "/narrow-whole.tif", tmp + "/narrow-strips.tif"));
@@ -453,6 +471,20 @@ void TestStrips()
     AP_CHECK(once->Write() == 0); // (Write() at once reports the failure too)
     AP_CHECK_CONTAINS(onceErrors->GetErrorMessage(), "once-aborted.tif' was aborted");
     AP_CHECK(stat(oncePath.c_str(), &sb) != 0);
+  }
+
+  {
+    // no file name: said before a strip is computed (which can take long)
+    vtkNew<vtkApertureDEMWriter> w;
+    source->Modified();
+    source->Requests.clear();
+    w->SetInputConnection(source->GetOutputPort());
+    w->SetStripRows(256);
+    vtkNew<vtkTest::ErrorObserver> errors;
+    w->AddObserver(vtkCommand::ErrorEvent, errors);
+    AP_CHECK(w->Write() == 0);
+    AP_CHECK_CONTAINS(errors->GetErrorMessage(), "no file name was set");
+    AP_CHECK(source->Requests.empty());
   }
 
   // BeginStrips / WriteStrip / EndStrips with strips the caller makes: a strip of 300 rows
