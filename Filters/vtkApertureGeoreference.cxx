@@ -785,7 +785,7 @@ bool vtkApertureGeoreference::GetBoundsLonLat(double bounds[4])
     {
       std::ostringstream msg;
       msg << "the grid's " << (k == 1 ? "south" : "north") << " edge is at latitude "
-          << bounds[k] << ", beyond the " << (k == 1 ? "south" : "north")
+          << bounds[k] << ", beyond the " << (bounds[k] < 0.0 ? "south" : "north")
           << " pole: a wrong origin, cell size or unit?";
       d.Error = msg.str();
       return false;

@@ -805,6 +805,14 @@ int vtkApertureSkyVisibility::Execute(
   const int wrap = WrapColumns(geo, this->MaximumDistance, inExt, wholeExt);
   std::unique_ptr<float[], Free> zWrapped;
   ap_grid_view kernelZ = zview;
+  if (wrap > 0 && static_cast<long>(nx) + 2L * wrap - 1 > AP_HORIZON_MAX_ORIGIN)
+  {
+    vtkErrorMacro(<< "the global DEM's " << nx << " columns and the " << wrap
+                  << " it sweeps again on each side have more than the "
+                  << AP_HORIZON_MAX_ORIGIN + 1 << " a sweep can take; bake a decimated DEM, "
+                  << "or give a MaximumDistance");
+    return 0;
+  }
   if (wrap > 0)
   {
     const int wnx = nx + 2 * wrap;

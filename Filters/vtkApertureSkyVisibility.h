@@ -100,9 +100,10 @@
  * a piece is bit-identical to the whole run there, projected or lat/lon, swept or marched (the
  * tests compare every bit; the sweep measures distances along its lines from the piece's own
  * edge, so a horizon may round its last bit differently: 2 of 5,500 random pieces in a stress
- * test, by 4e-8 rad). The DEM may have at most 10^9 + 1 cells a side (AP_HORIZON_MAX_ORIGIN),
- * and on lat/lon DEMs the lattice takes 32 bytes for each of the whole DEM's rows: a window of a
- * larger grid is refused with the reason.
+ * test, by 4e-8 rad). The DEM may have at most 10^9 + 1 cells a side (AP_HORIZON_MAX_ORIGIN;
+ * a global DEM's columns count with the halo swept again beyond its seam, up to twice them),
+ * and on lat/lon DEMs the lattice takes 32 bytes for each of the whole DEM's rows: a window of
+ * a larger grid is refused with the reason.
  *
  * A piece whose input (its extent and halo) is nodata in every cell, a stretch of sea in a
  * coastal DEM, is no error: its products are nodata (NaN; EdgeTruncated 0, or NaN as float),

@@ -325,7 +325,8 @@ bool vtkApertureSolarPosition::SetTime(const char* iso8601)
 
 void vtkApertureSolarPosition::SetUnixTime(double seconds)
 {
-  this->Impl->HasGivenOffset = false;
+  // (the offset SetTime was given stays the clock of the local day: a series of instants
+  // stepped from one written with +09:00 keeps its days at +09:00)
   if (this->UnixTime != seconds)
   {
     this->UnixTime = seconds;
@@ -348,6 +349,7 @@ bool vtkApertureSolarPosition::SetTimeZone(const char* name)
   {
     d.Zone.reset();
     d.ZoneName.clear();
+    this->Computed = false;
     this->Modified();
     return true;
   }
@@ -366,6 +368,7 @@ bool vtkApertureSolarPosition::SetTimeZone(const char* name)
   d.Zone.reset(zone);
   d.ZoneName = name;
   d.Error.clear();
+  this->Computed = false; // (the local day's events are the next Compute()'s)
   this->Modified();
   return true;
 }

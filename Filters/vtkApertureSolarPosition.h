@@ -66,7 +66,9 @@ public:
    * "±HH:MM", "±HHMM" or "±HH", or by nothing: a local time in TimeZone. False (and the
    * previous time kept) for text that does not parse, an impossible date, a year outside
    * −2000..6000, a local time without a TimeZone, or one that a clock change skips or repeats.
-   * SetUnixTime sets POSIX seconds (UTC, no leap seconds) directly. GetTimeString gives the
+   * SetUnixTime sets POSIX seconds (UTC, no leap seconds) directly, keeping the offset the
+   * last SetTime was given as the clock of the local day (a series stepped from an instant
+   * written with +09:00 keeps its days at +09:00; "Z" sets 0). GetTimeString gives the
    * instant as ISO 8601 UTC ("2026-06-21T12:00:00Z"). The strings returned here and by
    * Get{Sunrise,Transit,Sunset}String are owned by this object and valid until the next call
    * of the same getter or the next Compute(): copy them to keep them.
@@ -83,7 +85,8 @@ public:
    * of sunrise and sunset. nullptr or "" clears it (local times are then rejected, and the day
    * is the UTC day, or the day at the offset SetTime was given). False for an unknown zone or
    * a corrupt zone file, keeping the previous zone. Zones are read from $TZDIR, else
-   * /usr/share/zoneinfo (Debian package tzdata).
+   * /usr/share/zoneinfo (Debian package tzdata). Like a new time, a new zone asks for a new
+   * Compute() (the local day's events change).
    */
   bool SetTimeZone(const char* name);
   const char* GetTimeZone();
@@ -248,8 +251,9 @@ public:
    * DEM (azimuth, elevation and γ): the position is computed exactly on a lattice of at most
    * 17 x 17 cells and interpolated bilinearly between them (the sun's direction changes by a
    * fraction of its angular radius between lattice points, even across a continent). Cells
-   * below the horizon get their direction too (z < 0). Uses the time (UnixTime) and the
-   * atmosphere set here, not the place (each cell is its own). False (GetErrorMessage) when
+   * below the horizon get their direction too (z < 0). Uses the time (UnixTime), the
+   * atmosphere and the Height set here for every cell, not the latitude and longitude (each
+   * cell has its own). False (GetErrorMessage) when
    * the DEM has no georeference or only a local one (no place on the Earth), a lattice point
    * has no geographic coordinates, or the sun's position fails there (a time or atmosphere
    * out of range).

@@ -263,7 +263,9 @@ ap_status ap_sky_radiance(const ap_sky_state *s, const double dir[3], double rgb
 
 /** Caps of a smaller radius (rad; 21″) are taken as their axis by ap_sky_cap: below it the
  *  quadrature's depths lose digits in 1 − cos r faster than the cap's mean departs from the
- *  axis's radiance (4e-8 relative at this radius, 4e-6 at 1e-5; nothing left below 1e-8). */
+ *  axis's radiance (4e-8 relative at this radius, 4e-6 at 1e-5; nothing left below 1e-8).
+ *  A cap that close to the horizon (or, for the irradiance, to the surface's plane) counts as
+ *  wholly on its axis's side of it. */
 #define AP_SKY_POINT_CAP 1e-4
 
 /** Integrals of the sky over the cap of axis `axis` (ENU, any non-zero length) and angular

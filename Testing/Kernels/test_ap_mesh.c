@@ -52,7 +52,7 @@ static void test_full_grid(void)
   AP_CHECK_EQ_INT(ap_mesh_triangulate(&g, tri, 23, &n), AP_ERR_BUFFER_TOO_SMALL);
   AP_CHECK_EQ_INT(n, 0);
   /* A view of 2^60 cells (addressable as floats) has 2^61 triangles, whose ids would take
-   * 2^64.6 bytes: refused before a row is read. */
+   * 2^65.6 bytes: refused before a row is read. */
   g = ap_grid_view_make(z, (size_t)1 << 40, (size_t)1 << 20);
   AP_CHECK_EQ_INT(ap_mesh_triangulate(&g, tri, maxt, &n), AP_ERR_SIZE_OVERFLOW);
   AP_CHECK_EQ_INT(n, 0);

@@ -110,6 +110,9 @@ class CommandLineSunTest(unittest.TestCase):
                                "--lon", 8)
         self.assertIn("at +09:00 is 8.5 h ahead of the solar time at longitude 8.0000",
                       " ".join(out.split()))
+        # (with --tz, an offset in --at does not change the day: only the zone is advised)
+        self.assertIn("for the place's own day give --tz the place's own time zone",
+                      " ".join(out.split()))
 
     def test_time_zones(self):
         summer = self.json_of("--at", "2026-06-21T14:00", "--tz", "Europe/Zurich",
@@ -135,8 +138,16 @@ class CommandLineSunTest(unittest.TestCase):
         r = self.json_of("--at", "2026-06-21T23:30Z", "--tz", "Asia/Tokyo",
                          "--lat", 35.68, "--lon", 139.69)
         self.assertEqual(r["utc_offset"], "+09:00")
-        self.assertTrue(r["sunrise_local"].startswith("2026-06-22T04:25"), r["sunrise_local"])
+        self.assertTrue(r["sunrise_local"].startswith("2026-06-22T04:2"), r["sunrise_local"])
         self.assertTrue(r["sunset_local"].startswith("2026-06-22T19:0"), r["sunset_local"])
+        # A series stepped from an instant written with an offset keeps that clock (no --tz).
+        status, out, err = run("--at", "2026-06-21T12:00+09:00", "--lat", 35.68, "--lon",
+                               139.69, "--days", 1, "--step", 360)
+        self.assertEqual(status, 0, err)
+        rows = [line.split("\t") for line in out.splitlines()[1:]]
+        self.assertEqual([r[1] for r in rows], [
+            "2026-06-21T12:00:00+09:00", "2026-06-21T18:00:00+09:00",
+            "2026-06-22T00:00:00+09:00", "2026-06-22T06:00:00+09:00"])
         # An explicit offset settles it.
         r = self.json_of("--at", "2026-10-25T02:30+01:00", "--tz", "Europe/Zurich",
                          "--lat", 47, "--lon", 8)

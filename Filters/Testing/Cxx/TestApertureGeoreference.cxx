@@ -310,6 +310,10 @@ void TestRowSizesAtPole()
   AP_CHECK(!geo->GetBoundsLonLat(bounds));
   AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
     "the grid's south edge is at latitude -90.05, beyond the south pole");
+  geo->SetGrid(-175.5, 90.125, 9.0, cell, 40, 2); // wholly beyond the north pole
+  AP_CHECK(!geo->GetBoundsLonLat(bounds));
+  AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
+    "the grid's south edge is at latitude 90.1, beyond the north pole");
 }
 
 // A geographic grid may go once around the Earth (360 degrees plus rounding), not more: 40

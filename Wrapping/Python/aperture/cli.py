@@ -1555,11 +1555,13 @@ def _day_order_note(sun, record):
     if record["day_kind"] != "normal" or events[0] < events[1] < events[2]:
         return None
     hours = sun.GetLocalOffset() / 3600.0 - record["longitude_deg"] / 15.0
+    # (with --tz the zone names the day, whatever offset --at is written with)
+    advice = ("give --tz the place's own time zone" if sun.GetTimeZone()
+              else "give --tz with its time zone, or its UTC offset in --at")
     return ("the day of the clock at %s is %.1f h %s of the solar time at longitude %.4f, so "
             "its events are not in the order sunrise, transit, sunset; for the place's own day "
-            "give --tz with its time zone, or its UTC offset in --at" % (
-                record["utc_offset"], abs(hours), "ahead" if hours > 0 else "behind",
-                record["longitude_deg"]))
+            "%s" % (record["utc_offset"], abs(hours), "ahead" if hours > 0 else "behind",
+                    record["longitude_deg"], advice))
 
 
 def _print_sun(record, dem, note=None):
