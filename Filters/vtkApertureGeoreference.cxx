@@ -30,6 +30,13 @@
 vtkStandardNewMacro(vtkApertureGeoreference);
 vtkInformationKeyMacro(vtkApertureGeoreference, CRS_KEY, String);
 
+// Whether a latitude (degrees) lies beyond a pole. A cell edge on a pole comes out a rounding
+// error beyond it (88.025 + 39 * 0.05 + 0.025 = 90.00000000000001): that much is allowed.
+static bool BeyondPole(double latitude)
+{
+  return std::fabs(latitude) - 90.0 > 1e-9;
+}
+
 struct vtkApertureGeoreference::Internals
 {
   OGRSpatialReferenceH CRS = nullptr;
@@ -777,11 +784,11 @@ bool vtkApertureGeoreference::GetBoundsLonLat(double bounds[4])
   bounds[1] = s * d.UnitToDegrees;
   bounds[2] = e * d.UnitToDegrees + d.PrimeMeridianDegrees;
   bounds[3] = n * d.UnitToDegrees;
-  // A geographic grid's coordinates pass through as they are: an edge beyond a pole (with the
-  // rounding slack GetRowCellSizesMetres allows) is no place on the Earth.
+  // A geographic grid's coordinates pass through as they are: an edge beyond a pole is no
+  // place on the Earth.
   for (int k = 1; k < 4; k += 2)
   {
-    if (std::fabs(bounds[k]) - 90.0 > 1e-9)
+    if (BeyondPole(bounds[k]))
     {
       std::ostringstream msg;
       msg << "the grid's " << (k == 1 ? "south" : "north") << " edge is at latitude "
@@ -973,10 +980,9 @@ bool vtkApertureGeoreference::GetRowCellSizesMetres(int first, int count, double
         }
         for (int k = 1; k < 8; k += 2)
         {
-          // A cell edge on a pole comes out a rounding error beyond it (88.025 + 39 * 0.05 +
-          // 0.025 = 90.00000000000001), where GeographicLib gives NaN: clamp that, refuse more.
-          const double beyond = std::fabs(q[k]) - 90.0;
-          if (beyond > 1e-9)
+          // (GeographicLib gives NaN for an edge a rounding error beyond the pole: clamp that,
+          // refuse more)
+          if (BeyondPole(q[k]))
           {
             std::ostringstream msg;
             row(msg, j) << " reaches latitude " << q[k] << ", beyond the pole";

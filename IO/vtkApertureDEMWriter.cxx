@@ -642,14 +642,14 @@ bool vtkApertureDEMWriter::WriteRows(vtkImageData* input, int j0, int j1)
       return GDALRasterIO(hb, GF_Write, 0, r0, nx, k, strip.data(), nx, k, d.Type, 0, 0) ==
         CE_None;
     };
+    // (progress over the file's rows: those above this strip, then this strip's band by band,
+    // each tile row by tile row; a large band is a long write)
+    const double rows = static_cast<double>(whole[3]) - whole[2] + 1;
     for (int r0 = fileFirst; ok && r0 < fileEnd; r0 += Tile)
     {
       const int k = std::min(Tile, fileEnd - r0);
       ok = (d.Type == GDT_Float32 ? writeStrip(stripF, r0, k) : writeStrip(stripD, r0, k)) &&
         GDALFlushRasterCache(hb) == CE_None;
-      // (progress over the file's rows: those above this strip, then this strip's band by
-      // band, each tile row by tile row; a large band is a long write)
-      const double rows = static_cast<double>(whole[3]) - whole[2] + 1;
       const double done = (static_cast<double>(b) +
                             static_cast<double>(r0 + k - fileFirst) / (fileEnd - fileFirst)) /
         static_cast<double>(d.Bands.size());

@@ -311,6 +311,13 @@ void ap_light_params_init(ap_light_params *p)
   p->sky_table_size[0] = p->sky_table_size[1] = p->sky_table_size[2] = 0;
 }
 
+/* The sky table's sizes within their ranges (ap_light_params.sky_table_size). */
+static int sky_table_sizes_ok(const ap_light_params *p)
+{
+  const int na = p->sky_table_size[0], ne = p->sky_table_size[1], nr = p->sky_table_size[2];
+  return na >= 4 && na <= 256 && ne >= 2 && ne <= 256 && nr >= 2 && nr <= 256;
+}
+
 void ap_light_sky_lookup(const ap_light_params *p, const double b[3], double rp, double rgb[3])
 {
   if (!p || !b || !rgb) {
@@ -323,8 +330,8 @@ void ap_light_sky_lookup(const ap_light_params *p, const double b[3], double rp,
     return;
   }
   const int na = p->sky_table_size[0], ne = p->sky_table_size[1], nr = p->sky_table_size[2];
-  if (!isfinite(b[0]) || !isfinite(b[1]) || !isfinite(b[2]) || isnan(rp) || na < 4 ||
-      na > 256 || ne < 2 || ne > 256 || nr < 2 || nr > 256) {
+  if (!isfinite(b[0]) || !isfinite(b[1]) || !isfinite(b[2]) || isnan(rp) ||
+      !sky_table_sizes_ok(p)) {
     set_nan(rgb, 3);
     return;
   }
@@ -382,11 +389,11 @@ ap_status ap_light_params_validate(const ap_light_params *p)
     return AP_ERR_INVALID_ARGUMENT;
   }
   if (p->sky_table) {
-    const int na = p->sky_table_size[0], ne = p->sky_table_size[1], nr = p->sky_table_size[2];
-    if (!(na >= 4 && na <= 256 && ne >= 2 && ne <= 256 && nr >= 2 && nr <= 256)) {
+    if (!sky_table_sizes_ok(p)) {
       return AP_ERR_INVALID_ARGUMENT;
     }
-    const size_t n = (size_t)na * (size_t)ne * (size_t)nr * 3;
+    const size_t n = (size_t)p->sky_table_size[0] * (size_t)p->sky_table_size[1] *
+                     (size_t)p->sky_table_size[2] * 3;
     for (size_t i = 0; i < n; ++i) {
       if (!(isfinite(p->sky_table[i]) && p->sky_table[i] >= 0.0f)) {
         return AP_ERR_INVALID_ARGUMENT;

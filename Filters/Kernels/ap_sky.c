@@ -988,34 +988,26 @@ ap_status ap_sky_cap(const ap_sky_state *s, const double axis[3], double radius,
     return AP_OK;
   }
   if (mean_radiance) {
-    if (radius == 0.0) {
-      sky_rgb(s, a, mean_radiance);
-    } else {
-      double sh = sin(0.5 * radius);
-      double omega = 4.0 * PI * sh * sh;
-      double v[3];
-      double pole[3];
-      region g;
-      v[0] = v[1] = v[2] = 0.0;
-      if (cap_region(s, a, radius, NULL, pole, &g)) {
-        region_integrate(s, sky_rgb, &g, s->rings, s->gl_node, s->gl_weight, s->sectors, v);
-      }
-      for (int i = 0; i < 3; ++i) {
-        mean_radiance[i] = v[i] / omega;
-      }
+    double sh = sin(0.5 * radius);
+    double omega = 4.0 * PI * sh * sh;
+    double v[3];
+    double pole[3];
+    region g;
+    v[0] = v[1] = v[2] = 0.0;
+    if (cap_region(s, a, radius, NULL, pole, &g)) {
+      region_integrate(s, sky_rgb, &g, s->rings, s->gl_node, s->gl_weight, s->sectors, v);
+    }
+    for (int i = 0; i < 3; ++i) {
+      mean_radiance[i] = v[i] / omega;
     }
   }
   if (irradiance) {
-    if (radius == 0.0) {
-      irradiance[0] = irradiance[1] = irradiance[2] = 0.0;
-    } else {
-      double pole[3];
-      region g;
-      irradiance[0] = irradiance[1] = irradiance[2] = 0.0;
-      if (cap_region(s, a, radius, n, pole, &g)) {
-        region_integrate(s, sky_rgb, &g, s->rings, s->gl_node, s->gl_weight, s->sectors,
-                         irradiance);
-      }
+    double pole[3];
+    region g;
+    irradiance[0] = irradiance[1] = irradiance[2] = 0.0;
+    if (cap_region(s, a, radius, n, pole, &g)) {
+      region_integrate(s, sky_rgb, &g, s->rings, s->gl_node, s->gl_weight, s->sectors,
+                       irradiance);
     }
   }
   return AP_OK;

@@ -161,7 +161,8 @@ def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
     cannot be computed (not computed yet)."""
     if view not in VIEWS:
         raise ValueError("view must be one of %s, not %r" % (", ".join(VIEWS), view))
-    for name, value, choices in (("intersection", intersection, ("exact", "smoothstep")),
+    for name, value, choices in (("sky_mode", sky_mode, ("constant", "model")),
+                                 ("intersection", intersection, ("exact", "smoothstep")),
                                  ("lambert", lambert, ("centroid", "exactcap")),
                                  ("shading", shading, ("pixel", "vertex"))):
         if value not in choices:
@@ -187,8 +188,6 @@ def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
         if not sun.ComputeSkyTable(table, 32, 9, 9):
             raise ValueError(sun.GetErrorMessage())
         mapper.SetSkyTable(table, 32, 9, 9)
-    elif sky_mode != "constant":
-        raise ValueError("sky_mode must be constant or model, not %r" % (sky_mode,))
     mapper.SetIntersectionMode(mapper.SMOOTHSTEP if intersection == "smoothstep" else mapper.EXACT)
     mapper.SetLambertMode(mapper.EXACT_CAP if lambert == "exactcap" else mapper.CENTROID)
     if exposure is None:
