@@ -239,7 +239,9 @@ struct vtkApertureSolarPosition::Internals
   int32_t DayOffset(double t) const
   {
     ap_tz_info info;
-    if (this->Zone && ap_tz_lookup(this->Zone.get(), ToInstant(t), &info) == AP_OK)
+    // (|t| < 2^62: ToInstant's conversion to int64 is defined)
+    if (this->Zone && std::fabs(t) < 4.6e18 &&
+      ap_tz_lookup(this->Zone.get(), ToInstant(t), &info) == AP_OK)
     {
       return info.utc_offset;
     }
@@ -731,6 +733,11 @@ double vtkApertureSolarPosition::GetIncidence(double slope, double aspect)
 int vtkApertureSolarPosition::GetLocalOffset()
 {
   return static_cast<int>(this->Impl->DayOffset(this->UnixTime));
+}
+
+int vtkApertureSolarPosition::GetLocalOffsetAt(double unixSeconds)
+{
+  return static_cast<int>(this->Impl->DayOffset(unixSeconds));
 }
 
 const char* vtkApertureSolarPosition::GetSunriseString()

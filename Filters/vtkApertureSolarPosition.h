@@ -227,6 +227,11 @@ public:
    *  the offset SetTime was given, else 0. */
   int GetLocalOffset();
 
+  /** UTC offset (seconds east) of the clock at another instant (POSIX seconds): TimeZone's
+   *  offset then (a sunset after a clock change has the new one), else the offset SetTime was
+   *  given, else 0; the same fallback for a non-finite instant. */
+  int GetLocalOffsetAt(double unixSeconds);
+
   /**
    * Unit vector to the sun (refracted) in the East-North-Up frame at the place: with a DEM,
    * the frame of vtkApertureTerrainMesh's output. (0, 0, 0) before a successful Compute.

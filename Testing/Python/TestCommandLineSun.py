@@ -3,6 +3,7 @@
 keys, local times in IANA zones (daylight saving, skipped and repeated times), a DEM's frame
 (UTM near a zone edge: grid azimuth = azimuth - the closed-form convergence of ALGORITHMS.md 5),
 time series, and one clear error line with status 1 for every bad input."""
+import datetime
 import json
 import math
 import os
@@ -152,6 +153,24 @@ class CommandLineSunTest(unittest.TestCase):
         r = self.json_of("--at", "2026-10-25T02:30+01:00", "--tz", "Europe/Zurich",
                          "--lat", 47, "--lon", 8)
         self.assertEqual(r["time_utc"], "2026-10-25T01:30:00Z")
+        # On the day of a clock change each event is on the clock of its own moment: the
+        # clocks go forward at 01:00Z on 2026-03-29 and back at 01:00Z on 2026-10-25, before
+        # sunrise, so the day's events are at +02:00 from midnight at +01:00, and back.
+        for day, before, after in (("2026-03-29", "+01:00", "+02:00"),
+                                   ("2026-10-25", "+02:00", "+01:00")):
+            r = self.json_of("--at", day + "T00:00", "--tz", "Europe/Zurich",
+                             "--lat", 47, "--lon", 8)
+            self.assertEqual(r["time_local"], day + "T00:00:00" + before)
+            hours = 2 if after == "+02:00" else 1
+            for event in ("sunrise", "transit", "sunset"):
+                utc = datetime.datetime.fromisoformat(r[event].replace("Z", "+00:00"))
+                local = (utc + datetime.timedelta(hours=hours)).strftime("%Y-%m-%dT%H:%M:%S")
+                self.assertEqual(r[event + "_local"], local + after, event)
+            status, out, err = run("--at", day + "T00:00", "--tz", "Europe/Zurich",
+                                   "--lat", 47, "--lon", 8)
+            self.assertEqual(status, 0, err)
+            line = [l for l in out.splitlines() if "local: sunrise" in l][0]
+            self.assertIn("sunrise %s%s" % (r["sunrise_local"][11:19], after), line)
 
     def test_polar(self):
         r = self.json_of("--at", "2025-06-21T22:30Z", "--lat", 69.6492, "--lon", 18.9553)

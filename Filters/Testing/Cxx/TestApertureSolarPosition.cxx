@@ -214,6 +214,14 @@ void TestTimeZones()
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "2026-10-25T00:30:00Z");
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "2026-10-25T01:30:00Z");
   AP_CHECK(std::string(sun->GetTimeString()) == "2026-01-15T13:00:00Z"); // kept
+  // The clock at other instants (a sunset after a clock change): the EU's changes at 01:00 UTC
+  // on the last Sundays of March and October (2026-03-29, 2026-10-25).
+  AP_CHECK(sun->GetLocalOffsetAt(1774746000.0 - 1.0) == 3600);
+  AP_CHECK(sun->GetLocalOffsetAt(1774746000.0) == 7200);
+  AP_CHECK(sun->GetLocalOffsetAt(1792890000.0 - 1.0) == 7200);
+  AP_CHECK(sun->GetLocalOffsetAt(1792890000.0) == 3600);
+  AP_CHECK(sun->GetLocalOffset() == 3600); // (the instant's, 15 January)
+  AP_CHECK(sun->GetLocalOffsetAt(std::nan("")) == 0); // no offset given: UTC
   AP_CHECK(!sun->SetTimeZone("Europe/Atlantis"));
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "unknown");
   AP_CHECK(!sun->SetTimeZone("../../etc/passwd"));
@@ -228,6 +236,10 @@ void TestTimeZones()
   AP_CHECK(tokyo->SetTime("2026-06-21T23:30Z") && tokyo->Compute());
   AP_CHECK(tokyo->GetLocalOffset() == 0);
   AP_CHECK(std::string(tokyo->GetTransitString()).compare(0, 14, "2026-06-21T02:") == 0);
+  AP_CHECK(tokyo->SetTime("2026-06-21T23:30+09:00")); // no zone: the offset given, any time
+  AP_CHECK(tokyo->GetLocalOffsetAt(0.0) == 9 * 3600);
+  AP_CHECK(tokyo->GetLocalOffsetAt(1e300) == 9 * 3600);
+  AP_CHECK(tokyo->SetTime("2026-06-21T23:30Z"));
   AP_CHECK(tokyo->SetTimeZone("Asia/Tokyo") && tokyo->Compute());
   AP_CHECK(tokyo->GetLocalOffset() == 9 * 3600);
   AP_CHECK_CONTAINS(tokyo->GetSunriseString(), "2026-06-21T19:2");

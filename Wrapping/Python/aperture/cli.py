@@ -1490,11 +1490,13 @@ def _offset_text(seconds):
 
 
 def _local_text(sun, unix_seconds):
-    """ISO 8601 local time (to the second) at the sun's local-day offset, or None."""
+    """ISO 8601 local time (to the second) of an instant on the clock of the sun's place: the
+    time zone's offset at that instant (a sunset after a clock change has the new one), else
+    the offset --at was written with; None for no instant."""
     import datetime
     if unix_seconds is None or not math.isfinite(unix_seconds):
         return None
-    offset = sun.GetLocalOffset()
+    offset = sun.GetLocalOffsetAt(unix_seconds)
     tz = datetime.timezone(datetime.timedelta(seconds=offset))
     try:
         when = datetime.datetime.fromtimestamp(round(unix_seconds), tz)
@@ -1597,9 +1599,12 @@ def _print_sun(record, dem, note=None):
     if record["day_kind"] == "normal":
         rows.append(("Day", "sunrise %s, transit %s, sunset %s (local %s)" % (
             record["sunrise"], record["transit"], record["sunset"], record["utc_offset"])))
+        # each event on the clock of its own moment; its offset shown when a clock change
+        # (the day of one) gives it another than the instant's
         rows.append(("", "local: sunrise %s, transit %s, sunset %s" % tuple(
-            (record[k] or "n/a")[11:19] for k in ("sunrise_local", "transit_local",
-                                                  "sunset_local"))))
+            "n/a" if not record[k] else record[k][11:19] if record[k][19:] ==
+            record["utc_offset"] else record[k][11:] for k in ("sunrise_local", "transit_local",
+                                                              "sunset_local"))))
     else:
         rows.append(("Day", "%s: the sun does not %s; transit %s" % (
             record["day_kind"].replace("_", " "),
