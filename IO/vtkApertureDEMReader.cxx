@@ -19,6 +19,7 @@
 #include "ap_grid.h"
 
 #include <cpl_conv.h>
+#include <cpl_string.h>
 #include <cpl_vsi.h>
 #include <gdal.h>
 #include <ogr_srs_api.h>
@@ -139,6 +140,7 @@ void LevelSpan(int w, int size, int full, int level, int& first, int& count)
 struct vtkApertureDEMReader::Internals
 {
   std::string Driver;
+  std::vector<std::string> Files; // GDALGetFileList's
   int Band = 1;
   int Level = -1;               // -1: full resolution, else overview index
   int Window[4] = { 0, 0, 0, 0 }; // x0, y0, columns, rows in pixels of the level
@@ -253,6 +255,20 @@ const char* vtkApertureDEMReader::GetDriverName()
 }
 
 //------------------------------------------------------------------------------
+int vtkApertureDEMReader::GetNumberOfFiles()
+{
+  return static_cast<int>(this->Impl->Files.size());
+}
+
+//------------------------------------------------------------------------------
+const char* vtkApertureDEMReader::GetFile(int index)
+{
+  const std::vector<std::string>& files = this->Impl->Files;
+  return index >= 0 && static_cast<size_t>(index) < files.size() ? files[index].c_str()
+                                                                 : nullptr;
+}
+
+//------------------------------------------------------------------------------
 const char* vtkApertureDEMReader::GetElevationUnitSource()
 {
   return this->Impl->UnitSource.c_str();
@@ -273,6 +289,7 @@ int vtkApertureDEMReader::RequestInformation(
   d.UnitSource.clear();
   // (the facts of a file that fails to open are not the previous file's)
   d.Driver.clear();
+  d.Files.clear();
   this->ElevationUnitRead = 0.0;
   this->RasterSize[0] = this->RasterSize[1] = 0;
   this->NumberOfBands = this->BandRead = 0;
@@ -287,6 +304,14 @@ int vtkApertureDEMReader::RequestInformation(
   }
   const std::string name(this->FileName);
   d.Driver = GDALGetDriverShortName(GDALGetDatasetDriver(ds.H));
+  if (char** files = GDALGetFileList(ds.H))
+  {
+    for (char** f = files; *f; ++f)
+    {
+      d.Files.emplace_back(*f);
+    }
+    CSLDestroy(files);
+  }
   this->RasterSize[0] = GDALGetRasterXSize(ds.H);
   this->RasterSize[1] = GDALGetRasterYSize(ds.H);
   this->NumberOfBands = GDALGetRasterCount(ds.H);

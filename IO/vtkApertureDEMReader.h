@@ -152,6 +152,17 @@ public:
   vtkGetMacro(NoDataValue, double);
   ///@}
 
+  ///@{
+  /** The files GDAL reads for the DEM (GDALGetFileList), valid after UpdateInformation(): the
+   *  file itself first, then a VRT's sources, sidecars (.aux.xml, .ovr, world files), a
+   *  format's other parts; names as GDAL gives them (relative names as given). None when no
+   *  file is open or GDAL lists none (its /vsimem/ datasets may not); GetFile returns null for
+   *  an index out of range. A caller writing next to the DEM checks its outputs against
+   *  these, not just FileName: writing over a VRT's source would change the DEM being read. */
+  int GetNumberOfFiles();
+  const char* GetFile(int index);
+  ///@}
+
 protected:
   vtkApertureDEMReader();
   ~vtkApertureDEMReader() override;

@@ -1356,6 +1356,18 @@ class TestBake(unittest.TestCase):
             self.assertEqual(status, 1, err)
             self.assertEqual(len(err.strip().splitlines()), 1, err)
             self.assertIn(expected, err)
+        # ... nor one of the files GDAL reads for the DEM: a VRT's source (in strips, each
+        # strip read the source again after the first was written over it)
+        vrt = self.path("mine.vrt")
+        gdal.BuildVRT(vrt, [dem]).FlushCache()
+        for args, expected in (
+                ((vrt, dem, "--max-memory", "30M"),
+                 "OUT.tif %s is one of the files the DEM %s reads (%s)" % (dem, vrt, dem)),
+                ((vrt, same, "--exr", link), "--exr %s is one of the files the DEM" % link)):
+            status, _, err = run("bake", *args)
+            self.assertEqual(status, 1, err)
+            self.assertEqual(len(err.strip().splitlines()), 1, err)
+            self.assertIn(expected, err)
         with open(dem, "rb") as f:
             self.assertEqual(f.read(), before)
         self.assertFalse(os.path.exists(same))

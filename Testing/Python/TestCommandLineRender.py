@@ -132,6 +132,23 @@ class TestCommandLineRender(unittest.TestCase):
                 self.assertEqual(status, 1, stderr)
                 self.assertEqual(len(stderr.strip().splitlines()), 1, stderr)
                 self.assertIn(expected, stderr)
+            # an output over a file the DEM reads: a VRT's source
+            from osgeo import gdal
+            sys.path.insert(0, os.path.join(BUILD, "lib", "python3.11", "dist-packages"))
+            import aperture
+            source = os.path.join(tmp, "dem.tif")
+            shutil.copy(aperture.default_dem(), source)
+            vrt = os.path.join(tmp, "dem.vrt")
+            gdal.BuildVRT(vrt, [source]).FlushCache()
+            with open(source, "rb") as f:
+                before = f.read()
+            for lighting in ("aperture", "standard"):  # (baked here, or not)
+                status, _, stderr = run("render", vrt, "-o", source, "--lighting", lighting)
+                self.assertEqual(status, 1, stderr)
+                self.assertIn("--output %s is one of the files the DEM %s reads" % (source, vrt),
+                              stderr)
+            with open(source, "rb") as f:
+                self.assertEqual(f.read(), before)
             status, _, stderr = run("render", "--size", "10x10")
             self.assertEqual(status, 2)
             self.assertIn("width and height must be within 16..16384", stderr)

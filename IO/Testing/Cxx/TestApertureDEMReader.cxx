@@ -741,15 +741,36 @@ void TestBadInput()
     [](vtkApertureDEMReader* r) { r->SetSubWindow(3, 0, 2, 1); });
   ExpectError("", "no file name was set");
   {
+    // The files GDAL reads: a VRT, then its source (which a caller must not write over).
+    AP_CHECK(aptest::WriteText(tmp + "/small.vrt",
+      "<VRTDataset rasterXSize=\"4\" rasterYSize=\"3\">\n"
+      "  <SRS>EPSG:32611</SRS>\n"
+      "  <GeoTransform>500000, 1, 0, 4000000, 0, -1</GeoTransform>\n"
+      "  <VRTRasterBand dataType=\"Float32\" band=\"1\">\n"
+      "    <SimpleSource><SourceFilename relativeToVRT=\"1\">small.tif</SourceFilename>\n"
+      "      <SourceBand>1</SourceBand></SimpleSource>\n"
+      "  </VRTRasterBand>\n"
+      "</VRTDataset>\n"));
+    Read vrt(tmp + "/small.vrt");
+    AP_CHECK(vrt.Reader->GetNumberOfFiles() == 0 && !vrt.Reader->GetFile(0)); // (not yet)
+    vrt.Reader->UpdateInformation();
+    AP_CHECK(vrt.Reader->GetNumberOfFiles() == 2);
+    AP_CHECK(vrt.Reader->GetFile(0) && vrt.Reader->GetFile(0) == tmp + "/small.vrt");
+    AP_CHECK(vrt.Reader->GetFile(1) && vrt.Reader->GetFile(1) == tmp + "/small.tif");
+    AP_CHECK(!vrt.Reader->GetFile(2) && !vrt.Reader->GetFile(-1));
+  }
+  {
     // a file that cannot be opened leaves no facts of the one read before
     Read rd(tmp + "/small.tif");
     AP_CHECK(rd.Update() && rd.Ok == 1 && std::string(rd.Reader->GetDriverName()) == "GTiff");
     AP_CHECK(rd.Reader->GetRasterSize()[0] == 4 && rd.Reader->GetNumberOfBands() == 1);
+    AP_CHECK(rd.Reader->GetNumberOfFiles() == 1 && rd.Reader->GetFile(0) == tmp + "/small.tif");
     rd.Reader->SetFileName((tmp + "/nothing-here.tif").c_str());
     rd.Update();
     AP_CHECK(rd.Ok == 0 && std::string(rd.Reader->GetDriverName()).empty());
     AP_CHECK(rd.Reader->GetRasterSize()[0] == 0 && rd.Reader->GetNumberOfBands() == 0);
     AP_CHECK(rd.Reader->GetBandRead() == 0 && !rd.Reader->GetHasNoDataValue());
+    AP_CHECK(rd.Reader->GetNumberOfFiles() == 0 && !rd.Reader->GetFile(0));
   }
 }
 } // namespace

@@ -210,6 +210,20 @@ def _check_outputs(outputs, inputs):
         taken.append((name, path))
 
 
+def _check_sources(outputs, reader):
+    """Refuse an output that is one of the files GDAL reads for the DEM (after the reader's
+    UpdateInformation): a VRT's sources, a format's other parts, where _check_outputs saw
+    only the DEM's own name (a bake over a VRT's source changed the DEM under its strips).
+    outputs: (option, path) pairs; empty paths skipped."""
+    sources = [reader.GetFile(i) for i in range(reader.GetNumberOfFiles())]
+    for name, path in outputs:
+        for source in sources if path else ():
+            if _same_file(path, source):
+                raise ApertureError("%s %s is %s; choose another name" % (
+                    name, path, "the same file as the DEM" if source == sources[0] else
+                    "one of the files the DEM %s reads (%s)" % (sources[0], source)))
+
+
 def _dem_path(args):
     if args.dem is not None:
         if not args.dem:
@@ -703,6 +717,7 @@ def cmd_render(args):
             getattr(sky, "SetCompute" + name)(name in ("BentNormal", "ApertureRadius"))
         # the aperture of a --srcwin window sees the DEM around it, as bake --srcwin's does
         reader, window, read, _ = _window_reading(args, watcher, sky)
+        _check_sources([("--output", args.output), ("--exr", args.exr)], reader)
         _read(watcher, reader, read)
         _check_render_memory(args, window[1] - window[0] + 1, window[3] - window[2] + 1,
                              True, True)
@@ -711,6 +726,7 @@ def cmd_render(args):
             image = source = watcher.update(sky, "bake", extent=window)
     else:
         reader, image = read_dem(args, watcher)
+        _check_sources([("--output", args.output), ("--exr", args.exr)], reader)
         if args.baked:
             _attach_baked(image, args.baked, reader)
         source = image
@@ -1353,6 +1369,7 @@ def _bake(args, products, progress):
     if args.max_memory is not None:
         sky.SetMemoryLimit(args.max_memory)
     reader, window, read, rows, whole = _plan_bake(args, watcher, sky)
+    _check_sources([("OUT.tif", args.output), ("--exr", args.exr)], reader)
     # whether each update of the sky filter (one, or a strip's) read nodata alone: a part of
     # the DEM may (a window or a strip out at sea); all of it is an error
     nodata = []
