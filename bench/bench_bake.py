@@ -32,9 +32,12 @@ DEMs (made once in --workdir, reused by later runs):
 - ../shared/data/dem/bigtujunga_srtm1_utm11n_30m.tif when present (1197 x 643, 30 m);
 - any --dem given.
 
-On each of these DEMs the contenders run in the order ours, SAGA, GRASS, GRASS, SAGA, ours
-(--comparison-repeats 2, the default), so that a drift of the VM's speed during the comparison
-weighs on all of them alike; the table gives each contender's mean and a note every run.
+On each of these DEMs the contenders run in the order ours, ours on SAGA's job, SAGA, GRASS,
+GRASS, SAGA, ours on SAGA's job, ours (--comparison-repeats 2, the default), so that a drift of
+the VM's speed during the comparison weighs on all of them alike; the table gives each
+contender's mean and a note every run. "Ours on SAGA's job" is the same command with
+`--products SkyViewFactor`: the one band SAGA's run writes, where ours writes nine bands by
+default; SAGA's speed-up is given against both.
 
 Missing peers (Debian packages saga, grass-core) and GNU time are installed with apt-get
 first (as root, or through sudo) unless --no-install.
@@ -81,6 +84,9 @@ DEFAULT_OURS = "{aperture} bake {dem} {out} --directions {directions} {radius_op
 BIGTUJUNGA = os.path.join(REPO, "..", "shared", "data", "dem", "bigtujunga_srtm1_utm11n_30m.tif")
 LATLON = os.path.join(REPO, "..", "shared", "data", "dem", "white_mountains_N44W072_srtm3_geo.tif")
 UTM16N = 32616
+# SAGA's job for ours: the one product SAGA's runs write (SAGA_JOB_LABEL's table rows)
+SAGA_JOB = ("--products", "SkyViewFactor")
+SAGA_JOB_LABEL = "ours, SAGA's output only"
 # messages that mean "this CLI has no such command/option yet", as opposed to a failed run
 NOT_AVAILABLE = ("invalid choice", "unrecognized arguments", "No such file or directory",
                  "command not found", "not found")
@@ -378,11 +384,13 @@ def run_grass(dem, tag, args):
     return res
 
 
-def run_ours(dem, tag, args, radius, threads):
-    """radius None: unlimited (no --radius); threads None: the tool's default."""
-    params = "%d dirs, radius %s, %s" % (
+def run_ours(dem, tag, args, radius, threads, extra=()):
+    """radius None: unlimited (no --radius); threads None: the tool's default; extra: more
+    arguments after the template's (--products)."""
+    params = "%d dirs, radius %s, %s%s" % (
         args.directions, "%g m" % radius if radius else "unlimited",
-        "%d threads" % threads if threads else "default threads")
+        "%d threads" % threads if threads else "default threads",
+        ", " + " ".join(extra) if extra else "")
     if args.ours_unavailable:
         return dict(params=params, wall=None, rss=None, compute=None,
                     status="not available (%s)" % args.ours_unavailable, command=[])
@@ -394,7 +402,7 @@ def run_ours(dem, tag, args, radius, threads):
                   radius="%g" % radius if radius else "",
                   radius_opt="--radius %g" % radius if radius else "",
                   threads=threads or "", threads_opt="--threads %d" % threads if threads else "")
-    cmd = shlex.split(args.ours.format(**fields))
+    cmd = shlex.split(args.ours.format(**fields)) + list(extra)
     res = dict(params=params, wall=None, rss=None, compute=None, command=cmd)
     if not cmd or shutil.which(cmd[0]) is None:
         args.ours_unavailable = "no program %s" % (cmd[0] if cmd else "''")
@@ -490,15 +498,21 @@ def report(rows, args, header, baseline_rss=None, thread_pairs=()):
     # our reference per DEM: the run at the common radius with the default thread count
     ours_ref = {row["dem"]: row for row in rows
                 if row["contender"] == "ours" and row.get("reference") and row["wall"]}
+    # ours doing SAGA's job (SAGA_JOB) on the same DEM, for SAGA's second speed-up
+    same_job = {row["dem"]: row for row in rows
+                if row["contender"] == "ours-svf" and row["status"] == "ok" and row["wall"]}
     for row in rows:
         cells = row["nx"] * row["ny"]
         rate = cells * args.directions / row["wall"] / 1e6 if row["wall"] else None
         speedup = "—"
-        if row["contender"] != "ours" and row["wall"] and row["status"] == "ok":
+        if not row["contender"].startswith("ours") and row["wall"] and row["status"] == "ok":
             ref = ours_ref.get(row["dem"])
             speedup = "%.2f" % (row["wall"] / ref["wall"]) if ref else "n/a"
+            same = same_job.get(row["dem"])
+            if row["contender"] == "saga" and same:
+                speedup += " (%.2f on its output only)" % (row["wall"] / same["wall"])
         per_core = None
-        if row["contender"] == "ours" and row["status"] == "ok" and row["compute"]:
+        if row["contender"].startswith("ours") and row["status"] == "ok" and row["compute"]:
             per_core = (cells * args.directions / row["compute"] / 1e6
                         / (row.get("threads") or os.cpu_count() or 1))
         lines.append("| %s | %d x %d = %.2f M | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
@@ -533,8 +547,10 @@ def report(rows, args, header, baseline_rss=None, thread_pairs=()):
                  "M cell-dirs/s/core: cells x directions / compute s / threads (ours). "
                  "peak RSS: largest process of the command. "
                  "M cell-dirs/s: cells x %d directions / wall. our speed-up: peer wall / our "
-                 "wall on the same DEM (> 1: ours faster; n/a: no successful run of ours on it)."
-                 % args.directions)
+                 "wall on the same DEM (> 1: ours faster; n/a: no successful run of ours on it), "
+                 "ours with its default products (nine bands); for SAGA also against %s "
+                 "(`%s`: the one band SAGA writes, the same job)."
+                 % (args.directions, SAGA_JOB_LABEL, " ".join(SAGA_JOB)))
     return "\n".join(lines) + "\n"
 
 
@@ -578,7 +594,10 @@ def repeat_notes(rows):
              for r in rows if len(r.get("walls") or []) > 1]
     if not parts:
         return []
-    return ["Comparison runs in the order ours, peers, peers, ours on each DEM; the table gives "
+    svf = any(r["contender"] == "ours-svf" for r in rows)
+    order = "ours, ours-svf, peers, peers, ours-svf, ours" if svf else "ours, peers, peers, ours"
+    return ["Comparison runs in the order " + order + " on each DEM"
+            + (" (ours-svf: %s)" % SAGA_JOB_LABEL if svf else "") + "; the table gives "
             "each contender's mean; wall seconds of each run: " + "; ".join(parts) + "."]
 
 
@@ -771,6 +790,10 @@ def main():
         # order, so that a drift of the machine's speed during the comparison weighs on every
         # contender alike; each is reported with the mean of its runs
         contenders = ([] if args.no_ours else [("ours", None, None)]) + peers
+        if not args.no_ours and any(name == "saga" for name, _, _ in peers):
+            # SAGA's job: its one output, SkyViewFactor, as one band (ours writes nine by
+            # default), so the speed-up over SAGA is also measured on the same work
+            contenders.insert(1, ("ours-svf", None, None))
         order = contenders + (contenders[::-1] if args.comparison_repeats > 1 else [])
         runs = {}
         for name, label, fn in order:
@@ -778,14 +801,21 @@ def main():
             if name == "ours":
                 res = run_ours(dem, ours_tag(dem, args.radius, args.threads, n), args,
                                args.radius, args.threads)
+            elif name == "ours-svf":
+                res = run_ours(dem, ours_tag(dem, args.radius, args.threads, n) + "_svf", args,
+                               args.radius, args.threads, SAGA_JOB)
             else:
                 res = fn(dem, tag_of(dem, *(["rep%d" % (n + 1)] if n else [])), args)
-            print("  %-22s run %d: %s %s" % (label or "ours", n + 1,
+            print("  %-22s run %d: %s %s" % (label or name, n + 1,
                                               fmt(res["wall"], "%.2f s"), res["status"]),
                   flush=True)
             runs[name].append(res)
         for name, label, fn in peers:
             record(dem, name, label, merge_runs(runs[name]))
+        if "ours-svf" in runs:
+            record(dem, "ours-svf", SAGA_JOB_LABEL, merge_runs(runs["ours-svf"]),
+                   threads=args.threads, radius=args.radius, series=set(),
+                   directions=args.directions)
         if not args.no_ours:
             ours(dem, args.radius, args.threads,
                  series="cells" if dem == synthetic and scaling_sizes else None,

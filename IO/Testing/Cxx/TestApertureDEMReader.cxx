@@ -724,15 +724,19 @@ void TestBadInput()
 
   // A VRT declaring 10^6 x 10^6 cells: refused before anything is allocated.
   AP_CHECK(aptest::WriteRaster(tmp + "/small.tif", aptest::RasterSpec()));
-  AP_CHECK(aptest::WriteText(tmp + "/huge.vrt",
-    "<VRTDataset rasterXSize=\"1000000\" rasterYSize=\"1000000\">\n"
-    "  <SRS>EPSG:32611</SRS>\n"
-    "  <GeoTransform>500000, 1, 0, 4000000, 0, -1</GeoTransform>\n"
-    "  <VRTRasterBand dataType=\"Float32\" band=\"1\">\n"
-    "    <SimpleSource><SourceFilename relativeToVRT=\"1\">small.tif</SourceFilename>\n"
-    "      <SourceBand>1</SourceBand></SimpleSource>\n"
-    "  </VRTRasterBand>\n"
-    "</VRTDataset>\n"));
+  // (a VRT of nx x ny cells over small.tif)
+  auto smallVrt = [](const char* nx, const char* ny) {
+    return std::string("<VRTDataset rasterXSize=\"") + nx + "\" rasterYSize=\"" + ny +
+      "\">\n"
+      "  <SRS>EPSG:32611</SRS>\n"
+      "  <GeoTransform>500000, 1, 0, 4000000, 0, -1</GeoTransform>\n"
+      "  <VRTRasterBand dataType=\"Float32\" band=\"1\">\n"
+      "    <SimpleSource><SourceFilename relativeToVRT=\"1\">small.tif</SourceFilename>\n"
+      "      <SourceBand>1</SourceBand></SimpleSource>\n"
+      "  </VRTRasterBand>\n"
+      "</VRTDataset>\n";
+  };
+  AP_CHECK(aptest::WriteText(tmp + "/huge.vrt", smallVrt("1000000", "1000000")));
   ExpectError(tmp + "/huge.vrt", "1000000 x 1000000 cells");
   ExpectError(tmp + "/huge.vrt", "3.638 TiB");
   ExpectError(tmp + "/small.tif", "more than the 16 bytes MemoryLimit",
@@ -742,15 +746,7 @@ void TestBadInput()
   ExpectError("", "no file name was set");
   {
     // The files GDAL reads: a VRT, then its source (which a caller must not write over).
-    AP_CHECK(aptest::WriteText(tmp + "/small.vrt",
-      "<VRTDataset rasterXSize=\"4\" rasterYSize=\"3\">\n"
-      "  <SRS>EPSG:32611</SRS>\n"
-      "  <GeoTransform>500000, 1, 0, 4000000, 0, -1</GeoTransform>\n"
-      "  <VRTRasterBand dataType=\"Float32\" band=\"1\">\n"
-      "    <SimpleSource><SourceFilename relativeToVRT=\"1\">small.tif</SourceFilename>\n"
-      "      <SourceBand>1</SourceBand></SimpleSource>\n"
-      "  </VRTRasterBand>\n"
-      "</VRTDataset>\n"));
+    AP_CHECK(aptest::WriteText(tmp + "/small.vrt", smallVrt("4", "3")));
     Read vrt(tmp + "/small.vrt");
     AP_CHECK(vrt.Reader->GetNumberOfFiles() == 0 && !vrt.Reader->GetFile(0)); // (not yet)
     vrt.Reader->UpdateInformation();
