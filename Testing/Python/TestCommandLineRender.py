@@ -127,7 +127,18 @@ class TestCommandLineRender(unittest.TestCase):
                                    (("--radius", "-5"), "--radius must be a positive distance"),
                                    (("--srcwin", "999", "0", "5", "5"),
                                     "--srcwin 999 0 5 5 is not inside the 403 x 344 raster"),
-                                   (("-o", os.path.join(tmp, "no", "x.png")), "does not exist")):
+                                   (("-o", os.path.join(tmp, "no", "x.png")), "does not exist"),
+                                   # options another one makes meaningless, each ignored
+                                   # without a word before
+                                   (("--lighting", "standard", "--albedo", "x.png"),
+                                    "--albedo applies only with --lighting aperture"),
+                                   (("--lighting", "standard", "--sky", "model", "--sun-scale",
+                                     "2", "--turbidity", "3"), "--sun-scale, --sky, --turbidity "
+                                    "apply only with --lighting aperture"),
+                                   (("--baked", "b.tif", "--radius", "100"), "--radius is the "
+                                    "search distance of an aperture baked here"),
+                                   (("--tz", "Europe/Zurich"), "--tz Europe/Zurich needs --at"),
+                                   (("--exr-type", "half"), "--exr-type half needs --exr")):
                 status, stdout, stderr = run("render", *args)
                 self.assertEqual(status, 1, stderr)
                 self.assertEqual(len(stderr.strip().splitlines()), 1, stderr)

@@ -682,9 +682,46 @@ def _check_display():
     x11.XCloseDisplay(display)
 
 
+# render's options that only --lighting aperture uses, with their defaults (the parser's are
+# None, so that an option given with --lighting standard, which would ignore it, is named)
+_APERTURE_LIGHTING_OPTIONS = (
+    ("--radius", "radius", None), ("--baked", "baked", None), ("--albedo", "albedo", None),
+    ("--intersection", "intersection", "exact"), ("--lambert", "lambert", "centroid"),
+    ("--sun-scale", "sun_scale", 1.0), ("--sky", "sky", "constant"),
+    ("--shading", "shading", "pixel"), ("--turbidity", "turbidity", 3.0),
+    ("--linke-turbidity", "linke_turbidity", 3.0))
+
+
+def _render_option_checks(args):
+    """Refuse render options that another one makes meaningless (each would be ignored
+    without a word), then fill in the defaults of the aperture's options."""
+    if args.lighting == "standard":
+        given = [name for name, key, _ in _APERTURE_LIGHTING_OPTIONS
+                 if getattr(args, key) is not None]
+        if given:
+            raise ApertureError("%s %s only with --lighting aperture: VTK's standard lighting "
+                                "draws the elevation colours lit by a white light from the sun's "
+                                "direction" % (", ".join(given),
+                                               "applies" if len(given) == 1 else "apply"))
+    for _, key, default in _APERTURE_LIGHTING_OPTIONS:
+        if getattr(args, key) is None:
+            setattr(args, key, default)
+    if args.baked and args.radius is not None:
+        raise ApertureError("--radius is the search distance of an aperture baked here; --baked "
+                            "reads one baked before (its radius is in its metadata)")
+    if args.tz and not args.at:
+        raise ApertureError("--tz %s needs --at: it is the time zone of a local --at time"
+                            % args.tz)
+    if args.exr_type and not args.exr:
+        raise ApertureError("--exr-type %s needs --exr OUT.exr" % args.exr_type)
+    args.exr_type = args.exr_type or "float"
+
+
 def cmd_render(args):
     from aperture import vtkApertureSkyVisibility, vtkApertureTerrainMesh
     from aperture import scene
+
+    _render_option_checks(args)
 
     _check_outputs([("--output", args.output), ("--exr", args.exr)],
                    [("the DEM", _dem_path(args)), ("--baked", args.baked),
@@ -1946,15 +1983,19 @@ def build_parser():
     p.add_argument("--exr", metavar="OUT.exr",
                    help="also write the linear radiance (W/m2/sr, before exposure and tone "
                         "mapping) as an RGBA OpenEXR read back from a float framebuffer")
-    p.add_argument("--exr-type", choices=("float", "half"), default="float",
+    p.add_argument("--exr-type", choices=("float", "half"), metavar="float|half",
                    help="EXR sample type (default float)")
     p.add_argument("--multisamples", type=int, default=8, metavar="N",
                    help="antialiasing samples per pixel of the PNG, 0..16 (default 8; the EXR "
                         "is always one sample per pixel)")
     p.add_argument("--lighting", choices=("aperture", "standard"), default="aperture",
                    help="aperture: sun and sky through the aperture (default); standard: VTK's "
-                        "lighting with a light from the sun's direction")
-    p.set_defaults(func=cmd_render)
+                        "lighting with a white light from the sun's direction, on the "
+                        "elevation colours (the aperture's, the sky's and the albedo's options "
+                        "do not apply)")
+    # (None: not given; _render_option_checks fills in the defaults the help gives)
+    p.set_defaults(func=cmd_render, intersection=None, lambert=None, sun_scale=None, sky=None,
+                   shading=None, turbidity=None, linke_turbidity=None)
     return parser
 
 
