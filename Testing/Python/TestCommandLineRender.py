@@ -497,7 +497,10 @@ class TestCommandLineRender(unittest.TestCase):
                      lambda ds: ds.SetMetadataItem("SOURCE_ELEVATION_UNIT", "0.3048 m (--zfactor)"),
                      "was baked from elevations in units of 0.3048 m (--zfactor); the DEM is read "
                      "in units of 1 m (none in the file: metres): render with the bake's "
-                     "--zfactor")):
+                     "--zfactor"),
+                    ("band2.tif", lambda ds: ds.SetMetadataItem("SOURCE_BAND", "2"),
+                     "was baked from band 2 of its DEM; this DEM is read from band 1: render "
+                     "with the bake's --band")):
                 other = os.path.join(tmp, name)
                 ds = gdal.GetDriverByName("GTiff").CreateCopy(other, gdal.Open(baked))
                 change(ds)
@@ -513,6 +516,19 @@ class TestCommandLineRender(unittest.TestCase):
                                     "--zfactor", "ft")
             self.assertEqual(status, 0, stderr)
             src = None
+            # a damaged bake (cut short, uncompressed: its header whole, its tiles missing):
+            # GDAL's message, not a traceback
+            whole = os.path.join(tmp, "whole.tif")
+            status, _, stderr = run("bake", dem, whole, "-q", "--compress", "NONE")
+            self.assertEqual(status, 0, stderr)
+            cut = os.path.join(tmp, "cut.tif")
+            with open(whole, "rb") as f, open(cut, "wb") as g:
+                g.write(f.read(os.path.getsize(whole) // 3))
+            status, _, stderr = run("render", "-o", os.path.join(tmp, "x.png"), "--size",
+                                    "200x120", "--baked", cut)
+            self.assertEqual(status, 1, stderr)
+            self.assertEqual(len(stderr.strip().splitlines()), 1, stderr)
+            self.assertIn("cannot read the baked file %s: " % cut, stderr)
 
 
 if __name__ == "__main__":

@@ -514,10 +514,8 @@ def _gt_text(gt):
 
 def _attach_baked(image, path, reader):
     """Put BentNormal and ApertureRadius (radians) from a GeoTIFF of `aperture bake` onto the
-    DEM image (read by `reader`); the two grids and elevation units must be the same."""
-    import numpy as np
+    DEM image (read by `reader`); the two grids, bands and elevation units must be the same."""
     from osgeo import gdal
-    from vtkmodules.util.numpy_support import numpy_to_vtk
     gdal.UseExceptions()
     kind = _file_kind(os.stat(path).st_mode) if os.path.exists(path) else None
     if kind in ("a pipe", "a socket") and not path.startswith("/vsi"):
@@ -525,8 +523,19 @@ def _attach_baked(image, path, reader):
         raise ApertureError("cannot read the baked file %s: it is %s, not a file" % (path, kind))
     try:
         ds = gdal.Open(path)
-    except RuntimeError as e:
+        _attach_baked_bands(image, path, ds, reader)
+    except ApertureError:  # (a RuntimeError too: said as it is)
+        raise
+    except RuntimeError as e:  # (a damaged file: GDAL's message)
         raise ApertureError("cannot read the baked file %s: %s" % (path, e))
+    finally:
+        ds = None
+
+
+def _attach_baked_bands(image, path, ds, reader):
+    """_attach_baked's checks and copies, from the open dataset `ds`."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import numpy_to_vtk
     bands = {ds.GetRasterBand(b).GetDescription(): b for b in range(1, ds.RasterCount + 1)}
     need = ["BentNormal_E", "BentNormal_N", "BentNormal_U", "ApertureRadius"]
     missing = [n for n in need if n not in bands]
@@ -559,6 +568,12 @@ def _attach_baked(image, path, reader):
             raise ApertureError("%s is in another CRS (%s) than the DEM (%s): bake this DEM"
                                 % (path, baked_srs.GetName() if baked_srs else "none",
                                    dem_srs.GetName()))
+    # nor from another band of the DEM (bakes since SOURCE_BAND was recorded)
+    baked_band = ds.GetMetadataItem("SOURCE_BAND")
+    if baked_band and baked_band != str(reader.GetBandRead()):
+        raise ApertureError("%s was baked from band %s of its DEM; this DEM is read from band %d: "
+                            "render with the bake's --band" % (path, baked_band,
+                                                              reader.GetBandRead()))
     # nor are the same cells the same terrain when their heights were read in another unit
     # (bakes since SOURCE_ELEVATION_UNIT was recorded, as _elevation_unit writes it)
     baked_unit = ds.GetMetadataItem("SOURCE_ELEVATION_UNIT") or ""
@@ -579,7 +594,6 @@ def _attach_baked(image, path, reader):
         array = numpy_to_vtk(np.ascontiguousarray(values), deep=1)
         array.SetName(name)
         image.GetPointData().AddArray(array)
-    ds = None
 
 
 def _render_sun(args, image, watcher):
