@@ -612,11 +612,24 @@ class TestBake(unittest.TestCase):
                          "--overview, or bake fewer --products")
         self.assertFalse(os.path.exists(self.path("strips-refused.tif")))
         self.assertFalse(os.path.exists(self.path("strips-refused.exr")))
-        for bad in ("0", "-3M", "lots", "1e3"):
+        for bad in ("0", "-3M", "lots", "1e3", "B", "1BB"):
             status, _, err = run("bake", dem, self.path("strips-refused.tif"),
                                  "--max-memory=" + bad)
             self.assertEqual(status, 2, err)
-            self.assertIn("is not a size (512, 300K, 1.5G, 2T)", err)
+            self.assertIn("is not a size (512, 300K, 1.5G, 2T, 4096B)", err)
+        # B alone is bytes (it was taken as MiB), a bare number MiB
+        for size, said in (("100B", "100 bytes"), ("3", "3.000 MiB"), ("2KiB", "2.000 KiB")):
+            status, _, err = run("bake", dem, self.path("strips-refused.tif"), *options,
+                                 "--max-memory", size)
+            self.assertEqual(status, 1, err)
+            self.assertIn("more than --max-memory %s," % said, err)
+        # integers beyond a C int: a usage error, not an OverflowError from a setter
+        for option in ("--threads", "--compress-level", "--band", "--decimate", "--overview"):
+            status, _, err = run("bake", dem, self.path("strips-refused.tif"), option,
+                                 "99999999999")
+            self.assertEqual(status, 2, err)
+            self.assertIn("99999999999 is out of range (at most 2147483647)", err)
+            self.assertNotIn("Traceback", err)
 
     def test_global_dem(self):
         # A global lat/lon DEM (720 columns of 0.5 degree, 75 S to 75 N): its east and west

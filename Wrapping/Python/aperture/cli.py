@@ -48,15 +48,15 @@ def _add_read_options(parser, dem_required=False, srcwin_help=None, dem_option=N
     else:
         g.add_argument("dem", nargs="?", metavar="DEM",
                        help="elevation raster (default: the embedded Jacksboro DEM)")
-    g.add_argument("--band", "-b", type=int, metavar="N",
+    g.add_argument("--band", "-b", type=_c_int, metavar="N",
                    help="1-based band to read (default: band 1, with a note if there are more)")
-    g.add_argument("--srcwin", type=int, nargs=4, metavar=("XOFF", "YOFF", "XSIZE", "YSIZE"),
+    g.add_argument("--srcwin", type=_c_int, nargs=4, metavar=("XOFF", "YOFF", "XSIZE", "YSIZE"),
                    help=(srcwin_help or "read only this window, in pixels from the top-left "
                                         "corner (as gdal_translate -srcwin)") +
                    "; a size of 0 reaches the raster's edge")
-    g.add_argument("--overview", type=int, default=_READ_DEFAULTS["overview"], metavar="K",
+    g.add_argument("--overview", type=_c_int, default=_READ_DEFAULTS["overview"], metavar="K",
                    help="read GDAL overview level K (0-based) instead of full resolution")
-    g.add_argument("--decimate", type=int, default=_READ_DEFAULTS["decimate"], metavar="F",
+    g.add_argument("--decimate", type=_c_int, default=_READ_DEFAULTS["decimate"], metavar="F",
                    help="average F x F blocks of cells (nodata ignored), aligned to the "
                         "raster's top-left corner (a --srcwin gets every block it touches)")
     g.add_argument("--srs", metavar="CRS",
@@ -500,12 +500,28 @@ def _parse_size(text):
 
 
 def _memory_size(text):
-    """Bytes from '512' (MiB), '300K', '1.5G', '2TiB' (powers of 1024)."""
-    m = re.match(r"^\s*(\d+(?:\.\d*)?|\.\d+)\s*([KMGT]?)(?:I?B)?\s*$", text, re.IGNORECASE)
-    value = float(m.group(1)) * 1024 ** " KMGT".index(m.group(2).upper() or "M") if m else 0.0
+    """Bytes from '512' (MiB), '300K', '1.5G', '2TiB' (powers of 1024), '4096B' (bytes)."""
+    m = re.match(r"^\s*(\d+(?:\.\d*)?|\.\d+)\s*(?:([KMGT])I?B?|(B))?\s*$", text,
+                 re.IGNORECASE)
+    value = 0.0
+    if m:
+        unit = (m.group(2) or "").upper() or ("B" if m.group(3) else "M")
+        value = float(m.group(1)) * 1024 ** "BKMGT".index(unit)
     if not (1 <= value < 2 ** 62):
-        raise argparse.ArgumentTypeError("%r is not a size (512, 300K, 1.5G, 2T)" % text)
+        raise argparse.ArgumentTypeError("%r is not a size (512, 300K, 1.5G, 2T, 4096B)" % text)
     return int(value)
+
+
+def _c_int(text):
+    """An integer option that the filters take as a C int: beyond one, a usage error naming
+    the limit (not an OverflowError from the setter)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError("invalid int value: %r" % text)
+    if not -2 ** 31 <= value < 2 ** 31:
+        raise argparse.ArgumentTypeError("%s is out of range (at most %d)" % (text, 2 ** 31 - 1))
+    return value
 
 
 def _gt_text(gt):
@@ -1832,8 +1848,8 @@ def build_parser():
                         "once on any size")
     p.add_argument("--max-memory", type=_memory_size, metavar="SIZE",
                    help="most memory for the elevations read at once: a number of MiB, or "
-                        "with K, M, G or T (default 256 MiB); they are read in strips of rows "
-                        "that fit, so a DEM larger than memory is described too")
+                        "with K, M, G, T or B (bytes) (default 256 MiB); they are read in "
+                        "strips of rows that fit, so a DEM larger than memory is described too")
     p.set_defaults(func=cmd_info)
 
     p = sub.add_parser("bake", help="horizons, sky-view factors, bent normals -> GeoTIFF/EXR",
@@ -1846,7 +1862,7 @@ def build_parser():
         "-srcwin); their horizons still see the DEM around the window (within --radius; "
         "without one all of it is read), so the windows of a DEM tile its whole bake exactly"))
     p.add_argument("output", metavar="OUT.tif", help="GeoTIFF to write")
-    p.add_argument("--directions", "-d", type=int, default=32, metavar="D",
+    p.add_argument("--directions", "-d", type=_c_int, default=32, metavar="D",
                    help="azimuth sectors, 4..360 (default 32)")
     p.add_argument("--radius", type=float, metavar="METRES",
                    help="search distance in metres (default: unlimited); up to 64 cells "
@@ -1857,7 +1873,7 @@ def build_parser():
                    help="flat Earth (default: curvature with refraction)")
     p.add_argument("--refraction", type=float, default=0.13, metavar="K",
                    help="refraction coefficient (default 0.13)")
-    p.add_argument("--threads", type=int, default=0, metavar="N",
+    p.add_argument("--threads", type=_c_int, default=0, metavar="N",
                    help="threads for the sweep and for compressing the GeoTIFF and EXR "
                         "(default 0: all cores, or those a CPU affinity or a container's CPU "
                         "quota allows, which also cap larger values); results and file "
@@ -1873,17 +1889,17 @@ def build_parser():
     p.add_argument("--compress", default="DEFLATE", metavar="CODEC",
                    help="GeoTIFF compression, lossless: DEFLATE (default), ZSTD, LZW, LZMA, "
                         "PACKBITS, LERC, LERC_DEFLATE, LERC_ZSTD, NONE")
-    p.add_argument("--compress-level", type=int, default=1, metavar="N",
+    p.add_argument("--compress-level", type=_c_int, default=1, metavar="N",
                    help="compression level: DEFLATE 1-12, ZSTD 1-22; -1: GDAL's default "
                         "(default 1, the fastest: float bands shrink under 1%% more at 6)")
     p.add_argument("--max-memory", type=_memory_size, metavar="SIZE",
                    help="most memory for the products and the sweep's state, beside the DEM's "
-                        "elevations (4 bytes a cell): a number of MiB, or with K, M, G or T "
-                        "(default: the machine's physical memory, or a control group's memory "
-                        "limit less 128 MiB where lower, as in a container, less the "
-                        "elevations); a bake that needs more is written in strips of rows that "
-                        "fit, with the same results")
-    p.add_argument("--near-field", type=int, default=0, metavar="K",
+                        "elevations (4 bytes a cell): a number of MiB, or with K, M, G, T or "
+                        "B (bytes) (default: the machine's physical memory, or a control "
+                        "group's memory limit less 128 MiB where lower, as in a container, "
+                        "less the elevations); a bake that needs more is written in strips of "
+                        "rows that fit, with the same results")
+    p.add_argument("--near-field", type=_c_int, default=0, metavar="K",
                    help="columns of each cell's ray evaluated exactly, 1..64 (default 0: 32 "
                         "where the horizon sweep runs, 8 where rays are sampled at every "
                         "column)")
@@ -1922,7 +1938,7 @@ def build_parser():
     _add_atmosphere_options(p)
     p.add_argument("--delta-t", type=float, metavar="S",
                    help="TT - UT1 in seconds (default: estimated for the date)")
-    p.add_argument("--days", type=int, metavar="N",
+    p.add_argument("--days", type=_c_int, metavar="N",
                    help="a time series from --at over N days (default 1 with --step)")
     p.add_argument("--step", type=float, metavar="MIN",
                    help="time-series step in minutes, at least 1/60 (default 60 with --days); "
@@ -1999,7 +2015,7 @@ def build_parser():
                         "mapping) as an RGBA OpenEXR read back from a float framebuffer")
     p.add_argument("--exr-type", choices=("float", "half"), metavar="float|half",
                    help="EXR sample type (default float)")
-    p.add_argument("--multisamples", type=int, default=8, metavar="N",
+    p.add_argument("--multisamples", type=_c_int, default=8, metavar="N",
                    help="antialiasing samples per pixel of the PNG, 0..16 (default 8; the EXR "
                         "is always one sample per pixel)")
     p.add_argument("--lighting", choices=("aperture", "standard"), default="aperture",
