@@ -293,6 +293,13 @@ class TestInfo(CommandLineTest):
         self.assertEqual(d["nodata_count"], 2)
         self.assertEqual(d["nodata_value"], -9999)
         self.assertEqual(d["elevation_range"], [1.0, 419.0])
+        # JSON has no infinity: a nodata value of -inf is a string, as NaN's is (it was a
+        # ValueError traceback)
+        rows[rows == -9999] = -np.inf
+        p = make_raster(self.path("inf.tif"), rows,
+                        (500000 - 10.5 * 30, 30, 0, 4000000, 0, -30), nodata=-np.inf)
+        d, _ = self.info(p)
+        self.assertEqual((d["nodata_value"], d["nodata_count"]), ("-inf", 2))
 
     def test_formats(self):
         # The same terrain as Arc/Info ASCII grid (+ .prj), SRTM .hgt and DTED level 0.

@@ -378,10 +378,11 @@ def describe(reader, watcher):
         "elevation_unit_m": reader.GetElevationUnitRead(),
         "elevation_unit_source": _as_options(reader.GetElevationUnitSource()),
         "nodata_count": None,
-        # JSON has no NaN: a NaN nodata value is reported as the string "nan".
+        # JSON has no NaN or infinity: such a nodata value is reported as the string "nan",
+        # "inf" or "-inf" (a float32 band's 1e308 is infinity too)
         "nodata_value": (None if not reader.GetHasNoDataValue()
-                         else "nan" if math.isnan(reader.GetNoDataValue())
-                         else reader.GetNoDataValue()),
+                         else reader.GetNoDataValue() if math.isfinite(reader.GetNoDataValue())
+                         else repr(reader.GetNoDataValue())),
     }, geo, whole
 
 
