@@ -208,6 +208,18 @@ bool vtkApertureDEMWriter::CheckCompression()
 }
 
 //------------------------------------------------------------------------------
+bool vtkApertureDEMWriter::HasCompressionLevel(const char* codec)
+{
+  std::string name = codec ? codec : "";
+  for (char& ch : name)
+  {
+    ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  }
+  return std::any_of(std::begin(levelOptions), std::end(levelOptions),
+    [&name](const CompressionLevelOption& lo) { return name == lo.Codec; });
+}
+
+//------------------------------------------------------------------------------
 void* vtkApertureDEMWriter::CheckCompression(std::string& codec, const char*& levelOption)
 {
   GDALAllRegister();

@@ -86,6 +86,10 @@ public:
    * to fail early. */
   bool CheckCompression();
 
+  /** Whether a GeoTIFF codec (case ignored) has levels that CompressionLevel sets: DEFLATE,
+   *  ZSTD and LZMA; false for the others and for null. */
+  static bool HasCompressionLevel(const char* codec);
+
   ///@{
   /** Threads compressing tiles (GDAL's NUM_THREADS): 0 (default) = all the cores this
    *  process may use (vtkApertureSkyVisibility::GetUsableCores), 1 = on the writing thread

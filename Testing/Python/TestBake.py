@@ -851,7 +851,13 @@ class TestBake(unittest.TestCase):
                 (("--products", "Slope"), "unknown product 'Slope'"),
                 (("--compress", "FOO"), "unknown GeoTIFF compression 'FOO'"),
                 (("--compress", "JPEG"), "'JPEG' cannot store floating-point bands"),
-                (("--compress-level", "13"), "outside DEFLATE's range 1-12")):
+                (("--compress-level", "13"), "outside DEFLATE's range 1-12"),
+                # (ignored before without a word)
+                (("--compress", "LZW", "--compress-level", "9"), "--compress-level applies to "
+                 "DEFLATE, ZSTD and LZMA, which have levels, not to --compress LZW"),
+                (("--compress", ""), "--compress is empty"),  # (wrote an uncompressed file)
+                (("--exr", ""), "--exr is empty"),
+                (("--srs", ""), "--srs is empty")):
             status, stdout, err = run("bake", self.dem, out, *args)
             self.assertEqual(status, 1, err)
             self.assertEqual(len(err.strip().splitlines()), 1, err)
@@ -867,6 +873,12 @@ class TestBake(unittest.TestCase):
         self.assertIn("no coordinate reference system", err)
         status, _, err = run("bake", self.dem)
         self.assertEqual(status, 2)
+        status, _, err = run("bake", self.dem, "")
+        self.assertEqual((status, err), (1, "aperture: error: the output name OUT.tif is empty\n"))
+        # an EXR under another name is written, with a warning
+        status, _, err = run("bake", self.dem, out, "--radius", "300", "--exr", out + ".png")
+        self.assertEqual(status, 0, err)
+        self.assertIn("warning: %s.png is written as an OpenEXR file" % out, err)
 
     def test_interrupt_in_a_start_event(self):
         # A Ctrl-C that Python handles in a StartEvent observer (the bake counts its strips in

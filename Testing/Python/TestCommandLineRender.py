@@ -138,7 +138,11 @@ class TestCommandLineRender(unittest.TestCase):
                                    (("--baked", "b.tif", "--radius", "100"), "--radius is the "
                                     "search distance of an aperture baked here"),
                                    (("--tz", "Europe/Zurich"), "--tz Europe/Zurich needs --at"),
-                                   (("--exr-type", "half"), "--exr-type half needs --exr")):
+                                   (("--exr-type", "half"), "--exr-type half needs --exr"),
+                                   (("--exposure", "1e308"), "--exposure must be within -30..30"),
+                                   (("-o", ""), "--output is empty"),
+                                   (("--albedo", ""), "--albedo is empty"),
+                                   (("--baked", ""), "--baked is empty")):
                 status, stdout, stderr = run("render", *args)
                 self.assertEqual(status, 1, stderr)
                 self.assertEqual(len(stderr.strip().splitlines()), 1, stderr)
@@ -164,7 +168,8 @@ class TestCommandLineRender(unittest.TestCase):
             self.assertEqual(status, 2)
             self.assertIn("width and height must be within 16..16384", stderr)
             for camera, expected in (("10", "expected AZ,EL"), ("0,2", "within 5..90"),
-                                     ("0,30,-1", "zoom must be positive")):
+                                     ("0,30,-1", "zoom must be positive"),
+                                     ("0,30,1e308", "zoom must be within 0.001..10000")):
                 status, _, stderr = run("render", "--camera", camera)
                 self.assertEqual(status, 2, stderr)
                 self.assertIn(expected, stderr)

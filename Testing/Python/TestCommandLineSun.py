@@ -172,6 +172,18 @@ class CommandLineSunTest(unittest.TestCase):
             line = [l for l in out.splitlines() if "local: sunrise" in l][0]
             self.assertIn("sunrise %s%s" % (r["sunrise_local"][11:19], after), line)
 
+    def test_rounding_and_delta_t(self):
+        # half a second rounds up in the local time as in the UTC one (it went to even)
+        status, out, err = run("--at", "2026-06-21T12:00:00.5Z", "--lat", 47, "--lon", 8)
+        self.assertEqual(status, 0, err)
+        self.assertIn("Time:        2026-06-21T12:00:01Z (local 2026-06-21T12:00:01+00:00)", out)
+        # --delta-t nan was the estimate, without a word
+        status, _, err = run("--at", "2026-06-21T12:00Z", "--lat", 47, "--lon", 8,
+                             "--delta-t", "nan")
+        self.assertEqual((status, err.strip()), (1, "aperture: error: --delta-t must be a "
+                                                    "number of seconds; leave it out for the "
+                                                    "estimate"))
+
     def test_polar(self):
         r = self.json_of("--at", "2025-06-21T22:30Z", "--lat", 69.6492, "--lon", 18.9553)
         self.assertEqual(r["day_kind"], "polar_day")

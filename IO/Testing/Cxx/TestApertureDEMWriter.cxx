@@ -683,6 +683,15 @@ void TestErrors()
     AP_CHECK_CONTAINS(errors->GetErrorMessage(), "ZSTD");
     w->SetCompression("zstd");
     AP_CHECK(w->CheckCompression());
+    // the codecs whose level CompressionLevel sets (the others ignore it)
+    AP_CHECK(vtkApertureDEMWriter::HasCompressionLevel("DEFLATE"));
+    AP_CHECK(vtkApertureDEMWriter::HasCompressionLevel("zstd"));
+    AP_CHECK(vtkApertureDEMWriter::HasCompressionLevel("Lzma"));
+    AP_CHECK(!vtkApertureDEMWriter::HasCompressionLevel("LZW"));
+    AP_CHECK(!vtkApertureDEMWriter::HasCompressionLevel("NONE"));
+    AP_CHECK(!vtkApertureDEMWriter::HasCompressionLevel("LERC_DEFLATE"));
+    AP_CHECK(!vtkApertureDEMWriter::HasCompressionLevel(""));
+    AP_CHECK(!vtkApertureDEMWriter::HasCompressionLevel(nullptr));
   }
   // No file there (a pipe, a folder, a device): GDAL would fail writing it, and the writer then
   // removed what it had tried to write, /dev/null for a root bake to /dev/null. Uncompressed

@@ -210,6 +210,12 @@ def _check_outputs(outputs, inputs):
         taken.append((name, path))
 
 
+def _warn_extension(path, extensions, kind):
+    """A warning for an output whose name's extension says another format than it gets."""
+    if path and os.path.splitext(path)[1].lower() not in extensions:
+        _warn("%s is written as %s" % (path, kind))
+
+
 def _check_sources(outputs, reader):
     """Refuse an output that is one of the files GDAL reads for the DEM (after the reader's
     UpdateInformation): a VRT's sources, a format's other parts, where _check_outputs saw
@@ -757,6 +763,8 @@ def cmd_render(args):
     _check_outputs([("--output", args.output), ("--exr", args.exr)],
                    [("the DEM", _dem_path(args)), ("--baked", args.baked),
                     ("--albedo", args.albedo)])
+    _warn_extension(args.output, (".png",), "a PNG")
+    _warn_extension(args.exr, (".exr",), "an OpenEXR file")
     if not os.environ.get("DISPLAY"):
         raise ApertureError("rendering needs an X display (VTK on Debian renders through GLX); "
                             "run under xvfb-run -a")
@@ -767,8 +775,9 @@ def cmd_render(args):
         raise ApertureError("--multisamples must be within 0..16")
     if not (args.sun_scale > 0 and math.isfinite(args.sun_scale)):
         raise ApertureError("--sun-scale must be a positive factor")
-    if args.exposure is not None and not math.isfinite(args.exposure):
-        raise ApertureError("--exposure must be a number of EV")
+    if args.exposure is not None and not -30.0 <= args.exposure <= 30.0:
+        # (the mapper clamps to this range: 2^30 is already a billion times)
+        raise ApertureError("--exposure must be within -30..30 EV")
     if args.albedo and not os.path.isfile(args.albedo):
         raise ApertureError("the albedo image %s %s" % (args.albedo, "does not exist" if not
                             os.path.exists(args.albedo) else "is %s, not a file"
@@ -1372,8 +1381,8 @@ def cmd_bake(args):
     if ext == ".exr":
         raise ApertureError("OUT.tif %s is written as a GeoTIFF; name it .tif and give --exr %s "
                             "for the EXR" % (args.output, args.output))
-    if ext not in (".tif", ".tiff", ".gtiff"):
-        _warn("%s is written as a GeoTIFF" % args.output)
+    _warn_extension(args.output, (".tif", ".tiff", ".gtiff"), "a GeoTIFF")
+    _warn_extension(args.exr, (".exr",), "an OpenEXR file")
 
     progress = None if args.quiet or not sys.stderr.isatty() else _TermProgress(sys.stderr)
     try:
@@ -1419,6 +1428,11 @@ def _bake(args, products, progress):
     watcher = Watcher(on_warning=warn_once)
     writer = watcher.watch(vtkApertureDEMWriter())
     writer.SetCompression(args.compress)
+    if args.compress_level is None:
+        args.compress_level = 1
+    elif not vtkApertureDEMWriter.HasCompressionLevel(args.compress):
+        raise ApertureError("--compress-level applies to DEFLATE, ZSTD and LZMA, which have "
+                            "levels, not to --compress %s" % args.compress)
     writer.SetCompressionLevel(args.compress_level)
     writer.CheckCompression()  # before the sweep, not after it
     watcher.check("--compress %s --compress-level %d" % (args.compress, args.compress_level))
@@ -1584,7 +1598,8 @@ def _local_text(sun, unix_seconds):
     offset = sun.GetLocalOffsetAt(unix_seconds)
     tz = datetime.timezone(datetime.timedelta(seconds=offset))
     try:
-        when = datetime.datetime.fromtimestamp(round(unix_seconds), tz)
+        # (half a second up, as the UTC strings round: Python's round() goes to even)
+        when = datetime.datetime.fromtimestamp(math.floor(unix_seconds + 0.5), tz)
     except (OverflowError, OSError, ValueError):
         return None  # outside Python's years 1..9999: the UTC string is still given
     return when.isoformat()
@@ -1744,6 +1759,9 @@ def cmd_sun(args):
     sun.SetTurbidity(args.turbidity)
     sun.SetLinkeTurbidity(args.linke_turbidity)
     if args.delta_t is not None:
+        if not math.isfinite(args.delta_t):  # (NaN is the estimate's value in the filter)
+            raise ApertureError("--delta-t must be a number of seconds; leave it out for the "
+                                "estimate")
         sun.SetDeltaT(args.delta_t)
     watcher.errors.clear()
 
@@ -1814,6 +1832,9 @@ def _parse_camera(text):
         raise argparse.ArgumentTypeError("the camera elevation must be within 5..90 degrees")
     if len(values) == 3 and not values[2] > 0:
         raise argparse.ArgumentTypeError("the zoom must be positive")
+    if len(values) == 3 and not 1e-3 <= values[2] <= 1e4:
+        # (beyond, the camera's clipping range loses the terrain: a blank picture)
+        raise argparse.ArgumentTypeError("the zoom must be within 0.001..10000")
     return tuple(values) if len(values) == 3 else (values[0], values[1], 1.0)
 
 
@@ -1890,7 +1911,7 @@ def build_parser():
     p.add_argument("--compress", default="DEFLATE", metavar="CODEC",
                    help="GeoTIFF compression, lossless: DEFLATE (default), ZSTD, LZW, LZMA, "
                         "PACKBITS, LERC, LERC_DEFLATE, LERC_ZSTD, NONE")
-    p.add_argument("--compress-level", type=_c_int, default=1, metavar="N",
+    p.add_argument("--compress-level", type=_c_int, metavar="N",
                    help="compression level: DEFLATE 1-12, ZSTD 1-22; -1: GDAL's default "
                         "(default 1, the fastest: float bands shrink under 1%% more at 6)")
     p.add_argument("--max-memory", type=_memory_size, metavar="SIZE",
@@ -2070,6 +2091,20 @@ def _negative_values(parser, argv):
     return out
 
 
+# string options whose empty value is a mistake (an unset variable in a script), not "none":
+# each was taken as not given (--compress "" wrote an uncompressed file)
+_NOT_EMPTY = (("output", None), ("exr", "--exr"), ("srs", "--srs"), ("compress", "--compress"),
+              ("albedo", "--albedo"), ("baked", "--baked"), ("at", "--at"), ("tz", "--tz"),
+              ("products", "--products"))
+
+
+def _refuse_empty(args):
+    for dest, name in _NOT_EMPTY:
+        if getattr(args, dest, None) == "":
+            raise ApertureError("%s is empty" % (name or (
+                "the output name OUT.tif" if args.func is cmd_bake else "--output")))
+
+
 def _main(argv):
     parser = build_parser()
     if not argv:
@@ -2081,6 +2116,7 @@ def _main(argv):
         return 0
     quiet_vtk_output()
     try:
+        _refuse_empty(args)
         return args.func(args)
     except ApertureError as e:
         print("%s: error: %s" % (PROG, _as_options(str(e))), file=sys.stderr)
