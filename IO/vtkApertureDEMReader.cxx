@@ -532,10 +532,12 @@ int vtkApertureDEMReader::RequestInformation(
   double metres = 1.0;
   if (given != 0.0)
   {
-    if (!(given > 0.0) || !std::isfinite(given))
+    if (!(given > 0.0) || !(given <= 1e4))
     {
-      vtkErrorMacro(<< "MetresPerElevationUnit must be a positive number of metres (0: the "
-                       "file's unit), not "
+      // (beyond a unit of 10 km, elevations would overflow floats, as nodata, before they are
+      // anything a DEM holds)
+      vtkErrorMacro(<< "MetresPerElevationUnit must be a positive number of metres up to 10000 "
+                       "(0: the file's unit), not "
                     << given);
       return 0;
     }

@@ -120,7 +120,8 @@ public:
 
   ///@{
   /** Metres per elevation unit of the file (after the band's scale and offset), overriding its
-   *  own unit: 0.3048 for feet, 1200/3937 for US survey feet; 0 (default): the file's unit. */
+   *  own unit: 0.3048 for feet, 1200/3937 for US survey feet; 0 (default): the file's unit.
+   *  Beyond (0, 10000] the update fails. */
   vtkSetMacro(MetresPerElevationUnit, double);
   vtkGetMacro(MetresPerElevationUnit, double);
   ///@}

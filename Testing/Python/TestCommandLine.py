@@ -431,11 +431,12 @@ class TestInfo(CommandLineTest):
 
     def test_bad_zfactor(self):
         # ("feet" is a unit's name the reader knows: accepted since 2026-12-05)
-        for z in ("0", "-0.3048", "nan", "inf", "furlong", ""):
+        for z in ("0", "-0.3048", "nan", "inf", "furlong", "", "1e308"):
             status, out, err = run("info", "--zfactor", z)
             self.assertEqual(status, 2, err)
             self.assertIn("argument --zfactor: must be a positive number of metres per "
-                          "elevation unit, or a unit: m, ft, us-ft, cm, dm, mm or km (or their "
+                          "elevation unit up to 10000, or a unit: m, ft, us-ft, cm, dm, mm or "
+                          "km (or their "
                           "names: metre, foot, US survey foot, centimetre, ...), not %r" % z,
                           err)
             self.assertEqual(out, "")

@@ -215,7 +215,8 @@ void TestUnits()
   metres.Reader->SetMetresPerElevationUnit(1.0);
   metres.Update();
   AP_CHECK_NEAR(metres.Z(0, 0), 1000.0, 0.0);
-  for (double bad : { -0.3048, std::nan(""), HUGE_VAL })
+  // (1e300: the elevations overflowed to infinity, as nodata: "every cell is nodata")
+  for (double bad : { -0.3048, std::nan(""), HUGE_VAL, 1e300, 10000.001 })
   {
     Read b(tmp + "/feet.tif");
     b.Reader->SetMetresPerElevationUnit(bad);
@@ -223,6 +224,12 @@ void TestUnits()
     AP_CHECK(b.Ok == 0 && b.Errors->GetError());
     AP_CHECK_CONTAINS(
       b.Errors->GetErrorMessage(), "MetresPerElevationUnit must be a positive number of metres");
+  }
+  {
+    Read km(tmp + "/feet.tif");
+    km.Reader->SetMetresPerElevationUnit(10000.0); // (the largest unit taken)
+    km.Update();
+    AP_CHECK(km.Ok == 1);
   }
 
   // No unit in the band: metres, silently in a metric CRS or a geographic one...

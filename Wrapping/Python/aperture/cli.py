@@ -80,9 +80,10 @@ def _parse_zfactor(text):
             value = float(text)
         except ValueError:
             value = math.nan
-    if not (0.0 < value < math.inf):
+    if not (0.0 < value <= 1e4):  # (the reader's range: more overflows floats)
         raise argparse.ArgumentTypeError(
-            "must be a positive number of metres per elevation unit, or a unit: m, ft, us-ft, "
+            "must be a positive number of metres per elevation unit up to 10000, or a unit: m, "
+            "ft, us-ft, "
             "cm, dm, mm or km (or their names: metre, foot, US survey foot, centimetre, ...), "
             "not %r" % text)
     return value
