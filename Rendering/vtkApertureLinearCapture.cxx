@@ -16,6 +16,19 @@
 
 vtkStandardNewMacro(vtkApertureLinearCapture);
 
+namespace
+{
+// The error for a viewport of w x h pixels, `bytes` of float RGBA: VTK 9.1's pixel buffers count
+// their bytes in 32 bits, and a larger download overran its buffer (a segmentation fault).
+void TooLarge(vtkApertureLinearCapture* self, int w, int h, double bytes)
+{
+  vtkErrorWithObjectMacro(self, << "cannot read back " << w << " x " << h
+                                << " pixels of float RGBA (" << bytes / 1073741824.0
+                                << " GiB): VTK's pixel buffers hold less than 4 GiB; capture a "
+                                   "smaller viewport");
+}
+}
+
 //------------------------------------------------------------------------------
 vtkImageData* vtkApertureLinearCapture::Capture(vtkRenderer* renderer)
 {
@@ -27,6 +40,13 @@ vtkImageData* vtkApertureLinearCapture::Capture(vtkRenderer* renderer)
     vtkErrorMacro(<< "Capture needs an OpenGL renderer in an OpenGL render window");
     return nullptr;
   }
+  const int* viewport = renderer->GetSize(); // (pixels: the texture's size below)
+  const double asked = 4.0 * sizeof(float) * viewport[0] * static_cast<double>(viewport[1]);
+  if (asked >= GetMaximumBytes())
+  {
+    TooLarge(this, viewport[0], viewport[1], asked);
+    return nullptr; // (before rendering at that size)
+  }
   vtkSmartPointer<vtkRenderPass> previous = gl->GetPass();
   vtkNew<vtkRenderStepsPass> steps;
   vtkNew<vtkFramebufferPass> framebuffer;
@@ -37,6 +57,14 @@ vtkImageData* vtkApertureLinearCapture::Capture(vtkRenderer* renderer)
 
   vtkImageData* image = nullptr;
   vtkTextureObject* texture = framebuffer->GetColorTexture();
+  const double bytes = texture
+    ? 4.0 * sizeof(float) * texture->GetWidth() * static_cast<double>(texture->GetHeight())
+    : 0.0;
+  if (bytes >= GetMaximumBytes())
+  {
+    TooLarge(this, texture->GetWidth(), texture->GetHeight(), bytes);
+    texture = nullptr;
+  }
   if (texture && texture->GetWidth() > 0 && texture->GetHeight() > 0)
   {
     window->MakeCurrent();
@@ -70,7 +98,7 @@ vtkImageData* vtkApertureLinearCapture::Capture(vtkRenderer* renderer)
   }
   gl->SetPass(previous);
   framebuffer->ReleaseGraphicsResources(window); // its FBO and textures, while the context lives
-  if (!image)
+  if (!image && bytes < GetMaximumBytes())
   {
     vtkErrorMacro(<< "could not read the float framebuffer back");
   }

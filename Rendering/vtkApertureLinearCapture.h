@@ -13,8 +13,8 @@
  * in W/m²/sr) to capture linear radiance. The background colour is captured too (black gives
  * zero radiance there).
  *
- * Errors (vtkErrorMacro, nullptr): no renderer or window, not an OpenGL renderer, or the float
- * texture could not be read back.
+ * Errors (vtkErrorMacro, nullptr): no renderer or window, not an OpenGL renderer, a viewport
+ * too large to read back (GetMaximumBytes), or the float texture could not be read back.
  */
 #ifndef vtkApertureLinearCapture_h
 #define vtkApertureLinearCapture_h
@@ -34,6 +34,11 @@ public:
 
   /** Render and read back; the caller owns the returned image (nullptr on failure). */
   VTK_NEWINSTANCE vtkImageData* Capture(vtkRenderer* renderer);
+
+  /** Bytes of float RGBA a capture can read back, exclusive (2^32: VTK's pixel buffers count
+   *  bytes in 32 bits): a viewport of width x height x 16 bytes or more is an error, so
+   *  16384 x 16384 is refused and 16384 x 16383 read. */
+  static double GetMaximumBytes() { return 4294967296.0; }
 
 protected:
   vtkApertureLinearCapture() = default;

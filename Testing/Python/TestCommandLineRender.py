@@ -140,6 +140,8 @@ class TestCommandLineRender(unittest.TestCase):
                                    (("--tz", "Europe/Zurich"), "--tz Europe/Zurich needs --at"),
                                    (("--exr-type", "half"), "--exr-type half needs --exr"),
                                    (("--exposure", "1e308"), "--exposure must be within -30..30"),
+                                   (("--size", "16384x16384", "--exr", "x.exr"),
+                                    "16384x16384 is too large for it"),
                                    (("-o", ""), "--output is empty"),
                                    (("--albedo", ""), "--albedo is empty"),
                                    (("--baked", ""), "--baked is empty")):

@@ -487,6 +487,24 @@ void TestBadInput()
   w.Radiance();
   AP_CHECK_CONTAINS(w.Mapper->GetInputProblem(), "expected 1 and " + std::to_string(N * N));
   AP_CHECK(w.Errors->GetError());
+
+  // A capture of 2^32 bytes of float RGBA or more is refused before anything is rendered at
+  // that size (VTK's pixel buffer overran at 16384 x 16384: a segmentation fault); one pixel
+  // less is within (not rendered here: 4 GiB).
+  AP_CHECK(16384.0 * 16384.0 * 16.0 >= vtkApertureLinearCapture::GetMaximumBytes());
+  AP_CHECK(16384.0 * 16383.0 * 16.0 < vtkApertureLinearCapture::GetMaximumBytes());
+  vtkNew<vtkApertureLinearCapture> capture;
+  vtkNew<vtkTest::ErrorObserver> captureErrors;
+  capture->AddObserver(vtkCommand::ErrorEvent, captureErrors);
+  w.Window->SetSize(16384, 16384);
+  vtkImageData* huge = capture->Capture(w.Renderer);
+  AP_CHECK(huge == nullptr);
+  AP_CHECK_CONTAINS(captureErrors->GetErrorMessage(), "cannot read back 16384 x 16384 pixels "
+                                                      "of float RGBA (4 GiB)");
+  if (huge)
+  {
+    huge->Delete();
+  }
 }
 } // namespace
 

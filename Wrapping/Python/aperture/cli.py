@@ -753,6 +753,12 @@ def _render_option_checks(args):
     if args.exr_type and not args.exr:
         raise ApertureError("--exr-type %s needs --exr OUT.exr" % args.exr_type)
     args.exr_type = args.exr_type or "float"
+    from aperture import vtkApertureLinearCapture
+    if args.exr and (16.0 * args.size[0] * args.size[1]
+                     >= vtkApertureLinearCapture.GetMaximumBytes()):
+        raise ApertureError("--exr reads the picture back as float RGBA, 16 bytes a pixel, and "
+                            "VTK reads back less than 4 GiB: %dx%d is too large for it; give "
+                            "a smaller --size" % tuple(args.size))
 
 
 def cmd_render(args):
