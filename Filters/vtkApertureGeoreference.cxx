@@ -199,6 +199,18 @@ bool vtkApertureGeoreference::Internals::CellVectors(
       return false;
     }
   }
+  for (int k = 1; k < 8; k += 2)
+  {
+    // (a lat/lon grid's coordinates pass through as they are: GeographicLib gave NaN sizes)
+    if (BeyondPole(ll[k]))
+    {
+      std::ostringstream msg;
+      msg << "the cell reaches latitude " << ll[k] << ", beyond the pole";
+      this->Error = msg.str();
+      return false;
+    }
+    ll[k] = std::max(-90.0, std::min(90.0, ll[k]));
+  }
   try
   {
     const GeographicLib::Geodesic geod(ell[0], ell[1]);
@@ -716,7 +728,18 @@ bool vtkApertureGeoreference::GetCentreLonLat(double lonlat[2])
 {
   const double xc = this->GridOrigin[0] + 0.5 * (this->GridSize[0] - 1) * this->GridSpacing[0];
   const double yc = this->GridOrigin[1] + 0.5 * (this->GridSize[1] - 1) * this->GridSpacing[1];
-  return this->CRSToLonLat(xc, yc, lonlat);
+  if (!this->CRSToLonLat(xc, yc, lonlat))
+  {
+    return false;
+  }
+  if (BeyondPole(lonlat[1]))
+  {
+    std::ostringstream msg;
+    msg << "the grid centre is at latitude " << lonlat[1] << ", beyond the pole";
+    this->Impl->Error = msg.str();
+    return false;
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------

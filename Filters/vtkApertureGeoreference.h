@@ -203,7 +203,8 @@ public:
    */
   bool WrapsAround();
 
-  /** Longitude and latitude (degrees) of the grid centre (the centre of its outer bounds). */
+  /** Longitude and latitude (degrees) of the grid centre (the centre of its outer bounds).
+   *  False (GetErrorMessage) when it has none, or lies beyond a pole. */
   bool GetCentreLonLat(double lonlat[2]);
 
   /**
@@ -235,7 +236,8 @@ public:
   /**
    * Ground size of one cell centred at CRS point (x, y), as GetCellSizeMetres (which is this at
    * the grid centre): for a projected CRS it changes across the grid with the projection's
-   * scale factor. False (GetErrorMessage) when the cell has no geographic coordinates.
+   * scale factor. False (GetErrorMessage) when the cell has no geographic coordinates, or
+   * reaches beyond a pole.
    */
   bool GetCellSizeMetresAt(double x, double y, double size[2]);
 
@@ -246,7 +248,7 @@ public:
    * from their chords, which holds near and on a pole). |E| and |N| are GetCellSizeMetresAt's
    * sizes; E·N is 0 on a conformal projection and on a lat/lon grid, and the angle between E and N
    * differs from 90° on others (Albers, sinusoidal). False (GetErrorMessage) when the cell has no
-   * geographic coordinates.
+   * geographic coordinates, or reaches beyond a pole.
    */
   bool GetCellMetricAt(double x, double y, double metric[3]);
 

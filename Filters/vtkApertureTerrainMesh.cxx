@@ -206,8 +206,11 @@ int vtkApertureTerrainMesh::Execute(
     return 0;
   }
   vtkNew<vtkApertureGeoreference> geo;
-  if (!geo->SetFromImage(input) || (!geo->IsLocal() && !geo->CheckLongitudeSpan()))
+  double lonlatBounds[4];
+  if (!geo->SetFromImage(input) || (!geo->IsLocal() && !geo->CheckLongitudeSpan()) ||
+    (geo->IsGeographic() && !geo->GetBoundsLonLat(lonlatBounds)))
   {
+    // (a lat/lon grid beyond a pole: its points there had no place, NaN in triangles drawn)
     vtkErrorMacro(<< geo->GetErrorMessage());
     return 0;
   }

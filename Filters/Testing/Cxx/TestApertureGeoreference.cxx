@@ -314,6 +314,18 @@ void TestRowSizesAtPole()
   AP_CHECK(!geo->GetBoundsLonLat(bounds));
   AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
     "the grid's south edge is at latitude 90.1, beyond the north pole");
+  // its centre and its cells' sizes neither (they were true, with NaN sizes and latitude 90.2)
+  double lonlat[2], size[2], metric[3];
+  AP_CHECK(!geo->GetCentreLonLat(lonlat));
+  AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
+    "the grid centre is at latitude 90.15, beyond the pole");
+  AP_CHECK(!geo->GetCellSizeMetres(size));
+  AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()), "the cell reaches latitude 90.15, beyond the pole");
+  AP_CHECK(!geo->GetCellMetricAt(0.0, 90.15, metric));
+  // the top row's cell, whose north edge is the pole (a rounding error beyond it): sizes
+  geo->SetGrid(-175.5, 88.025, 9.0, cell, 40, 40);
+  AP_CHECK(geo->GetCellSizeMetresAt(0.0, 89.975, size) && size[0] > 0.0 && size[1] > 0.0);
+  AP_CHECK_NEAR(size[1], dy[39], 1e-6 * dy[39]);
 }
 
 // A geographic grid may go once around the Earth (360 degrees plus rounding), not more: 40

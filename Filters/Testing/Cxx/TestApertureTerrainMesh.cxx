@@ -689,6 +689,10 @@ void TestErrors()
   auto globe = MakeDEM("EPSG:4326", -175.0, -80.0, 10.0, 10.0, 36, 17, ok);
   globe->GetPointData()->AddArray(extra);
   ExpectError(globe, "the point array 'Class' has 3 tuples for the 36 x 17 points");
+  // a lat/lon grid beyond a pole, refused as the sky filter refuses it (its points there were
+  // NaN, in triangles drawn)
+  ExpectError(MakeDEM("EPSG:4326", 10.0, 89.5, 0.05, 0.05, 20, 20, ok),
+    "the grid's north edge is at latitude 90.475, beyond the north pole");
 }
 } // namespace
 
