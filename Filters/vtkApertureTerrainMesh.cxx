@@ -93,9 +93,13 @@ int vtkApertureTerrainMesh::RequestUpdateExtent(
   {
     // A global DEM's pieces are bands of whole rows, so that each joins its east and west
     // edges (RequestData's seam). The CRS is known here when vtkApertureDEMReader published
-    // it (an input given with SetInputData is whole in every piece: no producer crops it).
+    // it, or from the input image itself when it is already there (SetInputData).
     vtkNew<vtkApertureGeoreference> geo;
-    const bool wraps = geo->SetFromInformation(inInfo) && geo->WrapsAround();
+    vtkImageData* present = vtkImageData::GetData(inInfo);
+    const bool wraps = (geo->SetFromInformation(inInfo) ||
+                         (present && present->GetNumberOfPoints() > 0 &&
+                           geo->SetFromImage(present))) &&
+      geo->WrapsAround();
     vtkNew<vtkExtentTranslator> translator;
     translator->PieceToExtentThreadSafe(piece, pieces, 0, whole, ext,
       wraps ? vtkExtentTranslator::Y_SLAB_MODE : vtkExtentTranslator::BLOCK_MODE, 0);
@@ -155,9 +159,38 @@ int vtkApertureTerrainMesh::Execute(
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  if (std::isnan(this->VerticalExaggeration))
+  {
+    // (vtkSetClampMacro lets NaN through: every point would be NaN)
+    vtkErrorMacro(<< "VerticalExaggeration is NaN");
+    return 0;
+  }
   if (!input || input->GetNumberOfPoints() == 0)
   {
     return 1; // empty in, empty out
+  }
+  // An input that holds more than this update asked for (a reader updated whole before, an
+  // image given with SetInputData): the requested extent alone (a copy of it), so that a
+  // streamed piece meshes its own part, not the whole DEM each time.
+  vtkNew<vtkImageData> cropped;
+  int dataExt[6], asked[6];
+  input->GetExtent(dataExt);
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+  {
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), asked);
+    bool inside = true, smaller = false;
+    for (int a = 0; a < 6; a += 2)
+    {
+      inside = inside && asked[a] >= dataExt[a] && asked[a + 1] <= dataExt[a + 1] &&
+        asked[a] <= asked[a + 1];
+      smaller = smaller || asked[a] > dataExt[a] || asked[a + 1] < dataExt[a + 1];
+    }
+    if (inside && smaller)
+    {
+      cropped->ShallowCopy(input);
+      cropped->Crop(asked);
+      input = cropped;
+    }
   }
 
   // 1. Validate the grid and its elevation array.

@@ -94,7 +94,8 @@ public:
   ///@{
   /**
    * Vertical exaggeration: vertices are placed at height VerticalExaggeration * elevation
-   * above the ellipsoid. Default 1; range [0, 1000]. Normals follow the exaggerated surface.
+   * above the ellipsoid. Default 1; range [0, 1000] (NaN: the update fails). Normals follow
+   * the exaggerated surface.
    */
   vtkSetClampMacro(VerticalExaggeration, double, 0.0, 1000.0);
   vtkGetMacro(VerticalExaggeration, double);

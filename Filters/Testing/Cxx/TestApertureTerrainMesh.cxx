@@ -578,13 +578,15 @@ void TestBentNormalFrame()
 }
 
 // Each documented error: a clear message and a failed update, nothing printed.
-void ExpectError(vtkImageData* dem, const std::string& expected, const char* arrayName = nullptr)
+void ExpectError(vtkImageData* dem, const std::string& expected, const char* arrayName = nullptr,
+  double exaggeration = 1.0)
 {
   vtkNew<vtkApertureTerrainMesh> mesher;
   if (arrayName)
   {
     mesher->SetElevationArrayName(arrayName);
   }
+  mesher->SetVerticalExaggeration(exaggeration);
   vtkNew<vtkTest::ErrorObserver> errors, executiveErrors;
   mesher->AddObserver(vtkCommand::ErrorEvent, errors);
   mesher->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
@@ -693,6 +695,9 @@ void TestErrors()
   // NaN, in triangles drawn)
   ExpectError(MakeDEM("EPSG:4326", 10.0, 89.5, 0.05, 0.05, 20, 20, ok),
     "the grid's north edge is at latitude 90.475, beyond the north pole");
+  // a NaN exaggeration passed the clamp: every point NaN, the update a success
+  ExpectError(MakeDEM("EPSG:4326", 0, 0, 1, 1, 3, 3, ok), "VerticalExaggeration is NaN", nullptr,
+    std::nan(""));
 }
 } // namespace
 

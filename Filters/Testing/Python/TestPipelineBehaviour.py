@@ -123,6 +123,35 @@ class TestPipelineBehaviour(Testing.vtkTest):
             self.assertTrue(covered.all(), "%d pieces miss %d cells"
                             % (pieces, np.count_nonzero(~covered)))
 
+        # The same pieces from an input that already holds the whole DEM: the reader updated
+        # whole before, and an image given with SetInputData. Each piece meshes its own
+        # extent (each meshed the whole input: n pieces, n whole meshes), the cells of the
+        # pieces adding up to the whole's.
+        from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
+        translator = vtkExtentTranslator()
+        image = reader.GetOutput()
+        for source in ("reader", "image"):
+            m = aperture.vtkApertureTerrainMesh()
+            if source == "reader":
+                m.SetInputConnection(reader.GetOutputPort())
+            else:
+                m.SetInputData(image)
+            cells = 0
+            for piece in range(3):
+                m.UpdatePiece(piece, 3, 0)
+                ext = [0] * 6
+                translator.PieceToExtentThreadSafe(piece, 3, 0, [0, 402, 0, 343, 0, 0], ext,
+                                                   vtkExtentTranslator.BLOCK_MODE, 0)
+                out = m.GetOutput()
+                pts = vtk_to_numpy(out.GetPoints().GetData())
+                self.assertEqual(len(pts), (ext[1] - ext[0] + 1) * (ext[3] - ext[2] + 1), source)
+                np.testing.assert_array_equal(
+                    pts.reshape(ext[3] - ext[2] + 1, ext[1] - ext[0] + 1, 3),
+                    full[ext[2]:ext[3] + 1, ext[0]:ext[1] + 1])
+                cells += out.GetNumberOfCells()
+            self.assertEqual(cells, whole.GetOutput().GetNumberOfCells(), source)
+            self.assertEqual(image.GetExtent(), (0, 402, 0, 343, 0, 0))  # (left whole)
+
     def testStreamingGlobalDEM(self):
         # A global DEM (2-degree cells, pole to pole) read piece by piece: its pieces are bands
         # of whole rows (the CRS the reader publishes says the DEM wraps around), so each joins
@@ -186,6 +215,22 @@ class TestPipelineBehaviour(Testing.vtkTest):
                 cells += out.GetNumberOfCells()
             # (neighbouring bands share a row of points, not of quads)
             self.assertEqual(cells, whole.GetOutput().GetNumberOfCells())
+
+        # given with SetInputData, whole: the image itself says it wraps around, so its pieces
+        # are bands with their seams again (not blocks, which would leave the antimeridian open)
+        r = aperture.vtkApertureDEMReader()
+        r.SetFileName(path)
+        r.Update()
+        m = aperture.vtkApertureTerrainMesh()
+        m.SetInputData(r.GetOutput())
+        cells = 0
+        for piece in range(3):
+            m.UpdatePiece(piece, 3, 0)
+            out = m.GetOutput()
+            self.assertEqual(out.GetNumberOfPoints() % (nx + 1), 0)
+            self.assertLess(out.GetNumberOfPoints(), ny * (nx + 1))
+            cells += out.GetNumberOfCells()
+        self.assertEqual(cells, 2 * nx * (ny - 1) + 2 * (nx - 2))
 
     def testStreamingSkyProductsOntoMesh(self):
         # reader -> sky visibility (2 km) -> mesh, piece by piece: the mesh asks the sky filter
