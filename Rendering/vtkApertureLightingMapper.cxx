@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <vector>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 vtkStandardNewMacro(vtkApertureLightingMapper);
@@ -448,6 +449,20 @@ bool vtkApertureLightingMapper::ComputeReference(vtkPolyData* mesh, const double
     {
       this->InputProblem = "no mesh";
     }
+    vtkErrorMacro(<< "ComputeReference: " << this->InputProblem);
+    return false;
+  }
+  if (!albedo || !(albedo[0] >= 0.0 && albedo[0] <= 1.0 && albedo[1] >= 0.0 &&
+                   albedo[1] <= 1.0 && albedo[2] >= 0.0 && albedo[2] <= 1.0))
+  {
+    // (the model takes such a point as nodata: every point NaN and black, without a word)
+    std::ostringstream msg;
+    msg << "the albedo must be RGB within [0, 1]";
+    if (albedo)
+    {
+      msg << ", not (" << albedo[0] << ", " << albedo[1] << ", " << albedo[2] << ")";
+    }
+    this->InputProblem = msg.str();
     vtkErrorMacro(<< "ComputeReference: " << this->InputProblem);
     return false;
   }

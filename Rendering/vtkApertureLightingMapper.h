@@ -158,7 +158,7 @@ public:
    * albedo (RGB in [0, 1]): the outgoing radiance (W/m²/sr, 3 components, NaN at nodata) into
    * `radiance` and the displayed 8-bit colour (exposure, tone mapping, sRGB as the shader;
    * black at nodata) into `display`; either may be nullptr. False (GetInputProblem() says
-   * why) if the arrays are missing or wrongly sized.
+   * why) if the arrays are missing or wrongly sized, or the albedo is outside [0, 1].
    */
   bool ComputeReference(vtkPolyData* mesh, const double albedo[3], vtkDoubleArray* radiance,
     vtkUnsignedCharArray* display);

@@ -488,6 +488,22 @@ void TestBadInput()
   AP_CHECK_CONTAINS(w.Mapper->GetInputProblem(), "expected 1 and " + std::to_string(N * N));
   AP_CHECK(w.Errors->GetError());
 
+  // An albedo outside [0, 1] made every point nodata (NaN, black) with a successful return.
+  vtkNew<vtkDoubleArray> cpu;
+  auto whole = GridMesh([](int) { return kUp; }, [](int) { return kUp; },
+    [](int) { return 1.0; });
+  Scene g(whole, kGrey);
+  for (const Vec& bad : { Vec{ { 1.0000001, 0.5, 0.5 } }, Vec{ { 0.5, -0.1, 0.5 } },
+         Vec{ { 0.5, 0.5, std::nan("") } } })
+  {
+    g.Errors->Clear();
+    AP_CHECK(!g.Mapper->ComputeReference(whole, bad.data(), cpu, nullptr));
+    AP_CHECK_CONTAINS(g.Mapper->GetInputProblem(), "the albedo must be RGB within [0, 1], not (");
+    AP_CHECK(g.Errors->GetError());
+  }
+  AP_CHECK(g.Mapper->ComputeReference(whole, kGrey, cpu, nullptr));
+  AP_CHECK(std::isfinite(cpu->GetComponent(N * N / 2, 1)));
+
   // A capture of 2^32 bytes of float RGBA or more is refused before anything is rendered at
   // that size (VTK's pixel buffer overran at 16384 x 16384: a segmentation fault); one pixel
   // less is within (not rendered here: 4 GiB).
