@@ -284,6 +284,18 @@ double vtkApertureDEMReader::GetMetresPerUnit(const char* name)
 int vtkApertureDEMReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  const int ok = this->ReadInformation(outputVector);
+  vtkImageData* output = ok ? nullptr : vtkImageData::GetData(outputVector);
+  if (output)
+  {
+    output->Initialize(); // a failed update, an empty output
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
+{
   Internals& d = *this->Impl;
   d.Valid = false;
   d.UnitSource.clear();

@@ -261,6 +261,18 @@ const char* vtkApertureEXRReader::GetMetadataValue(const char* key)
 int vtkApertureEXRReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  const int ok = this->ReadInformation(outputVector);
+  vtkImageData* output = ok ? nullptr : vtkImageData::GetData(outputVector);
+  if (output)
+  {
+    output->Initialize(); // a failed update, an empty output
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+int vtkApertureEXRReader::ReadInformation(vtkInformationVector* outputVector)
+{
   Internals& d = *this->Impl;
   d.Valid = false;
   d.Metadata.clear();

@@ -89,6 +89,9 @@ protected:
 
   int RequestInformation(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
+  /** RequestInformation's work; RequestInformation empties the output when it fails (VTK
+   *  then runs no RequestData, which would: the last file's image stayed there). */
+  int ReadInformation(vtkInformationVector* outputVector);
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   /** RequestData's work; RequestData turns a failed allocation in it into an error. */

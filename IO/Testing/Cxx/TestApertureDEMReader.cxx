@@ -774,6 +774,7 @@ void TestBadInput()
     AP_CHECK(rd.Reader->GetRasterSize()[0] == 0 && rd.Reader->GetNumberOfBands() == 0);
     AP_CHECK(rd.Reader->GetBandRead() == 0 && !rd.Reader->GetHasNoDataValue());
     AP_CHECK(rd.Reader->GetNumberOfFiles() == 0 && !rd.Reader->GetFile(0));
+    AP_CHECK(rd.Reader->GetOutput()->GetNumberOfPoints() == 0); // (the last file's stayed)
   }
 }
 } // namespace

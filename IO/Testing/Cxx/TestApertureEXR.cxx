@@ -1222,6 +1222,13 @@ void TestWriterErrors()
 //------------------------------------------------------------------------------
 void TestReaderErrors()
 {
+  {
+    // a failed update empties the output the file before filled (it stayed)
+    Read rd(tmp + "/roundtrip.exr");
+    AP_CHECK(rd.Update()->GetNumberOfPoints() > 0 && rd.Ok == 1);
+    rd.Reader->SetFileName((tmp + "/nothing-here.exr").c_str());
+    AP_CHECK(rd.Update()->GetNumberOfPoints() == 0 && rd.Ok == 0);
+  }
   ExpectReaderError("", "no file name was set");
   ExpectReaderError(
     tmp + "/nothing-here.exr", "file '" + tmp + "/nothing-here.exr' does not exist");
