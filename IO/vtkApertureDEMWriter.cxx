@@ -458,6 +458,24 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
   double origin[3], spacing[3], gt[6];
   input->GetOrigin(origin);
   input->GetSpacing(spacing);
+  if (!hasCRS && vtkApertureGeoreference::GetAttachedCRS(input))
+  {
+    // (as the EXR writer: a NaN origin or a negative spacing made a geotransform of NaN, or a
+    // mirrored one that no reader takes, with only a warning)
+    vtkErrorMacro(<< "the image has a CRS but its georeference cannot be written to '" << path
+                  << "': " << geo->GetErrorMessage());
+    return false;
+  }
+  if (!hasCRS && !(spacing[0] > 0.0 && spacing[1] > 0.0 && std::isfinite(spacing[0]) &&
+                   std::isfinite(spacing[1]) && std::isfinite(origin[0]) &&
+                   std::isfinite(origin[1])))
+  {
+    vtkErrorMacro(<< "cannot write '" << path << "': the image's spacing must be positive and "
+                  << "finite and its origin finite to make a geotransform (spacing "
+                  << spacing[0] << ", " << spacing[1] << "; origin " << origin[0] << ", "
+                  << origin[1] << ")");
+    return false;
+  }
   if (hasCRS)
   {
     geo->SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],

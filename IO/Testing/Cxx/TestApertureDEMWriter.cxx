@@ -627,6 +627,32 @@ void TestErrors()
     w->SetInputData(MakeImage(true));
     ExpectError(w, "no file name was set");
   }
+  // A grid no geotransform can say: refused (a NaN origin was written as a geotransform of
+  // NaN, a negative spacing as a mirrored one, zero as none, each with only a warning).
+  for (bool withCRS : { true, false })
+  {
+    for (int bad = 0; bad < 3; ++bad)
+    {
+      auto image = MakeImage(withCRS);
+      if (bad == 0)
+      {
+        image->SetOrigin(std::nan(""), 5000015.0, 0.0);
+      }
+      else
+      {
+        image->SetSpacing(30.0, bad == 1 ? -30.0 : 0.0, 1.0);
+      }
+      const std::string path = tmp + "/badgrid.tif";
+      vtkNew<vtkApertureDEMWriter> w;
+      w->SetInputData(image);
+      w->SetFileName(path.c_str());
+      ExpectError(w, withCRS ? "the image has a CRS but its georeference cannot be written"
+                             : "the image's spacing must be positive and finite and its origin "
+                               "finite to make a geotransform");
+      struct stat sb;
+      AP_CHECK(stat(path.c_str(), &sb) != 0);
+    }
+  }
   {
     vtkNew<vtkApertureDEMWriter> w;
     w->SetInputData(MakeImage(true));
