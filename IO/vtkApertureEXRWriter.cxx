@@ -19,6 +19,7 @@
 
 #include <libdeflate.h>
 #include <openexr.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -54,22 +55,38 @@ const char* const GeoTransformAttribute = "aperture:geotransform";
 const size_t ShortNameLength = 31;
 
 // Owns a write context. Finishing a context whose image was not completely written makes
-// OpenEXR delete its temporary file, so discarding a file begun leaves nothing behind.
+// OpenEXR delete its temporary file; one whose every chunk was written (a strip's error after
+// the last rows, an abandoned bake) it would complete and rename over FileName. So a discard
+// first removes the temporary file (OpenEXR 3.1 names it "tmp.<pid>" + the file's name, in
+// its folder): the rename then fails, and nothing is left behind, an earlier file as it was.
 struct ContextHandle
 {
   exr_context_t H = nullptr;
+  std::string Temporary; // OpenEXR's temporary file, while H writes it
   ContextHandle() = default;
   ContextHandle(const ContextHandle&) = delete;
   ContextHandle& operator=(const ContextHandle&) = delete;
   ~ContextHandle() { this->Discard(); }
+  void Started(const std::string& path)
+  {
+    const size_t slash = path.rfind('/');
+    const size_t base = slash == std::string::npos ? 0 : slash + 1;
+    this->Temporary = path.substr(0, base) + "tmp." +
+      std::to_string(static_cast<long>(getpid())) + path.substr(base);
+  }
   void Discard()
   {
     if (this->H)
     {
-      vtkApertureEXRErrorTrap trap; // (its complaint about missing chunks is expected)
+      vtkApertureEXRErrorTrap trap; // (its complaints, missing chunks or the rename, expected)
+      if (!this->Temporary.empty())
+      {
+        unlink(this->Temporary.c_str());
+      }
       exr_finish(&this->H);
       this->H = nullptr;
     }
+    this->Temporary.clear();
   }
 };
 
@@ -735,6 +752,7 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
     vtkErrorMacro(<< "OpenEXR cannot create '" << path << "': " << trap.Message(rv));
     return 0;
   }
+  d.Context.Started(path);
   exr_context_t ctx = d.Context.H;
   const exr_pixel_type_t type = this->PixelType == HALF ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT;
   rv = exr_add_part(ctx, "", EXR_STORAGE_SCANLINE, &d.Part);
@@ -924,6 +942,7 @@ int vtkApertureEXRWriter::EndStrips()
   vtkApertureEXRErrorTrap trap;
   const exr_result_t rv = exr_finish(&d.Context.H);
   d.Context.H = nullptr;
+  d.Context.Temporary.clear();
   if (rv != EXR_ERR_SUCCESS)
   {
     vtkErrorMacro(<< "OpenEXR failed finishing '" << d.Path << "': " << trap.Message(rv));

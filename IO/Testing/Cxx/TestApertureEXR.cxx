@@ -1488,6 +1488,23 @@ void TestStrips()
     AP_CHECK_CONTAINS(errors->GetErrorMessage(), "strips-aborted.exr' was aborted");
     AP_CHECK(!Exists(path) && !LeftoverTemporaryFiles("strips-aborted.exr"));
   }
+  // (last: the whole rows asked of the source below would spare the failures above a run)
+  // every row written, then a strip's error: OpenEXR would have completed the file over the
+  // earlier one (its chunks all there)
+  failing({ { 0, ny - 1, 1 }, { 0, ny - 1, 0 } },
+    "every row of '" + tmp + "/strips-failed.exr' is written already");
+  {
+    // abandoned after its last row: nothing left, the earlier file as it was
+    const std::string path = tmp + "/strips-abandoned.exr";
+    AP_CHECK(aptest::WriteText(path, "earlier"));
+    vtkNew<vtkApertureEXRWriter> w;
+    setup(w, path, "ZIP", 0);
+    AP_CHECK(w->BeginStrips(rows(0, ny - 1), all) == 1);
+    AP_CHECK(w->WriteStrip(rows(0, ny - 1)) == 1);
+    w->AbandonStrips();
+    AP_CHECK(aptest::ReadFileBytes(path) == "earlier");
+    AP_CHECK(!LeftoverTemporaryFiles("strips-abandoned.exr"));
+  }
 }
 } // namespace
 
