@@ -61,6 +61,12 @@ inline vtkDataArray* vtkApertureElevationArray(
         << (a->GetName() ? a->GetName() : "") << (scalars ? "' have " : "' has ")
         << a->GetNumberOfComponents() << " components; elevations need one";
   }
+  else if (vtkAbstractArray* other = pd ? pd->GetAbstractArray(name) : nullptr)
+  {
+    // (not "no point array named 'Elevation' (its point arrays: 'Elevation')")
+    msg << "the point array '" << name << "' is not numeric (a " << other->GetClassName()
+        << "); elevations are numbers";
+  }
   else
   {
     msg << "the input has no point array named '" << name << "'";

@@ -397,7 +397,15 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
                   << ", height " << gt[5] << "); set its corners first (gdal_edit.py -a_ullr)");
     return 0;
   }
-  if (!(gt[1] > 0) || !std::isfinite(gt[0]) || !std::isfinite(gt[3]) || !std::isfinite(gt[5]))
+  if (!std::isfinite(gt[0]) || !std::isfinite(gt[3]))
+  {
+    // (was "an unsupported geotransform (pixel width 30, ...)": the size was not the problem)
+    vtkErrorMacro(<< "'" << name << "' has a geotransform whose origin is not finite ("
+                  << gt[0] << ", " << gt[3]
+                  << "); set its corners first (gdal_edit.py -a_ullr)");
+    return 0;
+  }
+  if (!(gt[1] > 0) || !std::isfinite(gt[1]) || !std::isfinite(gt[5]))
   {
     vtkErrorMacro(<< "'" << name << "' has an unsupported geotransform (pixel width " << gt[1]
                   << ", pixel height " << gt[5] << "); warp it north-up first (gdalwarp)");

@@ -508,6 +508,13 @@ class TestBadInput(CommandLineTest):
         p = make_raster(self.path("rot.tif"), np.ones((3, 3)), (500000, 30, 5, 4000000, 5, -30))
         self.assert_error("rotated geotransform", "info", p)
 
+    def test_infinite_origin(self):
+        # named as the origin's problem (it said "an unsupported geotransform (pixel width 30,
+        # pixel height -30)")
+        p = make_raster(self.path("inf.tif"), np.ones((3, 3)), (np.inf, 30, 0, 4000000, 0, -30))
+        self.assert_error("'%s' has a geotransform whose origin is not finite (inf, 4e+06); set "
+                          "its corners first (gdal_edit.py -a_ullr)" % p, "info", p)
+
     def test_no_georeference(self):
         p = make_raster(self.path("plain.tif"), np.ones((3, 3)), None, srs=None)
         self.assert_error("has no georeference", "info", p)

@@ -20,6 +20,7 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkShortArray.h"
+#include "vtkStringArray.h"
 #include "vtkSmartPointer.h"
 #include "vtkTestErrorObserver.h"
 
@@ -695,6 +696,16 @@ void TestErrors()
   // NaN, in triangles drawn)
   ExpectError(MakeDEM("EPSG:4326", 10.0, 89.5, 0.05, 0.05, 20, 20, ok),
     "the grid's north edge is at latitude 90.475, beyond the north pole");
+  // a string array named as the elevations: said so (not "no point array named 'Elevation'
+  // (its point arrays: 'Elevation')")
+  auto text = MakeDEM("EPSG:4326", 0, 0, 1, 1, 3, 3, ok);
+  vtkNew<vtkStringArray> words;
+  words->SetName("Elevation");
+  words->SetNumberOfValues(9);
+  text->GetPointData()->RemoveArray("Elevation");
+  text->GetPointData()->AddArray(words);
+  ExpectError(text, "the point array 'Elevation' is not numeric (a vtkStringArray); elevations "
+                    "are numbers");
   // a NaN exaggeration passed the clamp: every point NaN, the update a success
   ExpectError(MakeDEM("EPSG:4326", 0, 0, 1, 1, 3, 3, ok), "VerticalExaggeration is NaN", nullptr,
     std::nan(""));
