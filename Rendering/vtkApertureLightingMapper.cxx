@@ -151,14 +151,19 @@ void vtkApertureLightingMapper::SetArrayName(std::string& field, const char* nam
 // The lighting parameters below are uniforms: no Modified(), so nothing is rebuilt.
 void vtkApertureLightingMapper::SetSunDirection(double x, double y, double z)
 {
-  const double n = std::sqrt(x * x + y * y + z * z);
-  if (!(n > 0.0) || !std::isfinite(n))
+  // (scaled by the largest component first: the squares of 1e300 or 1e-320 overflow or vanish)
+  const double m = std::max(std::fabs(x), std::max(std::fabs(y), std::fabs(z)));
+  if (!(m > 0.0) || !std::isfinite(m))
   {
     vtkErrorMacro(<< "SetSunDirection: the direction (" << x << ", " << y << ", " << z
-                  << ") has no length; keeping (" << this->SunDirection[0] << ", "
-                  << this->SunDirection[1] << ", " << this->SunDirection[2] << ")");
+                  << ") has no finite, non-zero length; keeping (" << this->SunDirection[0]
+                  << ", " << this->SunDirection[1] << ", " << this->SunDirection[2] << ")");
     return;
   }
+  x /= m;
+  y /= m;
+  z /= m;
+  const double n = std::sqrt(x * x + y * y + z * z);
   this->SunDirection[0] = x / n;
   this->SunDirection[1] = y / n;
   this->SunDirection[2] = z / n;

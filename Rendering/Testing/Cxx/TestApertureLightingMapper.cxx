@@ -460,6 +460,17 @@ void TestBadInput()
   s.Mapper->GetSunDirection(d);
   AP_CHECK(d[0] == 0.0 && d[1] == 0.0 && d[2] == 1.0);
   s.Errors->Clear();
+  // any finite length > 0 (the squares of 1e300 overflowed, of 1e-320 vanished: refused)
+  s.Mapper->SetSunDirection(1e300, 0.0, 1e300);
+  s.Mapper->GetSunDirection(d);
+  AP_CHECK_NEAR(d[0], std::sqrt(0.5), 1e-15);
+  AP_CHECK(d[1] == 0.0);
+  AP_CHECK_NEAR(d[2], std::sqrt(0.5), 1e-15);
+  s.Mapper->SetSunDirection(1e-320, 0.0, 0.0);
+  s.Mapper->GetSunDirection(d);
+  AP_CHECK(d[0] == 1.0 && d[1] == 0.0 && d[2] == 0.0);
+  AP_CHECK(!s.Errors->GetError());
+  s.Mapper->SetSunDirection(0.0, 0.0, 1.0);
   vtkNew<vtkFloatArray> small;
   small->SetNumberOfComponents(3);
   small->SetNumberOfTuples(10);
