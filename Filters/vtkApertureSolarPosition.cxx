@@ -439,7 +439,8 @@ bool vtkApertureSolarPosition::SetPlaceFromImage(vtkImageData* dem)
     }
   }
   d.Geo = geo;
-  this->Longitude = lonlat[0];
+  // (into [-180, 180]: a lat/lon grid may run 0..360, or on past 180 across the antimeridian)
+  this->Longitude = std::remainder(lonlat[0], 360.0);
   this->Latitude = lonlat[1];
   this->Height = height;
   d.Error.clear();
@@ -788,6 +789,15 @@ bool vtkApertureSolarPosition::AddSunDirectionArray(vtkImageData* dem, const cha
     vtkErrorMacro(<< d.Error);
     return false;
   }
+  vtkDataArray* scalars = dem->GetPointData()->GetScalars();
+  if (scalars && scalars->GetName() && std::string(scalars->GetName()) == name)
+  {
+    // (it replaced the elevations with the directions, without a word)
+    d.Error = std::string("'") + name + "' is the DEM's elevation array (its active scalars); " +
+      "give the direction array another name";
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
   vtkNew<vtkApertureGeoreference> geo;
   if (!geo->SetFromImage(dem))
   {
@@ -836,7 +846,8 @@ bool vtkApertureSolarPosition::AddSunDirectionArray(vtkImageData* dem, const cha
         return false;
       }
       const ap_status st =
-        ap_sun_position(&p, this->UnixTime, lonlat[1], lonlat[0], this->Height, &r);
+        ap_sun_position(&p, this->UnixTime, lonlat[1], std::remainder(lonlat[0], 360.0),
+          this->Height, &r);
       if (st != AP_OK)
       {
         d.Error = std::string("sun position at a DEM point: ") + ap_status_string(st);

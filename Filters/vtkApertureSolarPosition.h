@@ -107,7 +107,8 @@ public:
    * Take the place from a DEM image (as vtkApertureDEMReader produces it): its centre, which is
    * the origin of vtkApertureTerrainMesh's frame, at the height of the DEM there (the nearest
    * valid cell of its point array "Elevation", else of its one-component active scalars; 0 if
-   * none). Also remembers the DEM's georeference for GetGridAzimuth and
+   * none); its longitude is taken into [-180, 180] (a lat/lon grid may run 0..360 degrees).
+   * Also remembers the DEM's georeference for GetGridAzimuth and
    * GetGridConvergence. False (with the reason) when the image has no CRS, or a CRS with no
    * geographic equivalent other than a local one (vtkApertureGeoreference::IsLocal: a site
    * grid, its +y axis north, γ = 0), which has no place on the Earth: Latitude and Longitude
@@ -258,8 +259,9 @@ public:
    * fraction of its angular radius between lattice points, even across a continent). Cells
    * below the horizon get their direction too (z < 0). Uses the time (UnixTime), the
    * atmosphere and the Height set here for every cell, not the latitude and longitude (each
-   * cell has its own). False (GetErrorMessage) when
-   * the DEM has no georeference or only a local one (no place on the Earth), a lattice point
+   * cell has its own). False (GetErrorMessage) when `name` is the DEM's active scalars (its
+   * elevations), the DEM has no georeference or only a local one (no place on the Earth), a
+   * lattice point
    * has no geographic coordinates, or the sun's position fails there (a time or atmosphere
    * out of range).
    */

@@ -223,6 +223,35 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertAlmostEqual(math.degrees(math.atan2(e, nn)) % 360, r["azimuth_deg"], delta=1e-9)
         self.assertAlmostEqual(math.degrees(math.asin(u)), r["elevation_deg"], delta=1e-9)
 
+    def test_dem_longitudes_past_180(self):
+        # A lat/lon DEM in 0..360 degrees of longitude (190.505 E is 169.495 W): the sun of
+        # that place (it failed: "the longitude must be within -180..180 degrees").
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "east.tif")
+            ds = gdal.GetDriverByName("GTiff").Create(path, 3, 3, 1, gdal.GDT_Float32)
+            ds.SetGeoTransform((190.49, 0.01, 0, 10.01, 0, -0.01))
+            srs = osr.SpatialReference()
+            srs.ImportFromEPSG(4326)
+            ds.SetSpatialRef(srs)
+            ds.GetRasterBand(1).WriteArray(np.full((3, 3), 50.0))
+            ds = None
+            r = self.json_of("--at", "2026-06-21T22:00Z", "--dem", path)
+        # (the centre of 3 cells of 0.01 degree from 190.49 E, 10.01 N)
+        self.assertAlmostEqual(r["longitude_deg"], -169.495, delta=1e-9)
+        self.assertAlmostEqual(r["latitude_deg"], 9.995, delta=1e-9)
+        plain = self.json_of("--at", "2026-06-21T22:00Z", "--lat", 9.995, "--lon", -169.495,
+                             "--height", 50)
+        self.assertAlmostEqual(r["azimuth_deg"], plain["azimuth_deg"], delta=1e-6)
+        self.assertAlmostEqual(r["elevation_deg"], plain["elevation_deg"], delta=1e-6)
+
+    def test_height_range(self):
+        # one limit, said at once (20 km passed the position, then the light refused it)
+        for h in ("20000", "-1001", "nan"):
+            err = self.error_of("--at", "2026-06-21T12:00Z", "--lat", 47, "--lon", 8,
+                                "--height", h)
+            self.assertIn("--height must be within -1000..10000 m, the range of the sunlight "
+                          "and sky models", err)
+
     def test_dem_reading_options(self):
         # The reading options of the other commands: a two-band DEM in feet without a CRS.
         srs = osr.SpatialReference()

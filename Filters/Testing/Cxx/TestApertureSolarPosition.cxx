@@ -116,6 +116,16 @@ void TestZoneEdge()
 
   // Per cell: the centre cell is the direction in grid axes; the far east corner has a larger
   // convergence and its own sun.
+  {
+    // not over the elevations (they were replaced by the directions, without a word)
+    vtkDataArray* z = dem->GetPointData()->GetScalars();
+    vtkNew<vtkTest::ErrorObserver> errors;
+    sun->AddObserver(vtkCommand::ErrorEvent, errors);
+    AP_CHECK(z && z->GetName() && !sun->AddSunDirectionArray(dem, z->GetName()));
+    AP_CHECK_CONTAINS(sun->GetErrorMessage(), "is the DEM's elevation array (its active scalars)");
+    AP_CHECK(dem->GetPointData()->GetScalars() == z && z->GetNumberOfComponents() == 1);
+    sun->RemoveObservers(vtkCommand::ErrorEvent);
+  }
   AP_CHECK(sun->AddSunDirectionArray(dem));
   vtkDataArray* dirs = dem->GetPointData()->GetArray("SunDirection");
   AP_CHECK(dirs && dirs->GetNumberOfComponents() == 3);

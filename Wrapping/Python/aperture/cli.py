@@ -361,8 +361,9 @@ def describe(reader, watcher):
     bounds = [0.0] * 4
     centre = [0.0, 0.0]
     local = geo.IsLocal()  # (a site grid: metric cells, no place on the Earth)
-    if not (geo.GetCellSizeMetres(cell_m) and (local or (
-            geo.GetBoundsLonLat(bounds) and geo.GetCentreLonLat(centre)))):
+    # (the bounds first: beyond a pole they name the edge, the cell size only its latitude)
+    if not ((local or geo.GetBoundsLonLat(bounds)) and geo.GetCellSizeMetres(cell_m) and
+            (local or geo.GetCentreLonLat(centre))):
         raise ApertureError(geo.GetErrorMessage())
     return {
         "file": _full_name(os.fsdecode(reader.GetFileName())),
@@ -1746,6 +1747,11 @@ def cmd_sun(args):
         raise ApertureError(sun.GetErrorMessage())
     if not sun.SetTime(args.at):
         raise ApertureError(sun.GetErrorMessage())
+    if args.height is not None and not -1000.0 <= args.height <= 10000.0:
+        # (one limit, said first: the position took up to 100000 km, then the light refused
+        # more than 10 km, and a NaN was "outside -6500..100000 km")
+        raise ApertureError("--height must be within -1000..10000 m, the range of the sunlight "
+                            "and sky models (%s given)" % args.height)
     if args.dem is not None:
         _, image = read_dem(args, watcher)
         if not sun.SetPlaceFromImage(image):
@@ -1954,8 +1960,8 @@ def build_parser():
     p.add_argument("--lat", type=float, metavar="DEG", help="latitude, degrees north (-90..90)")
     p.add_argument("--lon", type=float, metavar="DEG", help="longitude, degrees east (-180..180)")
     p.add_argument("--height", type=float, metavar="M",
-                   help="height above the ellipsoid, metres (default 0; with --dem: the DEM's "
-                        "height at its centre)")
+                   help="height above the ellipsoid, metres, -1000..10000 (default 0; with "
+                        "--dem: the DEM's height at its centre)")
     p.add_argument("--pressure", type=float, default=1013.25, metavar="HPA",
                    help="air pressure for refraction, hPa (default 1013.25)")
     p.add_argument("--temperature", type=float, default=15.0, metavar="C",
