@@ -166,6 +166,11 @@ class TestCommandLineRender(unittest.TestCase):
                               stderr)
             with open(source, "rb") as f:
                 self.assertEqual(f.read(), before)
+            # a PNG under another name is written, with a warning
+            jpg = os.path.join(tmp, "x.jpg")
+            status, _, stderr = run("render", "-o", jpg, "--size", "64x48", "--multisamples", 0)
+            self.assertEqual(status, 0, stderr)
+            self.assertIn("warning: %s is written as a PNG" % jpg, stderr)
             status, _, stderr = run("render", "--size", "10x10")
             self.assertEqual(status, 2)
             self.assertIn("width and height must be within 16..16384", stderr)

@@ -771,8 +771,6 @@ def cmd_render(args):
     _check_outputs([("--output", args.output), ("--exr", args.exr)],
                    [("the DEM", _dem_path(args)), ("--baked", args.baked),
                     ("--albedo", args.albedo)])
-    _warn_extension(args.output, (".png",), "a PNG")
-    _warn_extension(args.exr, (".exr",), "an OpenEXR file")
     if not os.environ.get("DISPLAY"):
         raise ApertureError("rendering needs an X display (VTK on Debian renders through GLX); "
                             "run under xvfb-run -a")
@@ -816,6 +814,9 @@ def cmd_render(args):
             _attach_baked(image, args.baked, reader)
         source = image
         _check_render_memory(args, *image.GetDimensions()[:2], bool(args.baked), False)
+    # (after the refusals about the outputs: not a warning, then an error, for one mistake)
+    _warn_extension(args.output, (".png",), "a PNG")
+    _warn_extension(args.exr, (".exr",), "an OpenEXR file")
     misplaced = _albedo_placement_warning(args.albedo, albedo_bounds, image) if args.albedo \
         else None
     if misplaced:
@@ -1389,8 +1390,6 @@ def cmd_bake(args):
     if ext == ".exr":
         raise ApertureError("OUT.tif %s is written as a GeoTIFF; name it .tif and give --exr %s "
                             "for the EXR" % (args.output, args.output))
-    _warn_extension(args.output, (".tif", ".tiff", ".gtiff"), "a GeoTIFF")
-    _warn_extension(args.exr, (".exr",), "an OpenEXR file")
 
     progress = None if args.quiet or not sys.stderr.isatty() else _TermProgress(sys.stderr)
     try:
@@ -1460,6 +1459,9 @@ def _bake(args, products, progress):
         sky.SetMemoryLimit(args.max_memory)
     reader, window, read, rows, whole = _plan_bake(args, watcher, sky)
     _check_sources([("OUT.tif", args.output), ("--exr", args.exr)], reader)
+    # (after every refusal: a warning and then an error would be two lines for one mistake)
+    _warn_extension(args.output, (".tif", ".tiff", ".gtiff"), "a GeoTIFF")
+    _warn_extension(args.exr, (".exr",), "an OpenEXR file")
     # whether each update of the sky filter (one, or a strip's) read nodata alone: a part of
     # the DEM may (a window or a strip out at sea); all of it is an error
     nodata = []
