@@ -153,7 +153,8 @@ void vtkApertureLightingMapper::SetSunDirection(double x, double y, double z)
 {
   // (scaled by the largest component first: the squares of 1e300 or 1e-320 overflow or vanish)
   const double m = std::max(std::fabs(x), std::max(std::fabs(y), std::fabs(z)));
-  if (!(m > 0.0) || !std::isfinite(m))
+  // (std::max drops a NaN that is not its first argument: each component checked)
+  if (!(m > 0.0) || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
   {
     vtkErrorMacro(<< "SetSunDirection: the direction (" << x << ", " << y << ", " << z
                   << ") has no finite, non-zero length; keeping (" << this->SunDirection[0]

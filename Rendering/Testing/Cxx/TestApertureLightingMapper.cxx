@@ -470,6 +470,14 @@ void TestBadInput()
   s.Mapper->GetSunDirection(d);
   AP_CHECK(d[0] == 1.0 && d[1] == 0.0 && d[2] == 0.0);
   AP_CHECK(!s.Errors->GetError());
+  for (const Vec& bad : { Vec{ { 1.0, std::nan(""), 0.0 } }, Vec{ { 1.0, 0.0, HUGE_VAL } } })
+  {
+    s.Mapper->SetSunDirection(bad[0], bad[1], bad[2]); // refused, the direction kept
+    AP_CHECK(s.Errors->GetError());
+    s.Errors->Clear();
+    s.Mapper->GetSunDirection(d);
+    AP_CHECK(d[0] == 1.0 && d[1] == 0.0 && d[2] == 0.0);
+  }
   s.Mapper->SetSunDirection(0.0, 0.0, 1.0);
   vtkNew<vtkFloatArray> small;
   small->SetNumberOfComponents(3);
