@@ -6,6 +6,7 @@
 #include "vtkApertureMemory.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkExtentTranslator.h"
@@ -187,7 +188,18 @@ int vtkApertureTerrainMesh::Execute(
     }
     if (inside && smaller)
     {
+      // (the copy reads every point array by the input's extent: a short one is refused
+      // first; the image's cell arrays, which the mesh does not carry, are not copied)
+      const std::string inconsistent = vtkApertureCheckPointArrays(input->GetPointData(),
+        static_cast<vtkIdType>(dataExt[1]) - dataExt[0] + 1,
+        static_cast<vtkIdType>(dataExt[3]) - dataExt[2] + 1);
+      if (!inconsistent.empty())
+      {
+        vtkErrorMacro(<< inconsistent);
+        return 0;
+      }
       cropped->ShallowCopy(input);
+      cropped->GetCellData()->Initialize();
       cropped->Crop(asked);
       input = cropped;
     }

@@ -44,7 +44,9 @@
  * frame of the whole extent, so their vertices coincide with those of the whole mesh. A global
  * DEM's pieces are bands of whole rows, each with its seam, when its CRS is known while the
  * request is planned (published by vtkApertureDEMReader and passed on by
- * vtkApertureSkyVisibility).
+ * vtkApertureSkyVisibility, or an image given whole with SetInputData). An input that holds more
+ * than the piece (updated whole before, or given with SetInputData) is meshed over the piece's
+ * extent alone.
  *
  * Point arrays added: `Normals` (unit, ENU, of the output geometry including the vertical
  * exaggeration; active normals) and `TextureCoordinates` (u east, v north, spanning the outer
@@ -61,9 +63,10 @@
  * Errors (vtkErrorMacro and a failed update): no elevation array or one of several components,
  * a whole DEM smaller than 2 x 2 (a streamed piece that thin just gives an empty mesh), a point
  * array without one tuple per point of the input, no CRS or one without geographic coordinates
- * (other than a local one), every point nodata or no triangle at all (each valid point isolated among nodata; a
- * streamed piece just gives an empty mesh), or a mesh beyond MemoryLimit or the process's
- * memory (the message gives the size).
+ * (other than a local one), a lat/lon grid reaching beyond a pole, every point nodata or no
+ * triangle at all (each valid point isolated among nodata; a streamed piece just gives an empty
+ * mesh), a NaN VerticalExaggeration, or a mesh beyond MemoryLimit or the process's memory (the
+ * message gives the size).
  *
  * @warning Heights are used as given (usually orthometric, above the geoid) as heights above
  * the ellipsoid; over one DEM the geoid separation is nearly constant and shifts the whole mesh

@@ -692,6 +692,25 @@ void TestErrors()
   auto globe = MakeDEM("EPSG:4326", -175.0, -80.0, 10.0, 10.0, 36, 17, ok);
   globe->GetPointData()->AddArray(extra);
   ExpectError(globe, "the point array 'Class' has 3 tuples for the 36 x 17 points");
+  {
+    // the same short array in a streamed piece: refused before the piece is cut out of the
+    // image (the copy read past the array's end)
+    auto shortPiece = MakeDEM("EPSG:4326", 0, 0, 1, 1, 6, 6, ok);
+    vtkNew<vtkShortArray> few;
+    few->SetName("Class");
+    few->SetNumberOfTuples(5);
+    few->Fill(1);
+    shortPiece->GetPointData()->AddArray(few);
+    vtkNew<vtkApertureTerrainMesh> mesher;
+    vtkNew<vtkTest::ErrorObserver> errors, executiveErrors;
+    mesher->AddObserver(vtkCommand::ErrorEvent, errors);
+    mesher->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
+    mesher->SetInputData(shortPiece);
+    mesher->UpdatePiece(0, 2, 0);
+    AP_CHECK_CONTAINS(errors->GetErrorMessage(), "the point array 'Class' has 5 tuples for the "
+                                                 "6 x 6 points");
+    AP_CHECK(mesher->GetOutput()->GetNumberOfPoints() == 0);
+  }
   // a lat/lon grid beyond a pole, refused as the sky filter refuses it (its points there were
   // NaN, in triangles drawn)
   ExpectError(MakeDEM("EPSG:4326", 10.0, 89.5, 0.05, 0.05, 20, 20, ok),
