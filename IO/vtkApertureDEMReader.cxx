@@ -140,7 +140,8 @@ void LevelSpan(int w, int size, int full, int level, int& first, int& count)
 struct vtkApertureDEMReader::Internals
 {
   std::string Driver;
-  std::vector<std::string> Files; // GDALGetFileList's
+  std::vector<std::string> Files; // GDALGetFileList's, once asked for
+  bool FilesListed = false;
   int Band = 1;
   int Level = -1;               // -1: full resolution, else overview index
   int Window[4] = { 0, 0, 0, 0 }; // x0, y0, columns, rows in pixels of the level
@@ -257,12 +258,34 @@ const char* vtkApertureDEMReader::GetDriverName()
 //------------------------------------------------------------------------------
 int vtkApertureDEMReader::GetNumberOfFiles()
 {
-  return static_cast<int>(this->Impl->Files.size());
+  Internals& d = *this->Impl;
+  if (!d.FilesListed && !d.Driver.empty())
+  {
+    // Listed when asked, not on every update: GDAL looks up each source of a VRT (over the
+    // network for /vsicurl/ ones).
+    d.FilesListed = true;
+    std::string error;
+    DatasetHandle ds;
+    if (Internals::Open(this->FileName, ds, error))
+    {
+      vtkApertureGDALErrorTrap trap;
+      if (char** files = GDALGetFileList(ds.H))
+      {
+        for (char** f = files; *f; ++f)
+        {
+          d.Files.emplace_back(*f);
+        }
+        CSLDestroy(files);
+      }
+    }
+  }
+  return static_cast<int>(d.Files.size());
 }
 
 //------------------------------------------------------------------------------
 const char* vtkApertureDEMReader::GetFile(int index)
 {
+  this->GetNumberOfFiles();
   const std::vector<std::string>& files = this->Impl->Files;
   return index >= 0 && static_cast<size_t>(index) < files.size() ? files[index].c_str()
                                                                  : nullptr;
@@ -302,6 +325,7 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
   // (the facts of a file that fails to open are not the previous file's)
   d.Driver.clear();
   d.Files.clear();
+  d.FilesListed = false;
   this->ElevationUnitRead = 0.0;
   this->RasterSize[0] = this->RasterSize[1] = 0;
   this->NumberOfBands = this->BandRead = 0;
@@ -316,14 +340,6 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
   }
   const std::string name(this->FileName);
   d.Driver = GDALGetDriverShortName(GDALGetDatasetDriver(ds.H));
-  if (char** files = GDALGetFileList(ds.H))
-  {
-    for (char** f = files; *f; ++f)
-    {
-      d.Files.emplace_back(*f);
-    }
-    CSLDestroy(files);
-  }
   this->RasterSize[0] = GDALGetRasterXSize(ds.H);
   this->RasterSize[1] = GDALGetRasterYSize(ds.H);
   this->NumberOfBands = GDALGetRasterCount(ds.H);

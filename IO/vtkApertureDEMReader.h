@@ -159,7 +159,8 @@ public:
    *  format's other parts; names as GDAL gives them (relative names as given). None when no
    *  file is open or GDAL lists none (its /vsimem/ datasets may not); GetFile returns null for
    *  an index out of range. A caller writing next to the DEM checks its outputs against
-   *  these, not just FileName: writing over a VRT's source would change the DEM being read. */
+   *  these, not just FileName: writing over a VRT's source would change the DEM being read.
+   *  (Listed when first asked after an update, opening the file again.) */
   int GetNumberOfFiles();
   const char* GetFile(int index);
   ///@}

@@ -6,7 +6,8 @@
  * Input: a 2-D vtkImageData following vtkApertureGeoreference's conventions (origin and
  * spacing in CRS units, `CRS` in the field data). The GeoTIFF gets the same georeference
  * (geotransform from the image geometry, north-up; the CRS from the field data; without a CRS
- * the file is written without one and a warning says so).
+ * the file is written without one and a warning says so, while a CRS that cannot be used, or a
+ * grid it cannot place, is an error).
  *
  * Bands: every point array named in ArrayNames, in that order (all point arrays, in the image's
  * order, when the list is empty). A one-component array is one band described by its name; an
