@@ -628,7 +628,7 @@ class TestBake(unittest.TestCase):
             status, _, err = run("bake", dem, self.path("strips-refused.tif"), option,
                                  "99999999999")
             self.assertEqual(status, 2, err)
-            self.assertIn("99999999999 is out of range (at most 2147483647)", err)
+            self.assertIn("99999999999 is out of range (-2147483648..2147483647)", err)
             self.assertNotIn("Traceback", err)
 
     def test_global_dem(self):
@@ -856,6 +856,9 @@ class TestBake(unittest.TestCase):
                 (("--compress", "LZW", "--compress-level", "9"), "--compress-level applies to "
                  "DEFLATE, ZSTD and LZMA, which have levels, not to --compress LZW"),
                 (("--compress", ""), "--compress is empty"),  # (wrote an uncompressed file)
+                # (the codec named first, not its level)
+                (("--compress", "FOO", "--compress-level", "5"),
+                 "unknown GeoTIFF compression 'FOO'"),
                 (("--exr", ""), "--exr is empty"),
                 (("--srs", ""), "--srs is empty")):
             status, stdout, err = run("bake", self.dem, out, *args)

@@ -145,7 +145,9 @@ class TestCommandLineRender(unittest.TestCase):
                                    (("-o", ""), "--output is empty"),
                                    (("--albedo", ""), "--albedo is empty"),
                                    (("--baked", ""), "--baked is empty")):
-                status, stdout, stderr = run("render", *args)
+                # (into tmp, should a refusal ever fail: not aperture.png here)
+                out = () if "-o" in args else ("-o", os.path.join(tmp, "refused.png"))
+                status, stdout, stderr = run("render", *out, *args)
                 self.assertEqual(status, 1, stderr)
                 self.assertEqual(len(stderr.strip().splitlines()), 1, stderr)
                 self.assertIn(expected, stderr)
@@ -509,10 +511,7 @@ class TestCommandLineRender(unittest.TestCase):
                      lambda ds: ds.SetMetadataItem("SOURCE_ELEVATION_UNIT", "0.3048 m (--zfactor)"),
                      "was baked from elevations in units of 0.3048 m (--zfactor); the DEM is read "
                      "in units of 1 m (none in the file: metres): render with the bake's "
-                     "--zfactor"),
-                    ("band2.tif", lambda ds: ds.SetMetadataItem("SOURCE_BAND", "2"),
-                     "was baked from band 2 of its DEM; this DEM is read from band 1: render "
-                     "with the bake's --band")):
+                     "--zfactor")):
                 other = os.path.join(tmp, name)
                 ds = gdal.GetDriverByName("GTiff").CreateCopy(other, gdal.Open(baked))
                 change(ds)
@@ -527,6 +526,28 @@ class TestCommandLineRender(unittest.TestCase):
                                     "200x120", "--baked", os.path.join(tmp, "feet.tif"),
                                     "--zfactor", "ft")
             self.assertEqual(status, 0, stderr)
+            # nor from another band of a DEM of several (a bake of band 2 lit band 1's
+            # terrain); a DEM of one band may be such a band copied out, and takes it
+            band2 = os.path.join(tmp, "band2.tif")
+            ds = gdal.GetDriverByName("GTiff").CreateCopy(band2, gdal.Open(baked))
+            ds.SetMetadataItem("SOURCE_BAND", "2")
+            ds = None
+            two = os.path.join(tmp, "two-bands.tif")
+            ds = gdal.GetDriverByName("GTiff").Create(two, src.RasterXSize, src.RasterYSize, 2,
+                                                      gdal.GDT_Float32)
+            ds.SetGeoTransform(src.GetGeoTransform())
+            ds.SetProjection(src.GetProjection())
+            for b in (1, 2):
+                ds.GetRasterBand(b).WriteArray(src.GetRasterBand(1).ReadAsArray())
+            ds = None
+            for args, expected in (((two, "--band", 1), "was baked from band 2 of its DEM; this "
+                                    "DEM is read from band 1: render with the bake's --band"),
+                                   ((two, "--band", 2), None), ((dem,), None)):
+                status, _, stderr = run("render", *args, "-o", os.path.join(tmp, "x.png"),
+                                        "--size", "200x120", "--baked", band2)
+                self.assertEqual(status, 1 if expected else 0, stderr)
+                if expected:
+                    self.assertIn(expected, stderr)
             src = None
             # a damaged bake (cut short, uncompressed: its header whole, its tiles missing):
             # GDAL's message, not a traceback

@@ -510,7 +510,7 @@ def _parse_size(text):
 
 def _memory_size(text):
     """Bytes from '512' (MiB), '300K', '1.5G', '2TiB' (powers of 1024), '4096B' (bytes)."""
-    m = re.match(r"^\s*(\d+(?:\.\d*)?|\.\d+)\s*(?:([KMGT])I?B?|(B))?\s*$", text,
+    m = re.match(r"^\s*(\d+(?:\.\d*)?|\.\d+)\s*(?:([KMGT])(?:I?B)?|(B))?\s*$", text,
                  re.IGNORECASE)
     value = 0.0
     if m:
@@ -529,7 +529,8 @@ def _c_int(text):
     except ValueError:
         raise argparse.ArgumentTypeError("invalid int value: %r" % text)
     if not -2 ** 31 <= value < 2 ** 31:
-        raise argparse.ArgumentTypeError("%s is out of range (at most %d)" % (text, 2 ** 31 - 1))
+        raise argparse.ArgumentTypeError("%s is out of range (%d..%d)" % (text, -2 ** 31,
+                                                                            2 ** 31 - 1))
     return value
 
 
@@ -594,8 +595,9 @@ def _attach_baked_bands(image, path, ds, reader):
                                 % (path, baked_srs.GetName() if baked_srs else "none",
                                    dem_srs.GetName()))
     # nor from another band of the DEM (bakes since SOURCE_BAND was recorded)
+    # (a DEM of one band may be another file's band copied out: not compared)
     baked_band = ds.GetMetadataItem("SOURCE_BAND")
-    if baked_band and baked_band != str(reader.GetBandRead()):
+    if baked_band and reader.GetNumberOfBands() > 1 and baked_band != str(reader.GetBandRead()):
         raise ApertureError("%s was baked from band %s of its DEM; this DEM is read from band %d: "
                             "render with the bake's --band" % (path, baked_band,
                                                               reader.GetBandRead()))
@@ -1435,14 +1437,14 @@ def _bake(args, products, progress):
     watcher = Watcher(on_warning=warn_once)
     writer = watcher.watch(vtkApertureDEMWriter())
     writer.SetCompression(args.compress)
-    if args.compress_level is None:
-        args.compress_level = 1
-    elif not vtkApertureDEMWriter.HasCompressionLevel(args.compress):
+    writer.SetCompressionLevel(1 if args.compress_level is None else args.compress_level)
+    writer.CheckCompression()  # before the sweep, not after it (an unknown codec named first)
+    watcher.check("--compress %s --compress-level %d" % (args.compress,
+                                                        writer.GetCompressionLevel()))
+    if args.compress_level is not None and not vtkApertureDEMWriter.HasCompressionLevel(
+            args.compress):
         raise ApertureError("--compress-level applies to DEFLATE, ZSTD and LZMA, which have "
                             "levels, not to --compress %s" % args.compress)
-    writer.SetCompressionLevel(args.compress_level)
-    writer.CheckCompression()  # before the sweep, not after it
-    watcher.check("--compress %s --compress-level %d" % (args.compress, args.compress_level))
     sky = watcher.watch(vtkApertureSkyVisibility())
     sky.SetNumberOfDirections(args.directions)
     sky.SetMaximumDistance(args.radius or 0.0)
@@ -1593,9 +1595,12 @@ def _rgb(getter):
 
 
 def _offset_text(seconds):
+    """+HH:MM, or +HH:MM:SS for an offset with seconds (historical local mean time), as
+    Python's isoformat() writes them."""
     sign = "-" if seconds < 0 else "+"
     seconds = abs(int(seconds))
-    return "%s%02d:%02d" % (sign, seconds // 3600, seconds // 60 % 60)
+    text = "%s%02d:%02d" % (sign, seconds // 3600, seconds // 60 % 60)
+    return text + (":%02d" % (seconds % 60) if seconds % 60 else "")
 
 
 def _local_text(sun, unix_seconds):
@@ -1927,8 +1932,9 @@ def build_parser():
                    help="GeoTIFF compression, lossless: DEFLATE (default), ZSTD, LZW, LZMA, "
                         "PACKBITS, LERC, LERC_DEFLATE, LERC_ZSTD, NONE")
     p.add_argument("--compress-level", type=_c_int, metavar="N",
-                   help="compression level: DEFLATE 1-12, ZSTD 1-22; -1: GDAL's default "
-                        "(default 1, the fastest: float bands shrink under 1%% more at 6)")
+                   help="compression level: DEFLATE 1-12, ZSTD 1-22, LZMA 0-9; -1: GDAL's "
+                        "default (default 1, the fastest: float bands shrink under 1%% more at "
+                        "6); an error with the codecs that have no levels")
     p.add_argument("--max-memory", type=_memory_size, metavar="SIZE",
                    help="most memory for the products and the sweep's state, beside the DEM's "
                         "elevations (4 bytes a cell): a number of MiB, or with K, M, G, T or "
@@ -2037,8 +2043,8 @@ def build_parser():
                         "filled with the Preetham sky averaged over that aperture (brighter "
                         "towards the sun)")
     p.add_argument("--exposure", type=float, metavar="EV",
-                   help="exposure in EV (default: automatic, a flat open white surface in the "
-                        "sun at about 80%% grey)")
+                   help="exposure in EV, -30..30 (default: automatic, a flat open white "
+                        "surface in the sun at about 80%% grey)")
     _add_atmosphere_options(p)
     p.add_argument("--albedo", metavar="IMAGE",
                    help="a picture (e.g. an orthophoto: grey, RGB, RGBA or a palette, 8- or "
