@@ -244,6 +244,40 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertAlmostEqual(r["azimuth_deg"], plain["azimuth_deg"], delta=1e-6)
         self.assertAlmostEqual(r["elevation_deg"], plain["elevation_deg"], delta=1e-6)
 
+    def test_dem_larger_than_memory(self):
+        # The place of a DEM of 10^12 cells (3.6 TiB as float32): the cells at its centre are
+        # read, not the whole grid (a memory error before). A VRT of 1 m cells in UTM 11N,
+        # nodata but for 4 x 4 cells of 100 m around its centre.
+        with tempfile.TemporaryDirectory() as tmp:
+            small = os.path.join(tmp, "centre.tif")
+            ds = gdal.GetDriverByName("GTiff").Create(small, 4, 4, 1, gdal.GDT_Float32)
+            ds.GetRasterBand(1).WriteArray(np.full((4, 4), 100.0))
+            ds = None
+            n = 1000000
+            vrt = os.path.join(tmp, "huge.vrt")
+            with open(vrt, "w") as f:
+                f.write('<VRTDataset rasterXSize="%d" rasterYSize="%d">\n'
+                        '  <SRS>EPSG:32611</SRS>\n'
+                        '  <GeoTransform>0, 1, 0, 4000000, 0, -1</GeoTransform>\n'
+                        '  <VRTRasterBand dataType="Float32" band="1">\n'
+                        '    <NoDataValue>-1</NoDataValue><SimpleSource>\n'
+                        '    <SourceFilename relativeToVRT="0">%s</SourceFilename>\n'
+                        '    <SourceBand>1</SourceBand>\n'
+                        '    <SrcRect xOff="0" yOff="0" xSize="4" ySize="4"/>\n'
+                        '    <DstRect xOff="%d" yOff="%d" xSize="4" ySize="4"/>\n'
+                        '    </SimpleSource></VRTRasterBand>\n'
+                        '</VRTDataset>\n' % (n, n, small, n // 2 - 2, n // 2 - 2))
+            r = self.json_of("--at", "2026-06-21T20:00Z", "--dem", vrt)
+        self.assertEqual(r["height_m"], 100.0)
+        utm = osr.SpatialReference()
+        utm.ImportFromEPSG(32611)
+        wgs = osr.SpatialReference()
+        wgs.ImportFromEPSG(4326)
+        wgs.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
+        lon, lat, _ = osr.CoordinateTransformation(utm, wgs).TransformPoint(n / 2, 4000000 - n / 2)
+        self.assertAlmostEqual(r["longitude_deg"], lon, delta=1e-9)
+        self.assertAlmostEqual(r["latitude_deg"], lat, delta=1e-9)
+
     def test_height_range(self):
         # one limit, said at once (20 km passed the position, then the light refused it)
         for h in ("20000", "-1001", "nan"):

@@ -323,6 +323,25 @@ def read_dem(args, watcher):
     return reader, _read(watcher, reader)
 
 
+def _read_centre(args, watcher):
+    """The cells at the centre of the grid the arguments read: the 2 or 3 cells a side whose
+    centre is the grid's (as vtkApertureSolarPosition::SetPlaceFromImage takes it), so that the
+    place of a DEM larger than memory is found too; the whole grid when they are all nodata
+    (its nearest valid cell gives the height)."""
+    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
+    reader = _dem_reader(args, watcher)
+    watcher.update_information(reader)
+    whole = reader.GetOutputInformation(0).Get(sddp.WHOLE_EXTENT())
+    block = list(whole)
+    for a in (0, 2):
+        n = whole[a + 1] - whole[a] + 1
+        mid = whole[a] + (n - 1) // 2
+        block[a:a + 2] = (mid - 1, mid + 1) if n % 2 and n >= 3 else (mid, mid + (n > 1))
+    image = _read(watcher, reader, block)
+    low, high = image.GetPointData().GetArray("Elevation").GetRange()  # (NaN skipped)
+    return image if low <= high else _read(watcher, reader)
+
+
 # ---------------------------------------------------------------------------------------------
 # info
 
@@ -1760,7 +1779,7 @@ def cmd_sun(args):
         raise ApertureError("--height must be within -1000..10000 m, the range of the sunlight "
                             "and sky models (%s given)" % args.height)
     if args.dem is not None:
-        _, image = read_dem(args, watcher)
+        image = _read_centre(args, watcher)
         if not sun.SetPlaceFromImage(image):
             raise ApertureError(sun.GetErrorMessage())
         if math.isnan(sun.GetLatitude()):
