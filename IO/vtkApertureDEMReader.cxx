@@ -5,6 +5,7 @@
 #include "vtkApertureGeoreference.h"
 #include "vtkApertureMemory.h"
 #include "vtkApertureOutputFile.h"
+#include "vtkApertureReaderOutput.h"
 
 #include "vtkDataObject.h"
 #include "vtkFloatArray.h"
@@ -307,13 +308,7 @@ double vtkApertureDEMReader::GetMetresPerUnit(const char* name)
 int vtkApertureDEMReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  const int ok = this->ReadInformation(outputVector);
-  vtkImageData* output = ok ? nullptr : vtkImageData::GetData(outputVector);
-  if (output)
-  {
-    output->Initialize(); // a failed update, an empty output
-  }
-  return ok;
+  return vtkApertureEmptyOutputUnless(this->ReadInformation(outputVector), outputVector);
 }
 
 //------------------------------------------------------------------------------

@@ -5,6 +5,7 @@
 #include "vtkApertureGeoreference.h"
 #include "vtkApertureMemory.h"
 #include "vtkApertureOutputFile.h"
+#include "vtkApertureReaderOutput.h"
 
 #include "vtkDataObject.h"
 #include "vtkFloatArray.h"
@@ -261,13 +262,7 @@ const char* vtkApertureEXRReader::GetMetadataValue(const char* key)
 int vtkApertureEXRReader::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  const int ok = this->ReadInformation(outputVector);
-  vtkImageData* output = ok ? nullptr : vtkImageData::GetData(outputVector);
-  if (output)
-  {
-    output->Initialize(); // a failed update, an empty output
-  }
-  return ok;
+  return vtkApertureEmptyOutputUnless(this->ReadInformation(outputVector), outputVector);
 }
 
 //------------------------------------------------------------------------------
