@@ -168,6 +168,25 @@ struct CompressionLevelOption
 const CompressionLevelOption levelOptions[] = { { "DEFLATE", "ZLEVEL", 1, 12 },
   { "ZSTD", "ZSTD_LEVEL", 1, 22 }, { "LZMA", "LZMA_PRESET", 0, 9 } };
 
+// A codec's name as GDAL lists it: upper case ("" for null).
+std::string CodecName(const char* codec)
+{
+  std::string name = codec ? codec : "";
+  for (char& ch : name)
+  {
+    ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  }
+  return name;
+}
+
+// The level option of a codec named as GDAL lists it, or null for a codec without levels.
+const CompressionLevelOption* LevelOption(const std::string& codec)
+{
+  const auto it = std::find_if(std::begin(levelOptions), std::end(levelOptions),
+    [&codec](const CompressionLevelOption& lo) { return codec == lo.Codec; });
+  return it == std::end(levelOptions) ? nullptr : it;
+}
+
 // The file's square tiles (cells a side): the strips written at a time are whole tile rows.
 constexpr int Tile = 256;
 
@@ -210,13 +229,7 @@ bool vtkApertureDEMWriter::CheckCompression()
 //------------------------------------------------------------------------------
 bool vtkApertureDEMWriter::HasCompressionLevel(const char* codec)
 {
-  std::string name = codec ? codec : "";
-  for (char& ch : name)
-  {
-    ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
-  }
-  return std::any_of(std::begin(levelOptions), std::end(levelOptions),
-    [&name](const CompressionLevelOption& lo) { return name == lo.Codec; });
+  return LevelOption(CodecName(codec)) != nullptr;
 }
 
 //------------------------------------------------------------------------------
@@ -229,11 +242,7 @@ void* vtkApertureDEMWriter::CheckCompression(std::string& codec, const char*& le
     vtkErrorMacro(<< "GDAL has no GeoTIFF driver");
     return nullptr;
   }
-  codec = this->Compression && *this->Compression ? this->Compression : "NONE";
-  for (char& ch : codec)
-  {
-    ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
-  }
+  codec = CodecName(this->Compression && *this->Compression ? this->Compression : "NONE");
   // The codecs that keep floating-point samples exactly. JPEG and WEBP take 8- or 12-bit
   // samples, the CCITT ones 1-bit: GDAL refuses them for every tile, and on its compression
   // threads, where no caller sees the error, leaves the tiles out of a file that looks whole.
@@ -261,11 +270,7 @@ void* vtkApertureDEMWriter::CheckCompression(std::string& codec, const char*& le
                   << "' cannot store floating-point bands; choose one of " << usable);
     return nullptr;
   }
-  const CompressionLevelOption* level = nullptr;
-  for (const CompressionLevelOption& lo : levelOptions)
-  {
-    level = codec == lo.Codec ? &lo : level;
-  }
+  const CompressionLevelOption* level = LevelOption(codec);
   if (level && this->CompressionLevel != -1 &&
     (this->CompressionLevel < level->Lowest || this->CompressionLevel > level->Highest))
   {
