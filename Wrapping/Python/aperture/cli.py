@@ -2049,14 +2049,14 @@ def build_parser():
                    help="oblique view: look from azimuth AZ (degrees from north; default 180, "
                         "from the south) down at EL degrees (default 35), zoomed ZOOM times "
                         "(default 1: the whole DEM fits); top view: only ZOOM is used")
-    p.add_argument("--intersection", choices=("exact", "smoothstep"), default="exact",
+    p.add_argument("--intersection", choices=("exact", "smoothstep"),
                    help="sun-aperture cap intersection: exact closed form (default) or Oat & "
                         "Sander's smoothstep")
-    p.add_argument("--lambert", choices=("centroid", "exactcap"), default="centroid",
+    p.add_argument("--lambert", choices=("centroid", "exactcap"),
                    help="Lambert term: intersection centroid (default) or the exact sun cap")
-    p.add_argument("--sun-scale", type=float, default=1.0, metavar="S",
+    p.add_argument("--sun-scale", type=float, metavar="S",
                    help="widen the sun's disc S times: softer, broader penumbrae (default 1)")
-    p.add_argument("--sky", choices=("constant", "model"), default="constant",
+    p.add_argument("--sky", choices=("constant", "model"),
                    help="constant: one sky radiance (the uniform one giving the Preetham "
                         "sky's irradiance on level ground; default); model: each aperture "
                         "filled with the Preetham sky averaged over that aperture (brighter "
@@ -2069,7 +2069,7 @@ def build_parser():
                    help="a picture (e.g. an orthophoto: grey, RGB, RGBA or a palette, 8- or "
                         "16-bit, in any format GDAL reads) draped over the whole DEM, its top "
                         "edge north, as its albedo instead of the elevation colours")
-    p.add_argument("--shading", choices=("pixel", "vertex"), default="pixel",
+    p.add_argument("--shading", choices=("pixel", "vertex"),
                    help="evaluate the lighting at every pixel (default) or at the vertices, "
                         "interpolated (faster for meshes of about pixel-sized triangles)")
     p.add_argument("--exr", metavar="OUT.exr",
@@ -2085,9 +2085,9 @@ def build_parser():
                         "lighting with a white light from the sun's direction, on the "
                         "elevation colours (the aperture's, the sky's and the albedo's options "
                         "do not apply)")
-    # (None: not given; _render_option_checks fills in the defaults the help gives)
-    p.set_defaults(func=cmd_render, intersection=None, lambert=None, sun_scale=None, sky=None,
-                   shading=None, turbidity=None, linke_turbidity=None)
+    # (the aperture's options, and here the atmosphere's shared ones, are None when not given:
+    # _render_option_checks fills in _APERTURE_LIGHTING_OPTIONS' defaults, which the help gives)
+    p.set_defaults(func=cmd_render, turbidity=None, linke_turbidity=None)
     return parser
 
 
