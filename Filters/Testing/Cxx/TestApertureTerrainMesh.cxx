@@ -579,26 +579,36 @@ void TestBentNormalFrame()
 }
 
 // Each documented error: a clear message and a failed update, nothing printed.
+// A mesher of `dem` whose errors (its own, and its executive's: not printed) are caught.
+struct ObservedMesher
+{
+  vtkNew<vtkApertureTerrainMesh> Mesher;
+  vtkNew<vtkTest::ErrorObserver> Errors, ExecutiveErrors;
+  explicit ObservedMesher(vtkImageData* dem)
+  {
+    this->Mesher->AddObserver(vtkCommand::ErrorEvent, this->Errors);
+    this->Mesher->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->ExecutiveErrors);
+    this->Mesher->SetInputData(dem);
+  }
+};
+
 void ExpectError(vtkImageData* dem, const std::string& expected, const char* arrayName = nullptr,
   double exaggeration = 1.0)
 {
-  vtkNew<vtkApertureTerrainMesh> mesher;
+  ObservedMesher m(dem);
+  vtkApertureTerrainMesh* mesher = m.Mesher;
   if (arrayName)
   {
     mesher->SetElevationArrayName(arrayName);
   }
   mesher->SetVerticalExaggeration(exaggeration);
-  vtkNew<vtkTest::ErrorObserver> errors, executiveErrors;
-  mesher->AddObserver(vtkCommand::ErrorEvent, errors);
-  mesher->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
-  mesher->SetInputData(dem);
   const int ok = mesher->GetExecutive()->Update();
   AP_CHECK(ok == 0);
-  AP_CHECK(errors->GetError());
-  if (errors->GetErrorMessage().find(expected) == std::string::npos)
+  AP_CHECK(m.Errors->GetError());
+  if (m.Errors->GetErrorMessage().find(expected) == std::string::npos)
   {
     std::fprintf(stderr, "expected an error containing '%s', got '%s'\n", expected.c_str(),
-      errors->GetErrorMessage().c_str());
+      m.Errors->GetErrorMessage().c_str());
     ++aptest::Failures();
   }
   // a failed update leaves an empty mesh, not points without triangles
@@ -627,17 +637,13 @@ void TestMemoryLimit()
     const vtkTypeInt64 need = bent ? 936 : 828;
     for (vtkTypeInt64 limit : { need - 1, need })
     {
-      vtkNew<vtkApertureTerrainMesh> mesher;
-      vtkNew<vtkTest::ErrorObserver> errors, executiveErrors;
-      mesher->AddObserver(vtkCommand::ErrorEvent, errors);
-      mesher->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
-      mesher->SetInputData(dem);
-      mesher->SetMemoryLimit(limit);
-      const int ok = mesher->GetExecutive()->Update();
+      ObservedMesher m(dem);
+      m.Mesher->SetMemoryLimit(limit);
+      const int ok = m.Mesher->GetExecutive()->Update();
       AP_CHECK(ok == (limit == need ? 1 : 0));
       if (limit < need)
       {
-        AP_CHECK_CONTAINS(errors->GetErrorMessage(),
+        AP_CHECK_CONTAINS(m.Errors->GetErrorMessage(),
           "a mesh of 3 x 3 points needs about " + std::to_string(need) + " bytes, more than the " +
             std::to_string(limit) + " bytes MemoryLimit; decimate the DEM");
       }
@@ -701,15 +707,11 @@ void TestErrors()
     few->SetNumberOfTuples(5);
     few->Fill(1);
     shortPiece->GetPointData()->AddArray(few);
-    vtkNew<vtkApertureTerrainMesh> mesher;
-    vtkNew<vtkTest::ErrorObserver> errors, executiveErrors;
-    mesher->AddObserver(vtkCommand::ErrorEvent, errors);
-    mesher->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
-    mesher->SetInputData(shortPiece);
-    mesher->UpdatePiece(0, 2, 0);
-    AP_CHECK_CONTAINS(errors->GetErrorMessage(), "the point array 'Class' has 5 tuples for the "
-                                                 "6 x 6 points");
-    AP_CHECK(mesher->GetOutput()->GetNumberOfPoints() == 0);
+    ObservedMesher m(shortPiece);
+    m.Mesher->UpdatePiece(0, 2, 0);
+    AP_CHECK_CONTAINS(m.Errors->GetErrorMessage(), "the point array 'Class' has 5 tuples for "
+                                                   "the 6 x 6 points");
+    AP_CHECK(m.Mesher->GetOutput()->GetNumberOfPoints() == 0);
   }
   // a lat/lon grid beyond a pole, refused as the sky filter refuses it (its points there were
   // NaN, in triangles drawn)
