@@ -61,7 +61,8 @@ struct ContextHandle
 
 // Six comma-separated numbers of a north-up geotransform (gt[1] > 0, gt[5] < 0, no rotation).
 // Parsed in the classic locale, as the writer prints them, whatever the program's locale.
-bool ParseGeoTransform(const std::string& text, double gt[6])
+// Returns nullptr, or what is wrong with the text.
+const char* ParseGeoTransform(const std::string& text, double gt[6])
 {
   std::istringstream in(text);
   in.imbue(std::locale::classic());
@@ -70,11 +71,24 @@ bool ParseGeoTransform(const std::string& text, double gt[6])
     char comma = 0;
     if (!(in >> gt[k]) || !std::isfinite(gt[k]) || (k < 5 && (!(in >> comma) || comma != ',')))
     {
-      return false;
+      return "is not six comma-separated finite numbers";
     }
   }
   in >> std::ws;
-  return in.eof() && gt[1] > 0 && gt[5] < 0 && gt[2] == 0 && gt[4] == 0;
+  if (!in.eof())
+  {
+    return "is not six comma-separated finite numbers";
+  }
+  if (gt[2] != 0 || gt[4] != 0)
+  {
+    return "is rotated or sheared (its third and fifth numbers are not 0)";
+  }
+  if (!(gt[1] > 0 && gt[5] < 0))
+  {
+    return "is not north-up (its pixel width, the second number, must be positive and its "
+           "pixel height, the sixth, negative)";
+  }
+  return nullptr;
 }
 
 const char* StorageName(exr_storage_t storage)
@@ -466,10 +480,10 @@ int vtkApertureEXRReader::ReadInformation(vtkInformationVector* outputVector)
   if (const char* text = this->GetMetadataValue(GeoTransformAttribute))
   {
     double gt[6];
-    if (!ParseGeoTransform(text, gt))
+    if (const char* problem = ParseGeoTransform(text, gt))
     {
       vtkErrorMacro(<< "'" << name << "' has an " << GeoTransformAttribute << " attribute '" << text
-                    << "' that is not six comma-separated numbers of a north-up geotransform");
+                    << "' that " << problem);
       return 0;
     }
     d.Spacing[0] = gt[1];

@@ -174,7 +174,7 @@ enum class RawKind
   Subsampled, // channel C sampled every 2 x 2 pixels
   Channels,   // R G B A, Z (HALF), N (UINT), layer.x layer.y, lone.dot, V V.x V.y, and groups
               // diffuse.(A R B G), v.(10 2 002 1), m.(b 1)
-  BadGeo,     // aperture:geotransform "1,2,3"
+  BadGeo,     // aperture:geotransform as WriteRaw's geoTransform (default "1,2,3")
   BadCRS      // aperture:crs "not a CRS"
 };
 
@@ -184,7 +184,7 @@ float RawValue(int k, int x, int y)
   return static_cast<float>(1000 * k + 10 * y + x);
 }
 
-bool WriteRaw(const std::string& path, RawKind kind)
+bool WriteRaw(const std::string& path, RawKind kind, const char* geoTransform = "1,2,3")
 {
   const int W = 4, H = 4;
   exr_context_t ctx = nullptr;
@@ -240,7 +240,7 @@ bool WriteRaw(const std::string& path, RawKind kind)
     }
     if (ok && kind == RawKind::BadGeo)
     {
-      ok = exr_attr_set_string(ctx, part, "aperture:geotransform", "1,2,3") == EXR_ERR_SUCCESS;
+      ok = exr_attr_set_string(ctx, part, "aperture:geotransform", geoTransform) == EXR_ERR_SUCCESS;
     }
     if (ok && kind == RawKind::BadCRS)
     {
@@ -1248,20 +1248,36 @@ void TestReaderErrors()
     RawKind Kind;
     const char* File;
     const char* Message;
+    const char* GeoTransform;
   } cases[] = {
-    { RawKind::Tiled, "tiled.exr", "is a tiled OpenEXR image; only scanline images" },
-    { RawKind::Deep, "deep.exr", "is a deep scanline OpenEXR image" },
-    { RawKind::MultiPart, "multipart.exr", "is a multi-part OpenEXR file (2 parts)" },
+    { RawKind::Tiled, "tiled.exr", "is a tiled OpenEXR image; only scanline images", nullptr },
+    { RawKind::Deep, "deep.exr", "is a deep scanline OpenEXR image", nullptr },
+    { RawKind::MultiPart, "multipart.exr", "is a multi-part OpenEXR file (2 parts)", nullptr },
     { RawKind::Subsampled, "subsampled.exr",
-      "channel 'C' is sampled every 2 x 2 pixels; only channels sampled at every pixel" },
+      "channel 'C' is sampled every 2 x 2 pixels; only channels sampled at every pixel", nullptr },
     { RawKind::BadGeo, "badgeo.exr",
-      "aperture:geotransform attribute '1,2,3' that is not six comma-separated numbers" },
-    { RawKind::BadCRS, "badcrs.exr", "aperture:crs attribute that is not a CRS" },
+      "aperture:geotransform attribute '1,2,3' that is not six comma-separated finite numbers",
+      "1,2,3" },
+    { RawKind::BadGeo, "badgeo-nan.exr", "'0,30,0,nan,0,-30' that is not six comma-separated",
+      "0,30,0,nan,0,-30" },
+    { RawKind::BadGeo, "badgeo-more.exr", "'0,30,0,0,0,-30,1' that is not six comma-separated",
+      "0,30,0,0,0,-30,1" },
+    // Numbers that are no north-up grid: each named by what is wrong with it.
+    { RawKind::BadGeo, "badgeo-zero.exr",
+      "'0,0,0,0,0,0' that is not north-up (its pixel width, the second number, must be positive "
+      "and its pixel height, the sixth, negative)",
+      "0,0,0,0,0,0" },
+    { RawKind::BadGeo, "badgeo-south.exr", "'0,30,0,0,0,30' that is not north-up",
+      "0,30,0,0,0,30" },
+    { RawKind::BadGeo, "badgeo-rotated.exr",
+      "'0,30,1,0,0,-30' that is rotated or sheared (its third and fifth numbers are not 0)",
+      "0,30,1,0,0,-30" },
+    { RawKind::BadCRS, "badcrs.exr", "aperture:crs attribute that is not a CRS", nullptr },
   };
   for (const auto& c : cases)
   {
     const std::string path = tmp + "/" + c.File;
-    AP_CHECK(WriteRaw(path, c.Kind));
+    AP_CHECK(c.GeoTransform ? WriteRaw(path, c.Kind, c.GeoTransform) : WriteRaw(path, c.Kind));
     ExpectReaderError(path, "'" + path + "' ");
     ExpectReaderError(path, c.Message);
   }
