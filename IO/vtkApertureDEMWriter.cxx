@@ -94,8 +94,11 @@ void vtkApertureDEMWriter::AddArrayName(const char* name)
 //------------------------------------------------------------------------------
 void vtkApertureDEMWriter::ClearArrayNames()
 {
-  this->Impl->ArrayNames.clear();
-  this->Modified();
+  if (!this->Impl->ArrayNames.empty())
+  {
+    this->Impl->ArrayNames.clear();
+    this->Modified();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -138,9 +141,12 @@ void vtkApertureDEMWriter::AddBandMetadata(
 //------------------------------------------------------------------------------
 void vtkApertureDEMWriter::ClearMetadata()
 {
-  this->Impl->Metadata.clear();
-  this->Impl->BandMetadata.clear();
-  this->Modified();
+  if (!this->Impl->Metadata.empty() || !this->Impl->BandMetadata.empty())
+  {
+    this->Impl->Metadata.clear();
+    this->Impl->BandMetadata.clear();
+    this->Modified();
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -386,8 +386,11 @@ void vtkApertureEXRWriter::AddArrayName(const char* name)
 //------------------------------------------------------------------------------
 void vtkApertureEXRWriter::ClearArrayNames()
 {
-  this->Impl->ArrayNames.clear();
-  this->Modified();
+  if (!this->Impl->ArrayNames.empty())
+  {
+    this->Impl->ArrayNames.clear();
+    this->Modified();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -450,8 +453,11 @@ void vtkApertureEXRWriter::AddMetadata(const char* key, const char* value)
 //------------------------------------------------------------------------------
 void vtkApertureEXRWriter::ClearMetadata()
 {
-  this->Impl->Metadata.clear();
-  this->Modified();
+  if (!this->Impl->Metadata.empty())
+  {
+    this->Impl->Metadata.clear();
+    this->Modified();
+  }
 }
 
 //------------------------------------------------------------------------------

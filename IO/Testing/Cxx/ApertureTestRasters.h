@@ -5,6 +5,7 @@
 #define ApertureTestRasters_h
 
 #include "aptest.hxx"
+#include "vtkType.h"
 
 #include <cpl_string.h>
 #include <gdal.h>
@@ -220,6 +221,34 @@ inline bool SameKind(const std::string& path, const std::string& kind)
   return kind == "a pipe" ? S_ISFIFO(st.st_mode)
     : kind == "a folder"  ? S_ISDIR(st.st_mode)
                           : S_ISCHR(st.st_mode) && st.st_rdev == makedev(1, 3);
+}
+
+/** A writer's Add* and Clear* lists change its modification time only when they change the
+ * list: a Clear of an empty list, as VTK's setters of an unchanged value, does not (a pipeline
+ * would write again for nothing). */
+template <typename Writer>
+void CheckClearsModifyOnlyOnChange(Writer* w)
+{
+  vtkMTimeType m = w->GetMTime();
+  w->ClearArrayNames();
+  w->ClearMetadata();
+  AP_CHECK(w->GetMTime() == m);
+  w->AddArrayName("A");
+  AP_CHECK(w->GetMTime() > m);
+  m = w->GetMTime();
+  w->ClearArrayNames();
+  AP_CHECK(w->GetMTime() > m && w->GetNumberOfArrayNames() == 0);
+  m = w->GetMTime();
+  w->ClearArrayNames();
+  AP_CHECK(w->GetMTime() == m);
+  w->AddMetadata("key", "value");
+  AP_CHECK(w->GetMTime() > m);
+  m = w->GetMTime();
+  w->ClearMetadata();
+  AP_CHECK(w->GetMTime() > m);
+  m = w->GetMTime();
+  w->ClearMetadata();
+  AP_CHECK(w->GetMTime() == m);
 }
 
 } // namespace aptest

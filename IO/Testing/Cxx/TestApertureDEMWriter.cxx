@@ -756,8 +756,20 @@ void TestErrors()
     AP_CHECK(stat(path.c_str(), &sb) != 0); // nothing left behind
   }
 }
+
+//------------------------------------------------------------------------------
+void TestClears()
+{
+  vtkNew<vtkApertureDEMWriter> w;
+  aptest::CheckClearsModifyOnlyOnChange(w.Get());
+  w->AddBandMetadata("A", "UNITS", "m");
+  const vtkMTimeType m = w->GetMTime();
+  w->ClearMetadata();
+  AP_CHECK(w->GetMTime() > m);
+}
 } // namespace
 
+//------------------------------------------------------------------------------
 int TestApertureDEMWriter(int argc, char* argv[])
 {
   tmp = aptest::TempDir(argc, argv);
@@ -768,5 +780,6 @@ int TestApertureDEMWriter(int argc, char* argv[])
   TestCodecs();
   TestStrips();
   TestErrors();
+  TestClears();
   return aptest::Result();
 }

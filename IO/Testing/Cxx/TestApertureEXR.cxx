@@ -1522,8 +1522,16 @@ void TestStrips()
     AP_CHECK(!LeftoverTemporaryFiles("strips-abandoned.exr"));
   }
 }
+
+//------------------------------------------------------------------------------
+void TestClears()
+{
+  vtkNew<vtkApertureEXRWriter> w;
+  aptest::CheckClearsModifyOnlyOnChange(w.Get());
+}
 } // namespace
 
+//------------------------------------------------------------------------------
 int TestApertureEXR(int argc, char* argv[])
 {
   tmp = aptest::TempDir(argc, argv);
@@ -1537,6 +1545,7 @@ int TestApertureEXR(int argc, char* argv[])
   TestThreadsSameBytes();
   TestReaderGrouping();
   TestWriterErrors();
+  TestClears();
   TestReaderErrors();
   TestExrHeader();
   TestStrips();
