@@ -2163,9 +2163,12 @@ AP_INLINE unsigned char march_edge(const ap_horizon *hz, const pattern *pt, size
 AP_INLINE double side_exit_slope(const ap_horizon *hz, size_t p, double k, long edge, double len,
                                  double zq)
 {
-  const double pk = (double)p + k, t = k * len;
-  const size_t q = (size_t)pk;
-  const double f = pk - (double)q;
+  /* (the columns from k's whole part, not from p + k: k just short of a whole number, on the
+   * diagonals where the slope m is 1 + 2e-16, rounded p + k up to the last column, and read a
+   * column beyond it; the callers' k < np - 1 - p keeps q + 1 on the grid) */
+  const double kw = floor(k), t = k * len;
+  const size_t q = p + (size_t)kw;
+  const double f = k - kw;
   const double z0 = view_column(hz, q)[edge], z1 = view_column(hz, q + 1)[edge];
   return ((z0 + f * (z1 - z0)) - zq) / t - hz->c * t;
 }

@@ -907,6 +907,56 @@ static void test_side_edges(void)
   }
 }
 
+/* The far march takes the point where a ray leaves through a side of the DEM, k view columns
+ * on. On the diagonals of a DEM of square cells the view is x-major where sin(phi) / dx and
+ * cos(phi) / dx round to one number (20 m cells; not 30 m), and its slope is then
+ * cos / sin = 1 + 2e-16: the rays of the cells on the diagonal through a corner leave
+ * k = n (1 - 2e-16) columns on, n the columns left. It read the columns at p + k rounded, the
+ * last one, and the one after it, past the grid's columns (a crash, or garbage weighted by 0;
+ * found by a probe of the filter at the default 32 directions; AddressSanitizer's run of this
+ * test names the read). Those cells' horizons in the diagonal sectors must match the brute
+ * force, for cells of 20 and 30 m, on DEMs wider and taller than long. */
+static void test_far_march_corner_diagonals(void)
+{
+  const size_t dims[2][2] = {{100, 90}, {90, 100}};
+  const double cells[2] = {20.0, 30.0};
+  int shape, size, d;
+  for (shape = 0; shape < 2; ++shape) {
+    for (size = 0; size < 2; ++size) {
+      terrain t = make(dims[shape][0], dims[shape][1], cells[size]);
+      ap_horizon_params p = params(32, 0);
+      results r;
+      size_t i, j, k, n = 0;
+      double worst = 0.0;
+      for (j = 0; j < t.ny; ++j) {
+        for (i = 0; i < t.nx; ++i) {
+          t.z[j * t.nx + i] = (float)rough((double)i * 30.0, (double)j * 30.0);
+        }
+      }
+      p.max_distance = 150 * cells[size]; /* (150 columns: far-marched) */
+      r = compute(&t, &p);
+      for (d = 4; d < 32; d += 8) { /* NE, SE, SW, NW */
+        const double phi = 2 * PI * d / 32;
+        const int east = d < 16, north = d < 8 || d > 24;
+        for (k = 1; k < t.nx && k < t.ny; ++k) {
+          /* the cell k cells (diagonally) from the corner the sector looks at */
+          i = east ? t.nx - 1 - k : k;
+          j = north ? t.ny - 1 - k : k;
+          worst = fmax(worst, fabs(r.h[(j * t.nx + i) * 32 + (size_t)d] -
+                                   brute_force(&t, i, j, phi, 0.0, p.max_distance)) /
+                                DEG);
+          ++n;
+        }
+      }
+      fprintf(stderr, "far march, %zu x %zu cells of %.0f m, rays into the corners: %zu cells, "
+              "max %.3f deg\n", t.nx, t.ny, cells[size], n, worst);
+      AP_CHECK(worst <= 0.5);
+      release(&r);
+      drop(&t);
+    }
+  }
+}
+
 /* Results are bitwise the same however the brackets and rows are split (threads), through the
  * hulls and with marched rays (on the bilinear surface, and across the view columns), with
  * constant and with per-row (lat/lon) cell sizes, whose x-major sectors split the near field by
@@ -2291,6 +2341,7 @@ int main(void)
   test_long_narrow();
   test_latlon_rows();
   test_side_edges();
+  test_far_march_corner_diagonals();
   test_split_invariance();
   test_far_march_skips();
   test_pieces();
