@@ -191,7 +191,12 @@ public:
   ///@{
   /** Columns of each cell's own ray evaluated exactly on the bilinear surface before the
    *  hulls or the far march take over: 1..64, or 0 (default) for 32 in the sectors the hulls
-   *  search and 8 where the far march runs (ap_horizon.h gives the accuracy it buys). */
+   *  search and 8 where the far march runs (ap_horizon.h gives the accuracy it buys). Beyond
+   *  them a ray sees the terrain where it crosses the grid's columns (or rows), not inside
+   *  the cells between: natural terrain loses little, but a feature one cell wide (a mast, a
+   *  chimney in a DSM) that a ray passes between crossings is missed, so that a longer
+   *  MaximumDistance, which far-marches what a shorter one marched exactly, can even lower a
+   *  horizon. For DSMs of such features, 64 finds them within 64 cells (10-20% more time). */
   vtkSetClampMacro(NearField, int, 0, 64);
   vtkGetMacro(NearField, int);
   ///@}

@@ -1964,7 +1964,9 @@ def build_parser():
     p.add_argument("--near-field", type=_c_int, default=0, metavar="K",
                    help="columns of each cell's ray evaluated exactly, 1..64 (default 0: 32 "
                         "where the horizon sweep runs, 8 where rays are sampled at every "
-                        "column)")
+                        "column); beyond them rays see the terrain where they cross grid "
+                        "lines, and can miss a feature one cell wide (a mast in a DSM): 64 "
+                        "finds those within 64 cells, for 10-20%% more time")
     p.add_argument("--quiet", "-q", action="store_true",
                    help="no progress display (shown, as by gdaldem, when stderr is a "
                         "terminal) and no summary line on stdout; warnings and errors still "
