@@ -345,22 +345,39 @@ class TestCommandLineRender(unittest.TestCase):
 
     def test_night(self):
         # The sun below the horizon lights nothing (no twilight in the sky models): a black
-        # picture, with a warning saying why.
+        # picture, with a warning saying why. VTK's standard lighting too: it lit the slopes
+        # facing a light 11 degrees below the horizon, and the rest at its ambient level.
         with tempfile.TemporaryDirectory() as tmp:
             out = os.path.join(tmp, "night.png")
-            status, stdout, stderr = run("render", "-o", out, "--size", "200x120",
-                                         "--sun-el", "-5")
-            self.assertEqual(status, 0, stderr)
-            self.assertIn("aperture: warning: the sun is 5.00 degrees below the horizon: the "
-                          "terrain is unlit (the sky models have no twilight), a black picture",
-                          stderr)
-            reader = vtkPNGReader()
-            reader.SetFileName(out)
-            reader.Update()
-            rgb = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3]
-            self.assertGreater((rgb.sum(axis=1) == 0).mean(), 0.3)  # the terrain, black
-            status, _, stderr = run("render", "-o", out, "--size", "200x120", "--sun-el", "1")
-            self.assertEqual((status, "warning" in stderr), (0, False), stderr)
+            for lighting in ("aperture", "standard"):
+                for el in ("-5", "-0.01", "-90"):
+                    status, stdout, stderr = run("render", "-o", out, "--size", "200x120",
+                                                 "--sun-az", "315", "--sun-el", el,
+                                                 "--lighting", lighting)
+                    self.assertEqual(status, 0, stderr)
+                    self.assertIn("aperture: warning: the sun is %.2f degrees below the horizon: "
+                                  "the terrain is unlit (the sky models have no twilight), a "
+                                  "black picture" % -float(el), stderr)
+                    reader = vtkPNGReader()
+                    reader.SetFileName(out)
+                    reader.Update()
+                    rgb = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3]
+                    # the terrain, black; all else the white background, and the grey of
+                    # the two blended at its outline: no pixel with a colour
+                    self.assertGreater((rgb.sum(axis=1) == 0).mean(), 0.3, (lighting, el))
+                    self.assertTrue(((rgb == rgb[:, :1]).all(axis=1)).all(), (lighting, el))
+                # at the horizon and above: lit (the sky, and slopes facing the sun), and no
+                # warning
+                for el in ("0", "1"):
+                    status, _, stderr = run("render", "-o", out, "--size", "200x120",
+                                            "--sun-az", "315", "--sun-el", el, "--lighting",
+                                            lighting)
+                    self.assertEqual((status, "warning" in stderr), (0, False), stderr)
+                    reader = vtkPNGReader()
+                    reader.SetFileName(out)
+                    reader.Update()
+                    rgb = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3]
+                    self.assertLess((rgb.sum(axis=1) == 0).mean(), 0.01, (lighting, el))
 
     def test_local_crs(self):
         # A site grid in a local CRS renders with the sun given by its direction, as the same

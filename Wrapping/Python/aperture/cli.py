@@ -843,7 +843,7 @@ def cmd_render(args):
     if misplaced:
         _warn(misplaced)
     sun = _render_sun(args, image, watcher)
-    if sun.GetElevation() <= 0.0:  # (the beam and the sky models end at the horizon)
+    if sun.GetElevation() < 0.0:  # (the beam and the sky models end at the horizon)
         _warn("the sun is %.2f degrees below the horizon%s: the terrain is unlit (the sky models "
               "have no twilight), a black picture" % (-sun.GetElevation(),
                                                       " at that time" if args.at else ""))

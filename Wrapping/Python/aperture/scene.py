@@ -70,6 +70,8 @@ def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_ele
           exposure=0.0, multisamples=8, background=(1.0, 1.0, 1.0), camera=None):
     """A render window showing the mesh with VTK's own lighting from light_azimuth and
     light_elevation (degrees; from true north, above the horizon), scaled by 2^exposure (EV);
+    a light below the horizon lights nothing, as the sun there in build_aperture (the mesh is
+    black, no ambient term either: no slope facing it is lit from below the Earth);
     returns (render_window, renderer). The window renders off screen (an X display, e.g. Xvfb,
     is still needed by Debian's VTK). ValueError for an unknown view, a light elevation outside
     -90..90 or a mesh without an Elevation array."""
@@ -86,7 +88,8 @@ def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_ele
     actor = vtkActor()
     actor.SetMapper(mapper)
     prop = actor.GetProperty()
-    prop.SetAmbient(0.25)
+    lit = light_elevation >= 0.0
+    prop.SetAmbient(0.25 if lit else 0.0)
     prop.SetDiffuse(0.85)
     prop.SetSpecular(0.0)
 
@@ -100,7 +103,8 @@ def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_ele
     d = direction_enu(light_azimuth, light_elevation)
     light.SetFocalPoint(0.0, 0.0, 0.0)
     light.SetPosition(*d)
-    light.SetIntensity(1.0)
+    # (off by its intensity, not SwitchOff: with no light on, VTK draws the colours unlit)
+    light.SetIntensity(1.0 if lit else 0.0)
     renderer.AddLight(light)
 
     return offscreen_window(renderer, mesh, view, size, multisamples, camera), renderer
