@@ -636,6 +636,32 @@ ap_status ap_sun_incidence(const ap_sun_position_result *sun, double slope_deg,
   return AP_OK;
 }
 
+/* The report's Appendix A.2 interpolation over one day: the apparent sidereal time at its
+ * midnight, the geocentric right ascension and declination at midnight (alpha0, delta0, deg)
+ * and their differences to the day before (a, ad) and after (b, bd); n0 = ΔT in days. */
+typedef struct rts_day {
+  double nu, lon, sin_phi, cos_phi, n0, alpha0, delta0, a, b, ad, bd;
+} rts_day;
+
+/* Samples of the day's altitude for its rise and set: every 5 minutes. */
+#define RTS_SAMPLES 288
+
+/* Geocentric altitude (deg, no refraction, no parallax) at fraction f of the day from its
+ * midnight (the report's steps 6-10 at one instant); the local hour angle into *ha (deg,
+ * [-180, 180)) when ha is not NULL. */
+static double rts_altitude(const rts_day *d, double f, double *ha)
+{
+  const double nu_f = d->nu + 360.985647 * f;
+  const double n = f + d->n0;
+  const double alpha = d->alpha0 + n * (d->a + d->b + (d->b - d->a) * n) / 2.0;
+  const double dec = rad(d->delta0 + n * (d->ad + d->bd + (d->bd - d->ad) * n) / 2.0);
+  const double h = wrap180(nu_f + d->lon - alpha);
+  if (ha) {
+    *ha = h;
+  }
+  return deg(asin(clamp1(d->sin_phi * sin(dec) + d->cos_phi * cos(dec) * cos(rad(h)))));
+}
+
 ap_status ap_sun_rise_transit_set(const ap_sun_params *p, int year, int month, int day,
                                   double utc_offset_hours, double lat_deg, double lon_deg,
                                   ap_sun_rts_result *out)
@@ -673,47 +699,93 @@ ap_status ap_sun_rise_transit_set(const ap_sun_params *p, int year, int month, i
   ap_sun_rts_result r;
   r.rise_set_altitude = h0p;
 
-  /* Step 3-5: approximate transit m0 and the hour angle H0 of rise/set at h0'. */
-  double m[3];
-  m[0] = frac01((alpha0 - lon_deg - nu) / 360.0);
-  const double cos_h0 =
-    (sin(rad(h0p)) - sin(phi) * sin(rad(delta0))) / (cos(phi) * cos(rad(delta0)));
-  if (cos_h0 < -1.0) {
-    r.kind = AP_SUN_DAY_POLAR_DAY;
-  } else if (cos_h0 > 1.0) {
-    r.kind = AP_SUN_DAY_POLAR_NIGHT;
-  } else {
+  /* Step 3, 6-10 and 11 for the transit: approximate transit m0, corrected by its hour angle
+   * at the interpolated sidereal time and right ascension. The report's α difference above 2°
+   * reduced to its fractional part undoes the 360° wrap; wrapping it to [-180, 180) does that
+   * for every case. */
+  rts_day rd;
+  rd.nu = nu;
+  rd.lon = lon_deg;
+  rd.sin_phi = sin(phi);
+  rd.cos_phi = cos(phi);
+  rd.n0 = dt / SECONDS_PER_DAY;
+  rd.alpha0 = alpha0;
+  rd.delta0 = delta0;
+  rd.a = wrap180(alpha0 - g[0].alpha);
+  rd.b = wrap180(g[2].alpha - alpha0);
+  rd.ad = delta0 - g[0].delta;
+  rd.bd = g[2].delta - delta0;
+  const double m0 = frac01((alpha0 - lon_deg - nu) / 360.0);
+  double ha0;
+  r.transit_elevation = rts_altitude(&rd, m0, &ha0);
+  double f[3] = { m0 - ha0 / 360.0, NAN, NAN };
+
+  /* Sunrise and sunset: where the interpolated altitude crosses h0' upwards and downwards in
+   * the day [0, 1] (the report's step 4-5 and 12-13 instead take the hour angle H0 from the
+   * declination at midnight and correct each event once, which near the start and end of polar
+   * day and night gave days of the wrong kind and events hours off, even in the wrong order).
+   * Sampled every 5 minutes, and at the transit and the anti-transit, the altitude's highest
+   * and lowest points, so that a graze above or below h0' between samples is not lost; each
+   * crossing found by bisection to 1e-9 rd. Where the day has several of a kind, sunrise is
+   * the last before the transit (else the first) and sunset the first after it (else the
+   * last). No crossing: polar day or night by the altitude at the transit. */
+  double xs[RTS_SAMPLES + 4], ys[RTS_SAMPLES + 4];
+  int nx = 0;
+  {
+    const double fixed[3] = { f[0] - 0.5, f[0], f[0] + 0.5 }; /* (ascending) */
+    double extra[3];
+    int ne = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (fixed[k] > 0.0 && fixed[k] < 1.0) {
+        extra[ne++] = fixed[k];
+      }
+    }
+    for (int k = 0, e = 0; k <= RTS_SAMPLES; ++k) {
+      const double x = (double)k / RTS_SAMPLES;
+      while (e < ne && extra[e] < x) {
+        xs[nx++] = extra[e++];
+      }
+      xs[nx++] = x;
+    }
+  }
+  for (int k = 0; k < nx; ++k) {
+    ys[k] = rts_altitude(&rd, xs[k], NULL) - h0p;
+  }
+  double rise_before = NAN, rise_after = NAN, set_before = NAN, set_after = NAN;
+  for (int k = 0; k + 1 < nx; ++k) {
+    const int up = ys[k] < 0.0 && ys[k + 1] >= 0.0, down = ys[k] >= 0.0 && ys[k + 1] < 0.0;
+    if (!up && !down) {
+      continue;
+    }
+    double lo = xs[k], hi = xs[k + 1];
+    while (hi - lo > 1e-9) {
+      const double mid = 0.5 * (lo + hi);
+      if ((rts_altitude(&rd, mid, NULL) - h0p < 0.0) == up) {
+        lo = mid;
+      } else {
+        hi = mid;
+      }
+    }
+    const double x = 0.5 * (lo + hi);
+    if (up && x <= f[0]) {
+      rise_before = x; /* (the last) */
+    } else if (up && isnan(rise_after)) {
+      rise_after = x;
+    } else if (down && x < f[0]) {
+      set_before = x; /* (the last) */
+    } else if (down && isnan(set_after)) {
+      set_after = x;
+    }
+  }
+  const double rise = isnan(rise_before) ? rise_after : rise_before;
+  const double set = isnan(set_after) ? set_before : set_after;
+  if (!isnan(rise) || !isnan(set)) {
     r.kind = AP_SUN_DAY_NORMAL;
+  } else {
+    r.kind = ys[0] >= 0.0 ? AP_SUN_DAY_POLAR_DAY : AP_SUN_DAY_POLAR_NIGHT;
   }
-  const int n_events = r.kind == AP_SUN_DAY_NORMAL ? 3 : 1;
-  if (n_events == 3) {
-    const double h0 = deg(acos(cos_h0)); /* [0, 180] */
-    m[1] = frac01(m[0] - h0 / 360.0);
-    m[2] = frac01(m[0] + h0 / 360.0);
-  }
-
-  /* Step 6-10: sidereal time, interpolated α', δ', local hour angle H' and altitude h' at each
-   * approximate event. The report reduces an α difference above 2° to its fractional part to
-   * undo the 360° wrap; wrapping it to [-180, 180) does that for every case. */
-  const double a = wrap180(alpha0 - g[0].alpha), b = wrap180(g[2].alpha - alpha0);
-  const double ad = delta0 - g[0].delta, bd = g[2].delta - delta0;
-  double dec_i[3], ha_i[3], alt_i[3];
-  for (int i = 0; i < n_events; ++i) {
-    const double nu_i = nu + 360.985647 * m[i];
-    const double n = m[i] + dt / SECONDS_PER_DAY;
-    const double alpha_i = alpha0 + n * (a + b + (b - a) * n) / 2.0;
-    dec_i[i] = rad(delta0 + n * (ad + bd + (bd - ad) * n) / 2.0);
-    ha_i[i] = wrap180(nu_i + lon_deg - alpha_i);
-    alt_i[i] = deg(asin(clamp1(sin(phi) * sin(dec_i[i]) +
-                               cos(phi) * cos(dec_i[i]) * cos(rad(ha_i[i])))));
-  }
-  r.transit_elevation = alt_i[0];
-
-  /* Step 11-13: corrected transit, sunrise and sunset (fractions of the day from t0). */
-  double f[3] = { m[0] - ha_i[0] / 360.0, NAN, NAN };
-  for (int i = 1; i < n_events; ++i) {
-    f[i] = m[i] + (alt_i[i] - h0p) / (360.0 * cos(dec_i[i]) * cos(phi) * sin(rad(ha_i[i])));
-  }
+  f[1] = rise;
+  f[2] = set;
   double inst[3], hour[3];
   for (int i = 0; i < 3; ++i) {
     /* Events are in UT1; UTC = UT1 - delta_ut1. */

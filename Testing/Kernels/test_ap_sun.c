@@ -4,11 +4,13 @@
  * reference positions and solar radii of ALGORITHMS.md §4.3-4.4; everything else is checked
  * through properties (consistency between functions, flags, ranges). */
 #include "ap_sun.h"
+#include "ap_time.h"
 #include "aptest.h"
 
 #include <math.h>
 #include <string.h>
 #include <stddef.h>
+#include <stdint.h>
 
 /* The report's site and atmosphere (ALGORITHMS.md §4.1). */
 #define SPA_LAT 39.742476
@@ -338,6 +340,87 @@ static void check_normal_day(int y, int mo, int d, double tz, double lat, double
   AP_CHECK_NEAR(s.transit_elevation, 90.0 - fabs(lat - r.declination), 0.01);
 }
 
+/* Days near the start and end of polar day and night, where the report's single correction
+ * of events placed by the declination at midnight failed (a probe, against PyEphem: days of
+ * the wrong kind, events hours off, sunrise after sunset). Against a brute force of
+ * ap_sun_position (the full algorithm, not the day's interpolation): every third day of 2026
+ * at latitudes from 62 to 89.9 degrees north and south, the geometric elevation every 6 minutes
+ * of the UT day decides the kind where its highest and lowest points lie more than 0.01 degree
+ * from the rise/set altitude; each sunrise and sunset found lies in the day, at that altitude
+ * (within 0.01 degree; parallax, 0.002, is neglected by the method), the sun rising at
+ * sunrise and setting at sunset. And two of the probe's days against PyEphem 4.1.4 (sun's
+ * centre at -0:50, no refraction): 89 N, 0 E on 2026-03-16, sunrise 09:53:38 and sunset
+ * 14:54:36 UTC (was 05:39:55 and 19:02:31; within 90 s, the parallax's share at 0.004 degree a
+ * minute); 82.967 S, 37.521 W on 1973-04-10 at UTC-3, polar night (was a normal day whose
+ * sunrise at 14:25 followed its sunset at 08:39). */
+static void test_polar_transitions(void)
+{
+  static const double lats[] = { 62.0, 66.0, 68.5, 72.0, 78.0, 85.0, 89.0, 89.9,
+                                 -62.0, -67.0, -75.0, -82.967, -89.5 };
+  ap_sun_params p, geo;
+  ap_sun_params_init(&p);
+  geo = p;
+  geo.refraction = 0;
+  int judged = 0, events = 0;
+  for (size_t li = 0; li < sizeof(lats) / sizeof(lats[0]); ++li) {
+    const double lat = lats[li], lon = 20.0 * (double)li - 120.0;
+    for (int doy = 0; doy < 365; doy += 3) {
+      const int64_t days = ap_time_days_from_civil(2026, 1, 1) + doy;
+      int64_t year;
+      int month, day;
+      ap_sun_rts_result s;
+      ap_sun_position_result r;
+      double t0, lo = INFINITY, hi = -INFINITY;
+      ap_time_civil_from_days(days, &year, &month, &day);
+      AP_CHECK_EQ_INT(ap_sun_rise_transit_set(&p, (int)year, month, day, 0.0, lat, lon, &s),
+                      AP_OK);
+      t0 = (double)days * 86400.0;
+      for (int k = 0; k <= 240; ++k) {
+        AP_CHECK_EQ_INT(ap_sun_position(&geo, t0 + 360.0 * k, lat, lon, 0.0, &r), AP_OK);
+        lo = fmin(lo, r.elevation_true);
+        hi = fmax(hi, r.elevation_true);
+      }
+      if (lo > s.rise_set_altitude + 0.01) {
+        AP_CHECK_EQ_INT(s.kind, AP_SUN_DAY_POLAR_DAY);
+        ++judged;
+      } else if (hi < s.rise_set_altitude - 0.01) {
+        AP_CHECK_EQ_INT(s.kind, AP_SUN_DAY_POLAR_NIGHT);
+        ++judged;
+      } else if (lo < s.rise_set_altitude - 0.01 && hi > s.rise_set_altitude + 0.01) {
+        AP_CHECK_EQ_INT(s.kind, AP_SUN_DAY_NORMAL);
+        AP_CHECK(!isnan(s.sunrise) || !isnan(s.sunset));
+        ++judged;
+      }
+      for (int e = 0; e < 2; ++e) {
+        const double t = e ? s.sunset : s.sunrise;
+        ap_sun_position_result before, after;
+        if (isnan(t)) {
+          continue;
+        }
+        ++events;
+        AP_CHECK(t >= t0 - 1.0 && t <= t0 + 86401.0);
+        AP_CHECK_EQ_INT(ap_sun_position(&geo, t, lat, lon, 0.0, &r), AP_OK);
+        AP_CHECK_NEAR(r.elevation_true, s.rise_set_altitude, 0.01);
+        AP_CHECK_EQ_INT(ap_sun_position(&geo, t - 60.0, lat, lon, 0.0, &before), AP_OK);
+        AP_CHECK_EQ_INT(ap_sun_position(&geo, t + 60.0, lat, lon, 0.0, &after), AP_OK);
+        AP_CHECK(e ? after.elevation_true < before.elevation_true
+                   : after.elevation_true > before.elevation_true);
+      }
+    }
+  }
+  fprintf(stderr, "polar transitions: %d days' kinds judged, %d events checked\n", judged,
+          events);
+  AP_CHECK(judged > 1500 && events > 1000);
+
+  ap_sun_rts_result s;
+  AP_CHECK_EQ_INT(ap_sun_rise_transit_set(&p, 2026, 3, 16, 0.0, 89.0, 0.0, &s), AP_OK);
+  AP_CHECK_EQ_INT(s.kind, AP_SUN_DAY_NORMAL);
+  AP_CHECK_NEAR(s.sunrise_hour * 3600.0, hms(9, 53, 38), 90.0);
+  AP_CHECK_NEAR(s.sunset_hour * 3600.0, hms(14, 54, 36), 90.0);
+  AP_CHECK_EQ_INT(ap_sun_rise_transit_set(&p, 1973, 4, 10, -3.0, -82.967, -37.521, &s), AP_OK);
+  AP_CHECK_EQ_INT(s.kind, AP_SUN_DAY_POLAR_NIGHT);
+}
+
 /* Southern-hemisphere days (Cape Town in winter, Sydney in summer; §4.3 sites). The sun
  * culminates in the north there. */
 static void test_southern(void)
@@ -581,6 +664,7 @@ int main(void)
   test_pyephem_cases();
   test_angular_radius();
   test_polar();
+  test_polar_transitions();
   test_southern();
   test_equinox_wrap();
   test_refraction_and_ut1();
