@@ -454,6 +454,7 @@ void vtkApertureSolarPosition::ClearResults()
   std::fill(std::begin(this->Result), std::end(this->Result), kNaN);
   std::fill(std::begin(this->Events), std::end(this->Events), kNaN);
   std::fill(std::begin(this->Light), std::end(this->Light), kNaN);
+  this->DayKind = -1;
   this->Impl->Sunrise.clear();
   this->Impl->Transit.clear();
   this->Impl->Sunset.clear();
@@ -530,6 +531,17 @@ bool vtkApertureSolarPosition::Compute()
   d.Sunrise = FormatUTC(this->Events[0]);
   d.Transit = FormatUTC(this->Events[1]);
   d.Sunset = FormatUTC(this->Events[2]);
+  if (d.Transit.empty() || d.Sunrise.empty() != std::isnan(this->Events[0]) ||
+    d.Sunset.empty() != std::isnan(this->Events[2]))
+  {
+    // (a local day at the edge of the years, whose events lie partly beyond them: no events
+    // rather than some of them, which would read as a day on which the sun only sets)
+    std::fill(std::begin(this->Events), std::end(this->Events), kNaN);
+    this->DayKind = -1;
+    d.Sunrise.clear();
+    d.Transit.clear();
+    d.Sunset.clear();
+  }
 
   this->Convergence = ConvergenceAt(d.Geo, this->Longitude, this->Latitude);
   if (!std::isfinite(this->Convergence))

@@ -212,8 +212,11 @@ public:
   /**
    * Sunrise, transit and sunset of the local day of the instant (the day in TimeZone, else at
    * the offset SetTime was given, else the UTC day), as POSIX seconds and as ISO 8601 UTC
-   * strings. Sunrise and sunset are NaN / "" when the sun does not rise or set that day:
-   * GetDayKind() is then 1 (polar day) or 2 (polar night); 0 on a normal day.
+   * strings (ap_sun_rise_transit_set: each within the day). Sunrise and sunset are NaN / ""
+   * when the sun does not rise or set that day: GetDayKind() is then 1 (polar day) or 2
+   * (polar night); 0 on a day on which it rises or sets, which next to polar day or night may
+   * have only one of the two. -1, all three NaN, before Compute, after ComputeForDirection, or
+   * when the local day lies outside the years -2000..6000 (an instant at its edge).
    */
   double GetSunrise() const { return this->Events[0]; }
   double GetTransit() const { return this->Events[1]; }
@@ -343,7 +346,7 @@ protected:
   double Result[11];
   double Light[3];
   double Events[3];
-  int DayKind = 0;
+  int DayKind = -1;
   double Convergence = 0.0;
   bool Computed = false;
 

@@ -194,6 +194,71 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertEqual(r["day_kind"], "polar_night")
         self.assertLess(r["elevation_deg"], 0)
 
+    def test_polar_transitions(self):
+        # Days next to polar day and night (PyEphem 4.1.4, the sun's centre at -0:50, no
+        # refraction): at 89 N on 2026-03-16 the sun rises at 09:53:38 and sets at 14:54:36 UTC
+        # (was 05:39:55 and 19:02:31); at 82.967 S on 1973-04-10 at UTC-3 it does not rise
+        # (was a normal day, its sunrise at 14:25 after its sunset at 08:39, with a note
+        # blaming the offset); at 66 N, 15 E on 2026-06-12 at UTC+1 it rises at 00:12:12 local
+        # and does not set before the next day (PyEphem: always up at 2026-06-12 22:59 UTC).
+        def seconds(text):
+            t = datetime.datetime.fromisoformat(text.replace("Z", "+00:00"))
+            return t.hour * 3600 + t.minute * 60 + t.second
+        r = self.json_of("--at", "2026-03-16T12:00Z", "--lat", 89, "--lon", 0)
+        self.assertEqual(r["day_kind"], "normal")
+        self.assertAlmostEqual(seconds(r["sunrise"]), 9 * 3600 + 53 * 60 + 38, delta=90)
+        self.assertAlmostEqual(seconds(r["sunset"]), 14 * 3600 + 54 * 60 + 36, delta=90)
+        args = ("--at", "1973-04-10T12:00-03:00", "--lat", -82.967, "--lon", -37.521)
+        r = self.json_of(*args)
+        self.assertEqual((r["day_kind"], r["sunrise"], r["sunset"]), ("polar_night", None, None))
+        status, stdout, stderr = run(*args)
+        self.assertEqual(status, 0, stderr)
+        self.assertIn("polar night: the sun does not rise", stdout)
+        self.assertNotIn("Note:", stdout)
+        args = ("--at", "2026-06-12T12:00+01:00", "--lat", 66, "--lon", 15)
+        r = self.json_of(*args)
+        self.assertEqual((r["day_kind"], r["sunset"], r["sunset_local"]), ("normal", None, None))
+        self.assertEqual(r["sunrise_local"][:16], "2026-06-12T00:12")
+        status, stdout, stderr = run(*args)
+        self.assertEqual(status, 0, stderr)
+        self.assertIn("sunset n/a (none that day)", stdout)
+        self.assertIn("local: sunrise 00:12:", stdout)
+        self.assertNotIn("Note:", stdout)
+
+    def test_day_beyond_the_years(self):
+        # The instant lies in the years the algorithm covers, its local day (or that day's
+        # events) not: no events, and no day kind, rather than a stale or partial one.
+        for args in (("--at", "6000-12-31T20:00Z", "--tz", "Pacific/Kiritimati", "--lat", 1.87,
+                      "--lon", -157.4),
+                     ("--at", "-2000-01-01T02:00Z", "--tz", "Pacific/Pago_Pago", "--lat", -14.3,
+                      "--lon", -170.7)):
+            r = self.json_of(*args)
+            self.assertEqual([r[k] for k in ("day_kind", "sunrise", "transit", "sunset")],
+                             [None] * 4, args)
+            self.assertTrue(math.isfinite(r["elevation_deg"]))
+            status, stdout, stderr = run(*args)
+            self.assertEqual(status, 0, stderr)
+            self.assertIn("Day:         n/a: the local day reaches beyond the years -2000..6000",
+                          stdout)
+            self.assertNotIn("None", stdout)
+        # one object, first a polar day, then such a day: its day kind is not the polar day's
+        import aperture
+        sun = aperture.vtkApertureSolarPosition()
+        sun.SetLatitude(1.87)
+        sun.SetLongitude(-157.4)
+        self.assertTrue(sun.SetTime("2025-06-21T22:30Z"))
+        sun.SetLatitude(69.6492)
+        self.assertTrue(sun.Compute())
+        self.assertEqual(sun.GetDayKind(), 1)
+        sun.SetLatitude(1.87)
+        self.assertTrue(sun.SetTimeZone("Pacific/Kiritimati"))
+        self.assertTrue(sun.SetTime("6000-12-31T20:00Z"))
+        self.assertTrue(sun.Compute())
+        self.assertEqual(sun.GetDayKind(), -1)
+        self.assertTrue(math.isnan(sun.GetTransit()))
+        self.assertTrue(sun.ComputeForDirection(100.0, 20.0))
+        self.assertEqual(sun.GetDayKind(), -1)
+
     def test_dem_frame(self):
         # A UTM 33N DEM centred 2.9 deg east of the central meridian at 60 N.
         lat, lon = 60.0, 17.9

@@ -1661,7 +1661,7 @@ def _sun_record(sun, with_dem):
         "declination_deg": sun.GetDeclination(),
         "hour_angle_deg": sun.GetHourAngle(),
         "delta_t_s": sun.GetDeltaTUsed(),
-        "day_kind": DAY_KINDS.get(sun.GetDayKind(), "normal"),
+        "day_kind": DAY_KINDS.get(sun.GetDayKind()),  # (None: the day beyond the years)
         "sunrise": sun.GetSunriseString() or None,
         "transit": sun.GetTransitString() or None,
         "sunset": sun.GetSunsetString() or None,
@@ -1688,8 +1688,9 @@ def _day_order_note(sun, record):
     """A note for a day whose events are not in the order sunrise, transit, sunset: the day is
     the clock's (the UTC day, for --at ...Z) and the place's solar time is hours from it."""
     events = (sun.GetSunrise(), sun.GetTransit(), sun.GetSunset())
-    if record["day_kind"] != "normal" or events[0] < events[1] < events[2]:
-        return None
+    if record["day_kind"] != "normal" or any(map(math.isnan, events)) or \
+            events[0] < events[1] < events[2]:
+        return None  # (a day next to polar day or night may have one event: no order to judge)
     hours = sun.GetLocalOffset() / 3600.0 - record["longitude_deg"] / 15.0
     # (with --tz the zone names the day, whatever offset --at is written with)
     advice = ("give --tz the place's own time zone" if sun.GetTimeZone()
@@ -1730,9 +1731,14 @@ def _print_sun(record, dem, note=None):
             record["sky_model"], record["sky_horizontal_irradiance_w_m2"])),
         ("Eq. of time", "%+.2f min" % record["equation_of_time_min"]),
     ]
-    if record["day_kind"] == "normal":
-        rows.append(("Day", "sunrise %s, transit %s, sunset %s (local %s)" % (
-            record["sunrise"], record["transit"], record["sunset"], record["utc_offset"])))
+    if record["day_kind"] is None:
+        rows.append(("Day", "n/a: the local day reaches beyond the years -2000..6000 the "
+                            "algorithm covers"))
+    elif record["day_kind"] == "normal":
+        # (next to polar day or night the sun may only rise, or only set, that day)
+        rows.append(("Day", "sunrise %s, transit %s, sunset %s (local %s)" % tuple(
+            record[k] or "n/a (none that day)" for k in ("sunrise", "transit", "sunset",
+                                                         "utc_offset"))))
         # each event on the clock of its own moment; its offset shown when a clock change
         # (the day of one) gives it another than the instant's
         rows.append(("", "local: sunrise %s, transit %s, sunset %s" % tuple(
