@@ -866,7 +866,9 @@ bool vtkApertureSolarPosition::AddSunDirectionArray(vtkImageData* dem, const cha
         vtkErrorMacro(<< d.Error);
         return false;
       }
-      const double g = (r.azimuth - gamma) * kDeg, e = r.elevation * kDeg;
+      // (the geometric direction: refraction, which stops below the report's cut-off with a
+      // jump of 0.6 degree, is added to each cell's own below)
+      const double g = (r.azimuth - gamma) * kDeg, e = r.elevation_true * kDeg;
       double* v = &node[3 * (static_cast<size_t>(b) * lx + a)];
       v[0] = std::cos(e) * std::sin(g);
       v[1] = std::cos(e) * std::cos(g);
@@ -904,10 +906,22 @@ bool vtkApertureSolarPosition::AddSunDirectionArray(vtkImageData* dem, const cha
         len += v[c] * v[c];
       }
       len = std::sqrt(len);
+      const double h = std::hypot(v[0], v[1]);
+      const double eTrue = std::atan2(v[2], h) / kDeg;
+      const double e = (eTrue + ap_sun_refraction(&p, eTrue)) * kDeg;
       float* t = o + 3 * (static_cast<size_t>(j) * nx + i);
-      for (int c = 0; c < 3; ++c)
+      if (h > 0.0)
       {
-        t[c] = static_cast<float>(v[c] / len);
+        t[0] = static_cast<float>(std::cos(e) * v[0] / h);
+        t[1] = static_cast<float>(std::cos(e) * v[1] / h);
+        t[2] = static_cast<float>(std::sin(e));
+      }
+      else
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          t[c] = static_cast<float>(v[c] / len);
+        }
       }
     }
   }

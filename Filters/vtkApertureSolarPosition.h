@@ -258,8 +258,11 @@ public:
    * frame (x = the grid's +x axis, y = its +y axis, both horizontal at the cell, z = up), so
    * that sweeps and shading in grid coordinates need no rotation. The place changes across the
    * DEM (azimuth, elevation and γ): the position is computed exactly on a lattice of at most
-   * 17 x 17 cells and interpolated bilinearly between them (the sun's direction changes by a
-   * fraction of its angular radius between lattice points, even across a continent). Cells
+   * 17 x 17 cells, its geometric direction interpolated bilinearly between them (it changes
+   * by a fraction of the sun's angular radius between lattice points, even across a
+   * continent), and each cell's refraction added to it (interpolating the refracted direction
+   * smeared the refraction's cut-off below the horizon over the lattice's cells: 0.57 degree
+   * off along the terminator, a visible sun put below the horizon). Cells
    * below the horizon get their direction too (z < 0). Uses the time (UnixTime), the
    * atmosphere and the Height set here for every cell, not the latitude and longitude (each
    * cell has its own). False (GetErrorMessage) when `name` is the DEM's active scalars (its

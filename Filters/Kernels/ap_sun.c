@@ -520,6 +520,17 @@ double ap_sun_delta_t_estimate(double y)
   return -20.0 + 32.0 * u * u - 0.5628 * (2150.0 - y);
 }
 
+double ap_sun_refraction(const ap_sun_params *p, double elevation_true_deg)
+{
+  if (!p->refraction || !(elevation_true_deg >= -(SUN_RADIUS_DEG + p->atmos_refract))) {
+    return 0.0;
+  }
+  /* Sæmundsson's formula scaled by pressure and temperature, degrees. */
+  const double e0 = elevation_true_deg;
+  return (p->pressure / 1010.0) * (283.0 / (273.0 + p->temperature)) * 1.02 /
+         (60.0 * tan(rad(e0 + 10.3 / (e0 + 5.11))));
+}
+
 ap_status ap_sun_position(const ap_sun_params *p, double t, double lat_deg, double lon_deg,
                           double height_m, ap_sun_position_result *out)
 {
@@ -580,13 +591,7 @@ ap_status ap_sun_position(const ap_sun_params *p, double t, double lat_deg, doub
   /* 3.14 Topocentric zenith angle. */
   r.elevation_true =
     deg(asin(clamp1(sin(phi) * sin(dec_t) + cos(phi) * cos(dec_t) * cos(h_t))));
-  r.refraction = 0.0;
-  if (p->refraction && r.elevation_true >= -(SUN_RADIUS_DEG + p->atmos_refract)) {
-    /* Sæmundsson's formula scaled by pressure and temperature, degrees. */
-    const double e0 = r.elevation_true;
-    r.refraction = (p->pressure / 1010.0) * (283.0 / (273.0 + p->temperature)) * 1.02 /
-                   (60.0 * tan(rad(e0 + 10.3 / (e0 + 5.11))));
-  }
+  r.refraction = ap_sun_refraction(p, r.elevation_true);
   r.elevation = r.elevation_true + r.refraction;
   r.zenith = 90.0 - r.elevation;
   r.zenith_true = 90.0 - r.elevation_true;

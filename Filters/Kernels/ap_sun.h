@@ -129,6 +129,12 @@ double ap_sun_delta_t_estimate(double decimal_year);
 ap_status ap_sun_position(const ap_sun_params *p, double t, double lat_deg, double lon_deg,
                           double height_m, ap_sun_position_result *out);
 
+/** The refraction (deg) ap_sun_position adds to a geometric elevation (deg) with p's
+ *  atmosphere: Sæmundsson's formula scaled by pressure and temperature, 0 with refraction off
+ *  and below the report's cut-off −(0.26667 + atmos_refract) (where the apparent elevation
+ *  therefore jumps by about 0.6°). p is assumed valid (ap_sun_params_validate). */
+double ap_sun_refraction(const ap_sun_params *p, double elevation_true_deg);
+
 /** Angle of incidence (deg, [0, 180]) of sunlight on a plane surface, from the apparent
  *  (refracted) zenith and azimuth of `sun`: cos I = cos θ cos s + sin s sin θ cos(Φ − a),
  *  s = slope_deg ∈ [0, 180] from the horizontal, a = aspect_deg (any finite value) the azimuth,
