@@ -731,9 +731,9 @@ ap_status ap_sun_rise_transit_set(const ap_sun_params *p, int year, int month, i
    * day and night gave days of the wrong kind and events hours off, even in the wrong order).
    * Sampled every 5 minutes, and at the transit and the anti-transit, the altitude's highest
    * and lowest points, so that a graze above or below h0' between samples is not lost; each
-   * crossing found by bisection to 1e-9 rd. Where the day has several of a kind, sunrise is
+   * crossing found by bisection to 1e-9 day. Where the day has several of a kind, sunrise is
    * the last before the transit (else the first) and sunset the first after it (else the
-   * last). No crossing: polar day or night by the altitude at the transit. */
+   * last). No crossing: polar day or night by the altitude's sign, the same all day. */
   double xs[RTS_SAMPLES + 4], ys[RTS_SAMPLES + 4];
   int nx = 0;
   {

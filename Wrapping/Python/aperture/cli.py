@@ -1736,9 +1736,9 @@ def _print_sun(record, dem, note=None):
                             "algorithm covers"))
     elif record["day_kind"] == "normal":
         # (next to polar day or night the sun may only rise, or only set, that day)
-        rows.append(("Day", "sunrise %s, transit %s, sunset %s (local %s)" % tuple(
-            record[k] or "n/a (none that day)" for k in ("sunrise", "transit", "sunset",
-                                                         "utc_offset"))))
+        rows.append(("Day", "sunrise %s, transit %s, sunset %s (local %s)" % (
+            *(record[k] or "n/a (none that day)" for k in ("sunrise", "transit", "sunset")),
+            record["utc_offset"])))
         # each event on the clock of its own moment; its offset shown when a clock change
         # (the day of one) gives it another than the instant's
         rows.append(("", "local: sunrise %s, transit %s, sunset %s" % tuple(
