@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -156,6 +157,8 @@ struct vtkApertureDEMReader::Internals
   bool HasNoData = false;
   double NoData = 0.0;
   double Scale = 1.0, Offset = 0.0; // includes the unit conversion to metres
+  double FileScale = 1.0, FileOffset = 0.0; // the band's own (for messages)
+  bool SignedByte = false;          // GDAL 3.6's Int8: a Byte band of PIXELTYPE=SIGNEDBYTE
   std::string UnitSource;           // where the elevation unit came from (for messages)
   bool UseMask = false;
   bool Valid = false;
@@ -368,6 +371,9 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
                   << GDALGetDataTypeName(type) << "), not elevations");
     return 0;
   }
+  // (GDAL 3.6 has no Int8 type: such a band is Byte with this flag, and reads as 0..255)
+  const char* pixelType = GDALGetMetadataItem(base, "PIXELTYPE", "IMAGE_STRUCTURE");
+  d.SignedByte = type == GDT_Byte && pixelType && EQUAL(pixelType, "SIGNEDBYTE");
 
   // Georeference: a north-up or south-up geotransform and a CRS. (A damaged GeoTIFF's
   // unreadable keys are a GDAL warning while it opens or its georeference loads: named in the
@@ -420,6 +426,16 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
   {
     vtkErrorMacro(<< "'" << name << "' has an unsupported geotransform (pixel width " << gt[1]
                   << ", pixel height " << gt[5] << "); warp it north-up first (gdalwarp)");
+    return 0;
+  }
+  const double farX = gt[0] + this->RasterSize[0] * gt[1];
+  const double farY = gt[3] + this->RasterSize[1] * gt[5];
+  if (!std::isfinite(farX) || !std::isfinite(farY))
+  {
+    vtkErrorMacro(<< "'" << name << "' has a geotransform (origin " << gt[0] << ", " << gt[3]
+                  << ", pixel size " << gt[1] << " x " << gt[5]
+                  << ") whose grid reaches beyond the range of numbers; set its corners first "
+                     "(gdal_edit.py -a_ullr)");
     return 0;
   }
   d.SouthUp = gt[5] > 0;
@@ -549,9 +565,21 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
   // Sample conversion: nodata, scale/offset and vertical unit, from the base band.
   int has = 0;
   const double scale = GDALGetRasterScale(base, &has);
-  d.Scale = has && scale != 0 ? scale : 1.0;
+  d.Scale = has ? scale : 1.0;
   const double offset = GDALGetRasterOffset(base, &has);
   d.Offset = has ? offset : 0.0;
+  if (!std::isfinite(d.Scale) || d.Scale == 0.0 || !std::isfinite(d.Offset))
+  {
+    vtkErrorMacro(<< "'" << name << "' band " << d.Band << " has a scale of " << d.Scale
+                  << " and an offset of " << d.Offset << ": elevations (samples x scale + "
+                  << "offset) would be "
+                  << (d.Scale == 0.0 && std::isfinite(d.Offset) ? "the offset everywhere"
+                                                                : "no numbers")
+                  << "; correct them (gdal_edit.py -scale, -offset)");
+    return 0;
+  }
+  d.FileScale = d.Scale;
+  d.FileOffset = d.Offset;
   // The elevation unit: MetresPerElevationUnit, else the band's unit, else the height unit of
   // a compound CRS (the file's, or OverrideCRS), else metres. A projected CRS in feet that
   // says nothing of heights (a state-plane DEM's, often in feet too) gets a warning: read as
@@ -619,6 +647,12 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
   const double nodata = GDALGetRasterNoDataValue(level, &has);
   d.HasNoData = has != 0;
   d.NoData = nodata;
+  if (d.HasNoData && type == GDT_Float32 && std::fabs(nodata) <= FLT_MAX)
+  {
+    // As GDAL's nodata mask compares: a float band's samples with the value rounded to float
+    // (a VRT's or an ENVI header's -9999.9 is no float; its samples are -9999.900390625).
+    d.NoData = static_cast<double>(static_cast<float>(nodata));
+  }
   this->HasNoDataValue = d.HasNoData;
   this->NoDataValue = nodata;
   const int flags = GDALGetMaskFlags(level);
@@ -784,10 +818,17 @@ int vtkApertureDEMReader::Execute(vtkInformationVector* outputVector)
   // Read strips of whole output rows, top (file order) to bottom, each at most ~2 MiB of
   // double samples; convert, mask, block-average, and place each output row. (Small strips:
   // the buffers are zeroed and paged in once and stay in the cache; with strips of 32 MiB,
-  // zeroing and first-touch page faults took two thirds of the reader's time.)
+  // zeroing and first-touch page faults took two thirds of the reader's time.) Where one strip
+  // of `f` source rows would exceed 16 MiB of doubles (a decimated raster millions of columns
+  // wide: its buffers, not the output, would have needed gigabytes), the strip is read in
+  // pieces of whole blocks of columns instead.
   const size_t srcCols = ncols * f;
+  const size_t budget = 2u << 20;
+  const size_t pieceCols = srcCols * f * sizeof(double) <= 8 * budget
+    ? srcCols
+    : f * std::max<size_t>(1, budget / (f * f * sizeof(double)));
   const size_t rowsPerStrip =
-    std::max<size_t>(1, (2u << 20) / std::max<size_t>(1, srcCols * f * sizeof(double)));
+    std::max<size_t>(1, budget / std::max<size_t>(1, pieceCols * f * sizeof(double)));
   std::vector<double> raw;
   std::vector<float> conv;
   std::vector<unsigned char> valid;
@@ -797,6 +838,7 @@ int vtkApertureDEMReader::Execute(vtkInformationVector* outputVector)
   sp.nodata = d.NoData;
   sp.scale = d.Scale;
   sp.offset = d.Offset;
+  sp.signed_byte = d.SignedByte;
   // Output rows from the file's first row: r = 0 .. nrows-1 of the request, in file order.
   // North-up: request row r (file order) is output row ext[3] - r; south-up: ext[2] + r.
   const int firstFileRow = d.SouthUp ? ext[2] : (d.Out[1] - 1 - ext[3]);
@@ -805,57 +847,71 @@ int vtkApertureDEMReader::Execute(vtkInformationVector* outputVector)
   {
     const size_t k = std::min(rowsPerStrip, nrows - r0);
     const size_t srcRows = k * f;
-    raw.resize(srcRows * srcCols);
-    conv.resize(srcRows * srcCols);
-    const int xoff = d.Window[0] + ext[0] * d.Factor;
     const int yoff = d.Window[1] + (firstFileRow + static_cast<int>(r0)) * d.Factor;
-    if (GDALRasterIO(band, GF_Read, xoff, yoff, static_cast<int>(srcCols),
-          static_cast<int>(srcRows), raw.data(), static_cast<int>(srcCols),
-          static_cast<int>(srcRows), GDT_Float64, 0, 0) != CE_None)
+    for (size_t c0 = 0; c0 < srcCols; c0 += pieceCols) // (c0, cols: whole blocks)
     {
-      vtkErrorMacro(<< "GDAL failed reading '" << this->FileName
-                    << "': " << trap.Message("unknown error"));
-      return 0;
-    }
-    const ap_status st = ap_samples_to_elevation(raw.data(), raw.size(), &sp, conv.data());
-    if (st != AP_OK)
-    {
-      vtkErrorMacro(<< "converting samples: " << ap_status_string(st));
-      return 0;
-    }
-    if (mask)
-    {
-      valid.resize(srcRows * srcCols);
-      if (GDALRasterIO(mask, GF_Read, xoff, yoff, static_cast<int>(srcCols),
-            static_cast<int>(srcRows), valid.data(), static_cast<int>(srcCols),
-            static_cast<int>(srcRows), GDT_Byte, 0, 0) != CE_None)
+      const size_t cols = std::min(pieceCols, srcCols - c0);
+      raw.resize(srcRows * cols);
+      conv.resize(srcRows * cols);
+      const int xoff = d.Window[0] + ext[0] * d.Factor + static_cast<int>(c0);
+      if (GDALRasterIO(band, GF_Read, xoff, yoff, static_cast<int>(cols),
+            static_cast<int>(srcRows), raw.data(), static_cast<int>(cols),
+            static_cast<int>(srcRows), GDT_Float64, 0, 0) != CE_None)
       {
-        vtkErrorMacro(<< "GDAL failed reading the mask of '" << this->FileName
+        vtkErrorMacro(<< "GDAL failed reading '" << this->FileName
                       << "': " << trap.Message("unknown error"));
         return 0;
       }
-      for (size_t q = 0; q < valid.size(); ++q)
+      size_t beyond = 0;
+      const ap_status st =
+        ap_samples_to_elevation(raw.data(), raw.size(), &sp, conv.data(), &beyond);
+      if (st != AP_OK)
       {
-        if (!valid[q])
+        vtkErrorMacro(<< "converting samples: " << ap_status_string(st));
+        return 0;
+      }
+      if (beyond)
+      {
+        vtkErrorMacro(<< "'" << this->FileName << "' band " << d.Band << ": its scale of "
+                      << d.FileScale << " and offset of " << d.FileOffset
+                      << " take samples beyond the range of float32 elevations (3.4e38): a "
+                         "wrong scale or offset? (gdal_edit.py -scale, -offset)");
+        return 0;
+      }
+      if (mask)
+      {
+        valid.resize(srcRows * cols);
+        if (GDALRasterIO(mask, GF_Read, xoff, yoff, static_cast<int>(cols),
+              static_cast<int>(srcRows), valid.data(), static_cast<int>(cols),
+              static_cast<int>(srcRows), GDT_Byte, 0, 0) != CE_None)
         {
-          conv[q] = NAN;
+          vtkErrorMacro(<< "GDAL failed reading the mask of '" << this->FileName
+                        << "': " << trap.Message("unknown error"));
+          return 0;
+        }
+        for (size_t q = 0; q < valid.size(); ++q)
+        {
+          if (!valid[q])
+          {
+            conv[q] = NAN;
+          }
         }
       }
-    }
-    for (size_t r = 0; r < k; ++r)
-    {
-      const size_t fileRow = r0 + r;
-      const size_t outRow =
-        d.SouthUp ? fileRow : (nrows - 1 - fileRow); // relative to ext[2]
-      float* dst = out + outRow * ncols;
-      const float* src = conv.data() + r * f * srcCols;
-      if (f == 1)
+      for (size_t r = 0; r < k; ++r)
       {
-        std::copy(src, src + ncols, dst);
-      }
-      else
-      {
-        ap_block_mean(src, srcCols, static_cast<ptrdiff_t>(srcCols), f, dst);
+        const size_t fileRow = r0 + r;
+        const size_t outRow =
+          d.SouthUp ? fileRow : (nrows - 1 - fileRow); // relative to ext[2]
+        float* dst = out + outRow * ncols + c0 / f;
+        const float* src = conv.data() + r * f * cols;
+        if (f == 1)
+        {
+          std::copy(src, src + cols, dst);
+        }
+        else
+        {
+          ap_block_mean(src, cols, static_cast<ptrdiff_t>(cols), f, dst);
+        }
       }
     }
     this->UpdateProgress(static_cast<double>(r0 + k) / static_cast<double>(nrows));

@@ -108,6 +108,7 @@ void ap_sample_params_init(ap_sample_params *p)
   p->nodata = NAN;
   p->scale = 1.0;
   p->offset = 0.0;
+  p->signed_byte = 0;
 }
 
 static int ranges_overlap(const void *a, size_t abytes, const void *b, size_t bbytes)
@@ -117,9 +118,12 @@ static int ranges_overlap(const void *a, size_t abytes, const void *b, size_t bb
 }
 
 ap_status ap_samples_to_elevation(const double *raw, size_t n, const ap_sample_params *p,
-                                  float *out)
+                                  float *out, size_t *scaled_out)
 {
-  size_t k;
+  size_t k, scaled = 0;
+  if (scaled_out) {
+    *scaled_out = 0;
+  }
   if (!p || (n > 0 && (!raw || !out))) {
     return AP_ERR_NULL_POINTER;
   }
@@ -133,7 +137,7 @@ ap_status ap_samples_to_elevation(const double *raw, size_t n, const ap_sample_p
     return AP_ERR_OVERLAP;
   }
   for (k = 0; k < n; ++k) {
-    const double r = raw[k];
+    const double r = p->signed_byte && raw[k] >= 128.0 ? raw[k] - 256.0 : raw[k];
     double v;
     /* Compare with the nodata value before scaling: nodata is defined on raw samples. */
     if (!isfinite(r) || (p->has_nodata && r == p->nodata)) {
@@ -141,7 +145,15 @@ ap_status ap_samples_to_elevation(const double *raw, size_t n, const ap_sample_p
       continue;
     }
     v = r * p->scale + p->offset;
-    out[k] = (fabs(v) <= FLT_MAX) ? (float)v : NAN;
+    if (fabs(v) <= FLT_MAX) {
+      out[k] = (float)v;
+    } else {
+      out[k] = NAN;
+      scaled += fabs(r) <= FLT_MAX;
+    }
+  }
+  if (scaled_out) {
+    *scaled_out = scaled;
   }
   return AP_OK;
 }

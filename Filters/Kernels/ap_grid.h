@@ -53,6 +53,9 @@ typedef struct ap_sample_params {
   double nodata;  /**< the raster's nodata value, compared before scaling (default NaN) */
   double scale;   /**< elevation = raw * scale + offset (default 1); include unit factors here */
   double offset;  /**< (default 0) */
+  int signed_byte; /**< nonzero: raw samples 0..255 are bytes holding two's-complement int8
+                        (GDAL 3.6's Int8, a Byte band with PIXELTYPE=SIGNEDBYTE): 128..255
+                        are read as -128..-1 before the nodata test and scaling (default 0) */
 } ap_sample_params;
 
 /** Set the defaults documented on each field. */
@@ -61,11 +64,14 @@ void ap_sample_params_init(ap_sample_params *p);
 /** Convert n raw samples to float32 elevations. A sample becomes NaN when it is not finite,
  *  equals the nodata value, or scales to a value outside the float range; otherwise
  *  out[k] = (float)(raw[k] * scale + offset). `raw` and `out` must not overlap.
+ *  `scaled_out` (may be NULL) gets the number of samples within the float range that scale
+ *  and offset took beyond it (NaN too, but a sign of a wrong scale or offset rather than of
+ *  an undeclared huge nodata value such as -1.8e308).
  *  Never fails on data; returns AP_ERR_NULL_POINTER / AP_ERR_INVALID_ARGUMENT (non-finite
  *  scale or offset) / AP_ERR_SIZE_OVERFLOW (n doubles exceed the address space) /
  *  AP_ERR_OVERLAP only for bad arguments. */
 ap_status ap_samples_to_elevation(const double *raw, size_t n, const ap_sample_params *p,
-                                  float *out);
+                                  float *out, size_t *scaled_out);
 
 /** Mean of factor x factor blocks, for decimating a strip of `factor` rows.
  *  `src` holds `factor` rows of `nx` values, rows `src_row_stride` elements apart; `dst`

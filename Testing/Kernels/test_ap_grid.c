@@ -103,6 +103,7 @@ static void test_samples(void)
 {
   const double raw[7] = { -32768.0, 100.0, -32767.0, NAN, INFINITY, 1e300, 0.0 };
   float out[7];
+  size_t scaled = 99;
   ap_sample_params p;
   ap_sample_params_init(&p);
   AP_CHECK_EQ_INT(p.has_nodata, 0);
@@ -112,7 +113,8 @@ static void test_samples(void)
   p.nodata = -32768.0;
   p.scale = 0.5;
   p.offset = 10.0;
-  AP_CHECK_EQ_INT(ap_samples_to_elevation(raw, 7, &p, out), AP_OK);
+  AP_CHECK_EQ_INT(ap_samples_to_elevation(raw, 7, &p, out, &scaled), AP_OK);
+  AP_CHECK(scaled == 0); /* 1e300 is beyond the float range before scaling */
   AP_CHECK_NAN(out[0]);                     /* the nodata value itself */
   AP_CHECK_NEAR(out[1], 60.0, 0.0);         /* 100 * 0.5 + 10 */
   AP_CHECK_NEAR(out[2], -16373.5, 0.0);     /* one above nodata stays valid */
@@ -123,25 +125,65 @@ static void test_samples(void)
 
   /* A nodata value that equals a scaled value must not hide it: nodata 60, raw 100 -> 60. */
   p.nodata = 60.0;
-  AP_CHECK_EQ_INT(ap_samples_to_elevation(raw + 1, 1, &p, out), AP_OK);
+  AP_CHECK_EQ_INT(ap_samples_to_elevation(raw + 1, 1, &p, out, NULL), AP_OK);
   AP_CHECK_NEAR(out[0], 60.0, 0.0);
 
   /* Without nodata, -32768 is an ordinary value. */
   p.has_nodata = 0;
-  AP_CHECK_EQ_INT(ap_samples_to_elevation(raw, 1, &p, out), AP_OK);
+  AP_CHECK_EQ_INT(ap_samples_to_elevation(raw, 1, &p, out, NULL), AP_OK);
   AP_CHECK_NEAR(out[0], -16374.0, 0.0);
 
   /* Argument errors. */
-  AP_CHECK_EQ_INT(ap_samples_to_elevation(raw, SIZE_MAX / 4, &p, out), AP_ERR_SIZE_OVERFLOW);
+  AP_CHECK_EQ_INT(ap_samples_to_elevation(raw, SIZE_MAX / 4, &p, out, NULL),
+                  AP_ERR_SIZE_OVERFLOW);
   p.scale = NAN;
-  AP_CHECK_EQ_INT(ap_samples_to_elevation(raw, 1, &p, out), AP_ERR_INVALID_ARGUMENT);
+  AP_CHECK_EQ_INT(ap_samples_to_elevation(raw, 1, &p, out, NULL), AP_ERR_INVALID_ARGUMENT);
   p.scale = 1.0;
-  AP_CHECK_EQ_INT(ap_samples_to_elevation(NULL, 1, &p, out), AP_ERR_NULL_POINTER);
-  AP_CHECK_EQ_INT(ap_samples_to_elevation(raw, 0, &p, NULL), AP_OK); /* nothing to do */
+  AP_CHECK_EQ_INT(ap_samples_to_elevation(NULL, 1, &p, out, NULL), AP_ERR_NULL_POINTER);
+  AP_CHECK_EQ_INT(ap_samples_to_elevation(raw, 0, &p, NULL, NULL), AP_OK); /* nothing to do */
   {
     double buf[4] = { 1, 2, 3, 4 };
-    AP_CHECK_EQ_INT(ap_samples_to_elevation(buf, 4, &p, (float *)(void *)(buf + 1)),
+    AP_CHECK_EQ_INT(ap_samples_to_elevation(buf, 4, &p, (float *)(void *)(buf + 1), NULL),
                     AP_ERR_OVERLAP);
+  }
+
+  /* A scale that takes samples within the float range beyond it is counted (a wrong scale);
+   * samples beyond it already (an undeclared nodata such as -DBL_MAX) are not. */
+  {
+    const double big[4] = { 1e30, -1e30, 1.0, -1.7976931348623157e308 };
+    p.has_nodata = 0;
+    p.scale = 1e10;
+    p.offset = 0.0;
+    AP_CHECK_EQ_INT(ap_samples_to_elevation(big, 4, &p, out, &scaled), AP_OK);
+    AP_CHECK(scaled == 2);
+    AP_CHECK_NAN(out[0]);
+    AP_CHECK_NAN(out[1]);
+    AP_CHECK_NEAR(out[2], 1e10, 0.0);
+    AP_CHECK_NAN(out[3]);
+    p.scale = 1.0;
+    AP_CHECK_EQ_INT(ap_samples_to_elevation(big, 4, &p, out, &scaled), AP_OK);
+    AP_CHECK(scaled == 0);
+    AP_CHECK_NEAR(out[0], 1e30, 1e23);
+  }
+
+  /* GDAL 3.6's Int8: bytes read as 0..255 hold -128..127; nodata -1 is the byte 255. */
+  {
+    const double bytes[5] = { 0.0, 127.0, 128.0, 254.0, 255.0 };
+    AP_CHECK_EQ_INT(p.signed_byte, 0);
+    p.signed_byte = 1;
+    p.has_nodata = 1;
+    p.nodata = -1.0;
+    p.scale = 2.0;
+    p.offset = 0.5;
+    AP_CHECK_EQ_INT(ap_samples_to_elevation(bytes, 5, &p, out, NULL), AP_OK);
+    AP_CHECK_NEAR(out[0], 0.5, 0.0);
+    AP_CHECK_NEAR(out[1], 254.5, 0.0);   /* 127 * 2 + 0.5 */
+    AP_CHECK_NEAR(out[2], -255.5, 0.0);  /* -128 * 2 + 0.5 */
+    AP_CHECK_NEAR(out[3], -3.5, 0.0);    /* -2 * 2 + 0.5 */
+    AP_CHECK_NAN(out[4]);                /* -1: nodata */
+    p.signed_byte = 0;                   /* as unsigned bytes, 255 is no nodata */
+    AP_CHECK_EQ_INT(ap_samples_to_elevation(bytes, 5, &p, out, NULL), AP_OK);
+    AP_CHECK_NEAR(out[4], 510.5, 0.0);
   }
 }
 

@@ -38,6 +38,7 @@ struct RasterSpec
   double scale = 1.0, offset = 0.0;
   std::string unit;
   int gcps = 0; // > 0: add this many ground control points (and no geotransform)
+  std::vector<std::string> options; // GTiff creation options, such as PIXELTYPE=SIGNEDBYTE
   // raw(band, column, row) with row 0 the file's first row
   std::function<double(int, int, int)> raw = [](int, int c, int r) { return 10.0 * r + c; };
 };
@@ -47,7 +48,14 @@ inline bool WriteRaster(const std::string& path, const RasterSpec& s)
 {
   GDALAllRegister();
   GDALDriverH drv = GDALGetDriverByName("GTiff");
-  GDALDatasetH ds = GDALCreate(drv, path.c_str(), s.nx, s.ny, s.bands, s.type, nullptr);
+  std::vector<const char*> options;
+  for (const std::string& o : s.options)
+  {
+    options.push_back(o.c_str());
+  }
+  options.push_back(nullptr);
+  GDALDatasetH ds = GDALCreate(drv, path.c_str(), s.nx, s.ny, s.bands, s.type,
+    const_cast<char**>(options.data()));
   if (!ds)
   {
     return false;

@@ -777,6 +777,126 @@ void TestBadInput()
     AP_CHECK(rd.Reader->GetOutput()->GetNumberOfPoints() == 0); // (the last file's stayed)
   }
 }
+// How samples become elevations where the file's declarations are not what they seem: GDAL
+// 3.6's Int8 (a Byte band flagged PIXELTYPE=SIGNEDBYTE), a float band's nodata value that is
+// no float (a VRT's or an ENVI header's), and scales and offsets that make no elevations.
+void TestSampleEncodings()
+{
+  // Int8: bytes 206..254 and 255 hold -50..-2 and the nodata -1, below sea level.
+  aptest::RasterSpec int8;
+  int8.type = GDT_Byte;
+  int8.options = { "PIXELTYPE=SIGNEDBYTE" };
+  int8.hasNoData = true;
+  int8.noData = -1.0;
+  int8.raw = [](int, int c, int r) { return (c == 3 && r == 0) ? 255.0 : 206.0 + 2 * (c + r); };
+  AP_CHECK(aptest::WriteRaster(tmp + "/int8.tif", int8));
+  {
+    Read rd(tmp + "/int8.tif");
+    rd.Update();
+    AP_CHECK(rd.Ok == 1);
+    for (int fileRow = 0; fileRow < 3; ++fileRow)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        const double z = rd.Z(c, 2 - fileRow);
+        if (c == 3 && fileRow == 0)
+        {
+          AP_CHECK(std::isnan(z));
+        }
+        else
+        {
+          AP_CHECK_NEAR(z, -50.0 + 2 * (c + fileRow), 0.0);
+        }
+      }
+    }
+  }
+
+  // A Float32 band whose VRT declares the nodata -9999.9, which no float is: its samples are
+  // -9999.900390625, and GDAL's own mask takes them as nodata.
+  aptest::RasterSpec plain;
+  plain.raw = [](int, int c, int r) { return (c < 2 && r == 1) ? -9999.9 : 100.0 + c; };
+  AP_CHECK(aptest::WriteRaster(tmp + "/plain.tif", plain));
+  AP_CHECK(aptest::WriteText(tmp + "/nodata.vrt",
+    "<VRTDataset rasterXSize=\"4\" rasterYSize=\"3\"><SRS>EPSG:32611</SRS>\n"
+    "<GeoTransform>500000, 30, 0, 4000000, 0, -30</GeoTransform>\n"
+    "<VRTRasterBand dataType=\"Float32\" band=\"1\"><NoDataValue>-9999.9</NoDataValue>\n"
+    "<SimpleSource><SourceFilename relativeToVRT=\"1\">plain.tif</SourceFilename>\n"
+    "<SourceBand>1</SourceBand></SimpleSource></VRTRasterBand></VRTDataset>\n"));
+  {
+    Read rd(tmp + "/nodata.vrt");
+    rd.Update();
+    AP_CHECK(rd.Ok == 1);
+    AP_CHECK(std::isnan(rd.Z(0, 1)) && std::isnan(rd.Z(1, 1)));
+    AP_CHECK_NEAR(rd.Z(2, 1), 102.0, 0.0);
+    AP_CHECK(rd.Reader->GetNoDataValue() == -9999.9); // (as the file says)
+  }
+
+  // Scales and offsets that give no elevations: refused, named.
+  const struct
+  {
+    double scale, offset;
+    const char* expected;
+  } bad[] = {
+    { NAN, 0.0, "band 1 has a scale of nan and an offset of 0: elevations (samples x scale + "
+                "offset) would be no numbers" },
+    { 1.0, INFINITY, "has a scale of 1 and an offset of inf" },
+    { 0.0, 5.0, "has a scale of 0 and an offset of 5: elevations (samples x scale + offset) "
+                "would be the offset everywhere; correct them (gdal_edit.py -scale, -offset)" },
+    { 1e37, 0.0, "band 1: its scale of 1e+37 and offset of 0 take samples beyond the range of "
+                 "float32 elevations" },
+  };
+  for (const auto& b : bad)
+  {
+    aptest::RasterSpec scaled;
+    scaled.scale = b.scale;
+    scaled.offset = b.offset;
+    scaled.raw = [](int, int c, int r) { return 100.0 + c + r; };
+    std::remove((tmp + "/scaled.tif").c_str());
+    AP_CHECK(aptest::WriteRaster(tmp + "/scaled.tif", scaled));
+    ExpectError(tmp + "/scaled.tif", b.expected);
+  }
+
+  // A geotransform of finite numbers whose grid reaches beyond them (4 x 1e308 m).
+  aptest::RasterSpec vast;
+  vast.gt[1] = 1e308;
+  vast.gt[5] = -1e308;
+  vast.gt[0] = vast.gt[3] = 0.0;
+  AP_CHECK(aptest::WriteRaster(tmp + "/vast.tif", vast));
+  ExpectError(tmp + "/vast.tif", "whose grid reaches beyond the range of numbers");
+}
+
+// A decimated raster 2 million columns wide: its strips of source rows are read in pieces of
+// whole blocks (each strip of two rows would have taken 32 MiB of doubles), and the blocks on
+// either side of a piece's edge land where they belong. The VRT puts small.tif's 4 x 3 cells at
+// column 262142, across the first edge (at 262144: 2 MiB of doubles in two rows).
+void TestWideDecimation()
+{
+  AP_CHECK(aptest::WriteRaster(tmp + "/small.tif", aptest::RasterSpec()));
+  AP_CHECK(aptest::WriteText(tmp + "/wide.vrt",
+    "<VRTDataset rasterXSize=\"2000000\" rasterYSize=\"4\"><SRS>EPSG:32611</SRS>\n"
+    "<GeoTransform>0, 1, 0, 4000000, 0, -1</GeoTransform>\n"
+    "<VRTRasterBand dataType=\"Float32\" band=\"1\">\n"
+    "<SimpleSource><SourceFilename relativeToVRT=\"1\">small.tif</SourceFilename>\n"
+    "<SourceBand>1</SourceBand><SrcRect xOff=\"0\" yOff=\"0\" xSize=\"4\" ySize=\"3\"/>\n"
+    "<DstRect xOff=\"262142\" yOff=\"0\" xSize=\"4\" ySize=\"3\"/></SimpleSource>\n"
+    "</VRTRasterBand></VRTDataset>\n"));
+  Read rd(tmp + "/wide.vrt");
+  rd.Reader->SetDecimation(2);
+  vtkImageData* img = rd.Update();
+  AP_CHECK(rd.Ok == 1);
+  int dims[3];
+  img->GetDimensions(dims);
+  AP_CHECK(dims[0] == 1000000 && dims[1] == 2);
+  // small.tif's cells are 10 r + c (file row r); around them the VRT gives 0. Output row 1 is
+  // file rows 0-1, row 0 file rows 2-3 (row 3 of the VRT: 0).
+  AP_CHECK_NEAR(rd.Z(131070, 1), 0.0, 0.0);
+  AP_CHECK_NEAR(rd.Z(131071, 1), (0 + 1 + 10 + 11) / 4.0, 0.0);
+  AP_CHECK_NEAR(rd.Z(131072, 1), (2 + 3 + 12 + 13) / 4.0, 0.0);
+  AP_CHECK_NEAR(rd.Z(131071, 0), (20 + 21) / 4.0, 0.0);
+  AP_CHECK_NEAR(rd.Z(131072, 0), (22 + 23) / 4.0, 0.0);
+  AP_CHECK_NEAR(rd.Z(131073, 1), 0.0, 0.0);
+  AP_CHECK_NEAR(rd.Z(999999, 0), 0.0, 0.0);
+}
 } // namespace
 
 int TestApertureDEMReader(int argc, char* argv[])
@@ -791,5 +911,7 @@ int TestApertureDEMReader(int argc, char* argv[])
   TestBands();
   TestWindowExtent();
   TestBadInput();
+  TestSampleEncodings();
+  TestWideDecimation();
   return aptest::Result();
 }
