@@ -486,6 +486,13 @@ int vtkApertureEXRReader::ReadInformation(vtkInformationVector* outputVector)
                     << "' that " << problem);
       return 0;
     }
+    if (!std::isfinite(gt[0] + d.Size[0] * gt[1]) || !std::isfinite(gt[3] + d.Size[1] * gt[5]))
+    {
+      vtkErrorMacro(<< "'" << name << "' has an " << GeoTransformAttribute << " attribute '"
+                    << text << "' whose grid of " << d.Size[0] << " x " << d.Size[1]
+                    << " pixels reaches beyond the range of numbers");
+      return 0;
+    }
     d.Spacing[0] = gt[1];
     d.Spacing[1] = -gt[5];
     d.Origin[0] = gt[0] + 0.5 * gt[1];

@@ -1272,6 +1272,9 @@ void TestReaderErrors()
     { RawKind::BadGeo, "badgeo-rotated.exr",
       "'0,30,1,0,0,-30' that is rotated or sheared (its third and fifth numbers are not 0)",
       "0,30,1,0,0,-30" },
+    // six finite numbers whose grid does not fit in numbers: its origin would be -inf
+    { RawKind::BadGeo, "badgeo-vast.exr",
+      "'1e308,1e308,0,1e308,0,-1e308' whose grid of ", "1e308,1e308,0,1e308,0,-1e308" },
     { RawKind::BadCRS, "badcrs.exr", "aperture:crs attribute that is not a CRS", nullptr },
   };
   for (const auto& c : cases)
