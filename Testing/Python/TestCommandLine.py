@@ -126,6 +126,30 @@ class TestLauncher(CommandLineTest):
         self.assertTrue(line.endswith("): No module named 'aperture'"), line)
 
 
+    def test_interrupt_while_loading(self):
+        # Ctrl-C in the first few tenths of a second, while VTK and GDAL load: VTK's module
+        # loader turned the KeyboardInterrupt into an ImportError, reported as "cannot load
+        # Aperture's Python modules" (exit 1), or swallowed it, and the bake ran to its end
+        # (exit 0), until 2026-12-06. Now exit 130, as for any interrupt, at every moment from
+        # the launcher's first line (before it, in Python's own start-up, the first 20-30 ms,
+        # the signal ends the process, -2, or Python prints a KeyboardInterrupt; a loaded machine
+        # takes longer: the delays begin at 0.1 s).
+        import signal
+        import time
+        dem = self.path("loading.tif")
+        rng = np.random.default_rng(5)
+        make_raster(dem, np.cumsum(rng.normal(0, 5, (500, 500)), axis=0),
+                    (500000, 30, 0, 4000000, 0, -30))
+        for delay in (0.1, 0.13, 0.16, 0.19, 0.22, 0.25, 0.3):
+            p = subprocess.Popen([APERTURE, "bake", "-q", dem, self.path("loading-out.tif")],
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+            time.sleep(delay)
+            p.send_signal(signal.SIGINT)
+            out, err = p.communicate(timeout=120)
+            self.assertEqual(p.returncode, 130, (delay, err))
+            self.assertEqual((out, err), ("", ""), delay)
+
+
     def test_closed_stdout(self):
         # A reader that stops early (`aperture info --json x | head -1`): the command ends
         # quietly with the status of a tool that SIGPIPE ends, 141, as gdalinfo does; it
