@@ -878,8 +878,8 @@ def cmd_render(args):
                                 multisamples=args.multisamples, camera=args.camera)
         exposure = args.exposure or 0.0
     try:
-        path = scene.write_png(window, args.output)
-    except OSError as e:
+        path = scene.write_png(window, args.output, on_warning=_warn)
+    except (OSError, RuntimeError) as e:
         raise ApertureError(str(e))
     print("wrote %s (%d x %d, %s view, sun azimuth %.2f, elevation %.2f deg, exposure %.2f EV)"
           % (path, args.size[0], args.size[1], args.view, sun.GetAzimuth(), sun.GetElevation(),

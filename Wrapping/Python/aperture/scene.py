@@ -260,8 +260,7 @@ def frame(renderer, mesh, view, size, camera_azimuth=180.0, camera_elevation=35.
     renderer.ResetCameraClippingRange()
 
 
-def grab(window):
-    """Render the window and return its RGB pixels as a vtkImageData (row 0 at the bottom)."""
+def _render_pixels(window):
     window.Render()
     grabber = vtkWindowToImageFilter()
     grabber.SetInput(window)
@@ -271,22 +270,56 @@ def grab(window):
     return grabber.GetOutput()
 
 
-def rgb_pixels(window):
-    """Render the window and return its pixels as a (height, width, 3) uint8 numpy array, row 0
-    at the bottom (VTK's order)."""
+def _blank(window, image):
+    """Every byte of the picture 0 over a background that is not black: nothing was drawn."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    image = grab(window)
+    renderer = window.GetRenderers().GetFirstRenderer()
+    if renderer is None or max(renderer.GetBackground()) < 0.5 / 255:
+        return False
+    scalars = image.GetPointData().GetScalars()
+    return scalars is not None and not vtk_to_numpy(scalars).any()
+
+
+def grab(window, on_warning=None):
+    """Render the window and return its RGB pixels as a vtkImageData (row 0 at the bottom).
+    A multisampled picture that comes back blank (the OpenGL driver could not make a
+    multisampled framebuffer that large, and said nothing: Mesa's llvmpipe beyond 2 GiB, some
+    8200 x 8200 pixels at 8 samples) is rendered again without multisampling, which the window
+    keeps, and on_warning(message) is told. RuntimeError when nothing is drawn even then."""
+    image = _render_pixels(window)
+    if _blank(window, image):
+        samples = window.GetMultiSamples()
+        width, height = window.GetSize()
+        if samples > 0:
+            window.SetMultiSamples(0)
+            image = _render_pixels(window)
+        if _blank(window, image):
+            raise RuntimeError("the OpenGL driver drew nothing into a picture of %d x %d pixels "
+                               "(beyond its framebuffer's limits?)" % (width, height))
+        if on_warning:
+            on_warning("the OpenGL driver drew nothing with %d samples per pixel at %d x %d "
+                       "(its multisampled framebuffer's limit); the picture is rendered "
+                       "without antialiasing, as with --multisamples 0 (a smaller --size keeps "
+                       "it)" % (samples, width, height))
+    return image
+
+
+def rgb_pixels(window, on_warning=None):
+    """Render the window and return its pixels as a (height, width, 3) uint8 numpy array, row 0
+    at the bottom (VTK's order); on_warning as for grab."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    image = grab(window, on_warning)
     width, height, _ = image.GetDimensions()
     return vtk_to_numpy(image.GetPointData().GetScalars()).reshape(height, width, 3)
 
 
-def write_png(window, path):
+def write_png(window, path, on_warning=None):
     """Render and write the window's pixels to a PNG; returns the absolute path. OSError when
-    the file cannot be written."""
+    the file cannot be written; on_warning and RuntimeError as for grab."""
     from aperture.errors import native_path
     writer = vtkPNGWriter()
     writer.SetFileName(native_path(path))
-    writer.SetInputData(grab(window))
+    writer.SetInputData(grab(window, on_warning))
     writer.Write()
     if writer.GetErrorCode():
         raise OSError("cannot write the PNG %s" % path)
