@@ -61,25 +61,24 @@ inline void vtkApertureInputDimensions(vtkInformationVector* inputs, int dims[3]
 }
 
 // Bytes of memory this process may use (ap_memory_usable): the physical memory, or its
-// control group's limit where lower (a container run with a memory limit); *grouped (unless
-// null) says which. VTK_TYPE_INT64_MAX when the system does not say.
-inline vtkTypeInt64 vtkApertureUsableMemory(bool* grouped = nullptr)
+// control group's limit or what its address-space limit leaves where lower; *source (unless
+// null) says which (AP_MEMORY_MACHINE, _GROUP, _ADDRESS_SPACE). VTK_TYPE_INT64_MAX when the
+// system does not say.
+inline vtkTypeInt64 vtkApertureUsableMemory(int* source = nullptr)
 {
-  int group = 0;
-  const unsigned long long bytes = ap_memory_usable(&group);
-  if (grouped)
-  {
-    *grouped = group != 0;
-  }
+  const unsigned long long bytes = ap_memory_usable(source);
   return bytes == 0 || bytes > static_cast<unsigned long long>(VTK_TYPE_INT64_MAX)
     ? VTK_TYPE_INT64_MAX
     : static_cast<vtkTypeInt64>(bytes);
 }
 
 // What messages call that memory: "the 3.2 GiB of memory " + this.
-inline const char* vtkApertureUsableMemoryOwner(bool grouped)
+inline const char* vtkApertureUsableMemoryOwner(int source)
 {
-  return grouped ? "this process may use under its control group's limit" : "this machine has";
+  return source == AP_MEMORY_GROUP ? "this process may use under its control group's limit"
+    : source == AP_MEMORY_ADDRESS_SPACE
+    ? "this process may use under its address-space limit (ulimit -v)"
+    : "this machine has";
 }
 
 // A byte count for messages: "512 bytes", "1.500 KiB", ... "3.353 GiB".
@@ -104,8 +103,8 @@ inline std::string vtkApertureHumanBytes(double bytes)
 inline std::string vtkApertureBeyondMemory(
   double need, double held, vtkTypeInt64 limit, const std::string& needs)
 {
-  bool grouped = false; // (the usable memory is read only when no limit is set)
-  const double usable = limit > 0 ? 0.0 : static_cast<double>(vtkApertureUsableMemory(&grouped));
+  int source = AP_MEMORY_MACHINE; // (the usable memory is read only when no limit is set)
+  const double usable = limit > 0 ? 0.0 : static_cast<double>(vtkApertureUsableMemory(&source));
   const double allowed = limit > 0 ? static_cast<double>(limit) : usable - held;
   if (need <= allowed)
   {
@@ -118,10 +117,10 @@ inline std::string vtkApertureBeyondMemory(
   if (allowed <= 0.0) // (nothing left to compare with: say what does not fit)
   {
     return needs + ", and the DEM's " + vtkApertureHumanBytes(held) + " alone exceed the " +
-      vtkApertureHumanBytes(usable) + " of memory " + vtkApertureUsableMemoryOwner(grouped);
+      vtkApertureHumanBytes(usable) + " of memory " + vtkApertureUsableMemoryOwner(source);
   }
   return needs + ", more than the " + vtkApertureHumanBytes(allowed) + " of memory " +
-    vtkApertureUsableMemoryOwner(grouped) + " beside the DEM's " + vtkApertureHumanBytes(held);
+    vtkApertureUsableMemoryOwner(source) + " beside the DEM's " + vtkApertureHumanBytes(held);
 }
 
 #endif

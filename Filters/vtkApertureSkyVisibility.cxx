@@ -535,15 +535,17 @@ int vtkApertureSkyVisibility::GetUsableCores()
 //------------------------------------------------------------------------------
 bool vtkApertureSkyVisibility::IsMemoryGrouped()
 {
-  bool grouped = false;
-  vtkApertureUsableMemory(&grouped);
-  return grouped;
+  int source = AP_MEMORY_MACHINE;
+  vtkApertureUsableMemory(&source);
+  return source == AP_MEMORY_GROUP;
 }
 
 //------------------------------------------------------------------------------
 std::string vtkApertureSkyVisibility::GetUsableMemoryOwner()
 {
-  return vtkApertureUsableMemoryOwner(IsMemoryGrouped());
+  int source = AP_MEMORY_MACHINE;
+  vtkApertureUsableMemory(&source);
+  return vtkApertureUsableMemoryOwner(source);
 }
 
 //------------------------------------------------------------------------------

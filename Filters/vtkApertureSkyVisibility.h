@@ -221,17 +221,19 @@ public:
   vtkGetMacro(MemoryLimit, vtkTypeInt64);
   ///@}
 
-  /** The bytes of memory this process may use: the machine's physical memory, or the memory
-   *  limit of the Linux control group it runs in, less 128 MiB (at most half of it) for what
-   *  the process holds before its data, where that is lower (a container run with a limit:
-   *  past it the kernel ends the process, as past physical memory); IsMemoryGrouped() is
-   *  then true, and messages say "of memory this process may use under its control group's
-   *  limit" instead of "of memory this machine has". Read at each call. */
+  /** The bytes of memory this process may use, the lowest of: the machine's physical memory;
+   *  the memory limit of the Linux control group it runs in, less 128 MiB (at most half of
+   *  it) for what the process holds before its data (a container run with a limit: past it
+   *  the kernel ends the process, as past physical memory), IsMemoryGrouped() then true; an
+   *  address-space limit (`ulimit -v`) less the address space the process has mapped already
+   *  and 128 MiB (at most half) for threads' stacks and arenas (past it allocations fail).
+   *  Read at each call. */
   static vtkTypeInt64 GetUsableMemory();
   static bool IsMemoryGrouped();
 
   /** Whose memory GetUsableMemory() is, as the messages say it: "this process may use under
-   *  its control group's limit" or "this machine has". */
+   *  its control group's limit", "this process may use under its address-space limit
+   *  (ulimit -v)" or "this machine has". */
   static std::string GetUsableMemoryOwner();
 
   /** A byte count as every message of Aperture writes it: "512 bytes", "1.500 KiB", ...,

@@ -773,9 +773,9 @@ int vtkApertureDEMReader::Execute(vtkInformationVector* outputVector)
 
   // Memory: refuse before allocating anything large.
   size_t cells = 0, bytes = 0;
-  bool grouped = false;
+  int source = AP_MEMORY_MACHINE;
   const vtkTypeInt64 limit =
-    this->MemoryLimit > 0 ? this->MemoryLimit : vtkApertureUsableMemory(&grouped);
+    this->MemoryLimit > 0 ? this->MemoryLimit : vtkApertureUsableMemory(&source);
   if (ap_size_mul(ncols, nrows, &cells) != AP_OK ||
     ap_size_mul(cells, sizeof(float), &bytes) != AP_OK ||
     bytes > static_cast<size_t>(limit))
@@ -786,8 +786,9 @@ int vtkApertureDEMReader::Execute(vtkInformationVector* outputVector)
                   << " as float32, more than the "
                   << vtkApertureHumanBytes(static_cast<double>(limit))
                   << (this->MemoryLimit > 0 ? std::string(" MemoryLimit")
-                       : grouped ? std::string(" of memory ") + vtkApertureUsableMemoryOwner(true)
-                                 : std::string(" of memory on this machine"))
+                       : source != AP_MEMORY_MACHINE
+                         ? std::string(" of memory ") + vtkApertureUsableMemoryOwner(source)
+                         : std::string(" of memory on this machine"))
                   << "; read a SubWindow, or use Decimation or an OverviewLevel");
     return 0;
   }

@@ -344,14 +344,15 @@ int vtkApertureEXRReader::ReadInformation(vtkInformationVector* outputVector)
   // Every channel is read as float: refuse a window no machine of this size can hold (a huge
   // image, or a damaged header) before allocating anything.
   d.Channels = channels->num_channels;
-  bool grouped = false;
-  if (d.FloatBytes() > static_cast<double>(vtkApertureUsableMemory(&grouped)) ||
+  int source = AP_MEMORY_MACHINE;
+  if (d.FloatBytes() > static_cast<double>(vtkApertureUsableMemory(&source)) ||
     static_cast<double>(d.Size[0]) * d.Size[1] > static_cast<double>(VTK_ID_MAX))
   {
     vtkErrorMacro(<< "'" << name << "' has a data window of " << d.SizeText()
                   << ": more than "
-                  << (grouped ? std::string("the memory ") + vtkApertureUsableMemoryOwner(true)
-                              : std::string("this machine's memory"))
+                  << (source != AP_MEMORY_MACHINE
+                         ? std::string("the memory ") + vtkApertureUsableMemoryOwner(source)
+                         : std::string("this machine's memory"))
                   << " (or a damaged header)");
     return 0;
   }

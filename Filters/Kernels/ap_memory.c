@@ -14,6 +14,7 @@
 #if defined(__linux__)
 #include <sched.h>
 #include <sys/mman.h>
+#include <sys/resource.h>
 #include <unistd.h>
 #endif
 
@@ -227,21 +228,58 @@ int ap_cpu_usable(void)
   return n > 65536 ? 65536 : (int)n;
 }
 
-unsigned long long ap_memory_usable(int *grouped)
+unsigned long long ap_memory_address_limit(void)
 {
-  unsigned long long physical = 0, group;
+#if defined(__linux__)
+  struct rlimit limit;
+  unsigned long long size = 0, resident = 0, mapped, left;
+  const long page_size = sysconf(_SC_PAGE_SIZE);
+  FILE *f;
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY || page_size <= 0) {
+    return 0;
+  }
+  f = fopen("/proc/self/statm", "r"); /* pages: the address space, then those resident */
+  if (f) {
+    if (fscanf(f, "%llu %llu", &size, &resident) != 2) {
+      size = resident = 0;
+    }
+    fclose(f);
+  }
+  mapped = size * (unsigned long long)page_size;
+  left = (unsigned long long)limit.rlim_cur > mapped ? (unsigned long long)limit.rlim_cur - mapped
+                                                     : 0;
+  left -= left / 2 < AP_MEMORY_GROUP_RESERVE ? left / 2 : AP_MEMORY_GROUP_RESERVE;
+  return left > 0 ? left : 1;
+#else
+  return 0;
+#endif
+}
+
+unsigned long long ap_memory_usable(int *source)
+{
+  unsigned long long usable = 0, group, address;
+  int from = AP_MEMORY_MACHINE;
 #if defined(__linux__)
   const long pages = sysconf(_SC_PHYS_PAGES), page_size = sysconf(_SC_PAGE_SIZE);
   if (pages > 0 && page_size > 0) {
-    physical = (unsigned long long)pages * (unsigned long long)page_size;
+    usable = (unsigned long long)pages * (unsigned long long)page_size;
   }
   group = ap_memory_cgroup_limit("/proc/self/cgroup", "/sys/fs/cgroup");
   group -= group / 2 < AP_MEMORY_GROUP_RESERVE ? group / 2 : AP_MEMORY_GROUP_RESERVE;
 #else
   group = 0;
 #endif
-  if (grouped) {
-    *grouped = group && (!physical || group < physical);
+  if (group && (!usable || group < usable)) {
+    usable = group;
+    from = AP_MEMORY_GROUP;
   }
-  return group && (!physical || group < physical) ? group : physical;
+  address = ap_memory_address_limit();
+  if (address && (!usable || address < usable)) {
+    usable = address;
+    from = AP_MEMORY_ADDRESS_SPACE;
+  }
+  if (source) {
+    *source = from;
+  }
+  return usable;
 }

@@ -35,15 +35,25 @@ void *ap_alloc_huge(size_t bytes);
  * as past physical memory, rather than fail an allocation. */
 unsigned long long ap_memory_cgroup_limit(const char *cgroups, const char *root);
 
-/* The bytes of memory this process may use: the physical memory (sysconf), or the limit of
- * its control group (ap_memory_cgroup_limit of /proc/self/cgroup under /sys/fs/cgroup) less
- * AP_MEMORY_GROUP_RESERVE (at most half of it) where that is lower, as in a container run with
- * a memory limit; *grouped (unless NULL) is then 1, else 0. 0 when the system does not say.
- * (The reserve is what the process itself holds before its data, its interpreter and
+/* What an address-space limit (RLIMIT_AS, `ulimit -v`) leaves this process to allocate: the
+ * limit less the address space mapped already (/proc/self/statm: its data, libraries, thread
+ * stacks, allocator arenas), less AP_MEMORY_GROUP_RESERVE (at most half of it) for the
+ * stacks and arenas of threads still to start; at least 1. 0 without such a limit (or off
+ * Linux). Past it an allocation fails (C++: std::bad_alloc) rather than the kernel ending the
+ * process. */
+unsigned long long ap_memory_address_limit(void);
+
+/* The bytes of memory this process may use, the lowest of: the physical memory (sysconf);
+ * the limit of its control group (ap_memory_cgroup_limit of /proc/self/cgroup under
+ * /sys/fs/cgroup) less AP_MEMORY_GROUP_RESERVE (at most half of it), as in a container run
+ * with a memory limit; ap_memory_address_limit(). *source (unless NULL) says which: one of
+ * AP_MEMORY_MACHINE, AP_MEMORY_GROUP, AP_MEMORY_ADDRESS_SPACE. 0 when the system does not
+ * say. (The reserve is what the process itself holds before its data, its interpreter and
  * libraries, which count against the group's limit; against physical memory there is
  * swap and the page cache to give.) */
 #define AP_MEMORY_GROUP_RESERVE (128ULL << 20)
-unsigned long long ap_memory_usable(int *grouped);
+enum { AP_MEMORY_MACHINE = 0, AP_MEMORY_GROUP = 1, AP_MEMORY_ADDRESS_SPACE = 2 };
+unsigned long long ap_memory_usable(int *source);
 
 /* The CPUs a control group's quota grants a process, its group's and every group above it's
  * (as ap_memory_cgroup_limit finds them): cgroup v2's cpu.max ("quota period"), v1's

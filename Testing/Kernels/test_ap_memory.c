@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -242,9 +243,10 @@ static void test_cgroup_limits(void)
   AP_CHECK_EQ_INT(limit_here(), 0);
   clear_tree();
   rmdir(tree);
-  /* this machine: at most its physical memory, and said whether a group set it */
+  /* this machine: at most its physical memory, and said what set it */
   usable = ap_memory_usable(&grouped);
-  AP_CHECK(grouped == 0 || grouped == 1);
+  AP_CHECK(grouped == AP_MEMORY_MACHINE || grouped == AP_MEMORY_GROUP ||
+           grouped == AP_MEMORY_ADDRESS_SPACE);
 #if defined(__linux__)
   AP_CHECK(usable > 0);
   AP_CHECK(usable <= (unsigned long long)sysconf(_SC_PHYS_PAGES) *
@@ -298,6 +300,44 @@ static void test_cgroup_cpus(void)
 #endif
 }
 
+/* An address-space limit (ulimit -v) 512 MiB above the address space mapped (statm read here
+ * too): what it leaves is those 512 MiB less the 128 MiB reserve, and it is the usable
+ * memory's lowest bound, said so. Without one, 0. (The soft limit is set and then
+ * restored in this process: a soft limit may be raised back up to the hard one.) */
+static void test_address_limit(void)
+{
+#if defined(__linux__)
+  struct rlimit saved, limit;
+  unsigned long long size = 0, resident = 0, left, usable;
+  const unsigned long long expected = (512ULL - 128ULL) << 20;
+  const unsigned long long page = (unsigned long long)sysconf(_SC_PAGE_SIZE);
+  int source = -1;
+  FILE *f;
+  AP_CHECK(getrlimit(RLIMIT_AS, &saved) == 0);
+  if (saved.rlim_cur != RLIM_INFINITY) {
+    printf("test_address_limit: skipped (already under ulimit -v)\n");
+    return;
+  }
+  AP_CHECK_EQ_INT(ap_memory_address_limit(), 0);
+  f = fopen("/proc/self/statm", "r");
+  AP_CHECK(f && fscanf(f, "%llu %llu", &size, &resident) == 2);
+  if (f) {
+    fclose(f);
+  }
+  limit = saved;
+  limit.rlim_cur = (rlim_t)(size * page + (512ULL << 20));
+  AP_CHECK(setrlimit(RLIMIT_AS, &limit) == 0);
+  left = ap_memory_address_limit();
+  usable = ap_memory_usable(&source);
+  AP_CHECK(setrlimit(RLIMIT_AS, &saved) == 0);
+  /* (the pages mapped may change a little between the reads of statm) */
+  AP_CHECK(left > expected - (16ULL << 20) && left < expected + (16ULL << 20));
+  AP_CHECK_EQ_INT(source, AP_MEMORY_ADDRESS_SPACE);
+  AP_CHECK(usable + (16ULL << 20) > left && usable < left + (16ULL << 20));
+  AP_CHECK_EQ_INT(ap_memory_address_limit(), 0);
+#endif
+}
+
 int main(void)
 {
   test_contents_and_no_ops();
@@ -305,5 +345,6 @@ int main(void)
   test_alloc_huge();
   test_cgroup_limits();
   test_cgroup_cpus();
+  test_address_limit();
   AP_TEST_MAIN_END();
 }

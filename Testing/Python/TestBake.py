@@ -1093,6 +1093,41 @@ class TestBake(unittest.TestCase):
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertEqual(p.stdout.split(), [str(272 << 20), "True"])
 
+    def test_address_space_limit(self):
+        # Under an address-space limit (`ulimit -v`), allocations fail instead of the kernel
+        # ending the process: a render of 3000^2 points under 1.5 GiB died of an uncaught
+        # std::bad_alloc in VTK's drawing (SIGABRT, status 134) until 2026-12-06, the limit
+        # unknown to the memory checks. Now the memory a process may use is at most what the
+        # limit leaves beside the address space it has reserved, and the render is refused by
+        # name with a factor that fits, which then renders under the same limit; the bake of
+        # that DEM fits in strips.
+        import resource
+
+        def limit():
+            resource.setrlimit(resource.RLIMIT_AS, (1536 << 20, resource.RLIM_INFINITY))
+
+        dem = zeros_vrt(self.path("ulimit.vrt"), 3000)
+        xvfb = os.path.join(SOURCE, "Utilities", "with-xvfb.sh")
+        p = subprocess.run([xvfb, APERTURE, "render", dem, "-o", self.path("ulimit.png"),
+                            "--lighting", "standard", "--size", "400x300"],
+                           capture_output=True, text=True, timeout=300, preexec_fn=limit)
+        self.assertEqual(p.returncode, 1, p.stderr)
+        self.assertIn("rendering a mesh of 3000 x 3000 points needs about", p.stderr)
+        self.assertIn("of memory this process may use under its address-space limit "
+                      "(ulimit -v) beside the", p.stderr)
+        factor = re.search(r"; --decimate (\d+) would fit$", p.stderr.strip())
+        self.assertTrue(factor, p.stderr)
+        p = subprocess.run([xvfb, APERTURE, "render", dem, "-o", self.path("ulimit.png"),
+                            "--lighting", "standard", "--size", "400x300", "--decimate",
+                            factor.group(1)], capture_output=True, text=True, timeout=300,
+                           preexec_fn=limit)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        p = subprocess.run([APERTURE, "bake", dem, self.path("ulimit.tif"), "--radius", "300",
+                            "-d", "32", "--products", "all"],
+                           capture_output=True, text=True, timeout=300, preexec_fn=limit)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertIn("strips of", p.stdout)
+
     def test_usable_cores(self):
         # --threads 0 (the default) is every core the process may use: the machine's, or fewer
         # where its CPU affinity (taskset, a container's --cpuset-cpus) or its control group's

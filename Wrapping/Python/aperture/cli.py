@@ -1317,7 +1317,7 @@ def _plan_bake(args, watcher, sky):
         inner = [read[0], read[1], 0, min(rows + 2 * halo, whole_rows) - 1, 0, 0]
         return problem(inner, nx, rows)
 
-    memory = sky.GetUsableMemory()  # (physical, or the control group's limit)
+    memory = sky.GetUsableMemory()  # (physical, or the control group's or ulimit -v's limit)
     columns = _extent_size(read)[0]
     if not args.max_memory and 4.0 * columns * min(tile + 2 * halo, whole_rows) >= memory:
         raise ApertureError("%s; %s" % (whole_problem, advice))  # (a strip's DEM alone)
@@ -1965,7 +1965,8 @@ def build_parser():
                         "elevations (4 bytes a cell): a number of MiB, or with K, M, G, T or "
                         "B (bytes) (default: the machine's physical memory, or a control "
                         "group's memory limit less 128 MiB where lower, as in a container, "
-                        "less the elevations); a bake that needs more is written in strips of "
+                        "or what an address-space limit (ulimit -v) leaves, less the "
+                        "elevations); a bake that needs more is written in strips of "
                         "rows that fit, with the same results")
     p.add_argument("--near-field", type=_c_int, default=0, metavar="K",
                    help="columns of each cell's ray evaluated exactly, 1..64 (default 0: 32 "
