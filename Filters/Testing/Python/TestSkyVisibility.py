@@ -1224,6 +1224,7 @@ class TestSkyVisibility(Testing.vtkTest):
     def testOutOfMemory(self):
         # Child processes whose address space leaves some MiB above what they hold once the
         # DEM is built, so that an allocation fails: an error naming the size, not an abort.
+        # (With a MemoryLimit of a TiB, past the check that refuses such a job up front, 3.)
         # Bytes per cell named (vtkApertureSkyVisibility.h, ap_horizon_create): each output
         # (4 per float, 12 for BentNormal, 1 for EdgeTruncated, 4 per HorizonAngles sector),
         # the filter's float copy of the elevations (4) and the sweep's state (17, plus 12
@@ -1245,8 +1246,18 @@ class TestSkyVisibility(Testing.vtkTest):
         self.assertIn("out of memory: a 4096 x 4096 DEM with these products needs about "
                       "400 MiB", message)
         self.assertNotIn("HorizonAngles", message)
+        # 3. Without a MemoryLimit the job is refused before anything is allocated: the memory
+        #    the process may use is what the address-space limit leaves (less 128 MiB, at most
+        #    half, for threads still to start), since 2026-12-06.
+        message = self.out_of_memory(512, 256, "f.SetNumberOfDirections(360)\n"
+                                     "f.SetComputeHorizonAngles(True)\n", limit=False)
+        self.assertTrue(message.startswith(
+            "a 512 x 512 DEM with these products needs about 373.500 MiB (HorizonAngles take 4 "
+            "bytes per cell and direction), more than the "), message)
+        self.assertIn(" of memory this process may use under its address-space limit (ulimit -v) "
+                      "beside the DEM's 1.003 MiB", message)
 
-    def out_of_memory(self, size, headroom_mib, setup):
+    def out_of_memory(self, size, headroom_mib, setup, limit=True):
         import subprocess
         script = """
 import resource
@@ -1268,12 +1279,14 @@ w = Watcher()
 f = w.watch(aperture.vtkApertureSkyVisibility())
 f.SetInputData(image)
 %(setup)sf.SetNumberOfThreads(1)
+%(limit)s
 with open("/proc/self/status") as status:
     vm = next(int(line.split()[1]) for line in status if line.startswith("VmSize:"))
 resource.setrlimit(resource.RLIMIT_AS, ((vm + %(headroom)d * 1024) * 1024, resource.RLIM_INFINITY))
 f.Update()
 print(w.errors[0] if w.errors else "no error")
-""" % dict(size=size, headroom=headroom_mib, setup=setup)
+""" % dict(size=size, headroom=headroom_mib, setup=setup,
+           limit="f.SetMemoryLimit(1 << 40)" if limit else "")
         p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                            timeout=120)
         self.assertEqual(p.returncode, 0, p.stderr[-2000:])
