@@ -44,6 +44,7 @@
 #include <new>
 #include <sstream>
 #include <string>
+#include <vector>
 #include <type_traits>
 #include <vector>
 
@@ -76,25 +77,20 @@ int vtkApertureTerrainMesh::FillInputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
-//------------------------------------------------------------------------------
-int vtkApertureTerrainMesh::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+namespace
 {
-  // Turn the requested piece of the mesh into the extent of the DEM it needs; splitting by
-  // cells makes neighbouring pieces share their boundary points, so their meshes join.
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  const int piece = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER());
-  const int pieces = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES());
+// The extent of the DEM that piece `piece` of `pieces` meshes (pieces share their boundary
+// points, so their meshes join). A global DEM's pieces are bands of whole rows, so that each
+// joins its east and west edges (RequestData's seam). The CRS is known here when
+// vtkApertureDEMReader published it, or from the input image itself when it is already there
+// (SetInputData).
+void PieceExtent(vtkInformation* inInfo, int piece, int pieces, int ext[6])
+{
   int whole[6];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  int ext[6];
   std::copy(whole, whole + 6, ext);
   if (pieces > 1)
   {
-    // A global DEM's pieces are bands of whole rows, so that each joins its east and west
-    // edges (RequestData's seam). The CRS is known here when vtkApertureDEMReader published
-    // it, or from the input image itself when it is already there (SetInputData).
     vtkNew<vtkApertureGeoreference> geo;
     vtkImageData* present = vtkImageData::GetData(inInfo);
     const bool wraps = (geo->SetFromInformation(inInfo) ||
@@ -104,6 +100,137 @@ int vtkApertureTerrainMesh::RequestUpdateExtent(
     vtkNew<vtkExtentTranslator> translator;
     translator->PieceToExtentThreadSafe(piece, pieces, 0, whole, ext,
       wraps ? vtkExtentTranslator::Y_SLAB_MODE : vtkExtentTranslator::BLOCK_MODE, 0);
+  }
+}
+
+// A streamed piece's normals (3 floats a point of the piece's extent `ext`) from its ENU
+// positions and the one-point margin read around it (`margin`, whose elevations are the array
+// `name`, placed with `exaggeration` in the frame at lonlat0 on `ellipsoid`; a site grid's
+// with its unit in metres, else siteUnit 0); "" or what failed.
+std::string MarginNormals(vtkImageData* margin, const char* name, double exaggeration,
+  const int ext[6], const double* enu, vtkApertureGeoreference* geo, const double lonlat0[2],
+  const double ellipsoid[2], const double centre[2], double siteUnit, bool seam, float* normals)
+{
+  // The margin's grid: the piece's ENU positions where it has them, the margin's points placed
+  // as the piece's are (RequestData's step 4), nodata NaN; then the normals of that grid's
+  // rows of the piece, of which the piece's columns are its normals.
+  int mext[6];
+  margin->GetExtent(mext);
+  const size_t nx = static_cast<size_t>(ext[1] - ext[0] + 1);
+  const size_t ny = static_cast<size_t>(ext[3] - ext[2] + 1);
+  const size_t mx = static_cast<size_t>(mext[1] - mext[0] + 1);
+  const size_t my = static_cast<size_t>(mext[3] - mext[2] + 1);
+  const size_t ox = static_cast<size_t>(ext[0] - mext[0]);
+  const size_t oy = static_cast<size_t>(ext[2] - mext[2]);
+  const size_t mn = mx * my;
+  std::vector<double> menu(3 * mn, std::numeric_limits<double>::quiet_NaN());
+  for (size_t j = 0; j < ny; ++j)
+  {
+    std::copy(enu + 3 * j * nx, enu + 3 * (j + 1) * nx, menu.data() + 3 * ((j + oy) * mx + ox));
+  }
+  vtkDataArray* elevation =
+    vtkApertureElevationArray(margin->GetPointData(), name, nullptr);
+  if (!elevation)
+  {
+    return "the margin around the piece has no elevations";
+  }
+  std::vector<float> z(mn);
+  vtkApertureCopyElevations(elevation, 0, static_cast<vtkIdType>(mn), z.data());
+  std::vector<size_t> ring;
+  std::vector<double> xy, ll;
+  double origin[3], spacing[3];
+  margin->GetOrigin(origin);
+  margin->GetSpacing(spacing);
+  for (size_t j = 0; j < my; ++j)
+  {
+    for (size_t i = 0; i < mx; ++i)
+    {
+      const bool inner = i >= ox && i < ox + nx && j >= oy && j < oy + ny;
+      if (!inner && !std::isnan(z[j * mx + i]))
+      {
+        ring.push_back(j * mx + i);
+        xy.push_back(origin[0] + (mext[0] + static_cast<double>(i)) * spacing[0]);
+        xy.push_back(origin[1] + (mext[2] + static_cast<double>(j)) * spacing[1]);
+      }
+    }
+  }
+  ll.resize(xy.size());
+  try
+  {
+    const GeographicLib::Geocentric earth(ellipsoid[0], ellipsoid[1]);
+    const GeographicLib::LocalCartesian frame(lonlat0[1], lonlat0[0], 0.0, earth);
+    if (siteUnit > 0.0)
+    {
+      const GeographicLib::Geodesic sphere(ellipsoid[0], ellipsoid[1]);
+      const GeographicLib::AzimuthalEquidistant siteMap(sphere);
+      for (size_t q = 0; q < ring.size(); ++q)
+      {
+        siteMap.Reverse(0.0, 0.0, (xy[2 * q] - centre[0]) * siteUnit,
+          (xy[2 * q + 1] - centre[1]) * siteUnit, ll[2 * q + 1], ll[2 * q]);
+      }
+    }
+    else if (!ring.empty() &&
+      !geo->CRSToLonLatPoints(static_cast<vtkIdType>(ring.size()), xy.data(), ll.data()))
+    {
+      return "converting the margin's coordinates to geographic failed: " +
+        std::string(geo->GetErrorMessage());
+    }
+    for (size_t q = 0; q < ring.size(); ++q)
+    {
+      double* p = &menu[3 * ring[q]];
+      if (!std::isnan(ll[2 * q])) // (outside the CRS's domain: nodata, as in the piece)
+      {
+        frame.Forward(ll[2 * q + 1], ll[2 * q], exaggeration * z[ring[q]], p[0],
+          p[1], p[2]);
+      }
+    }
+  }
+  catch (const std::exception& e)
+  {
+    return std::string("GeographicLib: ") + e.what();
+  }
+  std::vector<float> mnormals(3 * mn);
+  const ap_status st = ap_mesh_normals_validate(menu.data(), mx, my, seam, mnormals.data());
+  if (st != AP_OK)
+  {
+    return ap_status_string(st);
+  }
+  vtkSMPTools::For(static_cast<vtkIdType>(oy), static_cast<vtkIdType>(oy + ny),
+    [&](vtkIdType j0, vtkIdType j1) {
+      ap_mesh_normals_rows(menu.data(), mx, my, seam, static_cast<size_t>(j0),
+        static_cast<size_t>(j1), mnormals.data());
+    });
+  for (size_t j = 0; j < ny; ++j)
+  {
+    const float* from = mnormals.data() + 3 * ((j + oy) * mx + ox);
+    std::copy(from, from + 3 * nx, normals + 3 * j * nx);
+  }
+  return std::string();
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+int vtkApertureTerrainMesh::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // Turn the requested piece of the mesh into the extent of the DEM it needs: the piece's own
+  // points and one more on every side where the DEM has them, for its boundary normals to
+  // take their neighbours beyond it as the whole mesh's do (RequestData meshes the piece
+  // alone).
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  const int piece = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER());
+  const int pieces = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES());
+  int whole[6], ext[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  PieceExtent(inInfo, piece, pieces, ext);
+  if (pieces > 1 && this->ComputeNormals)
+  {
+    for (int a = 0; a < 4; a += 2)
+    {
+      ext[a] = std::max(whole[a], ext[a] - 1);
+      ext[a + 1] = std::min(whole[a + 1], ext[a + 1] + 1);
+    }
   }
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext, 6);
   // The request is this extent, not a piece: the pipeline copies the piece request upstream,
@@ -202,6 +329,47 @@ int vtkApertureTerrainMesh::Execute(
       cropped->GetCellData()->Initialize();
       cropped->Crop(asked);
       input = cropped;
+    }
+  }
+  // A streamed piece read with a margin (RequestUpdateExtent): meshed over its own extent,
+  // the margin kept for its boundary normals.
+  vtkSmartPointer<vtkImageData> margin;
+  vtkNew<vtkImageData> pieceImage;
+  {
+    vtkInformation* outInfo = outputVector->GetInformationObject(0);
+    const int pieces =
+      outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+      ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+      : 1;
+    int own[6], have[6];
+    input->GetExtent(have);
+    if (pieces > 1 && this->ComputeNormals &&
+      inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      PieceExtent(inInfo, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()),
+        pieces, own);
+      bool inside = true, smaller = false;
+      for (int a = 0; a < 6; a += 2)
+      {
+        inside = inside && own[a] >= have[a] && own[a + 1] <= have[a + 1] && own[a] <= own[a + 1];
+        smaller = smaller || own[a] > have[a] || own[a + 1] < have[a + 1];
+      }
+      if (inside && smaller)
+      {
+        const std::string inconsistent = vtkApertureCheckPointArrays(input->GetPointData(),
+          static_cast<vtkIdType>(have[1]) - have[0] + 1,
+          static_cast<vtkIdType>(have[3]) - have[2] + 1);
+        if (!inconsistent.empty())
+        {
+          vtkErrorMacro(<< inconsistent);
+          return 0;
+        }
+        margin = input;
+        pieceImage->ShallowCopy(input);
+        pieceImage->GetCellData()->Initialize();
+        pieceImage->Crop(own);
+        input = pieceImage;
+      }
     }
   }
 
@@ -636,10 +804,24 @@ int vtkApertureTerrainMesh::Execute(
       output->Initialize();
       return 0;
     }
-    vtkSMPTools::For(0, static_cast<vtkIdType>(ny), [&](vtkIdType j0, vtkIdType j1) {
-      ap_mesh_normals_rows(
-        enu, nx, ny, seam, static_cast<size_t>(j0), static_cast<size_t>(j1), nptr);
-    });
+    if (margin)
+    {
+      const std::string problem = MarginNormals(margin, this->ElevationArrayName, exaggeration,
+        ext, enu, geo, lonlat0, ellipsoid, centre, site ? siteUnit : 0.0, seam, nptr);
+      if (!problem.empty())
+      {
+        vtkErrorMacro(<< "normals: " << problem);
+        output->Initialize();
+        return 0;
+      }
+    }
+    else
+    {
+      vtkSMPTools::For(0, static_cast<vtkIdType>(ny), [&](vtkIdType j0, vtkIdType j1) {
+        ap_mesh_normals_rows(
+          enu, nx, ny, seam, static_cast<size_t>(j0), static_cast<size_t>(j1), nptr);
+      });
+    }
     copySeam(normals);
     outPD->SetNormals(normals);
   }

@@ -39,9 +39,12 @@
  * (ap_mesh_cap), so that a pole-to-pole DEM is a closed surface.
  *
  * Streaming: a request for piece p of n is translated into the input extent of that piece
- * (vtkExtentTranslator, pieces sharing their boundary rows or columns), so the reader reads and
- * the mesh holds only that part, and the pieces' meshes join without gaps. Every piece uses the
- * frame of the whole extent, so their vertices coincide with those of the whole mesh. A global
+ * (vtkExtentTranslator, pieces sharing their boundary rows or columns) and, with
+ * ComputeNormals, one point more on every side where the DEM goes on, so the reader reads
+ * little more than that part, the mesh holds only the piece, and the pieces' meshes join
+ * without gaps. Every piece uses the frame of the whole extent, so their vertices coincide with
+ * those of the whole mesh, and their normals are the whole mesh's, bit for bit, along their
+ * boundaries too (taken across them, from that margin). A global
  * DEM's pieces are bands of whole rows, each with its seam, when its CRS is known while the
  * request is planned (published by vtkApertureDEMReader and passed on by
  * vtkApertureSkyVisibility, or an image given whole with SetInputData). An input that holds more

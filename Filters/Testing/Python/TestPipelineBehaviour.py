@@ -91,44 +91,69 @@ class TestPipelineBehaviour(Testing.vtkTest):
         self.assertEqual(mesher.GetOutput().GetNumberOfPoints(), 344 * 403)
 
     def testStreamingPieces(self):
+        from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
+        translator = vtkExtentTranslator()
+
+        def piece_extent(piece, pieces):
+            ext = [0] * 6
+            translator.PieceToExtentThreadSafe(piece, pieces, 0, [0, 402, 0, 343, 0, 0], ext,
+                                               vtkExtentTranslator.BLOCK_MODE, 0)
+            return ext
+
         reader = aperture.vtkApertureDEMReader()
         reader.SetFileName(self.path)
         whole = aperture.vtkApertureTerrainMesh()
         whole.SetInputConnection(reader.GetOutputPort())
         whole.Update()
         full = vtk_to_numpy(whole.GetOutput().GetPoints().GetData()).reshape(344, 403, 3)
+        full_normals = vtk_to_numpy(whole.GetOutput().GetPointData().GetNormals()).reshape(
+            344, 403, 3)
         full_origin = whole.GetOutput().GetFieldData().GetArray("FrameOrigin").GetTuple(0)
 
         # Every cell of the DEM in some piece: the reader, which splits piece requests into
         # extents itself, used to intersect its own split with the mesh's (two pieces gave
-        # two quarters of the DEM, diagonally opposite), which rows alone did not show.
-        for pieces in (2, 3, 4):
-            covered = np.zeros((344, 403), dtype=bool)
-            for piece in range(pieces):
-                r = aperture.vtkApertureDEMReader()
-                r.SetFileName(self.path)
-                m = aperture.vtkApertureTerrainMesh()
-                m.SetInputConnection(r.GetOutputPort())
-                m.UpdatePiece(piece, pieces, 0)
-                image = r.GetOutput()
-                ext = image.GetExtent()
-                self.assertLess((ext[1] - ext[0] + 1) * (ext[3] - ext[2] + 1), 344 * 403)
-                out = m.GetOutput()
-                origin = out.GetFieldData().GetArray("FrameOrigin").GetTuple(0)
-                self.assertEqual(origin, full_origin)  # one frame for every piece
-                pts = vtk_to_numpy(out.GetPoints().GetData()).reshape(ext[3] - ext[2] + 1,
-                                                                      ext[1] - ext[0] + 1, 3)
-                np.testing.assert_array_equal(pts, full[ext[2]:ext[3] + 1, ext[0]:ext[1] + 1])
-                covered[ext[2]:ext[3] + 1, ext[0]:ext[1] + 1] = True
-            self.assertTrue(covered.all(), "%d pieces miss %d cells"
-                            % (pieces, np.count_nonzero(~covered)))
+        # two quarters of the DEM, diagonally opposite), which rows alone did not show. The
+        # reader reads the piece and one point more on every side where the DEM goes on, for
+        # the piece's boundary normals to be the whole mesh's, bit for bit (they took their
+        # neighbours on one side only until 2026-12-06, up to 9 degrees off: a seam of shading
+        # between pieces); without normals, the piece alone.
+        for normals in (True, False):
+            for pieces in (2, 3, 4):
+                covered = np.zeros((344, 403), dtype=bool)
+                for piece in range(pieces):
+                    r = aperture.vtkApertureDEMReader()
+                    r.SetFileName(self.path)
+                    m = aperture.vtkApertureTerrainMesh()
+                    m.SetComputeNormals(normals)
+                    m.SetInputConnection(r.GetOutputPort())
+                    m.UpdatePiece(piece, pieces, 0)
+                    ext = piece_extent(piece, pieces)
+                    grown = [max(0, ext[0] - 1), min(402, ext[1] + 1),
+                             max(0, ext[2] - 1), min(343, ext[3] + 1), 0, 0]
+                    self.assertEqual(r.GetOutput().GetExtent(),
+                                     tuple(grown if normals else ext))
+                    self.assertLess((ext[1] - ext[0] + 1) * (ext[3] - ext[2] + 1), 344 * 403)
+                    out = m.GetOutput()
+                    origin = out.GetFieldData().GetArray("FrameOrigin").GetTuple(0)
+                    self.assertEqual(origin, full_origin)  # one frame for every piece
+                    shape = (ext[3] - ext[2] + 1, ext[1] - ext[0] + 1, 3)
+                    pts = vtk_to_numpy(out.GetPoints().GetData()).reshape(shape)
+                    np.testing.assert_array_equal(pts,
+                                                  full[ext[2]:ext[3] + 1, ext[0]:ext[1] + 1])
+                    if normals:
+                        np.testing.assert_array_equal(
+                            vtk_to_numpy(out.GetPointData().GetNormals()).reshape(shape),
+                            full_normals[ext[2]:ext[3] + 1, ext[0]:ext[1] + 1])
+                    else:
+                        self.assertIsNone(out.GetPointData().GetNormals())
+                    covered[ext[2]:ext[3] + 1, ext[0]:ext[1] + 1] = True
+                self.assertTrue(covered.all(), "%d pieces miss %d cells"
+                                % (pieces, np.count_nonzero(~covered)))
 
         # The same pieces from an input that already holds the whole DEM: the reader updated
         # whole before, and an image given with SetInputData. Each piece meshes its own
         # extent (each meshed the whole input: n pieces, n whole meshes), the cells of the
-        # pieces adding up to the whole's.
-        from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
-        translator = vtkExtentTranslator()
+        # pieces adding up to the whole's, the normals the whole's.
         image = reader.GetOutput()
         for source in ("reader", "image"):
             m = aperture.vtkApertureTerrainMesh()
@@ -139,18 +164,62 @@ class TestPipelineBehaviour(Testing.vtkTest):
             cells = 0
             for piece in range(3):
                 m.UpdatePiece(piece, 3, 0)
-                ext = [0] * 6
-                translator.PieceToExtentThreadSafe(piece, 3, 0, [0, 402, 0, 343, 0, 0], ext,
-                                                   vtkExtentTranslator.BLOCK_MODE, 0)
+                ext = piece_extent(piece, 3)
                 out = m.GetOutput()
                 pts = vtk_to_numpy(out.GetPoints().GetData())
                 self.assertEqual(len(pts), (ext[1] - ext[0] + 1) * (ext[3] - ext[2] + 1), source)
+                shape = (ext[3] - ext[2] + 1, ext[1] - ext[0] + 1, 3)
+                np.testing.assert_array_equal(pts.reshape(shape),
+                                              full[ext[2]:ext[3] + 1, ext[0]:ext[1] + 1])
                 np.testing.assert_array_equal(
-                    pts.reshape(ext[3] - ext[2] + 1, ext[1] - ext[0] + 1, 3),
-                    full[ext[2]:ext[3] + 1, ext[0]:ext[1] + 1])
+                    vtk_to_numpy(out.GetPointData().GetNormals()).reshape(shape),
+                    full_normals[ext[2]:ext[3] + 1, ext[0]:ext[1] + 1])
                 cells += out.GetNumberOfCells()
             self.assertEqual(cells, whole.GetOutput().GetNumberOfCells(), source)
             self.assertEqual(image.GetExtent(), (0, 402, 0, 343, 0, 0))  # (left whole)
+
+    def testStreamingNormalsOfSitesAndHoles(self):
+        # A piece's boundary normals from the margin read around it, bit for bit the whole
+        # mesh's: on a site grid in a local CRS in feet (its points placed on the local sphere)
+        # and on a UTM one, both with nodata points next to pieces' edges (their neighbours'
+        # normals take the diagonals instead, as in the whole mesh).
+        from vtkmodules.vtkCommonDataModel import vtkImageData
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
+        nx, ny = 40, 30
+        y, x = np.mgrid[0:ny, 0:nx]
+        z = (20 * np.sin(x / 3.0) * np.cos(y / 4.0)).astype(np.float32)
+        z[5, 7] = z[14, 20] = z[15, 19] = np.nan
+        for crs in ('LOCAL_CS["site",UNIT["foot",0.3048]]', "EPSG:32633"):
+            image = vtkImageData()
+            image.SetDimensions(nx, ny, 1)
+            image.SetSpacing(2.0, 2.0, 1.0)
+            image.SetOrigin(400000.0, 5000000.0, 0.0)
+            values = numpy_to_vtk(z.ravel(), deep=1)
+            values.SetName("Elevation")
+            image.GetPointData().SetScalars(values)
+            geo = aperture.vtkApertureGeoreference()
+            self.assertTrue(geo.SetCRS(crs))
+            geo.AttachToImage(image)
+            whole = aperture.vtkApertureTerrainMesh()
+            whole.SetInputData(image)
+            whole.Update()
+            full = vtk_to_numpy(whole.GetOutput().GetPointData().GetNormals()).reshape(ny, nx, 3)
+            self.assertEqual(np.isnan(full[:, :, 0]).sum(), 3)
+            for pieces in (2, 3, 5):
+                for piece in range(pieces):
+                    m = aperture.vtkApertureTerrainMesh()
+                    m.SetInputData(image)
+                    m.UpdatePiece(piece, pieces, 0)
+                    e = [0] * 6
+                    vtkExtentTranslator().PieceToExtentThreadSafe(
+                        piece, pieces, 0, [0, nx - 1, 0, ny - 1, 0, 0], e,
+                        vtkExtentTranslator.BLOCK_MODE, 0)
+                    got = vtk_to_numpy(m.GetOutput().GetPointData().GetNormals())
+                    np.testing.assert_array_equal(
+                        got.reshape(e[3] - e[2] + 1, e[1] - e[0] + 1, 3),
+                        full[e[2]:e[3] + 1, e[0]:e[1] + 1], err_msg="%s %d/%d" % (crs, piece,
+                                                                                 pieces))
 
     def testStreamingGlobalDEM(self):
         # A global DEM (2-degree cells, pole to pole) read piece by piece: its pieces are bands
@@ -194,6 +263,7 @@ class TestPipelineBehaviour(Testing.vtkTest):
                              2 * nx * (ny - 1) + 2 * (nx - 2))
             grid, seam = full[:nx * ny].reshape(ny, nx, 3), full[nx * ny:]
             np.testing.assert_array_equal(seam, grid[:, 0])
+            full_normals = vtk_to_numpy(whole.GetOutput().GetPointData().GetNormals())
             cells = 0
             for piece in range(3):
                 r, m = pipeline(sky)
@@ -209,6 +279,12 @@ class TestPipelineBehaviour(Testing.vtkTest):
                 j0 = int(np.flatnonzero((grid[:, 0] == pts[0]).all(axis=1))[0])
                 np.testing.assert_array_equal(pts[:rows * nx], grid[j0:j0 + rows].reshape(-1, 3))
                 np.testing.assert_array_equal(pts[rows * nx:], seam[j0:j0 + rows])
+                # (the normals too, of the bands' boundary rows among them)
+                got = vtk_to_numpy(out.GetPointData().GetNormals())
+                np.testing.assert_array_equal(got[:rows * nx],
+                                              full_normals[j0 * nx:(j0 + rows) * nx])
+                np.testing.assert_array_equal(got[rows * nx:],
+                                              full_normals[nx * ny + j0:nx * ny + j0 + rows])
                 poles = (j0 == 0) + (j0 + rows == ny)
                 self.assertEqual(poles, 0 if piece == 1 else 1)
                 self.assertEqual(out.GetNumberOfCells(), 2 * nx * (rows - 1) + poles * (nx - 2))
@@ -251,11 +327,14 @@ class TestPipelineBehaviour(Testing.vtkTest):
         names = ("SkyViewFactor", "BentNormal")
         full = {n: vtk_to_numpy(whole.GetOutput().GetPointData().GetArray(n)).reshape(344, 403, -1)
                 for n in names}
+        from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
         covered = np.zeros((344, 403), dtype=bool)
         for piece in range(2):
             r, sky, m = pipeline()
             m.UpdatePiece(piece, 2, 0)
-            ext = sky.GetOutput().GetExtent()
+            ext = [0] * 6  # (the mesh's piece; the sky filter's output has the normals' margin)
+            vtkExtentTranslator().PieceToExtentThreadSafe(
+                piece, 2, 0, [0, 402, 0, 343, 0, 0], ext, vtkExtentTranslator.BLOCK_MODE, 0)
             self.assertLess(ext[1] - ext[0] + 1, 403)  # a piece, not the whole
             rext = r.GetOutput().GetExtent()
             self.assertTrue(rext[0] <= ext[0] and rext[1] >= ext[1])  # the halo was read
