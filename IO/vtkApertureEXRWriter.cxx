@@ -22,7 +22,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
+#include <cerrno>
+#include <cstdio>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -54,39 +57,63 @@ const char* const GeoTransformAttribute = "aperture:geotransform";
 // OpenEXR's limit for channel and attribute names without long-name support (EXR_SHORTNAME_MAXLEN).
 const size_t ShortNameLength = 31;
 
-// Owns a write context. Finishing a context whose image was not completely written makes
-// OpenEXR delete its temporary file; one whose every chunk was written (a strip's error after
-// the last rows, an abandoned bake) it would complete and rename over FileName. So a discard
-// first removes the temporary file (OpenEXR 3.1 names it "tmp.<pid>" + the file's name, in
-// its folder): the rename then fails, and nothing is left behind, an earlier file as it was.
+// Owns a write context and the temporary file it writes (OpenEXR writing it directly), which
+// replaces FileName once complete (Finish). A discard closes the context and removes the
+// temporary file: nothing is left behind, an earlier file as it was. The temporary file's name
+// is short whatever FileName's length (OpenEXR's own, "tmp.<pid>" + the file's name, failed on
+// names near the folder's limit): ".aperture-<pid>-<n>.tmp" in FileName's folder.
 struct ContextHandle
 {
   exr_context_t H = nullptr;
-  std::string Temporary; // OpenEXR's temporary file, while H writes it
+  std::string Temporary; // the file H writes, until Finish renames it
   ContextHandle() = default;
   ContextHandle(const ContextHandle&) = delete;
   ContextHandle& operator=(const ContextHandle&) = delete;
   ~ContextHandle() { this->Discard(); }
-  void Started(const std::string& path)
+  void Name(const std::string& path)
   {
+    static std::atomic<unsigned long> count(0);
     const size_t slash = path.rfind('/');
     const size_t base = slash == std::string::npos ? 0 : slash + 1;
-    this->Temporary = path.substr(0, base) + "tmp." +
-      std::to_string(static_cast<long>(getpid())) + path.substr(base);
+    this->Temporary = path.substr(0, base) + ".aperture-" +
+      std::to_string(static_cast<long>(getpid())) + "-" + std::to_string(count++) + ".tmp";
   }
   void Discard()
   {
     if (this->H)
     {
-      vtkApertureEXRErrorTrap trap; // (its complaints, missing chunks or the rename, expected)
-      if (!this->Temporary.empty())
-      {
-        unlink(this->Temporary.c_str());
-      }
+      vtkApertureEXRErrorTrap trap; // (its complaints, missing chunks, expected)
       exr_finish(&this->H);
       this->H = nullptr;
     }
+    if (!this->Temporary.empty())
+    {
+      unlink(this->Temporary.c_str());
+    }
     this->Temporary.clear();
+  }
+  // Complete the file and put it in place of `path`; "" or what failed.
+  std::string Finish(const std::string& path)
+  {
+    vtkApertureEXRErrorTrap trap;
+    const exr_result_t rv = exr_finish(&this->H);
+    this->H = nullptr;
+    std::string problem;
+    if (rv != EXR_ERR_SUCCESS)
+    {
+      problem = "OpenEXR failed finishing '" + path + "': " + trap.Message(rv);
+    }
+    else if (std::rename(this->Temporary.c_str(), path.c_str()) != 0)
+    {
+      problem = "cannot put the temporary file '" + this->Temporary + "' in place of '" + path +
+        "': " + std::strerror(errno);
+    }
+    else
+    {
+      this->Temporary.clear();
+    }
+    this->Discard(); // (the temporary file, when anything failed)
+    return problem;
   }
 };
 
@@ -747,18 +774,20 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
     longest = std::max(longest, kv.first.size());
   }
 
-  // 3. Create the file (a temporary one, renamed by exr_finish when complete) and its header.
+  // 3. Create the file (a temporary one, put in place when complete) and its header.
   vtkApertureEXRErrorTrap trap;
   const exr_context_initializer_t init = vtkApertureEXRErrorTrap::Initializer();
-  exr_result_t rv =
-    exr_start_write(&d.Context.H, path.c_str(), EXR_INTERMEDIATE_TEMP_FILE, &init);
+  d.Context.Name(path);
+  exr_result_t rv = exr_start_write(
+    &d.Context.H, d.Context.Temporary.c_str(), EXR_WRITE_FILE_DIRECTLY, &init);
   if (rv != EXR_ERR_SUCCESS)
   {
     d.Context.H = nullptr;
-    vtkErrorMacro(<< "OpenEXR cannot create '" << path << "': " << trap.Message(rv));
+    vtkErrorMacro(<< "OpenEXR cannot create '" << path << "' (as its temporary file '"
+                  << d.Context.Temporary << "' first): " << trap.Message(rv));
+    d.Context.Discard();
     return 0;
   }
-  d.Context.Started(path);
   exr_context_t ctx = d.Context.H;
   const exr_pixel_type_t type = this->PixelType == HALF ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT;
   rv = exr_add_part(ctx, "", EXR_STORAGE_SCANLINE, &d.Part);
@@ -944,14 +973,11 @@ int vtkApertureEXRWriter::EndStrips()
     d.Context.Discard();
     return 0;
   }
-  // Offsets table, close, and rename the temporary file to FileName.
-  vtkApertureEXRErrorTrap trap;
-  const exr_result_t rv = exr_finish(&d.Context.H);
-  d.Context.H = nullptr;
-  d.Context.Temporary.clear();
-  if (rv != EXR_ERR_SUCCESS)
+  // Offsets table, close, and put the temporary file in place of FileName.
+  const std::string problem = d.Context.Finish(d.Path);
+  if (!problem.empty())
   {
-    vtkErrorMacro(<< "OpenEXR failed finishing '" << d.Path << "': " << trap.Message(rv));
+    vtkErrorMacro(<< problem);
     return 0;
   }
   return 1;

@@ -1073,7 +1073,9 @@ bool LeftoverTemporaryFiles(const std::string& base)
   for (struct dirent* e = dir ? readdir(dir) : nullptr; e; e = readdir(dir))
   {
     const std::string name = e->d_name;
-    found = found || (name.compare(0, 4, "tmp.") == 0 && name.find(base) != std::string::npos);
+    // (the writer's own; OpenEXR's, which it wrote through until 2026-12-06)
+    found = found || name.compare(0, 10, ".aperture-") == 0 ||
+      (name.compare(0, 4, "tmp.") == 0 && name.find(base) != std::string::npos);
   }
   if (dir)
   {
@@ -1181,7 +1183,22 @@ void TestWriterErrors()
     vtkNew<vtkApertureEXRWriter> w;
     w->SetInputData(image);
     w->SetFileName("/nonexistent-folder/x.exr");
-    ExpectWriterError(w, "OpenEXR cannot create '/nonexistent-folder/x.exr': ");
+    ExpectWriterError(w, "OpenEXR cannot create '/nonexistent-folder/x.exr' (as its temporary "
+                         "file '/nonexistent-folder/.aperture-");
+  }
+  {
+    // A name as long as the folder takes: written (OpenEXR's own temporary file, "tmp.<pid>"
+    // and the name, was too long for it until 2026-12-06), no temporary file left.
+    const long longest = pathconf(tmp.c_str(), _PC_NAME_MAX);
+    AP_CHECK(longest > 8);
+    const std::string base = std::string(static_cast<size_t>(longest) - 4, 'n') + ".exr";
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputData(image);
+    w->SetFileName((tmp + "/" + base).c_str());
+    AP_CHECK(w->Write() == 1);
+    AP_CHECK(ReadRaw(tmp + "/" + base).Ok);
+    AP_CHECK(!LeftoverTemporaryFiles(base));
+    std::remove((tmp + "/" + base).c_str());
   }
   {
     // OpenEXR refuses a string attribute over its own `compression` attribute after the file

@@ -164,8 +164,8 @@ def _file_kind(mode):
 def _check_outputs(outputs, inputs):
     """Refuse an output that is not a file (a folder, a device such as /dev/null, a pipe), or
     whose folder does not exist or cannot take a new file (read-only, no permission), or that
-    cannot be made by that name (too long, characters a FAT or NTFS stick refuses; for an EXR
-    also OpenEXR's temporary name beside it, "tmp.<pid><name>"): found before a bake of hours,
+    cannot be made by that name (too long, characters a FAT or NTFS stick refuses; the EXR
+    writer's temporary file beside it has a short name of its own): found before a bake of hours,
     not after it; one that would overwrite an input, or two outputs in one file (the second
     would silently replace the first). outputs, inputs: (option, path) pairs; empty paths
     skipped."""
@@ -191,19 +191,15 @@ def _check_outputs(outputs, inputs):
         if exists and not os.access(path, os.W_OK):
             raise ApertureError("cannot write %s %s: the file exists and is read-only"
                                 % (name, path))
-        names = [path] if not exists else []
-        if path.lower().endswith(".exr"):
-            names.append(os.path.join(folder, "tmp.%d%s" % (os.getpid(), os.path.basename(path))))
-        for probe in names:  # (made and removed at once; never one that exists)
+        if not exists:  # (made and removed at once)
             try:
-                os.close(os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
+                os.close(os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
             except FileExistsError:
-                continue
+                pass
             except OSError as e:
-                raise ApertureError("cannot write %s %s: %s%s" % (
-                    name, path, e.strerror or e, "" if probe == path else
-                    " (for the temporary file OpenEXR writes first, %s)" % probe))
-            os.remove(probe)
+                raise ApertureError("cannot write %s %s: %s" % (name, path, e.strerror or e))
+            else:
+                os.remove(path)
         for other, other_path in taken:
             if _same_file(path, other_path):
                 raise ApertureError("%s %s is the same file as %s; choose another name"
