@@ -1212,21 +1212,34 @@ class TestBake(unittest.TestCase):
                          "the DEM within the radius around it is read), use --decimate or "
                          "--overview, or bake fewer --products" % (left, owner, left, owner))
         self.assertFalse(os.path.exists(out))
-        # 12000^2: the reader's 0.54 GiB fits, the mesh's points, normals and triangles do not
+        # 12000^2: the reader's 0.54 GiB fits, the mesh's points, normals and triangles do not:
+        # refused before anything is allocated, the address-space limit known (since
+        # 2026-12-06), and past that check (a MemoryLimit of a TiB) the allocation that fails
+        # is named
         script = ("import aperture, sys\n"
                   "from aperture.errors import Watcher, ApertureError\n"
                   "w = Watcher()\n"
                   "r = w.watch(aperture.vtkApertureDEMReader())\n"
                   "r.SetFileName(sys.argv[1])\n"
                   "m = w.watch(aperture.vtkApertureTerrainMesh())\n"
+                  "m.SetMemoryLimit(int(sys.argv[2]))\n"
                   "m.SetInputConnection(r.GetOutputPort())\n"
                   "try:\n"
                   "    w.update(m)\n"
                   "except ApertureError as e:\n"
                   "    print(e, m.GetOutput().GetNumberOfPoints())\n")
         python = os.path.join(BUILD, "bin", "aperture-python")
-        p = subprocess.run([python, "-c", script, zeros_vrt(self.path("mesh.vrt"), 12000)],
-                           capture_output=True, text=True, timeout=300, preexec_fn=capped)
+        mesh = zeros_vrt(self.path("mesh.vrt"), 12000)
+        p = subprocess.run([python, "-c", script, mesh, "0"], capture_output=True, text=True,
+                           timeout=300, preexec_fn=capped)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertTrue(p.stdout.startswith("a mesh of 12000 x 12000 points needs about 12.338 "
+                                            "GiB, more than the "), p.stdout)
+        self.assertTrue(p.stdout.strip().endswith(
+            " of memory this process may use under its address-space limit (ulimit -v) beside "
+            "the DEM's 549.318 MiB; decimate the DEM 0"), p.stdout)
+        p = subprocess.run([python, "-c", script, mesh, str(1 << 40)], capture_output=True,
+                           text=True, timeout=300, preexec_fn=capped)
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertIn("out of memory: a mesh of 12000 x 12000 points needs about", p.stdout)
         self.assertTrue(p.stdout.strip().endswith("MiB; decimate the DEM 0"), p.stdout)
