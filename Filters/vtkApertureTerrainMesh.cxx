@@ -44,7 +44,6 @@
 #include <new>
 #include <sstream>
 #include <string>
-#include <vector>
 #include <type_traits>
 #include <vector>
 
