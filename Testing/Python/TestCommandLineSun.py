@@ -343,6 +343,26 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertAlmostEqual(r["longitude_deg"], lon, delta=1e-9)
         self.assertAlmostEqual(r["latitude_deg"], lat, delta=1e-9)
 
+    def test_dem_centre_of_nodata(self):
+        # The centre's 3 x 3 cells all nodata: the height is the nearest valid cell's. The
+        # whole grid was to be read then, but the reader's request stayed the centre's, so the
+        # height was 0 with no word (until 2026-12-06). 9 x 9 cells of 30 m, 100 + 10 row +
+        # column, a void over rows 2..6 and columns 3..6: the nearest valid cell to the centre
+        # (4, 4) is (4, 2), 60 m west (the others are 90 m away).
+        z = 100.0 + np.add.outer(10.0 * np.arange(9), np.arange(9))
+        z[2:7, 3:7] = np.nan
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "void.tif")
+            ds = gdal.GetDriverByName("GTiff").Create(path, 9, 9, 1, gdal.GDT_Float32)
+            ds.SetGeoTransform((500000, 30, 0, 5200000, 0, -30))
+            srs = osr.SpatialReference()
+            srs.ImportFromEPSG(32633)
+            ds.SetSpatialRef(srs)
+            ds.GetRasterBand(1).WriteArray(z)
+            ds = None
+            r = self.json_of("--at", "2026-06-21T12:00Z", "--dem", path)
+        self.assertEqual(r["height_m"], 142.0)
+
     def test_height_range(self):
         # one limit, said at once (20 km passed the position, then the light refused it)
         for h in ("20000", "-1001", "nan"):

@@ -335,7 +335,7 @@ def _read_centre(args, watcher):
         block[a:a + 2] = (mid - 1, mid + 1) if n % 2 and n >= 3 else (mid, mid + (n > 1))
     image = _read(watcher, reader, block)
     low, high = image.GetPointData().GetArray("Elevation").GetRange()  # (NaN skipped)
-    return image if low <= high else _read(watcher, reader)
+    return image if low <= high else _read(watcher, reader, list(whole))
 
 
 # ---------------------------------------------------------------------------------------------
