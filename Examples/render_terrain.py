@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Render a DEM with a hand-built VTK pipeline: reader -> terrain mesh -> Aperture's mapper
-(VTK lighting plus exposure, for now) -> actor -> renderer, lit by one directional "sun".
+(its STANDARD model: VTK's lighting plus exposure; lit_terrain.py shows the aperture model)
+-> actor -> renderer, lit by one directional "sun".
 
     xvfb-run -a /usr/bin/python3 Examples/render_terrain.py [DEM] [-o terrain.png]
 """
@@ -52,6 +53,7 @@ def main():
     mapper.SetInputConnection(mesher.GetOutputPort())
     mapper.SetLookupTable(colors)
     mapper.SetScalarRange(lo, hi)
+    mapper.SetLightingModel(mapper.STANDARD)  # (APERTURE, the default, needs a bake's arrays)
     mapper.SetExposure(0.3)
     actor = vtkActor()
     actor.SetMapper(mapper)
