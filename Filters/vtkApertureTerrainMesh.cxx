@@ -82,13 +82,18 @@ namespace
 // points, so their meshes join). A global DEM's pieces are bands of whole rows, so that each
 // joins its east and west edges (RequestData's seam). The CRS is known here when
 // vtkApertureDEMReader published it, or from the input image itself when it is already there
-// (SetInputData).
+// (SetInputData). A piece that does not exist (p >= n) has an empty extent (ext[1] < ext[0]).
 void PieceExtent(vtkInformation* inInfo, int piece, int pieces, int ext[6])
 {
   int whole[6];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   std::copy(whole, whole + 6, ext);
-  if (pieces > 1)
+  if (piece < 0 || piece >= std::max(pieces, 1))
+  {
+    const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+    std::copy(empty, empty + 6, ext);
+  }
+  else if (pieces > 1)
   {
     vtkNew<vtkApertureGeoreference> geo;
     vtkImageData* present = vtkImageData::GetData(inInfo);
@@ -223,7 +228,7 @@ int vtkApertureTerrainMesh::RequestUpdateExtent(
   int whole[6], ext[6];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   PieceExtent(inInfo, piece, pieces, ext);
-  if (pieces > 1 && this->ComputeNormals)
+  if (pieces > 1 && this->ComputeNormals && ext[0] <= ext[1])
   {
     for (int a = 0; a < 4; a += 2)
     {
@@ -246,7 +251,15 @@ int vtkApertureTerrainMesh::RequestData(
 {
   try
   {
-    return this->Execute(inputVector, outputVector);
+    const int ok = this->Execute(inputVector, outputVector);
+    if (!ok)
+    {
+      // An aborted or failed update leaves no mesh; without this mark the executive would
+      // count the empty output as generated and hand it out again on the next Update.
+      outputVector->GetInformationObject(0)->Set(
+        vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
+    }
+    return ok;
   }
   catch (const std::bad_alloc&)
   {
@@ -295,6 +308,20 @@ int vtkApertureTerrainMesh::Execute(
   if (!input || input->GetNumberOfPoints() == 0)
   {
     return 1; // empty in, empty out
+  }
+  // A piece that does not exist (p >= n of UpdatePiece): an empty mesh, as VTK's filters give.
+  {
+    vtkInformation* outInfo = outputVector->GetInformationObject(0);
+    const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+      ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+      : 0;
+    const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+      ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+      : 1;
+    if (piece < 0 || piece >= std::max(pieces, 1))
+    {
+      return 1;
+    }
   }
   // An input that holds more than this update asked for (a reader updated whole before, an
   // image given with SetInputData): the requested extent alone (a copy of it), so that a

@@ -44,12 +44,13 @@
  * little more than that part, the mesh holds only the piece, and the pieces' meshes join
  * without gaps. Every piece uses the frame of the whole extent, so their vertices coincide with
  * those of the whole mesh, and their normals are the whole mesh's, bit for bit, along their
- * boundaries too (taken across them, from that margin). A global
- * DEM's pieces are bands of whole rows, each with its seam, when its CRS is known while the
- * request is planned (published by vtkApertureDEMReader and passed on by
+ * boundaries too (taken across them, from that margin). A piece that does not exist (p >= n)
+ * is an empty mesh. A global DEM's pieces are bands of whole rows, each with its seam, when its
+ * CRS is known while the request is planned (published by vtkApertureDEMReader and passed on by
  * vtkApertureSkyVisibility, or an image given whole with SetInputData). An input that holds more
  * than the piece (updated whole before, or given with SetInputData) is meshed over the piece's
- * extent alone.
+ * extent alone. An update that fails or is aborted (AbortExecute, checked after each twentieth
+ * of the points) leaves an empty mesh, and the next update runs again.
  *
  * Point arrays added: `Normals` (unit, ENU, of the output geometry including the vertical
  * exaggeration; active normals) and `TextureCoordinates` (u east, v north, spanning the outer

@@ -85,10 +85,17 @@ class TestPipelineBehaviour(Testing.vtkTest):
         self.assertEqual(mesher.GetOutput().GetNumberOfPoints(), 0)
         self.assertTrue(any(0.1 < p < 1.0 for p in progress), progress)
         self.assertLessEqual(max(progress), 0.1 + 0.6 / 20 + 1e-9, progress)
+        # The next Update runs it again, to its end, with nothing else changed (as the
+        # reader and the sky filter do): it handed out the empty aborted mesh again, silently,
+        # unless the caller marked the mesher modified, until 2026-12-06.
         mesher.RemoveAllObservers()
-        mesher.Modified()
-        mesher.Update()  # (and runs to its end again)
+        starts = []
+        mesher.AddObserver("StartEvent", lambda o, e: starts.append(e))
+        mesher.Update()
+        self.assertEqual(len(starts), 1)
         self.assertEqual(mesher.GetOutput().GetNumberOfPoints(), 344 * 403)
+        mesher.Update()  # (and, done, not again)
+        self.assertEqual(len(starts), 1)
 
     def testStreamingPieces(self):
         from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
@@ -177,6 +184,11 @@ class TestPipelineBehaviour(Testing.vtkTest):
                 cells += out.GetNumberOfCells()
             self.assertEqual(cells, whole.GetOutput().GetNumberOfCells(), source)
             self.assertEqual(image.GetExtent(), (0, 402, 0, 343, 0, 0))  # (left whole)
+            # a piece that does not exist is empty (it was the whole DEM's mesh, or a part)
+            for piece in (3, 7):
+                m.UpdatePiece(piece, 3, 0)
+                self.assertEqual(m.GetOutput().GetNumberOfPoints(), 0, (source, piece))
+                self.assertEqual(m.GetOutput().GetNumberOfCells(), 0, (source, piece))
 
     def testStreamingNormalsOfSitesAndHoles(self):
         # A piece's boundary normals from the margin read around it, bit for bit the whole
