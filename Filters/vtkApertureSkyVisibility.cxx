@@ -1160,7 +1160,9 @@ int vtkApertureSkyVisibility::Execute(
     }
   });
   owner.reset(); // (the sweep's state goes before the outputs are finished: peak memory)
-  this->NumberOfThreadsUsed = tally.Count();
+  // (VTK's pool runs a short range in the calling thread itself, which the tally counts too:
+  // threads at once, not distinct ones, are at most the configuration's)
+  this->NumberOfThreadsUsed = std::min(tally.Count(), threads.MaxNumberOfThreads);
   if (failure == AP_ERR_OUT_OF_MEMORY)
   {
     throw std::bad_alloc();
@@ -1401,7 +1403,7 @@ int vtkApertureSkyVisibility::Execute(
         }
       });
     });
-    this->NumberOfThreadsUsed = tally.Count();
+    this->NumberOfThreadsUsed = std::min(tally.Count(), threads.MaxNumberOfThreads);
   }
   this->UpdateProgress((D + 0.9) / parts);
   if (this->GetAbortExecute())

@@ -305,6 +305,19 @@ class TestSkyVisibility(Testing.vtkTest):
         self.check_threads_and_piece((3000, 120), 2000.0, (40, 69, 100, 129), latlon=True,
                                      south=60.0, step=0.001, band_columns=39)
 
+    def testThreadsUsedOnASmallGrid(self):
+        # On a small grid VTK's pool runs short ranges in the calling thread too, and the
+        # tally of distinct threads said 3 for NumberOfThreads 2 (until 2026-12-06): at most
+        # the threads asked for, and the cores.
+        z = np.random.default_rng(8).uniform(0, 300, (50, 60)).astype(np.float32)
+        image = make_image(z, 400000, 5000000, 30, 30, "EPSG:32633")
+        cores = aperture.vtkApertureSkyVisibility.GetUsableCores()
+        for threads in (1, 2, 0):
+            f = sky(image, NumberOfThreads=threads, MaximumDistance=600.0)
+            self.assertGreaterEqual(f.GetNumberOfThreadsUsed(), 1)
+            self.assertLessEqual(f.GetNumberOfThreadsUsed(),
+                                 min(threads, cores) if threads else cores, threads)
+
     def check_threads_and_piece(self, shape, distance, piece_extent, latlon=False, south=45.0,
                                 step=0.0003, band_columns=None):
         ny, nx = shape
