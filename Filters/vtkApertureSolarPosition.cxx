@@ -351,6 +351,7 @@ bool vtkApertureSolarPosition::SetTimeZone(const char* name)
   {
     d.Zone.reset();
     d.ZoneName.clear();
+    d.Error.clear(); // (a success, as the header says)
     this->Computed = false;
     this->Modified();
     return true;

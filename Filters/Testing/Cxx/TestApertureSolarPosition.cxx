@@ -298,6 +298,12 @@ void TestTimeZones()
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "unknown");
   AP_CHECK(!sun->SetTimeZone("../../etc/passwd"));
   AP_CHECK(std::string(sun->GetTimeZone()) == "Europe/Zurich"); // kept
+  // "" clears the zone, a success: the last failure's message goes with it
+  AP_CHECK(sun->SetTimeZone("") && std::string(sun->GetErrorMessage()).empty());
+  AP_CHECK(std::string(sun->GetTimeZone()).empty());
+  AP_CHECK(!sun->SetTimeZone("Europe/Atlantis"));
+  AP_CHECK(sun->SetTimeZone(nullptr) && std::string(sun->GetErrorMessage()).empty());
+  AP_CHECK(sun->SetTimeZone("Europe/Zurich"));
 
   // The zone names the local day, whatever offset the instant was written with: 23:30 UTC on
   // 21 June is 08:30 on 22 June in Tokyo, whose day then runs sunrise 04:25, transit about
