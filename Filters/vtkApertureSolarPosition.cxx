@@ -219,7 +219,7 @@ struct vtkApertureSolarPosition::Internals
       this->Longitude = lon;
       return this->Valid;
     }
-  } LastDay;
+  } LastDay, LastDayEnd; // (the day at its start's UTC offset, and at its end's)
 
   ap_sun_params Params(const vtkApertureSolarPosition* self) const
   {
@@ -515,12 +515,28 @@ bool vtkApertureSolarPosition::Compute()
     r.delta_t };
   std::copy(values, values + 11, this->Result);
 
-  // The local day's events.
+  // The local day's events: from its midnight to the next, at the UTC offsets in force then
+  // (23 or 25 hours on a day the clocks change). The kernel's day is 24 hours at one offset:
+  // on such a day it runs at the offset of each end, and the events within the day are kept
+  // (at one offset the day would end an hour early or late, and its events could be another
+  // day's and depend on the hour asked about).
   const int32_t offset = d.DayOffset(this->UnixTime);
+  const double localStart = std::floor((this->UnixTime + offset) / 86400.0) * 86400.0;
+  const auto midnight = [&d](double local, int32_t guess) {
+    // (the instant of local time `local`; twice, for an offset that changes across it)
+    double t = local - guess;
+    t = local - d.DayOffset(t);
+    return local - d.DayOffset(t);
+  };
+  const double start = midnight(localStart, offset);
+  const double end = midnight(localStart + 86400.0, offset);
+  const int32_t startOffset = static_cast<int32_t>(localStart - start);
+  const int32_t endOffset = static_cast<int32_t>(localStart + 86400.0 - end);
   ap_civil_time day;
-  if (ap_instant_to_civil(ToInstant(this->UnixTime + offset), &day) == AP_OK &&
-    (d.LastDay.Same(p, day, offset, this->Latitude, this->Longitude) ||
-      d.LastDay.Compute(p, day, offset, this->Latitude, this->Longitude)))
+  bool computed = ap_instant_to_civil(ToInstant(localStart), &day) == AP_OK &&
+    (d.LastDay.Same(p, day, startOffset, this->Latitude, this->Longitude) ||
+      d.LastDay.Compute(p, day, startOffset, this->Latitude, this->Longitude));
+  if (computed && endOffset == startOffset)
   {
     const ap_sun_rts_result& rts = d.LastDay.Rts;
     this->Events[0] = rts.sunrise;
@@ -529,11 +545,35 @@ bool vtkApertureSolarPosition::Compute()
     this->DayKind =
       rts.kind == AP_SUN_DAY_POLAR_DAY ? 1 : rts.kind == AP_SUN_DAY_POLAR_NIGHT ? 2 : 0;
   }
+  else if (computed)
+  {
+    computed = d.LastDayEnd.Same(p, day, endOffset, this->Latitude, this->Longitude) ||
+      d.LastDayEnd.Compute(p, day, endOffset, this->Latitude, this->Longitude);
+    if (computed)
+    {
+      const ap_sun_rts_result& a = d.LastDay.Rts;
+      const ap_sun_rts_result& b = d.LastDayEnd.Rts;
+      const auto within = [start, end](double t) { return t >= start && t < end; };
+      const auto pick = [&within](double x, double y) {
+        return within(x) ? x : within(y) ? y : kNaN;
+      };
+      this->Events[0] = pick(a.sunrise, b.sunrise);
+      this->Events[1] = pick(a.transit, b.transit);
+      this->Events[2] = pick(a.sunset, b.sunset);
+      const ap_sun_day_kind kind = a.kind == b.kind ? a.kind
+        : !std::isnan(this->Events[0]) || !std::isnan(this->Events[2]) ? AP_SUN_DAY_NORMAL
+                                                                          : a.kind;
+      this->DayKind = kind == AP_SUN_DAY_POLAR_DAY ? 1 : kind == AP_SUN_DAY_POLAR_NIGHT ? 2 : 0;
+    }
+  }
   d.Sunrise = FormatUTC(this->Events[0]);
   d.Transit = FormatUTC(this->Events[1]);
   d.Sunset = FormatUTC(this->Events[2]);
-  if (d.Transit.empty() || d.Sunrise.empty() != std::isnan(this->Events[0]) ||
-    d.Sunset.empty() != std::isnan(this->Events[2]))
+  const auto unwritten = [](double t, const std::string& text) {
+    return !std::isnan(t) && text.empty();
+  };
+  if (!computed || unwritten(this->Events[0], d.Sunrise) ||
+    unwritten(this->Events[1], d.Transit) || unwritten(this->Events[2], d.Sunset))
   {
     // (a local day at the edge of the years, whose events lie partly beyond them: no events
     // rather than some of them, which would read as a day on which the sun only sets)

@@ -212,10 +212,12 @@ public:
   /**
    * Sunrise, transit and sunset of the local day of the instant (the day in TimeZone, else at
    * the offset SetTime was given, else the UTC day), as POSIX seconds and as ISO 8601 UTC
-   * strings (ap_sun_rise_transit_set: each within the day). Sunrise and sunset are NaN / ""
-   * when the sun does not rise or set that day: GetDayKind() is then 1 (polar day) or 2
-   * (polar night); 0 on a day on which it rises or sets, which next to polar day or night may
-   * have only one of the two. -1, all three NaN, before Compute, after ComputeForDirection, or
+   * strings (ap_sun_rise_transit_set: each within the day, from its midnight to the next, 23
+   * or 25 hours on a day the clocks change). Sunrise and sunset are NaN / "" when the sun does
+   * not rise or set that day: GetDayKind() is then 1 (polar day) or 2 (polar night); 0 on a
+   * day on which it rises or sets, which next to polar day or night may have only one of the
+   * two, as may a day of 23 hours (or, on a place far from its zone's meridian, even lack the
+   * transit). -1, all three NaN, before Compute, after ComputeForDirection, or
    * when the local day lies outside the years -2000..6000 (an instant at its edge).
    */
   double GetSunrise() const { return this->Events[0]; }

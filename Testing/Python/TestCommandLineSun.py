@@ -343,6 +343,49 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertAlmostEqual(r["longitude_deg"], lon, delta=1e-9)
         self.assertAlmostEqual(r["latitude_deg"], lat, delta=1e-9)
 
+    def test_days_the_clocks_change(self):
+        # A local day runs from its midnight to the next: 23 hours on 2026-03-29 in
+        # Europe/Zurich, 25 on 2026-10-25. The events were those of 24 hours at the offset of
+        # the hour asked about (until 2026-12-06): at 66.3 W in Zurich's zone, 03-29 at 12:00
+        # gave the sunset of the 28th (23:33+01:00), at 01:00 that of the 30th (00:33+02:00).
+        # Now every event lies within the day (its bounds from Python's zoneinfo), whatever
+        # the hour asked about; that day at 66.3 W has no sunset, its neighbours' lying just
+        # outside it.
+        import zoneinfo
+        zone = zoneinfo.ZoneInfo("Europe/Zurich")
+        keys = ("sunrise", "transit", "sunset")
+        for date, hours in (("2026-03-29", 23), ("2026-10-25", 25)):
+            y, m, d = (int(v) for v in date.split("-"))
+            first = datetime.datetime(y, m, d, tzinfo=zone)
+            last = first + datetime.timedelta(days=1)  # (wall clock: the next midnight)
+            start, end = first.timestamp(), last.timestamp()
+            self.assertEqual(end - start, hours * 3600)
+            for lon in (8.54, -66.3, 100.0):
+                days = []
+                for clock in ("00:30", "12:00", "23:30"):
+                    r = self.json_of("--at", "%sT%s" % (date, clock), "--tz", "Europe/Zurich",
+                                     "--lat", 0 if lon != 8.54 else 47.37, "--lon", lon)
+                    days.append([r[k] for k in keys])
+                    for k in keys:
+                        if r[k] is not None:
+                            t = datetime.datetime.fromisoformat(
+                                r[k].replace("Z", "+00:00")).timestamp()
+                            self.assertTrue(start <= t < end, (date, lon, clock, k, r[k]))
+                self.assertEqual(days[0], days[1], (date, lon))
+                self.assertEqual(days[0], days[2], (date, lon))
+                if lon == 8.54:  # (an ordinary place in its zone: every event)
+                    self.assertNotIn(None, days[0], date)
+        r = self.json_of("--at", "2026-03-29T12:00", "--tz", "Europe/Zurich", "--lat", 0,
+                         "--lon", -66.3)
+        self.assertIsNone(r["sunset"])
+        self.assertEqual(r["day_kind"], "normal")
+        before = self.json_of("--at", "2026-03-28T12:00", "--tz", "Europe/Zurich", "--lat", 0,
+                              "--lon", -66.3)
+        after = self.json_of("--at", "2026-03-30T12:00", "--tz", "Europe/Zurich", "--lat", 0,
+                             "--lon", -66.3)
+        self.assertEqual(before["sunset_local"][:16], "2026-03-28T23:33")
+        self.assertEqual(after["sunset_local"][:16], "2026-03-30T00:33")
+
     def test_dem_centre_of_nodata(self):
         # The centre's 3 x 3 cells all nodata: the height is the nearest valid cell's. The
         # whole grid was to be read then, but the reader's request stayed the centre's, so the
