@@ -591,7 +591,8 @@ class TestBadInput(CommandLineTest):
         self.assertTrue(ds.GetSpatialRef().IsLocal())
         ds = None
         self.assert_error("the DEM %s is in a local CRS (a site grid, no place on the Earth); "
-                          "give the site's place with --lat/--lon" % p, "sun", "--dem", p,
+                          "give the site's place with --lat/--lon instead of --dem" % p, "sun",
+                          "--dem", p,
                           "--zfactor", "ft", "--at", "2026-06-21T12:00Z")
 
     def test_geocentric_crs(self):
@@ -695,6 +696,10 @@ class TestBadInput(CommandLineTest):
 
     def test_bad_options(self):
         self.assert_error("--decimate must be 1 or more", "info", "--decimate", "0")
+        # -1, the reader's "none", was taken silently as full resolution (until 2026-12-06)
+        for level in ("-1", "-2"):
+            self.assert_error("--overview must be 0 or more (%s given)" % level, "info",
+                              "--overview", level)
         self.assert_error("error: --srs: GDAL cannot parse the CRS", "info", "--srs",
                           "EPSG:999999999")
 

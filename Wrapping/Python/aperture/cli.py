@@ -33,7 +33,7 @@ def _warn(message):
 
 # The reading options' defaults: each leaves the file as it is (sun checks that none is given
 # without --dem).
-_READ_DEFAULTS = {"band": None, "srcwin": None, "overview": -1, "decimate": 1, "srs": None,
+_READ_DEFAULTS = {"band": None, "srcwin": None, "overview": None, "decimate": 1, "srs": None,
                   "zfactor": 0.0}
 
 
@@ -276,8 +276,8 @@ def _dem_reader(args, watcher, subwindow=True):
         raise ApertureError("--band must be 1 or more (%d given)" % args.band)
     if args.decimate < 1:
         raise ApertureError("--decimate must be 1 or more")
-    if args.overview < -1:
-        raise ApertureError("--overview must be 0 or more")
+    if args.overview is not None and args.overview < 0:  # (-1 was taken for none until 12-06)
+        raise ApertureError("--overview must be 0 or more (%d given)" % args.overview)
     reader = watcher.watch(vtkApertureDEMReader())
     reader.SetFileName(native_path(_dem_path(args)))
     reader.SetBandIndex(args.band or 0)  # 0: the reader's default, band 1 with a note
@@ -285,7 +285,7 @@ def _dem_reader(args, watcher, subwindow=True):
         raise ApertureError("--srcwin values must not be negative")
     if args.srcwin and subwindow:
         reader.SetSubWindow(*args.srcwin)
-    reader.SetOverviewLevel(args.overview)
+    reader.SetOverviewLevel(-1 if args.overview is None else args.overview)
     reader.SetDecimation(args.decimate)
     if args.srs:
         reader.SetOverrideCRS(args.srs)
@@ -1128,7 +1128,7 @@ def _read_provenance(args, reader):
     if args.srcwin:
         record["SOURCE_WINDOW"] = ("%d %d %d %d (xoff yoff xsize ysize; its horizons see the "
                                    "DEM around it)" % tuple(args.srcwin))
-    if args.overview >= 0:
+    if args.overview is not None:
         record["SOURCE_OVERVIEW"] = str(args.overview)
     if args.decimate > 1:
         record["SOURCE_DECIMATION"] = "%d x %d blocks averaged" % (args.decimate, args.decimate)
@@ -1786,7 +1786,9 @@ def cmd_sun(args):
             raise ApertureError(sun.GetErrorMessage())
         if math.isnan(sun.GetLatitude()):
             raise ApertureError("the DEM %s is in a local CRS (a site grid, no place on the "
-                                "Earth); give the site's place with --lat/--lon" % args.dem)
+                                "Earth); give the site's place with --lat/--lon instead of "
+                                "--dem (a site grid's +y axis is north: its grid azimuths are "
+                                "the sun's)" % args.dem)
         if args.height is not None:
             sun.SetHeight(args.height)
     else:
