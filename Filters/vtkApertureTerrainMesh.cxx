@@ -453,6 +453,20 @@ int vtkApertureTerrainMesh::Execute(
     vtkErrorMacro(<< geo->GetErrorMessage());
     return 0;
   }
+  {
+    // A grid whose cells have no size on the ground (a longitude of 1e17, at which a cell's
+    // width is lost to rounding) would collapse its columns into one: refused, as the sky
+    // filter refuses it.
+    double cell[2] = { 0.0, 0.0 };
+    if (!geo->IsLocal() &&
+      (!geo->GetCellSizeMetres(cell) || !(cell[0] > 0.0 && cell[1] > 0.0) ||
+        !std::isfinite(cell[0] + cell[1])))
+    {
+      vtkErrorMacro(<< "the grid's cells have no positive size on the ground at its centre ("
+                    << cell[0] << " x " << cell[1] << " m): a wrong origin or spacing?");
+      return 0;
+    }
+  }
   // A global DEM (360 degrees of longitude) joins its east and west edges when this piece has
   // every column: each row's copy of its column-0 point closes the seam (ap_mesh.h).
   const bool seam = nx >= 3 && ext[0] == whole[0] && ext[1] == whole[1] && geo->WrapsAround();
