@@ -373,6 +373,25 @@ void vtkApertureGeoreference::SetGrid(double x0, double y0, double dx, double dy
 }
 
 //------------------------------------------------------------------------------
+bool vtkApertureGeoreference::CheckGrid()
+{
+  const double* o = this->GridOrigin;
+  const double* s = this->GridSpacing;
+  const int* n = this->GridSize;
+  if (std::isfinite(o[0]) && std::isfinite(o[1]) && s[0] > 0.0 && s[1] > 0.0 &&
+    std::isfinite(s[0]) && std::isfinite(s[1]) && n[0] >= 1 && n[1] >= 1 &&
+    std::isfinite(o[0] + n[0] * s[0]) && std::isfinite(o[1] + n[1] * s[1]))
+  {
+    return true;
+  }
+  std::ostringstream msg;
+  msg << "the grid describes no cells: origin " << o[0] << ", " << o[1] << ", cell size " << s[0]
+      << " x " << s[1] << " (each must be positive), " << n[0] << " x " << n[1] << " cells";
+  this->Impl->Error = msg.str();
+  return false;
+}
+
+//------------------------------------------------------------------------------
 void vtkApertureGeoreference::GetGeoTransform(double gt[6])
 {
   gt[0] = this->GridOrigin[0] - 0.5 * this->GridSpacing[0];
@@ -785,7 +804,7 @@ bool vtkApertureGeoreference::CheckLongitudeSpan()
 bool vtkApertureGeoreference::GetBoundsLonLat(double bounds[4])
 {
   Internals& d = *this->Impl;
-  if (!this->CheckLongitudeSpan())
+  if (!this->CheckGrid() || !this->CheckLongitudeSpan())
   {
     return false;
   }
@@ -876,12 +895,26 @@ bool vtkApertureGeoreference::GetCellSizeMetres(double size[2])
 //------------------------------------------------------------------------------
 bool vtkApertureGeoreference::GetCellSizeMetresAt(double xc, double yc, double size[2])
 {
-  if (this->Impl->IsLocal())
+  if (!this->CheckGrid())
   {
-    return this->Impl->LocalCellSize(this->GridSpacing, size);
+    return false;
   }
   double cosine;
-  return this->Impl->CellVectors(this, xc, yc, size, cosine);
+  if (this->Impl->IsLocal() ? !this->Impl->LocalCellSize(this->GridSpacing, size)
+                            : !this->Impl->CellVectors(this, xc, yc, size, cosine))
+  {
+    return false;
+  }
+  if (!(size[0] > 0.0 && size[1] > 0.0 && std::isfinite(size[0] + size[1])))
+  {
+    // (a cell lost to rounding: 1e-300 degrees, or a longitude of 1e17)
+    std::ostringstream msg;
+    msg << "the grid's cells have no positive size on the ground (" << size[0] << " x "
+        << size[1] << " m): a wrong origin or spacing?";
+    this->Impl->Error = msg.str();
+    return false;
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -935,6 +968,10 @@ bool vtkApertureGeoreference::GetRowCellSizesMetres(double* dx, double* dy)
 
 bool vtkApertureGeoreference::GetRowCellSizesMetres(int first, int count, double* dx, double* dy)
 {
+  if (!this->CheckGrid())
+  {
+    return false;
+  }
   if (first < 0 || count < 0 || first > this->GridSize[1] - count)
   {
     std::ostringstream msg;

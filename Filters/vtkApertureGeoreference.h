@@ -85,7 +85,10 @@ public:
 
   /**
    * Describe the grid: x0, y0 = CRS coordinates of the centre of the south-west cell,
-   * dx, dy = cell size east and north (> 0, CRS units), nx, ny = columns and rows.
+   * dx, dy = cell size east and north (> 0, CRS units), nx, ny = columns and rows. Taken as
+   * given; the queries that use the grid (GetBoundsLonLat, GetCellSizeMetres...) return false
+   * for a grid that describes no cells (dx or dy not positive and finite, nx or ny below 1,
+   * an origin that is not finite).
    */
   void SetGrid(double x0, double y0, double dx, double dy, int nx, int ny);
 
@@ -296,6 +299,11 @@ private:
 
   struct Internals;
   Internals* Impl;
+
+  // False, with the reason as the error, for a grid that describes no cells: an origin that is
+  // not finite, a cell size that is not positive and finite, no columns or rows (SetGrid takes
+  // what it is given; the queries of the grid check it).
+  bool CheckGrid();
 };
 
 #endif

@@ -457,13 +457,10 @@ int vtkApertureTerrainMesh::Execute(
     // A grid whose cells have no size on the ground (a longitude of 1e17, at which a cell's
     // width is lost to rounding) would collapse its columns into one: refused, as the sky
     // filter refuses it.
-    double cell[2] = { 0.0, 0.0 };
-    if (!geo->IsLocal() &&
-      (!geo->GetCellSizeMetres(cell) || !(cell[0] > 0.0 && cell[1] > 0.0) ||
-        !std::isfinite(cell[0] + cell[1])))
+    double cell[2];
+    if (!geo->GetCellSizeMetres(cell))
     {
-      vtkErrorMacro(<< "the grid's cells have no positive size on the ground at its centre ("
-                    << cell[0] << " x " << cell[1] << " m): a wrong origin or spacing?");
+      vtkErrorMacro(<< geo->GetErrorMessage());
       return 0;
     }
   }

@@ -193,6 +193,32 @@ void TestErrors()
   image->SetDirectionMatrix(rotation);
   AP_CHECK(!geo->SetFromImage(image));
   AP_CHECK(std::string(geo->GetErrorMessage()).find("north-up") != std::string::npos);
+
+  // A grid of no cells given to SetGrid: its queries fail saying so (they answered with cells
+  // of 0 m and bounds west of east, as successes, until 2026-12-06); cells lost to rounding
+  // (1e-300 degrees) have no size on the ground.
+  AP_CHECK(geo->SetCRS("EPSG:4326"));
+  double bounds[4];
+  const struct
+  {
+    double dx, dy;
+    int nx, ny;
+  } none[] = { { 0.0, 1.0, 10, 10 }, { -1.0, 1.0, 10, 10 }, { 1.0, NAN, 10, 10 },
+    { 1.0, 1.0, -5, 10 }, { 1.0, 1.0, 10, 0 } };
+  for (const auto& g : none)
+  {
+    geo->SetGrid(0.0, 0.0, g.dx, g.dy, g.nx, g.ny);
+    AP_CHECK(!geo->GetCellSizeMetres(size));
+    AP_CHECK_CONTAINS(geo->GetErrorMessage(), "the grid describes no cells: origin 0, 0, ");
+    AP_CHECK(!geo->GetBoundsLonLat(bounds));
+    AP_CHECK_CONTAINS(geo->GetErrorMessage(), "the grid describes no cells");
+  }
+  geo->SetGrid(0.0, 0.0, 1e-300, 1e-300, 10, 10);
+  AP_CHECK(!geo->GetCellSizeMetres(size));
+  AP_CHECK_CONTAINS(geo->GetErrorMessage(), "the grid's cells have no positive size on the "
+                                            "ground (0 x 0 m): a wrong origin or spacing?");
+  geo->SetGrid(0.0, 0.0, 1.0, 1.0, 10, 10);
+  AP_CHECK(geo->GetCellSizeMetres(size) && geo->GetBoundsLonLat(bounds));
 }
 
 // Field data written by AttachToImage is what SetFromImage and the GeoTransform report.

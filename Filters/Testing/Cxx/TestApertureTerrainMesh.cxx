@@ -663,7 +663,7 @@ void TestErrors()
   // a longitude of 1e17 degrees: a cell's 0.001 degree is lost to rounding there, and every
   // column collapsed onto one (until 2026-12-06)
   ExpectError(MakeDEM("EPSG:4326", 1e17, 35.0, 0.001, 0.001, 4, 3, ok),
-    "the grid's cells have no positive size on the ground at its centre (0 x ");
+    "the grid's cells have no positive size on the ground (0 x ");
   ExpectError(MakeDEM("EPSG:4326", 0, 0, 1, 1, 3, 3, [](int, int) { return NAN; }),
     "every point of the DEM is nodata");
   // valid points, each isolated (a checkerboard's blocks have two valid corners at most)
