@@ -126,16 +126,27 @@ std::string FormatCivil(const ap_civil_time& c)
   return buf;
 }
 
-/** Local time of day "HH:MM" at an offset. */
-std::string FormatClock(double seconds, int32_t offset)
+/** The clocks' jump at instant `seconds` from offset `before` to `after`: "02:00 to 03:00",
+ *  with the dates where the jump crosses one ("2011-12-30T00:00 to 2011-12-31T00:00", Samoa
+ *  skipping a day). */
+std::string FormatJump(double seconds, int32_t before, int32_t after)
 {
-  ap_civil_time c;
-  if (ap_instant_to_civil(ToInstant(seconds + offset), &c) != AP_OK)
+  ap_civil_time a, b;
+  if (ap_instant_to_civil(ToInstant(seconds + before), &a) != AP_OK ||
+    ap_instant_to_civil(ToInstant(seconds + after), &b) != AP_OK)
   {
-    return "?";
+    return "? to ?";
   }
-  char buf[16];
-  std::snprintf(buf, sizeof(buf), "%02d:%02d", c.hour, c.minute);
+  char buf[96];
+  if (a.year == b.year && a.month == b.month && a.day == b.day)
+  {
+    std::snprintf(buf, sizeof(buf), "%02d:%02d to %02d:%02d", a.hour, a.minute, b.hour, b.minute);
+  }
+  else
+  {
+    std::snprintf(buf, sizeof(buf), "%04d-%02d-%02dT%02d:%02d to %04d-%02d-%02dT%02d:%02d",
+      a.year, a.month, a.day, a.hour, a.minute, b.year, b.month, b.day, b.hour, b.minute);
+  }
   return buf;
 }
 
@@ -293,8 +304,9 @@ bool vtkApertureSolarPosition::SetTime(const char* iso8601)
   {
     const double change = FromInstant(detail.transition);
     d.Error = "the local time " + FormatCivil(parsed.local) + " does not exist in " +
-      d.ZoneName + ": clocks jump from " + FormatClock(change, detail.before.utc_offset) +
-      " to " + FormatClock(change, detail.after.utc_offset) + " (" + FormatUTC(change) +
+      d.ZoneName + ": clocks jump from " +
+      FormatJump(change, detail.before.utc_offset, detail.after.utc_offset) + " (" +
+      FormatUTC(change) +
       "); give an offset (" + FormatOffset(detail.before.utc_offset) + " or " +
       FormatOffset(detail.after.utc_offset) + ") to choose";
     vtkErrorMacro(<< d.Error);

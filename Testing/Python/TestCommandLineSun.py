@@ -130,6 +130,11 @@ class CommandLineSunTest(unittest.TestCase):
         err = self.error_of("--at", "2026-03-29T02:30", "--tz", "Europe/Zurich", "--lat", 47,
                             "--lon", 8)
         self.assertIn("does not exist in Europe/Zurich: clocks jump from 02:00 to 03:00", err)
+        # a day skipped whole (Samoa, 2011-12-30): the jump's dates (it said "00:00 to 00:00")
+        err = self.error_of("--at", "2011-12-30T12:00", "--tz", "Pacific/Apia", "--lat", -13.8,
+                            "--lon", -171.8)
+        self.assertIn("does not exist in Pacific/Apia: clocks jump from 2011-12-30T00:00 to "
+                      "2011-12-31T00:00 (2011-12-30T10:00:00Z)", err)
         err = self.error_of("--at", "2026-10-25T02:30", "--tz", "Europe/Zurich", "--lat", 47,
                             "--lon", 8)
         self.assertIn("occurs twice", err)
