@@ -1950,7 +1950,8 @@ def build_parser():
     p.add_argument("--exr-type", choices=("float", "half"), metavar="float|half",
                    help="the EXR's sample type: float (default; the GeoTIFF's values exactly) or "
                         "half (16-bit, half the size, as GPUs and game engines take textures; "
-                        "within 2^-11 of each value, 0.04 degree at 90)")
+                        "within 2^-11 of each value, relatively, 0.04 degree at 90; within 3e-8 "
+                        "below 6.1e-5, half's smallest normal number)")
     p.add_argument("--compress", default="DEFLATE", metavar="CODEC",
                    help="GeoTIFF compression, lossless: DEFLATE (default), ZSTD, LZW, LZMA, "
                         "PACKBITS, LERC, LERC_DEFLATE, LERC_ZSTD, NONE")
