@@ -211,6 +211,38 @@ std::string MarginNormals(vtkImageData* margin, const char* name, double exagger
   }
   return std::string();
 }
+
+// `image` cropped to `want` where it holds more than that and `want` lies inside its extent:
+// `copy` gets its structure and point arrays (not its cell arrays, which the mesh does not
+// carry) cropped, and is returned; else `image` itself. The crop reads every point array by
+// the image's extent, so one that disagrees with it is refused first: nullptr, and `problem`
+// says which.
+vtkImageData* CropTo(vtkImageData* image, const int want[6], vtkImageData* copy,
+  std::string& problem)
+{
+  int have[6];
+  image->GetExtent(have);
+  bool inside = true, smaller = false;
+  for (int a = 0; a < 6; a += 2)
+  {
+    inside = inside && want[a] >= have[a] && want[a + 1] <= have[a + 1] && want[a] <= want[a + 1];
+    smaller = smaller || want[a] > have[a] || want[a + 1] < have[a + 1];
+  }
+  if (!inside || !smaller)
+  {
+    return image;
+  }
+  problem = vtkApertureCheckPointArrays(image->GetPointData(),
+    static_cast<vtkIdType>(have[1]) - have[0] + 1, static_cast<vtkIdType>(have[3]) - have[2] + 1);
+  if (!problem.empty())
+  {
+    return nullptr;
+  }
+  copy->ShallowCopy(image);
+  copy->GetCellData()->Initialize();
+  copy->Crop(want);
+  return copy;
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -310,93 +342,48 @@ int vtkApertureTerrainMesh::Execute(
     return 1; // empty in, empty out
   }
   // A piece that does not exist (p >= n of UpdatePiece): an empty mesh, as VTK's filters give.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    : 1;
+  if (piece < 0 || piece >= std::max(pieces, 1))
   {
-    vtkInformation* outInfo = outputVector->GetInformationObject(0);
-    const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-      ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-      : 0;
-    const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-      ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-      : 1;
-    if (piece < 0 || piece >= std::max(pieces, 1))
-    {
-      return 1;
-    }
+    return 1;
   }
   // An input that holds more than this update asked for (a reader updated whole before, an
   // image given with SetInputData): the requested extent alone (a copy of it), so that a
   // streamed piece meshes its own part, not the whole DEM each time.
+  std::string cropProblem;
   vtkNew<vtkImageData> cropped;
-  int dataExt[6], asked[6];
-  input->GetExtent(dataExt);
   if (inInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
   {
+    int asked[6];
     inInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), asked);
-    bool inside = true, smaller = false;
-    for (int a = 0; a < 6; a += 2)
-    {
-      inside = inside && asked[a] >= dataExt[a] && asked[a + 1] <= dataExt[a + 1] &&
-        asked[a] <= asked[a + 1];
-      smaller = smaller || asked[a] > dataExt[a] || asked[a + 1] < dataExt[a + 1];
-    }
-    if (inside && smaller)
-    {
-      // (the copy reads every point array by the input's extent: a short one is refused
-      // first; the image's cell arrays, which the mesh does not carry, are not copied)
-      const std::string inconsistent = vtkApertureCheckPointArrays(input->GetPointData(),
-        static_cast<vtkIdType>(dataExt[1]) - dataExt[0] + 1,
-        static_cast<vtkIdType>(dataExt[3]) - dataExt[2] + 1);
-      if (!inconsistent.empty())
-      {
-        vtkErrorMacro(<< inconsistent);
-        return 0;
-      }
-      cropped->ShallowCopy(input);
-      cropped->GetCellData()->Initialize();
-      cropped->Crop(asked);
-      input = cropped;
-    }
+    input = CropTo(input, asked, cropped, cropProblem);
   }
   // A streamed piece read with a margin (RequestUpdateExtent): meshed over its own extent,
   // the margin kept for its boundary normals.
   vtkSmartPointer<vtkImageData> margin;
   vtkNew<vtkImageData> pieceImage;
+  if (input && pieces > 1 && this->ComputeNormals &&
+    inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
   {
-    vtkInformation* outInfo = outputVector->GetInformationObject(0);
-    const int pieces =
-      outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-      ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-      : 1;
-    int own[6], have[6];
-    input->GetExtent(have);
-    if (pieces > 1 && this->ComputeNormals &&
-      inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    int own[6];
+    PieceExtent(inInfo, piece, pieces, own);
+    vtkImageData* alone = CropTo(input, own, pieceImage, cropProblem);
+    if (alone != input)
     {
-      PieceExtent(inInfo, outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()),
-        pieces, own);
-      bool inside = true, smaller = false;
-      for (int a = 0; a < 6; a += 2)
-      {
-        inside = inside && own[a] >= have[a] && own[a + 1] <= have[a + 1] && own[a] <= own[a + 1];
-        smaller = smaller || own[a] > have[a] || own[a + 1] < have[a + 1];
-      }
-      if (inside && smaller)
-      {
-        const std::string inconsistent = vtkApertureCheckPointArrays(input->GetPointData(),
-          static_cast<vtkIdType>(have[1]) - have[0] + 1,
-          static_cast<vtkIdType>(have[3]) - have[2] + 1);
-        if (!inconsistent.empty())
-        {
-          vtkErrorMacro(<< inconsistent);
-          return 0;
-        }
-        margin = input;
-        pieceImage->ShallowCopy(input);
-        pieceImage->GetCellData()->Initialize();
-        pieceImage->Crop(own);
-        input = pieceImage;
-      }
+      margin = input;
+      input = alone;
     }
+  }
+  if (!input)
+  {
+    vtkErrorMacro(<< cropProblem);
+    return 0;
   }
 
   // 1. Validate the grid and its elevation array.
