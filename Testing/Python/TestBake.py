@@ -17,6 +17,8 @@ import unittest
 import numpy as np
 from osgeo import gdal, osr
 
+from rasters import make_dem
+
 gdal.UseExceptions()
 BUILD = os.environ.get("APERTURE_BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 APERTURE = os.path.join(BUILD, "bin", "aperture")
@@ -79,17 +81,6 @@ def rough_dem(path, shape, seed, hole=None):
         z[hole] = -9999
     make_dem(path, z, (500000, 30, 0, 4000000, 0, -30), 32611)
     return path
-
-
-def make_dem(path, z, gt, epsg):
-    ds = gdal.GetDriverByName("GTiff").Create(path, z.shape[1], z.shape[0], 1, gdal.GDT_Float32)
-    ds.SetGeoTransform(gt)
-    srs = osr.SpatialReference()
-    srs.ImportFromEPSG(epsg)
-    ds.SetSpatialRef(srs)
-    ds.GetRasterBand(1).WriteArray(z)
-    ds.GetRasterBand(1).SetNoDataValue(-9999)
-    ds = None
 
 
 class TestBake(unittest.TestCase):

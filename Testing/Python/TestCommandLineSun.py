@@ -14,6 +14,8 @@ import unittest
 import numpy as np
 from osgeo import gdal, osr
 
+from rasters import make_dem
+
 gdal.UseExceptions()
 
 BUILD = os.environ.get("APERTURE_BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -274,13 +276,8 @@ class CommandLineSunTest(unittest.TestCase):
         wgs.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)
         x, y, _ = osr.CoordinateTransformation(wgs, srs).TransformPoint(lon, lat)
         with tempfile.TemporaryDirectory() as tmp:
-            path = os.path.join(tmp, "utm.tif")
-            n = 101
-            ds = gdal.GetDriverByName("GTiff").Create(path, n, n, 1, gdal.GDT_Float32)
-            ds.SetGeoTransform((x - 50.5 * 100, 100, 0, y + 50.5 * 100, 0, -100))
-            ds.SetSpatialRef(srs)
-            ds.GetRasterBand(1).WriteArray(np.full((n, n), 300.0))
-            ds = None
+            path = make_dem(os.path.join(tmp, "utm.tif"), np.full((101, 101), 300.0),
+                             (x - 50.5 * 100, 100, 0, y + 50.5 * 100, 0, -100), 32633)
             r = self.json_of("--at", "2026-06-21T13:30Z", "--dem", path)
         self.assertAlmostEqual(r["latitude_deg"], lat, delta=1e-6)
         self.assertAlmostEqual(r["longitude_deg"], lon, delta=1e-6)
@@ -297,14 +294,8 @@ class CommandLineSunTest(unittest.TestCase):
         # A lat/lon DEM in 0..360 degrees of longitude (190.505 E is 169.495 W): the sun of
         # that place (it failed: "the longitude must be within -180..180 degrees").
         with tempfile.TemporaryDirectory() as tmp:
-            path = os.path.join(tmp, "east.tif")
-            ds = gdal.GetDriverByName("GTiff").Create(path, 3, 3, 1, gdal.GDT_Float32)
-            ds.SetGeoTransform((190.49, 0.01, 0, 10.01, 0, -0.01))
-            srs = osr.SpatialReference()
-            srs.ImportFromEPSG(4326)
-            ds.SetSpatialRef(srs)
-            ds.GetRasterBand(1).WriteArray(np.full((3, 3), 50.0))
-            ds = None
+            path = make_dem(os.path.join(tmp, "east.tif"), np.full((3, 3), 50.0),
+                             (190.49, 0.01, 0, 10.01, 0, -0.01), 4326)
             r = self.json_of("--at", "2026-06-21T22:00Z", "--dem", path)
         # (the centre of 3 cells of 0.01 degree from 190.49 E, 10.01 N)
         self.assertAlmostEqual(r["longitude_deg"], -169.495, delta=1e-9)
@@ -400,14 +391,8 @@ class CommandLineSunTest(unittest.TestCase):
         z = 100.0 + np.add.outer(10.0 * np.arange(9), np.arange(9))
         z[2:7, 3:7] = np.nan
         with tempfile.TemporaryDirectory() as tmp:
-            path = os.path.join(tmp, "void.tif")
-            ds = gdal.GetDriverByName("GTiff").Create(path, 9, 9, 1, gdal.GDT_Float32)
-            ds.SetGeoTransform((500000, 30, 0, 5200000, 0, -30))
-            srs = osr.SpatialReference()
-            srs.ImportFromEPSG(32633)
-            ds.SetSpatialRef(srs)
-            ds.GetRasterBand(1).WriteArray(z)
-            ds = None
+            path = make_dem(os.path.join(tmp, "void.tif"), z, (500000, 30, 0, 5200000, 0, -30),
+                             32633)
             r = self.json_of("--at", "2026-06-21T12:00Z", "--dem", path)
         self.assertEqual(r["height_m"], 142.0)
 
