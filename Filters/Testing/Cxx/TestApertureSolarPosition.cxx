@@ -39,22 +39,29 @@ namespace
 {
 const double kDeg = 3.14159265358979323846 / 180.0;
 
-// A flat 201 x 201 UTM 33N DEM of 100 m cells centred at (easting x0, northing y0).
-vtkSmartPointer<vtkImageData> MakeUTM(double xc, double yc)
+// A flat DEM of nx x ny cells of `step` CRS units at `height` m in `crs`, its south-west cell
+// centred at (x0, y0).
+vtkSmartPointer<vtkImageData> MakeFlat(
+  const char* crs, double x0, double y0, double step, int nx, int ny, float height)
 {
-  const int n = 201;
   auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(n, n, 1);
-  image->SetOrigin(xc - 100.0 * (n - 1) / 2, yc - 100.0 * (n - 1) / 2, 0.0);
-  image->SetSpacing(100.0, 100.0, 1.0);
+  image->SetDimensions(nx, ny, 1);
+  image->SetOrigin(x0, y0, 0.0);
+  image->SetSpacing(step, step, 1.0);
   vtkNew<vtkFloatArray> z;
   z->SetName("Elevation");
-  z->SetNumberOfTuples(static_cast<vtkIdType>(n) * n);
-  z->FillValue(250.0f);
+  z->SetNumberOfTuples(static_cast<vtkIdType>(nx) * ny);
+  z->FillValue(height);
   image->GetPointData()->SetScalars(z);
   vtkNew<vtkApertureGeoreference> geo;
-  AP_CHECK(geo->SetCRS("EPSG:32633") && geo->AttachToImage(image));
+  AP_CHECK(geo->SetCRS(crs) && geo->AttachToImage(image));
   return image;
+}
+
+// A flat 201 x 201 UTM 33N DEM of 100 m cells at 250 m, centred at (easting xc, northing yc).
+vtkSmartPointer<vtkImageData> MakeUTM(double xc, double yc)
+{
+  return MakeFlat("EPSG:32633", xc - 100.0 * 100, yc - 100.0 * 100, 100.0, 201, 201, 250.0f);
 }
 
 // True azimuth (deg, clockwise from north) of an ENU vector.
@@ -179,17 +186,7 @@ void TestZoneEdge()
 void TestSunDirectionAcrossTheTerminator()
 {
   const int nx = 121, ny = 51; // (0.5 degree cells: 125 W..65 W, 24 N..49 N)
-  vtkNew<vtkImageData> dem;
-  dem->SetDimensions(nx, ny, 1);
-  dem->SetOrigin(-125.0, 24.0, 0.0);
-  dem->SetSpacing(0.5, 0.5, 1.0);
-  vtkNew<vtkFloatArray> z;
-  z->SetName("Elevation");
-  z->SetNumberOfTuples(static_cast<vtkIdType>(nx) * ny);
-  z->FillValue(0.0f);
-  dem->GetPointData()->SetScalars(z);
-  vtkNew<vtkApertureGeoreference> geo;
-  AP_CHECK(geo->SetCRS("EPSG:4326") && geo->AttachToImage(dem));
+  auto dem = MakeFlat("EPSG:4326", -125.0, 24.0, 0.5, nx, ny, 0.0f);
   vtkNew<vtkApertureSolarPosition> sun;
   AP_CHECK(sun->SetTime("2026-06-21T02:30:00Z"));
   AP_CHECK(sun->AddSunDirectionArray(dem));
