@@ -137,16 +137,12 @@ std::string FormatJump(double seconds, int32_t before, int32_t after)
   {
     return "? to ?";
   }
-  char buf[96];
-  if (a.year == b.year && a.month == b.month && a.day == b.day)
+  if (a.year != b.year || a.month != b.month || a.day != b.day)
   {
-    std::snprintf(buf, sizeof(buf), "%02d:%02d to %02d:%02d", a.hour, a.minute, b.hour, b.minute);
+    return FormatCivil(a) + " to " + FormatCivil(b);
   }
-  else
-  {
-    std::snprintf(buf, sizeof(buf), "%04d-%02d-%02dT%02d:%02d to %04d-%02d-%02dT%02d:%02d",
-      a.year, a.month, a.day, a.hour, a.minute, b.year, b.month, b.day, b.hour, b.minute);
-  }
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%02d:%02d to %02d:%02d", a.hour, a.minute, b.hour, b.minute);
   return buf;
 }
 

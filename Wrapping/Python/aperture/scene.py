@@ -283,9 +283,10 @@ def _blank(window, image):
 def grab(window, on_warning=None):
     """Render the window and return its RGB pixels as a vtkImageData (row 0 at the bottom).
     A multisampled picture that comes back blank (the OpenGL driver could not make a
-    multisampled framebuffer that large, and said nothing: Mesa's llvmpipe beyond 2 GiB, some
-    8200 x 8200 pixels at 8 samples) is rendered again without multisampling, which the window
-    keeps, and on_warning(message) is told. RuntimeError when nothing is drawn even then."""
+    multisampled framebuffer that large, and said nothing: Mesa's llvmpipe beyond 2 GiB, from
+    some 11600 x 11600 pixels at the default 8 samples, which VTK lowers to 4) is rendered
+    again without multisampling, which the window keeps, and on_warning(message) is told.
+    RuntimeError when nothing is drawn even then."""
     image = _render_pixels(window)
     if _blank(window, image):
         samples = window.GetMultiSamples()
