@@ -544,14 +544,14 @@ bool vtkApertureSolarPosition::Compute()
   bool computed = ap_instant_to_civil(ToInstant(localStart), &day) == AP_OK &&
     (d.LastDay.Same(p, day, startOffset, this->Latitude, this->Longitude) ||
       d.LastDay.Compute(p, day, startOffset, this->Latitude, this->Longitude));
+  ap_sun_day_kind kind = AP_SUN_DAY_NORMAL;
   if (computed && endOffset == startOffset)
   {
     const ap_sun_rts_result& rts = d.LastDay.Rts;
     this->Events[0] = rts.sunrise;
     this->Events[1] = rts.transit;
     this->Events[2] = rts.sunset;
-    this->DayKind =
-      rts.kind == AP_SUN_DAY_POLAR_DAY ? 1 : rts.kind == AP_SUN_DAY_POLAR_NIGHT ? 2 : 0;
+    kind = rts.kind;
   }
   else if (computed)
   {
@@ -568,11 +568,14 @@ bool vtkApertureSolarPosition::Compute()
       this->Events[0] = pick(a.sunrise, b.sunrise);
       this->Events[1] = pick(a.transit, b.transit);
       this->Events[2] = pick(a.sunset, b.sunset);
-      const ap_sun_day_kind kind = a.kind == b.kind ? a.kind
+      kind = a.kind == b.kind ? a.kind
         : !std::isnan(this->Events[0]) || !std::isnan(this->Events[2]) ? AP_SUN_DAY_NORMAL
                                                                           : a.kind;
-      this->DayKind = kind == AP_SUN_DAY_POLAR_DAY ? 1 : kind == AP_SUN_DAY_POLAR_NIGHT ? 2 : 0;
     }
+  }
+  if (computed)
+  {
+    this->DayKind = kind == AP_SUN_DAY_POLAR_DAY ? 1 : kind == AP_SUN_DAY_POLAR_NIGHT ? 2 : 0;
   }
   d.Sunrise = FormatUTC(this->Events[0]);
   d.Transit = FormatUTC(this->Events[1]);
