@@ -341,6 +341,7 @@ int vtkApertureTerrainMesh::Execute(
   {
     return 1; // empty in, empty out
   }
+  vtkImageData* const given = input; // (held upstream: the crops below copy parts of it)
   // A piece that does not exist (p >= n of UpdatePiece): an empty mesh, as VTK's filters give.
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
@@ -456,15 +457,30 @@ int vtkApertureTerrainMesh::Execute(
   const bool seam = nx >= 3 && ext[0] == whole[0] && ext[1] == whole[1] && geo->WrapsAround();
   const vtkIdType nv = n + (seam ? static_cast<vtkIdType>(ny) : 0);
   {
-    // refused before allocating: past physical memory Linux kills the process instead
+    // refused before allocating: past physical memory Linux kills the process instead. Beside
+    // the mesh: a global DEM's seam copies, the crops of the given image (to the update, to
+    // the piece within its margin) and a streamed piece's margin normals (MarginNormals: an
+    // ENU grid, elevations and normals, 40 bytes a point of the margin).
+    double copies =
+      seam ? 1024.0 * static_cast<double>(input->GetPointData()->GetActualMemorySize()) : 0.0;
+    for (vtkImageData* copy : { input, margin.GetPointer() })
+    {
+      if (copy && copy != given)
+      {
+        copies += 1024.0 * static_cast<double>(copy->GetActualMemorySize());
+      }
+    }
+    if (margin)
+    {
+      copies += 40.0 * static_cast<double>(margin->GetNumberOfPoints());
+    }
     const double need = this->EstimateBytes(static_cast<double>(nv),
-      input->GetPointData()->GetArray("BentNormal") != nullptr,
-      seam ? 1024.0 * static_cast<double>(input->GetPointData()->GetActualMemorySize()) : 0.0);
+      input->GetPointData()->GetArray("BentNormal") != nullptr, copies);
     std::ostringstream needs;
     needs << "a mesh of " << nx << " x " << ny << " points needs about "
           << vtkApertureHumanBytes(need);
     const std::string problem = vtkApertureBeyondMemory(need,
-      1024.0 * static_cast<double>(input->GetActualMemorySize()), this->MemoryLimit,
+      1024.0 * static_cast<double>(given->GetActualMemorySize()), this->MemoryLimit,
       needs.str());
     if (!problem.empty())
     {

@@ -132,7 +132,9 @@ public:
    * Most bytes one update may allocate (estimated: per point the elevations' float copy 4, the
    * East-North-Up scratch 24, the points 12 or 24, normals 12, texture coordinates 8, a rotated
    * BentNormal 12 when the input has one; two triangles of three ids and an offset, 4 bytes
-   * each, 8 past 2^31 points; a global DEM's seam copies the input's point arrays).
+   * each, 8 past 2^31 points; a global DEM's seam copies the input's point arrays; so do
+   * crops of an input larger than the update, and a streamed piece's boundary normals take
+   * 40 bytes a point of the piece and its margin).
    * 0 (default): the memory this process may use (the machine's, or its control group's
    * limit) less the input image's size. An update beyond it is refused before allocating,
    * naming the size: Linux does not fail an allocation past physical memory, it kills the
@@ -144,7 +146,8 @@ public:
 
   /** The bytes MemoryLimit's estimate gives an update of n points (with the current
    *  OutputPointsPrecision), an input with a `BentNormal` array or not, and `copied` bytes of
-   *  input point data copied (a global DEM's seam: 0 otherwise): for planning beforehand. */
+   *  input point data and scratch copied (a global DEM's seam, crops, a streamed piece's
+   *  margin; 0 for a whole DEM given whole): for planning beforehand. */
   double EstimateBytes(double n, bool bentNormal, double copied) const;
 
 protected:

@@ -649,6 +649,28 @@ void TestMemoryLimit()
       }
     }
   }
+  {
+    // A streamed half of a 3 x 6 image also holds its crops (the piece with its one-row margin,
+    // 3 x 4 points, and the piece, 3 x 3: image copies, at least their elevations 48 and 36
+    // bytes) and the margin's normals (40 bytes a margin point, 480): refused at 828 + 480 +
+    // 84 bytes, where its own mesh (828) alone would have fitted.
+    auto dem = MakeDEM("EPSG:32633", 400000.0, 5000000.0, 10.0, 10.0, 3, 6,
+      [](int i, int j) { return static_cast<float>(i * j); });
+    const vtkTypeInt64 limit = 828 + 480 + 84;
+    ObservedMesher m(dem);
+    m.Mesher->SetMemoryLimit(limit);
+    m.Mesher->UpdatePiece(0, 2, 0);
+    const std::string said = m.Errors->GetErrorMessage();
+    AP_CHECK_CONTAINS(said, "a mesh of 3 x 3 points needs about ");
+    AP_CHECK_CONTAINS(said, " MemoryLimit; decimate the DEM");
+    AP_CHECK(m.Mesher->GetOutput()->GetNumberOfPoints() == 0);
+    // and at a limit above the crops (each image's size is counted in whole KiB) it is made
+    ObservedMesher roomy(dem);
+    roomy.Mesher->SetMemoryLimit(limit + 2 * 8192);
+    roomy.Mesher->UpdatePiece(0, 2, 0);
+    AP_CHECK(roomy.Errors->GetErrorMessage().empty());
+    AP_CHECK(roomy.Mesher->GetOutput()->GetNumberOfPoints() == 9);
+  }
 }
 
 void TestErrors()
