@@ -97,8 +97,20 @@ inline std::string vtkApertureHumanBytes(double bytes)
   return s.str();
 }
 
+// `bytes` this process has allocated already (an update's input), as vtkApertureBeyondMemory's
+// `held` counts them: against physical memory or a control group's limit, all of them; under
+// an address-space limit none, since the usable memory there is what the limit leaves beside
+// everything mapped, these bytes among it (counted twice, they refused updates that fit).
+inline double vtkApertureHeldNow(double bytes)
+{
+  int source = AP_MEMORY_MACHINE;
+  vtkApertureUsableMemory(&source);
+  return source == AP_MEMORY_ADDRESS_SPACE ? 0.0 : bytes;
+}
+
 // "" when `need` bytes fit within `limit` (> 0: a MemoryLimit property), or (limit 0) within
-// the memory this process may use less `held` bytes (what its input occupies); else `needs`
+// the memory this process may use less `held` bytes (what its input occupies, or will once read;
+// vtkApertureHeldNow of the bytes of an input held already); else `needs`
 // (what needs the bytes, with their count) and the memory they exceed.
 inline std::string vtkApertureBeyondMemory(
   double need, double held, vtkTypeInt64 limit, const std::string& needs)
@@ -120,7 +132,8 @@ inline std::string vtkApertureBeyondMemory(
       vtkApertureHumanBytes(usable) + " of memory " + vtkApertureUsableMemoryOwner(source);
   }
   return needs + ", more than the " + vtkApertureHumanBytes(allowed) + " of memory " +
-    vtkApertureUsableMemoryOwner(source) + " beside the DEM's " + vtkApertureHumanBytes(held);
+    vtkApertureUsableMemoryOwner(source) +
+    (held > 0.0 ? " beside the DEM's " + vtkApertureHumanBytes(held) : std::string());
 }
 
 #endif

@@ -541,6 +541,14 @@ bool vtkApertureSkyVisibility::IsMemoryGrouped()
 }
 
 //------------------------------------------------------------------------------
+bool vtkApertureSkyVisibility::IsMemoryAddressLimited()
+{
+  int source = AP_MEMORY_MACHINE;
+  vtkApertureUsableMemory(&source);
+  return source == AP_MEMORY_ADDRESS_SPACE;
+}
+
+//------------------------------------------------------------------------------
 std::string vtkApertureSkyVisibility::GetUsableMemoryOwner()
 {
   int source = AP_MEMORY_MACHINE;
@@ -681,8 +689,8 @@ int vtkApertureSkyVisibility::Execute(
   // Memory: refuse before allocating what cannot fit. Linux overcommits, so past physical
   // memory an allocation does not fail: the process is killed later, mid-sweep.
   {
-    const std::string problem = this->CheckMemory(
-      nx, ny, onx, ony, 1024.0 * static_cast<double>(input->GetActualMemorySize()));
+    const std::string problem = this->CheckMemory(nx, ny, onx, ony,
+      vtkApertureHeldNow(1024.0 * static_cast<double>(input->GetActualMemorySize())));
     if (!problem.empty())
     {
       vtkErrorMacro(<< problem << "; bake a part of the DEM, a decimated one, or fewer products");
@@ -775,7 +783,8 @@ int vtkApertureSkyVisibility::Execute(
     // (per row of the whole grid: its two cell sizes here, the lattice's Ψ and steps in the
     // kernel; a window of a grid of a billion rows would take them past any memory)
     const double rowBytes = 32.0 * nyWhole;
-    const std::string problem = this->BeyondMemory(rowBytes, 4.0 * static_cast<double>(n),
+    const std::string problem = this->BeyondMemory(rowBytes,
+      vtkApertureHeldNow(4.0 * static_cast<double>(n)),
       "the sweep's lattice needs " + vtkApertureHumanBytes(rowBytes) +
         " for the cell sizes of every one of the grid's " + std::to_string(nyWhole) + " rows");
     if (!problem.empty())
@@ -818,8 +827,8 @@ int vtkApertureSkyVisibility::Execute(
   if (wrap > 0)
   {
     const int wnx = nx + 2 * wrap;
-    const std::string problem = this->CheckMemory(
-      wnx, ny, onx, ony, 1024.0 * static_cast<double>(input->GetActualMemorySize()));
+    const std::string problem = this->CheckMemory(wnx, ny, onx, ony,
+      vtkApertureHeldNow(1024.0 * static_cast<double>(input->GetActualMemorySize())));
     if (!problem.empty())
     {
       vtkErrorMacro(<< problem << " (a global DEM with " << wrap

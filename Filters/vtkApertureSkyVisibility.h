@@ -232,6 +232,9 @@ public:
    *  Read at each call. */
   static vtkTypeInt64 GetUsableMemory();
   static bool IsMemoryGrouped();
+  /** True when GetUsableMemory() is an address-space limit's: what it leaves beside all the
+   *  process has mapped, so memory held already is not to be subtracted from it again. */
+  static bool IsMemoryAddressLimited();
 
   /** Whose memory GetUsableMemory() is, as the messages say it: "this process may use under
    *  its control group's limit", "this process may use under its address-space limit
@@ -261,7 +264,8 @@ public:
   /** Why an update over an nx x ny input would be refused for memory, or "" when it fits:
    *  EstimateBytes(nx * ny) against MemoryLimit, or (MemoryLimit 0) against GetUsableMemory() less
    *  `held` bytes, what the input occupies (4 x nx x ny for float elevations not yet read; when
-   *  that alone exceeds the memory, the text says so). The update refuses with this text and
+   *  that alone exceeds the memory, the text says so; an update passes its input's bytes, or
+   *  0 under an address-space limit, which leaves GetUsableMemory() beside them). The update refuses with this text and
    *  advice; a caller can ask before reading a DEM and add its own advice. */
   std::string CheckMemory(int nx, int ny, double held) const;
 

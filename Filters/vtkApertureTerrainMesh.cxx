@@ -480,8 +480,8 @@ int vtkApertureTerrainMesh::Execute(
     needs << "a mesh of " << nx << " x " << ny << " points needs about "
           << vtkApertureHumanBytes(need);
     const std::string problem = vtkApertureBeyondMemory(need,
-      1024.0 * static_cast<double>(given->GetActualMemorySize()), this->MemoryLimit,
-      needs.str());
+      vtkApertureHeldNow(1024.0 * static_cast<double>(given->GetActualMemorySize())),
+      this->MemoryLimit, needs.str());
     if (!problem.empty())
     {
       vtkErrorMacro(<< problem << "; decimate the DEM");

@@ -1105,7 +1105,7 @@ class TestBake(unittest.TestCase):
         self.assertEqual(p.returncode, 1, p.stderr)
         self.assertIn("rendering a mesh of 3000 x 3000 points needs about", p.stderr)
         self.assertIn("of memory this process may use under its address-space limit "
-                      "(ulimit -v) beside the", p.stderr)
+                      "(ulimit -v); --decimate ", p.stderr)
         factor = re.search(r"; --decimate (\d+) would fit$", p.stderr.strip())
         self.assertTrue(factor, p.stderr)
         p = subprocess.run([xvfb, APERTURE, "render", dem, "-o", self.path("ulimit.png"),
@@ -1153,6 +1153,37 @@ class TestBake(unittest.TestCase):
                                            ("cpu.cfs_quota_us", 100000)],
                                    [("cpu.max", "100000 100000")])
         self.assertEqual(cores(lambda: self.join(procs)), [1, 1])
+
+    def test_render_memory_held_once(self):
+        # Under an address-space limit the usable memory is what the limit leaves beside all
+        # the process has mapped: what it holds is in that already. Until 2026-12-06 render's
+        # check subtracted its resident memory again (150 MB and the DEM, refusing renders that
+        # fit). A process said to hold a PiB renders 10 x 10 points under the limit, and is
+        # refused without it, naming what it holds.
+        import resource
+
+        def limit():
+            resource.setrlimit(resource.RLIMIT_AS, (4 << 30, resource.RLIM_INFINITY))
+        script = ("import argparse\n"
+                  "from aperture import cli\n"
+                  "from aperture.errors import ApertureError\n"
+                  "cli._resident_bytes = lambda: 1 << 50\n"
+                  "try:\n"
+                  "    cli._check_render_memory(argparse.Namespace(decimate=1), 10, 10, False, "
+                  "False)\n"
+                  "    print('fits')\n"
+                  "except ApertureError as e:\n"
+                  "    print(e)\n")
+        python = os.path.join(BUILD, "bin", "aperture-python")
+        p = subprocess.run([python, "-c", script], capture_output=True, text=True, timeout=120,
+                           preexec_fn=limit)
+        self.assertEqual((p.returncode, p.stdout), (0, "fits\n"), p.stderr)
+        p = subprocess.run([python, "-c", script], capture_output=True, text=True, timeout=120)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertTrue(p.stdout.startswith("rendering a mesh of 10 x 10 points needs about "),
+                        p.stdout)
+        self.assertTrue(p.stdout.strip().endswith(" beside the 1.000 PiB this process holds"),
+                        p.stdout)
 
     def test_out_of_memory(self):
         # A DEM that fits the machine's memory but not the process's address space (ulimit -v):
@@ -1227,8 +1258,8 @@ class TestBake(unittest.TestCase):
         self.assertTrue(p.stdout.startswith("a mesh of 12000 x 12000 points needs about 12.338 "
                                             "GiB, more than the "), p.stdout)
         self.assertTrue(p.stdout.strip().endswith(
-            " of memory this process may use under its address-space limit (ulimit -v) beside "
-            "the DEM's 549.318 MiB; decimate the DEM 0"), p.stdout)
+            " of memory this process may use under its address-space limit (ulimit -v); "
+            "decimate the DEM 0"), p.stdout)
         p = subprocess.run([python, "-c", script, mesh, str(1 << 40)], capture_output=True,
                            text=True, timeout=300, preexec_fn=capped)
         self.assertEqual(p.returncode, 0, p.stderr)

@@ -1267,10 +1267,21 @@ class TestSkyVisibility(Testing.vtkTest):
         self.assertTrue(message.startswith(
             "a 512 x 512 DEM with these products needs about 373.500 MiB (HorizonAngles take 4 "
             "bytes per cell and direction), more than the "), message)
-        self.assertIn(" of memory this process may use under its address-space limit (ulimit -v) "
-                      "beside the DEM's 1.003 MiB", message)
+        # (the DEM is mapped already: in what the limit leaves, not subtracted again)
+        self.assertTrue(message.endswith(" of memory this process may use under its "
+                                         "address-space limit (ulimit -v); bake a part of the "
+                                         "DEM, a decimated one, or fewer products\n"), message)
+        # 4. Memory the process holds counts once under an address-space limit: a DEM with
+        #    400 MiB of other point arrays, under a limit 400 MiB above what the process has
+        #    mapped with it, bakes its 512 x 512 cells (about 10 MiB; the usable memory is
+        #    272 MiB, 400 less 128 for threads); subtracting the arrays again, as until
+        #    2026-12-06, refused it ("the DEM's 401 MiB alone exceed the 272 MiB").
+        self.assertEqual(self.out_of_memory(
+            512, 400, "", limit=False, extra="extra = numpy_to_vtk(np.zeros((%d, 200), "
+            "dtype=np.float64), deep=1)\nextra.SetName('Other')\n"
+            "image.GetPointData().AddArray(extra)\n" % (512 * 512)), "no error\n")
 
-    def out_of_memory(self, size, headroom_mib, setup, limit=True):
+    def out_of_memory(self, size, headroom_mib, setup, limit=True, extra=""):
         import subprocess
         script = """
 import resource
@@ -1285,7 +1296,7 @@ image.SetSpacing(30, 30, 1)
 values = numpy_to_vtk(np.zeros(%(size)d * %(size)d, dtype=np.float32), deep=1)
 values.SetName("Elevation")
 image.GetPointData().SetScalars(values)
-geo = aperture.vtkApertureGeoreference()
+%(extra)sgeo = aperture.vtkApertureGeoreference()
 assert geo.SetCRS("EPSG:32633")
 geo.AttachToImage(image)
 w = Watcher()
@@ -1298,7 +1309,7 @@ with open("/proc/self/status") as status:
 resource.setrlimit(resource.RLIMIT_AS, ((vm + %(headroom)d * 1024) * 1024, resource.RLIM_INFINITY))
 f.Update()
 print(w.errors[0] if w.errors else "no error")
-""" % dict(size=size, headroom=headroom_mib, setup=setup,
+""" % dict(size=size, headroom=headroom_mib, setup=setup, extra=extra,
            limit="f.SetMemoryLimit(1 << 40)" if limit else "")
         p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                            timeout=120)

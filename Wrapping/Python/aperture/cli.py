@@ -703,16 +703,18 @@ def _check_render_memory(args, nx, ny, bent, to_bake):
                 + _DRAW_BYTES_PER_POINT * n + min(_DRAW_BINS_PER_POINT * n, _DRAW_BINS_MAX)
                 + (16 * n if to_bake else 0))
 
-    held, usable = _resident_bytes(), float(sky.GetUsableMemory())
+    # (an address-space limit's usable memory is what it leaves beside all that is mapped)
+    held = 0 if sky.IsMemoryAddressLimited() else _resident_bytes()
+    usable = float(sky.GetUsableMemory())
     total = need(nx * ny)
     if held + total <= usable:
         return
     mesh = estimate.EstimateBytes(float(nx * ny), bent, 0.0)
     message = ("rendering a mesh of %d x %d points needs about %s (the mesh %s, drawing it and "
-               "the rest %s), more than the %s of memory %s beside the %s this process holds"
+               "the rest %s), more than the %s of memory %s%s"
                % (nx, ny, _bytes_text(total), _bytes_text(mesh), _bytes_text(total - mesh),
                   _bytes_text(max(0.0, usable - held)), sky.GetUsableMemoryOwner(),
-                  _bytes_text(held)))
+                  " beside the %s this process holds" % _bytes_text(held) if held else ""))
     for f in range(2, max(nx, ny) // 2 + 1):
         if held + need((nx // f) * (ny // f)) <= usable:
             raise ApertureError("%s; --decimate %d would fit" % (message, f * args.decimate))
