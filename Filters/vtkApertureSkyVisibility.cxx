@@ -288,44 +288,70 @@ int WrapColumns(vtkApertureGeoreference* geo, double distance, const int in[6], 
   return std::min((nxWhole + 1) / 2, halo[0]);
 }
 
-// The extent of the input (whose pipeline information is inInfo) that an update of `ext`
-// reads: `ext` grown by the halo of the search distance, clipped to the whole extent. A region
-// sees terrain up to the search distance away; unlimited distance, or no way to know metres
-// (the CRS is published by vtkApertureDEMReader as pipeline information), needs the whole.
+// The extent of a grid whose whole extent is `whole` (described by geo, its CRS set) that an
+// update of `ext` reads: `ext` grown by the halo of the search distance, clipped to the whole
+// extent. A region sees terrain up to the search distance away; unlimited distance, or no way
+// to know metres, needs the whole.
+void InputExtentOf(
+  vtkApertureGeoreference* geo, const int whole[6], double distance, const int ext[6], int in[6])
+{
+  std::copy(whole, whole + 6, in);
+  int halo[2];
+  if (!(distance > 0) || !HaloCells(geo, distance, ext[2] - whole[2], ext[3] - whole[2], halo))
+  {
+    return;
+  }
+  // (in 64 bits: a halo beside an extent at the end of int's range)
+  const auto grown = [](int bound, long long e, long long h, bool low) {
+    return static_cast<int>(
+      low ? std::max<long long>(bound, e - h) : std::min<long long>(bound, e + h));
+  };
+  in[0] = grown(whole[0], ext[0], halo[0], true);
+  in[1] = grown(whole[1], ext[1], halo[0], false);
+  in[2] = grown(whole[2], ext[2], halo[1], true);
+  in[3] = grown(whole[3], ext[3], halo[1], false);
+  if (geo->WrapsAround() &&
+    (static_cast<long long>(ext[0]) - halo[0] < whole[0] ||
+      static_cast<long long>(ext[1]) + halo[0] > whole[1]))
+  {
+    // a global DEM's halo across its antimeridian: the terrain on the other side, in every
+    // column (an extent cannot wrap; RequestData joins the edges)
+    in[0] = whole[0];
+    in[1] = whole[1];
+  }
+}
+
+// The same for the input whose pipeline information is inInfo (the CRS is published by
+// vtkApertureDEMReader as pipeline information; without it, the whole extent).
 void InputExtent(vtkInformation* inInfo, double distance, const int ext[6], int in[6])
 {
   int whole[6];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   std::copy(whole, whole + 6, in);
-  if (distance > 0)
+  vtkNew<vtkApertureGeoreference> geo;
+  if (distance > 0 && geo->SetFromInformation(inInfo))
   {
-    vtkNew<vtkApertureGeoreference> geo;
-    int halo[2];
-    if (geo->SetFromInformation(inInfo))
+    InputExtentOf(geo, whole, distance, ext, in);
+  }
+}
+
+// Whether the elevations z of the input extent inExt (NaN nodata) are nodata in every cell of
+// `part`, an extent within it.
+bool NodataWithin(const float* z, const int inExt[6], const int part[6])
+{
+  const size_t nx = static_cast<size_t>(inExt[1] - inExt[0] + 1);
+  for (int j = part[2]; j <= part[3]; ++j)
+  {
+    const float* row = z + static_cast<size_t>(j - inExt[2]) * nx;
+    for (int i = part[0]; i <= part[1]; ++i)
     {
-      if (HaloCells(geo, distance, ext[2] - whole[2], ext[3] - whole[2], halo))
+      if (!std::isnan(row[i - inExt[0]]))
       {
-        // (in 64 bits: a halo beside an extent at the end of int's range)
-        const auto grown = [](int bound, long long e, long long h, bool low) {
-          return static_cast<int>(low ? std::max<long long>(bound, e - h)
-                                      : std::min<long long>(bound, e + h));
-        };
-        in[0] = grown(whole[0], ext[0], halo[0], true);
-        in[1] = grown(whole[1], ext[1], halo[0], false);
-        in[2] = grown(whole[2], ext[2], halo[1], true);
-        in[3] = grown(whole[3], ext[3], halo[1], false);
-        if (geo->WrapsAround() &&
-          (static_cast<long long>(ext[0]) - halo[0] < whole[0] ||
-            static_cast<long long>(ext[1]) + halo[0] > whole[1]))
-        {
-          // a global DEM's halo across its antimeridian: the terrain on the other side, in
-          // every column (an extent cannot wrap; RequestData joins the edges)
-          in[0] = whole[0];
-          in[1] = whole[1];
-        }
+        return false;
       }
     }
   }
+  return true;
 }
 } // namespace
 
@@ -934,11 +960,24 @@ int vtkApertureSkyVisibility::Execute(
   // Nodata everywhere: an error for the whole DEM; a piece of one (a stretch of sea and its
   // halo) gets nodata products, as the whole run's cells there do. (The parameters are
   // validated by ap_horizon_create, with the elevations' second statistics pass.)
-  const bool allNodata = range.valid == 0;
-  if (allNodata && nx == nxWhole && ny == nyWhole)
+  if (range.valid == 0 && nx == nxWhole && ny == nyWhole)
   {
     vtkErrorMacro(<< "every cell of the DEM is nodata");
     return 0;
+  }
+  bool allNodata = range.valid == 0;
+  if (!allNodata && !whole && this->MaximumDistance > 0)
+  {
+    // An input holding more than this update reads (an image given whole with SetInputData):
+    // judged, as a piece read with its halo is, by the extent and its halo alone.
+    int part[6];
+    InputExtentOf(geo, wholeExt, this->MaximumDistance, outExt, part);
+    for (int k = 0; k < 6; k += 2)
+    {
+      part[k] = std::max(part[k], inExt[k]);
+      part[k + 1] = std::min(part[k + 1], inExt[k + 1]);
+    }
+    allNodata = NodataWithin(z.get(), inExt, part);
   }
 
   if (stopped())
