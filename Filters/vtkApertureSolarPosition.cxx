@@ -862,6 +862,20 @@ bool vtkApertureSolarPosition::AddSunDirectionArray(vtkImageData* dem, const cha
     vtkErrorMacro(<< d.Error);
     return false;
   }
+  vtkAbstractArray* existing = dem->GetPointData()->GetAbstractArray(name);
+  if (existing &&
+    (existing->GetDataType() != VTK_FLOAT || existing->GetNumberOfComponents() != 3))
+  {
+    // (an elevation array that is not the active scalars, named for the filters, was replaced
+    // just the same); a direction array of an earlier time is replaced, as documented
+    const int components = existing->GetNumberOfComponents();
+    d.Error = std::string("the DEM has a point array '") + name + "' that is no direction " +
+      "array (a " + existing->GetClassName() + " of " + std::to_string(components) +
+      (components == 1 ? " component" : " components") + "); give the direction array " +
+      "another name";
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
   vtkNew<vtkApertureGeoreference> geo;
   if (!geo->SetFromImage(dem))
   {

@@ -267,11 +267,11 @@ public:
    * off along the terminator, a visible sun put below the horizon). Cells
    * below the horizon get their direction too (z < 0). Uses the time (UnixTime), the
    * atmosphere and the Height set here for every cell, not the latitude and longitude (each
-   * cell has its own). False (GetErrorMessage) when `name` is the DEM's active scalars (its
-   * elevations), the DEM has no georeference or only a local one (no place on the Earth), a
-   * lattice point
-   * has no geographic coordinates, or the sun's position fails there (a time or atmosphere
-   * out of range).
+   * cell has its own). An array `name` of 3 floats already there (an earlier time's) is
+   * replaced. False (GetErrorMessage) when `name` is the DEM's active scalars (its elevations)
+   * or another point array (not 3 floats), the DEM has no georeference or only a local one (no
+   * place on the Earth), a lattice point has no geographic coordinates, or the sun's position
+   * fails there (a time or atmosphere out of range).
    */
   bool AddSunDirectionArray(vtkImageData* dem, const char* name = "SunDirection");
 

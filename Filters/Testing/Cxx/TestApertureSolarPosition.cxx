@@ -132,9 +132,26 @@ void TestZoneEdge()
     AP_CHECK(z && z->GetName() && !sun->AddSunDirectionArray(dem, z->GetName()));
     AP_CHECK_CONTAINS(sun->GetErrorMessage(), "is the DEM's elevation array (its active scalars)");
     AP_CHECK(dem->GetPointData()->GetScalars() == z && z->GetNumberOfComponents() == 1);
+    // nor over another array, such as elevations the filters find by name without being the
+    // active scalars (until 2026-12-06 replaced by the directions)
+    vtkNew<vtkFloatArray> named;
+    named->SetName("Heights");
+    named->DeepCopy(z);
+    named->SetName("Heights");
+    dem->GetPointData()->AddArray(named);
+    AP_CHECK(!sun->AddSunDirectionArray(dem, "Heights"));
+    AP_CHECK_CONTAINS(sun->GetErrorMessage(), "the DEM has a point array 'Heights' that is no "
+                                              "direction array (a vtkFloatArray of 1 component)");
+    AP_CHECK(dem->GetPointData()->GetArray("Heights") == named.GetPointer() &&
+      named->GetNumberOfComponents() == 1);
+    dem->GetPointData()->RemoveArray("Heights");
     sun->RemoveObservers(vtkCommand::ErrorEvent);
   }
+  // a direction array of an earlier time is replaced by the new one
+  const int arrays = dem->GetPointData()->GetNumberOfArrays();
   AP_CHECK(sun->AddSunDirectionArray(dem));
+  AP_CHECK(sun->AddSunDirectionArray(dem));
+  AP_CHECK(dem->GetPointData()->GetNumberOfArrays() == arrays + 1);
   vtkDataArray* dirs = dem->GetPointData()->GetArray("SunDirection");
   AP_CHECK(dirs && dirs->GetNumberOfComponents() == 3);
   if (dirs)
