@@ -356,8 +356,8 @@ class TestCommandLineRender(unittest.TestCase):
                                                  "--lighting", lighting)
                     self.assertEqual(status, 0, stderr)
                     self.assertIn("aperture: warning: the sun is %.2f degrees below the horizon: "
-                                  "the terrain is unlit (the sky models have no twilight), a "
-                                  "black picture" % -float(el), stderr)
+                                  "the terrain is unlit (the sky models have no twilight): "
+                                  "black" % -float(el), stderr)
                     reader = vtkPNGReader()
                     reader.SetFileName(out)
                     reader.Update()
@@ -366,6 +366,19 @@ class TestCommandLineRender(unittest.TestCase):
                     # the two blended at its outline: no pixel with a colour
                     self.assertGreater((rgb.sum(axis=1) == 0).mean(), 0.3, (lighting, el))
                     self.assertTrue(((rgb == rgb[:, :1]).all(axis=1)).all(), (lighting, el))
+                # black terrain filling the view, no background beside it: the picture the
+                # driver drew, not a failure to draw (refused as one until 2026-12-06), and no
+                # light to expose for (0 EV; it said 19.93)
+                status, stdout, stderr = run("render", "-o", out, "--size", "200x120",
+                                             "--sun-az", "315", "--sun-el", "-5", "--lighting",
+                                             lighting, "--view", "top", "--camera", "0,90,3")
+                self.assertEqual(status, 0, stderr)
+                self.assertIn("exposure 0.00 EV", stdout)
+                reader = vtkPNGReader()
+                reader.SetFileName(out)
+                reader.Update()
+                rgb = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3]
+                self.assertEqual(int(rgb.max()), 0, lighting)
                 # at the horizon and above: lit (the sky, and slopes facing the sun), and no
                 # warning
                 for el in ("0", "1"):

@@ -56,7 +56,8 @@ class TestBlankPicture(Testing.vtkTest):
         w = window((1.0, 1.0, 1.0))
         warnings = []
         pixels = scene.rgb_pixels(w, on_warning=warnings.append)
-        self.assertEqual(self.calls, [4, 0])
+        # (the picture, the background alone, the picture again without multisampling)
+        self.assertEqual(self.calls, [4, 4, 0])
         self.assertEqual(w.GetMultiSamples(), 0)  # (kept: the EXR capture renders it again)
         self.assertEqual(pixels.shape, (32, 48, 3))
         self.assertEqual(int(pixels.max()), 255)  # the white background, drawn
@@ -67,7 +68,7 @@ class TestBlankPicture(Testing.vtkTest):
 
     def testBlankWithoutMultisamplingIsAnError(self):
         self.blank_when(lambda w: True)
-        for samples, calls in ((4, [4, 0]), (0, [0])):
+        for samples, calls in ((4, [4, 4, 0, 0]), (0, [0, 0])):
             del self.calls[:]
             with self.assertRaises(RuntimeError) as e:
                 scene.grab(window((1.0, 1.0, 1.0), samples))
@@ -86,6 +87,26 @@ class TestBlankPicture(Testing.vtkTest):
         del self.calls[:]
         scene.grab(window((1.0, 1.0, 1.0)), on_warning=warnings.append)
         self.assertEqual((self.calls, warnings), ([4], []))
+
+    def testUnlitViewFillingTerrain(self):
+        # Terrain unlit (a night frame of a time-lapse) filling the view over a white
+        # background is a black picture the driver drew: the background, drawn alone, shows
+        # the driver works, and the picture is kept, multisampled, without a word. Until
+        # 2026-12-06 such frames were refused as "the OpenGL driver drew nothing".
+        self.blank_when(lambda w: False)
+        w = window((1.0, 1.0, 1.0))
+        renderer = w.GetRenderers().GetFirstRenderer()
+        actor = renderer.GetActors().GetLastActor()
+        actor.GetProperty().SetColor(0.0, 0.0, 0.0)
+        actor.GetProperty().SetSpecular(0.0)
+        renderer.ResetCamera()
+        renderer.GetActiveCamera().Zoom(3.0)  # (the plane beyond every edge of the view)
+        warnings = []
+        pixels = scene.rgb_pixels(w, on_warning=warnings.append)
+        self.assertEqual(int(pixels.max()), 0)
+        self.assertEqual((self.calls, warnings), ([4, 4], []))
+        self.assertEqual(w.GetMultiSamples(), 4)
+        self.assertTrue(actor.GetVisibility())  # (shown again after the background's check)
 
 
 if __name__ == "__main__":

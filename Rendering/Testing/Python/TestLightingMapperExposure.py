@@ -3,6 +3,7 @@
 arrays needed): exposure is applied in its fragment shader: on a flat, uniformly lit square,
 +1 EV doubles and -1 EV halves the pixel values of exposure 0 (up to 8-bit rounding), and
 exposure 0 matches VTK's own mapper exactly."""
+import math
 import sys
 
 from vtkmodules.test import Testing
@@ -67,6 +68,21 @@ class TestLightingMapperExposure(Testing.vtkTest):
         mapper = aperture.vtkApertureLightingMapper()
         mapper.SetExposure(100.0)
         self.assertEqual(mapper.GetExposure(), 30.0)
+
+    def testAutoExposure(self):
+        # 2^-EV = L = 0.8 (E_sun sin e + pi L_sky) / pi, e at least 12 degrees (scene.py): a
+        # grey sun of 1000 W/m2 overhead gives L = 800 / pi; at 5 degrees it counts as 12; a sky
+        # of 100 W/m2/sr alone gives L = 80. No light at all (a night frame) has no exposure to
+        # set: 0 EV (until 2026-12-06, 19.93 EV, from the floor of 1e-6 on L).
+        grey = (1000.0, 1000.0, 1000.0)
+        self.assertAlmostEqual(scene.auto_exposure(grey, 90.0, (0, 0, 0)),
+                               -math.log2(800.0 / math.pi), places=6)
+        self.assertAlmostEqual(scene.auto_exposure(grey, 5.0, (0, 0, 0)),
+                               -math.log2(800.0 * math.sin(math.radians(12.0)) / math.pi),
+                               places=6)
+        self.assertAlmostEqual(scene.auto_exposure((0, 0, 0), 30.0, (100.0, 100.0, 100.0)),
+                               -math.log2(80.0), places=6)
+        self.assertEqual(scene.auto_exposure((0, 0, 0), -30.0, (0, 0, 0)), 0.0)
 
 
 if __name__ == "__main__":

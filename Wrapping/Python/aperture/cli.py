@@ -843,8 +843,8 @@ def cmd_render(args):
     sun = _render_sun(args, image, watcher)
     if sun.GetElevation() < 0.0:  # (the beam and the sky models end at the horizon)
         _warn("the sun is %.2f degrees below the horizon%s: the terrain is unlit (the sky models "
-              "have no twilight), a black picture" % (-sun.GetElevation(),
-                                                      " at that time" if args.at else ""))
+              "have no twilight): black" % (-sun.GetElevation(), " at that time" if args.at
+                                            else ""))
     # (the mesher names implausible elevations, beyond the Earth's or steeper than terrain, as
     # the sky filter does: said once is enough)
     named = [w for w in watcher.warnings if w.startswith("elevations range ")]

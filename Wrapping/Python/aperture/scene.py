@@ -139,10 +139,13 @@ def sky_radiance(sun):
 
 def auto_exposure(sun_rgb, sun_elevation, sky_rgb):
     """EV that maps a flat, open, white (albedo 0.8) surface to x = 1 before tone mapping (0.63,
-    about 209 of 255 on screen): 2^EV = 1 / L, L = 0.8 (E_sun sin e + pi L_sky) / pi, with the
-    sun's elevation counted at 12 degrees at least so that low suns are not over-exposed."""
+    about 208 of 255 on screen): 2^EV = 1 / L, L = 0.8 (E_sun sin e + pi L_sky) / pi, with the
+    sun's elevation counted at 12 degrees at least so that low suns are not over-exposed (L at
+    least 1e-6). No light at all (a sun below the horizon): 0, the picture black at any EV."""
     e = math.radians(max(sun_elevation, 12.0))
     radiance = 0.8 * (luminance(sun_rgb) * math.sin(e) + math.pi * luminance(sky_rgb)) / math.pi
+    if not radiance > 0.0:
+        return 0.0
     return -math.log2(max(radiance, 1e-6))
 
 
@@ -280,28 +283,52 @@ def _blank(window, image):
     return scalars is not None and not vtk_to_numpy(scalars).any()
 
 
+def _background_drawn(window):
+    """Whether the driver draws the renderers' backgrounds at this size: the window rendered
+    once with every prop hidden (a picture all black over a background that is not may be
+    terrain unlit at night filling the view, or nothing drawn at all)."""
+    hidden = []
+    renderers = window.GetRenderers()
+    renderers.InitTraversal()
+    for _ in range(renderers.GetNumberOfItems()):
+        props = renderers.GetNextItem().GetViewProps()
+        props.InitTraversal()
+        for _ in range(props.GetNumberOfItems()):
+            prop = props.GetNextProp()
+            if prop.GetVisibility():
+                prop.VisibilityOff()
+                hidden.append(prop)
+    try:
+        return not _blank(window, _render_pixels(window))
+    finally:
+        for prop in hidden:
+            prop.VisibilityOn()
+
+
 def grab(window, on_warning=None):
     """Render the window and return its RGB pixels as a vtkImageData (row 0 at the bottom).
     A multisampled picture that comes back blank (the OpenGL driver could not make a
     multisampled framebuffer that large, and said nothing: Mesa's llvmpipe beyond 2 GiB, from
     some 11600 x 11600 pixels at the default 8 samples, which VTK lowers to 4) is rendered
     again without multisampling, which the window keeps, and on_warning(message) is told.
-    RuntimeError when nothing is drawn even then."""
+    A blank picture whose background the driver draws alone is what was drawn (unlit terrain
+    filling the view). RuntimeError when nothing is drawn even without multisampling."""
     image = _render_pixels(window)
-    if _blank(window, image):
-        samples = window.GetMultiSamples()
-        width, height = window.GetSize()
-        if samples > 0:
-            window.SetMultiSamples(0)
-            image = _render_pixels(window)
-        if _blank(window, image):
-            raise RuntimeError("the OpenGL driver drew nothing into a picture of %d x %d pixels "
-                               "(beyond its framebuffer's limits?)" % (width, height))
-        if on_warning:
-            on_warning("the OpenGL driver drew nothing with %d samples per pixel at %d x %d "
-                       "(its multisampled framebuffer's limit); the picture is rendered "
-                       "without antialiasing, as with --multisamples 0 (a smaller --size keeps "
-                       "it)" % (samples, width, height))
+    if not _blank(window, image) or _background_drawn(window):
+        return image
+    samples = window.GetMultiSamples()
+    width, height = window.GetSize()
+    if samples > 0:
+        window.SetMultiSamples(0)
+        image = _render_pixels(window)
+    if samples == 0 or (_blank(window, image) and not _background_drawn(window)):
+        raise RuntimeError("the OpenGL driver drew nothing into a picture of %d x %d pixels "
+                           "(beyond its framebuffer's limits?)" % (width, height))
+    if on_warning:
+        on_warning("the OpenGL driver drew nothing with %d samples per pixel at %d x %d "
+                   "(its multisampled framebuffer's limit); the picture is rendered "
+                   "without antialiasing, as with --multisamples 0 (a smaller --size keeps "
+                   "it)" % (samples, width, height))
     return image
 
 
