@@ -34,7 +34,9 @@ class Viewer:
         mesher.Update()
         self.date, self.hour = args.date, 12.0
         self.sun = aperture.vtkApertureSolarPosition()
-        self.sun.SetTimeZone(args.tz)
+        # (refused up front: each frame would otherwise say why under the mapper's default sun)
+        if not self.sun.SetTimeZone(args.tz) or not self.sun.SetTime(args.date + "T12:00"):
+            raise SystemExit("time_of_day_viewer: " + self.sun.GetErrorMessage())
         self.sun.SetPlaceFromImage(reader.GetOutput())
         self.mapper = aperture.vtkApertureLightingMapper()
         self.mapper.SetInputConnection(mesher.GetOutputPort())
@@ -60,9 +62,9 @@ class Viewer:
 
     def set_hour(self, hour):
         """Place the sun at `hour` (local, 0..24) of the date; fills the label."""
-        self.hour = max(0.0, min(24.0 - 1.0 / 60, hour))
-        h, m = int(self.hour), int(round(60 * (self.hour % 1))) % 60
-        text = "%sT%02d:%02d" % (self.date, h, m)
+        minutes = max(0, min(24 * 60 - 1, int(round(60.0 * hour))))  # (to the nearest minute)
+        self.hour = minutes / 60.0
+        text = "%sT%02d:%02d" % ((self.date,) + divmod(minutes, 60))
         if not self.sun.SetTime(text):  # e.g. a local time a clock change skips
             self.label.SetInput(self.sun.GetErrorMessage())
             return

@@ -343,6 +343,33 @@ class TestCommandLineRender(unittest.TestCase):
                         for k, camera in enumerate(("-150,35", "210,35"))]
         self.assertTrue((pictures[0] == pictures[1]).all())
 
+    def test_time_of_day_viewer(self):
+        # Examples/time_of_day_viewer.py: its slider's hours to the nearest minute (until
+        # 2026-12-06 6.995 h put the sun at 06:00, an hour early, in the last half minute of
+        # every hour), and a zone or date it cannot use refused up front (it ran on under the
+        # mapper's default sun, exit 0). New York is 4 hours behind UTC in June.
+        import argparse
+        import importlib.util
+        path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Examples",
+                            "time_of_day_viewer.py")
+        spec = importlib.util.spec_from_file_location("time_of_day_viewer", path)
+        example = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(example)
+        viewer = example.Viewer(argparse.Namespace(dem=None, date="2026-06-21",
+                                                   tz="America/New_York"))
+        for hour, utc in ((6.99, "2026-06-21T10:59"), (6.995, "2026-06-21T11:00"),
+                          (12.992, "2026-06-21T17:00"), (17.9999, "2026-06-21T22:00"),
+                          (23.999, "2026-06-22T03:59"), (-1.0, "2026-06-21T04:00")):
+            viewer.set_hour(hour)
+            self.assertEqual(viewer.sun.GetTimeString(), utc + ":00Z", hour)
+        for tz, date, message in (
+                ("Foo/Bar", "2026-06-21", "time zone 'Foo/Bar': unknown"),
+                ("America/New_York", "2026-02-30", "2026-02-30")):
+            with self.assertRaises(SystemExit) as e:
+                example.Viewer(argparse.Namespace(dem=None, date=date, tz=tz))
+            self.assertTrue(str(e.exception).startswith("time_of_day_viewer: "), e.exception)
+            self.assertIn(message, str(e.exception))
+
     def test_night(self):
         # The sun below the horizon lights nothing (no twilight in the sky models): a black
         # picture, with a warning saying why. VTK's standard lighting too: it lit the slopes
