@@ -4,6 +4,7 @@
 #ifndef vtkApertureSMPThreads_h
 #define vtkApertureSMPThreads_h
 
+#include "ApertureFiltersModule.h" // for the export macro
 #include "vtkSMPTools.h"
 
 #include "ap_memory.h"
@@ -14,6 +15,7 @@
 #include <string>
 #include <system_error>
 #include <thread>
+#include <utility>
 
 /** Cores this process may run on (at least 1): the machine's, or fewer where its affinity
  *  mask or its control group's CPU quota allows fewer (ap_cpu_usable: a container run with
@@ -35,6 +37,30 @@ inline vtkSMPTools::Config vtkApertureSMPConfig(int requested)
   const int cores = vtkApertureCores();
   const int n = requested > 0 ? std::min(requested, cores) : cores;
   return vtkSMPTools::Config{ n, n == 1 ? "Sequential" : "STDThread", false };
+}
+
+/** The one lock of the process's Aperture SMP scopes (vtkApertureSMPScope): one for the
+ *  filters and the writers alike, in the Filters library. */
+APERTUREFILTERS_EXPORT std::mutex& vtkApertureSMPScopeMutex();
+
+/** f() within vtkSMPTools::LocalScope(config) when no other Aperture scope is running in the
+ *  process, else within the configuration in force. LocalScope sets the process-wide SMP
+ *  configuration and restores the one it found: two overlapping from different threads
+ *  (pipelines updated in parallel) restored in the wrong order, and left every VTK filter of
+ *  the process on one's configuration for good (Sequential, one thread). Results do not depend
+ *  on the threads; only the speed of a scope run within another's does. */
+template <typename F>
+void vtkApertureSMPScope(const vtkSMPTools::Config& config, F&& f)
+{
+  std::unique_lock<std::mutex> lock(vtkApertureSMPScopeMutex(), std::try_to_lock);
+  if (lock.owns_lock())
+  {
+    vtkSMPTools::LocalScope(config, std::forward<F>(f));
+  }
+  else
+  {
+    f();
+  }
 }
 
 /** Why an operation on `threads` threads failed when the system refused to start one (the

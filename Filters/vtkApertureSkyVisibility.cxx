@@ -1169,7 +1169,7 @@ int vtkApertureSkyVisibility::Execute(
     seconds[phase] = std::chrono::duration<double>(Clock::now() - start).count();
   };
   const vtkSMPTools::Config threads = vtkApertureSMPConfig(this->NumberOfThreads);
-  vtkSMPTools::LocalScope(threads, [&]() {
+  vtkApertureSMPScope(threads, [&]() {
     for (int d = 0; d < D && failure == AP_OK && !aborted; ++d)
     {
       ap_status ps = ap_horizon_prepare(hz, d);
@@ -1349,7 +1349,7 @@ int vtkApertureSkyVisibility::Execute(
       }
     }
     const double eastStep = grid.dx0 / spacing[0], northStep = grid.dy0 / spacing[1];
-    vtkSMPTools::LocalScope(threads, [&]() {
+    vtkApertureSMPScope(threads, [&]() {
       // (output rows and columns; the output's cell (0, 0) is the whole DEM's (oi, oj))
       vtkSMPTools::For(0, ony, 64, [&](vtkIdType j0, vtkIdType j1) {
         tally.Note();
@@ -1467,7 +1467,7 @@ int vtkApertureSkyVisibility::Execute(
     float* const angles[3] = { out.aperture_radius, out.positive_openness, out.horizon_angles };
     const size_t components[3] = { 1, 1, static_cast<size_t>(D) };
     const bool degrees = this->AnglesInDegrees;
-    vtkSMPTools::LocalScope(threads, [&]() {
+    vtkApertureSMPScope(threads, [&]() {
       vtkSMPTools::For(0, static_cast<vtkIdType>(outN), 4096, [&](vtkIdType k0, vtkIdType k1) {
         for (int a = 0; a < 3; ++a)
         {

@@ -210,7 +210,9 @@ public:
    *  thread count only when it differs from the previous scope's (a second update on one thread ran
    *  on every core). One thread runs in the calling thread (Sequential backend), starting none;
    *  threads the system refuses to start (no memory for their stacks) fail the update with an error
-   *  saying so. */
+   *  saying so. The backend and count are set for the process while the update's parallel work
+   *  runs (vtkSMPTools::LocalScope); an Aperture update whose work starts meanwhile on another
+   *  thread runs on them instead of its own, so that the process's configuration is restored. */
   vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfThreads, int);
   ///@}

@@ -884,7 +884,7 @@ int vtkApertureEXRWriter::WriteStrip(vtkImageData* strip)
   const vtkSMPTools::Config threads = vtkApertureSMPConfig(this->NumberOfThreads);
   try
   {
-    vtkSMPTools::LocalScope(threads, [&]() {
+    vtkApertureSMPScope(threads, [&]() {
       for (int first = firstChunk; rv == EXR_ERR_SUCCESS && first < endChunk; first += batch)
       {
         const int count = std::min(batch, endChunk - first);

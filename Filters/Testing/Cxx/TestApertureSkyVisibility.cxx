@@ -22,17 +22,21 @@
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkSMPTools.h"
 #include "vtkShortArray.h"
 #include "vtkSmartPointer.h"
 #include "vtkTestErrorObserver.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace
@@ -500,6 +504,86 @@ void TestAbort()
   AP_CHECK(sky->GetOutput()->GetPointData()->GetArray("SkyViewFactor") == nullptr);
 }
 
+// Two updates on two threads whose parallel work overlaps, X's ending within Y's: VTK's
+// vtkSMPTools::LocalScope restores the configuration it found, so Y's end put back X's
+// (Sequential, one thread) for every later VTK filter of the process, until 2026-12-06. Now
+// the process's configuration is afterwards what it was, and both results the lone update's.
+void TestOverlappingScopes()
+{
+  auto dem = MakeDEM("EPSG:32633", 400000, 5000000, 30, 30, 50, 40, Rough);
+  const Setup setup = [](vtkApertureSkyVisibility* s) {
+    s->SetNumberOfDirections(8);
+    s->ComputeHorizonAnglesOn();
+  };
+  auto alone = Sky(dem, setup);
+  const std::string backend = vtkSMPTools::GetBackend();
+  const int threads = vtkSMPTools::GetEstimatedNumberOfThreads();
+
+  struct Meeting
+  {
+    std::mutex Mutex;
+    std::condition_variable Changed;
+    bool XInside = false, Go = false, XWaited = false, YMet = false;
+    std::thread X;
+  } meet;
+  // X waits in its first progress event within its parallel work (0 < p < 1) until Y is
+  // within its own; Y lets X go and waits for X to finish.
+  vtkNew<vtkApertureSkyVisibility> x, y;
+  for (vtkApertureSkyVisibility* s : { x.GetPointer(), y.GetPointer() })
+  {
+    setup(s);
+    s->SetInputData(dem);
+  }
+  x->SetNumberOfThreads(1);
+  y->SetNumberOfThreads(2);
+  vtkNew<vtkCallbackCommand> xWaits, yMeets;
+  xWaits->SetClientData(&meet);
+  xWaits->SetCallback([](vtkObject* caller, unsigned long, void* client, void*) {
+    auto& m = *static_cast<Meeting*>(client);
+    const double p = static_cast<vtkAlgorithm*>(caller)->GetProgress();
+    if (p > 0.0 && p < 1.0 && !m.XWaited)
+    {
+      m.XWaited = true;
+      std::unique_lock<std::mutex> lock(m.Mutex);
+      m.XInside = true;
+      m.Changed.notify_all();
+      m.Changed.wait(lock, [&m]() { return m.Go; });
+    }
+  });
+  yMeets->SetClientData(&meet);
+  yMeets->SetCallback([](vtkObject* caller, unsigned long, void* client, void*) {
+    auto& m = *static_cast<Meeting*>(client);
+    const double p = static_cast<vtkAlgorithm*>(caller)->GetProgress();
+    if (p > 0.0 && p < 1.0 && !m.YMet)
+    {
+      m.YMet = true;
+      {
+        const std::lock_guard<std::mutex> lock(m.Mutex);
+        m.Go = true;
+      }
+      m.Changed.notify_all();
+      m.X.join();
+    }
+  });
+  x->AddObserver(vtkCommand::ProgressEvent, xWaits);
+  y->AddObserver(vtkCommand::ProgressEvent, yMeets);
+  meet.X = std::thread([&x]() { x->Update(); });
+  {
+    std::unique_lock<std::mutex> lock(meet.Mutex);
+    meet.Changed.wait(lock, [&meet]() { return meet.XInside; });
+  }
+  y->Update();
+  if (meet.X.joinable())
+  {
+    meet.X.join(); // (Y's work had no event within it: the test did not overlap them)
+  }
+  AP_CHECK(meet.YMet);
+  AP_CHECK(vtkSMPTools::GetBackend() == backend);
+  AP_CHECK(vtkSMPTools::GetEstimatedNumberOfThreads() == threads);
+  CheckSameBits(x->GetOutput(), alone, "the update on one thread");
+  CheckSameBits(y->GetOutput(), alone, "the update on two threads");
+}
+
 // Each documented error: a failed update with a message naming the problem.
 void ExpectError(vtkImageData* dem, const Setup& setup, const std::string& expected)
 {
@@ -595,6 +679,7 @@ int TestApertureSkyVisibility(int, char*[])
   TestNodata();
   TestArrayTypesAndUnits();
   TestAbort();
+  TestOverlappingScopes();
   TestErrors();
   return aptest::Result();
 }
