@@ -547,9 +547,10 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
   {
     // GDAL compresses whole tiles on worker threads and writes them in order: same bytes.
     // (0: the cores this process may use, which GDAL's ALL_CPUS does not know in a container
-    // with a CPU quota)
+    // with a CPU quota; they cap larger counts, which GDAL's pool would start and keep)
+    const int cores = vtkApertureCores();
     const std::string threads = std::to_string(
-      this->NumberOfThreads > 0 ? this->NumberOfThreads : vtkApertureCores());
+      this->NumberOfThreads > 0 ? std::min(this->NumberOfThreads, cores) : cores);
     options = CSLSetNameValue(options, "NUM_THREADS", threads.c_str());
   }
   d.Type = anyDouble ? GDT_Float64 : GDT_Float32;

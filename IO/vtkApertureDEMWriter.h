@@ -94,8 +94,9 @@ public:
 
   ///@{
   /** Threads compressing tiles (GDAL's NUM_THREADS): 0 (default) = all the cores this
-   *  process may use (vtkApertureSkyVisibility::GetUsableCores), 1 = on the writing thread
-   *  alone. Negative values are clamped to 0. Has no effect without compression. */
+   *  process may use (vtkApertureSkyVisibility::GetUsableCores), which also cap larger
+   *  values; 1 = on the writing thread alone. Negative values are clamped to 0. Has no effect
+   *  without compression. */
   vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfThreads, int);
   ///@}

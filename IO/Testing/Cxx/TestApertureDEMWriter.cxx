@@ -29,6 +29,7 @@
 #include "vtkTestErrorObserver.h"
 
 #include <cpl_conv.h>
+#include <dirent.h>
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -38,6 +39,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace
@@ -234,6 +236,33 @@ void TestThreadsSameBytes()
   const std::string three = aptest::ReadFileBytes(files[1]);
   AP_CHECK(one.size() > 100000); // compressed, but not to nothing (~1.2 MB of samples)
   AP_CHECK(one == three);
+  {
+    // Counts beyond the cores are capped at them, as for the sky filter and the EXR writer:
+    // until 2026-12-06 GDAL was handed 100000, and its thread pool (which stays for the
+    // process) grew to some 140 threads on two cores. Tiles of 2048^2 cells: 64 to compress.
+    const auto tasks = []() {
+      int n = 0;
+      if (DIR* dir = opendir("/proc/self/task"))
+      {
+        while (const dirent* e = readdir(dir))
+        {
+          n += e->d_name[0] != '.';
+        }
+        closedir(dir);
+      }
+      return n;
+    };
+    const int before = tasks();
+    vtkNew<vtkApertureDEMWriter> writer;
+    writer->SetNumberOfThreads(100000);
+    writer->SetInputData(NoisyImage(2048, 2048, 7u, 1e-6f, "Elevation"));
+    const std::string many = tmp + "/threads-many.tif";
+    writer->SetFileName(many.c_str());
+    writer->SetCompressionLevel(1);
+    AP_CHECK(writer->Write() == 1);
+    const int started = tasks() - before;
+    AP_CHECK(before == 0 || started <= static_cast<int>(std::thread::hardware_concurrency()));
+  }
   GDALDatasetH ds = GDALOpen(files[1].c_str(), GA_ReadOnly);
   AP_CHECK(ds != nullptr);
   if (ds)
