@@ -600,11 +600,13 @@ bool vtkApertureSolarPosition::Compute()
   {
     d.Error = std::string("meridian convergence at the DEM centre: ") + d.Geo->GetErrorMessage();
     vtkErrorMacro(<< d.Error);
+    this->ClearResults(); // (a failed Compute leaves no position behind: all of it or none)
     return false;
   }
   // The light: the beam for the apparent zenith, and the sky for the sun's direction.
   if (!this->ComputeLight(r.distance))
   {
+    this->ClearResults();
     return false;
   }
   d.Error.clear();
@@ -737,6 +739,7 @@ bool vtkApertureSolarPosition::ComputeForDirection(double azimuth, double elevat
   }
   if (!this->ComputeLight(1.0))
   {
+    this->ClearResults();
     return false;
   }
   d.Error.clear();

@@ -168,7 +168,8 @@ public:
   ///@}
 
   /** Compute the position, the day's events and the light. False on bad input (see the class
-   *  notes; also turbidities out of range, or a height outside -1000..10000 m for the light). */
+   *  notes; also turbidities out of range, or a height outside -1000..10000 m for the light),
+   *  every result then NaN (DayKind -1), as before any Compute. */
   bool Compute();
 
   /**

@@ -552,10 +552,15 @@ void TestBadInput()
   sun->SetTurbidity(11.0);
   AP_CHECK(!sun->Compute());
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "the light: Turbidity must be within 2..10, not 11");
+  // (and leaves no results: until 2026-12-06 the position and the day of the failed Compute
+  // were there beside a null direction)
+  AP_CHECK(std::isnan(sun->GetAzimuth()) && std::isnan(sun->GetElevation()));
+  AP_CHECK(sun->GetDayKind() == -1 && std::string(sun->GetSunriseString()).empty());
   sun->SetTurbidity(3.0);
   sun->SetLinkeTurbidity(0.5);
   AP_CHECK(!sun->ComputeForDirection(180.0, 30.0));
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "LinkeTurbidity must be within 1..8, not 0.5");
+  AP_CHECK(std::isnan(sun->GetAzimuth()) && std::isnan(sun->GetElevation()));
   sun->SetLinkeTurbidity(3.0);
   sun->SetHeight(20000.0);
   AP_CHECK(!sun->Compute());
