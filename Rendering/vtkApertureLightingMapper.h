@@ -33,8 +33,9 @@
  * once per render) and the mesh is drawn with VTK's standard lighting instead (documented
  * fallback; never a shader compile failure). NaN arrays (nodata) give black points. A setter
  * given a value outside its documented range (a zero or non-finite sun direction, say) reports
- * an error (vtkErrorMacro) and keeps the previous value; the mode setters take an unknown value
- * as their default (EXACT, CENTROID, PER_FRAGMENT).
+ * an error (vtkErrorMacro) and keeps the previous value, except Exposure, which is clamped to
+ * its range (NaN is refused); the mode setters take an unknown value as their default (EXACT,
+ * CENTROID, PER_FRAGMENT).
  *
  * @sa vtkApertureSolarPosition vtkApertureSkyVisibility vtkApertureTerrainMesh
  */
@@ -142,9 +143,9 @@ public:
   ///@{
   /**
    * Exposure in EV: the radiance is scaled by 2^Exposure before tone mapping (default 0;
-   * clamped to [-30, 30], NaN refused; negative values darken, as on a camera). Tone mapping on (default):
-   * 1 − exp(−x) then sRGB encoding, for 8-bit display; off: the exposed linear value (clipped
-   * at 1 by an 8-bit framebuffer).
+   * clamped to [-30, 30] without an error, NaN refused; negative values darken, as on a
+   * camera). Tone mapping on (default): 1 − exp(−x) then sRGB encoding, for 8-bit display;
+   * off: the exposed linear value (clipped at 1 by an 8-bit framebuffer).
    */
   void SetExposure(double ev);
   double GetExposure() const { return this->Exposure; }
