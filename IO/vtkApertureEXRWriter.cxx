@@ -470,11 +470,16 @@ const char* vtkApertureEXRWriter::GetCompressionAsString()
 //------------------------------------------------------------------------------
 void vtkApertureEXRWriter::AddMetadata(const char* key, const char* value)
 {
-  if (key && *key)
+  const size_t length = key ? std::strlen(key) : 0;
+  if (length == 0 || length > 255)
   {
-    this->Impl->Metadata.emplace_back(key, value ? value : "");
-    this->Modified();
+    // (said here rather than dropped, or refused by OpenEXR at the Write)
+    vtkErrorMacro(<< "AddMetadata: a key has 1 to 255 characters, not " << length
+                  << "; the item is not added");
+    return;
   }
+  this->Impl->Metadata.emplace_back(key, value ? value : "");
+  this->Modified();
 }
 
 //------------------------------------------------------------------------------

@@ -223,9 +223,10 @@ public:
   ///@}
 
   ///@{
-  /** String attributes of the header (key = value), written with the file. Keys are non-empty,
-   *  at most 255 characters, and must not name one of OpenEXR's own attributes (channels,
-   *  compression, dataWindow, ...). */
+  /** String attributes of the header (key = value), written with the file. Keys are non-empty
+   *  and at most 255 characters (another is an error here, and not added), and must not name
+   *  one of OpenEXR's own attributes (channels, compression, dataWindow, ...: the Write fails,
+   *  saying so). */
   void AddMetadata(const char* key, const char* value);
   void ClearMetadata();
   ///@}

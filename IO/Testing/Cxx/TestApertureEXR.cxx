@@ -1215,6 +1215,18 @@ void TestWriterErrors()
     w->SetFileName(path.c_str());
     w->AddArrayName("Vector");
     w->AddMetadata("compression", "none");
+    {
+      // keys OpenEXR cannot take are refused when added (an empty one was dropped silently
+      // until 2026-12-06, and a long one failed the Write with OpenEXR's message)
+      vtkNew<vtkTest::ErrorObserver> added;
+      w->AddObserver(vtkCommand::ErrorEvent, added);
+      w->AddMetadata("", "x");
+      AP_CHECK_CONTAINS(added->GetErrorMessage(), "AddMetadata: a key has 1 to 255 characters, "
+                                                  "not 0; the item is not added");
+      w->AddMetadata(std::string(256, 'k').c_str(), "x");
+      AP_CHECK_CONTAINS(added->GetErrorMessage(), "not 256");
+      w->RemoveObserver(added);
+    }
     ExpectWriterError(w, "OpenEXR failed writing the header of '" + path + "': ");
     const RawImage kept = ReadRaw(path);
     AP_CHECK(kept.Ok && kept.Channels == std::vector<std::string>{ "Elevation" });
