@@ -75,8 +75,15 @@ inline vtkDataArray* vtkApertureElevationArray(
     for (int k = 0; k < n; ++k)
     {
       vtkAbstractArray* other = pd->GetAbstractArray(k);
-      const char* o = other && other->GetName() ? other->GetName() : "";
-      msg << (k ? ", '" : "'") << o << "'";
+      msg << (k ? ", " : "");
+      if (other && other->GetName() && *other->GetName())
+      {
+        msg << "'" << other->GetName() << "'";
+      }
+      else // (not '')
+      {
+        msg << "an unnamed " << (other ? other->GetClassName() : "array");
+      }
     }
     msg << (n ? "); SetElevationArrayName names the one holding elevations in metres" : "");
   }

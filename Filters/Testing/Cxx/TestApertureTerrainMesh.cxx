@@ -680,6 +680,13 @@ void TestErrors()
     "the input has no point array named 'Height' (its point arrays: 'Elevation'); "
     "SetElevationArrayName names the one holding elevations in metres",
     "Height");
+  {
+    // an array without a name is named as such (it read "(its point arrays: '')")
+    auto anonymous = MakeDEM("EPSG:4326", 0, 0, 1, 1, 3, 3, ok);
+    anonymous->GetPointData()->GetArray("Elevation")->SetName(nullptr);
+    ExpectError(anonymous, "the input has no point array named 'Height' (its point arrays: an "
+                           "unnamed vtkFloatArray); SetElevationArrayName", "Height");
+  }
   ExpectError(MakeDEM(nullptr, 0, 0, 1, 1, 3, 3, ok), "has no CRS");
   ExpectError(MakeDEM("EPSG:4326", 0, 0, 1, 1, 1, 5, ok), "at least 2 x 2");
   // a longitude of 1e17 degrees: a cell's 0.001 degree is lost to rounding there, and every
