@@ -527,7 +527,8 @@ class TestCommandLineRender(unittest.TestCase):
         pictures = {}
         with tempfile.TemporaryDirectory() as tmp:
             baked = os.path.join(tmp, "baked.tif")
-            status, _, stderr = run("bake", dem, baked, "-q")
+            status, _, stderr = run("bake", dem, baked, "-q", "--exr",
+                                    os.path.join(tmp, "baked.exr"))
             self.assertEqual(status, 0, stderr)
             for name, extra in (("own", ()), ("baked", ("--baked", baked))):
                 pictures[name] = render_rgb(self, os.path.join(tmp, name + ".png"), *extra)
@@ -578,6 +579,13 @@ class TestCommandLineRender(unittest.TestCase):
                 self.assertEqual(status, 1, stderr)
                 self.assertEqual(len(stderr.strip().splitlines()), 1, stderr)
                 self.assertIn(expected, stderr)
+            # the bake's EXR: said so (GDAL's "not recognized as a supported file format" until
+            # 2026-12-06)
+            status, _, stderr = run("render", "-o", os.path.join(tmp, "x.png"), "--size",
+                                    "200x120", "--baked", os.path.join(tmp, "baked.exr"))
+            self.assertEqual((status, len(stderr.strip().splitlines())), (1, 1), stderr)
+            self.assertIn("baked.exr is an OpenEXR file: --baked takes the GeoTIFF 'aperture "
+                          "bake' writes", stderr)
             # (with the bake's unit the same file is taken)
             status, _, stderr = run("render", "-o", os.path.join(tmp, "x.png"), "--size",
                                     "200x120", "--baked", os.path.join(tmp, "feet.tif"),

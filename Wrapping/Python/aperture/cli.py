@@ -553,6 +553,15 @@ def _gt_text(gt):
     return "none" if gt is None else "(%s)" % ", ".join("%.10g" % v for v in gt)
 
 
+def _is_openexr(path):
+    """Whether the file at `path` starts with OpenEXR's magic number (False if unreadable)."""
+    try:
+        with open(path, "rb") as f:
+            return f.read(4) == b"\x76\x2f\x31\x01"
+    except OSError:
+        return False
+
+
 def _attach_baked(image, path, reader):
     """Put BentNormal and ApertureRadius (radians) from a GeoTIFF of `aperture bake` onto the
     DEM image (read by `reader`); the two grids, bands and elevation units must be the same."""
@@ -562,6 +571,10 @@ def _attach_baked(image, path, reader):
     if kind in ("a pipe", "a socket") and not path.startswith("/vsi"):
         # (as the DEM reader: GDAL's open of a named pipe waits for a writer, for ever)
         raise ApertureError("cannot read the baked file %s: it is %s, not a file" % (path, kind))
+    if os.path.isfile(path) and _is_openexr(path):  # (GDAL has no driver: "not recognized")
+        raise ApertureError("the baked file %s is an OpenEXR file: --baked takes the GeoTIFF "
+                            "'aperture bake' writes (OUT.tif; its --exr is for other tools)"
+                            % path)
     try:
         ds = gdal.Open(path)
         _attach_baked_bands(image, path, ds, reader)
