@@ -277,11 +277,17 @@ bool vtkApertureSolarPosition::SetTime(const char* iso8601)
   ap_status st = ap_time_parse_iso8601(text.c_str(), &parsed);
   if (st != AP_OK)
   {
+    // (two forms ISO 8601 has that are not taken here, said as such)
+    const std::string clock = text.size() > 11 ? text.substr(11) : std::string();
     d.Error = "cannot read the time '" + text + "': " +
       (st == AP_ERR_OUT_OF_RANGE ? std::string("the year is outside -2000..6000")
-                                 : std::string("not a valid ISO 8601 date and time (such as "
-                                               "2026-06-21T14:00+02:00 or 2026-06-21T12:00Z, "
-                                               "or a local time with a time zone)"));
+          : clock.compare(0, 3, "24:") == 0
+          ? std::string("24:00 is not taken: write 00:00 of the next day")
+          : clock.size() >= 8 && clock.compare(5, 3, ":60") == 0
+          ? std::string("a leap second (:60) is not taken: times here are UTC without leap "
+                        "seconds (POSIX time); write :59, or :00 of the next minute")
+          : std::string("not a valid ISO 8601 date and time (such as 2026-06-21T14:00+02:00 or "
+                        "2026-06-21T12:00Z, or a local time with a time zone)"));
     vtkErrorMacro(<< d.Error);
     return false;
   }
@@ -372,6 +378,9 @@ bool vtkApertureSolarPosition::SetTimeZone(const char* name)
       (st == AP_ERR_NOT_FOUND
           ? std::string("unknown (an IANA name such as Europe/Zurich, America/New_York or UTC; "
                         "the zone files come from the tzdata package)")
+          : st == AP_ERR_BAD_FILE && std::strncmp(name, "right/", 6) == 0
+          ? "a zone of tzdata's right/ files, whose clocks count leap seconds: times here are "
+            "UTC without them (POSIX time), as in the zone '" + std::string(name + 6) + "'"
           : std::string(ap_status_string(st)));
     vtkErrorMacro(<< d.Error);
     return false;

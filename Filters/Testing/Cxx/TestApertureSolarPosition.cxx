@@ -312,6 +312,17 @@ void TestTimeZones()
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "unknown");
   AP_CHECK(!sun->SetTimeZone("../../etc/passwd"));
   AP_CHECK(std::string(sun->GetTimeZone()) == "Europe/Zurich"); // kept
+  if (FILE* right = std::fopen("/usr/share/zoneinfo/right/Europe/Zurich", "rb"))
+  {
+    // tzdata's leap-second zones: said why (until 2026-12-06 "the file is corrupt or of an
+    // unknown format"), and which zone to use
+    std::fclose(right);
+    AP_CHECK(!sun->SetTimeZone("right/Europe/Zurich"));
+    AP_CHECK_CONTAINS(sun->GetErrorMessage(),
+      "time zone 'right/Europe/Zurich': a zone of tzdata's right/ files, whose clocks count "
+      "leap seconds: times here are UTC without them (POSIX time), as in the zone "
+      "'Europe/Zurich'");
+  }
   // "" clears the zone, a success: the last failure's message goes with it
   AP_CHECK(sun->SetTimeZone("") && std::string(sun->GetErrorMessage()).empty());
   AP_CHECK(std::string(sun->GetTimeZone()).empty());
@@ -538,6 +549,15 @@ void TestBadInput()
   sun->SetPressure(1013.25);
   AP_CHECK(sun->Compute());
   AP_CHECK(!sun->SetTime("yesterday"));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "not a valid ISO 8601");
+  // forms of ISO 8601 not taken, said as such (until 2026-12-06 "not a valid ISO 8601")
+  AP_CHECK(!sun->SetTime("2026-06-21T24:00Z"));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "cannot read the time '2026-06-21T24:00Z': 24:00 is "
+                                            "not taken: write 00:00 of the next day");
+  AP_CHECK(!sun->SetTime("2016-12-31T23:59:60Z"));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "a leap second (:60) is not taken: times here are "
+                                            "UTC without leap seconds (POSIX time)");
+  AP_CHECK(!sun->SetTime("2016-12-31T23:59:61Z")); // (no such second at all)
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "not a valid ISO 8601");
   AP_CHECK(!sun->SetTime("2026-02-29T12:00Z"));
   AP_CHECK(!sun->SetTime("7000-01-01T00:00Z"));
