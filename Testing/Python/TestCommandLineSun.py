@@ -451,6 +451,24 @@ class CommandLineSunTest(unittest.TestCase):
         elevations = [float(l.split("\t")[3]) for l in lines[1:]]
         self.assertGreater(max(elevations), 65.0)   # noon near the solstice at 47 N
         self.assertLess(min(elevations), -18.0)     # midnight
+        # Local days with --tz: from midnight to midnight, 25 hourly rows on the day New York's
+        # clocks go back (01:00 twice) and 23 on the day they go forward (no 02:00); a day of
+        # 24 hours gave 24 rows on both, ending at 22:00 or at 00:00 of the next day, until
+        # 2026-12-06. Two days across the autumn change: 49 rows.
+        for day, days, rows, clocks in (
+                ("2026-11-01", 1, 25, ["00:00-04:00", "01:00-04:00", "01:00-05:00",
+                                       "23:00-05:00"]),
+                ("2026-03-08", 1, 23, ["00:00-05:00", "01:00-05:00", "03:00-04:00",
+                                       "23:00-04:00"]),
+                ("2026-10-31", 2, 49, ["00:00-04:00", "23:00-05:00"])):
+            status, out, err = run("--at", day + "T00:00", "--tz", "America/New_York", "--lat",
+                                   40.7, "--lon", -74.0, "--days", days, "--step", 60)
+            self.assertEqual(status, 0, err)
+            local = [l.split("\t")[1][11:16] + l.split("\t")[1][19:]
+                     for l in out.strip().splitlines()[1:]]
+            self.assertEqual(len(local), rows, day)
+            self.assertEqual(local[:len(clocks) - 1], clocks[:-1], day)
+            self.assertEqual(local[-1], clocks[-1], day)
         status, out, err = run("--at", "2026-06-21T00:00Z", "--lat", 0, "--lon", 0,
                                "--step", 360, "--json")
         self.assertEqual(status, 0, err)

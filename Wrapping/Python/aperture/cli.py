@@ -1837,12 +1837,16 @@ def cmd_sun(args):
         return 0
 
     # A time series from --at: every --step minutes before --days days have passed (at least
-    # the start). The last time is computed first, so that a series running past the
-    # algorithm's years fails before it prints, and JSON is streamed, as the text is.
+    # the start): local days, to the same clock time N days later, 23 or 25 hours for a day
+    # the clocks change in --tz (a day of 24 hours from local midnight missed 23:00 on the
+    # autumn's, until 2026-12-06). The last time is computed first, so that a series running
+    # past the algorithm's years fails before it prints, and JSON is streamed, as the text is.
     days = args.days or 1
     step = args.step or 60.0
     start = sun.GetUnixTime()
-    count = max(1, int(math.ceil(days * 1440.0 / step - 1e-9)))
+    end = start + days * 86400.0
+    end += sun.GetLocalOffsetAt(start) - sun.GetLocalOffsetAt(end)
+    count = max(1, int(math.ceil((end - start) / (step * 60.0) - 1e-9)))
     compute()  # (the start: any other problem is named as for one time)
     sun.SetUnixTime(start + (count - 1) * step * 60.0)
     if not sun.Compute():
@@ -2024,7 +2028,9 @@ def build_parser():
     p.add_argument("--delta-t", type=float, metavar="S",
                    help="TT - UT1 in seconds (default: estimated for the date)")
     p.add_argument("--days", type=_c_int, metavar="N",
-                   help="a time series from --at over N days (default 1 with --step)")
+                   help="a time series from --at over N days (default 1 with --step): local "
+                        "days with --tz, to the same clock time N days on (23 or 25 hours on "
+                        "a day the clocks change)")
     p.add_argument("--step", type=float, metavar="MIN",
                    help="time-series step in minutes, at least 1/60 (default 60 with --days); "
                         "the series has every step before --days days have passed")
