@@ -933,6 +933,11 @@ int vtkApertureEXRWriter::WriteStrip(vtkImageData* strip)
           }
         }
         this->UpdateProgress(static_cast<double>(first + count) / chunkCount);
+        if (rv == EXR_ERR_SUCCESS && this->GetAbortExecute())
+        {
+          aborted = true; // (asked at this event, the last one too: as the GeoTIFF writer)
+          break;
+        }
       }
     });
   }

@@ -212,7 +212,8 @@ public:
    * - AbandonStrips() removes a file begun, quietly (for a caller that stops early).
    * Each returns 1 on success and 0 after reporting the problem (vtkErrorMacro); after a
    * failure only EndStrips() or AbandonStrips() is useful. Progress events run over the
-   * chunks of `whole`, and AbortExecute is checked after every batch of chunks is compressed.
+   * chunks of `whole`, and AbortExecute is checked after every batch of chunks is compressed
+   * and after each progress event, the last one too (an abort then discards the whole file).
    */
   int BeginStrips(vtkImageData* image, const int whole[6]);
   int WriteStrip(vtkImageData* strip);

@@ -66,13 +66,18 @@ inline vtkSmartPointer<vtkImageData> NoisyImage(
   return image;
 }
 
-// Make `algorithm` abort at its first progress event.
-inline void AbortOnProgress(vtkAlgorithm* algorithm)
+// Make `algorithm` abort at its first progress event (lastOnly: at its last, progress 1).
+inline void AbortOnProgress(vtkAlgorithm* algorithm, bool lastOnly = false)
 {
   vtkNew<vtkCallbackCommand> abort;
-  abort->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
-    static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+  abort->SetCallback([](vtkObject* caller, unsigned long, void* last, void*) {
+    auto* a = static_cast<vtkAlgorithm*>(caller);
+    if (!last || a->GetProgress() >= 1.0)
+    {
+      a->SetAbortExecute(1);
+    }
   });
+  abort->SetClientData(lastOnly ? algorithm : nullptr); // (non-null: at the last event only)
   algorithm->AddObserver(vtkCommand::ProgressEvent, abort);
 }
 }

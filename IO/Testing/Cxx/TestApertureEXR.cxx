@@ -1523,13 +1523,16 @@ void TestStrips()
     AP_CHECK(errors.find("were not written") == std::string::npos);
     AP_CHECK(!Exists(path) && !LeftoverTemporaryFiles("strips-input-failed.exr"));
   }
-  for (int stripRows : { 256, 0 })
+  // aborted at any event, the last one too (as the GeoTIFF writer is; until 2026-12-06 an
+  // abort at the last event went unseen and the file was kept, Write() 1)
+  for (const auto& run : { std::make_pair(256, false), std::make_pair(0, false),
+         std::make_pair(256, true), std::make_pair(0, true) })
   {
     vtkNew<vtkApertureEXRWriter> w;
     w->SetInputConnection(source->GetOutputPort());
     const std::string path = tmp + "/strips-aborted.exr";
-    setup(w, path, "ZIP", stripRows);
-    AbortOnProgress(w);
+    setup(w, path, "ZIP", run.first);
+    AbortOnProgress(w, run.second);
     vtkNew<vtkTest::ErrorObserver> errors;
     w->AddObserver(vtkCommand::ErrorEvent, errors);
     AP_CHECK(w->Write() == 0);
