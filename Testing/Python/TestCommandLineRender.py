@@ -100,6 +100,16 @@ class TestCommandLineRender(unittest.TestCase):
             png_reader.Update()
             shown = vtk_to_numpy(png_reader.GetOutput().GetPointData().GetScalars())
             shown = shown.reshape(160, 240, -1)[:, :, :3].astype(float)
+            # the PNG records what the EXR does of the sun, the time and the exposure, as
+            # text chunks (until 2026-12-06 a time-lapse's frames said nothing of their sun)
+            text = {png_reader.GetTextKey(k): png_reader.GetTextValue(k)
+                    for k in range(png_reader.GetNumberOfTextChunks())}
+            for key in ("aperture:software", "aperture:sun_azimuth_deg",
+                        "aperture:sun_elevation_deg", "aperture:time_utc",
+                        "aperture:display_exposure_ev"):
+                self.assertEqual(text.get(key), reader.GetMetadataValue(key), key)
+            self.assertEqual(text["aperture:time_utc"], "2026-12-21T20:30:00Z")
+            self.assertRegex(text["aperture:sun_azimuth_deg"], r"^2[0-9][0-9]\.[0-9]{6}$")
         terrain = rgba[:, :, :3].sum(axis=2) > 0
         self.assertGreater(terrain.mean(), 0.3)
         self.assertGreater(rgba[:, :, :3][terrain].max(), 1.0)  # radiance, not 8-bit colour

@@ -889,7 +889,8 @@ def cmd_render(args):
                                 multisamples=args.multisamples, camera=args.camera)
         exposure = args.exposure or 0.0
     try:
-        path = scene.write_png(window, args.output, on_warning=_warn)
+        path = scene.write_png(window, args.output, on_warning=_warn,
+                               text=_render_metadata(args, sun, exposure))
     except (OSError, RuntimeError) as e:
         raise ApertureError(str(e))
     print("wrote %s (%d x %d, %s view, sun azimuth %.2f, elevation %.2f deg, exposure %.2f EV)"
@@ -998,11 +999,21 @@ def _albedo_placement_warning(path, bounds, image):
             % (path, bounds[0], bounds[2], bounds[1], bounds[3], dem[0], dem[2], dem[1], dem[3]))
 
 
+def _render_metadata(args, sun, exposure):
+    """What a render's PNG (tEXt) and EXR (header) record: the tool, the sun, the time and
+    the display exposure (EV)."""
+    from aperture import __version__
+    return [("aperture:software", "aperture " + __version__),
+            ("aperture:sun_azimuth_deg", "%.6f" % sun.GetAzimuth()),
+            ("aperture:sun_elevation_deg", "%.6f" % sun.GetElevation()),
+            ("aperture:time_utc", sun.GetTimeString() if args.at else "n/a"),
+            ("aperture:display_exposure_ev", "%.9f" % exposure)]
+
+
 def _write_linear_exr(args, window, mapper, sun, watcher):
     """The picture's linear radiance (no exposure, no tone mapping; W/m2/sr for the aperture
     lighting) read back from a float framebuffer and written as an RGBA OpenEXR."""
     from aperture import vtkApertureEXRWriter, vtkApertureLinearCapture
-    from aperture import __version__
     renderer = window.GetRenderers().GetFirstRenderer()
     background = renderer.GetBackground()
     renderer.SetBackground(0.0, 0.0, 0.0)  # no radiance where there is no terrain
@@ -1026,13 +1037,9 @@ def _write_linear_exr(args, window, mapper, sun, watcher):
     if args.exr_type == "half":
         writer.SetPixelTypeToHalf()
     unit = "W/m^2/sr, linear Rec.709 RGB" if mapper is not None else "VTK lighting, linear"
-    for key, value in (("aperture:software", "aperture " + __version__),
-                       ("aperture:quantity", "outgoing radiance of the terrain, " + unit),
-                       ("aperture:sun_azimuth_deg", "%.6f" % sun.GetAzimuth()),
-                       ("aperture:sun_elevation_deg", "%.6f" % sun.GetElevation()),
-                       ("aperture:time_utc", sun.GetTimeString() if args.at else "n/a"),
-                       ("aperture:display_exposure_ev", "%.9f" % (
-                           mapper.GetExposure() if mapper is not None else 0.0))):
+    metadata = _render_metadata(args, sun, mapper.GetExposure() if mapper is not None else 0.0)
+    metadata.insert(1, ("aperture:quantity", "outgoing radiance of the terrain, " + unit))
+    for key, value in metadata:
         writer.AddMetadata(key, value)
     watcher.write(writer, "writing %s" % args.exr)
     return os.path.abspath(args.exr)

@@ -341,12 +341,15 @@ def rgb_pixels(window, on_warning=None):
     return vtk_to_numpy(image.GetPointData().GetScalars()).reshape(height, width, 3)
 
 
-def write_png(window, path, on_warning=None):
-    """Render and write the window's pixels to a PNG; returns the absolute path. OSError when
-    the file cannot be written; on_warning and RuntimeError as for grab."""
+def write_png(window, path, on_warning=None, text=()):
+    """Render and write the window's pixels to a PNG; returns the absolute path. `text`: (key,
+    value) pairs written as the PNG's tEXt chunks (keys of 1 to 79 Latin-1 characters). OSError
+    when the file cannot be written; on_warning and RuntimeError as for grab."""
     from aperture.errors import native_path
     writer = vtkPNGWriter()
     writer.SetFileName(native_path(path))
+    for key, value in text:
+        writer.AddText(key, value)
     writer.SetInputData(grab(window, on_warning))
     writer.Write()
     if writer.GetErrorCode():
