@@ -931,8 +931,16 @@ int vtkApertureDEMReader::Execute(vtkInformationVector* outputVector)
     ap_grid_stats stats;
     if (ap_grid_stats_compute(&g, &stats) == AP_OK && stats.valid == 0)
     {
-      vtkErrorMacro(<< "every cell of '" << this->FileName << "' band " << d.Band
-                    << " is nodata");
+      // (a window's nodata says nothing of the rest of the file: named so)
+      const int* w = this->SubWindow;
+      std::ostringstream window;
+      if (w[0] || w[1] || w[2] || w[3])
+      {
+        window << "the window (" << w[0] << ", " << w[1] << ", " << w[2] << ", " << w[3]
+               << ") of ";
+      }
+      vtkErrorMacro(<< "every cell of " << window.str() << "'" << this->FileName << "' band "
+                    << d.Band << " is nodata");
       return 0;
     }
   }

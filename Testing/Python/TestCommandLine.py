@@ -678,6 +678,15 @@ class TestBadInput(CommandLineTest):
         for limit in ([], ["--max-memory", "2K"]):
             self.assert_error("every cell of '%s' band 1 is nodata" % empty, "info", empty,
                               *limit)
+        # a window of nodata in a file with data: the window's (until 2026-12-06 the message
+        # said every cell of the file was nodata), read at once or in strips
+        coast = np.full((9, 300), 12.5)
+        coast[:, :100] = -9999.0
+        coast_path = make_raster(self.path("strips-coast.tif"), coast,
+                                 (500000, 30, 0, 4000000, 0, -30), nodata=-9999)
+        for limit in ([], ["--max-memory", "200"]):
+            self.assert_error("every cell of --srcwin 0 0 10 9 of '%s' band 1 is nodata"
+                              % coast_path, "info", coast_path, "--srcwin", 0, 0, 10, 9, *limit)
 
     def test_progress_on_a_terminal(self):
         # GDAL's progress line on stderr, when it is a terminal and the DEM is read in more

@@ -721,6 +721,19 @@ void TestBadInput()
   AP_CHECK(aptest::WriteRaster(tmp + "/allnodata.tif", empty));
   ExpectError(tmp + "/allnodata.tif", "is nodata");
   {
+    // a window of nodata in a raster with data: the window's message (until 2026-12-06 the
+    // whole file's, "every cell of 'coast.tif' band 1 is nodata")
+    aptest::RasterSpec coast;
+    coast.nx = 8;
+    coast.hasNoData = true;
+    coast.noData = -1.0;
+    coast.raw = [](int, int c, int) { return c < 4 ? -1.0 : 25.0; };
+    AP_CHECK(aptest::WriteRaster(tmp + "/coast.tif", coast));
+    ExpectError(tmp + "/coast.tif",
+      "every cell of the window (0, 0, 3, 3) of '" + tmp + "/coast.tif' band 1 is nodata",
+      [](vtkApertureDEMReader* r) { r->SetSubWindow(0, 0, 3, 3); });
+  }
+  {
     // A piece of an all-nodata raster is not an error by itself (streaming).
     Read piece(tmp + "/allnodata.tif");
     piece.Reader->UpdateInformation();

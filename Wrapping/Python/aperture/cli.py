@@ -429,8 +429,10 @@ def elevation_statistics(reader, watcher, whole, strip_bytes, progress=None):
         if progress:
             progress((whole[3] - bottom + 1) / ny)
     if not low <= high:  # (the reader's message, which reads it at once)
-        raise ApertureError("every cell of '%s' band %d is nodata"
-                            % (os.fsdecode(reader.GetFileName()), reader.GetBandRead()))
+        window = reader.GetSubWindow()
+        raise ApertureError("every cell of %s'%s' band %d is nodata" % (
+            "--srcwin %d %d %d %d of " % tuple(window) if any(window) else "",
+            os.fsdecode(reader.GetFileName()), reader.GetBandRead()))
     return [low, high], nodata_count
 
 
