@@ -24,7 +24,9 @@
  * - `PositiveOpenness`: Yokoyama et al. (2002), the mean zenith angle of the terrain horizon
  *   (rad);
  * - `EdgeTruncated`: 1 where in some sector the DEM ends closer than the search limit
- *   (unsigned char);
+ *   (unsigned char); the DEM's edge only: nodata within the limit (a void, the nodata margin
+ *   of a rotated raster, a coastline) hides the terrain behind it just as the edge does, but
+ *   does not set the flag;
  * - `HorizonAngles` (optional): D components, the terrain horizon elevation per sector (rad),
  *   components named by azimuth ("az011.25").
  *

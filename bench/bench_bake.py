@@ -36,8 +36,10 @@ On each of these DEMs the contenders run in the order ours, ours on SAGA's job, 
 GRASS, SAGA, ours on SAGA's job, ours (--comparison-repeats 2, the default), so that a drift of
 the VM's speed during the comparison weighs on all of them alike; the table gives each
 contender's mean and a note every run. "Ours on SAGA's job" is the same command with
-`--products SkyViewFactor`: the one band SAGA's run writes, where ours writes nine bands by
-default; SAGA's speed-up is given against both.
+`--products DiffuseSkyFactor`: the one band SAGA's run writes (its "Sky View Factor" weighs by
+the cell's slope, Haentzschel et al. 2005, as DiffuseSkyFactor does; runs before 2026-12-06
+baked SkyViewFactor, which takes the same time), where ours writes nine bands by default;
+SAGA's speed-up is given against both.
 
 Missing peers (Debian packages saga, grass-core) and GNU time are installed with apt-get
 first (as root, or through sudo) unless --no-install.
@@ -85,7 +87,7 @@ BIGTUJUNGA = os.path.join(REPO, "..", "shared", "data", "dem", "bigtujunga_srtm1
 LATLON = os.path.join(REPO, "..", "shared", "data", "dem", "white_mountains_N44W072_srtm3_geo.tif")
 UTM16N = 32616
 # SAGA's job for ours: the one product SAGA's runs write (SAGA_JOB_LABEL's table rows)
-SAGA_JOB = ("--products", "SkyViewFactor")
+SAGA_JOB = ("--products", "DiffuseSkyFactor")
 SAGA_JOB_LABEL = "ours, SAGA's output only"
 # messages that mean "this CLI has no such command/option yet", as opposed to a failed run
 NOT_AVAILABLE = ("invalid choice", "unrecognized arguments", "No such file or directory",
@@ -791,8 +793,9 @@ def main():
         # contender alike; each is reported with the mean of its runs
         contenders = ([] if args.no_ours else [("ours", None, None)]) + peers
         if not args.no_ours and any(name == "saga" for name, _, _ in peers):
-            # SAGA's job: its one output, SkyViewFactor, as one band (ours writes nine by
-            # default), so the speed-up over SAGA is also measured on the same work
+            # SAGA's job: its one output, a slope-weighted sky view (DiffuseSkyFactor), as one
+            # band (ours writes nine by default), so the speed-up over SAGA is also measured on
+            # the same work
             contenders.insert(1, ("ours-svf", None, None))
         order = contenders + (contenders[::-1] if args.comparison_repeats > 1 else [])
         runs = {}

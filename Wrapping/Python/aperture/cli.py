@@ -1072,7 +1072,8 @@ PRODUCTS = [
     ("EdgeTruncated", "1",
      "1 where in some sector the DEM ends closer than the search limit (the radius; without "
      "one, with curvature, where terrain no higher than the DEM's top could rise above the "
-     "horizontal); PositiveOpenness may also differ near the edge on unflagged cells"),
+     "horizontal); PositiveOpenness may also differ near the edge on unflagged cells; nodata, "
+     "which hides the terrain behind it as the edge does, does not set it"),
     ("HorizonAngles", "degree",
      "terrain horizon elevation per azimuth sector (band name: true azimuth of the sector "
      "centre, clockwise from north)"),
