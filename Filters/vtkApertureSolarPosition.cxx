@@ -33,10 +33,19 @@ namespace
 const double kDeg = 3.14159265358979323846 / 180.0;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// (seconds beyond +-2^62, NaN among them, go to +-2^62, far past the years any consumer takes:
+// converting a double beyond int64_t's range is undefined behaviour)
 ap_instant ToInstant(double seconds)
 {
+  const double limit = 4611686018427387904.0; // 2^62
   ap_instant t;
   const double whole = std::floor(seconds);
+  if (!(std::fabs(whole) <= limit))
+  {
+    t.unix_seconds = static_cast<int64_t>(whole > 0.0 ? limit : -limit);
+    t.fraction = 0.0;
+    return t;
+  }
   t.unix_seconds = static_cast<int64_t>(whole);
   t.fraction = seconds - whole;
   return t;

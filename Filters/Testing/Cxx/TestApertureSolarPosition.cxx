@@ -562,6 +562,15 @@ void TestBadInput()
   AP_CHECK(!sun->SetTime("2026-02-29T12:00Z"));
   AP_CHECK(!sun->SetTime("7000-01-01T00:00Z"));
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "-2000..6000");
+  // instants beyond int64_t's seconds: no time to write, and an error (their conversion was
+  // undefined behaviour until 2026-12-06, found by -fsanitize=float-cast-overflow)
+  for (double t : { 1e300, -1e300, 9.3e18, -9.3e18 })
+  {
+    sun->SetUnixTime(t);
+    AP_CHECK(std::string(sun->GetTimeString()).empty());
+    AP_CHECK(!sun->Compute());
+    AP_CHECK_CONTAINS(sun->GetErrorMessage(), "is outside the years the algorithm covers");
+  }
   sun->SetUnixTime(1e15); // far beyond the year 6000
   AP_CHECK(!sun->Compute());
   // 1e15 s / 31556952 s per mean Gregorian year = 31688738 years after 1970
