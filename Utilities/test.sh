@@ -19,7 +19,7 @@ if [ "${APERTURE_SKIP_SANITIZERS:-0}" != 1 ]; then
   echo "== AddressSanitizer + UndefinedBehaviorSanitizer build in $san_dir"
   cmake -S "$source_dir" -B "$san_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DPython3_EXECUTABLE=/usr/bin/python3 -DAPERTURE_WERROR=ON \
-    -DAPERTURE_SANITIZE=address,undefined
+    -DAPERTURE_SANITIZE=address,undefined,float-cast-overflow
   cmake --build "$san_dir" -j "$(nproc)"
   ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1" \
   LSAN_OPTIONS="suppressions=$source_dir/Utilities/lsan.supp:print_suppressions=0" \

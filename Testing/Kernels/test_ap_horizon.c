@@ -469,7 +469,8 @@ static void test_curvature(void)
  * noise, heights in metres. */
 static double rough(double x, double y)
 {
-  unsigned h = (unsigned)(x * 73856093.0) ^ (unsigned)(y * 19349663.0);
+  /* (through int64_t: a double beyond unsigned's range does not convert to it) */
+  unsigned h = (unsigned)(int64_t)(x * 73856093.0) ^ (unsigned)(int64_t)(y * 19349663.0);
   h = (h ^ (h >> 13)) * 1274126177u;
   return 300 * sin(x / 900) * cos(y / 700) + 120 * sin(x / 230 + 1.3) * sin(y / 310) +
          40 * cos(x / 70 - y / 90) + 6.0 * ((double)(h & 1023u) / 1023.0 - 0.5);
