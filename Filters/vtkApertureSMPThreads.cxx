@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkApertureSMPThreads.h"
 
-std::mutex& vtkApertureSMPScopeMutex()
+std::recursive_mutex& vtkApertureSMPScopeMutex()
 {
-  static std::mutex scopes;
+  static std::recursive_mutex scopes;
   return scopes;
 }

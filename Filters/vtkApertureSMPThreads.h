@@ -40,8 +40,10 @@ inline vtkSMPTools::Config vtkApertureSMPConfig(int requested)
 }
 
 /** The one lock of the process's Aperture SMP scopes (vtkApertureSMPScope): one for the
- *  filters and the writers alike, in the Filters library. */
-APERTUREFILTERS_EXPORT std::mutex& vtkApertureSMPScopeMutex();
+ *  filters and the writers alike, in the Filters library. Recursive: a progress observer
+ *  within a scope may update another filter on the same thread, whose scope nests (and
+ *  restores in order); try_lock of a plain mutex its thread holds is undefined behaviour. */
+APERTUREFILTERS_EXPORT std::recursive_mutex& vtkApertureSMPScopeMutex();
 
 /** f() within vtkSMPTools::LocalScope(config) when no other Aperture scope is running in the
  *  process, else within the configuration in force. LocalScope sets the process-wide SMP
@@ -52,7 +54,7 @@ APERTUREFILTERS_EXPORT std::mutex& vtkApertureSMPScopeMutex();
 template <typename F>
 void vtkApertureSMPScope(const vtkSMPTools::Config& config, F&& f)
 {
-  std::unique_lock<std::mutex> lock(vtkApertureSMPScopeMutex(), std::try_to_lock);
+  std::unique_lock<std::recursive_mutex> lock(vtkApertureSMPScopeMutex(), std::try_to_lock);
   if (lock.owns_lock())
   {
     vtkSMPTools::LocalScope(config, std::forward<F>(f));

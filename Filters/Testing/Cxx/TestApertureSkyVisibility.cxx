@@ -582,6 +582,34 @@ void TestOverlappingScopes()
   AP_CHECK(vtkSMPTools::GetEstimatedNumberOfThreads() == threads);
   CheckSameBits(x->GetOutput(), alone, "the update on one thread");
   CheckSameBits(y->GetOutput(), alone, "the update on two threads");
+
+  // An update within another's progress event, on the same thread: its scope nests and is
+  // undone first, as LocalScope's own nesting is.
+  vtkNew<vtkApertureSkyVisibility> outer, inner;
+  for (vtkApertureSkyVisibility* s : { outer.GetPointer(), inner.GetPointer() })
+  {
+    setup(s);
+    s->SetInputData(dem);
+  }
+  outer->SetNumberOfThreads(2);
+  inner->SetNumberOfThreads(1);
+  vtkNew<vtkCallbackCommand> nests;
+  nests->SetClientData(inner.GetPointer());
+  nests->SetCallback([](vtkObject* caller, unsigned long, void* client, void*) {
+    const double p = static_cast<vtkAlgorithm*>(caller)->GetProgress();
+    auto* in = static_cast<vtkApertureSkyVisibility*>(client);
+    if (p > 0.0 && p < 1.0 && in->GetNumberOfThreadsUsed() == 0)
+    {
+      in->Update();
+    }
+  });
+  outer->AddObserver(vtkCommand::ProgressEvent, nests);
+  outer->Update();
+  AP_CHECK(inner->GetNumberOfThreadsUsed() == 1);
+  AP_CHECK(vtkSMPTools::GetBackend() == backend);
+  AP_CHECK(vtkSMPTools::GetEstimatedNumberOfThreads() == threads);
+  CheckSameBits(outer->GetOutput(), alone, "the outer update");
+  CheckSameBits(inner->GetOutput(), alone, "the update nested in its progress event");
 }
 
 // Each documented error: a failed update with a message naming the problem.
