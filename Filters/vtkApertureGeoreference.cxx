@@ -804,6 +804,9 @@ bool vtkApertureGeoreference::CheckLongitudeSpan()
 bool vtkApertureGeoreference::GetBoundsLonLat(double bounds[4])
 {
   Internals& d = *this->Impl;
+  // (NaN unless they are found: a failure beyond a pole left its degrees there, which read as
+  // bounds)
+  std::fill(bounds, bounds + 4, std::numeric_limits<double>::quiet_NaN());
   if (!this->CheckGrid() || !this->CheckLongitudeSpan())
   {
     return false;
@@ -837,6 +840,7 @@ bool vtkApertureGeoreference::GetBoundsLonLat(double bounds[4])
           << bounds[k] << ", beyond the " << (bounds[k] < 0.0 ? "south" : "north")
           << " pole: a wrong origin, cell size or unit?";
       d.Error = msg.str();
+      std::fill(bounds, bounds + 4, std::numeric_limits<double>::quiet_NaN());
       return false;
     }
   }

@@ -214,7 +214,8 @@ public:
    * Geographic bounds of the grid's outer edges (cell edges, not centres): west, south, east,
    * north, degrees. For a projected CRS the edges are densified (21 points each), so curved
    * edges are bounded correctly. A geographic grid's longitudes are its own (a 0..360 grid's
-   * east half beyond 180); one whose edge lies beyond a pole is an error.
+   * east half beyond 180); one whose edge lies beyond a pole is an error. On false, bounds
+   * are NaN.
    */
   bool GetBoundsLonLat(double bounds[4]);
 

@@ -329,6 +329,9 @@ void TestRowSizesAtPole()
   AP_CHECK(!geo->GetBoundsLonLat(bounds));
   AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
     "the grid's north edge is at latitude 90.05, beyond the north pole");
+  // (and no bounds left behind: they were the degrees beyond the pole until 2026-12-06)
+  AP_CHECK(std::isnan(bounds[0]) && std::isnan(bounds[1]) && std::isnan(bounds[2]) &&
+    std::isnan(bounds[3]));
   geo->SetGrid(-175.5, 88.025, 9.0, cell, 40, 40);
   AP_CHECK(geo->GetBoundsLonLat(bounds));
   AP_CHECK_NEAR(bounds[3], 90.0, 1e-9);
