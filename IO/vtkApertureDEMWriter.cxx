@@ -332,6 +332,7 @@ int vtkApertureDEMWriter::BeginStrips(vtkImageData* image, const int whole[6])
   }
   this->Impl->NextRow = whole[3];
   this->Impl->Failed = false;
+  this->UpdateProgress(0.0); // (progress starts at 0, as a whole write's does)
   return 1;
 }
 

@@ -834,6 +834,7 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
   std::copy(whole, whole + 6, d.Whole);
   d.NextRow = whole[3];
   d.ZipLevel = this->Compression == ZIP || this->Compression == ZIPS ? this->CompressionLevel : 0;
+  this->UpdateProgress(0.0); // (progress starts at 0, as a whole write's does)
   return 1;
 }
 

@@ -66,6 +66,25 @@ inline vtkSmartPointer<vtkImageData> NoisyImage(
   return image;
 }
 
+// Append each progress value `algorithm` reports to *values.
+inline void RecordProgress(vtkAlgorithm* algorithm, std::vector<double>* values)
+{
+  vtkNew<vtkCallbackCommand> record;
+  record->SetClientData(values);
+  record->SetCallback([](vtkObject* caller, unsigned long, void* client, void*) {
+    static_cast<std::vector<double>*>(client)->push_back(
+      static_cast<vtkAlgorithm*>(caller)->GetProgress());
+  });
+  algorithm->AddObserver(vtkCommand::ProgressEvent, record);
+}
+
+// Whether progress `values` run from 0 to 1 without going back.
+inline bool ProgressFromZeroToOne(const std::vector<double>& values)
+{
+  return !values.empty() && values.front() == 0.0 && values.back() == 1.0 &&
+    std::is_sorted(values.begin(), values.end());
+}
+
 // Make `algorithm` abort at its first progress event (lastOnly: at its last, progress 1).
 inline void AbortOnProgress(vtkAlgorithm* algorithm, bool lastOnly = false)
 {

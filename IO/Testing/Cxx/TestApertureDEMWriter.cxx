@@ -399,7 +399,10 @@ void TestStrips()
     setup(w, tmp + "/strips.tif", 1);
     AP_CHECK(w->GetStripRows() == 1);
     AP_CHECK(vtkApertureDEMWriter::GetTileSize() == 256); // (the strips asked below)
+    std::vector<double> progress; // (from 0, as a whole write's; it began after a strip)
+    RecordProgress(w, &progress);
     AP_CHECK(w->Write() == 1);
+    AP_CHECK(ProgressFromZeroToOne(progress));
     const std::vector<std::vector<int>> asked = { { 0, 599, 264, 519, 0, 0 },
       { 0, 599, 8, 263, 0, 0 }, { 0, 599, 0, 7, 0, 0 } };
     AP_CHECK(source->Requests == asked);

@@ -1424,7 +1424,10 @@ void TestStrips()
       vtkNew<vtkApertureEXRWriter> w;
       w->SetInputConnection(source->GetOutputPort());
       setup(w, path, compression, rows);
+      std::vector<double> progress; // (from 0, as a whole write's; it began after a strip)
+      RecordProgress(w, &progress);
       AP_CHECK(w->Write() == 1);
+      AP_CHECK(ProgressFromZeroToOne(progress));
       const int step = rows == 1 ? 32 : 128;
       AP_CHECK(source->Requests.size() == static_cast<size_t>((ny + step - 1) / step));
       AP_CHECK(
