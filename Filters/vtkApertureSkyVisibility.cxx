@@ -966,10 +966,12 @@ int vtkApertureSkyVisibility::Execute(
     return 0;
   }
   bool allNodata = range.valid == 0;
-  if (!allNodata && !whole && this->MaximumDistance > 0)
+  if (!allNodata && !whole && this->MaximumDistance > 0 && NodataWithin(z.get(), inExt, outExt))
   {
     // An input holding more than this update reads (an image given whole with SetInputData):
-    // judged, as a piece read with its halo is, by the extent and its halo alone.
+    // judged, as a piece read with its halo is, by the extent and its halo alone. (Only when
+    // the extent itself has no data: else neither has, and its halo is not measured again for
+    // every strip of a streamed bake.)
     int part[6];
     InputExtentOf(geo, wholeExt, this->MaximumDistance, outExt, part);
     for (int k = 0; k < 6; k += 2)

@@ -530,8 +530,10 @@ class TestSkyVisibility(Testing.vtkTest):
             for floats, coast in ((False, coast), (True, coast), (False, image)):
                 whole, nodata, errors = run(coast, (0, 69, 0, 59, 0, 0), floats=floats)
                 self.assertEqual((nodata, errors), (False, []))
+                # (rows 30-38: nodata, their halo of 12 rows not: the halo decides)
                 for extent, expected in (((0, 69, 0, 20, 0, 0), True),
                                          ((0, 69, 21, 40, 0, 0), False),
+                                         ((0, 69, 30, 38, 0, 0), False),
                                          ((5, 30, 3, 15, 0, 0), True)):
                     got, nodata, errors = run(coast, extent, floats=floats)
                     self.assertEqual((nodata, errors), (expected, []), extent)
