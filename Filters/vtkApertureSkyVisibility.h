@@ -78,9 +78,9 @@
  * columns either way; a sub-extent whose halo crosses it reads every column); the products do
  * not depend on where the grid's seam lies, except in rows where the search reaches farther
  * than half the parallel's circumference (within about a degree of a pole), where a ray along
- * the parallel would circle the pole and stops where the seam's copy ends. (The sweep's copy of the elevations and its state
- * then cover those columns too, GetWrapColumns on each side: up to twice the DEM's without a
- * distance.)
+ * the parallel would circle the pole and stops where the seam's copy ends. (The sweep's copy
+ * of the elevations and its state then cover those columns too, GetWrapColumns on each side:
+ * up to twice the DEM's without a distance.)
  * PositiveOpenness and HorizonAngles below the horizontal may differ near the edge on
  * unflagged cells too (a sector whose ray leaves the DEM at once has horizon -90 degrees).
  * Nodata (NaN, and any elevation that is not finite, as vtkApertureDEMReader makes it) never
@@ -269,8 +269,9 @@ public:
    *  EstimateBytes(nx * ny) against MemoryLimit, or (MemoryLimit 0) against GetUsableMemory() less
    *  `held` bytes, what the input occupies (4 x nx x ny for float elevations not yet read; when
    *  that alone exceeds the memory, the text says so; an update passes its input's bytes, or
-   *  0 under an address-space limit, which leaves GetUsableMemory() beside them). The update refuses with this text and
-   *  advice; a caller can ask before reading a DEM and add its own advice. */
+   *  0 under an address-space limit, which leaves GetUsableMemory() beside them). The update
+   *  refuses with this text and advice; a caller can ask before reading a DEM and add its own
+   *  advice. */
   std::string CheckMemory(int nx, int ny, double held) const;
 
   /** The same for an update extent of outNx x outNy cells whose input (the extent with its

@@ -255,7 +255,8 @@ struct vtkApertureSolarPosition::Internals
   int32_t DayOffset(double t) const
   {
     ap_tz_info info;
-    // (|t| < 2^62: ToInstant's conversion to int64 is defined)
+    // (a non-finite instant, or one beyond any zone's years, which ToInstant would take to
+    // +-2^62: the fallback below)
     if (this->Zone && std::fabs(t) < 4.6e18 &&
       ap_tz_lookup(this->Zone.get(), ToInstant(t), &info) == AP_OK)
     {
