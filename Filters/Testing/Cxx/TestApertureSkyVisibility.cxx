@@ -528,14 +528,22 @@ void TestOverlappingScopes()
   } meet;
   // X waits in its first progress event within its parallel work (0 < p < 1) until Y is
   // within its own; Y lets X go and waits for X to finish.
-  vtkNew<vtkApertureSkyVisibility> x, y;
-  for (vtkApertureSkyVisibility* s : { x.GetPointer(), y.GetPointer() })
-  {
+  const auto prepare = [&](vtkApertureSkyVisibility* s, int threadCount) {
     setup(s);
     s->SetInputData(dem);
-  }
-  x->SetNumberOfThreads(1);
-  y->SetNumberOfThreads(2);
+    s->SetNumberOfThreads(threadCount);
+  };
+  // the process's configuration as before, and both results the lone update's
+  const auto restoredAndSame = [&](vtkApertureSkyVisibility* a, const char* aWhat,
+                                 vtkApertureSkyVisibility* b, const char* bWhat) {
+    AP_CHECK(vtkSMPTools::GetBackend() == backend);
+    AP_CHECK(vtkSMPTools::GetEstimatedNumberOfThreads() == threads);
+    CheckSameBits(a->GetOutput(), alone, aWhat);
+    CheckSameBits(b->GetOutput(), alone, bWhat);
+  };
+  vtkNew<vtkApertureSkyVisibility> x, y;
+  prepare(x, 1);
+  prepare(y, 2);
   vtkNew<vtkCallbackCommand> xWaits, yMeets;
   xWaits->SetClientData(&meet);
   xWaits->SetCallback([](vtkObject* caller, unsigned long, void* client, void*) {
@@ -578,21 +586,13 @@ void TestOverlappingScopes()
     meet.X.join(); // (Y's work had no event within it: the test did not overlap them)
   }
   AP_CHECK(meet.YMet);
-  AP_CHECK(vtkSMPTools::GetBackend() == backend);
-  AP_CHECK(vtkSMPTools::GetEstimatedNumberOfThreads() == threads);
-  CheckSameBits(x->GetOutput(), alone, "the update on one thread");
-  CheckSameBits(y->GetOutput(), alone, "the update on two threads");
+  restoredAndSame(x, "the update on one thread", y, "the update on two threads");
 
   // An update within another's progress event, on the same thread: its scope nests and is
   // undone first, as LocalScope's own nesting is.
   vtkNew<vtkApertureSkyVisibility> outer, inner;
-  for (vtkApertureSkyVisibility* s : { outer.GetPointer(), inner.GetPointer() })
-  {
-    setup(s);
-    s->SetInputData(dem);
-  }
-  outer->SetNumberOfThreads(2);
-  inner->SetNumberOfThreads(1);
+  prepare(outer, 2);
+  prepare(inner, 1);
   vtkNew<vtkCallbackCommand> nests;
   nests->SetClientData(inner.GetPointer());
   nests->SetCallback([](vtkObject* caller, unsigned long, void* client, void*) {
@@ -606,10 +606,7 @@ void TestOverlappingScopes()
   outer->AddObserver(vtkCommand::ProgressEvent, nests);
   outer->Update();
   AP_CHECK(inner->GetNumberOfThreadsUsed() == 1);
-  AP_CHECK(vtkSMPTools::GetBackend() == backend);
-  AP_CHECK(vtkSMPTools::GetEstimatedNumberOfThreads() == threads);
-  CheckSameBits(outer->GetOutput(), alone, "the outer update");
-  CheckSameBits(inner->GetOutput(), alone, "the update nested in its progress event");
+  restoredAndSame(outer, "the outer update", inner, "the update nested in its progress event");
 }
 
 // Each documented error: a failed update with a message naming the problem.
