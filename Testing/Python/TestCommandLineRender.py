@@ -120,6 +120,47 @@ class TestCommandLineRender(unittest.TestCase):
         self.assertLessEqual(diff.max(), 1.0)
         self.assertGreater(np.mean(diff == 0), 0.95)
 
+    def test_exr_standard_lighting(self):
+        # With VTK's own lighting too the EXR holds the light before the exposure, and it and
+        # the PNG record the exposure given. Until 2026-12-06 that EXR was scaled by 2^EV and
+        # said 0 EV, while its PNG said 2.
+        import numpy as np
+        import aperture
+        common = ("--lighting", "standard", "--size", "160x120", "--view", "top",
+                  "--sun-az", "225", "--sun-el", "30", "--multisamples", "0")
+        with tempfile.TemporaryDirectory() as tmp:
+            pictures = {}
+            for ev in ("0", "1"):
+                png, exr = (os.path.join(tmp, ev + ext) for ext in (".png", ".exr"))
+                status, _, stderr = run("render", "-o", png, "--exr", exr, "--exposure", ev,
+                                        *common)
+                self.assertEqual(status, 0, stderr)
+                reader = aperture.vtkApertureEXRReader()
+                reader.SetFileName(exr)
+                reader.Update()
+                self.assertEqual(reader.GetMetadataValue("aperture:display_exposure_ev"),
+                                 "%.9f" % float(ev))
+                self.assertIn("VTK lighting", reader.GetMetadataValue("aperture:quantity"))
+                png_reader = vtkPNGReader()
+                png_reader.SetFileName(png)
+                png_reader.Update()
+                text = {png_reader.GetTextKey(k): png_reader.GetTextValue(k)
+                        for k in range(png_reader.GetNumberOfTextChunks())}
+                self.assertEqual(text["aperture:display_exposure_ev"], "%.9f" % float(ev))
+                rgba = vtk_to_numpy(reader.GetOutput().GetPointData().GetArray("RGBA"))
+                shown = vtk_to_numpy(png_reader.GetOutput().GetPointData().GetScalars())
+                pictures[ev] = (rgba.reshape(120, 160, 4)[:, :, :3].astype(float),
+                                shown.reshape(120, 160, -1)[:, :, :3].astype(float))
+        linear, shown = pictures["1"]
+        terrain = linear.sum(axis=2) > 0
+        self.assertGreater(terrain.mean(), 0.3)
+        # the same light whatever the exposure (the EXR's floats, read back from one drawing)
+        self.assertLess(np.abs(linear - pictures["0"][0]).max(), 1e-6)
+        # the PNG: the light doubled, clamped, in 8 bits (no tone mapping in VTK's lighting)
+        expected = np.round(255.0 * np.minimum(1.0, 2.0 * linear))
+        self.assertLessEqual(np.abs(expected - shown)[terrain].max(), 1.0)
+        self.assertGreater(np.abs(pictures["0"][1] - shown)[terrain].max(), 20.0)
+
     def test_bad_options(self):
         with tempfile.TemporaryDirectory() as tmp:
             pipe = os.path.join(tmp, "baked.tif")  # (GDAL's open of it waited for ever)

@@ -889,7 +889,8 @@ def cmd_render(args):
                                 light_azimuth=sun.GetAzimuth(),
                                 light_elevation=sun.GetElevation(), exposure=args.exposure or 0.0,
                                 multisamples=args.multisamples, camera=args.camera)
-        exposure = args.exposure or 0.0
+        mapper = window.GetRenderers().GetFirstRenderer().GetActors().GetLastActor().GetMapper()
+        exposure = mapper.GetExposure()
     try:
         path = scene.write_png(window, args.output, on_warning=_warn,
                                text=_render_metadata(args, sun, exposure))
@@ -899,8 +900,7 @@ def cmd_render(args):
           % (path, args.size[0], args.size[1], args.view, sun.GetAzimuth(), sun.GetElevation(),
              exposure))
     if args.exr:
-        exr_path = _write_linear_exr(args, window, mapper if args.lighting == "aperture" else None,
-                                     sun, watcher)
+        exr_path = _write_linear_exr(args, window, mapper, sun, watcher)
         print("wrote %s (linear radiance, W/m2/sr, %s)" % (exr_path, args.exr_type))
     return 0
 
@@ -1014,20 +1014,20 @@ def _render_metadata(args, sun, exposure):
 
 def _write_linear_exr(args, window, mapper, sun, watcher):
     """The picture's linear radiance (no exposure, no tone mapping; W/m2/sr for the aperture
-    lighting) read back from a float framebuffer and written as an RGBA OpenEXR."""
+    lighting) read back from a float framebuffer and written as an RGBA OpenEXR; `mapper` is
+    the picture's vtkApertureLightingMapper, of either lighting model (both scale by their
+    exposure, which is taken off for the capture and recorded in the header)."""
     from aperture import vtkApertureEXRWriter, vtkApertureLinearCapture
     renderer = window.GetRenderers().GetFirstRenderer()
     background = renderer.GetBackground()
     renderer.SetBackground(0.0, 0.0, 0.0)  # no radiance where there is no terrain
     window.SetMultiSamples(0)
-    if mapper is not None:
-        saved = (mapper.GetExposure(), mapper.GetToneMapping())
-        mapper.SetExposure(0.0)
-        mapper.SetToneMapping(False)
+    saved = (mapper.GetExposure(), mapper.GetToneMapping())
+    mapper.SetExposure(0.0)
+    mapper.SetToneMapping(False)
     image = vtkApertureLinearCapture().Capture(renderer)
-    if mapper is not None:
-        mapper.SetExposure(saved[0])
-        mapper.SetToneMapping(saved[1])
+    mapper.SetExposure(saved[0])
+    mapper.SetToneMapping(saved[1])
     renderer.SetBackground(*background)
     if image is None:
         raise ApertureError("could not read the float framebuffer back for %s" % args.exr)
@@ -1038,8 +1038,9 @@ def _write_linear_exr(args, window, mapper, sun, watcher):
     writer.AddArrayName("Radiance")
     if args.exr_type == "half":
         writer.SetPixelTypeToHalf()
-    unit = "W/m^2/sr, linear Rec.709 RGB" if mapper is not None else "VTK lighting, linear"
-    metadata = _render_metadata(args, sun, mapper.GetExposure() if mapper is not None else 0.0)
+    unit = ("W/m^2/sr, linear Rec.709 RGB" if args.lighting == "aperture"
+            else "VTK lighting, linear")
+    metadata = _render_metadata(args, sun, mapper.GetExposure())
     metadata.insert(1, ("aperture:quantity", "outgoing radiance of the terrain, " + unit))
     for key, value in metadata:
         writer.AddMetadata(key, value)
