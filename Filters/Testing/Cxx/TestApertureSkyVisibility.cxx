@@ -604,8 +604,24 @@ void TestOverlappingScopes()
     }
   });
   outer->AddObserver(vtkCommand::ProgressEvent, nests);
+  // The inner update runs in its own scope, on the Sequential backend of its one thread, not
+  // in the outer's (STDThread on two: with a plain mutex its try_lock said busy, and the
+  // update ran in the outer's scope; GetNumberOfThreadsUsed, capped at 1, hid it).
+  std::string innerBackend;
+  vtkNew<vtkCallbackCommand> innerSees;
+  innerSees->SetClientData(&innerBackend);
+  innerSees->SetCallback([](vtkObject* caller, unsigned long, void* client, void*) {
+    const double p = static_cast<vtkAlgorithm*>(caller)->GetProgress();
+    auto& seen = *static_cast<std::string*>(client);
+    if (p > 0.0 && p < 1.0 && seen.empty())
+    {
+      seen = vtkSMPTools::GetBackend();
+    }
+  });
+  inner->AddObserver(vtkCommand::ProgressEvent, innerSees);
   outer->Update();
   AP_CHECK(inner->GetNumberOfThreadsUsed() == 1);
+  AP_CHECK(innerBackend == "Sequential");
   restoredAndSame(outer, "the outer update", inner, "the update nested in its progress event");
 }
 
