@@ -304,7 +304,12 @@ bool vtkApertureLightingMapper::CheckInput(vtkPolyData* mesh)
 
 void vtkApertureLightingMapper::MapArrays()
 {
-  this->RemoveAllVertexAttributeMappings();
+  // (only the model's own: a script's MapDataArrayToVertexAttribute for its own shader
+  // replacements stays mapped)
+  for (const char* attribute : { "apertureNormalMC", "apertureBentMC", "apertureRadiusMC" })
+  {
+    this->RemoveVertexAttributeMapping(attribute);
+  }
   if (this->UsingAperture)
   {
     const int points = vtkDataObject::FIELD_ASSOCIATION_POINTS;
@@ -334,7 +339,16 @@ void vtkApertureLightingMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     this->MapArrays();
     this->Modified();
   }
+  this->DrewWithGeometryShader = false;
   this->Superclass::RenderPiece(ren, act);
+  if (this->UsingAperture && this->DrewWithGeometryShader)
+  {
+    this->InputProblem = "VTK draws this actor's edges (EdgeVisibility) or wide lines "
+                         "(RenderLinesAsTubes, LineWidth) with a geometry shader, which the "
+                         "aperture model does not pass its arrays through";
+    vtkErrorMacro(<< "cannot shade with the aperture model: " << this->InputProblem
+                  << "; drawing with standard lighting");
+  }
 }
 
 void vtkApertureLightingMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act)
@@ -343,13 +357,21 @@ void vtkApertureLightingMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* a
   this->Superclass::BuildBufferObjects(ren, act);
 }
 
+// Whether a program has a geometry shader: VTK 9.1 adds one for edges over a surface and for
+// lines drawn wide or as tubes, and it passes on only VTK's own varyings, so the aperture
+// model's arrived as zero (every point black).
+static bool HasGeometryShader(vtkShader* shader)
+{
+  return shader && !shader->GetSource().empty();
+}
+
 //------------------------------------------------------------------------------
 void vtkApertureLightingMapper::ReplaceShaderValues(
   std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren, vtkActor* act)
 {
   std::string vs = shaders[vtkShader::Vertex]->GetSource();
   std::string fs = shaders[vtkShader::Fragment]->GetSource();
-  if (this->UsingAperture)
+  if (this->UsingAperture && !HasGeometryShader(shaders[vtkShader::Geometry]))
   {
     // Variants are compiled, not branched on uniforms (llvmpipe runs untaken branches, masked):
     // the sky table, where the model runs (per pixel or per vertex), and the two modes.
@@ -383,7 +405,12 @@ void vtkApertureLightingMapper::SetMapperShaderParameters(
   vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act)
 {
   vtkShaderProgram* program = cellBO.Program;
-  const float exposure = static_cast<float>(std::exp2(this->Exposure));
+  const bool standIn = this->LightingModel == APERTURE &&
+    (!this->UsingAperture || (program && HasGeometryShader(program->GetGeometryShader())));
+  this->DrewWithGeometryShader |= this->UsingAperture && standIn;
+  // VTK's lighting standing in for the aperture model is drawn as VTK draws it, without the
+  // Exposure: the model's, near -7 EV for sunlight in W/m^2, left it black.
+  const float exposure = standIn ? 1.0f : static_cast<float>(std::exp2(this->Exposure));
   if (program && program->IsUniformUsed("apertureExposureScale"))
   {
     program->SetUniformf("apertureExposureScale", exposure);

@@ -30,12 +30,16 @@
  *
  * LightingModel STANDARD draws with VTK's own lighting (times 2^Exposure) and needs no arrays.
  * With the default APERTURE model, missing or wrongly sized arrays are an error (vtkErrorMacro
- * once per render) and the mesh is drawn with VTK's standard lighting instead (documented
- * fallback; never a shader compile failure). NaN arrays (nodata) give black points. A setter
- * given a value outside its documented range (a zero or non-finite sun direction, say) reports
- * an error (vtkErrorMacro) and keeps the previous value, except Exposure, which is clamped to
- * its range (NaN is refused); the mode setters take an unknown value as their default (EXACT,
- * CENTROID, PER_FRAGMENT).
+ * once per render) and the mesh is drawn with VTK's standard lighting instead, as a plain
+ * vtkPolyDataMapper draws it, without the Exposure (documented fallback; never a shader compile
+ * failure). So are an actor's edges over its surface (EdgeVisibility) and lines drawn wide or
+ * as tubes, for which VTK adds a geometry shader that passes on only its own varyings. NaN
+ * arrays (nodata) give black points. A setter given a value outside its documented range (a
+ * zero or non-finite sun direction, say) reports an error (vtkErrorMacro) and keeps the
+ * previous value, except Exposure, which is clamped to its range (NaN is refused); the mode
+ * setters take an unknown value as their default (EXACT, CENTROID, PER_FRAGMENT). Vertex
+ * attributes a script maps for its own shader replacements (MapDataArrayToVertexAttribute)
+ * are kept.
  *
  * @sa vtkApertureSolarPosition vtkApertureSkyVisibility vtkApertureTerrainMesh
  */
@@ -204,8 +208,8 @@ protected:
   /** True when `mesh` (default: the input) has the APERTURE model's arrays; else
    *  InputProblem says why. */
   bool CheckInput(vtkPolyData* mesh = nullptr);
-  /** Map the three arrays to the shader's vertex attributes (none without the APERTURE
-   *  model in use). */
+  /** Map the three arrays to the shader's vertex attributes, leaving others mapped (none of
+   *  the three without the APERTURE model in use). */
   void MapArrays();
   /** Set one of the array names: remapped and re-uploaded when it changes. */
   void SetArrayName(std::string& field, const char* name);
@@ -232,6 +236,7 @@ protected:
   vtkMTimeType SkyTextureTime = 0;
   vtkTimeStamp VariantTime; // the last change of a compiled shader variant's choice
   bool UsingAperture = false; // the shaders in use were built for the APERTURE model
+  bool DrewWithGeometryShader = false; // this render drew a program of VTK's geometry shader
 
 private:
   vtkApertureLightingMapper(const vtkApertureLightingMapper&) = delete;

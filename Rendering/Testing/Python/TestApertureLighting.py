@@ -369,6 +369,77 @@ class TestApertureLighting(Testing.vtkTest):
         self.assertLess(s3.pixels().mean(), p.mean())
 
 
+    def testStandardLightingStandsIn(self):
+        # Where the aperture model cannot draw, VTK's lighting stands in as a plain
+        # vtkPolyDataMapper draws it. Until 2026-12-06 it was scaled by the model's Exposure
+        # (black at -7 EV), and edges over the surface (VTK's geometry shader, which dropped
+        # the model's arrays) were black with no word.
+        from vtkmodules.vtkRenderingCore import vtkPolyDataMapper
+        mesh = grid_mesh(UP, UP, 1.0)
+        plain = Scene(mesh)
+        plain.actor.SetMapper(vtkPolyDataMapper())
+        plain.actor.GetMapper().SetInputData(mesh)
+        plain.actor.GetMapper().ScalarVisibilityOff()
+        plain.window.SetSize(4 * N, 4 * N)  # (edges one pixel wide, cells four)
+        vtk_lit = plain.pixels().astype(int)
+        self.assertGreater(vtk_lit.mean(), 50)
+        missing = grid_mesh(UP, UP, 1.0)
+        missing.GetPointData().RemoveArray("BentNormal")
+        s = linear_scene(missing, exposure=-7.0)
+        s.window.SetSize(4 * N, 4 * N)
+        errors = []
+        s.mapper.AddObserver(vtkCommand.ErrorEvent, lambda o, e: errors.append(e))
+        self.assertLessEqual(np.abs(s.pixels().astype(int) - vtk_lit).max(), 1)
+        self.assertTrue(errors)
+
+        s = linear_scene(mesh, exposure=-8.0)
+        s.mapper.SetSunDirection(sun_dir(0.0, 30.0))
+        s.window.SetSize(4 * N, 4 * N)
+        s.mapper.AddObserver(vtkCommand.ErrorEvent, lambda o, e: errors.append(e))
+        aperture_lit = s.pixels().astype(int)
+        del errors[:]
+        s.actor.GetProperty().EdgeVisibilityOn()
+        s.actor.GetProperty().SetEdgeColor(1.0, 0.0, 0.0)
+        p = s.pixels().astype(int)
+        self.assertTrue(errors)
+        self.assertIn("geometry shader", s.mapper.GetInputProblem())
+        red = (p[:, :, 0] > 200) & (p[:, :, 1] < 60) & (p[:, :, 2] < 60)
+        self.assertGreater(red.mean(), 0.2)  # the edges, drawn
+        self.assertGreater((p[:, :, 1] > 50).mean(), 0.2)  # and the surface between them, lit
+        plain.actor.GetProperty().EdgeVisibilityOn()
+        plain.actor.GetProperty().SetEdgeColor(1.0, 0.0, 0.0)
+        self.assertLessEqual(np.abs(p - plain.pixels().astype(int)).max(), 1)
+        s.actor.GetProperty().EdgeVisibilityOff()
+        del errors[:]
+        self.assertEqual(np.abs(s.pixels().astype(int) - aperture_lit).max(), 0)
+        self.assertFalse(errors)
+        self.assertEqual(s.mapper.GetInputProblem(), "")
+
+    def testScriptVertexAttributesKept(self):
+        # A script's own vertex attribute for its own shader replacement stays mapped when the
+        # model maps its arrays (until 2026-12-06 every mapping was removed: it read 0).
+        from vtkmodules.vtkCommonDataModel import vtkDataObject
+        mesh = grid_mesh(UP, UP, lambda i, j: 0.2 if i < N // 2 else 1.0)
+        s = linear_scene(mesh, exposure=-8.0)
+        s.mapper.MapDataArrayToVertexAttribute(
+            "scriptRadius", "ApertureRadius", vtkDataObject.FIELD_ASSOCIATION_POINTS, -1)
+        sp = s.actor.GetShaderProperty()
+        sp.AddVertexShaderReplacement("//VTK::Normal::Dec", True, "//VTK::Normal::Dec\n"
+                                      "in float scriptRadius;\nout float scriptRadiusVSOut;",
+                                      False)
+        sp.AddVertexShaderReplacement("//VTK::Normal::Impl", True, "//VTK::Normal::Impl\n"
+                                      "  scriptRadiusVSOut = scriptRadius;", False)
+        sp.AddFragmentShaderReplacement("//VTK::Normal::Dec", True, "//VTK::Normal::Dec\n"
+                                        "in float scriptRadiusVSOut;", False)
+        sp.AddFragmentShaderReplacement("//VTK::Picking::Impl", True, "//VTK::Picking::Impl\n"
+                                        "  if (scriptRadiusVSOut < 0.5) "
+                                        "gl_FragData[0] = vec4(1.0, 0.0, 0.0, 1.0);", False)
+        p = s.pixels().astype(int)
+        red = (p[:, :, 0] == 255) & (p[:, :, 1] == 0) & (p[:, :, 2] == 0)
+        self.assertTrue(red[2:-2, 2:N // 2 - 2].all())
+        self.assertFalse(red[2:-2, N // 2 + 2:-2].any())
+        self.assertEqual(s.mapper.GetInputProblem(), "")
+
 def random_mesh(seed=7):
     """Random normals (up to 50 deg tilt), bent normals (45 deg) and apertures (9-83 deg)."""
     rng = np.random.default_rng(seed)
