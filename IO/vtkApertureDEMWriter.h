@@ -7,7 +7,10 @@
  * spacing in CRS units, `CRS` in the field data). The GeoTIFF gets the same georeference
  * (geotransform from the image geometry, north-up; the CRS from the field data; without a CRS
  * the file is written without one and a warning says so, while a CRS that cannot be used, or a
- * grid it cannot place, is an error).
+ * grid it cannot place, is an error). Of a compound CRS (horizontal + vertical) the horizontal
+ * part is written: GDAL would give every band the vertical part's height unit, so that a
+ * sky-view factor read as feet, and elevations, which vtkApertureDEMReader gives in metres,
+ * were converted again on reading.
  *
  * Bands: every point array named in ArrayNames, in that order (all point arrays, in the image's
  * order, when the list is empty). A one-component array is one band described by its name; an

@@ -642,6 +642,19 @@ class TestCommandLineRender(unittest.TestCase):
                                     "200x120", "--baked", os.path.join(tmp, "feet.tif"),
                                     "--zfactor", "ft")
             self.assertEqual(status, 0, stderr)
+            # a DEM in a compound CRS: its bake is in the horizontal part (the vertical gave
+            # every band its height unit) and is taken
+            compound = os.path.join(tmp, "compound.tif")
+            status, _, stderr = run("bake", dem, compound, "-q", "--srs", "EPSG:4326+5703",
+                                    "--products", "ApertureRadius,BentNormal")
+            self.assertEqual(status, 0, stderr)
+            ds = gdal.Open(compound)
+            self.assertFalse(ds.GetSpatialRef().IsCompound())
+            self.assertEqual(ds.GetRasterBand(1).GetUnitType(), "")
+            ds = None
+            status, _, stderr = run("render", "-o", os.path.join(tmp, "x.png"), "--size",
+                                    "200x120", "--baked", compound, "--srs", "EPSG:4326+5703")
+            self.assertEqual(status, 0, stderr)
             # nor from another band of a DEM of several (a bake of band 2 lit band 1's
             # terrain); a DEM of one band may be such a band copied out, and takes it
             band2 = os.path.join(tmp, "band2.tif")

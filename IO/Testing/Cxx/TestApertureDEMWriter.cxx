@@ -178,6 +178,44 @@ void TestWriteAndReadBack()
   }
 }
 
+// A compound CRS is written as its horizontal part: until 2026-12-06 GDAL gave every band
+// its height unit (US survey feet here), and the reader converted the metres again.
+void TestCompoundCRS()
+{
+  const std::string path = tmp + "/compound.tif";
+  auto image = MakeImage(false);
+  vtkNew<vtkApertureGeoreference> geo;
+  geo->SetCRS("EPSG:32633+6360");
+  geo->AttachToImage(image);
+  vtkNew<vtkApertureDEMWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(path.c_str());
+  writer->Write();
+  GDALDatasetH ds = GDALOpen(path.c_str(), GA_ReadOnly);
+  AP_CHECK(ds != nullptr);
+  if (!ds)
+  {
+    return;
+  }
+  OGRSpatialReferenceH want = OSRNewSpatialReference(nullptr);
+  OSRSetFromUserInput(want, "EPSG:32633");
+  OGRSpatialReferenceH got = GDALGetSpatialRef(ds);
+  AP_CHECK(got && !OSRIsCompound(got) && OSRIsSame(want, got));
+  OSRRelease(want);
+  for (int b = 1; b <= GDALGetRasterCount(ds); ++b)
+  {
+    AP_CHECK(std::string(GDALGetRasterUnitType(GDALGetRasterBand(ds, b))).empty());
+  }
+  GDALClose(ds);
+  vtkNew<vtkApertureDEMReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->SetBandIndex(1);
+  reader->Update();
+  vtkDataArray* a = reader->GetOutput()->GetPointData()->GetScalars();
+  AP_CHECK(a && a->GetNumberOfTuples() == NX * NY);
+  AP_CHECK(a && a->GetTuple1(NX - 1) == NX - 1.0); // 5 m, not 5 US survey feet
+}
+
 // Selected arrays only, in the given order; a double array makes Float64 bands; no CRS warns.
 void TestSelectionAndTypes()
 {
@@ -806,6 +844,7 @@ int TestApertureDEMWriter(int argc, char* argv[])
 {
   tmp = aptest::TempDir(argc, argv);
   TestWriteAndReadBack();
+  TestCompoundCRS();
   TestSelectionAndTypes();
   TestThreadsSameBytes();
   TestCompressionLevels();

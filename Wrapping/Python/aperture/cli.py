@@ -618,6 +618,8 @@ def _attach_baked_bands(image, path, ds, reader):
                                 % (path, _gt_text(baked_gt), _gt_text(dem_gt)))
         dem_srs = osr.SpatialReference()
         dem_srs.ImportFromWkt(geo.GetCRS())
+        if dem_srs.IsCompound():
+            dem_srs.StripVertical()  # (the bake's file has the horizontal part: DEMWriter)
         baked_srs = ds.GetSpatialRef()
         if baked_srs is None or not baked_srs.IsSame(
                 dem_srs, ["IGNORE_DATA_AXIS_TO_SRS_AXIS_MAPPING=YES"]):
