@@ -120,9 +120,9 @@
  * outside [0, 1), and not enough memory for the outputs and the sweep: refused before
  * allocating when the estimate exceeds MemoryLimit (default: the memory the process may use,
  * physical or its control group's limit, beside the input image, since past it Linux kills the
- * process rather than fail an allocation), or an allocation that fails (e.g. under `ulimit
- * -v`); the message gives the estimated need (HorizonAngles take 4 bytes per cell and
- * direction).
+ * process rather than fail an allocation; or what an address-space limit leaves), or an
+ * allocation that fails (e.g. under `ulimit -v`); the message gives the estimated need
+ * (HorizonAngles take 4 bytes per cell and direction).
  *
  * Progress and abort: ProgressEvent at 0 three times in the serial set-up (after the
  * elevations' copy, before the outputs, after the sweep's state: seconds apart on a DEM of 10^8
@@ -222,7 +222,8 @@ public:
   ///@{
   /** Most bytes one update may allocate for its outputs and the sweep's state (estimated as
    *  the error message gives them); 0 (default) = GetUsableMemory() less the input image's
-   *  size. */
+   *  size (not under an address-space limit, whose usable memory excludes it already:
+   *  IsMemoryAddressLimited). */
   vtkSetClampMacro(MemoryLimit, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
   vtkGetMacro(MemoryLimit, vtkTypeInt64);
   ///@}

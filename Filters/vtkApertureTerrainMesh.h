@@ -26,7 +26,8 @@
  * `BentNormal` (below). Triangles follow
  * ap_mesh_triangulate(): two per cell, and nodata cells leave holes (a quad with one nodata
  * corner keeps the triangle of its three valid corners). Vertices of nodata points are kept
- * (with NaN normals, at the lowest valid elevation) so ids stay aligned with the grid; no
+ * (with NaN normals, at the lowest valid elevation of the input the update read, which for
+ * a piece may be another than the whole DEM's) so ids stay aligned with the grid; no
  * triangle uses them.
  *
  * A global DEM (vtkApertureGeoreference::WrapsAround: 360 degrees of longitude, at least 3
@@ -43,9 +44,10 @@
  * ComputeNormals, one point more on every side where the DEM goes on, so the reader reads
  * little more than that part, the mesh holds only the piece, and the pieces' meshes join
  * without gaps. Every piece uses the frame of the whole extent, so their vertices coincide with
- * those of the whole mesh, and their normals are the whole mesh's, bit for bit, along their
- * boundaries too (taken across them, from that margin). A piece that does not exist (p >= n)
- * is an empty mesh. A global DEM's pieces are bands of whole rows, each with its seam, when its
+ * those of the whole mesh (but nodata's, placed as above), and their normals are the whole
+ * mesh's, bit for bit, along their boundaries too (taken across them, from that margin). A
+ * piece that does not exist (p >= n) is an empty mesh. A global DEM's pieces are bands of
+ * whole rows, each with its seam, when its
  * CRS is known while the request is planned (published by vtkApertureDEMReader and passed on by
  * vtkApertureSkyVisibility, or an image given whole with SetInputData). An input that holds more
  * than the piece (updated whole before, or given with SetInputData) is meshed over the piece's
@@ -136,9 +138,10 @@ public:
    * crops of an input larger than the update, and a streamed piece's boundary normals take
    * 40 bytes a point of the piece and its margin).
    * 0 (default): the memory this process may use (the machine's, or its control group's
-   * limit) less the input image's size. An update beyond it is refused before allocating,
-   * naming the size: Linux does not fail an allocation past physical memory, it kills the
-   * process later.
+   * limit) less the input image's size; under an address-space limit (ulimit -v), what that
+   * leaves (vtkApertureSkyVisibility::GetUsableMemory), which excludes the input already.
+   * An update beyond it is refused before allocating, naming the size: Linux does not fail an
+   * allocation past physical memory, it kills the process later.
    */
   vtkSetClampMacro(MemoryLimit, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
   vtkGetMacro(MemoryLimit, vtkTypeInt64);

@@ -428,7 +428,7 @@ def elevation_statistics(reader, watcher, whole, strip_bytes, progress=None):
         nodata_count += int(np.count_nonzero(np.isnan(vtk_to_numpy(array))))
         if progress:
             progress((whole[3] - bottom + 1) / ny)
-    if not low <= high:  # (the reader's message, which reads it at once)
+    if not low <= high:  # (the reader's message, which reads it at once, in --srcwin's words)
         window = reader.GetSubWindow()
         raise ApertureError("every cell of %s'%s' band %d is nodata" % (
             "--srcwin %d %d %d %d of " % tuple(window) if any(window) else "",
@@ -1063,7 +1063,8 @@ PRODUCTS = [
      "angular radius of the spherical cap with the visible solid angle's area, "
      "acos(1 - A / 2 pi) (Oat & Sander 2007)"),
     ("BentNormal", "1",
-     "unit mean direction of the visible sky, East-North-Up at the cell (bands _E, _N, _U)"),
+     "unit mean direction of the visible sky, East-North-Up at the cell (components E, N, "
+     "U: GeoTIFF bands _E, _N, _U, EXR channels .E, .N, .U)"),
     ("SkyViewFactor", "1",
      "Zaksek et al. 2011: 1 - mean sin(max(horizon, 0)); share of the upper hemisphere visible "
      "over a horizontal plane, ignoring the cell's slope"),
