@@ -6,6 +6,7 @@
 #include "vtkApertureMemory.h"
 #include "vtkApertureSMPThreads.h"
 
+#include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -490,6 +491,32 @@ int vtkApertureSkyVisibility::GetWrapColumns(const int input[6])
   int whole[6];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   return WrapColumns(geo, this->MaximumDistance, input, whole);
+}
+
+// The input's cell data over the output's cells, as vtkImageAlgorithm::CopyAttributeData
+// copies it: a cell extent is the point extent less one on each axis of more than one point.
+// An output collapsed on an axis the input is not (a one-column piece: its cells are lines,
+// not the input's quads) gets none, rather than arrays shorter than its cells.
+static void CopyCellData(vtkImageData* input, const int inExt[6], vtkImageData* output,
+  const int outExt[6])
+{
+  int inCells[6], outCells[6];
+  bool inside = true;
+  for (int a = 0; a < 3; ++a)
+  {
+    inCells[2 * a] = inExt[2 * a];
+    inCells[2 * a + 1] = inExt[2 * a + 1] - (inExt[2 * a] < inExt[2 * a + 1] ? 1 : 0);
+    outCells[2 * a] = outExt[2 * a];
+    outCells[2 * a + 1] = outExt[2 * a + 1] - (outExt[2 * a] < outExt[2 * a + 1] ? 1 : 0);
+    inside = inside && (outExt[2 * a] < outExt[2 * a + 1]) == (inExt[2 * a] < inExt[2 * a + 1]) &&
+      outCells[2 * a] >= inCells[2 * a] && outCells[2 * a + 1] <= inCells[2 * a + 1];
+  }
+  if (!inside || input->GetCellData()->GetNumberOfArrays() == 0)
+  {
+    return;
+  }
+  output->GetCellData()->CopyAllocate(input->GetCellData(), output->GetNumberOfCells());
+  output->GetCellData()->CopyStructuredData(input->GetCellData(), inCells, outCells);
 }
 
 //------------------------------------------------------------------------------
@@ -1048,11 +1075,13 @@ int vtkApertureSkyVisibility::Execute(
     if (whole)
     {
       output->GetPointData()->PassData(input->GetPointData());
+      output->GetCellData()->PassData(input->GetCellData());
     }
     else
     {
       output->GetPointData()->CopyAllocate(input->GetPointData(), static_cast<vtkIdType>(outN));
       output->GetPointData()->CopyStructuredData(input->GetPointData(), inExt, outExt);
+      CopyCellData(input, inExt, output, outExt);
     }
     output->GetFieldData()->PassData(input->GetFieldData());
     geo->AttachToImage(output); // the GeoTransform of the output's extent

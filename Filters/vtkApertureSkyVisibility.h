@@ -6,8 +6,9 @@
  *          factor, diffuse sky factor, positive openness and edge truncation.
  *
  * Input: a DEM image as vtkApertureDEMReader produces it (`Elevation` in metres, NaN = nodata,
- * `CRS` in the field data; lat/lon or projected). Output: the same image with these point
- * arrays added (float32; angles in radians):
+ * `CRS` in the field data; lat/lon or projected). Output: the same image (its point, cell and
+ * field data, over the output's extent) with these point arrays added (float32; angles in
+ * radians):
  *
  * - `VisibleSolidAngle`: A (sr), the solid angle of the sky visible above the horizontal,
  *   the terrain and the cell's own tangent plane;

@@ -59,6 +59,42 @@ class TestPipelineBehaviour(Testing.vtkTest):
         self.assertEqual(len(runs), 3)
         self.assertEqual(mesher.GetOutput().GetNumberOfPoints(), 201 * 172)
 
+    def testSkyPassesCellData(self):
+        # The sky filter passes the input's cell data over the output's cells, as VTK's image
+        # filters do (until 2026-12-06 it dropped it; point and field data passed).
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        reader = aperture.vtkApertureDEMReader()
+        reader.SetFileName(self.path)
+        reader.Update()
+        image = reader.GetOutput().NewInstance()
+        image.DeepCopy(reader.GetOutput())
+        nx, ny, _ = image.GetDimensions()
+        ids = numpy_to_vtk(np.arange(image.GetNumberOfCells(), dtype=np.float64), deep=1)
+        ids.SetName("CellId")
+        image.GetCellData().AddArray(ids)
+        sky = aperture.vtkApertureSkyVisibility()
+        sky.SetInputData(image)
+        sky.SetMaximumDistance(2000.0)
+        sky.Update()
+        out = sky.GetOutput().GetCellData().GetArray("CellId")
+        self.assertIsNotNone(out)
+        self.assertTrue(np.array_equal(vtk_to_numpy(out), np.arange(image.GetNumberOfCells())))
+
+        def piece(extent):  # (a new filter each: an output that covers a request is kept)
+            sky = aperture.vtkApertureSkyVisibility()
+            sky.SetInputData(image)
+            sky.SetMaximumDistance(2000.0)
+            sky.UpdateExtent(extent)
+            self.assertEqual(sky.GetOutput().GetExtent(), extent)
+            return sky.GetOutput()
+        got = vtk_to_numpy(piece((10, 40, 20, 50, 0, 0)).GetCellData().GetArray("CellId"))
+        j, i = np.mgrid[20:50, 10:40]
+        self.assertTrue(np.array_equal(got, (j * (nx - 1) + i).ravel()))
+        # a piece one column wide has line cells, not the input's quads: none passed
+        column = piece((10, 10, 20, 50, 0, 0))
+        self.assertEqual(column.GetCellData().GetNumberOfArrays(), 0)
+        self.assertEqual(column.GetPointData().GetArray("SkyViewFactor").GetNumberOfTuples(), 31)
+
     def testAbortWhileMeshing(self):
         # AbortExecute set from a progress observer (the command line's Ctrl-C) stops the
         # mesher within the band of rows after it (a twentieth of the points' work), leaving
