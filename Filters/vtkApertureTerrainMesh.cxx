@@ -467,7 +467,9 @@ int vtkApertureTerrainMesh::Execute(
     {
       if (copy && copy != given)
       {
-        copies += 1024.0 * static_cast<double>(copy->GetActualMemorySize());
+        // (made already: under an address-space limit, in what it leaves, not counted again)
+        const double bytes = 1024.0 * static_cast<double>(copy->GetActualMemorySize());
+        copies += this->MemoryLimit > 0 ? bytes : vtkApertureHeldNow(bytes);
       }
     }
     if (margin)

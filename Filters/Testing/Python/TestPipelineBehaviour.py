@@ -95,6 +95,46 @@ class TestPipelineBehaviour(Testing.vtkTest):
         self.assertEqual(column.GetCellData().GetNumberOfArrays(), 0)
         self.assertEqual(column.GetPointData().GetArray("SkyViewFactor").GetNumberOfTuples(), 31)
 
+    def testMeshPieceMemoryUnderAddressLimit(self):
+        # Under an address-space limit (ulimit -v) the memory left already excludes the crop
+        # of a piece out of an image given whole: a 512 x 512 piece of a 1024^2 image that
+        # carries 400 MiB of other arrays (its crop about 100 MiB, its mesh 33 MiB) fits in
+        # 420 MiB above what the process has mapped. Until 2026-12-06 the crop counted again
+        # and the piece was refused ("needs about 235 MiB, more than the 110 MiB ...").
+        import subprocess
+        script = """
+import resource
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.vtkCommonDataModel import vtkImageData
+import aperture
+from aperture.errors import Watcher
+image = vtkImageData()
+image.SetDimensions(1024, 1024, 1)
+image.SetSpacing(30, 30, 1)
+values = numpy_to_vtk(np.zeros(1024 * 1024, dtype=np.float32), deep=1)
+values.SetName("Elevation")
+image.GetPointData().SetScalars(values)
+other = numpy_to_vtk(np.zeros((1024 * 1024, 50), dtype=np.float64), deep=1)
+other.SetName("Other")
+image.GetPointData().AddArray(other)
+geo = aperture.vtkApertureGeoreference()
+assert geo.SetCRS("EPSG:32633")
+geo.AttachToImage(image)
+w = Watcher()
+mesher = w.watch(aperture.vtkApertureTerrainMesh())
+mesher.SetInputData(image)
+with open("/proc/self/status") as status:
+    vm = next(int(line.split()[1]) for line in status if line.startswith("VmSize:"))
+resource.setrlimit(resource.RLIMIT_AS, ((vm + 420 * 1024) * 1024, resource.RLIM_INFINITY))
+mesher.UpdatePiece(0, 4, 0)
+print(w.errors[0] if w.errors else mesher.GetOutput().GetNumberOfPoints())
+"""
+        p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                           timeout=120)
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        self.assertEqual(p.stdout, "%d\n" % (512 * 512))
+
     def testAbortWhileMeshing(self):
         # AbortExecute set from a progress observer (the command line's Ctrl-C) stops the
         # mesher within the band of rows after it (a twentieth of the points' work), leaving
