@@ -793,7 +793,25 @@ bool vtkApertureGeoreference::CheckLongitudeSpan()
     std::ostringstream msg;
     msg << "the grid spans " << span << " degrees of longitude (" << this->GridSize[0]
         << " columns of " << this->GridSpacing[0] * d.UnitToDegrees
-        << " degrees), more than the 360 around the Earth: a wrong cell size or unit?";
+        << " degrees), more than the 360 around the Earth";
+    if (std::fabs(span - this->GridSpacing[0] * d.UnitToDegrees - 360.0) <= 1e-9)
+    {
+      // GMT's and ETOPO's gridline registration: cells centred on both -180 and 180, and on
+      // the poles when the grid reaches them (their cells half beyond)
+      const double dy = this->GridSpacing[1] * d.UnitToDegrees;
+      const double south = this->GridOrigin[1] * d.UnitToDegrees - 0.5 * dy;
+      const double north = south + this->GridSize[1] * dy;
+      const int dropNorth = north > 90.0 + 1e-9 ? 1 : 0, dropSouth = south < -90.0 - 1e-9 ? 1 : 0;
+      msg << ": its first and last columns are one meridian (a gridline-registered global "
+             "grid); drop the last column"
+          << (dropNorth + dropSouth ? " and the rows centred on a pole" : "")
+          << " first (gdal_translate -srcwin 0 " << dropNorth << " " << this->GridSize[0] - 1
+          << " " << this->GridSize[1] - dropNorth - dropSouth << ")";
+    }
+    else
+    {
+      msg << ": a wrong cell size or unit?";
+    }
     d.Error = msg.str();
     return false;
   }
