@@ -424,7 +424,9 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
   {
     for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
     {
-      if (pd->GetArrayName(a))
+      // (numeric ones: a label array of strings beside them is skipped, as the EXR writer
+      // skips it, not an error that only naming every other array avoided)
+      if (pd->GetArrayName(a) && pd->GetArray(a))
       {
         names.emplace_back(pd->GetArrayName(a));
       }

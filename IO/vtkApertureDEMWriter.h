@@ -12,8 +12,8 @@
  * sky-view factor read as feet, and elevations, which vtkApertureDEMReader gives in metres,
  * were converted again on reading.
  *
- * Bands: every point array named in ArrayNames, in that order (all point arrays, in the image's
- * order, when the list is empty). A one-component array is one band described by its name; an
+ * Bands: every point array named in ArrayNames, in that order (all numeric point arrays, in the
+ * image's order, when the list is empty; arrays that are not numeric are then skipped). A one-component array is one band described by its name; an
  * array of c > 1 components gives c bands described `<name>_<component name>`, or
  * `<name>_<k>` where the component has no name. Band metadata added with AddBandMetadata
  * is attached to the bands whose description starts with the given array name.
@@ -30,7 +30,7 @@
  * Errors (vtkErrorMacro, nothing left behind): no file name, a file name that names something
  * other than a file (a folder, a device such as /dev/null, a pipe: left as it is), an input
  * that is not 2-D, a grid no geotransform can say (a non-finite origin, a spacing that is not
- * positive and finite), a named array that does not exist, an array that is not numeric, a codec
+ * positive and finite), a named array that does not exist or is not numeric, a codec
  * GDAL does not offer or one that cannot store floating-point samples (JPEG, WEBP, the CCITT
  * ones), a compression level outside the codec's range, or GDAL failing to create or write
  * (with "the disk is full" added when under 1 MiB is left beside the partial file, which GDAL

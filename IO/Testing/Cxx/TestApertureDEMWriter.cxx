@@ -26,6 +26,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
 #include "vtkTestErrorObserver.h"
 
 #include <cpl_conv.h>
@@ -45,6 +46,7 @@
 namespace
 {
 std::string tmp;
+void ExpectError(vtkApertureDEMWriter* writer, const std::string& expected);
 const int NX = 6, NY = 4;
 
 // Elevation(i, j) = 100 j + i, NaN at (1, 2); Vector (3 components E, N, U); Count (int).
@@ -248,6 +250,30 @@ void TestSelectionAndTypes()
     AP_CHECK(compression && std::string(compression) == "LZW");
     GDALClose(ds);
   }
+
+  // A label array of strings is skipped when no list is given, as the EXR writer skips it
+  // (until 2026-12-06 it failed the write, unless every other array was named); named, it is
+  // an error.
+  vtkNew<vtkStringArray> labels;
+  labels->SetName("Labels");
+  labels->SetNumberOfValues(NX * NY);
+  image->GetPointData()->AddArray(labels);
+  vtkNew<vtkApertureDEMWriter> all;
+  vtkNew<vtkTest::ErrorObserver> errors;
+  all->AddObserver(vtkCommand::ErrorEvent, errors);
+  all->AddObserver(vtkCommand::WarningEvent, warnings); // (no CRS, said above)
+  all->SetInputData(image);
+  all->SetFileName((tmp + "/with-labels.tif").c_str());
+  all->Write();
+  AP_CHECK(!errors->GetError());
+  ds = GDALOpen((tmp + "/with-labels.tif").c_str(), GA_ReadOnly);
+  AP_CHECK(ds && GDALGetRasterCount(ds) == 6); // Elevation, Vector x 3, Count, Precise
+  if (ds)
+  {
+    GDALClose(ds);
+  }
+  all->AddArrayName("Labels");
+  ExpectError(all, "the point array 'Labels' is not numeric");
 }
 
 // Tiles compressed on several threads (NUM_THREADS) give the same file as on one, byte for
