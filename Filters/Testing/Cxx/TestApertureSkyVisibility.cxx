@@ -29,6 +29,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <cmath>
+#include <chrono>
 #include <condition_variable>
 #include <cstdio>
 #include <cstring>
@@ -555,7 +556,8 @@ void TestOverlappingScopes()
       std::unique_lock<std::mutex> lock(m.Mutex);
       m.XInside = true;
       m.Changed.notify_all();
-      m.Changed.wait(lock, [&m]() { return m.Go; });
+      // (a minute at most: were Y never to reach an event, the test fails below, not hangs)
+      m.Changed.wait_for(lock, std::chrono::minutes(1), [&m]() { return m.Go; });
     }
   });
   yMeets->SetClientData(&meet);
@@ -578,7 +580,8 @@ void TestOverlappingScopes()
   meet.X = std::thread([&x]() { x->Update(); });
   {
     std::unique_lock<std::mutex> lock(meet.Mutex);
-    meet.Changed.wait(lock, [&meet]() { return meet.XInside; });
+    AP_CHECK(meet.Changed.wait_for(
+      lock, std::chrono::minutes(1), [&meet]() { return meet.XInside; }));
   }
   y->Update();
   if (meet.X.joinable())
