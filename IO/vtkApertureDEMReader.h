@@ -23,10 +23,12 @@
  *   file's order, usually the finest, as `gdal_translate -ovr 0`); -1 (default) reads full
  *   resolution.
  * - Decimation: an integer factor f >= 1; each output cell is the mean of the valid cells of an
- *   f x f block (nodata ignored; all-nodata blocks stay nodata); a partial block at the east or
- *   south edge is dropped. Applied to the overview level; the blocks align to its top-left
- *   corner, not to the SubWindow's, which gets every block it touches, so that the windows of
- *   one raster read cells of one grid. A global DEM (360 degrees of longitude) read across its
+ *   f x f block (nodata ignored; all-nodata blocks stay nodata); a partial block at the end
+ *   of the file's columns or rows is dropped (the east or south edge; the north one for a
+ *   south-up raster, whose file rows run north). Applied to the overview level; the blocks
+ *   align to its top-left corner (its first row and column in the file), not to the
+ *   SubWindow's, which gets every block it touches, so that the windows of one raster read
+ *   cells of one grid. A global DEM (360 degrees of longitude) read across its
  *   width by a factor that does not divide its columns then spans less, so its east and west
  *   edges no longer join (vtkApertureGeoreference::WrapsAround): a warning says so and names
  *   the dividing factors nearest.

@@ -17,7 +17,10 @@
  * with a Lambert term (LambertMode CENTROID: the visible area times the cosine of its centroid;
  * EXACT_CAP: the sun cap's exact cosine integral, clipped by the surface's plane, times the
  * visible fraction). The rest of the aperture is filled with SkyRadiance, cosine-weighted. The
- * albedo is the actor's colour, or its scalar colours, times its texture if it has one. The
+ * albedo is the actor's colour, or its scalar colours, times its texture if it has one (and
+ * times the property's Diffuse, as VTK's diffuse colour is). The property's other lighting
+ * settings (Lighting, Interpolation, Ambient, Specular, PBR) do not apply to this model, and
+ * back faces are lit as their front is: there is no light from below the terrain. The
  * outgoing radiance (W/m²/sr for irradiances in W/m²) is multiplied by 2^Exposure and, with
  * ToneMapping on (default), mapped by 1 − exp(−x) and the sRGB transfer function for display.
  *
