@@ -6,7 +6,8 @@ Moving the sun only changes the mapper's uniforms: no geometry is uploaded again
     /usr/bin/python3 Examples/time_of_day_viewer.py [DEM] [--date 2026-06-21] [--tz ZONE]
 
 Without a display, or to check it in a script: --frames N -o last.png steps through N times of
-day off screen and writes the last frame."""
+day (06:00 to 18:00) off screen and writes the last frame; with a frame number in the name,
+-o 'frame-%03d.png', it writes every frame, a time-lapse."""
 import argparse
 import math
 
@@ -119,22 +120,41 @@ class Viewer:
         interactor.Start()
 
     def frames(self, count, output):
-        """Off screen: `count` times evenly through the day; writes the last frame."""
+        """Off screen: `count` times evenly from 06:00 to 18:00; writes the last frame to
+        `output`, or every frame k to `output % k` when it holds a number format (%03d)."""
+        numbered = False
+        if "%" in output:
+            try:
+                try:
+                    numbered = output % 0 != output % 1
+                except TypeError:  # (no number in it: its %% signs only)
+                    output = output % ()
+            except (TypeError, ValueError):
+                raise SystemExit("time_of_day_viewer: -o %s: a frame number is written %%d or "
+                                 "%%03d, and a %% sign itself %%%%" % output)
         self.window.SetOffScreenRendering(1)
         uploads = None
+        written = []
         for k in range(count):
             self.set_hour(6.0 + 12.0 * k / max(1, count - 1))
             self.window.Render()
             uploads = uploads or self.mapper.GetGeometryUploads()
+            if numbered or k == count - 1:
+                written.append(output % k if numbered else output)
+                self.write_png(written[-1])
         assert self.mapper.GetGeometryUploads() == uploads, "the sun moved the geometry"
+        print("%d frames, geometry uploaded %d time(s); wrote %s" % (
+            count, uploads, written[0] if len(written) == 1 else
+            "%s to %s" % (written[0], written[-1])))
+
+    def write_png(self, path):
         grab = vtkWindowToImageFilter()
         grab.SetInput(self.window)
         grab.Update()
         writer = vtkPNGWriter()
-        writer.SetFileName(output)
+        writer.SetFileName(path)
         writer.SetInputConnection(grab.GetOutputPort())
         writer.Write()
-        print("%d frames, geometry uploaded %d time(s); wrote %s" % (count, uploads, output))
 
 
 def main():
@@ -144,7 +164,9 @@ def main():
     parser.add_argument("--date", default="2026-06-21", help="local date, YYYY-MM-DD")
     parser.add_argument("--tz", default="America/New_York", help="IANA time zone")
     parser.add_argument("--frames", type=int, help="off screen: render this many times of day")
-    parser.add_argument("-o", "--output", default="viewer.png")
+    parser.add_argument("-o", "--output", default="viewer.png",
+                        help="with --frames: the last frame's PNG, or every frame's with a "
+                             "frame number in the name (frame-%%03d.png)")
     args = parser.parse_args()
     viewer = Viewer(args)
     if args.frames:

@@ -413,6 +413,29 @@ class TestCommandLineRender(unittest.TestCase):
                           (23.999, "2026-06-22T03:59"), (-1.0, "2026-06-21T04:00")):
             viewer.set_hour(hour)
             self.assertEqual(viewer.sun.GetTimeString(), utc + ":00Z", hour)
+        # --frames with a frame number in -o writes every frame, a time-lapse (until
+        # 2026-12-06 only the last); a name without one gets the last frame only
+        import numpy as np
+        with tempfile.TemporaryDirectory() as tmp:
+            viewer.frames(3, os.path.join(tmp, "f-%02d.png"))
+            viewer.frames(2, os.path.join(tmp, "last.png"))
+            self.assertEqual(sorted(os.listdir(tmp)),
+                             ["f-00.png", "f-01.png", "f-02.png", "last.png"])
+            frames = []
+            for name in ("f-00.png", "f-01.png", "f-02.png", "last.png"):
+                reader = vtkPNGReader()
+                reader.SetFileName(os.path.join(tmp, name))
+                reader.Update()
+                self.assertEqual(reader.GetOutput().GetDimensions()[:2], (1000, 700))
+                frames.append(vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())
+                              .astype(float))
+            # morning, noon and evening light differ; the last of 3 and of 2 are both 18:00
+            self.assertGreater(np.abs(frames[0] - frames[1]).mean(), 2.0)
+            self.assertGreater(np.abs(frames[1] - frames[2]).mean(), 2.0)
+            self.assertEqual(np.abs(frames[2] - frames[3]).max(), 0.0)
+            with self.assertRaises(SystemExit) as e:
+                viewer.frames(2, os.path.join(tmp, "bad%.png"))
+            self.assertIn("a frame number is written %d or %03d", str(e.exception))
         for tz, date, message in (
                 ("Foo/Bar", "2026-06-21", "time zone 'Foo/Bar': unknown"),
                 ("America/New_York", "2026-02-30", "2026-02-30")):
