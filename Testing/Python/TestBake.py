@@ -1471,6 +1471,34 @@ class TestBake(unittest.TestCase):
             self.assertEqual(status, 1, err)
             self.assertEqual(len(err.strip().splitlines()), 1, err)
             self.assertIn(expected, err)
+        # ... nor the archive or compressed file a GDAL virtual path reads it from (until
+        # 2026-12-06 the bake replaced the .zip the DEM was in by a GeoTIFF)
+        import gzip
+        import zipfile
+        archive, packed = self.path("dems.zip"), self.path("mine.tif.gz")
+        with zipfile.ZipFile(archive, "w") as z:
+            z.write(dem, "in/mine.tif")
+        with open(packed, "wb") as f:
+            f.write(gzip.compress(before))
+        saved = {}
+        for path in (archive, packed):
+            with open(path, "rb") as f:
+                saved[path] = f.read()
+        for args, expected in (
+                (("/vsizip/%s/in/mine.tif" % archive, archive),
+                 "OUT.tif %s is the file the DEM (/vsizip/%s/in/mine.tif) is read from"
+                 % (archive, archive)),
+                (("/vsizip/{%s}/in/mine.tif" % archive, same, "--exr", archive),
+                 "--exr %s is the file the DEM" % archive),
+                (("/vsigzip/" + packed, packed),
+                 "OUT.tif %s is the file the DEM (/vsigzip/%s) is read from" % (packed, packed))):
+            status, _, err = run("bake", *args)
+            self.assertEqual(status, 1, err)
+            self.assertEqual(len(err.strip().splitlines()), 1, err)
+            self.assertIn(expected, err)
+        for path, content in saved.items():
+            with open(path, "rb") as f:
+                self.assertEqual(f.read(), content, path)
         with open(dem, "rb") as f:
             self.assertEqual(f.read(), before)
         self.assertFalse(os.path.exists(same))

@@ -144,7 +144,41 @@ def _full_name(path):
     return path if path.startswith("/vsi") else os.path.abspath(path)
 
 
+# GDAL's virtual file systems that read a file of the disk: an archive's member, a compressed
+# file, a part of a file
+_VSI_ARCHIVES = ("/vsizip/", "/vsitar/", "/vsi7z/", "/vsirar/")
+_VSI_WHOLE = ("/vsigzip/", "/vsibzip2/", "/vsixz/")
+
+
+def _host_file(path):
+    """The file of the disk a GDAL path reads: the archive of /vsizip/archive.zip/dem.tif (or
+    /vsizip/{archive.zip}/dem.tif), the file of /vsigzip/dem.tif.gz or of
+    /vsisubfile/offset_size,file, through chains of them; other paths as they are."""
+    for _ in range(8):  # (chains such as /vsizip//vsigzip/...)
+        if path.startswith(_VSI_WHOLE):
+            path = path[path.index("/", 1) + 1:]
+        elif path.startswith("/vsisubfile/"):
+            path = path[len("/vsisubfile/"):].split(",", 1)[-1]
+        elif path.startswith(_VSI_ARCHIVES):
+            rest = path[path.index("/", 1) + 1:]
+            if rest.startswith("{") and "}" in rest:
+                path = rest[1:rest.index("}")]
+                continue
+            # the longest leading part that is a file of the disk (or a virtual one again)
+            parts = rest.split("/")
+            path = rest
+            for k in range(len(parts), 0, -1):
+                head = "/".join(parts[:k])
+                if os.path.isfile(head) or head.startswith("/vsi"):
+                    path = head
+                    break
+        else:
+            break
+    return path
+
+
 def _same_file(a, b):
+    a, b = _host_file(a), _host_file(b)
     if os.path.exists(a) and os.path.exists(b):
         return os.path.samefile(a, b)  # hard links too
     return os.path.realpath(a) == os.path.realpath(b)
@@ -202,8 +236,9 @@ def _check_outputs(outputs, inputs):
                 os.remove(path)
         for other, other_path in taken:
             if _same_file(path, other_path):
-                raise ApertureError("%s %s is the same file as %s; choose another name"
-                                    % (name, path, other))
+                raise ApertureError("%s %s is %s; choose another name" % (
+                    name, path, "the same file as " + other if _host_file(other_path) ==
+                    other_path else "the file %s (%s) is read from" % (other, other_path)))
         taken.append((name, path))
 
 
