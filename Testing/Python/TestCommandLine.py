@@ -103,6 +103,18 @@ class TestHelp(CommandLineTest):
         status, _, err = run("info", "--band")
         self.assertEqual(status, 2)
         self.assertIn("expected one argument", err)
+        # an unknown option is said in the command's usage (it was the top level's), and a
+        # long option is not taken from its first letters, as GDAL's tools take none ('--no'
+        # was --no-curvature in bake, --no-stats in info)
+        for args, unknown in ((("info", "--bogus"), "--bogus"), (("info", "--no"), "--no"),
+                              (("bake", "x.tif", "y.tif", "--dir", "8"), "--dir 8"),
+                              (("sun", "--at", "2026-06-21T12:00Z", "--lat", "0", "--lo",
+                                "0"), "--lo 0")):
+            status, out, err = run(*args)
+            self.assertEqual((status, out), (2, ""), err)
+            self.assertIn("usage: aperture %s " % args[0], err)
+            self.assertIn("aperture %s: error: unrecognized arguments: %s" % (args[0], unknown),
+                          err)
 
 
 class TestLauncher(CommandLineTest):
@@ -131,18 +143,30 @@ class TestLauncher(CommandLineTest):
         # loader turned the KeyboardInterrupt into an ImportError, reported as "cannot load
         # Aperture's Python modules" (exit 1), or swallowed it, and the bake ran to its end
         # (exit 0), until 2026-12-06. Now exit 130, as for any interrupt, at every moment from
-        # the launcher's first line (before it, in Python's own start-up, the first 20-30 ms,
-        # the signal ends the process, -2, or Python prints a KeyboardInterrupt; a loaded machine
-        # takes longer: the delays begin at 0.1 s).
+        # the launcher's first line (before it, in Python's own start-up, the signal ends the
+        # process, -2, or Python prints a KeyboardInterrupt). The delays count from the moment
+        # VTK's first library is mapped, not from the start: on a loaded machine Python's own
+        # start-up took longer than the 0.1 s the first delay was.
         import signal
         import time
         dem = self.path("loading.tif")
         rng = np.random.default_rng(5)
         make_raster(dem, np.cumsum(rng.normal(0, 5, (500, 500)), axis=0),
                     (500000, 30, 0, 4000000, 0, -30))
-        for delay in (0.1, 0.13, 0.16, 0.19, 0.22, 0.25, 0.3):
+
+        def vtk_loading(pid):
+            deadline = time.monotonic() + 60.0
+            while time.monotonic() < deadline:
+                with open("/proc/%d/maps" % pid) as maps:
+                    if "libvtkCommonCore" in maps.read():
+                        return True
+                time.sleep(0.001)
+            return False
+
+        for delay in (0.0, 0.03, 0.06, 0.09, 0.12, 0.16, 0.2):
             p = subprocess.Popen([APERTURE, "bake", "-q", dem, self.path("loading-out.tif")],
                                  stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+            self.assertTrue(vtk_loading(p.pid))
             time.sleep(delay)
             p.send_signal(signal.SIGINT)
             out, err = p.communicate(timeout=120)
@@ -705,6 +729,15 @@ class TestBadInput(CommandLineTest):
 
     def test_bad_options(self):
         self.assert_error("--decimate must be 1 or more", "info", "--decimate", "0")
+        # messages of the reader and the light in the command line's words (they named
+        # SubWindow and Turbidity, properties, until 2026-12-06)
+        self.assert_error("gives a 0 x 0 grid (after --srcwin, --overview and --decimate)",
+                          "info", "--decimate", "1000")
+        sun = ("sun", "--lat", "40", "--lon", "0", "--at", "2026-06-21T12:00Z")
+        self.assert_error("the light: --turbidity must be within 2..10, not 11", *sun,
+                          "--turbidity", "11")
+        self.assert_error("the light: --linke-turbidity must be within 1..8, not 9", *sun,
+                          "--linke-turbidity", "9")
         # -1, the reader's "none", was taken silently as full resolution (until 2026-12-06)
         for level in ("-1", "-2"):
             self.assert_error("--overview must be 0 or more (%s given)" % level, "info",

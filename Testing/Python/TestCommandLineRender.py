@@ -132,9 +132,10 @@ class TestCommandLineRender(unittest.TestCase):
             pictures = {}
             for ev in ("0", "1"):
                 png, exr = (os.path.join(tmp, ev + ext) for ext in (".png", ".exr"))
-                status, _, stderr = run("render", "-o", png, "--exr", exr, "--exposure", ev,
-                                        *common)
+                status, stdout, stderr = run("render", "-o", png, "--exr", exr, "--exposure",
+                                             ev, *common)
                 self.assertEqual(status, 0, stderr)
+                self.assertIn("(linear radiance, VTK lighting, float)", stdout)
                 reader = aperture.vtkApertureEXRReader()
                 reader.SetFileName(exr)
                 reader.Update()

@@ -506,8 +506,8 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertIn("--lat DEG --lon DEG", self.error_of("--at", "2026-06-21T12:00Z"))
         self.assertIn("not both", self.error_of("--at", "2026-06-21T12:00Z", "--dem", "x.tif",
                                                 *place))
-        self.assertIn("Turbidity", self.error_of("--at", "2026-06-21T12:00Z", "--turbidity", 50,
-                                                 *place))
+        self.assertIn("--turbidity must be within 2..10, not 50",
+                      self.error_of("--at", "2026-06-21T12:00Z", "--turbidity", 50, *place))
         self.assertIn("--days", self.error_of("--at", "2026-06-21T12:00Z", "--days", 0, *place))
         # A step below a second would print one time over and over (1e-300 minutes: for ever).
         self.assertIn("--step must be a number of minutes of at least 1/60",

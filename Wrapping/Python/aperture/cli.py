@@ -153,7 +153,10 @@ _VSI_WHOLE = ("/vsigzip/", "/vsibzip2/", "/vsixz/")
 def _host_file(path):
     """The file of the disk a GDAL path reads: the archive of /vsizip/archive.zip/dem.tif (or
     /vsizip/{archive.zip}/dem.tif), the file of /vsigzip/dem.tif.gz or of
-    /vsisubfile/offset_size,file, through chains of them; other paths as they are."""
+    /vsisubfile/offset_size,file, through chains of them; other paths as they are (bytes
+    too, names that are not UTF-8)."""
+    if isinstance(path, bytes):
+        return os.fsencode(_host_file(os.fsdecode(path)))
     for _ in range(8):  # (chains such as /vsizip//vsigzip/...)
         if path.startswith(_VSI_WHOLE):
             path = path[path.index("/", 1) + 1:]
@@ -293,11 +296,16 @@ _READER_PHRASES = (
     (re.compile(r"^OverrideCRS: "), "--srs: "),
     (re.compile(r"set OverrideCRS \(aperture: (--srs EPSG:xxxx)\)"), r"give one with \1"),
     (re.compile(r"MetresPerElevationUnit"), "--zfactor"),
+    (re.compile(r"\(after subwindow, overview and decimation\)"),
+     "(after --srcwin, --overview and --decimate)"),
+    (re.compile(r"\bLinkeTurbidity must be within"), "--linke-turbidity must be within"),
+    (re.compile(r"\bTurbidity must be within"), "--turbidity must be within"),
 )
 
 
 def _as_options(message):
-    """A reader or sky filter message in the command line's words (others pass unchanged)."""
+    """A reader, sky filter or sun message in the command line's words (others pass
+    unchanged)."""
     for pattern, words in _READER_PHRASES:
         message = pattern.sub(words, message)
     return message
@@ -938,7 +946,9 @@ def cmd_render(args):
              exposure))
     if args.exr:
         exr_path = _write_linear_exr(args, window, mapper, sun, watcher)
-        print("wrote %s (linear radiance, W/m2/sr, %s)" % (exr_path, args.exr_type))
+        print("wrote %s (linear radiance, %s, %s)" % (
+            exr_path, "W/m2/sr" if args.lighting == "aperture" else "VTK lighting",
+            args.exr_type))
     return 0
 
 
@@ -1960,15 +1970,18 @@ def _add_atmosphere_options(p):
 
 def build_parser():
     from aperture import __version__
+    # (no abbreviated long options, as GDAL's tools take none: '--no' was --no-curvature in
+    # bake and --no-stats in info, and a new option beginning alike would change a script)
     parser = argparse.ArgumentParser(
-        prog=PROG,
+        prog=PROG, allow_abbrev=False,
         description="Aperture: sun-and-sky lighting and visibility analysis for DEMs.",
         epilog="Run '%s COMMAND --help' for the options of a command. Angles are in degrees "
                "and lengths in metres at this interface." % PROG)
     parser.add_argument("--version", action="version", version="%(prog)s " + __version__)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    parser.commands = sub.choices
 
-    p = sub.add_parser("info", help="describe a DEM: size, cell size, CRS, bounds, elevations",
+    p = sub.add_parser("info", allow_abbrev=False, help="describe a DEM: size, cell size, CRS, bounds, elevations",
                        description="Describe a DEM: size, cell size (CRS units and metres), CRS, "
                                    "lat/lon bounds, elevation range and nodata count.")
     _add_read_options(p)
@@ -1985,7 +1998,7 @@ def build_parser():
                         "strips of rows that fit, so a DEM larger than memory is described too")
     p.set_defaults(func=cmd_info)
 
-    p = sub.add_parser("bake", help="horizons, sky-view factors, bent normals -> GeoTIFF/EXR",
+    p = sub.add_parser("bake", allow_abbrev=False, help="horizons, sky-view factors, bent normals -> GeoTIFF/EXR",
                        description="Compute what every cell sees of the sky (one horizon sweep "
                                    "in D azimuth sectors) and write the products as GeoTIFF "
                                    "bands named after them (angles in degrees), optionally also "
@@ -2047,7 +2060,7 @@ def build_parser():
                         "go to stderr")
     p.set_defaults(func=cmd_bake)
 
-    p = sub.add_parser("sun", help="where the sun is for a time and place; sunrise and sunset",
+    p = sub.add_parser("sun", allow_abbrev=False, help="where the sun is for a time and place; sunrise and sunset",
                        description="Sun position (NREL SPA: azimuth from true north, refracted "
                                    "and geometric elevation), apparent disc radius, Earth-Sun "
                                    "distance, equation of time, and the local day's sunrise, "
@@ -2092,7 +2105,7 @@ def build_parser():
                                     "the window read, with --srcwin)")
     p.set_defaults(func=cmd_sun)
 
-    p = sub.add_parser("render", help="render the DEM lit by the sun and sky, to a PNG",
+    p = sub.add_parser("render", allow_abbrev=False, help="render the DEM lit by the sun and sky, to a PNG",
                        description="Render the DEM as a terrain mesh coloured by elevation and "
                                    "lit by the sun and the sky through each point's aperture "
                                    "(baked here, or read from 'aperture bake' output with "
@@ -2228,7 +2241,12 @@ def _main(argv):
     if not argv:
         parser.print_help()
         return 0
-    args = parser.parse_args(_negative_values(parser, argv))
+    args, unknown = parser.parse_known_args(_negative_values(parser, argv))
+    if unknown:
+        # (in the command's usage: parse_args said them in the top level's, naming no option
+        # of the command)
+        command = parser.commands.get(getattr(args, "command", None), parser)
+        command.error("unrecognized arguments: %s" % " ".join(unknown))
     if not getattr(args, "func", None):
         parser.print_help()
         return 0
