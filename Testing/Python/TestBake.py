@@ -841,7 +841,9 @@ class TestBake(unittest.TestCase):
                 (("--refraction", "1"), "--refraction must be within [0, 1)"),
                 (("--products", "Slope"), "unknown product 'Slope'"),
                 (("--compress", "FOO"), "unknown GeoTIFF compression 'FOO'"),
-                (("--compress", "JPEG"), "'JPEG' cannot store floating-point bands"),
+                # (the level named only when given: it said '--compress-level 1' unasked)
+                (("--compress", "JPEG"), "error: --compress JPEG: GeoTIFF compression 'JPEG' "
+                 "cannot store floating-point bands"),
                 (("--compress-level", "13"), "outside DEFLATE's range 1-12"),
                 # (ignored before without a word)
                 (("--compress", "LZW", "--compress-level", "9"), "--compress-level applies to "

@@ -1528,8 +1528,9 @@ def _bake(args, products, progress):
     writer.SetCompression(args.compress)
     writer.SetCompressionLevel(1 if args.compress_level is None else args.compress_level)
     writer.CheckCompression()  # before the sweep, not after it (an unknown codec named first)
-    watcher.check("--compress %s --compress-level %d" % (args.compress,
-                                                        writer.GetCompressionLevel()))
+    # (the level named only when given: a JPEG refused said '--compress-level 1' unasked)
+    watcher.check("--compress %s" % args.compress + (
+        "" if args.compress_level is None else " --compress-level %d" % args.compress_level))
     if args.compress_level is not None and not vtkApertureDEMWriter.HasCompressionLevel(
             args.compress):
         raise ApertureError("--compress-level applies to DEFLATE, ZSTD and LZMA, which have "
