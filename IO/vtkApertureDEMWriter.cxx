@@ -24,7 +24,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -50,7 +52,8 @@ struct vtkApertureDEMWriter::Internals
     int Component, Components;
   };
   GDALDatasetH Dataset = nullptr;
-  std::string Path;
+  std::string Path; // the file written: FileName, or the target of its symbolic links
+  int Mode = -1;    // the permissions of the file it replaced, kept; -1 for none
   std::vector<Band> Bands;
   GDALDataType Type = GDT_Float32;
   int Whole[6] = { 0, -1, 0, -1, 0, 0 }; // the extent the file covers
@@ -557,8 +560,12 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     options = CSLSetNameValue(options, "NUM_THREADS", threads.c_str());
   }
   d.Type = anyDouble ? GDT_Float64 : GDT_Float32;
+  // (through a symbolic link its target is replaced, the link kept, and with it the
+  // permissions of the file replaced: GDAL deletes a file before creating it anew)
+  const std::string target = vtkApertureOutputTarget(path);
+  const int mode = vtkApertureExistingMode(target);
   GDALDatasetH ds = GDALCreate(
-    driver, path.c_str(), nx, ny, static_cast<int>(d.Bands.size()), d.Type, options);
+    driver, target.c_str(), nx, ny, static_cast<int>(d.Bands.size()), d.Type, options);
   CSLDestroy(options);
   if (!ds)
   {
@@ -566,7 +573,8 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     return false;
   }
   d.Dataset = ds;
-  d.Path = path;
+  d.Path = target;
+  d.Mode = mode;
   std::copy(whole, whole + 6, d.Whole);
   bool ok = GDALSetGeoTransform(ds, gt) == CE_None;
   if (ok && hasCRS)
@@ -741,6 +749,11 @@ bool vtkApertureDEMWriter::EndFile(bool ok)
       vtkErrorMacro(<< "GDAL failed writing '" << d.Path << "': " << reason
                     << (left >= 0 && left < (1 << 20) ? " (the disk is full)" : ""));
     }
+  }
+  else if (d.Mode >= 0 && chmod(d.Path.c_str(), static_cast<mode_t>(d.Mode)) != 0)
+  {
+    vtkWarningMacro(<< "'" << d.Path << "' is written, but its permissions could not be set "
+                    << "back to those of the file it replaced: " << std::strerror(errno));
   }
   d.Error.clear();
   return ok && !failed;

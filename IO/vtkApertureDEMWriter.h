@@ -56,7 +56,8 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /** The GeoTIFF to write (replaced if it exists). */
+  /** The GeoTIFF to write (replaced if it exists, keeping its permissions; a symbolic link
+   *  is written through: its target replaced, the link kept). */
   vtkSetFilePathMacro(FileName);
   vtkGetFilePathMacro(FileName);
   ///@}

@@ -61,11 +61,14 @@ const size_t ShortNameLength = 31;
 // replaces FileName once complete (Finish). A discard closes the context and removes the
 // temporary file: nothing is left behind, an earlier file as it was. The temporary file's name
 // is short whatever FileName's length (OpenEXR's own, "tmp.<pid>" + the file's name, failed on
-// names near the folder's limit): ".aperture-<pid>-<n>.tmp" in FileName's folder.
+// names near the folder's limit): ".aperture-<pid>-<n>.tmp" in FileName's folder. Through a
+// symbolic link FileName's target is replaced (the link stays), keeping its permissions.
 struct ContextHandle
 {
   exr_context_t H = nullptr;
   std::string Temporary; // the file H writes, until Finish renames it
+  std::string Target;    // the file it replaces: FileName, or the target of its links
+  int Mode = -1;         // the permissions of the file it replaces, -1 for none
   ContextHandle() = default;
   ContextHandle(const ContextHandle&) = delete;
   ContextHandle& operator=(const ContextHandle&) = delete;
@@ -73,9 +76,11 @@ struct ContextHandle
   void Name(const std::string& path)
   {
     static std::atomic<unsigned long> count(0);
-    const size_t slash = path.rfind('/');
+    this->Target = vtkApertureOutputTarget(path);
+    this->Mode = vtkApertureExistingMode(this->Target);
+    const size_t slash = this->Target.rfind('/');
     const size_t base = slash == std::string::npos ? 0 : slash + 1;
-    this->Temporary = path.substr(0, base) + ".aperture-" +
+    this->Temporary = this->Target.substr(0, base) + ".aperture-" +
       std::to_string(static_cast<long>(getpid())) + "-" + std::to_string(count++) + ".tmp";
   }
   void Discard()
@@ -103,7 +108,9 @@ struct ContextHandle
     {
       problem = "OpenEXR failed finishing '" + path + "': " + trap.Message(rv);
     }
-    else if (std::rename(this->Temporary.c_str(), path.c_str()) != 0)
+    else if ((this->Mode >= 0 &&
+               chmod(this->Temporary.c_str(), static_cast<mode_t>(this->Mode)) != 0) ||
+      std::rename(this->Temporary.c_str(), this->Target.c_str()) != 0)
     {
       problem = "cannot put the temporary file '" + this->Temporary + "' in place of '" + path +
         "': " + std::strerror(errno);

@@ -115,7 +115,8 @@ public:
   };
 
   ///@{
-  /** The OpenEXR file to write (replaced if it exists). */
+  /** The OpenEXR file to write (replaced if it exists, keeping its permissions; a symbolic
+   *  link is written through: its target replaced, the link kept). */
   vtkSetFilePathMacro(FileName);
   vtkGetFilePathMacro(FileName);
   ///@}

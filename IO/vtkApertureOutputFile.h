@@ -5,8 +5,10 @@
 #define vtkApertureOutputFile_h
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <string>
+#include <vector>
 
 /** What `st` is when it is not a regular file: "a folder", "a device", "a pipe", "a socket",
  *  else "not a regular file". */
@@ -35,6 +37,41 @@ inline bool vtkApertureOutputReplaceable(const std::string& path, std::string& w
   }
   what = vtkApertureFileKind(st);
   return false;
+}
+
+/** The file a writer writes for `path`: through symbolic links (a relative one from its own
+ *  folder, at most 40 of them) to their target, which need not exist yet, so that a link
+ *  (latest.exr -> frames/0042.exr) stays a link and its target is written; else `path`. */
+inline std::string vtkApertureOutputTarget(const std::string& path)
+{
+  std::string p = path;
+  for (int k = 0; k < 40; ++k)
+  {
+    struct stat st;
+    if (lstat(p.c_str(), &st) != 0 || !S_ISLNK(st.st_mode))
+    {
+      return p;
+    }
+    std::vector<char> buffer(4096);
+    const ssize_t n = readlink(p.c_str(), buffer.data(), buffer.size());
+    if (n <= 0 || static_cast<size_t>(n) >= buffer.size())
+    {
+      return path;
+    }
+    std::string target(buffer.data(), static_cast<size_t>(n));
+    const size_t slash = p.rfind('/');
+    p = target[0] == '/' || slash == std::string::npos ? target : p.substr(0, slash + 1) + target;
+  }
+  return path; // (a loop of links: the open says so)
+}
+
+/** The permission bits of the regular file at `path`, which a writer replacing it keeps (a
+ *  file kept private, 0600, stayed so), or -1 when there is none. */
+inline int vtkApertureExistingMode(const std::string& path)
+{
+  struct stat st;
+  return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) ? static_cast<int>(st.st_mode & 07777)
+                                                             : -1;
 }
 
 /** Whether a reader must refuse a file of this `st`: a named pipe or a socket, which the

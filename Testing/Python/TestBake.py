@@ -1441,6 +1441,40 @@ class TestBake(unittest.TestCase):
         self.assertIn("); use fewer threads (NumberOfThreads; 1 starts none)", p.stderr)
         self.assertFalse(os.path.exists(exr))
 
+    def test_writes_through_links(self):
+        # An output that is a symbolic link (latest.tif -> frames/0042.tif) is written at its
+        # target, the link kept, and a file replaced keeps its permissions. Until 2026-12-06
+        # both writers replaced the link with a file of their own, leaving the target as it
+        # was, and reset a private (0600) file to 0644.
+        frames = self.path("frames")
+        os.makedirs(frames)
+        names = {"tif": "OUT.tif", "exr": "--exr"}
+        for ext in names:
+            target = os.path.join(frames, "0042." + ext)
+            with open(target, "wb") as f:
+                f.write(b"an older frame")
+            os.chmod(target, 0o600)
+            os.symlink(os.path.join("frames", "0042." + ext), self.path("latest." + ext))
+        os.symlink(os.path.join("frames", "0043.exr"), self.path("next.exr"))  # (dangling)
+        status, _, err = run("bake", self.dem, self.path("latest.tif"), "--exr",
+                             self.path("latest.exr"), "--products", "SkyViewFactor", "-q")
+        self.assertEqual(status, 0, err)
+        for ext in names:
+            self.assertTrue(os.path.islink(self.path("latest." + ext)), ext)
+            target = os.path.join(frames, "0042." + ext)
+            self.assertEqual(os.stat(target).st_mode & 0o777, 0o600, ext)
+            with open(target, "rb") as f:
+                self.assertNotEqual(f.read(14), b"an older frame", ext)
+        ds = gdal.Open(os.path.join(frames, "0042.tif"))
+        self.assertEqual(ds.GetRasterBand(1).GetDescription(), "SkyViewFactor")
+        ds = None
+        status, _, err = run("bake", self.dem, self.path("o.tif"), "--exr",
+                             self.path("next.exr"), "--products", "SkyViewFactor", "-q")
+        self.assertEqual(status, 0, err)
+        self.assertTrue(os.path.islink(self.path("next.exr")))
+        self.assertTrue(os.path.isfile(os.path.join(frames, "0043.exr")))
+        self.assertEqual(sorted(os.listdir(frames)), ["0042.exr", "0042.tif", "0043.exr"])
+
     def test_does_not_overwrite(self):
         # An output that is the input DEM, or two outputs in one file, are refused before any
         # work: the EXR would silently replace the GeoTIFF, the bands the DEM.
