@@ -63,7 +63,8 @@ public:
   ///@}
 
   ///@{
-  /** Point arrays to write, in order; empty (default) = all point arrays. */
+  /** Point arrays to write, in order (a name added again is ignored); empty (default) =
+   *  every numeric point array. */
   void AddArrayName(const char* name);
   void ClearArrayNames();
   int GetNumberOfArrayNames();

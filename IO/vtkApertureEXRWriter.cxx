@@ -410,9 +410,12 @@ vtkApertureEXRWriter::~vtkApertureEXRWriter()
 //------------------------------------------------------------------------------
 void vtkApertureEXRWriter::AddArrayName(const char* name)
 {
-  if (name && *name)
+  // (a name listed already is not listed again: a script adding its arrays in a loop of
+  // writes gave the GeoTIFF one more band a write, and the EXR a clash of channel names)
+  auto& names = this->Impl->ArrayNames;
+  if (name && *name && std::find(names.begin(), names.end(), name) == names.end())
   {
-    this->Impl->ArrayNames.emplace_back(name);
+    names.emplace_back(name);
     this->Modified();
   }
 }

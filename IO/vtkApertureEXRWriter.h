@@ -122,8 +122,8 @@ public:
   ///@}
 
   ///@{
-  /** Point arrays to write as channels, in any order; empty (default) = every numeric point
-   *  array. */
+  /** Point arrays to write as channels, in any order (a name added again is ignored); empty
+   *  (default) = every numeric point array. */
   void AddArrayName(const char* name);
   void ClearArrayNames();
   int GetNumberOfArrayNames();

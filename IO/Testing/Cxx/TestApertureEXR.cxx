@@ -573,6 +573,8 @@ void TestHalf()
   writer->SetFileName(path.c_str());
   writer->AddArrayName("Elevation");
   writer->AddArrayName("Vector");
+  writer->AddArrayName("Elevation"); // (again, as a loop of writes adds it: ignored; until
+                                     // 2026-12-06 a clash of channel names failed the write)
   writer->SetPixelTypeToHalf();
   AP_CHECK(writer->GetPixelType() == vtkApertureEXRWriter::HALF);
   AP_CHECK(std::string(writer->GetPixelTypeAsString()) == "HALF");
