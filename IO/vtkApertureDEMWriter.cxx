@@ -52,8 +52,9 @@ struct vtkApertureDEMWriter::Internals
     int Component, Components;
   };
   GDALDatasetH Dataset = nullptr;
-  std::string Path; // the file written: FileName, or the target of its symbolic links
-  int Mode = -1;    // the permissions of the file it replaced, kept; -1 for none
+  std::string Path;      // the output: FileName, or the target of its symbolic links
+  std::string Temporary; // the file GDAL writes, renamed to Path when complete
+  int Mode = -1;         // the permissions of the file it replaces, kept; -1 for none
   std::vector<Band> Bands;
   GDALDataType Type = GDT_Float32;
   int Whole[6] = { 0, -1, 0, -1, 0, 0 }; // the extent the file covers
@@ -563,12 +564,14 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     options = CSLSetNameValue(options, "NUM_THREADS", threads.c_str());
   }
   d.Type = anyDouble ? GDT_Float64 : GDT_Float32;
-  // (through a symbolic link its target is replaced, the link kept, and with it the
-  // permissions of the file replaced: GDAL deletes a file before creating it anew)
+  // Written to a temporary file renamed into place when complete (EndFile): a failed or
+  // aborted write leaves an earlier file as it was (GDAL deleted it before creating its own).
+  // Through a symbolic link its target is replaced, the link kept, with its permissions.
   const std::string target = vtkApertureOutputTarget(path);
   const int mode = vtkApertureExistingMode(target);
+  const std::string temporary = vtkApertureTemporaryName(target);
   GDALDatasetH ds = GDALCreate(
-    driver, target.c_str(), nx, ny, static_cast<int>(d.Bands.size()), d.Type, options);
+    driver, temporary.c_str(), nx, ny, static_cast<int>(d.Bands.size()), d.Type, options);
   CSLDestroy(options);
   if (!ds)
   {
@@ -577,6 +580,7 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
   }
   d.Dataset = ds;
   d.Path = target;
+  d.Temporary = temporary;
   d.Mode = mode;
   std::copy(whole, whole + 6, d.Whole);
   bool ok = GDALSetGeoTransform(ds, gt) == CE_None;
@@ -746,20 +750,25 @@ bool vtkApertureDEMWriter::EndFile(bool ok)
     // GDAL's message for a full disk names a scanline only ("TIFFAppendToStrip: Write error"):
     // say it, while the partial file still holds the space
     const GIntBig left = failed ? VSIGetDiskFreeSpace(CPLGetDirname(d.Path.c_str())) : -1;
-    VSIUnlink(d.Path.c_str());
+    VSIUnlink(d.Temporary.c_str());
     if (failed)
     {
       vtkErrorMacro(<< "GDAL failed writing '" << d.Path << "': " << reason
                     << (left >= 0 && left < (1 << 20) ? " (the disk is full)" : ""));
     }
+    d.Error.clear();
+    return false;
   }
-  else if (d.Mode >= 0 && chmod(d.Path.c_str(), static_cast<mode_t>(d.Mode)) != 0)
+  if ((d.Mode >= 0 && chmod(d.Temporary.c_str(), static_cast<mode_t>(d.Mode)) != 0) ||
+    std::rename(d.Temporary.c_str(), d.Path.c_str()) != 0)
   {
-    vtkWarningMacro(<< "'" << d.Path << "' is written, but its permissions could not be set "
-                    << "back to those of the file it replaced: " << std::strerror(errno));
+    vtkErrorMacro(<< "cannot put the temporary file '" << d.Temporary << "' in place of '"
+                  << d.Path << "': " << std::strerror(errno));
+    VSIUnlink(d.Temporary.c_str());
+    return false;
   }
   d.Error.clear();
-  return ok && !failed;
+  return true;
 }
 
 //------------------------------------------------------------------------------

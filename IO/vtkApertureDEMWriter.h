@@ -28,6 +28,10 @@
  * CompressionLevel sets its level (default 1, the fastest). Tiles are compressed on
  * NumberOfThreads threads (GDAL's NUM_THREADS; the file's bytes do not depend on it).
  *
+ * The file is written aside (a hidden temporary file in the same folder) and renamed into
+ * place when complete, so a failed or aborted write leaves neither a partial file nor a damaged
+ * earlier version behind, as the EXR writer's.
+ *
  * Errors (vtkErrorMacro, nothing left behind): no file name, a file name that names something
  * other than a file (a folder, a device such as /dev/null, a pipe: left as it is), an input
  * that is not 2-D, a grid no geotransform can say (a non-finite origin, a spacing that is not
@@ -113,7 +117,7 @@ public:
    * the next, so that a pipeline whose stages produce sub-extents (vtkApertureDEMReader,
    * vtkApertureSkyVisibility with its halo) holds one strip at a time. The file has the same
    * bands, values, georeference and metadata as with 0 (default: the whole image in one
-   * update); a strip the input fails to produce is an error, and the file is removed. When
+   * update); a strip the input fails to produce is an error, and the file is discarded. When
    * the input's producer has its ReleaseDataFlag on, each strip is released once written. */
   vtkSetClampMacro(StripRows, int, 0, VTK_INT_MAX);
   vtkGetMacro(StripRows, int);
@@ -139,10 +143,10 @@ public:
    *   GetNextStripRow() (whole[3] at first) down to the strip's southern row, in whole 256-row
    *   tile rows unless that reaches whole[2] (rows beyond the last whole tile row are left for
    *   the next strip). The strip must hold every column of `whole` and the next row.
-   * - EndStrips() closes the file. It is kept only when every row was written without an
-   *   error; otherwise it is removed (with an error naming the rows missing, unless writing
-   *   was aborted or an error was reported already).
-   * - AbandonStrips() removes a file begun, quietly (for a caller that stops early).
+   * - EndStrips() closes the file. It is put in place only when every row was written without
+   *   an error; otherwise it is discarded (with an error naming the rows missing, unless
+   *   writing was aborted or an error was reported already).
+   * - AbandonStrips() discards a file begun, quietly (for a caller that stops early).
    * Each returns 1 on success and 0 after reporting the problem (vtkErrorMacro), except that
    * WriteStrip keeps GDAL's reason for a failed write (a full disk: known only once GDAL gives
    * up) for EndStrips to report; after a failure only EndStrips() or AbandonStrips() is

@@ -75,13 +75,9 @@ struct ContextHandle
   ~ContextHandle() { this->Discard(); }
   void Name(const std::string& path)
   {
-    static std::atomic<unsigned long> count(0);
     this->Target = vtkApertureOutputTarget(path);
     this->Mode = vtkApertureExistingMode(this->Target);
-    const size_t slash = this->Target.rfind('/');
-    const size_t base = slash == std::string::npos ? 0 : slash + 1;
-    this->Temporary = this->Target.substr(0, base) + ".aperture-" +
-      std::to_string(static_cast<long>(getpid())) + "-" + std::to_string(count++) + ".tmp";
+    this->Temporary = vtkApertureTemporaryName(this->Target);
   }
   void Discard()
   {

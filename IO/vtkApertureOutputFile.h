@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,19 @@ inline int vtkApertureExistingMode(const std::string& path)
   struct stat st;
   return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) ? static_cast<int>(st.st_mode & 07777)
                                                              : -1;
+}
+
+/** The hidden temporary file a writer writes before renaming it to `target` (its output,
+ *  vtkApertureOutputTarget): ".aperture-<pid>-<n>.tmp" in the target's folder, a short name
+ *  whatever the target's length, unique in the process (n counts). A failed write removes it
+ *  and leaves an earlier file at the target as it was. */
+inline std::string vtkApertureTemporaryName(const std::string& target)
+{
+  static std::atomic<unsigned long> count(0);
+  const size_t slash = target.rfind('/');
+  const size_t base = slash == std::string::npos ? 0 : slash + 1;
+  return target.substr(0, base) + ".aperture-" + std::to_string(static_cast<long>(getpid())) +
+    "-" + std::to_string(count++) + ".tmp";
 }
 
 /** Whether a reader must refuse a file of this `st`: a named pipe or a socket, which the

@@ -1286,7 +1286,7 @@ class TestBake(unittest.TestCase):
             ([full_tif], [], " (the disk is full)", None),
             ([full_tif], strips, " (the disk is full)", None),
             ([tif, "--exr", full_exr], [], " (%s was written in full)" % tif, True),
-            ([tif, "--exr", full_exr], strips, " (the unfinished %s was removed)" % tif, False)]
+            ([tif, "--exr", full_exr], strips, " (the unfinished %s was discarded)" % tif, False)]
         for outputs, options, ending, beside in cases:
             if os.path.exists(tif):
                 os.remove(tif)

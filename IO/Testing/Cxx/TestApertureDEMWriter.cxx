@@ -569,6 +569,29 @@ void TestStrips()
     AP_CHECK(once->Write() == 0); // (Write() at once reports the failure too)
     AP_CHECK_CONTAINS(onceErrors->GetErrorMessage(), "once-aborted.tif' was aborted");
     AP_CHECK(stat(oncePath.c_str(), &sb) != 0);
+    // An earlier file stays as it was, in strips or at once: the file is written aside and
+    // renamed into place when complete (until 2026-12-06 GDAL had deleted it first, while
+    // the EXR writer kept its earlier file), and nothing hidden is left beside it.
+    for (vtkApertureDEMWriter* writer : { w.GetPointer(), once.GetPointer() })
+    {
+      const std::string kept = tmp + "/kept.tif";
+      {
+        FILE* f = std::fopen(kept.c_str(), "wb");
+        AP_CHECK(f && std::fputs("an earlier file", f) >= 0 && std::fclose(f) == 0);
+      }
+      writer->SetFileName(kept.c_str());
+      AP_CHECK(writer->Write() == 0);
+      AP_CHECK(aptest::ReadFileBytes(kept) == "an earlier file");
+    }
+    DIR* folder = opendir(tmp.c_str());
+    for (struct dirent* e = folder ? readdir(folder) : nullptr; e; e = readdir(folder))
+    {
+      AP_CHECK(std::strncmp(e->d_name, ".aperture-", 10) != 0);
+    }
+    if (folder)
+    {
+      closedir(folder);
+    }
   }
 
   {

@@ -1440,7 +1440,7 @@ def _write_strips(watcher, clip, window, extents, outputs, guard, started, compu
             watcher.check("writing %s" % writing)
             finished.append(writing)
     except ApertureError as e:
-        # (the failed writer removes its own file; the others begun are unfinished)
+        # (the failed writer discards its own file; the others begun are unfinished)
         raise _outputs_left(e, written=finished, removed=[
             path for output, path in outputs if output in begun and path != writing]) from None
     finally:
@@ -1452,7 +1452,7 @@ def _outputs_left(error, written=(), removed=()):
     """`error` (an ApertureError) with what a failed bake leaves of its other outputs: the
     user need not guess whether a file there is this bake's, whole."""
     notes = (["%s was written in full" % path for path in written]
-             + ["the unfinished %s was removed" % path for path in removed])
+             + ["the unfinished %s was discarded" % path for path in removed])
     return ApertureError("%s (%s)" % (error, "; ".join(notes))) if notes else error
 
 
