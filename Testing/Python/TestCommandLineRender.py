@@ -80,6 +80,16 @@ class TestCommandLineRender(unittest.TestCase):
                                          "--view", "top", "--multisamples", "0")
             self.assertEqual(status, 0, stderr)
             self.assertIn("wrote " + exr, stdout)
+            # -q: no 'wrote' lines (added 2026-12-06), the same files
+            quiet_png, quiet_exr = os.path.join(tmp, "q.png"), os.path.join(tmp, "q.exr")
+            status, quiet_out, stderr = run("render", "-o", quiet_png, "--exr", quiet_exr,
+                                            "--size", "240x160", "--at", "2026-12-21T15:30",
+                                            "--tz", "America/New_York", "--view", "top",
+                                            "--multisamples", "0", "-q")
+            self.assertEqual((status, quiet_out), (0, ""), stderr)
+            for a, b in ((png, quiet_png), (exr, quiet_exr)):
+                with open(a, "rb") as fa, open(b, "rb") as fb:
+                    self.assertEqual(fa.read(), fb.read(), b)
             reader = aperture.vtkApertureEXRReader()
             reader.SetFileName(exr)
             reader.Update()

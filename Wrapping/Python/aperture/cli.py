@@ -527,7 +527,7 @@ def cmd_info(args):
         nx, ny = facts["size"]
         size = 4.0 * nx * ny  # (bytes as float32)
         progress = None
-        if size > strip_bytes:
+        if size > strip_bytes and not args.quiet:
             if size > _INFO_NOTE_BYTES:  # (minutes, or more: what it does, and the way out)
                 print("%s: note: reading the elevations of all %d x %d cells (%s as float32) "
                       "for their range and nodata count, in strips; --no-stats describes the "
@@ -941,14 +941,16 @@ def cmd_render(args):
                                text=_render_metadata(args, sun, exposure))
     except (OSError, RuntimeError) as e:
         raise ApertureError(str(e))
-    print("wrote %s (%d x %d, %s view, sun azimuth %.2f, elevation %.2f deg, exposure %.2f EV)"
-          % (path, args.size[0], args.size[1], args.view, sun.GetAzimuth(), sun.GetElevation(),
-             exposure))
+    if not args.quiet:
+        print("wrote %s (%d x %d, %s view, sun azimuth %.2f, elevation %.2f deg, exposure %.2f "
+              "EV)" % (path, args.size[0], args.size[1], args.view, sun.GetAzimuth(),
+                       sun.GetElevation(), exposure))
     if args.exr:
         exr_path = _write_linear_exr(args, window, mapper, sun, watcher)
-        print("wrote %s (linear radiance, %s, %s)" % (
-            exr_path, "W/m2/sr" if args.lighting == "aperture" else "VTK lighting",
-            args.exr_type))
+        if not args.quiet:
+            print("wrote %s (linear radiance, %s, %s)" % (
+                exr_path, "W/m2/sr" if args.lighting == "aperture" else "VTK lighting",
+                args.exr_type))
     return 0
 
 
@@ -1997,6 +1999,9 @@ def build_parser():
                    help="most memory for the elevations read at once: a number of MiB, or "
                         "with K, M, G, T or B (bytes) (default 256 MiB); they are read in "
                         "strips of rows that fit, so a DEM larger than memory is described too")
+    p.add_argument("--quiet", "-q", action="store_true",
+                   help="no progress display or note while the elevations are read (shown "
+                        "when stderr is a terminal); the description is printed all the same")
     p.set_defaults(func=cmd_info)
 
     p = sub.add_parser("bake", allow_abbrev=False, help="horizons, sky-view factors, bent normals -> GeoTIFF/EXR",
@@ -2177,6 +2182,8 @@ def build_parser():
                         "lighting with a white light from the sun's direction, on the "
                         "elevation colours (the aperture's, the sky's and the albedo's options "
                         "do not apply)")
+    p.add_argument("--quiet", "-q", action="store_true",
+                   help="no 'wrote' lines on stdout; warnings and errors still go to stderr")
     # (the aperture's options, and here the atmosphere's shared ones, are None when not given:
     # _render_option_checks fills in _APERTURE_LIGHTING_OPTIONS' defaults, which the help gives)
     p.set_defaults(func=cmd_render, turbidity=None, linke_turbidity=None)
