@@ -371,6 +371,21 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
                   << GDALGetDataTypeName(type) << "), not elevations");
     return 0;
   }
+  // A band of colour indices (a palette: a land-cover map, a scanned map) or a picture's
+  // channel is read all the same, but said: its values are not heights.
+  const GDALColorInterp interp = GDALGetRasterColorInterpretation(base);
+  if (interp == GCI_PaletteIndex || GDALGetRasterColorTable(base))
+  {
+    vtkWarningMacro(<< "'" << name << "' band " << d.Band << " has a colour table: its values "
+                    << "are colour or class indices, not elevations; read as heights all the "
+                    << "same");
+  }
+  else if (interp != GCI_Undefined && interp != GCI_GrayIndex)
+  {
+    vtkWarningMacro(<< "'" << name << "' band " << d.Band << " is the "
+                    << GDALGetColorInterpretationName(interp) << " channel of a picture, not "
+                    << "elevations; read as heights all the same");
+  }
   // (GDAL 3.6 has no Int8 type: such a band is Byte with this flag, and reads as 0..255)
   const char* pixelType = GDALGetMetadataItem(base, "PIXELTYPE", "IMAGE_STRUCTURE");
   d.SignedByte = type == GDT_Byte && pixelType && EQUAL(pixelType, "SIGNEDBYTE");

@@ -16,6 +16,8 @@
  *
  * Options:
  * - BandIndex: 1-based band; 0 (default) reads band 1 and warns when the raster has several.
+ *   A band with a colour table (classes, a scanned map) or a picture's colour channel (Red,
+ *   Green, ...) is read as heights all the same, with a warning.
  * - SubWindow: (x offset, y offset, columns, rows) in full-resolution pixels of the file,
  *   GDAL's convention (offsets from the top-left corner, like `gdal_translate -srcwin`);
  *   columns or rows of 0 extend to the raster edge.

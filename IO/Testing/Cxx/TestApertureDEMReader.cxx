@@ -445,6 +445,43 @@ void TestBands()
   missing.Update();
   AP_CHECK(missing.Ok == 0);
   AP_CHECK_CONTAINS(missing.Errors->GetErrorMessage(), "has 3 bands; band 4 does not exist");
+
+  // A picture's channel, or a band of colour indices, is read as heights all the same, with a
+  // warning (until 2026-12-06 a palette band was read without a word).
+  aptest::RasterSpec rgb;
+  rgb.bands = 3;
+  rgb.type = GDT_Byte;
+  rgb.options = { "PHOTOMETRIC=RGB" };
+  AP_CHECK(aptest::WriteRaster(tmp + "/rgb.tif", rgb));
+  Read picture(tmp + "/rgb.tif");
+  picture.Reader->SetBandIndex(2);
+  picture.Update();
+  AP_CHECK(picture.Ok == 1);
+  AP_CHECK_CONTAINS(picture.Warnings->GetWarningMessage(),
+    "band 2 is the Green channel of a picture, not elevations; read as heights all the same");
+  aptest::RasterSpec classes;
+  classes.type = GDT_Byte;
+  AP_CHECK(aptest::WriteRaster(tmp + "/classes.tif", classes));
+  {
+    GDALDatasetH ds = GDALOpen((tmp + "/classes.tif").c_str(), GA_Update);
+    GDALColorTableH table = GDALCreateColorTable(GPI_RGB);
+    const GDALColorEntry red = { 255, 0, 0, 255 };
+    GDALSetColorEntry(table, 0, &red);
+    AP_CHECK(ds && GDALSetRasterColorTable(GDALGetRasterBand(ds, 1), table) == CE_None);
+    GDALDestroyColorTable(table);
+    GDALClose(ds);
+  }
+  Read palette(tmp + "/classes.tif");
+  palette.Update();
+  AP_CHECK(palette.Ok == 1);
+  AP_CHECK_CONTAINS(palette.Warnings->GetWarningMessage(),
+    "band 1 has a colour table: its values are colour or class indices, not elevations");
+  AP_CHECK_NEAR(palette.Z(0, 2), 0.0, 0.0); // (raw 10 r + c: the file's first row, column 0)
+  // an elevation band (grey, or no interpretation) is read quietly, as before
+  Read plain(path);
+  plain.Reader->SetBandIndex(3);
+  plain.Update();
+  AP_CHECK(plain.Ok == 1 && !plain.Warnings->GetWarning());
 }
 
 // Each bad input gives a clear error and a failed update.
