@@ -179,6 +179,15 @@ struct vtkApertureDEMReader::Internals
     struct stat sb = {};
     if (!virtualPath && stat(fileName, &sb) != 0)
     {
+      const size_t scheme = name.find("://");
+      if (scheme != std::string::npos && scheme > 0 &&
+        name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789+.-") == scheme)
+      {
+        // (a URL: GDAL reads it through its network file systems, not as a name)
+        error = "'" + name + "' is a URL, not a file: GDAL reads one through /vsicurl/ ('" +
+          "/vsicurl/" + name + "'), where this machine can reach it";
+        return false;
+      }
       error = "file '" + name + "' does not exist";
       return false;
     }
@@ -197,7 +206,18 @@ struct vtkApertureDEMReader::Internals
       VSIStatBufL vsb;
       if (virtualPath && VSIStatL(fileName, &vsb) != 0)
       {
-        error = "file '" + name + "' does not exist"; // (said once GDAL has tried)
+        // (said once GDAL has tried; over the network it may also not be reachable)
+        bool network = false;
+        for (const char* prefix :
+          { "/vsicurl/", "/vsis3/", "/vsigs/", "/vsiaz/", "/vsiadls/", "/vsiswift/", "/vsioss/" })
+        {
+          network = network || name.rfind(prefix, 0) == 0;
+        }
+        const std::string why = trap.Message("");
+        error = network ? "nothing can be read at '" + name +
+            "' (no such file there, or the server cannot be reached from this machine" +
+            (why.empty() ? std::string() : ": " + why) + ")"
+                        : "file '" + name + "' does not exist";
         return false;
       }
       error = "GDAL cannot open '" + name + "' as a raster: " +

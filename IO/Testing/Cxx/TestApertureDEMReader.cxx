@@ -651,6 +651,13 @@ void TestWindowExtent()
 void TestBadInput()
 {
   ExpectError(tmp + "/no-such-file.tif", "does not exist");
+  // a URL, and a network path that leads nowhere, are said so (both were "file ... does not
+  // exist" until 2026-12-06; nothing listens on port 1 of this machine)
+  ExpectError("https://example.com/dem.tif", "'https://example.com/dem.tif' is a URL, not a "
+    "file: GDAL reads one through /vsicurl/ ('/vsicurl/https://example.com/dem.tif')");
+  ExpectError("/vsicurl/http://127.0.0.1:1/dem.tif", "nothing can be read at "
+    "'/vsicurl/http://127.0.0.1:1/dem.tif' (no such file there, or the server cannot be "
+    "reached from this machine");
   AP_CHECK(aptest::WriteText(tmp + "/notes.tif", "this is not a raster\n"));
   ExpectError(tmp + "/notes.tif", "GDAL cannot open");
   // GDAL's own paths are said to be missing once GDAL has tried them; a folder is named
