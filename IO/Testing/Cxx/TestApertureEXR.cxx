@@ -30,6 +30,7 @@
 
 #include <dirent.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -1072,11 +1073,14 @@ bool LeftoverTemporaryFiles(const std::string& base)
 {
   DIR* dir = opendir(tmp.c_str());
   bool found = false;
+  // (this process's: the GeoTIFF writer's test, run beside it in the same folder, makes its
+  // own since 2026-12-06)
+  const std::string own = ".aperture-" + std::to_string(static_cast<long>(getpid())) + "-";
   for (struct dirent* e = dir ? readdir(dir) : nullptr; e; e = readdir(dir))
   {
     const std::string name = e->d_name;
     // (the writer's own; OpenEXR's, which it wrote through until 2026-12-06)
-    found = found || name.compare(0, 10, ".aperture-") == 0 ||
+    found = found || name.compare(0, own.size(), own) == 0 ||
       (name.compare(0, 4, "tmp.") == 0 && name.find(base) != std::string::npos);
   }
   if (dir)
