@@ -1984,9 +1984,12 @@ def build_parser():
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     parser.commands = sub.choices
 
-    p = sub.add_parser("info", allow_abbrev=False, help="describe a DEM: size, cell size, CRS, bounds, elevations",
-                       description="Describe a DEM: size, cell size (CRS units and metres), CRS, "
-                                   "lat/lon bounds, elevation range and nodata count.")
+    def add_command(name, **options):  # (each command's parser too takes no abbreviations)
+        return sub.add_parser(name, allow_abbrev=False, **options)
+
+    p = add_command("info", help="describe a DEM: size, cell size, CRS, bounds, elevations",
+                    description="Describe a DEM: size, cell size (CRS units and metres), CRS, "
+                                "lat/lon bounds, elevation range and nodata count.")
     _add_read_options(p)
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (keys size, cell_size_m, crs, bounds_lonlat, "
@@ -2004,11 +2007,11 @@ def build_parser():
                         "when stderr is a terminal); the description is printed all the same")
     p.set_defaults(func=cmd_info)
 
-    p = sub.add_parser("bake", allow_abbrev=False, help="horizons, sky-view factors, bent normals -> GeoTIFF/EXR",
-                       description="Compute what every cell sees of the sky (one horizon sweep "
-                                   "in D azimuth sectors) and write the products as GeoTIFF "
-                                   "bands named after them (angles in degrees), optionally also "
-                                   "as one multi-channel float EXR.")
+    p = add_command("bake", help="horizons, sky-view factors, bent normals -> GeoTIFF/EXR",
+                    description="Compute what every cell sees of the sky (one horizon sweep "
+                                "in D azimuth sectors) and write the products as GeoTIFF "
+                                "bands named after them (angles in degrees), optionally also "
+                                "as one multi-channel float EXR.")
     _add_read_options(p, dem_required=True, srcwin_help=(
         "bake only this window's cells, in pixels from the top-left corner (as gdal_translate "
         "-srcwin); their horizons still see the DEM around the window (within --radius; "
@@ -2066,13 +2069,13 @@ def build_parser():
                         "go to stderr")
     p.set_defaults(func=cmd_bake)
 
-    p = sub.add_parser("sun", allow_abbrev=False, help="where the sun is for a time and place; sunrise and sunset",
-                       description="Sun position (NREL SPA: azimuth from true north, refracted "
-                                   "and geometric elevation), apparent disc radius, Earth-Sun "
-                                   "distance, equation of time, and the local day's sunrise, "
-                                   "transit and sunset (ISO 8601 UTC). With --dem, the place is "
-                                   "the DEM's centre, and the azimuth from the DEM's grid north "
-                                   "and the direction in its terrain-mesh frame are added.")
+    p = add_command("sun", help="where the sun is for a time and place; sunrise and sunset",
+                    description="Sun position (NREL SPA: azimuth from true north, refracted "
+                                "and geometric elevation), apparent disc radius, Earth-Sun "
+                                "distance, equation of time, and the local day's sunrise, "
+                                "transit and sunset (ISO 8601 UTC). With --dem, the place is "
+                                "the DEM's centre, and the azimuth from the DEM's grid north "
+                                "and the direction in its terrain-mesh frame are added.")
     p.add_argument("--at", required=True, metavar="ISO",
                    help="the time: ISO 8601 with an offset (2026-06-21T14:00+02:00, "
                         "2026-06-21T12:00Z), or a local time with --tz")
@@ -2111,14 +2114,14 @@ def build_parser():
                                     "the window read, with --srcwin)")
     p.set_defaults(func=cmd_sun)
 
-    p = sub.add_parser("render", allow_abbrev=False, help="render the DEM lit by the sun and sky, to a PNG",
-                       description="Render the DEM as a terrain mesh coloured by elevation and "
-                                   "lit by the sun and the sky through each point's aperture "
-                                   "(baked here, or read from 'aperture bake' output with "
-                                   "--baked), to a PNG. The sun is placed by time (--at, --tz: "
-                                   "its position, colour and strength for the DEM's centre) or "
-                                   "by --sun-az/--sun-el. Needs an X display (xvfb-run -a "
-                                   "aperture render ...).")
+    p = add_command("render", help="render the DEM lit by the sun and sky, to a PNG",
+                    description="Render the DEM as a terrain mesh coloured by elevation and "
+                                "lit by the sun and the sky through each point's aperture "
+                                "(baked here, or read from 'aperture bake' output with "
+                                "--baked), to a PNG. The sun is placed by time (--at, --tz: "
+                                "its position, colour and strength for the DEM's centre) or "
+                                "by --sun-az/--sun-el. Needs an X display (xvfb-run -a "
+                                "aperture render ...).")
     _add_read_options(p)
     p.add_argument("-o", "--output", default="aperture.png", metavar="OUT.png",
                    help="PNG to write (default: aperture.png)")
