@@ -15,6 +15,8 @@ import unittest
 import numpy as np
 from osgeo import gdal, osr
 
+from usage import usage_error
+
 gdal.UseExceptions()
 
 BUILD = os.environ.get("APERTURE_BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -82,6 +84,10 @@ class CommandLineTest(unittest.TestCase):
         self.assertTrue(lines[0].startswith("aperture: error: "), lines[0])
         self.assertIn(expected, lines[0])
         self.assertEqual(out, "")
+
+    def assert_usage_error(self, expected, command, *args):
+        """A mistake in the options themselves: a usage error naming it."""
+        self.assertIn(expected, usage_error(self, command, run(command, *args)))
 
 
 class TestHelp(CommandLineTest):
@@ -535,8 +541,8 @@ class TestBadInput(CommandLineTest):
         p = make_raster(self.path("one.tif"), np.ones((3, 3)), (500000, 30, 0, 4000000, 0, -30))
         self.assert_error("band 5 does not exist", "info", p, "--band", "5")
         for band in ("0", "-1"):
-            self.assert_error("--band must be 1 or more (%s given)" % band,
-                              "info", p, "--band", band)
+            self.assert_usage_error("--band must be 1 or more (%s given)" % band,
+                                    "info", p, "--band", band)
 
     def test_complex_band(self):
         p = self.path("complex.tif")
@@ -730,20 +736,21 @@ class TestBadInput(CommandLineTest):
             self.assertEqual(seen.decode(), expected)
 
     def test_bad_options(self):
-        self.assert_error("--decimate must be 1 or more", "info", "--decimate", "0")
+        self.assert_usage_error("--decimate must be 1 or more", "info", "--decimate", "0")
         # messages of the reader and the light in the command line's words (they named
         # SubWindow and Turbidity, properties, until 2026-12-06)
         self.assert_error("gives a 0 x 0 grid (after --srcwin, --overview and --decimate)",
                           "info", "--decimate", "1000")
         sun = ("sun", "--lat", "40", "--lon", "0", "--at", "2026-06-21T12:00Z")
-        self.assert_error("the light: --turbidity must be within 2..10, not 11", *sun,
-                          "--turbidity", "11")
-        self.assert_error("the light: --linke-turbidity must be within 1..8, not 9", *sun,
-                          "--linke-turbidity", "9")
+        # (the light's ranges are options' ranges: usage errors, as the command's own checks)
+        self.assert_usage_error("argument --turbidity: 11 is outside 2..10", *sun,
+                                "--turbidity", "11")
+        self.assert_usage_error("argument --linke-turbidity: 9 is outside 1..8", *sun,
+                                "--linke-turbidity", "9")
         # -1, the reader's "none", was taken silently as full resolution (until 2026-12-06)
         for level in ("-1", "-2"):
-            self.assert_error("--overview must be 0 or more (%s given)" % level, "info",
-                              "--overview", level)
+            self.assert_usage_error("--overview must be 0 or more (%s given)" % level, "info",
+                                    "--overview", level)
         self.assert_error("error: --srs: GDAL cannot parse the CRS", "info", "--srs",
                           "EPSG:999999999")
 

@@ -11,6 +11,8 @@ import unittest
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkPNGReader
 
+from usage import usage_error
+
 BUILD = os.environ.get("APERTURE_BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 APERTURE = os.path.join(BUILD, "bin", "aperture")
 
@@ -209,10 +211,16 @@ class TestCommandLineRender(unittest.TestCase):
                                    (("--baked", ""), "--baked is empty")):
                 # (into tmp, should a refusal ever fail: not aperture.png here)
                 out = () if "-o" in args else ("-o", os.path.join(tmp, "refused.png"))
-                status, stdout, stderr = run("render", *out, *args)
-                self.assertEqual(status, 1, stderr)
-                self.assertEqual(len(stderr.strip().splitlines()), 1, stderr)
-                self.assertIn(expected, stderr)
+                result = run("render", *out, *args)
+                if any(about_files in expected for about_files in (
+                        "cannot read the baked", "the albedo image", "does not exist",
+                        "is not inside the")):
+                    status, stdout, stderr = result
+                    self.assertEqual(status, 1, stderr)
+                    self.assertEqual(len(stderr.strip().splitlines()), 1, stderr)
+                    self.assertIn(expected, stderr)
+                else:  # (a mistake in the options themselves)
+                    self.assertIn(expected, usage_error(self, "render", result))
             # an output over a file the DEM reads: a VRT's source
             from osgeo import gdal
             sys.path.insert(0, os.path.join(BUILD, "lib", "python3.11", "dist-packages"))

@@ -15,6 +15,7 @@ import numpy as np
 from osgeo import gdal, osr
 
 from rasters import make_dem
+from usage import usage_error
 
 gdal.UseExceptions()
 
@@ -56,6 +57,12 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertEqual(len(err.strip().splitlines()), 1, err)
         self.assertTrue(err.startswith("aperture: error: "), err)
         return err
+
+    def usage_error_of(self, *args):
+        """A mistake in the options (a value out of range, options that do not go together):
+        a usage error, as argparse's own checks report (-d 3 said 1 and no usage where
+        --camera 30,95 said 2, until 2026-12-06)."""
+        return usage_error(self, "sun", run(*args))
 
     def test_values_starting_with_a_minus(self):
         # A year before 1 (ISO 8601's -1000 is 1001 BC) after --at, as written after --at=:
@@ -129,16 +136,16 @@ class CommandLineSunTest(unittest.TestCase):
         sydney = self.json_of("--at", "2026-01-15T12:00", "--tz", "Australia/Sydney",
                               "--lat", -33.8688, "--lon", 151.2093)
         self.assertEqual(sydney["time_utc"], "2026-01-15T01:00:00Z")
-        err = self.error_of("--at", "2026-03-29T02:30", "--tz", "Europe/Zurich", "--lat", 47,
-                            "--lon", 8)
+        err = self.usage_error_of("--at", "2026-03-29T02:30", "--tz", "Europe/Zurich",
+                                  "--lat", 47, "--lon", 8)
         self.assertIn("does not exist in Europe/Zurich: clocks jump from 02:00 to 03:00", err)
         # a day skipped whole (Samoa, 2011-12-30): the jump's dates (it said "00:00 to 00:00")
-        err = self.error_of("--at", "2011-12-30T12:00", "--tz", "Pacific/Apia", "--lat", -13.8,
-                            "--lon", -171.8)
+        err = self.usage_error_of("--at", "2011-12-30T12:00", "--tz", "Pacific/Apia",
+                                  "--lat", -13.8, "--lon", -171.8)
         self.assertIn("does not exist in Pacific/Apia: clocks jump from 2011-12-30T00:00 to "
                       "2011-12-31T00:00 (2011-12-30T10:00:00Z)", err)
-        err = self.error_of("--at", "2026-10-25T02:30", "--tz", "Europe/Zurich", "--lat", 47,
-                            "--lon", 8)
+        err = self.usage_error_of("--at", "2026-10-25T02:30", "--tz", "Europe/Zurich",
+                                  "--lat", 47, "--lon", 8)
         self.assertIn("occurs twice", err)
         self.assertIn("2026-10-25T00:30:00Z", err)
         # --tz names the local day even for an instant given in UTC: 23:30Z is 08:30 on the
@@ -185,11 +192,10 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertEqual(status, 0, err)
         self.assertIn("Time:        2026-06-21T12:00:01Z (local 2026-06-21T12:00:01+00:00)", out)
         # --delta-t nan was the estimate, without a word
-        status, _, err = run("--at", "2026-06-21T12:00Z", "--lat", 47, "--lon", 8,
-                             "--delta-t", "nan")
-        self.assertEqual((status, err.strip()), (1, "aperture: error: --delta-t must be a "
-                                                    "number of seconds; leave it out for the "
-                                                    "estimate"))
+        self.assertEqual(self.usage_error_of("--at", "2026-06-21T12:00Z", "--lat", 47, "--lon",
+                                             8, "--delta-t", "nan"),
+                         "aperture sun: error: --delta-t must be a number of seconds; leave it "
+                         "out for the estimate\n")
 
     def test_polar(self):
         r = self.json_of("--at", "2025-06-21T22:30Z", "--lat", 69.6492, "--lon", 18.9553)
@@ -399,7 +405,7 @@ class CommandLineSunTest(unittest.TestCase):
     def test_height_range(self):
         # one limit, said at once (20 km passed the position, then the light refused it)
         for h in ("20000", "-1001", "nan"):
-            err = self.error_of("--at", "2026-06-21T12:00Z", "--lat", 47, "--lon", 8,
+            err = self.usage_error_of("--at", "2026-06-21T12:00Z", "--lat", 47, "--lon", 8,
                                 "--height", h)
             self.assertIn("--height must be within -1000..10000 m, the range of the sunlight "
                           "and sky models", err)
@@ -436,7 +442,8 @@ class CommandLineSunTest(unittest.TestCase):
             self.assertAlmostEqual(r["latitude_deg"], lat, delta=1e-7)
             self.assertAlmostEqual(r["longitude_deg"], lon, delta=1e-7)
         self.assertIn("--band, --zfactor read the DEM: give one with --dem",
-                      self.error_of(*at, "--lat", 60, "--lon", 18, "--band", 2, "--zfactor", 1))
+                      self.usage_error_of(*at, "--lat", 60, "--lon", 18, "--band", 2,
+                                          "--zfactor", 1))
 
     def test_time_series(self):
         status, out, err = run("--at", "2026-06-21T00:00", "--tz", "Europe/Zurich",
@@ -493,25 +500,26 @@ class CommandLineSunTest(unittest.TestCase):
 
     def test_errors(self):
         place = ["--lat", 47, "--lon", 8]
-        self.assertIn("latitude", self.error_of("--at", "2026-06-21T12:00Z", "--lat", 91,
-                                                "--lon", 8))
-        self.assertIn("longitude", self.error_of("--at", "2026-06-21T12:00Z", "--lat", 47,
-                                                 "--lon", 181))
-        self.assertIn("not a valid ISO 8601", self.error_of("--at", "noon", *place))
-        self.assertIn("not a valid ISO 8601", self.error_of("--at", "2026-02-30T12:00Z", *place))
-        self.assertIn("-2000..6000", self.error_of("--at", "9999-01-01T00:00Z", *place))
-        self.assertIn("unknown", self.error_of("--at", "2026-06-21T12:00", "--tz",
-                                               "Europe/Atlantis", *place))
-        self.assertIn("no UTC offset", self.error_of("--at", "2026-06-21T12:00", *place))
-        self.assertIn("--lat DEG --lon DEG", self.error_of("--at", "2026-06-21T12:00Z"))
-        self.assertIn("not both", self.error_of("--at", "2026-06-21T12:00Z", "--dem", "x.tif",
-                                                *place))
-        self.assertIn("--turbidity must be within 2..10, not 50",
-                      self.error_of("--at", "2026-06-21T12:00Z", "--turbidity", 50, *place))
-        self.assertIn("--days", self.error_of("--at", "2026-06-21T12:00Z", "--days", 0, *place))
+        usage = self.usage_error_of
+        noon = "2026-06-21T12:00Z"
+        self.assertIn("argument --lat: 91 is outside -90..90 degrees",
+                      usage("--at", noon, "--lat", 91, "--lon", 8))
+        self.assertIn("argument --lon: 181 is outside -180..180 degrees",
+                      usage("--at", noon, "--lat", 47, "--lon", 181))
+        self.assertIn("not a valid ISO 8601", usage("--at", "noon", *place))
+        self.assertIn("not a valid ISO 8601", usage("--at", "2026-02-30T12:00Z", *place))
+        self.assertIn("-2000..6000", usage("--at", "9999-01-01T00:00Z", *place))
+        self.assertIn("unknown", usage("--at", "2026-06-21T12:00", "--tz", "Europe/Atlantis",
+                                       *place))
+        self.assertIn("no UTC offset", usage("--at", "2026-06-21T12:00", *place))
+        self.assertIn("--lat DEG --lon DEG", usage("--at", noon))
+        self.assertIn("not both", usage("--at", noon, "--dem", "x.tif", *place))
+        self.assertIn("argument --turbidity: 50 is outside 2..10",
+                      usage("--at", noon, "--turbidity", 50, *place))
+        self.assertIn("--days", usage("--at", noon, "--days", 0, *place))
         # A step below a second would print one time over and over (1e-300 minutes: for ever).
         self.assertIn("--step must be a number of minutes of at least 1/60",
-                      self.error_of("--at", "2026-06-21T12:00Z", "--step", "1e-300", *place))
+                      usage("--at", noon, "--step", "1e-300", *place))
         # A series running past the year 6000 fails before it prints a row (it failed after
         # 1.9 million rows) and names the year it reaches.
         status, out, err = run("--at", "2026-06-21T12:00Z", "--days", 2000000, "--step", 1,
@@ -519,12 +527,22 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertEqual((status, out), (1, ""))
         self.assertIn("the series over 2000000 days from 2026-06-21T12:00Z ends too late: the "
                       "time in the year 7502 is outside the years the algorithm covers", err)
-        self.assertIn("the pressure -1 hPa is outside 0..5000 hPa",
-                      self.error_of("--at", "2026-06-21T12:00Z", "--pressure", -1, *place))
         # (in a series too, as itself, not as the series' end)
-        self.assertEqual("aperture: error: the pressure -1 hPa is outside 0..5000 hPa\n",
-                         self.error_of("--at", "2026-06-21T12:00Z", "--pressure", -1, "--days",
-                                       2, *place))
+        for series in ((), ("--days", 2)):
+            self.assertEqual("aperture sun: error: argument --pressure: -1 is outside 0..5000 "
+                             "hPa\n", self.usage_error_of("--at", "2026-06-21T12:00Z",
+                                                          "--pressure", -1, *series, *place))
+        self.assertIn("argument --temperature: -273 must be above -273 and at most 6000 C",
+                      self.usage_error_of("--at", "2026-06-21T12:00Z", "--temperature", -273,
+                                          *place))
+        self.assertIn("argument --linke-turbidity: nan is outside 1..8",
+                      self.usage_error_of("--at", "2026-06-21T12:00Z", "--linke-turbidity",
+                                          "nan", *place))
+        # the limits themselves are taken, by this check and the filter's alike
+        self.json_of("--at", "2026-06-21T12:00Z", "--lat", -90, "--lon", 180, "--pressure", 0,
+                     "--temperature", -272.99, "--turbidity", 10, "--linke-turbidity", 8)
+        self.json_of("--at", "2026-06-21T12:00Z", "--lat", 90, "--lon", -180, "--pressure",
+                     5000, "--temperature", 6000, "--turbidity", 2, "--linke-turbidity", 1)
         self.assertIn("does not exist", self.error_of("--at", "2026-06-21T12:00Z",
                                                       "--dem", "/nonexistent/dem.tif"))
 

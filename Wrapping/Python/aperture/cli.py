@@ -7,8 +7,9 @@
     aperture sun --at ISO (--lat --lon | --dem DEM)   where the sun is; sunrise, sunset
 
 DEM is any single-band raster GDAL reads (GeoTIFF, .hgt, .asc, .dt0, VRT, ...); without it, the
-embedded default DEM is used. Errors print one line on stderr and exit with status 1; usage
-errors exit with status 2.
+embedded default DEM is used. Errors print one line on stderr and exit with status 1; a
+mistake in the options themselves (a malformed or out-of-range value, options that do not go
+together) prints the command's usage too and exits with status 2, as argparse's own checks do.
 """
 import argparse
 import json
@@ -21,6 +22,12 @@ import textwrap
 from aperture.errors import ApertureError, Watcher, native_path, quiet_vtk_output
 
 PROG = "aperture"
+
+
+class _UsageError(ApertureError):
+    """A mistake in the options themselves (a value out of its range, options that do not go
+    together), found from the options alone: reported with the command's usage and exit
+    status 2, as argparse reports the mistakes it finds."""
 
 
 def _warn(message):
@@ -316,16 +323,16 @@ def _dem_reader(args, watcher, subwindow=True):
     to the caller."""
     from aperture import vtkApertureDEMReader
     if args.band is not None and args.band < 1:
-        raise ApertureError("--band must be 1 or more (%d given)" % args.band)
+        raise _UsageError("--band must be 1 or more (%d given)" % args.band)
     if args.decimate < 1:
-        raise ApertureError("--decimate must be 1 or more")
+        raise _UsageError("--decimate must be 1 or more")
     if args.overview is not None and args.overview < 0:  # (-1 was taken for none until 12-06)
-        raise ApertureError("--overview must be 0 or more (%d given)" % args.overview)
+        raise _UsageError("--overview must be 0 or more (%d given)" % args.overview)
     reader = watcher.watch(vtkApertureDEMReader())
     reader.SetFileName(native_path(_dem_path(args)))
     reader.SetBandIndex(args.band or 0)  # 0: the reader's default, band 1 with a note
     if args.srcwin and min(args.srcwin) < 0:
-        raise ApertureError("--srcwin values must not be negative")
+        raise _UsageError("--srcwin values must not be negative")
     if args.srcwin and subwindow:
         reader.SetSubWindow(*args.srcwin)
     reader.SetOverviewLevel(-1 if args.overview is None else args.overview)
@@ -581,6 +588,24 @@ def _memory_size(text):
     return int(value)
 
 
+def _number_in(lo, hi, unit="", above=False):
+    """A float option within lo..hi (above lo when `above`): outside, or NaN, a usage error
+    naming the range, before any file is read (the C core's ranges, which the filters check
+    again for other callers)."""
+    def number(text):
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError("invalid float value: %r" % text)
+        if not ((value > lo if above else value >= lo) and value <= hi):
+            unit_text = " " + unit if unit else ""
+            raise argparse.ArgumentTypeError(
+                ("%s must be above %g and at most %g%s" if above else "%s is outside %g..%g%s")
+                % (text, lo, hi, unit_text))
+        return value
+    return number
+
+
 def _c_int(text):
     """An integer option that the filters take as a C int: beyond one, a usage error naming
     the limit (not an OverflowError from the setter)."""
@@ -708,20 +733,22 @@ def _render_sun(args, image, watcher):
     sun.SetLinkeTurbidity(args.linke_turbidity)
     if args.at:
         if args.sun_az is not None or args.sun_el is not None:
-            raise ApertureError("give either --at or --sun-az/--sun-el, not both")
+            raise _UsageError("give either --at or --sun-az/--sun-el, not both")
         if math.isnan(sun.GetLatitude()):
             raise ApertureError("the DEM is in a local CRS (a site grid, no place on the Earth), "
                                 "where the sun has no position for a time: give its direction "
                                 "with --sun-az/--sun-el instead of --at")
         if args.tz and not sun.SetTimeZone(args.tz):
-            raise ApertureError(sun.GetErrorMessage())
-        if not sun.SetTime(args.at) or not sun.Compute():
+            raise _UsageError(sun.GetErrorMessage())
+        if not sun.SetTime(args.at):
+            raise _UsageError(sun.GetErrorMessage())
+        if not sun.Compute():
             raise ApertureError(sun.GetErrorMessage())
     else:
         az = 225.0 if args.sun_az is None else args.sun_az
         el = 35.0 if args.sun_el is None else args.sun_el
         if not (-90.0 <= el <= 90.0) or not math.isfinite(az):
-            raise ApertureError("--sun-el must be within [-90, 90] degrees (and --sun-az finite)")
+            raise _UsageError("--sun-el must be within [-90, 90] degrees (and --sun-az finite)")
         if not sun.ComputeForDirection(az, el):
             raise ApertureError(sun.GetErrorMessage())
     watcher.errors.clear()
@@ -817,28 +844,28 @@ def _render_option_checks(args):
         given = [name for name, key, _ in _APERTURE_LIGHTING_OPTIONS
                  if getattr(args, key) is not None]
         if given:
-            raise ApertureError("%s %s only with --lighting aperture: VTK's standard lighting "
-                                "draws the elevation colours lit by a white light from the sun's "
-                                "direction" % (", ".join(given),
-                                               "applies" if len(given) == 1 else "apply"))
+            raise _UsageError("%s %s only with --lighting aperture: VTK's standard lighting "
+                              "draws the elevation colours lit by a white light from the sun's "
+                              "direction" % (", ".join(given),
+                                             "applies" if len(given) == 1 else "apply"))
     for _, key, default in _APERTURE_LIGHTING_OPTIONS:
         if getattr(args, key) is None:
             setattr(args, key, default)
     if args.baked and args.radius is not None:
-        raise ApertureError("--radius is the search distance of an aperture baked here; --baked "
-                            "reads one baked before (its radius is in its metadata)")
+        raise _UsageError("--radius is the search distance of an aperture baked here; --baked "
+                          "reads one baked before (its radius is in its metadata)")
     if args.tz and not args.at:
-        raise ApertureError("--tz %s needs --at: it is the time zone of a local --at time"
-                            % args.tz)
+        raise _UsageError("--tz %s needs --at: it is the time zone of a local --at time"
+                          % args.tz)
     if args.exr_type and not args.exr:
-        raise ApertureError("--exr-type %s needs --exr OUT.exr" % args.exr_type)
+        raise _UsageError("--exr-type %s needs --exr OUT.exr" % args.exr_type)
     args.exr_type = args.exr_type or "float"
     from aperture import vtkApertureLinearCapture
     if args.exr and (16.0 * args.size[0] * args.size[1]
                      >= vtkApertureLinearCapture.GetMaximumBytes()):
-        raise ApertureError("--exr reads the picture back as float RGBA, 16 bytes a pixel, and "
-                            "VTK reads back less than 4 GiB: %dx%d is too large for it; give "
-                            "a smaller --size" % tuple(args.size))
+        raise _UsageError("--exr reads the picture back as float RGBA, 16 bytes a pixel, and "
+                          "VTK reads back less than 4 GiB: %dx%d is too large for it; give "
+                          "a smaller --size" % tuple(args.size))
 
 
 def cmd_render(args):
@@ -855,14 +882,14 @@ def cmd_render(args):
                             "run under xvfb-run -a")
     _check_display()
     if not (0.0 <= args.exaggeration <= 1000.0):
-        raise ApertureError("--exaggeration must be within [0, 1000]")
+        raise _UsageError("--exaggeration must be within [0, 1000]")
     if not 0 <= args.multisamples <= 16:
-        raise ApertureError("--multisamples must be within 0..16")
+        raise _UsageError("--multisamples must be within 0..16")
     if not (args.sun_scale > 0 and math.isfinite(args.sun_scale)):
-        raise ApertureError("--sun-scale must be a positive factor")
+        raise _UsageError("--sun-scale must be a positive factor")
     if args.exposure is not None and not -30.0 <= args.exposure <= 30.0:
         # (the mapper clamps to this range: 2^30 is already a billion times)
-        raise ApertureError("--exposure must be within -30..30 EV")
+        raise _UsageError("--exposure must be within -30..30 EV")
     if args.albedo and not os.path.isfile(args.albedo):
         raise ApertureError("the albedo image %s %s" % (args.albedo, "does not exist" if not
                             os.path.exists(args.albedo) else "is %s, not a file"
@@ -1144,11 +1171,11 @@ def _parse_products(text):
             chosen.extend(name for name, *_ in PRODUCTS)
             continue
         if item.lower() not in names:
-            raise ApertureError("unknown product %r; choose from %s, or all"
-                                % (item, ", ".join(n for n, *_ in PRODUCTS)))
+            raise _UsageError("unknown product %r; choose from %s, or all"
+                              % (item, ", ".join(n for n, *_ in PRODUCTS)))
         chosen.append(names[item.lower()])
     if not chosen:
-        raise ApertureError("--products names no product")
+        raise _UsageError("--products names no product")
     return [name for name, *_ in PRODUCTS if name in chosen]  # band order, no duplicates
 
 
@@ -1461,28 +1488,28 @@ def _outputs_left(error, written=(), removed=()):
 def _check_radius(radius):
     """--radius: a positive, finite distance; leaving it out is the unlimited search."""
     if radius is not None and not (radius > 0 and math.isfinite(radius)):
-        raise ApertureError("--radius must be a positive distance in metres (%g given; leave "
-                            "--radius out for an unlimited search)" % radius)
+        raise _UsageError("--radius must be a positive distance in metres (%g given; leave "
+                          "--radius out for an unlimited search)" % radius)
 
 
 def cmd_bake(args):
     products = _parse_products(args.products)
     if not 4 <= args.directions <= 360:
-        raise ApertureError("--directions must be within 4..360")
+        raise _UsageError("--directions must be within 4..360")
     _check_radius(args.radius)
     if not (0 <= args.refraction < 1):
-        raise ApertureError("--refraction must be within [0, 1)")
+        raise _UsageError("--refraction must be within [0, 1)")
     if args.threads < 0:
-        raise ApertureError("--threads must be 0 (all cores) or more")
+        raise _UsageError("--threads must be 0 (all cores) or more")
     if not 0 <= args.near_field <= 64:
-        raise ApertureError("--near-field must be within 1..64, or 0 (automatic)")
+        raise _UsageError("--near-field must be within 1..64, or 0 (automatic)")
     if args.exr_type and not args.exr:
-        raise ApertureError("--exr-type %s needs --exr OUT.exr" % args.exr_type)
+        raise _UsageError("--exr-type %s needs --exr OUT.exr" % args.exr_type)
     _check_outputs([("OUT.tif", args.output), ("--exr", args.exr)], [("the DEM", _dem_path(args))])
     ext = os.path.splitext(args.output)[1].lower()
     if ext == ".exr":
-        raise ApertureError("OUT.tif %s is written as a GeoTIFF; name it .tif and give --exr %s "
-                            "for the EXR" % (args.output, args.output))
+        raise _UsageError("OUT.tif %s is written as a GeoTIFF; name it .tif and give --exr %s "
+                          "for the EXR" % (args.output, args.output))
 
     progress = None if args.quiet or not sys.stderr.isatty() else _TermProgress(sys.stderr)
     try:
@@ -1531,12 +1558,15 @@ def _bake(args, products, progress):
     writer.SetCompressionLevel(1 if args.compress_level is None else args.compress_level)
     writer.CheckCompression()  # before the sweep, not after it (an unknown codec named first)
     # (the level named only when given: a JPEG refused said '--compress-level 1' unasked)
-    watcher.check("--compress %s" % args.compress + (
-        "" if args.compress_level is None else " --compress-level %d" % args.compress_level))
+    try:
+        watcher.check("--compress %s" % args.compress + (
+            "" if args.compress_level is None else " --compress-level %d" % args.compress_level))
+    except ApertureError as e:
+        raise _UsageError(str(e))
     if args.compress_level is not None and not vtkApertureDEMWriter.HasCompressionLevel(
             args.compress):
-        raise ApertureError("--compress-level applies to DEFLATE, ZSTD and LZMA, which have "
-                            "levels, not to --compress %s" % args.compress)
+        raise _UsageError("--compress-level applies to DEFLATE, ZSTD and LZMA, which have "
+                          "levels, not to --compress %s" % args.compress)
     sky = watcher.watch(vtkApertureSkyVisibility())
     sky.SetNumberOfDirections(args.directions)
     sky.SetMaximumDistance(args.radius or 0.0)
@@ -1833,30 +1863,30 @@ def cmd_sun(args):
     from aperture import vtkApertureSolarPosition
 
     if args.dem is None and (args.lat is None or args.lon is None):
-        raise ApertureError("give the place: --lat DEG --lon DEG, or --dem DEM")
+        raise _UsageError("give the place: --lat DEG --lon DEG, or --dem DEM")
     if args.dem is not None and (args.lat is not None or args.lon is not None):
-        raise ApertureError("give either --lat/--lon or --dem, not both")
+        raise _UsageError("give either --lat/--lon or --dem, not both")
     reading = ["--" + name for name, default in _READ_DEFAULTS.items()
                if getattr(args, name) != default]
     if args.dem is None and reading:
-        raise ApertureError("%s read%s the DEM: give one with --dem" % (
+        raise _UsageError("%s read%s the DEM: give one with --dem" % (
             ", ".join(reading), "s" if len(reading) == 1 else ""))
     if args.days is not None and args.days < 1:
-        raise ApertureError("--days must be 1 or more")
+        raise _UsageError("--days must be 1 or more")
     if args.step is not None and not (args.step >= 1.0 / 60.0 and math.isfinite(args.step)):
-        raise ApertureError("--step must be a number of minutes of at least 1/60 (one second: "
-                            "times are given to the second)")
+        raise _UsageError("--step must be a number of minutes of at least 1/60 (one second: "
+                          "times are given to the second)")
     watcher = Watcher(on_warning=_warn)
     sun = watcher.watch(vtkApertureSolarPosition())
     if args.tz and not sun.SetTimeZone(args.tz):
-        raise ApertureError(sun.GetErrorMessage())
+        raise _UsageError(sun.GetErrorMessage())
     if not sun.SetTime(args.at):
-        raise ApertureError(sun.GetErrorMessage())
+        raise _UsageError(sun.GetErrorMessage())
     if args.height is not None and not -1000.0 <= args.height <= 10000.0:
         # (one limit, said first: the position took up to 100000 km, then the light refused
         # more than 10 km, and a NaN was "outside -6500..100000 km")
-        raise ApertureError("--height must be within -1000..10000 m, the range of the sunlight "
-                            "and sky models (%s given)" % args.height)
+        raise _UsageError("--height must be within -1000..10000 m, the range of the sunlight "
+                          "and sky models (%s given)" % args.height)
     if args.dem is not None:
         image = _read_centre(args, watcher)
         if not sun.SetPlaceFromImage(image):
@@ -1880,8 +1910,8 @@ def cmd_sun(args):
     sun.SetLinkeTurbidity(args.linke_turbidity)
     if args.delta_t is not None:
         if not math.isfinite(args.delta_t):  # (NaN is the estimate's value in the filter)
-            raise ApertureError("--delta-t must be a number of seconds; leave it out for the "
-                                "estimate")
+            raise _UsageError("--delta-t must be a number of seconds; leave it out for the "
+                              "estimate")
         sun.SetDeltaT(args.delta_t)
     watcher.errors.clear()
 
@@ -1963,10 +1993,10 @@ def _parse_camera(text):
 
 
 def _add_atmosphere_options(p):
-    p.add_argument("--turbidity", type=float, default=3.0, metavar="T",
+    p.add_argument("--turbidity", type=_number_in(2, 10), default=3.0, metavar="T",
                    help="Preetham turbidity for the sun's colour and the Preetham sky, 2..10 "
                         "(default 3)")
-    p.add_argument("--linke-turbidity", type=float, default=3.0, metavar="TL",
+    p.add_argument("--linke-turbidity", type=_number_in(1, 8), default=3.0, metavar="TL",
                    help="Linke turbidity for the direct beam's strength (ESRA), 1..8 "
                         "(default 3)")
 
@@ -2082,15 +2112,18 @@ def build_parser():
     p.add_argument("--tz", metavar="ZONE",
                    help="IANA time zone (Europe/Zurich) for a local --at and the local day; "
                         "clock changes are handled, and skipped or repeated times reported")
-    p.add_argument("--lat", type=float, metavar="DEG", help="latitude, degrees north (-90..90)")
-    p.add_argument("--lon", type=float, metavar="DEG", help="longitude, degrees east (-180..180)")
+    p.add_argument("--lat", type=_number_in(-90, 90, "degrees"), metavar="DEG",
+                   help="latitude, degrees north (-90..90)")
+    p.add_argument("--lon", type=_number_in(-180, 180, "degrees"), metavar="DEG",
+                   help="longitude, degrees east (-180..180)")
     p.add_argument("--height", type=float, metavar="M",
                    help="height above the ellipsoid, metres, -1000..10000 (default 0; with "
                         "--dem: the DEM's height at its centre)")
-    p.add_argument("--pressure", type=float, default=1013.25, metavar="HPA",
-                   help="air pressure for refraction, hPa (default 1013.25)")
-    p.add_argument("--temperature", type=float, default=15.0, metavar="C",
-                   help="air temperature for refraction, degrees C (default 15)")
+    p.add_argument("--pressure", type=_number_in(0, 5000, "hPa"), default=1013.25, metavar="HPA",
+                   help="air pressure for refraction, hPa, 0..5000 (default 1013.25)")
+    p.add_argument("--temperature", type=_number_in(-273, 6000, "C", above=True), default=15.0,
+                   metavar="C", help="air temperature for refraction, degrees C, above -273 up "
+                                     "to 6000 (default 15)")
     p.add_argument("--no-refraction", action="store_true",
                    help="report geometric elevations as the apparent ones")
     p.add_argument("--sky", choices=sorted(SKY_MODELS), default="preetham",
@@ -2243,7 +2276,7 @@ _NOT_EMPTY = (("output", None), ("exr", "--exr"), ("srs", "--srs"), ("compress",
 def _refuse_empty(args):
     for dest, name in _NOT_EMPTY:
         if getattr(args, dest, None) == "":
-            raise ApertureError("%s is empty" % (name or (
+            raise _UsageError("%s is empty" % (name or (
                 "the output name OUT.tif" if args.func is cmd_bake else "--output")))
 
 
@@ -2265,6 +2298,10 @@ def _main(argv):
     try:
         _refuse_empty(args)
         return args.func(args)
+    except _UsageError as e:
+        # (in the command's usage, exit status 2: parser.error ends the process as it does for
+        # argparse's own checks)
+        parser.commands.get(args.command, parser).error(_as_options(str(e)))
     except ApertureError as e:
         print("%s: error: %s" % (PROG, _as_options(str(e))), file=sys.stderr)
         return 1
