@@ -636,9 +636,19 @@ class TestBadInput(CommandLineTest):
                                   "no DEM grid is in", command, *args)
 
     def test_all_nodata(self):
-        p = make_raster(self.path("empty.tif"), np.full((3, 3), -1.0),
+        # described, as gdalinfo describes it (refused as an error until 2026-12-06); the
+        # commands that compute from the elevations refuse it by name
+        p = make_raster(self.path("empty.tif"), np.full((3, 4), -1.0),
                         (500000, 30, 0, 4000000, 0, -30), nodata=-1)
-        self.assert_error("is nodata", "info", p)
+        d, err = self.info(p)
+        self.assertEqual((d["size"], d["elevation_range"], d["nodata_count"], d["nodata_value"],
+                          err), ([4, 3], None, 12, -1.0, ""))
+        status, out, err = run("info", p)
+        self.assertEqual((status, err), (0, ""))
+        self.assertIn("\nElevation:  none: every cell is nodata (unit: 1 m, none in the file: "
+                      "metres)\nNodata:     12 cells, all (nodata value -1.0)", out)
+        self.assert_error("every cell of '%s' band 1 is nodata" % p, "bake", p,
+                          self.path("empty-sky.tif"))
 
     def huge_vrt(self, name, size):
         """A VRT of size x size cells of 1 m in UTM 11N, nodata -1, whose top-left 3 x 3 cells
@@ -700,23 +710,31 @@ class TestBadInput(CommandLineTest):
             with self.subTest(limit=limit):
                 d, err = self.info(p, "--max-memory", limit)
                 self.assertEqual((d, err), (whole, ""))
-        # a row beyond --max-memory, and every strip of nodata: refused by name
+        # a row beyond --max-memory: refused by name
         self.assert_error("reading 300 x 1 cells of '%s' needs 1.172 KiB as float32, more than "
                           "--max-memory 1.000 KiB" % p, "info", p, "--max-memory", "1K")
+        # every cell nodata, read at once or in strips: described so
         empty = make_raster(self.path("strips-empty.tif"), np.full((9, 300), -9999.0),
                             (500000, 30, 0, 4000000, 0, -30), nodata=-9999)
         for limit in ([], ["--max-memory", "2K"]):
-            self.assert_error("every cell of '%s' band 1 is nodata" % empty, "info", empty,
-                              *limit)
-        # a window of nodata in a file with data: the window's (until 2026-12-06 the message
-        # said every cell of the file was nodata), read at once or in strips
+            d, err = self.info(empty, *limit)
+            self.assertEqual((d["elevation_range"], d["nodata_count"], err), (None, 2700, ""))
+        # a window of nodata in a file with data: the window's, read at once or in strips
         coast = np.full((9, 300), 12.5)
         coast[:, :100] = -9999.0
         coast_path = make_raster(self.path("strips-coast.tif"), coast,
                                  (500000, 30, 0, 4000000, 0, -30), nodata=-9999)
         for limit in ([], ["--max-memory", "200"]):
-            self.assert_error("every cell of --srcwin 0 0 10 9 of '%s' band 1 is nodata"
-                              % coast_path, "info", coast_path, "--srcwin", 0, 0, 10, 9, *limit)
+            d, err = self.info(coast_path, "--srcwin", 0, 0, 10, 9, *limit)
+            self.assertEqual((d["size"], d["elevation_range"], d["nodata_count"], err),
+                             ([10, 9], None, 90, ""))
+        d, _ = self.info(coast_path, "--srcwin", 95, 0, 10, 9)
+        self.assertEqual((d["elevation_range"], d["nodata_count"]), ([12.5, 12.5], 45))
+        # (a command that needs a height refuses such a window by name, in the command line's
+        # words; until 2026-12-06 the message said every cell of the file was nodata)
+        self.assert_error("every cell of --srcwin 0 0 10 9 of '%s' band 1 is nodata"
+                          % coast_path, "sun", "--dem", coast_path, "--srcwin", 0, 0, 10, 9,
+                          "--at", "2026-06-21T12:00Z")
 
     def test_progress_on_a_terminal(self):
         # GDAL's progress line on stderr, when it is a terminal and the DEM is read in more

@@ -462,7 +462,8 @@ def describe(reader, watcher):
 def elevation_statistics(reader, watcher, whole, strip_bytes, progress=None):
     """The elevation range [low, high] and the nodata count of the grid's `whole` extent, read
     in strips of whole rows (north first) of at most `strip_bytes` as float32 each, reporting
-    the fraction read to `progress` after each; every cell nodata is an error."""
+    the fraction read to `progress` after each. Every cell nodata gives the range None (and
+    every cell counted), as gdalinfo describes such a raster."""
     import numpy as np
     from vtkmodules.util.numpy_support import vtk_to_numpy
 
@@ -471,19 +472,22 @@ def elevation_statistics(reader, watcher, whole, strip_bytes, progress=None):
     rows = max(1, min(ny, strip_bytes // (4 * nx)))
     for top in range(whole[3], whole[2] - 1, -rows):
         bottom = max(whole[2], top - rows + 1)
-        image = _read(watcher, reader, [whole[0], whole[1], bottom, top, 0, 0])
+        try:
+            image = _read(watcher, reader, [whole[0], whole[1], bottom, top, 0, 0])
+        except ApertureError as e:
+            # (the reader refuses a read of the whole grid that holds no data, so that a
+            # pipeline stops by name at its first step; here it is a fact to describe)
+            if not ((bottom, top) == (whole[2], whole[3]) and str(e).endswith(" is nodata")):
+                raise
+            nodata_count = nx * ny
+            break
         array = image.GetPointData().GetArray("Elevation")
         a, b = array.GetRange()  # (NaN, the reader's nodata, skipped)
         low, high = min(low, a), max(high, b)
         nodata_count += int(np.count_nonzero(np.isnan(vtk_to_numpy(array))))
         if progress:
             progress((whole[3] - bottom + 1) / ny)
-    if not low <= high:  # (the reader's message, which reads it at once, in --srcwin's words)
-        window = reader.GetSubWindow()
-        raise ApertureError("every cell of %s'%s' band %d is nodata" % (
-            "--srcwin %d %d %d %d of " % tuple(window) if any(window) else "",
-            os.fsdecode(reader.GetFileName()), reader.GetBandRead()))
-    return [low, high], nodata_count
+    return ([low, high] if low <= high else None), nodata_count
 
 
 def _format_info(d):
@@ -510,6 +514,10 @@ def _format_info(d):
         % (*d["elevation_range"], d["elevation_unit_m"], d["elevation_unit_source"]),
         "Nodata:     %d cells%s" % (d["nodata_count"], nodata),
     ] if d["elevation_range"] is not None else [
+        "Elevation:  none: every cell is nodata (unit: %.10g m, %s)"
+        % (d["elevation_unit_m"], d["elevation_unit_source"]),
+        "Nodata:     %d cells, all%s" % (d["nodata_count"], nodata),
+    ] if d["nodata_count"] is not None else [
         "Elevation:  not read (--no-stats) (unit: %.10g m, %s)"
         % (d["elevation_unit_m"], d["elevation_unit_source"]),
         "Nodata:     not counted (--no-stats)%s" % nodata,
@@ -2023,7 +2031,8 @@ def build_parser():
     _add_read_options(p)
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (keys size, cell_size_m, crs, bounds_lonlat, "
-                        "elevation_range, nodata_count, centre_lonlat, ...)")
+                        "elevation_range, nodata_count, centre_lonlat, ...; elevation_range "
+                        "is null when every cell is nodata)")
     p.add_argument("--no-stats", action="store_true",
                    help="describe the DEM from its header alone, without reading the "
                         "elevations for their range and nodata count (null in --json): at "
