@@ -34,6 +34,25 @@ def render_rgb(test, out, *args):
     return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
 
 
+def png_pixels_and_text(path):
+    """A PNG's RGB pixels (int) and its text chunks (a dict)."""
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    text = {reader.GetTextKey(k): reader.GetTextValue(k)
+            for k in range(reader.GetNumberOfTextChunks())}
+    return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int), text
+
+
+def exr_rgba(path):
+    """An EXR's RGBA floats, as the project's reader reads them."""
+    import aperture
+    reader = aperture.vtkApertureEXRReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return vtk_to_numpy(reader.GetOutput().GetPointData().GetArray("RGBA"))
+
+
 def write_picture(path, driver, planes, kind=None, palette=None):
     """Write `planes` (2-D arrays, row 0 north) as the bands of a picture with GDAL's `driver`,
     of GDAL type `kind` (default bytes), the first with a colour table of `palette` (RGB)."""
@@ -132,6 +151,128 @@ class TestCommandLineRender(unittest.TestCase):
         self.assertLessEqual(diff.max(), 1.0)
         self.assertGreater(np.mean(diff == 0), 0.95)
 
+    def test_time_lapse(self):
+        # --frames: one bake, one mesh, the sun moved every --step minutes (a time-lapse had to
+        # be made by a render per frame, each baking again, or by the example viewer). Each
+        # frame is the picture a render at its time gives, with one exposure for all: the
+        # automatic one of the frame whose sun is highest.
+        import datetime
+        import json
+        import numpy as np
+        import aperture
+        size = ("--size", "160x120")
+        with tempfile.TemporaryDirectory() as tmp:
+            png, exr = os.path.join(tmp, "f-%02d.png"), os.path.join(tmp, "f-%02d.exr")
+            status, stdout, stderr = run("render", "--at", "2026-06-21T04:00", "--tz",
+                                         "America/New_York", "--frames", 6, "--step", 180,
+                                         "-o", png, "--exr", exr, *size)
+            self.assertEqual(status, 0, stderr)
+            self.assertEqual(stderr, "aperture: warning: the sun is below the horizon in 1 of "
+                                     "the 6 frames (0): the terrain is unlit there (the sky "
+                                     "models have no twilight): black\n")
+            self.assertEqual(sorted(os.listdir(tmp)), sorted(
+                ["f-%02d.png" % k for k in range(6)] + ["f-%02d.exr" % k for k in range(6)]))
+            self.assertEqual(len(stdout.splitlines()), 12, stdout)
+            frames = [png_pixels_and_text(png % k) for k in range(6)]
+            start = datetime.datetime(2026, 6, 21, 8, tzinfo=datetime.timezone.utc)
+            for k, (_, text) in enumerate(frames):
+                at = (start + datetime.timedelta(hours=3 * k)).strftime("%Y-%m-%dT%H:%M:%SZ")
+                self.assertEqual((text["aperture:time_utc"], text["aperture:frame"]),
+                                 (at, "%d of 6" % k))
+                # the sun of each frame is the one 'aperture sun' gives for its time and place
+                status, out, err = run("sun", "--at", at, "--dem", aperture.default_dem(),
+                                       "--json")
+                self.assertEqual(status, 0, err)
+                sun = json.loads(out)
+                self.assertAlmostEqual(float(text["aperture:sun_azimuth_deg"]),
+                                       sun["azimuth_deg"], delta=2e-6)
+                self.assertAlmostEqual(float(text["aperture:sun_elevation_deg"]),
+                                       sun["elevation_deg"], delta=2e-6)
+            exposures = {text["aperture:display_exposure_ev"] for _, text in frames}
+            self.assertEqual(len(exposures), 1, exposures)
+            # the automatic exposure of the highest sun, 17:00Z (elevation 74.6 degrees)
+            self.assertGreater(float(frames[3][1]["aperture:sun_elevation_deg"]), 74.0)
+            noon = os.path.join(tmp, "noon.png")
+            status, _, stderr = run("render", "--at", "2026-06-21T17:00Z", "-o", noon, *size)
+            self.assertEqual(status, 0, stderr)
+            self.assertEqual(png_pixels_and_text(noon)[1]["aperture:display_exposure_ev"],
+                             exposures.pop())
+            # frame 4 is the render at its time, at the frames' exposure: the same radiance
+            # (bit for bit) and picture (the exposure given rounded to 9 decimals)
+            single_png, single_exr = os.path.join(tmp, "s.png"), os.path.join(tmp, "s.exr")
+            status, _, stderr = run("render", "--at", "2026-06-21T20:00Z", "-o", single_png,
+                                    "--exr", single_exr, "--exposure",
+                                    frames[4][1]["aperture:display_exposure_ev"], *size)
+            self.assertEqual(status, 0, stderr)
+            self.assertTrue(np.array_equal(exr_rgba(exr % 4), exr_rgba(single_exr)))
+            self.assertLessEqual(np.abs(png_pixels_and_text(single_png)[0] -
+                                        frames[4][0]).max(), 1)
+            # (each frame antialiased alike: the EXR's one sample per pixel was kept for the
+            # frames after the first, whose PNGs differed from the render by up to 62 levels)
+            # the sun below the horizon: black terrain; the others lit, and all different
+            self.assertEqual(exr_rgba(exr % 0)[:, :3].max(), 0.0)
+            for k in range(1, 6):
+                self.assertGreater(exr_rgba(exr % k)[:, :3].max(), 1.0, k)
+                self.assertGreater(np.abs(frames[k][0] - frames[k - 1][0]).max(), 20, k)
+            # VTK's lighting moves its light alike: a frame is the render at its time
+            status, _, stderr = run("render", "--lighting", "standard", "--at",
+                                    "2026-06-21T14:00Z", "--frames", 3, "--step", 240, "-o",
+                                    os.path.join(tmp, "v-%d.png"), "-q", *size)
+            self.assertEqual(status, 0, stderr)
+            status, _, stderr = run("render", "--lighting", "standard", "--at",
+                                    "2026-06-21T22:00Z", "-o", os.path.join(tmp, "v.png"), "-q",
+                                    *size)
+            self.assertEqual(status, 0, stderr)
+            self.assertTrue(np.array_equal(png_pixels_and_text(os.path.join(tmp, "v.png"))[0],
+                                           png_pixels_and_text(os.path.join(tmp, "v-2.png"))[0]))
+            self.assertGreater(np.abs(png_pixels_and_text(os.path.join(tmp, "v-0.png"))[0] -
+                                      png_pixels_and_text(os.path.join(tmp, "v-2.png"))[0]).max(),
+                               20)
+
+    def test_moving_the_sun_uploads_no_geometry(self):
+        # what a time-lapse's frames rely on: scene.set_sun changes the mapper's uniforms (and
+        # the sky model's small table) only, and aim_light moves VTK's light
+        import numpy as np
+        import aperture
+        from aperture import scene
+        reader = aperture.vtkApertureDEMReader()
+        reader.SetFileName(aperture.default_dem())
+        reader.SetDecimation(4)
+        sky = aperture.vtkApertureSkyVisibility()
+        sky.SetInputConnection(reader.GetOutputPort())
+        mesher = aperture.vtkApertureTerrainMesh()
+        mesher.SetInputConnection(sky.GetOutputPort())
+        mesher.Update()
+        sun = aperture.vtkApertureSolarPosition()
+        self.assertTrue(sun.SetTime("2026-06-21T14:00Z"))
+        sun.SetPlaceFromImage(reader.GetOutput())
+        self.assertTrue(sun.Compute())
+        window, _, mapper = scene.build_aperture(mesher.GetOutput(), sun, size=(96, 64),
+                                                 sky_mode="model", multisamples=0)
+        before = scene.rgb_pixels(window).astype(int)
+        uploads = mapper.GetGeometryUploads()
+        sun.SetUnixTime(sun.GetUnixTime() + 6 * 3600.0)
+        self.assertTrue(sun.Compute())
+        sun_rgb, _ = scene.set_sun(mapper, sun, "model")
+        after = scene.rgb_pixels(window).astype(int)
+        self.assertEqual(mapper.GetGeometryUploads(), uploads)
+        self.assertGreater(np.abs(after - before).max(), 20)
+        rgb = [0.0] * 3
+        sun.GetSunColor(rgb)
+        self.assertEqual(sun_rgb, rgb)
+        window, renderer = scene.build(mesher.GetOutput(), size=(96, 64), light_azimuth=90,
+                                       light_elevation=30, multisamples=0)
+        east = scene.rgb_pixels(window).astype(int)
+        scene.aim_light(renderer, 270, 30)
+        west = scene.rgb_pixels(window).astype(int)
+        self.assertGreater(np.abs(east - west).max(), 20)
+        scene.aim_light(renderer, 270, -5)  # (below the horizon: unlit, no ambient either)
+        terrain = west.sum(axis=2) < 3 * 250  # (the background is white)
+        self.assertGreater(terrain.mean(), 0.2)
+        self.assertEqual(scene.rgb_pixels(window).astype(int)[terrain].max(), 0)
+        with self.assertRaises(ValueError):
+            scene.aim_light(renderer, 270, 91)
+
     def test_exr_standard_lighting(self):
         # With VTK's own lighting too the EXR holds the light before the exposure, and it and
         # the PNG record the exposure given. Until 2026-12-06 that EXR was scaled by 2^EV and
@@ -207,6 +348,25 @@ class TestCommandLineRender(unittest.TestCase):
                                    (("--size", "16384x16384", "--exr", "x.exr"),
                                     "16384x16384 is too large for it"),
                                    (("-o", ""), "--output is empty"),
+                                   # a time-lapse given wrongly
+                                   (("--frames", "3", "--at", "2026-06-21T12:00Z", "-o",
+                                     os.path.join(tmp, "x.png")), "--frames 3 writes 3 pictures: "
+                                    "give --output a name with the frame number, such as "
+                                    "frame-%03d.png"),
+                                   (("--frames", "2"), "--frames needs --at"),
+                                   (("--step", "5"), "--step 5 needs --frames"),
+                                   (("--frames", "0", "--at", "2026-06-21T12:00Z"),
+                                    "--frames must be within 1..10000"),
+                                   (("--frames", "2", "--at", "2026-06-21T12:00Z", "--step",
+                                     "0.001"), "--step must be a number of minutes of at least"),
+                                   (("--frames", "2", "--at", "2026-06-21T12:00Z", "-o",
+                                     os.path.join(tmp, "f-%q.png")),
+                                    "the frame number is written %d or %03d in the name"),
+                                   (("--frames", "11", "--at", "2026-06-21T12:00Z", "-o",
+                                     os.path.join(tmp, "a%d.png"), "--exr",
+                                     os.path.join(tmp, "a%d0.png")),
+                                    "frame 10 of --output and frame 1 of --exr are one file, "
+                                    + os.path.join(tmp, "a10.png")),
                                    (("--albedo", ""), "--albedo is empty"),
                                    (("--baked", ""), "--baked is empty")):
                 # (into tmp, should a refusal ever fail: not aperture.png here)

@@ -252,6 +252,23 @@ def _check_outputs(outputs, inputs):
         taken.append((name, path))
 
 
+def _check_frame_outputs(frame_paths, inputs):
+    """_check_outputs for render's outputs, each (option, [one name a frame]): the first
+    frames against each other and the inputs, every other frame against the inputs, and no
+    two frames in one file (frame-%d.png as both -o and --exr, say)."""
+    _check_outputs([(option, names[0]) for option, names in frame_paths], inputs)
+    seen = {}
+    for option, names in frame_paths:
+        for k, name in enumerate(names):
+            key = os.path.realpath(name)
+            if key in seen:
+                raise _UsageError("frame %d of %s and frame %d of %s are one file, %s; choose "
+                                  "other names" % (seen[key] + (k, option, name)))
+            seen[key] = (k, option)
+            if k:
+                _check_outputs([(option, name)], inputs)
+
+
 def _warn_extension(path, extensions, kind):
     """A warning for an output whose name's extension says another format than it gets."""
     if path and os.path.splitext(path)[1].lower() not in extensions:
@@ -845,6 +862,56 @@ _APERTURE_LIGHTING_OPTIONS = (
     ("--linke-turbidity", "linke_turbidity", 3.0))
 
 
+_MOST_FRAMES = 10000  # (a year of hourly frames)
+
+
+def _frame_option_checks(args):
+    """Refuse --frames and --step given wrongly; set args.frame_paths, the (option, names)
+    of each output, one name a frame (one name without --frames), and args.step."""
+    if args.frames is None:
+        if args.step is not None:
+            raise _UsageError("--step %g needs --frames: it is the time between frames"
+                              % args.step)
+        args.frame_paths = [(o, [p]) for o, p in (("--output", args.output), ("--exr", args.exr))
+                            if p]
+        return
+    if not 1 <= args.frames <= _MOST_FRAMES:
+        raise _UsageError("--frames must be within 1..%d" % _MOST_FRAMES)
+    if not args.at:
+        raise _UsageError("--frames needs --at, the time of the first frame (the sun moves "
+                          "through time)")
+    args.step = 10.0 if args.step is None else args.step
+    if not (args.step >= 1.0 / 60.0 and math.isfinite(args.step)):
+        raise _UsageError("--step must be a number of minutes of at least 1/60 (one second: "
+                          "times are given to the second)")
+    args.frame_paths = [(o, _frame_names(o, p, args.frames))
+                        for o, p in (("--output", args.output), ("--exr", args.exr)) if p]
+
+
+def _frame_names(option, pattern, count):
+    """The `count` file names of a time-lapse output given as `pattern`, a name holding the
+    frame number as a printf conversion (frame-%03d.png), %% for a % sign. A usage error for
+    a pattern that is not one, or (count > 1) holds no frame number."""
+    try:
+        names = [pattern % k for k in range(count)]
+    except TypeError:  # (no conversion of a number in it: its %% signs only, or none)
+        try:
+            names = [pattern % ()] * count
+        except (TypeError, ValueError):
+            names = None
+    except ValueError:
+        names = None
+    if names is None:
+        raise _UsageError("%s %s: the frame number is written %%d or %%03d in the name, and a "
+                          "%% sign itself %%%%" % (option, pattern))
+    if count > 1 and names[0] == names[1]:
+        raise _UsageError("--frames %d writes %d pictures: give %s a name with the frame "
+                          "number, such as frame-%%03d%s (%s would be overwritten by each)"
+                          % (count, count, option, os.path.splitext(names[0])[1] or ".png",
+                             names[0]))
+    return names
+
+
 def _render_option_checks(args):
     """Refuse render options that another one makes meaningless (each would be ignored
     without a word), then fill in the defaults of the aperture's options."""
@@ -868,6 +935,7 @@ def _render_option_checks(args):
     if args.exr_type and not args.exr:
         raise _UsageError("--exr-type %s needs --exr OUT.exr" % args.exr_type)
     args.exr_type = args.exr_type or "float"
+    _frame_option_checks(args)
     from aperture import vtkApertureLinearCapture
     if args.exr and (16.0 * args.size[0] * args.size[1]
                      >= vtkApertureLinearCapture.GetMaximumBytes()):
@@ -882,9 +950,9 @@ def cmd_render(args):
 
     _render_option_checks(args)
 
-    _check_outputs([("--output", args.output), ("--exr", args.exr)],
-                   [("the DEM", _dem_path(args)), ("--baked", args.baked),
-                    ("--albedo", args.albedo)])
+    _check_frame_outputs(args.frame_paths, [("the DEM", _dem_path(args)), ("--baked", args.baked),
+                                            ("--albedo", args.albedo)])
+    outputs = [(option, name) for option, names in args.frame_paths for name in names]
     if not os.environ.get("DISPLAY"):
         raise ApertureError("rendering needs an X display (VTK on Debian renders through GLX); "
                             "run under xvfb-run -a")
@@ -914,7 +982,7 @@ def cmd_render(args):
             getattr(sky, "SetCompute" + name)(name in ("BentNormal", "ApertureRadius"))
         # the aperture of a --srcwin window sees the DEM around it, as bake --srcwin's does
         reader, window, read, _ = _window_reading(args, watcher, sky)
-        _check_sources([("--output", args.output), ("--exr", args.exr)], reader)
+        _check_sources(outputs, reader)
         _read(watcher, reader, read)
         _check_render_memory(args, window[1] - window[0] + 1, window[3] - window[2] + 1,
                              True, True)
@@ -923,20 +991,22 @@ def cmd_render(args):
             image = source = watcher.update(sky, "bake", extent=window)
     else:
         reader, image = read_dem(args, watcher)
-        _check_sources([("--output", args.output), ("--exr", args.exr)], reader)
+        _check_sources(outputs, reader)
         if args.baked:
             _attach_baked(image, args.baked, reader)
         source = image
         _check_render_memory(args, *image.GetDimensions()[:2], bool(args.baked), False)
     # (after the refusals about the outputs: not a warning, then an error, for one mistake)
-    _warn_extension(args.output, (".png",), "a PNG")
-    _warn_extension(args.exr, (".exr",), "an OpenEXR file")
+    for option, names in args.frame_paths:
+        _warn_extension(names[0], (".png",) if option == "--output" else (".exr",),
+                        "a PNG" if option == "--output" else "an OpenEXR file")
     misplaced = _albedo_placement_warning(args.albedo, albedo_bounds, image) if args.albedo \
         else None
     if misplaced:
         _warn(misplaced)
     sun = _render_sun(args, image, watcher)
-    if sun.GetElevation() < 0.0:  # (the beam and the sky models end at the horizon)
+    times, exposure = _time_lapse(args, sun) if args.frames else ([None], args.exposure)
+    if not args.frames and sun.GetElevation() < 0.0:  # (the models end at the horizon)
         _warn("the sun is %.2f degrees below the horizon%s: the terrain is unlit (the sky models "
               "have no twilight): black" % (-sun.GetElevation(), " at that time" if args.at
                                             else ""))
@@ -958,35 +1028,89 @@ def cmd_render(args):
         texture.SetInputData(albedo)
         texture.InterpolateOn()
     if args.lighting == "aperture":
-        window, _, mapper = scene.build_aperture(
+        window, renderer, mapper = scene.build_aperture(
             mesh, sun, size=args.size, view=args.view, sun_scale=args.sun_scale,
-            intersection=args.intersection, lambert=args.lambert, exposure=args.exposure,
+            intersection=args.intersection, lambert=args.lambert, exposure=exposure,
             texture=texture, multisamples=args.multisamples, camera=args.camera,
             sky_mode=args.sky, shading=args.shading)
-        exposure = mapper.GetExposure()
     else:
-        window, _ = scene.build(mesh, size=args.size, view=args.view,
-                                light_azimuth=sun.GetAzimuth(),
-                                light_elevation=sun.GetElevation(), exposure=args.exposure or 0.0,
-                                multisamples=args.multisamples, camera=args.camera)
-        mapper = window.GetRenderers().GetFirstRenderer().GetActors().GetLastActor().GetMapper()
-        exposure = mapper.GetExposure()
-    try:
-        path = scene.write_png(window, args.output, on_warning=_warn,
-                               text=_render_metadata(args, sun, exposure))
-    except (OSError, RuntimeError) as e:
-        raise ApertureError(str(e))
-    if not args.quiet:
-        print("wrote %s (%d x %d, %s view, sun azimuth %.2f, elevation %.2f deg, exposure %.2f "
-              "EV)" % (path, args.size[0], args.size[1], args.view, sun.GetAzimuth(),
-                       sun.GetElevation(), exposure))
-    if args.exr:
-        exr_path = _write_linear_exr(args, window, mapper, sun, watcher)
+        window, renderer = scene.build(mesh, size=args.size, view=args.view,
+                                       light_azimuth=sun.GetAzimuth(),
+                                       light_elevation=sun.GetElevation(),
+                                       exposure=exposure or 0.0,
+                                       multisamples=args.multisamples, camera=args.camera)
+        mapper = renderer.GetActors().GetLastActor().GetMapper()
+    exposure = mapper.GetExposure()
+    names = dict(args.frame_paths)
+    for k, t in enumerate(times):
+        if t is not None:  # (a frame of a time-lapse: the sun moves, nothing else)
+            sun.SetUnixTime(t)
+            sun.Compute()  # (each computed before, by _time_lapse)
+            if args.lighting == "aperture":
+                scene.set_sun(mapper, sun, args.sky)
+            else:
+                scene.aim_light(renderer, sun.GetAzimuth(), sun.GetElevation())
+        try:
+            path = scene.write_png(window, names["--output"][k], on_warning=_warn,
+                                   text=_render_metadata(args, sun, exposure, k))
+        except (OSError, RuntimeError) as e:
+            raise ApertureError(str(e))
         if not args.quiet:
-            print("wrote %s (linear radiance, %s, %s)" % (
-                exr_path, "W/m2/sr" if args.lighting == "aperture" else "VTK lighting",
-                args.exr_type))
+            print("wrote %s (%d x %d, %s view, %ssun azimuth %.2f, elevation %.2f deg, exposure "
+                  "%.2f EV)" % (path, args.size[0], args.size[1], args.view,
+                                "%s, " % sun.GetTimeString() if args.frames else "",
+                                sun.GetAzimuth(), sun.GetElevation(), exposure))
+        if args.exr:
+            exr_path = _write_linear_exr(args, names["--exr"][k], window, mapper, sun, watcher, k)
+            if not args.quiet:
+                print("wrote %s (linear radiance, %s, %s)" % (
+                    exr_path, "W/m2/sr" if args.lighting == "aperture" else "VTK lighting",
+                    args.exr_type))
     return 0
+
+
+def _time_lapse(args, sun):
+    """The --frames' times (POSIX seconds from the computed `sun`'s, every --step minutes),
+    each computed before any frame is drawn (a series past the algorithm's years fails first),
+    and their one exposure: --exposure, or (aperture lighting) the automatic one of the frame
+    whose sun is highest. Warns once of the frames whose sun is below the horizon (black).
+    Leaves `sun` at the first frame."""
+    from aperture import scene
+    start = sun.GetUnixTime()
+    times = [start + k * args.step * 60.0 for k in range(args.frames)]
+    elevations = []
+    for k, t in enumerate(times):
+        sun.SetUnixTime(t)
+        if not sun.Compute():
+            raise ApertureError("frame %d of --frames %d (%s): %s" % (
+                k, args.frames, sun.GetTimeString(), sun.GetErrorMessage()))
+        elevations.append(sun.GetElevation())
+    dark = [k for k, e in enumerate(elevations) if e < 0.0]
+    if dark:
+        _warn("the sun is below the horizon in %d of the %d frames (%s): the terrain is unlit "
+              "there (the sky models have no twilight): black" % (
+                  len(dark), args.frames, _ranges_text(dark)))
+    exposure = args.exposure
+    if exposure is None and args.lighting == "aperture":
+        sun.SetUnixTime(times[elevations.index(max(elevations))])
+        sun.Compute()
+        sun_rgb = [0.0] * 3
+        sun.GetSunColor(sun_rgb)
+        exposure = scene.auto_exposure(sun_rgb, sun.GetElevation(), scene.sky_radiance(sun))
+    sun.SetUnixTime(start)
+    sun.Compute()
+    return times, exposure
+
+
+def _ranges_text(numbers):
+    """'0-5, 9, 40-47' for sorted integers."""
+    runs = []
+    for n in numbers:
+        if runs and n == runs[-1][1] + 1:
+            runs[-1][1] = n
+        else:
+            runs.append([n, n])
+    return ", ".join("%d" % a if a == b else "%d-%d" % (a, b) for a, b in runs)
 
 
 ALBEDO_MAX_SIDE = 4096  # texels on the albedo texture's longer side
@@ -1085,18 +1209,19 @@ def _albedo_placement_warning(path, bounds, image):
             % (path, bounds[0], bounds[2], bounds[1], bounds[3], dem[0], dem[2], dem[1], dem[3]))
 
 
-def _render_metadata(args, sun, exposure):
+def _render_metadata(args, sun, exposure, frame=0):
     """What a render's PNG (tEXt) and EXR (header) record: the tool, the sun, the time and
-    the display exposure (EV)."""
+    the display exposure (EV); with --frames, the frame's number too."""
     from aperture import __version__
     return [("aperture:software", "aperture " + __version__),
             ("aperture:sun_azimuth_deg", "%.6f" % sun.GetAzimuth()),
             ("aperture:sun_elevation_deg", "%.6f" % sun.GetElevation()),
             ("aperture:time_utc", sun.GetTimeString() if args.at else "n/a"),
-            ("aperture:display_exposure_ev", "%.9f" % exposure)]
+            ("aperture:display_exposure_ev", "%.9f" % exposure)] + (
+        [("aperture:frame", "%d of %d" % (frame, args.frames))] if args.frames else [])
 
 
-def _write_linear_exr(args, window, mapper, sun, watcher):
+def _write_linear_exr(args, path, window, mapper, sun, watcher, frame=0):
     """The picture's linear radiance (no exposure, no tone mapping; W/m2/sr for the aperture
     lighting) read back from a float framebuffer and written as an RGBA OpenEXR; `mapper` is
     the picture's vtkApertureLightingMapper, of either lighting model (both scale by their
@@ -1105,31 +1230,32 @@ def _write_linear_exr(args, window, mapper, sun, watcher):
     renderer = window.GetRenderers().GetFirstRenderer()
     background = renderer.GetBackground()
     renderer.SetBackground(0.0, 0.0, 0.0)  # no radiance where there is no terrain
+    saved = (mapper.GetExposure(), mapper.GetToneMapping(), window.GetMultiSamples())
     window.SetMultiSamples(0)
-    saved = (mapper.GetExposure(), mapper.GetToneMapping())
     mapper.SetExposure(0.0)
     mapper.SetToneMapping(False)
     image = vtkApertureLinearCapture().Capture(renderer)
     mapper.SetExposure(saved[0])
     mapper.SetToneMapping(saved[1])
+    window.SetMultiSamples(saved[2])  # (the next frame's PNG antialiased as the first's)
     renderer.SetBackground(*background)
     if image is None:
-        raise ApertureError("could not read the float framebuffer back for %s" % args.exr)
+        raise ApertureError("could not read the float framebuffer back for %s" % path)
     writer = watcher.watch(vtkApertureEXRWriter())
     writer.SetInputData(image)
-    writer.SetFileName(native_path(args.exr))
+    writer.SetFileName(native_path(path))
     writer.SetColorArrayName("Radiance")
     writer.AddArrayName("Radiance")
     if args.exr_type == "half":
         writer.SetPixelTypeToHalf()
     unit = ("W/m^2/sr, linear Rec.709 RGB" if args.lighting == "aperture"
             else "VTK lighting, linear")
-    metadata = _render_metadata(args, sun, mapper.GetExposure())
+    metadata = _render_metadata(args, sun, mapper.GetExposure(), frame)
     metadata.insert(1, ("aperture:quantity", "outgoing radiance of the terrain, " + unit))
     for key, value in metadata:
         writer.AddMetadata(key, value)
-    watcher.write(writer, "writing %s" % args.exr)
-    return os.path.abspath(args.exr)
+    watcher.write(writer, "writing %s" % path)
+    return os.path.abspath(path)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -2166,7 +2292,8 @@ def build_parser():
                                 "aperture render ...).")
     _add_read_options(p)
     p.add_argument("-o", "--output", default="aperture.png", metavar="OUT.png",
-                   help="PNG to write (default: aperture.png)")
+                   help="PNG to write (default: aperture.png); with --frames, a name with "
+                        "the frame number")
     p.add_argument("--radius", type=float, metavar="METRES",
                    help="search distance of the aperture baked here, in metres (default: "
                         "unlimited); with --srcwin the DEM within it around the window is read "
@@ -2175,8 +2302,17 @@ def build_parser():
     p.add_argument("--baked", metavar="BAKED.tif",
                    help="reuse the BentNormal and ApertureRadius bands of 'aperture bake' "
                         "output for this DEM (the same grid and CRS) instead of baking")
-    p.add_argument("--at", metavar="ISO", help="time of the sun, as for 'aperture sun'")
+    p.add_argument("--at", metavar="ISO", help="time of the sun, as for 'aperture sun' (with "
+                                               "--frames: of the first frame)")
     p.add_argument("--tz", metavar="ZONE", help="IANA time zone for a local --at")
+    p.add_argument("--frames", type=_c_int, metavar="N",
+                   help="a time-lapse: N pictures from --at, every --step minutes, of one bake "
+                        "and one mesh (the sun moves, nothing else); -o (and --exr) hold the "
+                        "frame number, frame-%%03d.png for frame-000.png, ... (%%%% for a %% "
+                        "sign); one exposure for all (--exposure, or the automatic one of the "
+                        "frame whose sun is highest), so the light's changes show")
+    p.add_argument("--step", type=float, metavar="MIN",
+                   help="with --frames: minutes between frames, at least 1/60 (default 10)")
     p.add_argument("--sun-az", "--light-az", dest="sun_az", type=float, metavar="DEG",
                    help="sun azimuth, clockwise from true north (default 225 without --at)")
     p.add_argument("--sun-el", "--light-el", dest="sun_el", type=float, metavar="DEG",

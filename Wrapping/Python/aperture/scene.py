@@ -77,7 +77,7 @@ def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_ele
     -90..90 or a mesh without an Elevation array."""
     if view not in VIEWS:
         raise ValueError("view must be one of %s, not %r" % (", ".join(VIEWS), view))
-    if not -90.0 <= light_elevation <= 90.0:
+    if not -90.0 <= light_elevation <= 90.0:  # (aim_light says it too: before any work)
         raise ValueError("light elevation must be within [-90, 90] degrees")
     mapper = vtkApertureLightingMapper()
     mapper.SetLightingModel(vtkApertureLightingMapper.STANDARD)  # VTK lighting + exposure
@@ -88,8 +88,6 @@ def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_ele
     actor = vtkActor()
     actor.SetMapper(mapper)
     prop = actor.GetProperty()
-    lit = light_elevation >= 0.0
-    prop.SetAmbient(0.25 if lit else 0.0)
     prop.SetDiffuse(0.85)
     prop.SetSpecular(0.0)
 
@@ -100,14 +98,25 @@ def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_ele
     light = vtkLight()
     light.SetLightTypeToSceneLight()
     light.SetPositional(False)
-    d = direction_enu(light_azimuth, light_elevation)
     light.SetFocalPoint(0.0, 0.0, 0.0)
-    light.SetPosition(*d)
-    # (off by its intensity, not SwitchOff: with no light on, VTK draws the colours unlit)
-    light.SetIntensity(1.0 if lit else 0.0)
     renderer.AddLight(light)
+    aim_light(renderer, light_azimuth, light_elevation)
 
     return offscreen_window(renderer, mesh, view, size, multisamples, camera), renderer
+
+
+def aim_light(renderer, light_azimuth, light_elevation):
+    """Move the light of a `build` renderer to light_azimuth, light_elevation (degrees), as
+    `build` places it: below the horizon it lights nothing, and the mesh's ambient term is off
+    with it. ValueError for an elevation outside -90..90."""
+    if not -90.0 <= light_elevation <= 90.0:
+        raise ValueError("light elevation must be within [-90, 90] degrees")
+    lit = light_elevation >= 0.0
+    renderer.GetActors().GetLastActor().GetProperty().SetAmbient(0.25 if lit else 0.0)
+    light = renderer.GetLights().GetItemAsObject(0)
+    light.SetPosition(*direction_enu(light_azimuth, light_elevation))
+    # (off by its intensity, not SwitchOff: with no light on, VTK draws the colours unlit)
+    light.SetIntensity(1.0 if lit else 0.0)
 
 
 def offscreen_window(renderer, mesh, view, size, multisamples, camera=None):
@@ -175,26 +184,12 @@ def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
         if value not in choices:
             raise ValueError("%s must be %s, not %r" % (name, " or ".join(choices), value))
     elevation_range(mesh)  # the elevation colours need the array: fail before any work
-    direction = [0.0] * 3
-    sun.GetDirection(direction)
-    sun_rgb = [0.0] * 3
-    sun.GetSunColor(sun_rgb)
-    sky_rgb = list(sky) if sky is not None else sky_radiance(sun)
 
     mapper = vtkApertureLightingMapper()
     mapper.SetInputData(mesh)
-    mapper.SetSunDirection(direction)
-    mapper.SetSunAngularRadius(sun.GetAngularRadius())
+    sun_rgb, sky_rgb = set_sun(mapper, sun, sky_mode, sky)
     mapper.SetSunScale(sun_scale)
-    mapper.SetSunIrradiance(*sun_rgb)
-    mapper.SetSkyRadiance(*sky_rgb)
     mapper.SetShadingFrequency(mapper.PER_VERTEX if shading == "vertex" else mapper.PER_FRAGMENT)
-    if sky_mode == "model":
-        from vtkmodules.vtkCommonCore import vtkFloatArray
-        table = vtkFloatArray()
-        if not sun.ComputeSkyTable(table, 32, 9, 9):
-            raise ValueError(sun.GetErrorMessage())
-        mapper.SetSkyTable(table, 32, 9, 9)
     mapper.SetIntersectionMode(mapper.SMOOTHSTEP if intersection == "smoothstep" else mapper.EXACT)
     mapper.SetLambertMode(mapper.EXACT_CAP if lambert == "exactcap" else mapper.CENTROID)
     if exposure is None:
@@ -213,6 +208,30 @@ def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
     renderer.AddActor(actor)
     renderer.SetBackground(*background)
     return offscreen_window(renderer, mesh, view, size, multisamples, camera), renderer, mapper
+
+
+def set_sun(mapper, sun, sky_mode="constant", sky=None):
+    """Light an aperture mapper by `sun` (a computed vtkApertureSolarPosition): its direction,
+    angular radius and colour, and the sky as `build_aperture` takes it (sky_mode "constant":
+    `sky` or sky_radiance(sun); "model": the sky model's table). Uniforms and the sky's small
+    texture only: moving the sun of a drawn scene (a time-lapse) uploads no geometry. Returns
+    (sun_rgb, sky_rgb), the sun's irradiance and the uniform sky radiance; ValueError when the
+    sun's sky cannot be computed (not computed yet)."""
+    direction, sun_rgb = [0.0] * 3, [0.0] * 3
+    sun.GetDirection(direction)
+    sun.GetSunColor(sun_rgb)
+    sky_rgb = list(sky) if sky is not None else sky_radiance(sun)
+    mapper.SetSunDirection(direction)
+    mapper.SetSunAngularRadius(sun.GetAngularRadius())
+    mapper.SetSunIrradiance(*sun_rgb)
+    mapper.SetSkyRadiance(*sky_rgb)
+    if sky_mode == "model":
+        from vtkmodules.vtkCommonCore import vtkFloatArray
+        table = vtkFloatArray()
+        if not sun.ComputeSkyTable(table, 32, 9, 9):
+            raise ValueError(sun.GetErrorMessage())
+        mapper.SetSkyTable(table, 32, 9, 9)
+    return sun_rgb, sky_rgb
 
 
 def frame(renderer, mesh, view, size, camera_azimuth=180.0, camera_elevation=35.0, zoom=1.0):
