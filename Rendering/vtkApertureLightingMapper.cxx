@@ -123,20 +123,20 @@ void vtkApertureLightingMapper::ReleaseGraphicsResources(vtkWindow* window)
 //------------------------------------------------------------------------------
 void vtkApertureLightingMapper::SetNormalArrayName(const char* name)
 {
-  this->SetArrayName(this->NormalName, name);
+  this->SetModelArrayName(this->NormalName, name);
 }
 
 void vtkApertureLightingMapper::SetBentNormalArrayName(const char* name)
 {
-  this->SetArrayName(this->BentName, name);
+  this->SetModelArrayName(this->BentName, name);
 }
 
 void vtkApertureLightingMapper::SetApertureRadiusArrayName(const char* name)
 {
-  this->SetArrayName(this->RadiusName, name);
+  this->SetModelArrayName(this->RadiusName, name);
 }
 
-void vtkApertureLightingMapper::SetArrayName(std::string& field, const char* name)
+void vtkApertureLightingMapper::SetModelArrayName(std::string& field, const char* name)
 {
   const std::string value = name ? name : "";
   if (value == field)

@@ -214,8 +214,9 @@ protected:
   /** Map the three arrays to the shader's vertex attributes, leaving others mapped (none of
    *  the three without the APERTURE model in use). */
   void MapArrays();
-  /** Set one of the array names: remapped and re-uploaded when it changes. */
-  void SetArrayName(std::string& field, const char* name);
+  /** Set one of the model's array names: remapped and re-uploaded when it changes. (Not
+   *  named SetArrayName, which would hide vtkMapper's public one from C++ callers.) */
+  void SetModelArrayName(std::string& field, const char* name);
 
   int LightingModel = APERTURE;
   std::string NormalName = "Normals";

@@ -33,6 +33,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <random>
 #include <string>
@@ -309,6 +310,10 @@ void TestArraysRenamedAfterRender()
   s.Radiance();
   AP_CHECK(s.Mapper->GetGeometryUploads() == uploads + 1);
   AP_CHECK(!s.Errors->GetError());
+  // vtkMapper's own SetArrayName (the array of ColorByArrayComponent) is callable on this
+  // class from C++: a protected helper of that name hid it until 2026-12-06 (no compile)
+  s.Mapper->SetArrayName("Narrow");
+  AP_CHECK(std::strcmp(s.Mapper->GetArrayName(), "Narrow") == 0);
 }
 
 // Random normals (up to 50 degrees' tilt), bent normals (45) and apertures (9 to 83 degrees):
