@@ -589,7 +589,7 @@ int vtkApertureTerrainMesh::Execute(
       }
       const size_t first = static_cast<size_t>(j0) * nx;
       const size_t count = static_cast<size_t>(j1 - j0) * nx;
-      // (Forward fills the rotation only when given 9 elements)
+      // (Forward is given the rotation, of 9 elements, only with a bent normal to turn)
       std::vector<double> xy(2 * count), ll(2 * count), rotation(bent ? 9 : 0);
       for (size_t q = 0; q < count; ++q)
       {
@@ -635,7 +635,14 @@ int vtkApertureTerrainMesh::Execute(
         }
         else
         {
-          frame.Forward(lat, lon, exaggeration * z[k], p[0], p[1], p[2], rotation);
+          if (bent) // (GeographicLib offsets an empty rotation's data pointer: UB, clang says)
+          {
+            frame.Forward(lat, lon, exaggeration * z[k], p[0], p[1], p[2], rotation);
+          }
+          else
+          {
+            frame.Forward(lat, lon, exaggeration * z[k], p[0], p[1], p[2]);
+          }
           std::copy(p, p + 3, stored);
           if (bent)
           {
