@@ -810,6 +810,30 @@ class TestCommandLineRender(unittest.TestCase):
             self.assertLess(diff.mean(), 0.01)
             diff = np.abs(pictures["alone"] - pictures["window"])
             self.assertGreater(diff.max(), 8)
+            # A bake of the whole DEM serves any window of it read alike (its cells are read;
+            # it was refused, "is 403 x 344 cells, the DEM 160 x 120", until 2026-12-06): the
+            # picture an unlimited aperture baked here gives
+            for name, extra in (("whole", ("--baked", baked)), ("unlimited", ())):
+                pictures[name] = render_rgb(self, os.path.join(tmp, name + ".png"), dem,
+                                            *window, *extra)
+            self.assertTrue(np.array_equal(pictures["whole"], pictures["unlimited"]))
+            # (and not what a 4 km radius gives: the test would hold for a bake of any radius)
+            self.assertGreater(np.abs(pictures["whole"] - pictures["window"]).max(), 4)
+            # (not a window of other cells: decimated, or off the bake's cell corners)
+            half = os.path.join(tmp, "half-cell.tif")
+            ds = gdal.GetDriverByName("GTiff").CreateCopy(half, gdal.Open(dem))
+            gt = list(ds.GetGeoTransform())
+            ds.SetGeoTransform([gt[0] + 0.5 * gt[1]] + gt[1:])
+            ds = None
+            for source, extra, expected in (
+                    (dem, ("--decimate", 2), "0.001666666667, 0, 36.37958333, 0, "
+                     "-0.001666666667), 80 x 60): bake this DEM with the same reading options (a "
+                     "bake of all of it serves any --srcwin)"),
+                    (half, (), "covers another grid than the DEM")):
+                status, _, stderr = run("render", source, *window, "--baked", baked, *extra,
+                                        "-o", os.path.join(tmp, "x.png"), "--size", "200x120")
+                self.assertEqual(status, 1, stderr)
+                self.assertIn(expected, stderr)
 
             src = gdal.Open(dem)
             gt = list(src.GetGeoTransform())

@@ -659,7 +659,9 @@ def _is_openexr(path):
 
 def _attach_baked(image, path, reader):
     """Put BentNormal and ApertureRadius (radians) from a GeoTIFF of `aperture bake` onto the
-    DEM image (read by `reader`); the two grids, bands and elevation units must be the same."""
+    DEM image (read by `reader`): the bake's grid must be the image's, or hold it (a bake of a
+    whole DEM, the image a --srcwin of it read alike: its cells are read), and the bands and
+    elevation units must be the same."""
     from osgeo import gdal
     gdal.UseExceptions()
     kind = _file_kind(os.stat(path).st_mode) if os.path.exists(path) else None
@@ -692,23 +694,28 @@ def _attach_baked_bands(image, path, ds, reader):
         raise ApertureError("%s has no band %s: bake it with 'aperture bake' and its default "
                             "products" % (path, ", ".join(missing)))
     nx, ny, _ = image.GetDimensions()
-    if (ds.RasterXSize, ds.RasterYSize) != (nx, ny):
-        raise ApertureError("%s is %d x %d cells, the DEM %d x %d: bake this DEM"
-                            % (path, ds.RasterXSize, ds.RasterYSize, nx, ny))
+    xoff = yoff = 0
     # the same size is not the same grid: a bake of another DEM (or of another --srcwin,
     # --decimate) would light this one with the wrong sky
     from osgeo import osr
     from aperture import vtkApertureGeoreference
     geo = vtkApertureGeoreference()
-    if geo.SetFromImage(image):  # (the reader's images always carry it)
+    if not geo.SetFromImage(image):  # (the reader's images always carry it)
+        if (ds.RasterXSize, ds.RasterYSize) != (nx, ny):
+            raise ApertureError("%s is %d x %d cells, the DEM %d x %d: bake this DEM"
+                                % (path, ds.RasterXSize, ds.RasterYSize, nx, ny))
+    else:
         dem_gt = [0.0] * 6
         geo.GetGeoTransform(dem_gt)
         baked_gt = ds.GetGeoTransform(can_return_null=True)
-        cell = max(abs(dem_gt[1]), abs(dem_gt[5]))
-        if baked_gt is None or any(abs(a - b) > 1e-3 * cell for a, b in zip(baked_gt, dem_gt)):
-            raise ApertureError("%s covers another grid than the DEM (geotransform %s, the DEM "
-                                "%s): bake this DEM with the same reading options"
-                                % (path, _gt_text(baked_gt), _gt_text(dem_gt)))
+        window = _window_in(baked_gt, (ds.RasterXSize, ds.RasterYSize), dem_gt, (nx, ny))
+        if window is None:
+            raise ApertureError("%s covers another grid than the DEM (geotransform %s, %d x %d "
+                                "cells; the DEM %s, %d x %d): bake this DEM with the same "
+                                "reading options (a bake of all of it serves any --srcwin)"
+                                % (path, _gt_text(baked_gt), ds.RasterXSize, ds.RasterYSize,
+                                   _gt_text(dem_gt), nx, ny))
+        xoff, yoff = window
         dem_srs = osr.SpatialReference()
         dem_srs.ImportFromWkt(geo.GetCRS())
         if dem_srs.IsCompound():
@@ -739,13 +746,37 @@ def _attach_baked_bands(image, path, ds, reader):
                             "units of %s: render with the bake's --zfactor"
                             % (path, baked_unit, _elevation_unit(reader)))
     # file rows run north to south, image rows south to north
-    read = lambda name: ds.GetRasterBand(bands[name]).ReadAsArray().astype(np.float32)[::-1]
+    read = lambda name: ds.GetRasterBand(bands[name]).ReadAsArray(
+        xoff, yoff, nx, ny).astype(np.float32)[::-1]
     bent = np.stack([read("BentNormal_E"), read("BentNormal_N"), read("BentNormal_U")], -1)
     radius = np.radians(read("ApertureRadius")).astype(np.float32)
     for name, values in (("BentNormal", bent.reshape(-1, 3)), ("ApertureRadius", radius.ravel())):
         array = numpy_to_vtk(np.ascontiguousarray(values), deep=1)
         array.SetName(name)
         image.GetPointData().AddArray(array)
+
+
+def _window_in(outer_gt, outer_size, inner_gt, inner_size):
+    """(column, row) of the grid (inner_gt, inner_size) within the grid (outer_gt, outer_size):
+    the same cells (to 1e-3 of a cell), the inner corner on an outer cell's, inside it; else
+    None. A rotated grid is taken only when the two are the same."""
+    if outer_gt is None:
+        return None
+    cell = max(abs(inner_gt[1]), abs(inner_gt[5]))
+    if any(abs(outer_gt[k] - inner_gt[k]) > 1e-3 * cell for k in (1, 2, 4, 5)):
+        return None
+    if outer_gt[2] or outer_gt[4]:
+        return (0, 0) if (all(abs(a - b) <= 1e-3 * cell for a, b in zip(outer_gt, inner_gt))
+                          and tuple(outer_size) == tuple(inner_size)) else None
+    column = (inner_gt[0] - outer_gt[0]) / outer_gt[1]
+    row = (inner_gt[3] - outer_gt[3]) / outer_gt[5]
+    xoff, yoff = int(round(column)), int(round(row))
+    if abs(column - xoff) > 1e-3 or abs(row - yoff) > 1e-3:
+        return None
+    if not (0 <= xoff and xoff + inner_size[0] <= outer_size[0] and 0 <= yoff
+            and yoff + inner_size[1] <= outer_size[1]):
+        return None
+    return xoff, yoff
 
 
 def _render_sun(args, image, watcher):
@@ -2301,7 +2332,8 @@ def build_parser():
                         "horizons as in 'aperture bake --srcwin'")
     p.add_argument("--baked", metavar="BAKED.tif",
                    help="reuse the BentNormal and ApertureRadius bands of 'aperture bake' "
-                        "output for this DEM (the same grid and CRS) instead of baking")
+                        "output for this DEM (the same grid and CRS; a bake of the whole DEM "
+                        "serves any --srcwin of it) instead of baking")
     p.add_argument("--at", metavar="ISO", help="time of the sun, as for 'aperture sun' (with "
                                                "--frames: of the first frame)")
     p.add_argument("--tz", metavar="ZONE", help="IANA time zone for a local --at")
