@@ -57,6 +57,7 @@ struct vtkApertureDEMWriter::Internals
   int Mode = -1;         // the permissions of the file it replaces, kept; -1 for none
   std::vector<Band> Bands;
   GDALDataType Type = GDT_Float32;
+  double NoData = 0.0; // NaN cells are written as this (the NoDataValue of BeginFile)
   int Whole[6] = { 0, -1, 0, -1, 0, 0 }; // the extent the file covers
   int NextRow = -1;                      // the next image row to write (north first)
   bool Failed = false;                   // a strip failed (reported)
@@ -69,6 +70,7 @@ vtkApertureDEMWriter::vtkApertureDEMWriter()
   : FileName(nullptr)
   , Compression(nullptr)
   , CompressionLevel(1)
+  , NoDataValue(std::numeric_limits<double>::quiet_NaN())
   , NumberOfThreads(0)
   , StripRows(0)
   , Impl(new Internals)
@@ -564,6 +566,15 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     options = CSLSetNameValue(options, "NUM_THREADS", threads.c_str());
   }
   d.Type = anyDouble ? GDT_Float64 : GDT_Float32;
+  const double most = anyDouble ? std::numeric_limits<double>::max()
+                                : static_cast<double>(std::numeric_limits<float>::max());
+  if (!std::isnan(this->NoDataValue) && !(std::fabs(this->NoDataValue) <= most))
+  {
+    vtkErrorMacro(<< "the NoDataValue " << this->NoDataValue << " is not a finite "
+                  << (anyDouble ? "Float64" : "Float32") << " value (nor NaN)");
+    return false;
+  }
+  d.NoData = this->NoDataValue;
   // Written to a temporary file renamed into place when complete (EndFile): a failed or
   // aborted write leaves an earlier file as it was (GDAL deleted it before creating its own).
   // Through a symbolic link its target is replaced, the link kept, with its permissions.
@@ -602,7 +613,7 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
   {
     GDALRasterBandH hb = GDALGetRasterBand(ds, static_cast<int>(b) + 1);
     GDALSetDescription(hb, d.Bands[b].Description.c_str());
-    ok = GDALSetRasterNoDataValue(hb, std::numeric_limits<double>::quiet_NaN()) == CE_None;
+    ok = GDALSetRasterNoDataValue(hb, d.NoData) == CE_None;
     for (const auto& item : d.BandMetadata)
     {
       if (item.Array == d.Bands[b].ArrayName)
@@ -665,9 +676,17 @@ bool vtkApertureDEMWriter::WriteRows(vtkImageData* input, int j0, int j1)
     }
     const int nc = band.Components;
     GDALRasterBandH hb = GDALGetRasterBand(d.Dataset, static_cast<int>(b) + 1);
-    // File rows r0 .. r0 + k - 1 into dst.
+    // File rows r0 .. r0 + k - 1 into dst, NaN as the nodata value.
     auto fill = [&](auto* dst, int r0, int k) {
       using T = typename std::remove_pointer<decltype(dst)>::type;
+      const T nodata = static_cast<T>(d.NoData);
+      const bool replace = !std::isnan(d.NoData);
+      auto replaceNaN = [&](T* row) {
+        for (int i = 0; replace && i < nx; ++i)
+        {
+          row[i] = std::isnan(row[i]) ? nodata : row[i];
+        }
+      };
       for (int r = 0; r < k; ++r)
       {
         const vtkIdType row = whole[3] - (r0 + r) - ext[2];
@@ -680,6 +699,7 @@ bool vtkApertureDEMWriter::WriteRows(vtkImageData* input, int j0, int j1)
           {
             out[i] = static_cast<T>(src[static_cast<size_t>(i) * nc]);
           }
+          replaceNaN(out);
         }
         else if (auto* da = vtkDoubleArray::SafeDownCast(array))
         {
@@ -688,6 +708,7 @@ bool vtkApertureDEMWriter::WriteRows(vtkImageData* input, int j0, int j1)
           {
             out[i] = static_cast<T>(src[static_cast<size_t>(i) * nc]);
           }
+          replaceNaN(out);
         }
         else
         {
@@ -695,6 +716,7 @@ bool vtkApertureDEMWriter::WriteRows(vtkImageData* input, int j0, int j1)
           {
             out[i] = static_cast<T>(array->GetComponent(first + i, band.Component));
           }
+          replaceNaN(out);
         }
       }
     };
@@ -778,6 +800,7 @@ void vtkApertureDEMWriter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
   os << indent << "Compression: " << (this->Compression ? this->Compression : "(none)") << "\n";
   os << indent << "CompressionLevel: " << this->CompressionLevel << "\n";
+  os << indent << "NoDataValue: " << this->NoDataValue << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "StripRows: " << this->StripRows << "\n";
   os << indent << "ArrayNames:";

@@ -19,8 +19,8 @@
  * Band metadata added with AddBandMetadata is attached to the bands whose description starts
  * with the given array name.
  *
- * Samples: Float32 bands, or Float64 when any written array is double. NaN is the nodata value
- * and is declared as such. Compression: DEFLATE with the floating-point predictor, tiled
+ * Samples: Float32 bands, or Float64 when any written array is double. NaN cells are nodata:
+ * written as NoDataValue (default NaN), which every band declares as its nodata value. Compression: DEFLATE with the floating-point predictor, tiled
  * 256 x 256 (a raster of fewer rows: its rows rounded up to 16; one of fewer columns is stored
  * in strips of 256 rows instead), BigTIFF when needed;
  * Compression may name another GeoTIFF codec that keeps floating-point samples exactly (NONE,
@@ -101,6 +101,16 @@ public:
   /** Whether a GeoTIFF codec (case ignored) has levels that CompressionLevel sets: DEFLATE,
    *  ZSTD and LZMA; false for the others and for null. */
   static bool HasCompressionLevel(const char* codec);
+
+  ///@{
+  /** The nodata value the bands declare, and NaN cells are written as: NaN (default), or a
+   * finite number for tools that take no NaN (an ASCII grid: gdaldem's float outputs use
+   * -9999). A value a product may take (0 for an EdgeTruncated band) makes such cells read as
+   * nodata too: the caller's choice. Neither a finite Float32 nor (double arrays) Float64
+   * value: an error when writing. */
+  vtkSetMacro(NoDataValue, double);
+  vtkGetMacro(NoDataValue, double);
+  ///@}
 
   ///@{
   /** Threads compressing tiles (GDAL's NUM_THREADS): 0 (default) = all the cores this
@@ -195,6 +205,7 @@ protected:
   char* FileName;
   char* Compression;
   int CompressionLevel;
+  double NoDataValue;
   int NumberOfThreads;
   int StripRows;
 

@@ -807,6 +807,41 @@ class TestBake(unittest.TestCase):
         for name in outs[0]:
             np.testing.assert_array_equal(outs[0][name][0], outs[1][name][0])
 
+    def test_nodata_value(self):
+        # --nodata -9999: the GeoTIFF's nodata cells hold it and every band declares it, for
+        # tools that take no NaN (an ASCII grid said NODATA_value nan); its data cells are the
+        # default bake's (the writer's test covers strips); the EXR keeps NaN
+        import aperture
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        default, m9999, exr = (self.path(n) for n in ("nan.tif", "m9999.tif", "m9999.exr"))
+        status, _, err = run("bake", self.dem, default, "--radius", "900", "-q")
+        self.assertEqual(status, 0, err)
+        nan_bands = bands(default)[0]
+        status, _, err = run("bake", self.dem, m9999, "--radius", "900", "-q", "--nodata",
+                             "-9999", "--exr", exr)
+        self.assertEqual(status, 0, err)
+        ds = gdal.Open(m9999)
+        self.assertEqual({ds.GetRasterBand(b).GetNoDataValue()
+                          for b in range(1, ds.RasterCount + 1)}, {-9999.0})
+        ds = None
+        for name, (values, _) in bands(m9999)[0].items():
+            expected = nan_bands[name][0]
+            self.assertTrue(np.isnan(expected[5, 5]), name)  # (the DEM's nodata cell)
+            np.testing.assert_array_equal(values, np.where(np.isnan(expected), -9999.0,
+                                                           expected), err_msg=name)
+        asc = self.path("m9999.asc")
+        gdal.Translate(asc, m9999, format="AAIGrid", bandList=[4])
+        with open(asc) as f:
+            self.assertIn("NODATA_value  -9999", f.read(300))
+        r = aperture.vtkApertureEXRReader()
+        r.SetFileName(exr)
+        r.Update()
+        svf = vtk_to_numpy(r.GetOutput().GetPointData().GetArray("SkyViewFactor"))
+        self.assertEqual(int(np.isnan(svf).sum()), 1)
+        self.assertIn("argument --nodata: inf is not a Float32 number (nor nan)",
+                      usage_error(self, "bake", run("bake", self.dem, m9999, "--nodata",
+                                                    "inf")))
+
     def test_odd_terrain(self):
         # a lat/lon DEM whose north edge is the pole (the edge comes out a rounding error
         # beyond 90 degrees), and a flat DEM at 3e37 m: products in range, the plain's exact

@@ -181,6 +181,53 @@ void TestWriteAndReadBack()
   }
 }
 
+// A finite NoDataValue (for tools without NaN: an ASCII grid) is what NaN cells are written as
+// and what every band declares, in one write or in strips; the reader reads those cells as
+// NaN again. Until 2026-12-06 NaN was the only nodata value.
+void TestNoDataValue()
+{
+  for (int strips : { 0, 1 })
+  {
+    const std::string path = tmp + "/nodata-" + std::to_string(strips) + ".tif";
+    vtkNew<vtkApertureDEMWriter> writer;
+    writer->SetInputData(MakeImage(true));
+    writer->SetFileName(path.c_str());
+    writer->SetNoDataValue(-9999.0);
+    writer->SetStripRows(strips);
+    writer->Write();
+    GDALDatasetH ds = GDALOpen(path.c_str(), GA_ReadOnly);
+    AP_CHECK(ds != nullptr);
+    if (!ds)
+    {
+      return;
+    }
+    for (int b = 1; b <= 5; ++b)
+    {
+      int has = 0;
+      AP_CHECK(GDALGetRasterNoDataValue(GDALGetRasterBand(ds, b), &has) == -9999.0 && has);
+    }
+    AP_CHECK(Value(ds, 1, 1, NY - 1 - 2) == -9999.0); // the NaN cell
+    AP_CHECK(Value(ds, 1, 2, NY - 1 - 2) == 202.0);   // its neighbour
+    AP_CHECK(Value(ds, 2, 1, NY - 1 - 2) == 1.0);     // another band at that cell
+    GDALClose(ds);
+    vtkNew<vtkApertureDEMReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->SetBandIndex(1);
+    reader->Update();
+    vtkDataArray* z = reader->GetOutput()->GetPointData()->GetScalars();
+    AP_CHECK(z && std::isnan(z->GetTuple1(2 * NX + 1)) && z->GetTuple1(2 * NX + 2) == 202.0);
+  }
+  vtkNew<vtkApertureDEMWriter> writer;
+  writer->SetInputData(MakeImage(true));
+  writer->SetFileName((tmp + "/nodata-bad.tif").c_str());
+  writer->SetNoDataValue(1e300);
+  ExpectError(writer, "the NoDataValue 1e+300 is not a finite Float32 value (nor NaN)");
+  writer->SetNoDataValue(std::numeric_limits<double>::infinity());
+  ExpectError(writer, "the NoDataValue inf is not a finite Float32 value");
+  struct stat sb;
+  AP_CHECK(stat((tmp + "/nodata-bad.tif").c_str(), &sb) != 0);
+}
+
 // A compound CRS is written as its horizontal part: until 2026-12-06 GDAL gave every band
 // its height unit (US survey feet here), and the reader converted the metres again.
 void TestCompoundCRS()
@@ -898,6 +945,7 @@ int TestApertureDEMWriter(int argc, char* argv[])
 {
   tmp = aptest::TempDir(argc, argv);
   TestWriteAndReadBack();
+  TestNoDataValue();
   TestCompoundCRS();
   TestSelectionAndTypes();
   TestThreadsSameBytes();

@@ -631,6 +631,17 @@ def _number_in(lo, hi, unit="", above=False):
     return number
 
 
+def _nodata_value(text):
+    """--nodata: nan, or a number a Float32 band holds."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError("invalid float value: %r" % text)
+    if not (math.isnan(value) or abs(value) <= 3.4028234663852886e38):
+        raise argparse.ArgumentTypeError("%s is not a Float32 number (nor nan)" % text)
+    return value
+
+
 def _c_int(text):
     """An integer option that the filters take as a C int: beyond one, a usage error naming
     the limit (not an OverflowError from the setter)."""
@@ -746,8 +757,13 @@ def _attach_baked_bands(image, path, ds, reader):
                             "units of %s: render with the bake's --zfactor"
                             % (path, baked_unit, _elevation_unit(reader)))
     # file rows run north to south, image rows south to north
-    read = lambda name: ds.GetRasterBand(bands[name]).ReadAsArray(
-        xoff, yoff, nx, ny).astype(np.float32)[::-1]
+    def read(name):
+        band = ds.GetRasterBand(bands[name])
+        values = band.ReadAsArray(xoff, yoff, nx, ny).astype(np.float32)[::-1]
+        nodata = band.GetNoDataValue()  # (a bake's --nodata: its cells are NaN here)
+        if nodata is not None and not math.isnan(nodata):
+            values[values == np.float32(nodata)] = np.nan
+        return values
     bent = np.stack([read("BentNormal_E"), read("BentNormal_N"), read("BentNormal_U")], -1)
     radius = np.radians(read("ApertureRadius")).astype(np.float32)
     for name, values in (("BentNormal", bent.reshape(-1, 3)), ("ApertureRadius", radius.ravel())):
@@ -1720,6 +1736,7 @@ def _bake(args, products, progress):
     watcher = Watcher(on_warning=warn_once)
     writer = watcher.watch(vtkApertureDEMWriter())
     writer.SetCompression(args.compress)
+    writer.SetNoDataValue(args.nodata)
     writer.SetCompressionLevel(1 if args.compress_level is None else args.compress_level)
     writer.CheckCompression()  # before the sweep, not after it (an unknown codec named first)
     # (the level named only when given: a JPEG refused said '--compress-level 1' unasked)
@@ -2245,6 +2262,10 @@ def build_parser():
                    help="compression level: DEFLATE 1-12, ZSTD 1-22, LZMA 0-9; -1: GDAL's "
                         "default (default 1, the fastest: float bands shrink under 1%% more at "
                         "6); an error with the codecs that have no levels")
+    p.add_argument("--nodata", type=_nodata_value, default=math.nan, metavar="VALUE",
+                   help="the GeoTIFF's nodata value, which its nodata cells hold: nan "
+                        "(default), or a number for tools that take no NaN, such as an ASCII "
+                        "grid (-9999, as gdaldem's float outputs); the EXR keeps NaN")
     p.add_argument("--max-memory", type=_memory_size, metavar="SIZE",
                    help="most memory for the products and the sweep's state, beside the DEM's "
                         "elevations (4 bytes a cell): a number of MiB, or with K, M, G, T or "
