@@ -85,9 +85,9 @@ class CommandLineTest(unittest.TestCase):
         self.assertIn(expected, lines[0])
         self.assertEqual(out, "")
 
-    def assert_usage_error(self, expected, command, *args):
+    def assert_usage_error(self, expected, command, *args, env=None):
         """A mistake in the options themselves: a usage error naming it."""
-        self.assertIn(expected, usage_error(self, command, run(command, *args)))
+        self.assertIn(expected, usage_error(self, command, run(command, *args, env=env)))
 
 
 class TestHelp(CommandLineTest):
@@ -502,11 +502,12 @@ class TestBadInput(CommandLineTest):
 
     def test_empty_path(self):
         # an empty DEM argument (an unset variable in a script) is not the embedded DEM
-        self.assert_error("the DEM path is empty", "info", "")
-        self.assert_error("the DEM path is empty", "bake", "", self.path("out.tif"))
+        # (a usage error, as every other empty option is, since 2026-12-06)
+        self.assert_usage_error("the DEM path is empty", "info", "")
+        self.assert_usage_error("the DEM path is empty", "bake", "", self.path("out.tif"))
         self.assertFalse(os.path.exists(self.path("out.tif")))
-        self.assert_error("the DEM path is empty", "sun", "--dem", "", "--at",
-                          "2026-06-21T12:00:00Z")
+        self.assert_usage_error("the DEM path is empty", "sun", "--dem", "", "--at",
+                                "2026-06-21T12:00:00Z")
 
     def test_not_a_raster(self):
         p = self.path("readme.tif")
@@ -769,13 +770,21 @@ class TestBadInput(CommandLineTest):
         for level in ("-1", "-2"):
             self.assert_usage_error("--overview must be 0 or more (%s given)" % level, "info",
                                     "--overview", level)
-        self.assert_error("error: --srs: GDAL cannot parse the CRS", "info", "--srs",
-                          "EPSG:999999999")
+        # (checked at parsing: a usage error, as an unknown --tz is)
+        self.assert_usage_error("argument --srs: GDAL cannot parse the CRS 'EPSG:999999999'",
+                                "info", "--srs", "EPSG:999999999")
 
     def test_render_without_display(self):
         env = dict(os.environ)
         env.pop("DISPLAY", None)
         self.assert_error("needs an X display", "render", "-o", self.path("x.png"), env=env)
+        # the options' own mistakes first, as usage errors (they were hidden behind this one)
+        for args, expected in ((("--multisamples", "99"), "--multisamples must be within"),
+                               (("--exposure", "99"), "--exposure must be within -30..30"),
+                               (("--at", "bogus"), "cannot read the time 'bogus'"),
+                               (("--sun-el", "100"), "--sun-el must be within [-90, 90]")):
+            self.assert_usage_error(expected, "render", "-o", self.path("x.png"), *args,
+                                    env=env)
         # a DISPLAY no server answers (a stale ssh one): VTK aborted the process (status -6)
         # with its message silenced; now named first (no X server runs on :4242 here)
         env["DISPLAY"] = ":4242"

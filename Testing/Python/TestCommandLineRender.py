@@ -177,8 +177,8 @@ class TestCommandLineRender(unittest.TestCase):
             start = datetime.datetime(2026, 6, 21, 8, tzinfo=datetime.timezone.utc)
             for k, (_, text) in enumerate(frames):
                 at = (start + datetime.timedelta(hours=3 * k)).strftime("%Y-%m-%dT%H:%M:%SZ")
-                self.assertEqual((text["aperture:time_utc"], text["aperture:frame"]),
-                                 (at, "%d of 6" % k))
+                self.assertEqual((text["aperture:time_utc"], text["aperture:frame"],
+                                  text["aperture:frames"]), (at, "%d" % k, "6"))
                 # the sun of each frame is the one 'aperture sun' gives for its time and place
                 status, out, err = run("sun", "--at", at, "--dem", aperture.default_dem(),
                                        "--json")
@@ -214,6 +214,37 @@ class TestCommandLineRender(unittest.TestCase):
             for k in range(1, 6):
                 self.assertGreater(exr_rgba(exr % k)[:, :3].max(), 1.0, k)
                 self.assertGreater(np.abs(frames[k][0] - frames[k - 1][0]).max(), 20, k)
+            # SIGTERM (a batch system's limit) ends a time-lapse between frames: every frame
+            # written is whole, PNG and EXR, and the message says which (it ended the process
+            # in a PNG's write, leaving half of it, until 2026-12-06)
+            import signal
+            import time
+            stop = os.path.join(tmp, "stop")
+            os.mkdir(stop)
+            p = subprocess.Popen([APERTURE, "render", "--frames", "60", "--at",
+                                  "2026-06-21T12:00Z", "--size", "640x480", "--multisamples",
+                                  "0", "-q", "-o",
+                                  os.path.join(stop, "s-%02d.png"), "--exr",
+                                  os.path.join(stop, "s-%02d.exr")],
+                                 stderr=subprocess.PIPE, text=True)
+            deadline = time.time() + 120
+            while not os.path.exists(os.path.join(stop, "s-02.png")) and time.time() < deadline:
+                time.sleep(0.05)
+            p.send_signal(signal.SIGTERM)
+            _, stderr = p.communicate(timeout=120)
+            self.assertEqual(p.returncode, 143, stderr)
+            written = sorted(os.listdir(stop))
+            last = len(written) // 2 - 1
+            self.assertGreaterEqual(last, 1, written)
+            self.assertLess(last, 59, written)
+            self.assertEqual(stderr, "aperture: interrupted: frames 0-%d of 60 written\n" % last)
+            self.assertEqual(written, sorted(["s-%02d.%s" % (k, e) for k in range(last + 1)
+                                              for e in ("png", "exr")]))
+            for k in range(last + 1):
+                self.assertEqual(png_pixels_and_text(os.path.join(stop, "s-%02d.png" % k))[0]
+                                 .shape, (640 * 480, 3))
+                self.assertEqual(exr_rgba(os.path.join(stop, "s-%02d.exr" % k)).shape,
+                                 (640 * 480, 4))
             # VTK's lighting moves its light alike: a frame is the render at its time
             status, _, stderr = run("render", "--lighting", "standard", "--at",
                                     "2026-06-21T14:00Z", "--frames", 3, "--step", 240, "-o",
@@ -361,7 +392,22 @@ class TestCommandLineRender(unittest.TestCase):
                                      "0.001"), "--step must be a number of minutes of at least"),
                                    (("--frames", "2", "--at", "2026-06-21T12:00Z", "-o",
                                      os.path.join(tmp, "f-%q.png")),
-                                    "the frame number is written %d or %03d in the name"),
+                                    "the frame number is written %d, %4d or %04d in the name "
+                                    "(once), and a % sign itself %%"),
+                                   # (%c made a NUL and a '/' of frames 0 and 47: a traceback;
+                                   # a width of 10^8 took a GB and seconds)
+                                   (("--frames", "2", "--at", "2026-06-21T12:00Z", "-o",
+                                     os.path.join(tmp, "f-%c.png")), "written %d, %4d or %04d"),
+                                   (("--frames", "2", "--at", "2026-06-21T12:00Z", "-o",
+                                     os.path.join(tmp, "f-%100000000d.png")),
+                                    "written %d, %4d or %04d"),
+                                   (("--frames", "2", "--at", "2026-06-21T12:00Z", "-o",
+                                     os.path.join(tmp, "f-%d-%d.png")), "in the name (once)"),
+                                   (("--frames", "3", "--at", "6000-12-31T23:00Z", "--step",
+                                     "60", "-o", os.path.join(tmp, "late-%d.png")),
+                                    "frame 1 of --frames 3, 60 minutes after --at "
+                                    "6000-12-31T23:00Z: the time in the year 6001 is outside "
+                                    "the years the algorithm covers"),
                                    (("--frames", "11", "--at", "2026-06-21T12:00Z", "-o",
                                      os.path.join(tmp, "a%d.png"), "--exr",
                                      os.path.join(tmp, "a%d0.png")),
@@ -374,7 +420,7 @@ class TestCommandLineRender(unittest.TestCase):
                 result = run("render", *out, *args)
                 if any(about_files in expected for about_files in (
                         "cannot read the baked", "the albedo image", "does not exist",
-                        "is not inside the")):
+                        "is not inside the", "are one file")):
                     status, stdout, stderr = result
                     self.assertEqual(status, 1, stderr)
                     self.assertEqual(len(stderr.strip().splitlines()), 1, stderr)

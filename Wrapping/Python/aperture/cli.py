@@ -66,7 +66,7 @@ def _add_read_options(parser, dem_required=False, srcwin_help=None, dem_option=N
     g.add_argument("--decimate", type=_c_int, default=_READ_DEFAULTS["decimate"], metavar="F",
                    help="average F x F blocks of cells (nodata ignored), aligned to the "
                         "raster's top-left corner (a --srcwin gets every block it touches)")
-    g.add_argument("--srs", metavar="CRS",
+    g.add_argument("--srs", type=_crs_text, metavar="CRS",
                    help="use this CRS instead of the file's (EPSG:xxxx, WKT or PROJ string)")
     g.add_argument("--zfactor", type=_parse_zfactor, default=_READ_DEFAULTS["zfactor"],
                    metavar="Z",
@@ -254,19 +254,34 @@ def _check_outputs(outputs, inputs):
 
 def _check_frame_outputs(frame_paths, inputs):
     """_check_outputs for render's outputs, each (option, [one name a frame]): the first
-    frames against each other and the inputs, every other frame against the inputs, and no
-    two frames in one file (frame-%d.png as both -o and --exr, say)."""
+    frames against each other and the inputs; every other frame against the inputs, in full
+    for the last frame and the first in each other folder, for the others only what depends on
+    the file (one that is not a file, or read-only); and no two frames in one file (frame-%d.png
+    as both -o and --exr, or through a symbolic link)."""
     _check_outputs([(option, names[0]) for option, names in frame_paths], inputs)
-    seen = {}
+    seen, folders = {}, set()
     for option, names in frame_paths:
         for k, name in enumerate(names):
             key = os.path.realpath(name)
             if key in seen:
-                raise _UsageError("frame %d of %s and frame %d of %s are one file, %s; choose "
-                                  "other names" % (seen[key] + (k, option, name)))
+                raise ApertureError("frame %d of %s and frame %d of %s are one file, %s; choose "
+                                    "other names" % (seen[key] + (k, option, name)))
             seen[key] = (k, option)
-            if k:
+            folder = os.path.dirname(os.path.abspath(name))
+            if k and (k == len(names) - 1 or folder not in folders):
                 _check_outputs([(option, name)], inputs)
+            elif k:
+                if os.path.exists(name) and not os.path.isfile(name):
+                    raise ApertureError("cannot write %s %s: it is %s, not a file" % (
+                        option, name, _file_kind(os.stat(name).st_mode)))
+                if os.path.exists(name) and not os.access(name, os.W_OK):
+                    raise ApertureError("cannot write %s %s: the file exists and is read-only"
+                                        % (option, name))
+                for other, other_path in inputs:
+                    if other_path and _same_file(name, other_path):
+                        raise ApertureError("%s %s is the file %s (%s) is read from; choose "
+                                            "another name" % (option, name, other, other_path))
+            folders.add(folder)
 
 
 def _warn_extension(path, extensions, kind):
@@ -293,7 +308,7 @@ def _dem_path(args):
     if args.dem is not None:
         if not args.dem:
             # (not the default DEM: an empty variable in a script is a mistake, not a choice)
-            raise ApertureError("the DEM path is empty")
+            raise _UsageError("the DEM path is empty")
         if native_path(args.dem) is not args.dem and not os.path.exists(args.dem):
             # (a name that is not UTF-8: the reader's own message could not reach us)
             raise ApertureError("file '%s' does not exist" % args.dem)
@@ -631,6 +646,23 @@ def _number_in(lo, hi, unit="", above=False):
     return number
 
 
+def _crs_text(text):
+    """--srs: a CRS GDAL makes of the text, checked at parsing (the reader reads it again); an
+    empty one is left for _refuse_empty to name."""
+    if text:
+        from osgeo import gdal, osr
+        gdal.PushErrorHandler("CPLQuietErrorHandler")
+        try:
+            made = osr.SpatialReference().SetFromUserInput(text) == 0
+        except RuntimeError:  # (with GDAL's exceptions on)
+            made = False
+        finally:
+            gdal.PopErrorHandler()
+        if not made:
+            raise argparse.ArgumentTypeError("GDAL cannot parse the CRS %r" % text)
+    return text
+
+
 def _nodata_value(text):
     """--nodata: nan, or a number a Float32 band holds."""
     try:
@@ -803,9 +835,7 @@ def _render_sun(args, image, watcher):
         raise ApertureError(sun.GetErrorMessage())
     sun.SetTurbidity(args.turbidity)
     sun.SetLinkeTurbidity(args.linke_turbidity)
-    if args.at:
-        if args.sun_az is not None or args.sun_el is not None:
-            raise _UsageError("give either --at or --sun-az/--sun-el, not both")
+    if args.at:  # (its text, --tz and --sun-az/--sun-el checked by _render_option_checks)
         if math.isnan(sun.GetLatitude()):
             raise ApertureError("the DEM is in a local CRS (a site grid, no place on the Earth), "
                                 "where the sun has no position for a time: give its direction "
@@ -819,8 +849,6 @@ def _render_sun(args, image, watcher):
     else:
         az = 225.0 if args.sun_az is None else args.sun_az
         el = 35.0 if args.sun_el is None else args.sun_el
-        if not (-90.0 <= el <= 90.0) or not math.isfinite(az):
-            raise _UsageError("--sun-el must be within [-90, 90] degrees (and --sun-az finite)")
         if not sun.ComputeForDirection(az, el):
             raise ApertureError(sun.GetErrorMessage())
     watcher.errors.clear()
@@ -935,22 +963,19 @@ def _frame_option_checks(args):
                         for o, p in (("--output", args.output), ("--exr", args.exr)) if p]
 
 
+_FRAME_NUMBER = re.compile(r"%(?:%|(0?[1-9]?)d)")
+
+
 def _frame_names(option, pattern, count):
     """The `count` file names of a time-lapse output given as `pattern`, a name holding the
-    frame number as a printf conversion (frame-%03d.png), %% for a % sign. A usage error for
-    a pattern that is not one, or (count > 1) holds no frame number."""
-    try:
-        names = [pattern % k for k in range(count)]
-    except TypeError:  # (no conversion of a number in it: its %% signs only, or none)
-        try:
-            names = [pattern % ()] * count
-        except (TypeError, ValueError):
-            names = None
-    except ValueError:
-        names = None
-    if names is None:
-        raise _UsageError("%s %s: the frame number is written %%d or %%03d in the name, and a "
-                          "%% sign itself %%%%" % (option, pattern))
+    frame number as %d, or %Nd / %0Nd (a width N of 1 to 9), and %% for a % sign. A usage error
+    for any other % in it, two numbers, or (count > 1) none."""
+    numbers = [m for m in _FRAME_NUMBER.finditer(pattern) if m.group(0) != "%%"]
+    bare = _FRAME_NUMBER.sub("", pattern)
+    if "%" in bare or len(numbers) > 1:
+        raise _UsageError("%s %s: the frame number is written %%d, %%4d or %%04d in the name "
+                          "(once), and a %% sign itself %%%%" % (option, pattern))
+    names = [pattern % k for k in range(count)] if numbers else [pattern % ()] * count
     if count > 1 and names[0] == names[1]:
         raise _UsageError("--frames %d writes %d pictures: give %s a name with the frame "
                           "number, such as frame-%%03d%s (%s would be overwritten by each)"
@@ -982,6 +1007,27 @@ def _render_option_checks(args):
     if args.exr_type and not args.exr:
         raise _UsageError("--exr-type %s needs --exr OUT.exr" % args.exr_type)
     args.exr_type = args.exr_type or "float"
+    if not (0.0 <= args.exaggeration <= 1000.0):
+        raise _UsageError("--exaggeration must be within [0, 1000]")
+    if not 0 <= args.multisamples <= 16:
+        raise _UsageError("--multisamples must be within 0..16")
+    if not (args.sun_scale > 0 and math.isfinite(args.sun_scale)):
+        raise _UsageError("--sun-scale must be a positive factor")
+    if args.exposure is not None and not -30.0 <= args.exposure <= 30.0:
+        # (the mapper clamps to this range: 2^30 is already a billion times)
+        raise _UsageError("--exposure must be within -30..30 EV")
+    if args.at:
+        if args.sun_az is not None or args.sun_el is not None:
+            raise _UsageError("give either --at or --sun-az/--sun-el, not both")
+        # (the time read as the render will read it, before any file or display is looked at)
+        from aperture import vtkApertureSolarPosition
+        sun = vtkApertureSolarPosition()
+        if args.tz and not sun.SetTimeZone(args.tz):
+            raise _UsageError(sun.GetErrorMessage())
+        if not sun.SetTime(args.at):
+            raise _UsageError(sun.GetErrorMessage())
+    elif not (-90.0 <= (args.sun_el or 0.0) <= 90.0) or not math.isfinite(args.sun_az or 0.0):
+        raise _UsageError("--sun-el must be within [-90, 90] degrees (and --sun-az finite)")
     _frame_option_checks(args)
     from aperture import vtkApertureLinearCapture
     if args.exr and (16.0 * args.size[0] * args.size[1]
@@ -1004,15 +1050,6 @@ def cmd_render(args):
         raise ApertureError("rendering needs an X display (VTK on Debian renders through GLX); "
                             "run under xvfb-run -a")
     _check_display()
-    if not (0.0 <= args.exaggeration <= 1000.0):
-        raise _UsageError("--exaggeration must be within [0, 1000]")
-    if not 0 <= args.multisamples <= 16:
-        raise _UsageError("--multisamples must be within 0..16")
-    if not (args.sun_scale > 0 and math.isfinite(args.sun_scale)):
-        raise _UsageError("--sun-scale must be a positive factor")
-    if args.exposure is not None and not -30.0 <= args.exposure <= 30.0:
-        # (the mapper clamps to this range: 2^30 is already a billion times)
-        raise _UsageError("--exposure must be within -30..30 EV")
     if args.albedo and not os.path.isfile(args.albedo):
         raise ApertureError("the albedo image %s %s" % (args.albedo, "does not exist" if not
                             os.path.exists(args.albedo) else "is %s, not a file"
@@ -1033,7 +1070,9 @@ def cmd_render(args):
         _read(watcher, reader, read)
         _check_render_memory(args, window[1] - window[0] + 1, window[3] - window[2] + 1,
                              True, True)
-        _render_sun(args, reader.GetOutput(), watcher)  # (bad --at, --tz: before the bake)
+        early = _render_sun(args, reader.GetOutput(), watcher)  # (before the bake: a DEM
+        if args.frames:  # in a local CRS, a --frames series past the algorithm's years)
+            _frame_times(args, early)
         with _abort_on_interrupt(sky):
             image = source = watcher.update(sky, "bake", extent=window)
     else:
@@ -1089,31 +1128,77 @@ def cmd_render(args):
         mapper = renderer.GetActors().GetLastActor().GetMapper()
     exposure = mapper.GetExposure()
     names = dict(args.frame_paths)
-    for k, t in enumerate(times):
-        if t is not None:  # (a frame of a time-lapse: the sun moves, nothing else)
-            sun.SetUnixTime(t)
-            sun.Compute()  # (each computed before, by _time_lapse)
-            if args.lighting == "aperture":
-                scene.set_sun(mapper, sun, args.sky)
-            else:
-                scene.aim_light(renderer, sun.GetAzimuth(), sun.GetElevation())
-        try:
-            path = scene.write_png(window, names["--output"][k], on_warning=_warn,
-                                   text=_render_metadata(args, sun, exposure, k))
-        except (OSError, RuntimeError) as e:
-            raise ApertureError(str(e))
-        if not args.quiet:
-            print("wrote %s (%d x %d, %s view, %ssun azimuth %.2f, elevation %.2f deg, exposure "
-                  "%.2f EV)" % (path, args.size[0], args.size[1], args.view,
-                                "%s, " % sun.GetTimeString() if args.frames else "",
-                                sun.GetAzimuth(), sun.GetElevation(), exposure))
-        if args.exr:
-            exr_path = _write_linear_exr(args, names["--exr"][k], window, mapper, sun, watcher, k)
-            if not args.quiet:
-                print("wrote %s (linear radiance, %s, %s)" % (
-                    exr_path, "W/m2/sr" if args.lighting == "aperture" else "VTK lighting",
-                    args.exr_type))
+    with _ends_between_frames(args.frames) as between:
+        for k, t in enumerate(times):
+            _render_frame(args, k, t, sun, window, renderer, mapper, exposure, names, watcher)
+            between(k)
     return 0
+
+
+class _ends_between_frames:
+    """Ctrl-C (SIGINT), SIGTERM or SIGHUP during render's drawing and writing: noted, and acted
+    on between frames (the call the context gives, after each), so every frame's PNG and EXR
+    are whole or not begun (a SIGTERM ended the process in a PNG's write, leaving half of it);
+    KeyboardInterrupt follows (exit 130; _Terminated, 143 or 129), and an interrupted
+    time-lapse says which frames it wrote."""
+
+    def __init__(self, frames):
+        self.frames = frames  # (None: one picture)
+
+    def __enter__(self):
+        import signal
+        self.received, self.done = [], []
+        self.previous = {n: signal.signal(n, lambda signum, frame: self.received.append(signum))
+                         for n in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
+        return self._between
+
+    def _between(self, frame):
+        import signal
+        self.done.append(frame)
+        if self.received:
+            if self.frames:
+                print("%s: interrupted: frame%s %s of %d written" % (
+                    PROG, "s" if len(self.done) > 1 else "", _ranges_text(self.done),
+                    self.frames), file=sys.stderr)
+            ended = [n for n in self.received if n in (signal.SIGTERM, signal.SIGHUP)]
+            raise _Terminated(ended[0]) if ended else KeyboardInterrupt
+
+    def __exit__(self, kind, value, traceback):
+        import signal
+        for number, handler in self.previous.items():
+            signal.signal(number, handler)
+        return False
+
+
+def _render_frame(args, k, t, sun, window, renderer, mapper, exposure, names, watcher):
+    """Draw and write frame k (at POSIX time t; None: the picture of one render)."""
+    from aperture import scene
+    if t is not None:  # (a frame of a time-lapse: the sun moves, nothing else)
+        sun.SetUnixTime(t)
+        sun.Compute()  # (each computed before, by _time_lapse)
+        if args.lighting == "aperture":
+            scene.set_sun(mapper, sun, args.sky)
+        else:
+            scene.aim_light(renderer, sun.GetAzimuth(), sun.GetElevation())
+    try:
+        path = scene.write_png(window, names["--output"][k], on_warning=_warn,
+                               text=_render_metadata(args, sun, exposure, k))
+    except (OSError, RuntimeError) as e:
+        raise ApertureError(str(e))
+    if not args.quiet:
+        when = ""
+        if args.frames:  # (the local time too with --tz: a day's frames in its hours)
+            local = _local_text(sun, sun.GetUnixTime()) if args.tz else None
+            when = "%s%s, " % (sun.GetTimeString(), " (local %s)" % local if local else "")
+        print("wrote %s (%d x %d, %s view, %ssun azimuth %.2f, elevation %.2f deg, exposure "
+              "%.2f EV)" % (path, args.size[0], args.size[1], args.view, when,
+                            sun.GetAzimuth(), sun.GetElevation(), exposure))
+    if args.exr:
+        exr_path = _write_linear_exr(args, names["--exr"][k], window, mapper, sun, watcher, k)
+        if not args.quiet:
+            print("wrote %s (linear radiance, %s, %s)" % (
+                exr_path, "W/m2/sr" if args.lighting == "aperture" else "VTK lighting",
+                args.exr_type))
 
 
 def _time_lapse(args, sun):
@@ -1124,14 +1209,7 @@ def _time_lapse(args, sun):
     Leaves `sun` at the first frame."""
     from aperture import scene
     start = sun.GetUnixTime()
-    times = [start + k * args.step * 60.0 for k in range(args.frames)]
-    elevations = []
-    for k, t in enumerate(times):
-        sun.SetUnixTime(t)
-        if not sun.Compute():
-            raise ApertureError("frame %d of --frames %d (%s): %s" % (
-                k, args.frames, sun.GetTimeString(), sun.GetErrorMessage()))
-        elevations.append(sun.GetElevation())
+    times, elevations = _frame_times(args, sun)
     dark = [k for k, e in enumerate(elevations) if e < 0.0]
     if dark:
         _warn("the sun is below the horizon in %d of the %d frames (%s): the terrain is unlit "
@@ -1147,6 +1225,24 @@ def _time_lapse(args, sun):
     sun.SetUnixTime(start)
     sun.Compute()
     return times, exposure
+
+
+def _frame_times(args, sun):
+    """The --frames' times (POSIX seconds from the computed `sun`'s, every --step minutes) and
+    the sun's elevations at them, each computed: a usage error for a series that runs past the
+    algorithm's years (a fact of --at, --step and --frames). Leaves `sun` at the first."""
+    start = sun.GetUnixTime()
+    times = [start + k * args.step * 60.0 for k in range(args.frames)]
+    elevations = []
+    for k, t in enumerate(times):
+        sun.SetUnixTime(t)
+        if not sun.Compute():
+            raise _UsageError("frame %d of --frames %d, %g minutes after --at %s: %s" % (
+                k, args.frames, k * args.step, args.at, sun.GetErrorMessage()))
+        elevations.append(sun.GetElevation())
+    sun.SetUnixTime(start)
+    sun.Compute()
+    return times, elevations
 
 
 def _ranges_text(numbers):
@@ -1258,14 +1354,16 @@ def _albedo_placement_warning(path, bounds, image):
 
 def _render_metadata(args, sun, exposure, frame=0):
     """What a render's PNG (tEXt) and EXR (header) record: the tool, the sun, the time and
-    the display exposure (EV); with --frames, the frame's number too."""
+    the display exposure (EV); with --frames, the frame's number (as in its file name, from
+    0) and their count."""
     from aperture import __version__
     return [("aperture:software", "aperture " + __version__),
             ("aperture:sun_azimuth_deg", "%.6f" % sun.GetAzimuth()),
             ("aperture:sun_elevation_deg", "%.6f" % sun.GetElevation()),
             ("aperture:time_utc", sun.GetTimeString() if args.at else "n/a"),
             ("aperture:display_exposure_ev", "%.9f" % exposure)] + (
-        [("aperture:frame", "%d of %d" % (frame, args.frames))] if args.frames else [])
+        [("aperture:frame", "%d" % frame), ("aperture:frames", "%d" % args.frames)]
+        if args.frames else [])
 
 
 def _write_linear_exr(args, path, window, mapper, sun, watcher, frame=0):
@@ -2090,11 +2188,8 @@ def cmd_sun(args):
     sun.SetSkyModel(SKY_MODELS[args.sky])
     sun.SetTurbidity(args.turbidity)
     sun.SetLinkeTurbidity(args.linke_turbidity)
-    if args.delta_t is not None:
-        if not math.isfinite(args.delta_t):  # (NaN is the estimate's value in the filter)
-            raise _UsageError("--delta-t must be a number of seconds; leave it out for the "
-                              "estimate")
-        sun.SetDeltaT(args.delta_t)
+    if args.delta_t is not None:  # (a number: NaN, the estimate's value in the filter, and
+        sun.SetDeltaT(args.delta_t)  # the range are refused at parsing)
     watcher.errors.clear()
 
     def compute():
@@ -2124,7 +2219,7 @@ def cmd_sun(args):
     compute()  # (the start: any other problem is named as for one time)
     sun.SetUnixTime(start + (count - 1) * step * 60.0)
     if not sun.Compute():
-        raise ApertureError("the series over %d day%s from %s ends too late: %s" % (
+        raise _UsageError("the series over %d day%s from %s ends too late: %s" % (
             days, "" if days == 1 else "s", args.at, sun.GetErrorMessage()))
     if args.json:
         print("[")
@@ -2316,8 +2411,9 @@ def build_parser():
     p.add_argument("--sky", choices=sorted(SKY_MODELS), default="preetham",
                    help="sky radiance model (default preetham)")
     _add_atmosphere_options(p)
-    p.add_argument("--delta-t", type=float, metavar="S",
-                   help="TT - UT1 in seconds (default: estimated for the date)")
+    p.add_argument("--delta-t", type=_number_in(-100000, 100000, "s"), metavar="S",
+                   help="TT - UT1 in seconds, -100000..100000 (default: estimated for the "
+                        "date)")
     p.add_argument("--days", type=_c_int, metavar="N",
                    help="a time series from --at over N days (default 1 with --step): local "
                         "days with --tz, to the same clock time N days on (23 or 25 hours on "
