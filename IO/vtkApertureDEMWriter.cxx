@@ -516,7 +516,15 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     gt[5] = -spacing[1];
   }
 
-  // 3. Create the file.
+  // 3. Create the file (its nodata value checked first: nothing of GDAL's made yet).
+  const double most = anyDouble ? std::numeric_limits<double>::max()
+                                : static_cast<double>(std::numeric_limits<float>::max());
+  if (!std::isnan(this->NoDataValue) && !(std::fabs(this->NoDataValue) <= most))
+  {
+    vtkErrorMacro(<< "the NoDataValue " << this->NoDataValue << " is not a finite "
+                  << (anyDouble ? "Float64" : "Float32") << " value (nor NaN)");
+    return false;
+  }
   vtkApertureGDALErrorTrap trap;
   std::string compression;
   const char* levelOption = nullptr;
@@ -566,14 +574,6 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     options = CSLSetNameValue(options, "NUM_THREADS", threads.c_str());
   }
   d.Type = anyDouble ? GDT_Float64 : GDT_Float32;
-  const double most = anyDouble ? std::numeric_limits<double>::max()
-                                : static_cast<double>(std::numeric_limits<float>::max());
-  if (!std::isnan(this->NoDataValue) && !(std::fabs(this->NoDataValue) <= most))
-  {
-    vtkErrorMacro(<< "the NoDataValue " << this->NoDataValue << " is not a finite "
-                  << (anyDouble ? "Float64" : "Float32") << " value (nor NaN)");
-    return false;
-  }
   d.NoData = this->NoDataValue;
   // Written to a temporary file renamed into place when complete (EndFile): a failed or
   // aborted write leaves an earlier file as it was (GDAL deleted it before creating its own).
