@@ -699,7 +699,6 @@ bool vtkApertureDEMWriter::WriteRows(vtkImageData* input, int j0, int j1)
           {
             out[i] = static_cast<T>(src[static_cast<size_t>(i) * nc]);
           }
-          replaceNaN(out);
         }
         else if (auto* da = vtkDoubleArray::SafeDownCast(array))
         {
@@ -708,7 +707,6 @@ bool vtkApertureDEMWriter::WriteRows(vtkImageData* input, int j0, int j1)
           {
             out[i] = static_cast<T>(src[static_cast<size_t>(i) * nc]);
           }
-          replaceNaN(out);
         }
         else
         {
@@ -716,8 +714,8 @@ bool vtkApertureDEMWriter::WriteRows(vtkImageData* input, int j0, int j1)
           {
             out[i] = static_cast<T>(array->GetComponent(first + i, band.Component));
           }
-          replaceNaN(out);
         }
+        replaceNaN(out);
       }
     };
     // One strip through a buffer whose element type is the file's sample type.
@@ -781,8 +779,7 @@ bool vtkApertureDEMWriter::EndFile(bool ok)
     d.Error.clear();
     return false;
   }
-  if ((d.Mode >= 0 && chmod(d.Temporary.c_str(), static_cast<mode_t>(d.Mode)) != 0) ||
-    std::rename(d.Temporary.c_str(), d.Path.c_str()) != 0)
+  if (!vtkAperturePutInPlace(d.Temporary, d.Path, d.Mode))
   {
     vtkErrorMacro(<< "cannot put the temporary file '" << d.Temporary << "' in place of '"
                   << d.Path << "': " << std::strerror(errno));

@@ -20,9 +20,10 @@
  * with the given array name.
  *
  * Samples: Float32 bands, or Float64 when any written array is double. NaN cells are nodata:
- * written as NoDataValue (default NaN), which every band declares as its nodata value. Compression: DEFLATE with the floating-point predictor, tiled
- * 256 x 256 (a raster of fewer rows: its rows rounded up to 16; one of fewer columns is stored
- * in strips of 256 rows instead), BigTIFF when needed;
+ * written as NoDataValue (default NaN), which every band declares as its nodata value.
+ * Compression: DEFLATE with the floating-point predictor, tiled 256 x 256 (a raster of fewer
+ * rows: its rows rounded up to 16; one of fewer columns is stored in strips of 256 rows
+ * instead), BigTIFF when needed;
  * Compression may name another GeoTIFF codec that keeps floating-point samples exactly (NONE,
  * LZW, PACKBITS, ZSTD, LZMA, LERC, LERC_DEFLATE, LERC_ZSTD, where GDAL offers them),
  * CompressionLevel sets its level (default 1, the fastest). Tiles are compressed on

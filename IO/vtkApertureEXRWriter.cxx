@@ -104,9 +104,7 @@ struct ContextHandle
     {
       problem = "OpenEXR failed finishing '" + path + "': " + trap.Message(rv);
     }
-    else if ((this->Mode >= 0 &&
-               chmod(this->Temporary.c_str(), static_cast<mode_t>(this->Mode)) != 0) ||
-      std::rename(this->Temporary.c_str(), this->Target.c_str()) != 0)
+    else if (!vtkAperturePutInPlace(this->Temporary, this->Target, this->Mode))
     {
       problem = "cannot put the temporary file '" + this->Temporary + "' in place of '" + path +
         "': " + std::strerror(errno);

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -86,6 +87,16 @@ inline std::string vtkApertureTemporaryName(const std::string& target)
   const size_t base = slash == std::string::npos ? 0 : slash + 1;
   return target.substr(0, base) + ".aperture-" + std::to_string(static_cast<long>(getpid())) +
     "-" + std::to_string(count++) + ".tmp";
+}
+
+/** Put a writer's complete `temporary` file in place of `target` (vtkApertureOutputTarget):
+ *  with the permissions `mode` of the file it replaces (vtkApertureExistingMode; -1: the new
+ *  file's own), then renamed over it. False, with errno saying why, when either fails; the
+ *  temporary file is then the caller's to remove. */
+inline bool vtkAperturePutInPlace(const std::string& temporary, const std::string& target, int mode)
+{
+  return (mode < 0 || chmod(temporary.c_str(), static_cast<mode_t>(mode)) == 0) &&
+    std::rename(temporary.c_str(), target.c_str()) == 0;
 }
 
 /** Whether a reader must refuse a file of this `st`: a named pipe or a socket, which the
