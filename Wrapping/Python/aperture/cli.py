@@ -205,37 +205,39 @@ def _file_kind(mode):
     return "something else"
 
 
-def _check_outputs(outputs, inputs):
+def _check_outputs(outputs, inputs, probe=True):
     """Refuse an output that is not a file (a folder, a device such as /dev/null, a pipe), or
     whose folder does not exist or cannot take a new file (read-only, no permission), or that
     cannot be made by that name (too long, characters a FAT or NTFS stick refuses; the EXR
     writer's temporary file beside it has a short name of its own): found before a bake of hours,
     not after it; one that would overwrite an input, or two outputs in one file (the second
     would silently replace the first). outputs, inputs: (option, path) pairs; empty paths
-    skipped."""
+    skipped. probe=False leaves out what only the folder and the name's form decide (its
+    folder, a file made there and by that name), for names checked alike beside it already."""
     import tempfile
     taken = [(name, path) for name, path in inputs if path]
     for name, path in outputs:
         if not path:
             continue
         folder = os.path.dirname(os.path.abspath(path))
-        if not os.path.isdir(folder):
+        if probe and not os.path.isdir(folder):
             raise ApertureError("the output folder %s does not exist" % folder)
         exists = os.path.exists(path)
         if exists and not os.path.isfile(path):
             # (the writers refuse these too: they replace their file, and remove it on failure)
             raise ApertureError("cannot write %s %s: it is %s, not a file"
                                 % (name, path, _file_kind(os.stat(path).st_mode)))
-        try:
-            with tempfile.TemporaryFile(dir=folder):  # (unnamed where the system allows)
-                pass
-        except OSError as e:
-            raise ApertureError("cannot write %s %s: the folder does not take new files (%s)"
-                                % (name, path, e.strerror or e))
+        if probe:
+            try:
+                with tempfile.TemporaryFile(dir=folder):  # (unnamed where the system allows)
+                    pass
+            except OSError as e:
+                raise ApertureError("cannot write %s %s: the folder does not take new files "
+                                    "(%s)" % (name, path, e.strerror or e))
         if exists and not os.access(path, os.W_OK):
             raise ApertureError("cannot write %s %s: the file exists and is read-only"
                                 % (name, path))
-        if not exists:  # (made and removed at once)
+        if probe and not exists:  # (made and removed at once)
             try:
                 os.close(os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
             except FileExistsError:
@@ -254,10 +256,10 @@ def _check_outputs(outputs, inputs):
 
 def _check_frame_outputs(frame_paths, inputs):
     """_check_outputs for render's outputs, each (option, [one name a frame]): the first
-    frames against each other and the inputs; every other frame against the inputs, in full
-    for the last frame and the first in each other folder, for the others only what depends on
-    the file (one that is not a file, or read-only); and no two frames in one file (frame-%d.png
-    as both -o and --exr, or through a symbolic link)."""
+    frames against each other and the inputs; every other frame against the inputs, probing
+    its folder and name for the last frame and the first in each other folder only (about
+    1 ms a name); and no two frames in one file (frame-%d.png as both -o and --exr, or through
+    a symbolic link)."""
     _check_outputs([(option, names[0]) for option, names in frame_paths], inputs)
     seen, folders = {}, set()
     for option, names in frame_paths:
@@ -268,19 +270,9 @@ def _check_frame_outputs(frame_paths, inputs):
                                     "other names" % (seen[key] + (k, option, name)))
             seen[key] = (k, option)
             folder = os.path.dirname(os.path.abspath(name))
-            if k and (k == len(names) - 1 or folder not in folders):
-                _check_outputs([(option, name)], inputs)
-            elif k:
-                if os.path.exists(name) and not os.path.isfile(name):
-                    raise ApertureError("cannot write %s %s: it is %s, not a file" % (
-                        option, name, _file_kind(os.stat(name).st_mode)))
-                if os.path.exists(name) and not os.access(name, os.W_OK):
-                    raise ApertureError("cannot write %s %s: the file exists and is read-only"
-                                        % (option, name))
-                for other, other_path in inputs:
-                    if other_path and _same_file(name, other_path):
-                        raise ApertureError("%s %s is the file %s (%s) is read from; choose "
-                                            "another name" % (option, name, other, other_path))
+            if k:
+                _check_outputs([(option, name)], inputs,
+                               probe=k == len(names) - 1 or folder not in folders)
             folders.add(folder)
 
 
@@ -1153,15 +1145,13 @@ class _ends_between_frames:
         return self._between
 
     def _between(self, frame):
-        import signal
         self.done.append(frame)
         if self.received:
             if self.frames:
                 print("%s: interrupted: frame%s %s of %d written" % (
                     PROG, "s" if len(self.done) > 1 else "", _ranges_text(self.done),
                     self.frames), file=sys.stderr)
-            ended = [n for n in self.received if n in (signal.SIGTERM, signal.SIGHUP)]
-            raise _Terminated(ended[0]) if ended else KeyboardInterrupt
+            raise _interruption(self.received)
 
     def __exit__(self, kind, value, traceback):
         import signal
@@ -1555,6 +1545,14 @@ class _Terminated(KeyboardInterrupt):
         self.signum = signum
 
 
+def _interruption(received):
+    """The exception ending a command that caught the signals `received` (numbers, at least
+    one): _Terminated for SIGTERM or SIGHUP (exit 143, 129), else KeyboardInterrupt (130)."""
+    import signal
+    ended = [n for n in (signal.SIGTERM, signal.SIGHUP) if n in received]
+    return _Terminated(ended[0]) if ended else KeyboardInterrupt()
+
+
 class _abort_on_interrupt:
     """Ctrl-C (SIGINT), SIGTERM (`timeout`, a batch system's time limit) or SIGHUP (the
     terminal or ssh session of a long bake closed) during long filters and writers: Python runs
@@ -1609,11 +1607,8 @@ class _abort_on_interrupt:
             signal.signal(number, handler)
         for algorithm, observer in zip(self.algorithms, self.observers):
             algorithm.RemoveObserver(observer)
-        ended = [n for n in (signal.SIGTERM, signal.SIGHUP) if n in self.received]
-        if ended:
-            raise _Terminated(ended[0])
         if self.interrupted:
-            raise KeyboardInterrupt
+            raise _interruption(self.received)
         return False
 
 
