@@ -9,7 +9,8 @@
  * MetresPerElevationUnit overrides them). Nodata
  * (the band's nodata value, a GDAL mask, NaN, an infinity, or a value that does not fit a
  * float) becomes NaN; a Float32 band's nodata value is compared rounded to float, as GDAL's
- * mask does. GDAL 3.6's Int8 (a Byte band with PIXELTYPE=SIGNEDBYTE) is read as signed. The grid follows vtkApertureGeoreference's conventions: origin and
+ * mask does. GDAL 3.6's Int8 (a Byte band with PIXELTYPE=SIGNEDBYTE) is read as signed.
+ * The grid follows vtkApertureGeoreference's conventions: origin and
  * spacing in CRS units, origin at the centre of the south-west cell, row 0 south, identity
  * direction. North-up and south-up rasters both come out north-up (rows are flipped once,
  * here). The CRS (WKT) and the GeoTransform of the output grid are in the output's field data.

@@ -22,10 +22,23 @@ run("run downstream" "${WORK_DIR}/build/downstream")
 if (WRAP_PYTHON)
   # The installed package imports with only PYTHONPATH pointing at the prefix (nothing from the
   # build tree), and the installed launcher needs no environment at all.
+  string(CONCAT import_check
+    "import aperture\n"
+    "p = aperture.__file__\n"
+    "assert p.startswith('${prefix}'), p\n"
+    "r = aperture.vtkApertureDEMReader()\n"
+    "r.SetFileName(aperture.default_dem())\n"
+    "r.Update()\n"
+    "assert r.GetOutput().GetNumberOfPoints() == 403 * 344\n"
+    "print('import ok', p)\n")
   run("import from the install prefix" "${CMAKE_COMMAND}" -E env
-    "PYTHONPATH=${prefix}/${PYTHON_DESTINATION}"
-    "${PYTHON}" -c "import aperture, os; p = aperture.__file__; assert p.startswith('${prefix}'), p; r = aperture.vtkApertureDEMReader(); r.SetFileName(aperture.default_dem()); r.Update(); assert r.GetOutput().GetNumberOfPoints() == 403 * 344; print('import ok', p)")
+    "PYTHONPATH=${prefix}/${PYTHON_DESTINATION}" "${PYTHON}" -c "${import_check}")
   run("installed command line" "${prefix}/bin/aperture" info --json)
   # byte-compiled by the install (checked without importing, which could write it itself)
-  run("byte-compiled at install" "${PYTHON}" -c "import importlib.util, os; p = importlib.util.cache_from_source('${prefix}/${PYTHON_DESTINATION}/aperture/cli.py'); assert os.path.exists(p), p; print(p)")
+  string(CONCAT compiled_check
+    "import importlib.util, os\n"
+    "p = importlib.util.cache_from_source('${prefix}/${PYTHON_DESTINATION}/aperture/cli.py')\n"
+    "assert os.path.exists(p), p\n"
+    "print(p)\n")
+  run("byte-compiled at install" "${PYTHON}" -c "${compiled_check}")
 endif ()

@@ -349,7 +349,8 @@ void TestRowSizesAtPole()
   AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
     "the grid centre is at latitude 90.15, beyond the pole");
   AP_CHECK(!geo->GetCellSizeMetres(size));
-  AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()), "the cell reaches latitude 90.15, beyond the pole");
+  AP_CHECK_CONTAINS(
+    std::string(geo->GetErrorMessage()), "the cell reaches latitude 90.15, beyond the pole");
   AP_CHECK(!geo->GetCellMetricAt(0.0, 90.15, metric));
   // the top row's cell, whose north edge is the pole (a rounding error beyond it): sizes
   geo->SetGrid(-175.5, 88.025, 9.0, cell, 40, 40);
