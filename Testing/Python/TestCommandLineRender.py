@@ -28,10 +28,7 @@ def render_rgb(test, out, *args):
     status, _, stderr = run("render", "-o", out, "--size", "200x120", "--sun-az", "225",
                             "--sun-el", "20", *args)
     test.assertEqual(status, 0, stderr)
-    reader = vtkPNGReader()
-    reader.SetFileName(out)
-    reader.Update()
-    return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
+    return png_pixels_and_text(out)[0]
 
 
 def png_pixels_and_text(path):
@@ -126,15 +123,10 @@ class TestCommandLineRender(unittest.TestCase):
                 header = subprocess.run(["exrheader", exr], capture_output=True, text=True)
                 self.assertEqual(header.returncode, 0, header.stderr)
                 self.assertIn("R, 32-bit floating-point", header.stdout)
-            png_reader = vtkPNGReader()
-            png_reader.SetFileName(png)
-            png_reader.Update()
-            shown = vtk_to_numpy(png_reader.GetOutput().GetPointData().GetScalars())
-            shown = shown.reshape(160, 240, -1)[:, :, :3].astype(float)
+            shown, text = png_pixels_and_text(png)
+            shown = shown.reshape(160, 240, 3).astype(float)
             # the PNG records what the EXR does of the sun, the time and the exposure, as
             # text chunks (until 2026-12-06 a time-lapse's frames said nothing of their sun)
-            text = {png_reader.GetTextKey(k): png_reader.GetTextValue(k)
-                    for k in range(png_reader.GetNumberOfTextChunks())}
             for key in ("aperture:software", "aperture:sun_azimuth_deg",
                         "aperture:sun_elevation_deg", "aperture:time_utc",
                         "aperture:display_exposure_ev"):
@@ -326,16 +318,11 @@ class TestCommandLineRender(unittest.TestCase):
                 self.assertEqual(reader.GetMetadataValue("aperture:display_exposure_ev"),
                                  "%.9f" % float(ev))
                 self.assertIn("VTK lighting", reader.GetMetadataValue("aperture:quantity"))
-                png_reader = vtkPNGReader()
-                png_reader.SetFileName(png)
-                png_reader.Update()
-                text = {png_reader.GetTextKey(k): png_reader.GetTextValue(k)
-                        for k in range(png_reader.GetNumberOfTextChunks())}
+                shown, text = png_pixels_and_text(png)
                 self.assertEqual(text["aperture:display_exposure_ev"], "%.9f" % float(ev))
                 rgba = vtk_to_numpy(reader.GetOutput().GetPointData().GetArray("RGBA"))
-                shown = vtk_to_numpy(png_reader.GetOutput().GetPointData().GetScalars())
                 pictures[ev] = (rgba.reshape(120, 160, 4)[:, :, :3].astype(float),
-                                shown.reshape(120, 160, -1)[:, :, :3].astype(float))
+                                shown.reshape(120, 160, 3).astype(float))
         linear, shown = pictures["1"]
         terrain = linear.sum(axis=2) > 0
         self.assertGreater(terrain.mean(), 0.3)
@@ -512,12 +499,8 @@ class TestCommandLineRender(unittest.TestCase):
                                      "DEM's bounds, e.g. with gdalwarp -te)\n" % path)
                 else:
                     self.assertEqual(stderr, "")
-                    reader = vtkPNGReader()
-                    reader.SetFileName(out)
-                    reader.Update()
-                    np.testing.assert_array_equal(vtk_to_numpy(
-                        reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int),
-                        pictures["rgb.png"])
+                    np.testing.assert_array_equal(png_pixels_and_text(out)[0],
+                                                  pictures["rgb.png"])
         for k in ("rgb16.tif", "palette.png", "palette-alpha.tif"):
             np.testing.assert_array_equal(pictures[k], pictures["rgb.png"], err_msg=k)
         picture = pictures["rgb.png"].reshape(120, 200, 3)[::-1]  # (PNG rows from the bottom)
@@ -572,11 +555,8 @@ class TestCommandLineRender(unittest.TestCase):
                 status, _, stderr = run("render", "-o", out, "--size", "200x120", "--sky", sky,
                                         "--sun-az", "225", "--sun-el", "20", "--exposure", "-6")
                 self.assertEqual(status, 0, stderr)
-                reader = vtkPNGReader()
-                reader.SetFileName(out)
-                reader.Update()
-                pictures[sky] = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())
-        diff = pictures["model"][:, :3].astype(float) - pictures["constant"][:, :3]
+                pictures[sky] = png_pixels_and_text(out)[0]
+        diff = pictures["model"].astype(float) - pictures["constant"]
         self.assertGreater(abs(diff).max(), 2)
         self.assertLess(abs(diff.mean()), 10)
         # shading per vertex: nearly the same picture (this mesh has about pixel-sized cells)
@@ -586,11 +566,8 @@ class TestCommandLineRender(unittest.TestCase):
                                     "vertex", "--sun-az", "225", "--sun-el", "20",
                                     "--exposure", "-6")
             self.assertEqual(status, 0, stderr)
-            reader = vtkPNGReader()
-            reader.SetFileName(out)
-            reader.Update()
-            vertex = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())
-        diff = vertex[:, :3].astype(float) - pictures["constant"][:, :3]
+            vertex = png_pixels_and_text(out)[0]
+        diff = vertex.astype(float) - pictures["constant"]
         self.assertLess(abs(diff.mean()), 3)
         self.assertLess(np.median(abs(diff)), 4)
 
@@ -604,11 +581,8 @@ class TestCommandLineRender(unittest.TestCase):
                 status, _, stderr = run("render", "-o", out, "--size", "200x120", "--camera",
                                         camera, "--sun-az", "225", "--sun-el", "20")
                 self.assertEqual(status, 0, stderr)
-                reader = vtkPNGReader()
-                reader.SetFileName(out)
-                reader.Update()
-                rgb = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())
-                g = rgb.reshape(120, 200, -1)[:, :, :3].astype(float).mean(axis=2)
+                rgb = png_pixels_and_text(out)[0]
+                g = rgb.reshape(120, 200, 3).astype(float).mean(axis=2)
                 halves[camera] = (g[:, :100].mean(), g[:, 100:].mean())
         self.assertNotAlmostEqual(halves["180,35"][0] - halves["180,35"][1],
                                   halves["0,35"][0] - halves["0,35"][1], delta=3.0)
@@ -684,10 +658,7 @@ class TestCommandLineRender(unittest.TestCase):
                     self.assertIn("aperture: warning: the sun is %.2f degrees below the horizon: "
                                   "the terrain is unlit (the sky models have no twilight): "
                                   "black" % -float(el), stderr)
-                    reader = vtkPNGReader()
-                    reader.SetFileName(out)
-                    reader.Update()
-                    rgb = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3]
+                    rgb = png_pixels_and_text(out)[0]
                     # the terrain, black; all else the white background, and the grey of
                     # the two blended at its outline: no pixel with a colour
                     self.assertGreater((rgb.sum(axis=1) == 0).mean(), 0.3, (lighting, el))
@@ -700,10 +671,7 @@ class TestCommandLineRender(unittest.TestCase):
                                              lighting, "--view", "top", "--camera", "0,90,3")
                 self.assertEqual(status, 0, stderr)
                 self.assertIn("exposure 0.00 EV", stdout)
-                reader = vtkPNGReader()
-                reader.SetFileName(out)
-                reader.Update()
-                rgb = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3]
+                rgb = png_pixels_and_text(out)[0]
                 self.assertEqual(int(rgb.max()), 0, lighting)
                 # at the horizon and above: lit (the sky, and slopes facing the sun), and no
                 # warning
@@ -712,10 +680,7 @@ class TestCommandLineRender(unittest.TestCase):
                                             "--sun-az", "315", "--sun-el", el, "--lighting",
                                             lighting)
                     self.assertEqual((status, "warning" in stderr), (0, False), stderr)
-                    reader = vtkPNGReader()
-                    reader.SetFileName(out)
-                    reader.Update()
-                    rgb = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3]
+                    rgb = png_pixels_and_text(out)[0]
                     self.assertLess((rgb.sum(axis=1) == 0).mean(), 0.01, (lighting, el))
 
     def test_local_crs(self):
