@@ -268,7 +268,8 @@ struct vtkApertureSolarPosition::Internals
 
 //------------------------------------------------------------------------------
 vtkApertureSolarPosition::vtkApertureSolarPosition()
-  : DeltaT(kNaN)
+  : UnixTime(kNaN)
+  , DeltaT(kNaN)
   , Impl(new Internals)
 {
   std::fill(std::begin(this->Result), std::end(this->Result), kNaN);
@@ -508,6 +509,10 @@ bool vtkApertureSolarPosition::Compute()
   else if (!(std::fabs(this->Longitude) <= 180.0))
   {
     problem = "the longitude must be within -180..180 degrees";
+  }
+  else if (std::isnan(this->UnixTime))
+  {
+    problem = "no time is set: call SetTime or SetUnixTime first";
   }
   else if (!std::isfinite(this->UnixTime))
   {

@@ -66,6 +66,8 @@ public:
    * "±HH:MM", "±HHMM" or "±HH", or by nothing: a local time in TimeZone. False (and the
    * previous time kept) for text that does not parse, an impossible date, a year outside
    * −2000..6000, a local time without a TimeZone, or one that a clock change skips or repeats.
+   * There is no default time: until one is set, GetUnixTime is NaN and Compute() fails
+   * saying so (a failed first SetTime leaves it unset).
    * SetUnixTime sets POSIX seconds (UTC, no leap seconds) directly, keeping the offset the
    * last SetTime was given as the clock of the local day (a series stepped from an instant
    * written with +09:00 keeps its days at +09:00; "Z" sets 0). GetTimeString gives the
@@ -334,7 +336,7 @@ protected:
   // The sky of the last successful Compute, prepared once; false before one.
   bool PrepareSky();
 
-  double UnixTime = 0.0;
+  double UnixTime; // NaN until SetTime or SetUnixTime
   double Latitude = 0.0;
   double Longitude = 0.0;
   double Height = 0.0;

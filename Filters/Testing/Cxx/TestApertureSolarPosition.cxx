@@ -533,6 +533,16 @@ void TestBadInput()
   vtkNew<vtkApertureSolarPosition> sun;
   vtkNew<vtkTest::ErrorObserver> errors;
   sun->AddObserver(vtkCommand::ErrorEvent, errors);
+  // No time until one is set: a failed first SetTime leaves none (until 2026-12-06 the default
+  // was 1970-01-01T00:00Z, and the sun was computed for it without a word)
+  AP_CHECK(std::isnan(sun->GetUnixTime()));
+  AP_CHECK(!sun->Compute());
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "no time is set: call SetTime or SetUnixTime first");
+  AP_CHECK(std::string(sun->GetTimeString()).empty());
+  AP_CHECK(!sun->SetTime("garbage"));
+  AP_CHECK(!sun->Compute());
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "no time is set");
+  AP_CHECK(std::isnan(sun->GetAzimuth()));
   AP_CHECK(sun->SetTime("2026-06-21T12:00Z"));
   sun->SetLatitude(91.0);
   AP_CHECK(!sun->Compute());
