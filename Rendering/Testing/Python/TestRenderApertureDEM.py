@@ -11,18 +11,22 @@ that need no baseline:
 - a widened sun (x20) softens the evening's shadow edges: less local contrast;
 - sky only (sun below the horizon): no directional light, so sun-facing and opposite slopes
   are alike, and valleys are darker than ridges;
-- an albedo texture (stripes) shows through the lighting.
+- an albedo texture (stripes) shows through the lighting;
+- aperture.scene refuses bad arguments by name before any drawing (and set_sun's constant sky
+  replaces a model's table).
 
 Set APERTURE_WRITE_IMAGES=folder to write the rendered images there (for new baselines).
 """
 import math
 import os
 import sys
+import tempfile
 
 import numpy as np
 from vtkmodules.test import Testing
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData
+from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.vtkRenderingCore import vtkTexture
 
 import aperture
@@ -162,6 +166,105 @@ class TestRenderApertureDEM(Testing.vtkTest):
             with self.assertRaises(ValueError) as caught:
                 scene.build_aperture(mesh, sun, size=SIZE, **options)
             self.assertIn(named, str(caught.exception))
+
+    def testBadArguments(self):
+        # Each a clear exception naming the argument, before anything is drawn (until
+        # 2026-12-06 these drew a wrong picture, kept an old value with a VTK error on stderr,
+        # raised ZeroDivisionError, or crashed: write_png's text=[("Comment", None)])
+        mesh, _ = mesh_and_dem()
+        sun = sun_at(direction=(225.0, 30.0))
+        for options, error, named in (
+                ({"sun_scale": 0.0}, ValueError, "sun_scale must be above 0, not 0.0"),
+                ({"sun_scale": float("nan")}, ValueError, "sun_scale must be finite"),
+                ({"sky": (-1.0, -1.0, -1.0)}, ValueError, "sky must be at least 0, not -1.0"),
+                ({"sky": (float("nan"),) * 3}, ValueError, "sky must be finite"),
+                ({"sky": (40.0, 46.0)}, TypeError, "sky must be 3 numbers"),
+                ({"exposure": float("nan")}, ValueError, "exposure must be finite"),
+                ({"exposure": "bright"}, TypeError, "exposure must be a number, not 'bright'"),
+                ({"size": (0, 0)}, ValueError, "size must be at least 1, not 0"),
+                ({"size": (-10, -10)}, ValueError, "size must be at least 1, not -10"),
+                ({"size": (100.5, 80)}, ValueError, "size must be whole pixels"),
+                ({"multisamples": -1}, ValueError, "multisamples must be within [0, 16]"),
+                ({"camera": (180.0, 35.0, 0.0)}, ValueError,
+                 "camera zoom must be within [0.001, 10000], not 0.0"),
+                ({"camera": (float("nan"), 35.0)}, ValueError, "camera azimuth must be finite"),
+                ({"camera": 180.0}, TypeError, "camera must be (azimuth, elevation)"),
+                ({"background": (1.0, 1.0)}, TypeError, "background must be 3 numbers")):
+            with self.assertRaises(error, msg=options) as caught:
+                scene.build_aperture(mesh, sun, **options)
+            self.assertIn(named, str(caught.exception))
+        for options, named in (({"light_azimuth": float("nan")}, "light azimuth must be finite"),
+                               ({"light_elevation": float("nan")}, "light elevation must be"),
+                               ({"exposure": float("inf")}, "exposure must be finite"),
+                               ({"size": (40, 0)}, "size must be at least 1")):
+            with self.assertRaises(ValueError, msg=options) as caught:
+                scene.build(mesh, **options)
+            self.assertIn(named, str(caught.exception))
+        # a sun not computed is refused with `sky` given too (it was drawn all white)
+        with self.assertRaises(ValueError):
+            scene.build_aperture(mesh, aperture.vtkApertureSolarPosition(), sky=(40, 46, 58))
+        # a mesh without the aperture's arrays (it was drawn with VTK's lighting instead)
+        plain = vtkPolyData()
+        plain.ShallowCopy(mesh)
+        plain.GetPointData().RemoveArray("BentNormal")
+        with self.assertRaises(ValueError) as caught:
+            scene.build_aperture(plain, sun)
+        self.assertIn("the mesh has no point array 'BentNormal'", str(caught.exception))
+        # set_sun: a mistyped sky mode, and a mapper left unchanged by a refused call
+        _, _, mapper = scene.build_aperture(mesh, sun, size=SIZE, sky_mode="model")
+        self.assertIsNotNone(mapper.GetSkyTable())
+        for mode in ("Model", "uniform"):
+            with self.assertRaises(ValueError) as caught:
+                scene.set_sun(mapper, sun, mode)
+            self.assertIn("sky_mode must be constant or model", str(caught.exception))
+        with self.assertRaises(ValueError):
+            scene.set_sun(mapper, aperture.vtkApertureSolarPosition(), "constant", sky=(1, 1, 1))
+        self.assertIsNotNone(mapper.GetSkyTable())
+        # ... and a constant sky takes the model's table away (it stayed, and `sky` was unseen)
+        scene.set_sun(mapper, sun, "constant", sky=(400.0, 400.0, 400.0))
+        self.assertIsNone(mapper.GetSkyTable())
+        self.assertEqual(list(mapper.GetSkyRadiance()), [400.0, 400.0, 400.0])
+        # aim_light is for build()'s renderers: an aperture one has no light of its own
+        _, renderer, _ = scene.build_aperture(mesh, sun, size=SIZE)
+        ambient = renderer.GetActors().GetLastActor().GetProperty().GetAmbient()
+        with self.assertRaises(ValueError) as caught:
+            scene.aim_light(renderer, 270.0, 30.0)
+        self.assertIn("a renderer made by build()", str(caught.exception))
+        self.assertEqual(renderer.GetActors().GetLastActor().GetProperty().GetAmbient(), ambient)
+        # colours of an elevation range that is not one
+        with self.assertRaises(ValueError):
+            scene.hypsometric_colors(100.0, 0.0)
+        nodata = vtkPolyData()
+        nodata.ShallowCopy(mesh)
+        z = numpy_to_vtk(np.full(mesh.GetNumberOfPoints(), np.nan, np.float32), deep=1)
+        z.SetName("Elevation")
+        nodata.GetPointData().AddArray(z)
+        with self.assertRaises(ValueError) as caught:
+            scene.elevation_range(nodata)
+        self.assertIn("has no finite value (all nodata)", str(caught.exception))
+
+    def testPngText(self):
+        mesh, _ = mesh_and_dem()
+        window, _, _ = scene.build_aperture(mesh, sun_at(direction=(225.0, 30.0)), size=(40, 30),
+                                            multisamples=0)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "t.png")
+            for text, error in (([("Comment", None)], TypeError), ([("Comment",)], TypeError),
+                                ([("", "x")], ValueError), ([("k" * 80, "x")], ValueError),
+                                ([(" Title", "x")], ValueError), ([("Титул", "x")], ValueError),
+                                ([("Comment", "a\0b")], ValueError),
+                                ([("Comment", "€")], ValueError)):
+                with self.assertRaises(error, msg=text):
+                    scene.write_png(window, path, text=text)
+                self.assertFalse(os.path.exists(path), text)
+            # Latin-1 written as Latin-1 (VTK alone would write the UTF-8 bytes of "Zürich")
+            scene.write_png(window, path, text=[("Place", "Zürich"), ("Author", "Ægir")])
+            with open(path, "rb") as f:
+                self.assertIn(b"tEXtPlace\0Z\xfcrich", f.read())
+            reader = vtkPNGReader()
+            reader.SetFileName(path)
+            reader.Update()
+            self.assertEqual(reader.GetNumberOfTextChunks(), 2)
 
     def testSkyOnly(self):
         mesh, _ = mesh_and_dem()

@@ -26,6 +26,58 @@ import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 from aperture import vtkApertureLightingMapper
 
 VIEWS = ("top", "oblique")
+SKY_MODES = ("constant", "model")
+
+
+def _number(name, value, low=-math.inf, high=math.inf, above=False):
+    """`value` as a float: TypeError unless a number, ValueError unless finite and within
+    [low, high] (above: > low), both naming `name`."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise TypeError("%s must be a number, not %r" % (name, value)) from None
+    if not math.isfinite(v):
+        raise ValueError("%s must be finite, not %r" % (name, value))
+    if v < low or (above and v == low) or v > high:
+        bound = ("within [%g, %g]" % (low, high) if high < math.inf else
+                 "%s %g" % ("above" if above else "at least", low))
+        raise ValueError("%s must be %s, not %r" % (name, bound, value))
+    return v
+
+
+def _numbers(name, values, count, **limits):
+    """`count` numbers as _number checks them (a sequence of that length, else TypeError)."""
+    try:
+        values = list(values)
+    except TypeError:
+        raise TypeError("%s must be %d numbers, not %r" % (name, count, values)) from None
+    if len(values) != count:
+        raise TypeError("%s must be %d numbers, not %r" % (name, count, values))
+    return [_number(name, v, **limits) for v in values]
+
+
+def _check_size(size):
+    """(width, height) in pixels, each a whole number of at least 1; ValueError otherwise."""
+    w, h = _numbers("size", size, 2, low=1.0)
+    if w != int(w) or h != int(h):
+        raise ValueError("size must be whole pixels, not %r" % (size,))
+    return int(w), int(h)
+
+
+def _check_camera(camera):
+    """None, or (azimuth, elevation[, zoom]) for frame(): finite degrees, the elevation within
+    [-90, 90], the zoom within [0.001, 10000] (beyond, the camera's clipping range loses the
+    terrain: a blank picture)."""
+    if camera is None:
+        return None
+    if not isinstance(camera, (tuple, list)) or len(camera) not in (2, 3):
+        raise TypeError("camera must be (azimuth, elevation) or (azimuth, elevation, zoom), "
+                        "not %r" % (camera,))
+    checked = [_number("camera azimuth", camera[0]),
+               _number("camera elevation", camera[1], -90.0, 90.0)]
+    if len(camera) == 3:
+        checked.append(_number("camera zoom", camera[2], 1e-3, 1e4))
+    return tuple(checked)
 
 
 def direction_enu(azimuth_deg, elevation_deg):
@@ -35,7 +87,11 @@ def direction_enu(azimuth_deg, elevation_deg):
 
 
 def hypsometric_colors(zmin, zmax):
-    """Elevation colours: lowland greens, upland tans and browns, light grey summits."""
+    """Elevation colours: lowland greens, upland tans and browns, light grey summits, from zmin
+    to zmax (finite, zmin <= zmax; ValueError otherwise)."""
+    zmin, zmax = _number("zmin", zmin), _number("zmax", zmax)
+    if zmin > zmax:
+        raise ValueError("zmin %g is above zmax %g" % (zmin, zmax))
     ctf = vtkColorTransferFunction()
     span = max(zmax - zmin, 1e-6)
     stops = [(0.00, (0.20, 0.42, 0.25)), (0.25, (0.45, 0.60, 0.32)), (0.50, (0.78, 0.74, 0.50)),
@@ -48,11 +104,15 @@ def hypsometric_colors(zmin, zmax):
 
 def elevation_range(mesh, name="Elevation"):
     """(lowest, highest) value of the mesh's point array `name` (metres for the Elevation of
-    vtkApertureTerrainMesh; NaN nodata skipped); ValueError when the mesh has no such array."""
+    vtkApertureTerrainMesh; NaN nodata skipped); ValueError when the mesh has no such array
+    or it holds no finite value (no points, or all nodata)."""
     array = mesh.GetPointData().GetArray(name)
     if array is None:
         raise ValueError("the mesh has no point array '%s'" % name)
     lo, hi = array.GetRange()
+    if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
+        raise ValueError("the mesh's point array '%s' has no finite value (%s)" % (
+            name, "no points" if array.GetNumberOfTuples() == 0 else "all nodata"))
     return lo, hi
 
 
@@ -74,11 +134,15 @@ def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_ele
     black, no ambient term either: no slope facing it is lit from below the Earth);
     returns (render_window, renderer). The window renders off screen (an X display, e.g. Xvfb,
     is still needed by Debian's VTK). ValueError for an unknown view, a light elevation outside
-    -90..90 or a mesh without an Elevation array."""
+    -90..90, a value that is not finite, a size or camera that frames nothing, or a mesh
+    without an Elevation array (TypeError for a value that is not a number)."""
     if view not in VIEWS:
         raise ValueError("view must be one of %s, not %r" % (", ".join(VIEWS), view))
-    if not -90.0 <= light_elevation <= 90.0:  # (aim_light says it too: before any work)
-        raise ValueError("light elevation must be within [-90, 90] degrees")
+    # (aim_light and offscreen_window say it too: before any work)
+    _number("light azimuth", light_azimuth)
+    _number("light elevation", light_elevation, -90.0, 90.0)
+    _number("exposure", exposure)
+    _check_window_options(size, multisamples, background, camera)
     mapper = vtkApertureLightingMapper()
     mapper.SetLightingModel(vtkApertureLightingMapper.STANDARD)  # VTK lighting + exposure
     mapper.SetInputData(mesh)
@@ -108,20 +172,38 @@ def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_ele
 def aim_light(renderer, light_azimuth, light_elevation):
     """Move the light of a `build` renderer to light_azimuth, light_elevation (degrees), as
     `build` places it: below the horizon it lights nothing, and the mesh's ambient term is off
-    with it. ValueError for an elevation outside -90..90."""
-    if not -90.0 <= light_elevation <= 90.0:
-        raise ValueError("light elevation must be within [-90, 90] degrees")
-    lit = light_elevation >= 0.0
-    renderer.GetActors().GetLastActor().GetProperty().SetAmbient(0.25 if lit else 0.0)
+    with it. ValueError for an elevation outside -90..90 or an azimuth that is not finite, and
+    for a renderer that `build` did not make (no light of its own, as build_aperture's)."""
+    light_azimuth = _number("light azimuth", light_azimuth)
+    light_elevation = _number("light elevation", light_elevation, -90.0, 90.0)
     light = renderer.GetLights().GetItemAsObject(0)
+    actor = renderer.GetActors().GetLastActor()
+    if light is None or actor is None:
+        raise ValueError("aim_light moves the light of a renderer made by build(); this one "
+                         "has %s" % ("no light" if light is None else "no actor"))
+    lit = light_elevation >= 0.0
+    actor.GetProperty().SetAmbient(0.25 if lit else 0.0)
     light.SetPosition(*direction_enu(light_azimuth, light_elevation))
     # (off by its intensity, not SwitchOff: with no light on, VTK draws the colours unlit)
     light.SetIntensity(1.0 if lit else 0.0)
 
 
+def _check_window_options(size, multisamples, background, camera):
+    """The checks of offscreen_window's and the builders' window options."""
+    _check_size(size)
+    m = _number("multisamples", multisamples, 0.0, 16.0)
+    if m != int(m):
+        raise ValueError("multisamples must be a whole number within [0, 16], not %r"
+                         % (multisamples,))
+    _numbers("background", background, 3, low=0.0, high=1.0)
+    _check_camera(camera)
+
+
 def offscreen_window(renderer, mesh, view, size, multisamples, camera=None):
-    """An off-screen render window of `size` showing `renderer`, framed for `view`; camera:
-    None or (azimuth, elevation, zoom) for frame()."""
+    """An off-screen render window of `size` (width, height: whole pixels, at least 1) showing
+    `renderer`, framed for `view`; multisamples 0..16; camera: None or (azimuth, elevation[,
+    zoom]) for frame(). ValueError (TypeError) for values outside those."""
+    _check_window_options(size, multisamples, renderer.GetBackground(), camera)
     window = vtkRenderWindow()
     window.SetOffScreenRendering(1)
     window.SetSize(int(size[0]), int(size[1]))
@@ -173,17 +255,29 @@ def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
     where the lighting model runs. intersection "exact" or "smoothstep", lambert "centroid" or
     "exactcap" (the mapper's modes).
     Returns (render_window, renderer, mapper). ValueError for an unknown view, sky_mode,
-    intersection, lambert or shading, a mesh without an Elevation array, or a sun whose sky
-    cannot be computed (not computed yet)."""
+    intersection, lambert or shading, a mesh without the Elevation, Normals, BentNormal or
+    ApertureRadius arrays, a sun that has not been computed, a sun_scale that is not positive,
+    an exposure or sky that is not finite (or a negative sky), a size or camera that frames
+    nothing (TypeError for a value that is not a number)."""
     if view not in VIEWS:
         raise ValueError("view must be one of %s, not %r" % (", ".join(VIEWS), view))
-    for name, value, choices in (("sky_mode", sky_mode, ("constant", "model")),
+    for name, value, choices in (("sky_mode", sky_mode, SKY_MODES),
                                  ("intersection", intersection, ("exact", "smoothstep")),
                                  ("lambert", lambert, ("centroid", "exactcap")),
                                  ("shading", shading, ("pixel", "vertex"))):
         if value not in choices:
             raise ValueError("%s must be %s, not %r" % (name, " or ".join(choices), value))
-    elevation_range(mesh)  # the elevation colours need the array: fail before any work
+    # (before any work: the elevation colours and the lighting need these arrays)
+    elevation_range(mesh)
+    for name in ("Normals", "BentNormal", "ApertureRadius"):
+        if mesh.GetPointData().GetArray(name) is None:
+            raise ValueError("the mesh has no point array '%s': mesh a DEM baked with "
+                             "vtkApertureSkyVisibility (BentNormal, ApertureRadius) by "
+                             "vtkApertureTerrainMesh" % name)
+    _number("sun_scale", sun_scale, 0.0, above=True)
+    if exposure is not None:
+        _number("exposure", exposure)
+    _check_window_options(size, multisamples, background, camera)
 
     mapper = vtkApertureLightingMapper()
     mapper.SetInputData(mesh)
@@ -214,23 +308,29 @@ def set_sun(mapper, sun, sky_mode="constant", sky=None):
     """Light an aperture mapper by `sun` (a computed vtkApertureSolarPosition): its direction,
     angular radius and colour, and the sky as `build_aperture` takes it (sky_mode "constant":
     `sky` or sky_radiance(sun); "model": the sky model's table). Uniforms and the sky's small
-    texture only: moving the sun of a drawn scene (a time-lapse) uploads no geometry. Returns
-    (sun_rgb, sky_rgb), the sun's irradiance and the uniform sky radiance; ValueError when the
-    sun's sky cannot be computed (not computed yet)."""
-    direction, sun_rgb = [0.0] * 3, [0.0] * 3
-    sun.GetDirection(direction)
-    sun.GetSunColor(sun_rgb)
-    sky_rgb = list(sky) if sky is not None else sky_radiance(sun)
-    mapper.SetSunDirection(direction)
-    mapper.SetSunAngularRadius(sun.GetAngularRadius())
-    mapper.SetSunIrradiance(*sun_rgb)
-    mapper.SetSkyRadiance(*sky_rgb)
+    texture only: moving the sun of a drawn scene (a time-lapse) uploads no geometry; "constant"
+    takes away a model's table set before. Returns (sun_rgb, sky_rgb), the sun's irradiance and
+    the uniform sky radiance. ValueError, the mapper unchanged, for a sky_mode other than those
+    two, a sun that has not been computed, or a `sky` that is not three finite radiances of 0
+    or more (TypeError for values that are not numbers)."""
+    if sky_mode not in SKY_MODES:
+        raise ValueError("sky_mode must be %s, not %r" % (" or ".join(SKY_MODES), sky_mode))
+    model_sky = sky_radiance(sun)  # (ValueError for a sun not computed, `sky` given or not)
+    sky_rgb = _numbers("sky", sky, 3, low=0.0) if sky is not None else model_sky
+    table = None
     if sky_mode == "model":
         from vtkmodules.vtkCommonCore import vtkFloatArray
         table = vtkFloatArray()
         if not sun.ComputeSkyTable(table, 32, 9, 9):
             raise ValueError(sun.GetErrorMessage())
-        mapper.SetSkyTable(table, 32, 9, 9)
+    direction, sun_rgb = [0.0] * 3, [0.0] * 3
+    sun.GetDirection(direction)
+    sun.GetSunColor(sun_rgb)
+    mapper.SetSunDirection(direction)
+    mapper.SetSunAngularRadius(sun.GetAngularRadius())
+    mapper.SetSunIrradiance(*sun_rgb)
+    mapper.SetSkyRadiance(*sky_rgb)
+    mapper.SetSkyTable(table, 32, 9, 9)
     return sun_rgb, sky_rgb
 
 
@@ -238,7 +338,14 @@ def frame(renderer, mesh, view, size, camera_azimuth=180.0, camera_elevation=35.
     """Place the camera: "top" looks straight down with north up (orthographic); "oblique"
     looks from camera_azimuth (degrees clockwise from north; default 180: from the south,
     looking north) down at camera_elevation degrees, perspective, at the distance where the
-    whole mesh fits, divided by zoom."""
+    whole mesh fits, divided by zoom. ValueError (TypeError) for a view other than those, a
+    size of less than a pixel, an azimuth that is not finite, an elevation outside [-90, 90]
+    or a zoom outside [0.001, 10000]."""
+    if view not in VIEWS:
+        raise ValueError("view must be one of %s, not %r" % (", ".join(VIEWS), view))
+    size = _check_size(size)
+    camera_azimuth, camera_elevation, zoom = _check_camera(
+        (camera_azimuth, camera_elevation, zoom))
     b = mesh.GetBounds()
     cx, cy, cz = (b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2
     width, height, depth = b[1] - b[0], b[3] - b[2], b[5] - b[4]
@@ -362,15 +469,40 @@ def rgb_pixels(window, on_warning=None):
 
 def write_png(window, path, on_warning=None, text=()):
     """Render and write the window's pixels to a PNG; returns the absolute path. `text`: (key,
-    value) pairs written as the PNG's tEXt chunks (keys of 1 to 79 Latin-1 characters). OSError
+    value) pairs of str written as the PNG's tEXt chunks: keys of 1 to 79 printable Latin-1
+    characters (no leading, trailing or double space), values of Latin-1 characters without
+    NUL; TypeError or ValueError for others, before anything is drawn or written. OSError
     when the file cannot be written; on_warning and RuntimeError as for grab."""
     from aperture.errors import native_path
+    chunks = [_png_text_chunk(pair) for pair in text]
     writer = vtkPNGWriter()
     writer.SetFileName(native_path(path))
-    for key, value in text:
+    for key, value in chunks:
         writer.AddText(key, value)
     writer.SetInputData(grab(window, on_warning))
     writer.Write()
     if writer.GetErrorCode():
         raise OSError("cannot write the PNG %s" % path)
     return os.path.abspath(path)
+
+
+def _png_text_chunk(pair):
+    """A (key, value) pair of str as the Latin-1 bytes of a PNG tEXt chunk (the PNG
+    specification's rules for keywords); TypeError or ValueError naming what is wrong."""
+    try:
+        key, value = pair
+    except (TypeError, ValueError):
+        raise TypeError("text must hold (key, value) pairs, not %r" % (pair,)) from None
+    if not isinstance(key, str) or not isinstance(value, str):
+        raise TypeError("a PNG text chunk's key and value must be str, not %r" % (pair,))
+    try:
+        k, v = key.encode("latin-1"), value.encode("latin-1")
+    except UnicodeEncodeError:
+        raise ValueError("a PNG text chunk holds Latin-1 characters only: %r" % (pair,)) from None
+    if not (1 <= len(k) <= 79 and all(32 <= c <= 126 or c >= 161 for c in k)
+            and key == key.strip(" ") and "  " not in key):
+        raise ValueError("a PNG text chunk's key is 1 to 79 printable Latin-1 characters, "
+                         "without leading, trailing or double spaces: %r" % key)
+    if b"\0" in v:
+        raise ValueError("a PNG text chunk's value holds no NUL character: %r" % value)
+    return k, v
