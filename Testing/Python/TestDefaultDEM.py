@@ -114,6 +114,39 @@ class TestDefaultDEM(unittest.TestCase):
         self.assertLess(abs(x - east), 100.0)
         self.assertLess(north, -11000.0)
 
+    def test_maker_beside_the_function(self):
+        # The module that makes the DEM does not shadow aperture.default_dem(), the function
+        # (until 2026-12-06 it was the module aperture.default_dem: importing it replaced the
+        # function on the package, and `aperture info` then failed with "'module' object is
+        # not callable")
+        import subprocess
+        code = ("import aperture, aperture.make_default_dem; print(aperture.default_dem()); "
+                "import aperture.cli; aperture.cli.main(['info', '--json'])")
+        p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                           timeout=120)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertEqual(p.stdout.splitlines()[0], self.path)
+        import importlib.util
+        self.assertIsNone(importlib.util.find_spec("aperture.default_dem"))
+
+    def test_maker_refuses_bad_input(self):
+        from aperture import make_default_dem
+        with np.load(NPZ) as npz:
+            arrays = dict(npz)
+        for key in ("dx", "xmin", "ymax"):
+            for bad in (float("nan"), float("inf")):
+                changed = dict(arrays, **{key: np.float64(bad)})
+                with self.assertRaises(ValueError, msg=(key, bad)):
+                    make_default_dem.georeference(changed)
+        # a folder that cannot be made: a one-line message and status 1, no traceback
+        import contextlib
+        import io
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err):
+            status = make_default_dem.main([NPZ, "/proc/no/such/folder/dem.tif"])
+        self.assertEqual(status, 1)
+        self.assertRegex(err.getvalue(), r"^aperture\.make_default_dem: .*'/proc/no'\n$")
+
 
 if __name__ == "__main__":
     sys.exit(0 if unittest.main(exit=False).result.wasSuccessful() else 1)

@@ -3,7 +3,10 @@
 elevations of the Jacksboro fault area, Tennessee; shipped by Debian's python-matplotlib-data)
 as a georeferenced GeoTIFF in EPSG:4326, written with Aperture's own writer.
 
-    python3 -m aperture.default_dem NPZ OUT.tif
+    python3 -m aperture.make_default_dem NPZ OUT.tif
+
+(Named apart from the function aperture.default_dem(), the path of the result: a submodule of
+that name would replace the function on the package once imported.)
 
 How the npz maps to the ground (Documents/DefaultDEM.md has the evidence):
 - `elevation` is rows x columns, int16 metres; row 0 is the northern row, column 0 the western.
@@ -36,14 +39,17 @@ def georeference(npz):
     dx, dy = float(npz["dx"]), float(npz["dy"])
     xmin, xmax = float(npz["xmin"]), float(npz["xmax"])
     ymin, ymax = float(npz["ymin"]), float(npz["ymax"])
-    if abs(dx - dy) > 1e-12 or abs(dx - 3 * ARC_SECOND) > 1e-12:
+    # (each test written so that NaN fails it)
+    if not (abs(dx - dy) <= 1e-12 and abs(dx - 3 * ARC_SECOND) <= 1e-12):
         raise ValueError("expected square 3 arc-second cells, got dx=%r dy=%r" % (dx, dy))
     # The x bounds are cell edges: their span is exactly columns * dx.
-    if abs((xmax - xmin) - cols * dx) > 1e-9:
-        raise ValueError("xmax - xmin = %r is not columns * dx = %r" % (xmax - xmin, cols * dx))
+    if not (abs(xmin) <= 180.0 and abs((xmax - xmin) - cols * dx) <= 1e-9):
+        raise ValueError("xmax - xmin = %r is not columns * dx = %r (or xmin %r is not a "
+                         "longitude)" % (xmax - xmin, cols * dx, xmin))
     # |ymin - ymax| spans exactly rows * dy too, but ymin lies north of ymax; ymax is the
     # northern edge (see the module docstring), so the southern edge is ymax - rows * dy.
-    if abs(abs(ymin - ymax) - rows * dy) > 1e-9:
+    if not (abs(ymax) <= 90.0 and abs(ymax - rows * dy) <= 90.0 and
+            abs(abs(ymin - ymax) - rows * dy) <= 1e-9):
         raise ValueError("|ymin - ymax| = %r is not rows * dy = %r" % (abs(ymin - ymax), rows * dy))
     north = ymax
     south = north - rows * dy
@@ -89,14 +95,14 @@ def write(npz_path, out_path):
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
     if len(argv) != 2:
-        print("usage: python3 -m aperture.default_dem NPZ OUT.tif", file=sys.stderr)
+        print("usage: python3 -m aperture.make_default_dem NPZ OUT.tif", file=sys.stderr)
         return 2
     import os
-    os.makedirs(os.path.dirname(os.path.abspath(argv[1])), exist_ok=True)
     try:
+        os.makedirs(os.path.dirname(os.path.abspath(argv[1])), exist_ok=True)
         write(argv[0], argv[1])
     except (OSError, ValueError, ApertureError, RuntimeError, KeyError) as e:
-        print("aperture.default_dem: %s" % e, file=sys.stderr)
+        print("aperture.make_default_dem: %s" % e, file=sys.stderr)
         return 1
     return 0
 
