@@ -44,6 +44,44 @@ class TestImport(unittest.TestCase):
         self.assertTrue(mesh.IsA("vtkPolyDataAlgorithm"))
         self.assertTrue(aperture.vtkApertureDEMReader().IsA("vtkImageAlgorithm"))
 
+    def test_watcher_update(self):
+        # aperture.errors.Watcher.update raises on every failure, not only the first: until
+        # 2026-12-06 a second update of a reader that had failed returned an empty image (VTK's
+        # executive took the failed run as up to date), as did an extent outside the raster
+        import os
+        import tempfile
+        import numpy as np
+        from osgeo import gdal
+        import aperture
+        from aperture.errors import ApertureError, Watcher, quiet_vtk_output
+        quiet_vtk_output()
+        watcher = Watcher()
+        reader = watcher.watch(aperture.vtkApertureDEMReader())
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "dem.tif")
+            reader.SetFileName(path)
+            for _ in range(3):
+                with self.assertRaises(ApertureError) as caught:
+                    watcher.update(reader, "reading")
+                self.assertEqual(str(caught.exception), "reading: file '%s' does not exist"
+                                 % path)
+            dataset = gdal.GetDriverByName("GTiff").Create(path, 5, 4, 1, gdal.GDT_Float32)
+            dataset.SetGeoTransform([500000.0, 30.0, 0.0, 5000000.0, 0.0, -30.0])
+            dataset.SetProjection("EPSG:32633")
+            dataset.GetRasterBand(1).WriteArray(np.arange(20, dtype=np.float32).reshape(4, 5))
+            dataset = None
+            # the file there now: read at once, without a Modified() of the caller's
+            self.assertEqual(watcher.update(reader).GetDimensions(), (5, 4, 1))
+            for extent in ([0, 9, 0, 3, 0, 0], [3, 2, 0, 3, 0, 0], [-1, 2, 0, 3, 0, 0],
+                           [0, 2, 0, 3]):
+                with self.assertRaises(ApertureError, msg=extent) as caught:
+                    watcher.update(reader, extent=extent)
+                self.assertIn("is not a non-empty part of the whole extent [0, 4, 0, 3, 0, 0]",
+                              str(caught.exception))
+            # (the whole image, read before, holds the part asked for)
+            image = watcher.update(reader, extent=[1, 2, 0, 3, 0, 0])
+            self.assertEqual(image.GetExtent(), (0, 4, 0, 3, 0, 0))
+
 
 if __name__ == "__main__":
     sys.exit(0 if unittest.main(exit=False).result.wasSuccessful() else 1)

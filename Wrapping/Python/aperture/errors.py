@@ -65,6 +65,7 @@ class Watcher:
         self.errors = []
         self.warnings = []
         self._on_warning = on_warning
+        self._failed = []  # the objects that reported the errors not yet raised
 
     def watch(self, obj):
         obj.AddObserver("ErrorEvent", self._error)
@@ -74,6 +75,7 @@ class Watcher:
     @calldata_type(VTK_STRING)
     def _error(self, obj, event, text):
         self.errors.append(clean_message(text) if text is not None else _unpassed(obj))
+        self._failed.append(obj)
 
     @calldata_type(VTK_STRING)
     def _warning(self, obj, event, text):
@@ -83,18 +85,35 @@ class Watcher:
             self._on_warning(message)
 
     def check(self, what=None):
-        """Raise ApertureError if any watched object reported an error."""
+        """Raise ApertureError if any watched object reported an error. The objects that did
+        are marked modified, so that the next update runs them again (VTK's executive would
+        otherwise take the failed run as up to date and hand out its empty output)."""
         if self.errors:
             message = self.errors[0]
             self.errors = []
+            failed, self._failed = self._failed, []
+            for obj in failed:
+                obj.Modified()
             raise ApertureError(message if not what else "%s: %s" % (what, message))
 
     def update(self, algorithm, what=None, extent=None):
-        """algorithm.Update() (algorithm.UpdateExtent(extent) when given), then raise on any
-        reported error."""
+        """algorithm.Update() (algorithm.UpdateExtent(extent) when given: six integers x0, x1,
+        y0, y1, z0, z1 within the whole extent, each range not empty), then raise on any
+        reported error, or for an extent outside those rules, naming it."""
         if extent is None:
             algorithm.Update()
         else:
+            self.update_information(algorithm, what)
+            from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
+            whole = algorithm.GetOutputInformation(0).Get(
+                vtkStreamingDemandDrivenPipeline.WHOLE_EXTENT())
+            extent = list(extent)
+            if (whole is None or len(extent) != 6 or
+                    any(extent[2 * k] > extent[2 * k + 1] or extent[2 * k] < whole[2 * k] or
+                        extent[2 * k + 1] > whole[2 * k + 1] for k in range(3))):
+                raise ApertureError("%sthe extent %s is not a non-empty part of the whole "
+                                    "extent %s" % (what + ": " if what else "", extent,
+                                                   list(whole) if whole else "(none)"))
             algorithm.UpdateExtent(extent)
         self.check(what)
         return algorithm.GetOutputDataObject(0)
