@@ -44,6 +44,26 @@ class TestImport(unittest.TestCase):
         self.assertTrue(mesh.IsA("vtkPolyDataAlgorithm"))
         self.assertTrue(aperture.vtkApertureDEMReader().IsA("vtkImageAlgorithm"))
 
+    def test_cli_main_puts_vtk_output_back(self):
+        # aperture.cli.main quiets VTK's console output while it runs, and only then: until
+        # 2026-12-06 a script's own failing update printed nothing after one call of it
+        import subprocess
+        code = ("import sys, aperture, aperture.cli\n"
+                "r = aperture.vtkApertureDEMReader()\n"
+                "r.SetFileName('/nonexistent/before.tif')\n"
+                "r.Update()\n"
+                "status = aperture.cli.main(['info', '/nonexistent/cli.tif'])\n"
+                "r.SetFileName('/nonexistent/after.tif')\n"
+                "r.Update()\n"
+                "sys.exit(status)\n")
+        p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                           timeout=120)
+        self.assertEqual(p.returncode, 1, p.stderr)
+        self.assertIn("file '/nonexistent/before.tif' does not exist", p.stderr)
+        self.assertIn("aperture: error: file '/nonexistent/cli.tif' does not exist\n", p.stderr)
+        self.assertIn("file '/nonexistent/after.tif' does not exist", p.stderr)
+        self.assertEqual(p.stderr.count("cli.tif"), 1, p.stderr)  # (VTK's own kept off)
+
     def test_watcher_update(self):
         # aperture.errors.Watcher.update raises on every failure, not only the first: until
         # 2026-12-06 a second update of a reader that had failed returned an empty image (VTK's

@@ -2516,10 +2516,18 @@ def build_parser():
 
 
 def main(argv=None):
+    """Run the command line on `argv` (default sys.argv[1:]) and return its exit status (usage
+    errors and --help end in SystemExit, as argparse does). While it runs, VTK's own console
+    output is kept off the terminal (errors.quiet_vtk_output); VTK's output window and its
+    logger's stderr verbosity are put back as they were when it returns, so a script that
+    calls it still sees VTK's messages afterwards. (The verbosity put back is VTK's cutoff
+    over all its log outputs: the stderr one's, unless the script also logs to a file.)"""
     # file names that are not UTF-8 (held with surrogates) print as the bytes they are
     for stream in (sys.stdout, sys.stderr):
         if hasattr(stream, "reconfigure"):
             stream.reconfigure(errors="surrogateescape")
+    from vtkmodules.vtkCommonCore import vtkLogger, vtkOutputWindow
+    window, verbosity = vtkOutputWindow.GetInstance(), vtkLogger.GetCurrentVerbosityCutoff()
     try:
         return _main(sys.argv[1:] if argv is None else argv)
     except BrokenPipeError:
@@ -2531,6 +2539,9 @@ def main(argv=None):
         os.dup2(devnull, sys.stdout.fileno())
         import signal
         return 128 + signal.SIGPIPE
+    finally:
+        vtkOutputWindow.SetInstance(window)
+        vtkLogger.SetStderrVerbosity(verbosity)
 
 
 def _negative_values(parser, argv):
