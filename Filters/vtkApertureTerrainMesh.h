@@ -54,6 +54,9 @@
  * extent alone. An update that fails or is aborted (AbortExecute, checked after each twentieth
  * of the points) leaves an empty mesh, and the next update runs again.
  *
+ * Elevations taken from the input's active scalars, for want of an `Elevation` array (an
+ * image made by hand), come out as the point array `Elevation` too (the same values and type,
+ * sharing their memory): instead of unnamed scalars, beside named ones.
  * Point arrays added: `Normals` (unit, ENU, of the output geometry including the vertical
  * exaggeration; active normals) and `TextureCoordinates` (u east, v north, spanning the outer
  * edges of the whole extent, so an image covering the DEM's bounds drapes exactly).

@@ -376,6 +376,24 @@ void TestScalarsOfAnyType()
     expected->GetPointData()->GetNormals()->GetTuple(k, b);
     AP_CHECK(a[0] == b[0] && a[1] == b[1] && a[2] == b[2]);
   }
+  // ... and the heights come out as Elevation too, beside band1, as the reader's would (until
+  // 2026-12-06 only as band1, which aperture.scene and the README's tour could not find)
+  vtkDataArray* band1 = got->GetPointData()->GetArray("band1");
+  vtkDataArray* elevation = got->GetPointData()->GetArray("Elevation");
+  AP_CHECK(band1 && elevation && elevation->GetDataType() == VTK_SHORT &&
+    elevation->GetNumberOfTuples() == nx * ny);
+  AP_CHECK(elevation && band1 && elevation->GetVoidPointer(0) == band1->GetVoidPointer(0));
+  // unnamed scalars are replaced by it (the active scalars, named)
+  dem16->SetName(nullptr);
+  shorts->Modified();
+  auto unnamed = Mesh(shorts);
+  vtkPointData* pd = unnamed->GetPointData();
+  AP_CHECK(pd->GetScalars() && pd->GetScalars()->GetName() &&
+    std::string(pd->GetScalars()->GetName()) == "Elevation");
+  AP_CHECK(pd->GetNumberOfArrays() == 3); // Elevation, Normals, TextureCoordinates
+  AP_CHECK(shorts->GetPointData()->GetScalars()->GetName() == nullptr); // (the input's kept)
+  AP_CHECK(pd->GetArray("Elevation") && pd->GetArray("Elevation")->GetTuple1(nx + 2) ==
+    static_cast<short>(height(2, 1)));
 }
 
 // The vertex a global mesh's id stands for: the seam's copies (after the grid's) are column 0.
