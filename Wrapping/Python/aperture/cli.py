@@ -3,11 +3,11 @@
 
     aperture info [DEM] [--json]          what a DEM is: size, cell size, CRS, bounds, elevations
     aperture bake DEM OUT.tif             what every cell sees of the sky (horizons, SVF, ...)
-    aperture render [DEM] -o OUT.png      a picture of the DEM lit by the sun and sky (PNG, EXR)
+    aperture render [DEM] [-o OUT.png]    a picture of the DEM lit by the sun and sky (PNG, EXR)
     aperture sun --at ISO (--lat --lon | --dem DEM)   where the sun is; sunrise, sunset
 
-DEM is any single-band raster GDAL reads (GeoTIFF, .hgt, .asc, .dt0, VRT, ...); without it, the
-embedded default DEM is used. Errors print one line on stderr and exit with status 1; a
+DEM is any raster GDAL reads (GeoTIFF, .hgt, .asc, .dt0, VRT, ...; band 1, or --band N);
+without it, the embedded default DEM is used. Errors print one line on stderr and exit with status 1; a
 mistake in the options themselves (a malformed or out-of-range value, options that do not go
 together) prints the command's usage too and exits with status 2, as argparse's own checks do.
 """
@@ -1465,7 +1465,8 @@ def _provenance(args, products, reader):
                      "crosses the grid's columns (the far march, no hulls; along rhumb lines on "
                      "lat/lon and cylindrical (Mercator) DEMs); on other projected DEMs each "
                      "cell's distances at its own ground scale and its sectors weighted by their "
-                     "share of the ground's directions; sector sums of ALGORITHMS.md 2.2"
+                     "share of the ground's directions; closed-form sector sums (Filters/Kernels/"
+                     "ap_horizon.h, Products)"
                      % ("%d (swept sectors) or %d (far-marched sectors)"
                         % (vtkApertureSkyVisibility.GetSweptNearField(),
                            vtkApertureSkyVisibility.GetMarchedNearField())
