@@ -257,6 +257,15 @@ class TestRenderApertureDEM(Testing.vtkTest):
                 with self.assertRaises(error, msg=text):
                     scene.write_png(window, path, text=text)
                 self.assertFalse(os.path.exists(path), text)
+            # a folder, or a name in a folder that does not exist: said so, before VTK's writer
+            # tries (it printed "Ran out of disk space; deleting file(s)")
+            for name, said in ((tmp, "it is a folder"),
+                               (os.path.join(tmp, "no", "t.png"), "the folder %s does not exist"
+                                % os.path.join(tmp, "no"))):
+                with self.assertRaises(OSError) as caught:
+                    scene.write_png(window, name)
+                self.assertEqual(str(caught.exception), "cannot write the PNG %s: %s"
+                                 % (name, said))
             # Latin-1 written as Latin-1 (VTK alone would write the UTF-8 bytes of "Zürich")
             scene.write_png(window, path, text=[("Place", "Zürich"), ("Author", "Ægir")])
             with open(path, "rb") as f:

@@ -475,6 +475,11 @@ def write_png(window, path, on_warning=None, text=()):
     when the file cannot be written; on_warning and RuntimeError as for grab."""
     from aperture.errors import native_path
     chunks = [_png_text_chunk(pair) for pair in text]
+    folder = os.path.dirname(os.path.abspath(path))
+    if os.path.isdir(path) or not os.path.isdir(folder):
+        # (said before VTK's writer tries: it would print "Ran out of disk space")
+        raise OSError("cannot write the PNG %s: %s" % (path, "it is a folder" if os.path.isdir(
+            path) else "the folder %s does not exist" % folder))
     writer = vtkPNGWriter()
     writer.SetFileName(native_path(path))
     for key, value in chunks:
