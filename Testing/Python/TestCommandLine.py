@@ -189,16 +189,26 @@ class TestLauncher(CommandLineTest):
         make_raster(dem, np.add.outer(np.arange(20.0), np.arange(30.0)),
                     (500000, 30, 0, 4000000, 0, -30))
         out = self.path("pipe-out.tif")
-        for args in (("info", "--json", dem), ("bake", "--help"),
+        # Python's stdout is buffered (as on a fresh machine) or not (PYTHONUNBUFFERED=1, as in
+        # some CI environments, which hid the buffered case until 2026-12-06: the pipe's error
+        # came at the interpreter's exit, status 120 with "Exception ignored")
+        unbuffered = dict(os.environ, PYTHONUNBUFFERED="1")
+        buffered = {k: v for k, v in os.environ.items() if k != "PYTHONUNBUFFERED"}
+        for args in (("info", "--json", dem), ("bake", "--help"), ("bake", "--radius"),
                      ("bake", dem, out, "--radius", 300, "-d", 8)):
-            read, write = os.pipe()
-            os.close(read)  # (every write to the pipe now fails: EPIPE)
-            try:
-                p = subprocess.run([APERTURE] + [str(a) for a in args], stdout=write,
-                                   stderr=subprocess.PIPE, text=True, timeout=120)
-            finally:
-                os.close(write)
-            self.assertEqual((p.returncode, p.stderr), (141, ""), args)
+            for env in (buffered, unbuffered):
+                read, write = os.pipe()
+                os.close(read)  # (every write to the pipe now fails: EPIPE)
+                try:
+                    p = subprocess.run([APERTURE] + [str(a) for a in args], stdout=write,
+                                       stderr=subprocess.PIPE, text=True, timeout=120,
+                                       env=env)
+                finally:
+                    os.close(write)
+                # (a usage error's text goes to stderr, its status 2 whatever stdout is)
+                expected = (2, "usage") if args == ("bake", "--radius") else (141, "")
+                self.assertEqual((p.returncode, p.stderr[:5]), expected,
+                                 (args, "PYTHONUNBUFFERED" in env, p.stderr))
         status, _, err = run("info", out, "--band", 4)  # (the bake's file, whole)
         self.assertEqual(status, 0, err)
         ds = gdal.Open(out)

@@ -2530,7 +2530,16 @@ def main(argv=None):
     from vtkmodules.vtkCommonCore import vtkLogger, vtkOutputWindow
     window, verbosity = vtkOutputWindow.GetInstance(), vtkLogger.GetCurrentVerbosityCutoff()
     try:
-        return _main(sys.argv[1:] if argv is None else argv)
+        try:
+            status = _main(sys.argv[1:] if argv is None else argv)
+        except SystemExit as e:  # (argparse's --help and usage errors: their text flushed too)
+            status = e
+        # what is still buffered (all of it, unless PYTHONUNBUFFERED is set) written here, so
+        # that a reader gone is a BrokenPipeError below, not one at the interpreter's exit
+        sys.stdout.flush()
+        if isinstance(status, SystemExit):
+            raise status
+        return status
     except BrokenPipeError:
         # stdout closed before the report was written (`aperture info --json x | head -1`):
         # end quietly, as a tool that SIGPIPE ends does (the report comes after the outputs,
