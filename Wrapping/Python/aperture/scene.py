@@ -80,6 +80,16 @@ def _check_camera(camera):
     return tuple(checked)
 
 
+def _quietly(obj, method, *args):
+    """obj.method(*args), an error it reports taken by an observer instead of printed by VTK
+    (the caller raises it, from obj.GetErrorMessage())."""
+    tag = obj.AddObserver("ErrorEvent", lambda caller, event: None)
+    try:
+        return getattr(obj, method)(*args)
+    finally:
+        obj.RemoveObserver(tag)
+
+
 def direction_enu(azimuth_deg, elevation_deg):
     """Unit vector (east, north, up) towards azimuth (clockwise from north) and elevation."""
     az, el = math.radians(azimuth_deg), math.radians(elevation_deg)
@@ -223,7 +233,7 @@ def sky_radiance(sun):
     horizontal surface: the model's cosine-weighted hemisphere integral divided by pi.
     ValueError when the sun has not been computed."""
     mean, irradiance = [0.0] * 3, [0.0] * 3
-    if not sun.GetSkyCap([0.0, 0.0, 1.0], 90.0, [0.0, 0.0, 1.0], mean, irradiance):
+    if not _quietly(sun, "GetSkyCap", [0.0, 0.0, 1.0], 90.0, [0.0, 0.0, 1.0], mean, irradiance):
         raise ValueError(sun.GetErrorMessage())
     return [v / math.pi for v in irradiance]
 
@@ -321,7 +331,7 @@ def set_sun(mapper, sun, sky_mode="constant", sky=None):
     if sky_mode == "model":
         from vtkmodules.vtkCommonCore import vtkFloatArray
         table = vtkFloatArray()
-        if not sun.ComputeSkyTable(table, 32, 9, 9):
+        if not _quietly(sun, "ComputeSkyTable", table, 32, 9, 9):
             raise ValueError(sun.GetErrorMessage())
     direction, sun_rgb = [0.0] * 3, [0.0] * 3
     sun.GetDirection(direction)
