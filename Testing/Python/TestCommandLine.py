@@ -217,6 +217,24 @@ class TestLauncher(CommandLineTest):
         ds = None
 
 
+    def test_stdout_unwritable(self):
+        # `python3 -m aperture` with stdout closed (no launcher to put /dev/null there:
+        # sys.stdout is None) runs as it did; a stdout that fails to take the output (a full
+        # disk: /dev/full) is one line and status 1, not a traceback (both 2026-12-06)
+        dem = self.path("unwritable.tif")
+        make_raster(dem, np.ones((6, 7)), (500000, 30, 0, 4000000, 0, -30))
+        python = os.path.join(BUILD, "bin", "aperture-python")
+        command = [python, "-m", "aperture", "info", "--json", dem]
+        p = subprocess.run(command, stderr=subprocess.PIPE, text=True,
+                           preexec_fn=lambda: os.close(1), timeout=120)
+        self.assertEqual((p.returncode, p.stderr), (0, ""))
+        with open("/dev/full", "w") as full:
+            p = subprocess.run(command, stdout=full, stderr=subprocess.PIPE, text=True,
+                               timeout=120)
+        self.assertEqual((p.returncode, p.stderr), (1, "aperture: error: cannot write the "
+                                                       "standard output: No space left on "
+                                                       "device\n"))
+
     def test_closed_stderr(self):
         # Run with stderr closed (`2>&-`), warnings and errors went to stdout (Python's
         # sys.stderr is then None, and print(file=None) prints to stdout), into the JSON of

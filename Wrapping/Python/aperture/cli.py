@@ -7,9 +7,10 @@
     aperture sun --at ISO (--lat --lon | --dem DEM)   where the sun is; sunrise, sunset
 
 DEM is any raster GDAL reads (GeoTIFF, .hgt, .asc, .dt0, VRT, ...; band 1, or --band N);
-without it, the embedded default DEM is used. Errors print one line on stderr and exit with status 1; a
-mistake in the options themselves (a malformed or out-of-range value, options that do not go
-together) prints the command's usage too and exits with status 2, as argparse's own checks do.
+without it, the embedded default DEM is used. Errors print one line on stderr and exit with
+status 1; a mistake in the options themselves (a malformed or out-of-range value, options
+that do not go together) prints the command's usage too and exits with status 2, as
+argparse's own checks do.
 """
 import argparse
 import json
@@ -843,7 +844,7 @@ def _render_sun(args, image, watcher):
         el = 35.0 if args.sun_el is None else args.sun_el
         if not sun.ComputeForDirection(az, el):
             raise ApertureError(sun.GetErrorMessage())
-    watcher.errors.clear()
+    watcher.clear()
     return sun
 
 
@@ -2186,7 +2187,7 @@ def cmd_sun(args):
     sun.SetLinkeTurbidity(args.linke_turbidity)
     if args.delta_t is not None:  # (a number: NaN, the estimate's value in the filter, and
         sun.SetDeltaT(args.delta_t)  # the range are refused at parsing)
-    watcher.errors.clear()
+    watcher.clear()
 
     def compute():
         if not sun.Compute():
@@ -2520,15 +2521,21 @@ def main(argv=None):
     """Run the command line on `argv` (default sys.argv[1:]) and return its exit status (usage
     errors and --help end in SystemExit, as argparse does). While it runs, VTK's own console
     output is kept off the terminal (errors.quiet_vtk_output); VTK's output window and its
-    logger's stderr verbosity are put back as they were when it returns, so a script that
-    calls it still sees VTK's messages afterwards. (The verbosity put back is VTK's cutoff
-    over all its log outputs: the stderr one's, unless the script also logs to a file.)"""
+    logger's stderr verbosity are put back when it returns, so a script that calls it still
+    sees VTK's messages afterwards. (VTK has no getter of the stderr verbosity: the one put
+    back is VTK's cutoff over all its log outputs, at most INFO, VTK's default, so that a
+    script logging to a file in detail does not get that detail on stderr too.)"""
     # file names that are not UTF-8 (held with surrogates) print as the bytes they are
     for stream in (sys.stdout, sys.stderr):
         if hasattr(stream, "reconfigure"):
             stream.reconfigure(errors="surrogateescape")
     from vtkmodules.vtkCommonCore import vtkLogger, vtkOutputWindow
-    window, verbosity = vtkOutputWindow.GetInstance(), vtkLogger.GetCurrentVerbosityCutoff()
+    window = vtkOutputWindow.GetInstance()
+    verbosity = min(vtkLogger.GetCurrentVerbosityCutoff(), vtkLogger.VERBOSITY_INFO)
+    # (no stdout at all under `python3 -m aperture ... >&-`: nothing to guard, or to write)
+    stdout = sys.stdout
+    if stdout is not None:
+        sys.stdout = _GuardedStdout(stdout)
     try:
         try:
             status = _main(sys.argv[1:] if argv is None else argv)
@@ -2536,22 +2543,63 @@ def main(argv=None):
             status = e
         # what is still buffered (all of it, unless PYTHONUNBUFFERED is set) written here, so
         # that a reader gone is a BrokenPipeError below, not one at the interpreter's exit
-        sys.stdout.flush()
+        if stdout is not None:
+            sys.stdout.flush()
         if isinstance(status, SystemExit):
             raise status
         return status
     except BrokenPipeError:
         # stdout closed before the report was written (`aperture info --json x | head -1`):
         # end quietly, as a tool that SIGPIPE ends does (the report comes after the outputs,
-        # which are whole), with its status; stdout to /dev/null, or the interpreter's final
-        # flush would fail again, with a message
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
+        # which are whole), with its status
+        _stdout_to_devnull(stdout)
         import signal
         return 128 + signal.SIGPIPE
+    except _StdoutUnwritable as e:  # (a full disk, /dev/full)
+        print("%s: error: cannot write the standard output: %s" % (PROG, e), file=sys.stderr)
+        _stdout_to_devnull(stdout)
+        return 1
     finally:
+        sys.stdout = stdout
         vtkOutputWindow.SetInstance(window)
         vtkLogger.SetStderrVerbosity(verbosity)
+
+
+class _StdoutUnwritable(Exception):
+    """stdout refused what was written to it, for another reason than a reader gone."""
+
+
+class _GuardedStdout:
+    """sys.stdout while main runs: a failure to write it other than a closed pipe is
+    _StdoutUnwritable, told apart from the OSErrors of the files a command works on."""
+
+    def __init__(self, stream):
+        self._stream = stream
+
+    def _guarded(self, call, *args):
+        try:
+            return call(*args)
+        except BrokenPipeError:
+            raise
+        except OSError as e:
+            raise _StdoutUnwritable(e.strerror or str(e)) from None
+
+    def write(self, text):
+        return self._guarded(self._stream.write, text)
+
+    def flush(self):
+        return self._guarded(self._stream.flush)
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
+def _stdout_to_devnull(stdout):
+    """`stdout` onto /dev/null, what is left in its buffer dropped: the interpreter's final
+    flush would fail again, with a message."""
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, stdout.fileno())
+    os.close(devnull)
 
 
 def _negative_values(parser, argv):

@@ -84,6 +84,11 @@ class Watcher:
         if self._on_warning:
             self._on_warning(message)
 
+    def clear(self):
+        """Forget the errors reported so far (ones expected, and handled by the caller)."""
+        self.errors = []
+        self._failed = []
+
     def check(self, what=None):
         """Raise ApertureError if any watched object reported an error. The objects that did
         are marked modified, so that the next update runs them again (VTK's executive would
