@@ -189,6 +189,12 @@ class TestRenderApertureDEM(Testing.vtkTest):
                  "camera zoom must be within [0.001, 10000], not 0.0"),
                 ({"camera": (float("nan"), 35.0)}, ValueError, "camera azimuth must be finite"),
                 ({"camera": 180.0}, TypeError, "camera must be (azimuth, elevation)"),
+                ({"camera": "180,35"}, TypeError, "camera must be (azimuth, elevation)"),
+                ({"exposure": "5"}, TypeError, "exposure must be a number, not '5'"),
+                ({"sun_scale": "2"}, TypeError, "sun_scale must be a number, not '2'"),
+                ({"sky": "123"}, TypeError, "sky must be 3 numbers, not '123'"),
+                ({"size": ("64", "48")}, TypeError, "size must be a number, not '64'"),
+                ({"multisamples": True}, TypeError, "multisamples must be a number, not True"),
                 ({"background": (1.0, 1.0)}, TypeError, "background must be 3 numbers")):
             with self.assertRaises(error, msg=options) as caught:
                 scene.build_aperture(mesh, sun, **options)
@@ -224,13 +230,21 @@ class TestRenderApertureDEM(Testing.vtkTest):
         scene.set_sun(mapper, sun, "constant", sky=(400.0, 400.0, 400.0))
         self.assertIsNone(mapper.GetSkyTable())
         self.assertEqual(list(mapper.GetSkyRadiance()), [400.0, 400.0, 400.0])
-        # aim_light is for build()'s renderers: an aperture one has no light of its own
-        _, renderer, _ = scene.build_aperture(mesh, sun, size=SIZE)
+        # numbers as numpy gives them are numbers
+        scene.build_aperture(mesh, sun, size=np.array([64, 48]), multisamples=np.int64(0),
+                             camera=np.array([180.0, 35.0]), exposure=np.float32(-3.0))
+        # aim_light is for build()'s renderers: an aperture one has no light of its own, nor
+        # once drawn, when VTK has made one
+        window, renderer, _ = scene.build_aperture(mesh, sun, size=(64, 48), multisamples=0)
         ambient = renderer.GetActors().GetLastActor().GetProperty().GetAmbient()
-        with self.assertRaises(ValueError) as caught:
-            scene.aim_light(renderer, 270.0, 30.0)
-        self.assertIn("a renderer made by build()", str(caught.exception))
-        self.assertEqual(renderer.GetActors().GetLastActor().GetProperty().GetAmbient(), ambient)
+        for drawn in (False, True):
+            if drawn:
+                window.Render()
+            with self.assertRaises(ValueError) as caught:
+                scene.aim_light(renderer, 270.0, 30.0)
+            self.assertIn("a renderer made by build()", str(caught.exception))
+            self.assertEqual(renderer.GetActors().GetLastActor().GetProperty().GetAmbient(),
+                             ambient)
         # colours of an elevation range that is not one
         with self.assertRaises(ValueError):
             scene.hypsometric_colors(100.0, 0.0)
@@ -259,9 +273,13 @@ class TestRenderApertureDEM(Testing.vtkTest):
                 self.assertFalse(os.path.exists(path), text)
             # a folder, or a name in a folder that does not exist: said so, before VTK's writer
             # tries (it printed "Ran out of disk space; deleting file(s)")
+            with open(os.path.join(tmp, "file"), "w"):
+                pass
             for name, said in ((tmp, "it is a folder"),
                                (os.path.join(tmp, "no", "t.png"), "the folder %s does not exist"
-                                % os.path.join(tmp, "no"))):
+                                % os.path.join(tmp, "no")),
+                               (os.path.join(tmp, "file", "t.png"), "%s is not a folder"
+                                % os.path.join(tmp, "file"))):
                 with self.assertRaises(OSError) as caught:
                     scene.write_png(window, name)
                 self.assertEqual(str(caught.exception), "cannot write the PNG %s: %s"

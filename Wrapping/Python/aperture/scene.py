@@ -30,8 +30,10 @@ SKY_MODES = ("constant", "model")
 
 
 def _number(name, value, low=-math.inf, high=math.inf, above=False):
-    """`value` as a float: TypeError unless a number, ValueError unless finite and within
-    [low, high] (above: > low), both naming `name`."""
+    """`value` as a float: TypeError unless a number (a str or a bool is not one), ValueError
+    unless finite and within [low, high] (above: > low), both naming `name`."""
+    if isinstance(value, (str, bytes, bool)):
+        raise TypeError("%s must be a number, not %r" % (name, value))
     try:
         v = float(value)
     except (TypeError, ValueError):
@@ -46,14 +48,24 @@ def _number(name, value, low=-math.inf, high=math.inf, above=False):
 
 
 def _numbers(name, values, count, **limits):
-    """`count` numbers as _number checks them (a sequence of that length, else TypeError)."""
+    """`count` numbers as _number checks them (a sequence of that length, not a str, else
+    TypeError)."""
+    return [_number(name, v, **limits) for v in _sequence(name, values, (count,),
+                                                         "%d numbers" % count)]
+
+
+def _sequence(name, values, lengths, what):
+    """`values` as a list whose length is one of `lengths` (a tuple, list, numpy array...; not
+    a str or bytes); TypeError naming `name` and `what` it must be otherwise."""
+    if isinstance(values, (str, bytes)):
+        raise TypeError("%s must be %s, not %r" % (name, what, values))
     try:
         values = list(values)
     except TypeError:
-        raise TypeError("%s must be %d numbers, not %r" % (name, count, values)) from None
-    if len(values) != count:
-        raise TypeError("%s must be %d numbers, not %r" % (name, count, values))
-    return [_number(name, v, **limits) for v in values]
+        raise TypeError("%s must be %s, not %r" % (name, what, values)) from None
+    if len(values) not in lengths:
+        raise TypeError("%s must be %s, not %r" % (name, what, values))
+    return values
 
 
 def _check_size(size):
@@ -70,9 +82,8 @@ def _check_camera(camera):
     terrain: a blank picture)."""
     if camera is None:
         return None
-    if not isinstance(camera, (tuple, list)) or len(camera) not in (2, 3):
-        raise TypeError("camera must be (azimuth, elevation) or (azimuth, elevation, zoom), "
-                        "not %r" % (camera,))
+    camera = _sequence("camera", camera, (2, 3),
+                       "(azimuth, elevation) or (azimuth, elevation, zoom)")
     checked = [_number("camera azimuth", camera[0]),
                _number("camera elevation", camera[1], -90.0, 90.0)]
     if len(camera) == 3:
@@ -151,7 +162,7 @@ def build(mesh, size=(1200, 900), view="oblique", light_azimuth=315.0, light_ele
     # (aim_light and offscreen_window say it too: before any work)
     _number("light azimuth", light_azimuth)
     _number("light elevation", light_elevation, -90.0, 90.0)
-    _number("exposure", exposure)
+    exposure = _number("exposure", exposure)
     _check_window_options(size, multisamples, background, camera)
     mapper = vtkApertureLightingMapper()
     mapper.SetLightingModel(vtkApertureLightingMapper.STANDARD)  # VTK lighting + exposure
@@ -188,9 +199,12 @@ def aim_light(renderer, light_azimuth, light_elevation):
     light_elevation = _number("light elevation", light_elevation, -90.0, 90.0)
     light = renderer.GetLights().GetItemAsObject(0)
     actor = renderer.GetActors().GetLastActor()
-    if light is None or actor is None:
+    mapper = actor.GetMapper() if actor is not None else None
+    # (an aperture renderer has a light too once drawn: VTK makes one; its mapper tells)
+    if (light is None or not isinstance(mapper, vtkApertureLightingMapper) or
+            mapper.GetLightingModel() != vtkApertureLightingMapper.STANDARD):
         raise ValueError("aim_light moves the light of a renderer made by build(); this one "
-                         "has %s" % ("no light" if light is None else "no actor"))
+                         "is not (an aperture's sun moves with set_sun)")
     lit = light_elevation >= 0.0
     actor.GetProperty().SetAmbient(0.25 if lit else 0.0)
     light.SetPosition(*direction_enu(light_azimuth, light_elevation))
@@ -199,21 +213,23 @@ def aim_light(renderer, light_azimuth, light_elevation):
 
 
 def _check_window_options(size, multisamples, background, camera):
-    """The checks of offscreen_window's and the builders' window options."""
+    """The checks of offscreen_window's and the builders' window options (background None:
+    the renderer's own, not checked); returns the camera as a tuple of floats, or None."""
     _check_size(size)
     m = _number("multisamples", multisamples, 0.0, 16.0)
     if m != int(m):
         raise ValueError("multisamples must be a whole number within [0, 16], not %r"
                          % (multisamples,))
-    _numbers("background", background, 3, low=0.0, high=1.0)
-    _check_camera(camera)
+    if background is not None:
+        _numbers("background", background, 3, low=0.0, high=1.0)
+    return _check_camera(camera)
 
 
 def offscreen_window(renderer, mesh, view, size, multisamples, camera=None):
     """An off-screen render window of `size` (width, height: whole pixels, at least 1) showing
     `renderer`, framed for `view`; multisamples 0..16; camera: None or (azimuth, elevation[,
     zoom]) for frame(). ValueError (TypeError) for values outside those."""
-    _check_window_options(size, multisamples, renderer.GetBackground(), camera)
+    camera = _check_window_options(size, multisamples, None, camera)
     window = vtkRenderWindow()
     window.SetOffScreenRendering(1)
     window.SetSize(int(size[0]), int(size[1]))
@@ -234,7 +250,7 @@ def sky_radiance(sun):
     ValueError when the sun has not been computed."""
     mean, irradiance = [0.0] * 3, [0.0] * 3
     if not _quietly(sun, "GetSkyCap", [0.0, 0.0, 1.0], 90.0, [0.0, 0.0, 1.0], mean, irradiance):
-        raise ValueError(sun.GetErrorMessage())
+        raise ValueError("the sun: %s" % sun.GetErrorMessage())
     return [v / math.pi for v in irradiance]
 
 
@@ -284,9 +300,9 @@ def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
             raise ValueError("the mesh has no point array '%s': mesh a DEM baked with "
                              "vtkApertureSkyVisibility (BentNormal, ApertureRadius) by "
                              "vtkApertureTerrainMesh" % name)
-    _number("sun_scale", sun_scale, 0.0, above=True)
+    sun_scale = _number("sun_scale", sun_scale, 0.0, above=True)
     if exposure is not None:
-        _number("exposure", exposure)
+        exposure = _number("exposure", exposure)
     _check_window_options(size, multisamples, background, camera)
 
     mapper = vtkApertureLightingMapper()
@@ -489,7 +505,8 @@ def write_png(window, path, on_warning=None, text=()):
     if os.path.isdir(path) or not os.path.isdir(folder):
         # (said before VTK's writer tries: it would print "Ran out of disk space")
         raise OSError("cannot write the PNG %s: %s" % (path, "it is a folder" if os.path.isdir(
-            path) else "the folder %s does not exist" % folder))
+            path) else "%s is not a folder" % folder if os.path.exists(folder) else
+            "the folder %s does not exist" % folder))
     writer = vtkPNGWriter()
     writer.SetFileName(native_path(path))
     for key, value in chunks:
