@@ -267,6 +267,10 @@ struct vtkApertureSolarPosition::Internals
 };
 
 //------------------------------------------------------------------------------
+// (the time is NaN until one is set, or after SetUnixTime(NaN))
+const char* const kNoTime = "no time is set (it is NaN): call SetTime, or SetUnixTime with a "
+                            "number of seconds";
+
 vtkApertureSolarPosition::vtkApertureSolarPosition()
   : UnixTime(kNaN)
   , DeltaT(kNaN)
@@ -512,7 +516,7 @@ bool vtkApertureSolarPosition::Compute()
   }
   else if (std::isnan(this->UnixTime))
   {
-    problem = "no time is set: call SetTime or SetUnixTime first";
+    problem = kNoTime;
   }
   else if (!std::isfinite(this->UnixTime))
   {
@@ -877,6 +881,12 @@ bool vtkApertureSolarPosition::AddSunDirectionArray(vtkImageData* dem, const cha
   if (!dem || !name || !*name)
   {
     d.Error = "AddSunDirectionArray needs a DEM image and an array name";
+    vtkErrorMacro(<< d.Error);
+    return false;
+  }
+  if (std::isnan(this->UnixTime))
+  {
+    d.Error = kNoTime;
     vtkErrorMacro(<< d.Error);
     return false;
   }

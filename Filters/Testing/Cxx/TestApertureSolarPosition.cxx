@@ -537,12 +537,17 @@ void TestBadInput()
   // was 1970-01-01T00:00Z, and the sun was computed for it without a word)
   AP_CHECK(std::isnan(sun->GetUnixTime()));
   AP_CHECK(!sun->Compute());
-  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "no time is set: call SetTime or SetUnixTime first");
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "no time is set (it is NaN): call SetTime, or "
+                                            "SetUnixTime with a number of seconds");
   AP_CHECK(std::string(sun->GetTimeString()).empty());
   AP_CHECK(!sun->SetTime("garbage"));
   AP_CHECK(!sun->Compute());
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "no time is set");
   AP_CHECK(std::isnan(sun->GetAzimuth()));
+  auto flat = MakeUTM(500000.0, 5000000.0);
+  AP_CHECK(!sun->AddSunDirectionArray(flat, "Sun"));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "no time is set (it is NaN)");
+  AP_CHECK(!flat->GetPointData()->GetArray("Sun"));
   AP_CHECK(sun->SetTime("2026-06-21T12:00Z"));
   sun->SetLatitude(91.0);
   AP_CHECK(!sun->Compute());
