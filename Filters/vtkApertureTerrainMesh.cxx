@@ -837,8 +837,9 @@ int vtkApertureTerrainMesh::Execute(
     outPD->PassData(input->GetPointData());
   }
   vtkDataArray* carried = outPD->GetScalars();
-  if (carried && elevation == input->GetPointData()->GetScalars() &&
-    !outPD->GetArray("Elevation"))
+  if (carried && this->ElevationArrayName &&
+    std::string(this->ElevationArrayName) == "Elevation" &&
+    !input->GetPointData()->GetArray("Elevation") && !outPD->GetArray("Elevation"))
   {
     // heights taken from the active scalars for want of an Elevation array (an image made by
     // hand) come out as the point array Elevation too, as from the reader: the same values,
