@@ -34,6 +34,14 @@ if (WRAP_PYTHON)
   run("import from the install prefix" "${CMAKE_COMMAND}" -E env
     "PYTHONPATH=${prefix}/${PYTHON_DESTINATION}" "${PYTHON}" -c "${import_check}")
   run("installed command line" "${prefix}/bin/aperture" info --json)
+  # an install over one of before 2026-12-06 takes away its module default_dem.py, which
+  # shadowed the function aperture.default_dem()
+  set(old_module "${prefix}/${PYTHON_DESTINATION}/aperture/default_dem.py")
+  file(WRITE "${old_module}" "raise SystemExit('the old module')\n")
+  run("install again" "${CMAKE_COMMAND}" --install "${APERTURE_BUILD_DIR}" --prefix "${prefix}")
+  if (EXISTS "${old_module}")
+    message(FATAL_ERROR "the install left ${old_module}")
+  endif ()
   # byte-compiled by the install (checked without importing, which could write it itself)
   string(CONCAT compiled_check
     "import importlib.util, os\n"
