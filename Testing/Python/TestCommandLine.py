@@ -170,8 +170,11 @@ class TestLauncher(CommandLineTest):
             return False
 
         for delay in (0.0, 0.03, 0.06, 0.09, 0.12, 0.16, 0.2):
+            # (SIGINT at its default in the child: a test run as a background job inherits it
+            # ignored, as a shell's background jobs do, and the command keeps that)
             p = subprocess.Popen([APERTURE, "bake", "-q", dem, self.path("loading-out.tif")],
-                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                 preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
             self.assertTrue(vtk_loading(p.pid))
             time.sleep(delay)
             p.send_signal(signal.SIGINT)
