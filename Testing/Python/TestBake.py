@@ -989,11 +989,8 @@ class TestBake(unittest.TestCase):
                 ([], False, signal.SIGINT, 130), (two, True, signal.SIGINT, 130),
                 (strips + two, True, signal.SIGINT, 130), (strips, False, signal.SIGTERM, 143),
                 (strips, False, signal.SIGHUP, 129)):
-            # (SIGINT at its default in the child: a test run as a background job inherits it
-            # ignored, as a shell's background jobs do, and the command keeps that)
             p = subprocess.Popen([APERTURE, "bake", dem, out, "-q"] + options,
-                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                                 preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
             start = time.perf_counter()
             while cpu(p.pid) < 2.0 or (to_worker and worker(p.pid) is None):
                 self.assertLess(time.perf_counter() - start, 120, "the bake never got the CPU")
