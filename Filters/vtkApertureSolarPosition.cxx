@@ -32,6 +32,9 @@ namespace
 {
 const double kDeg = 3.14159265358979323846 / 180.0;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
+// (the time is NaN until one is set, or after SetUnixTime(NaN))
+const char* const kNoTime = "no time is set (it is NaN): call SetTime, or SetUnixTime with a "
+                            "number of seconds";
 
 // (seconds beyond +-2^62, NaN among them, go to +-2^62, far past the years any consumer takes:
 // converting a double beyond int64_t's range is undefined behaviour)
@@ -267,10 +270,6 @@ struct vtkApertureSolarPosition::Internals
 };
 
 //------------------------------------------------------------------------------
-// (the time is NaN until one is set, or after SetUnixTime(NaN))
-const char* const kNoTime = "no time is set (it is NaN): call SetTime, or SetUnixTime with a "
-                            "number of seconds";
-
 vtkApertureSolarPosition::vtkApertureSolarPosition()
   : UnixTime(kNaN)
   , DeltaT(kNaN)

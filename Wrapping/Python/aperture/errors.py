@@ -53,6 +53,11 @@ def _unpassed(obj):
             "UTF-8)" % (obj.GetClassName(), os.fsdecode(name)))
 
 
+def _failure(what, message):
+    """The ApertureError of `message`, said of `what` (a step's name) when given."""
+    return ApertureError(message if not what else "%s: %s" % (what, message))
+
+
 class Watcher:
     """Collects the errors and warnings of the VTK objects it watches.
 
@@ -94,12 +99,11 @@ class Watcher:
         are marked modified, so that the next update runs them again (VTK's executive would
         otherwise take the failed run as up to date and hand out its empty output)."""
         if self.errors:
-            message = self.errors[0]
-            self.errors = []
-            failed, self._failed = self._failed, []
+            message, failed = self.errors[0], self._failed
+            self.clear()
             for obj in failed:
                 obj.Modified()
-            raise ApertureError(message if not what else "%s: %s" % (what, message))
+            raise _failure(what, message)
 
     def update(self, algorithm, what=None, extent=None):
         """algorithm.Update() (algorithm.UpdateExtent(extent) when given: six integers x0, x1,
@@ -116,9 +120,8 @@ class Watcher:
             if (whole is None or len(extent) != 6 or
                     any(extent[2 * k] > extent[2 * k + 1] or extent[2 * k] < whole[2 * k] or
                         extent[2 * k + 1] > whole[2 * k + 1] for k in range(3))):
-                raise ApertureError("%sthe extent %s is not a non-empty part of the whole "
-                                    "extent %s" % (what + ": " if what else "", extent,
-                                                   list(whole) if whole else "(none)"))
+                raise _failure(what, "the extent %s is not a non-empty part of the whole "
+                                     "extent %s" % (extent, list(whole) if whole else "(none)"))
             algorithm.UpdateExtent(extent)
         self.check(what)
         return algorithm.GetOutputDataObject(0)
