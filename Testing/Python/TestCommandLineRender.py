@@ -218,7 +218,8 @@ class TestCommandLineRender(unittest.TestCase):
                                   "0", "-q", "-o",
                                   os.path.join(stop, "s-%02d.png"), "--exr",
                                   os.path.join(stop, "s-%02d.exr")],
-                                 stderr=subprocess.PIPE, text=True)
+                                 stderr=subprocess.PIPE, text=True,
+                                 preexec_fn=lambda: signal.signal(signal.SIGTERM, signal.SIG_DFL))
             deadline = time.time() + 120
             while not os.path.exists(os.path.join(stop, "s-02.png")) and time.time() < deadline:
                 time.sleep(0.05)
@@ -237,6 +238,28 @@ class TestCommandLineRender(unittest.TestCase):
                                  .shape, (640 * 480, 3))
                 self.assertEqual(exr_rgba(os.path.join(stop, "s-%02d.exr" % k)).shape,
                                  (640 * 480, 4))
+            # started with SIGINT and SIGHUP ignored (`nohup aperture render ... &` in a script),
+            # a time-lapse keeps them ignored and writes every frame (its handlers ended it at the
+            # next frame, status 129, when the terminal closed, until 2026-12-06)
+            def like_nohup_in_the_background():
+                for number in (signal.SIGINT, signal.SIGHUP):
+                    signal.signal(number, signal.SIG_IGN)
+
+            kept = os.path.join(tmp, "kept")
+            os.mkdir(kept)
+            p = subprocess.Popen([APERTURE, "render", "--frames", "12", "--at",
+                                  "2026-06-21T12:00Z", "--size", "320x240", "--multisamples",
+                                  "0", "-q", "-o", os.path.join(kept, "k-%d.png")],
+                                 stderr=subprocess.PIPE, text=True,
+                                 preexec_fn=like_nohup_in_the_background)
+            deadline = time.time() + 120
+            while not os.path.exists(os.path.join(kept, "k-1.png")) and time.time() < deadline:
+                time.sleep(0.02)
+            p.send_signal(signal.SIGHUP)
+            p.send_signal(signal.SIGINT)
+            _, stderr = p.communicate(timeout=120)
+            self.assertEqual((p.returncode, stderr), (0, ""))
+            self.assertEqual(sorted(os.listdir(kept)), sorted("k-%d.png" % k for k in range(12)))
             # VTK's lighting moves its light alike: a frame is the render at its time
             status, _, stderr = run("render", "--lighting", "standard", "--at",
                                     "2026-06-21T14:00Z", "--frames", 3, "--step", 240, "-o",

@@ -1139,10 +1139,9 @@ class _ends_between_frames:
         self.frames = frames  # (None: one picture)
 
     def __enter__(self):
-        import signal
         self.received, self.done = [], []
-        self.previous = {n: signal.signal(n, lambda signum, frame: self.received.append(signum))
-                         for n in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
+        self.previous = _handle_ending_signals(
+            lambda signum, frame: self.received.append(signum))
         return self._between
 
     def _between(self, frame):
@@ -1155,9 +1154,7 @@ class _ends_between_frames:
             raise _interruption(self.received)
 
     def __exit__(self, kind, value, traceback):
-        import signal
-        for number, handler in self.previous.items():
-            signal.signal(number, handler)
+        _restore_signals(self.previous)
         return False
 
 
@@ -1555,6 +1552,23 @@ def _interruption(received):
     return _Terminated(ended[0]) if ended else KeyboardInterrupt()
 
 
+def _handle_ending_signals(handler):
+    """Installs `handler` for SIGINT, SIGTERM and SIGHUP, except those ignored now: a shell's
+    background job inherits SIGINT ignored and `nohup` SIGHUP, and the command keeps that, as
+    the launcher does while it loads (a bake under nohup ended when its terminal closed, until
+    2026-12-06). Returns the handlers it replaced, for _restore_signals."""
+    import signal
+    return {number: signal.signal(number, handler)
+            for number in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+            if signal.getsignal(number) != signal.SIG_IGN}
+
+
+def _restore_signals(previous):
+    import signal
+    for number, handler in previous.items():
+        signal.signal(number, handler)
+
+
 class _abort_on_interrupt:
     """Ctrl-C (SIGINT), SIGTERM (`timeout`, a batch system's time limit) or SIGHUP (the
     terminal or ssh session of a long bake closed) during long filters and writers: Python runs
@@ -1596,17 +1610,13 @@ class _abort_on_interrupt:
             algorithm.SetAbortExecute(1)
 
     def __enter__(self):
-        import signal
         self.observers = [a.AddObserver("ProgressEvent", self._progress)
                           for a in self.algorithms]
-        self.previous = {number: signal.signal(number, self._handler)
-                         for number in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
+        self.previous = _handle_ending_signals(self._handler)
         return self
 
     def __exit__(self, kind, value, traceback):
-        import signal
-        for number, handler in self.previous.items():
-            signal.signal(number, handler)
+        _restore_signals(self.previous)
         for algorithm, observer in zip(self.algorithms, self.observers):
             algorithm.RemoveObserver(observer)
         if self.interrupted:
