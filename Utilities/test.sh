@@ -6,6 +6,9 @@
 # render: the Rendering module's C++ test runs in its own Xvfb there too).
 #   APERTURE_SKIP_SANITIZERS=1  skip the second build
 set -euo pipefail
+# The tests run as on a fresh machine: a host's PYTHONUNBUFFERED once hid a failure there (a
+# closed stdout reported at exit, not in the command's handler), so take such settings away.
+unset PYTHONUNBUFFERED PYTHONDONTWRITEBYTECODE
 source_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${APERTURE_BUILD_DIR:-$source_dir/build}
 APERTURE_CMAKE_ARGS="-DAPERTURE_WERROR=ON ${APERTURE_CMAKE_ARGS:-}" \
