@@ -228,11 +228,11 @@ static void test_status_strings(void)
 
 int main(void)
 {
-  test_size_mul();
-  test_validate();
-  test_stats();
-  test_samples();
-  test_block_mean();
-  test_status_strings();
+  AP_TEST_RUN(test_size_mul);
+  AP_TEST_RUN(test_validate);
+  AP_TEST_RUN(test_stats);
+  AP_TEST_RUN(test_samples);
+  AP_TEST_RUN(test_block_mean);
+  AP_TEST_RUN(test_status_strings);
   AP_TEST_MAIN_END();
 }

@@ -915,15 +915,15 @@ static void test_sky_table(void)
 int main(int argc, char **argv)
 {
   verbose = argc > 1 && strcmp(argv[1], "-v") == 0;
-  test_area_table();
-  test_area_float();
-  test_centroid_float();
-  test_cap_cosine();
-  test_lens_moment();
-  test_model_scenes();
-  test_nodata_and_params();
-  test_display();
-  test_batch();
-  test_sky_table();
+  AP_TEST_RUN(test_area_table);
+  AP_TEST_RUN(test_area_float);
+  AP_TEST_RUN(test_centroid_float);
+  AP_TEST_RUN(test_cap_cosine);
+  AP_TEST_RUN(test_lens_moment);
+  AP_TEST_RUN(test_model_scenes);
+  AP_TEST_RUN(test_nodata_and_params);
+  AP_TEST_RUN(test_display);
+  AP_TEST_RUN(test_batch);
+  AP_TEST_RUN(test_sky_table);
   AP_TEST_MAIN_END();
 }

@@ -340,11 +340,11 @@ static void test_address_limit(void)
 
 int main(void)
 {
-  test_contents_and_no_ops();
-  test_reaches_the_kernel();
-  test_alloc_huge();
-  test_cgroup_limits();
-  test_cgroup_cpus();
-  test_address_limit();
+  AP_TEST_RUN(test_contents_and_no_ops);
+  AP_TEST_RUN(test_reaches_the_kernel);
+  AP_TEST_RUN(test_alloc_huge);
+  AP_TEST_RUN(test_cgroup_limits);
+  AP_TEST_RUN(test_cgroup_cpus);
+  AP_TEST_RUN(test_address_limit);
   AP_TEST_MAIN_END();
 }

@@ -337,7 +337,7 @@ static void test_normals_plane(void)
   const size_t nx = 7, ny = 5;
   const double a = 0.3, b = -1.2, len = sqrt(1.0 + a * a + b * b);
   double *xyz = plane(nx, ny, 30.0, 20.0, a, b);
-  float *nrm = (float *)malloc(3 * nx * ny * sizeof(float));
+  float *nrm = (float *)calloc(3 * nx * ny, sizeof(float));
   size_t k;
   AP_CHECK_EQ_INT(ap_mesh_normals_validate(xyz, nx, ny, 0, nrm), AP_OK);
   ap_mesh_normals_rows(xyz, nx, ny, 0, 0, ny, nrm);
@@ -424,7 +424,7 @@ static void test_normals_wrap(void)
   const size_t nx = 12, ny = 4;
   const double pi = 3.14159265358979323846, radius = 3.0;
   double *xyz = (double *)malloc(3 * nx * ny * sizeof(double));
-  float *nrm = (float *)malloc(3 * nx * ny * sizeof(float));
+  float *nrm = (float *)calloc(3 * nx * ny, sizeof(float));
   size_t i, j;
   double worst = 0.0;
   for (j = 0; j < ny; ++j) {
@@ -460,15 +460,15 @@ static void test_normals_wrap(void)
 
 int main(void)
 {
-  test_full_grid();
-  test_one_nodata_corner();
-  test_holes();
-  test_row_ranges();
-  test_seam_and_caps();
-  test_triangulate_errors();
-  test_normals_plane();
-  test_normals_sparse();
-  test_normals_split_invariance();
-  test_normals_wrap();
+  AP_TEST_RUN(test_full_grid);
+  AP_TEST_RUN(test_one_nodata_corner);
+  AP_TEST_RUN(test_holes);
+  AP_TEST_RUN(test_row_ranges);
+  AP_TEST_RUN(test_seam_and_caps);
+  AP_TEST_RUN(test_triangulate_errors);
+  AP_TEST_RUN(test_normals_plane);
+  AP_TEST_RUN(test_normals_sparse);
+  AP_TEST_RUN(test_normals_split_invariance);
+  AP_TEST_RUN(test_normals_wrap);
   AP_TEST_MAIN_END();
 }

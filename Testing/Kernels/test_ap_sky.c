@@ -695,13 +695,13 @@ static void test_bad_input(void)
 
 int main(void)
 {
-  test_air_mass();
-  test_transmittance();
-  test_esra();
-  test_sunlight();
-  test_colour_chain();
-  test_overcast_and_uniform();
-  test_clear_and_preetham();
-  test_bad_input();
+  AP_TEST_RUN(test_air_mass);
+  AP_TEST_RUN(test_transmittance);
+  AP_TEST_RUN(test_esra);
+  AP_TEST_RUN(test_sunlight);
+  AP_TEST_RUN(test_colour_chain);
+  AP_TEST_RUN(test_overcast_and_uniform);
+  AP_TEST_RUN(test_clear_and_preetham);
+  AP_TEST_RUN(test_bad_input);
   AP_TEST_MAIN_END();
 }

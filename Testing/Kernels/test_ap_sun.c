@@ -657,18 +657,18 @@ static void test_bad_input(void)
 
 int main(void)
 {
-  test_defaults();
-  test_unix_time();
-  test_spa_case();
-  test_spa_rise_set();
-  test_pyephem_cases();
-  test_angular_radius();
-  test_polar();
-  test_polar_transitions();
-  test_southern();
-  test_equinox_wrap();
-  test_refraction_and_ut1();
-  test_delta_t();
-  test_bad_input();
+  AP_TEST_RUN(test_defaults);
+  AP_TEST_RUN(test_unix_time);
+  AP_TEST_RUN(test_spa_case);
+  AP_TEST_RUN(test_spa_rise_set);
+  AP_TEST_RUN(test_pyephem_cases);
+  AP_TEST_RUN(test_angular_radius);
+  AP_TEST_RUN(test_polar);
+  AP_TEST_RUN(test_polar_transitions);
+  AP_TEST_RUN(test_southern);
+  AP_TEST_RUN(test_equinox_wrap);
+  AP_TEST_RUN(test_refraction_and_ut1);
+  AP_TEST_RUN(test_delta_t);
+  AP_TEST_RUN(test_bad_input);
   AP_TEST_MAIN_END();
 }
