@@ -156,6 +156,7 @@ struct vtkApertureDEMReader::Internals
   std::string CRS;              // WKT
   bool HasNoData = false;
   double NoData = 0.0;
+  bool NoDataNear = false; // float bands: ap_sample_params.nodata_near
   double Scale = 1.0, Offset = 0.0; // includes the unit conversion to metres
   double FileScale = 1.0, FileOffset = 0.0; // the band's own (for messages)
   bool SignedByte = false;          // GDAL 3.6's Int8: a Byte band of PIXELTYPE=SIGNEDBYTE
@@ -688,6 +689,8 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
     // (a VRT's or an ENVI header's -9999.9 is no float; its samples are -9999.900390625).
     d.NoData = static_cast<double>(static_cast<float>(nodata));
   }
+  // and with a relative width of a few float32 ulps (ap_sample_params.nodata_near)
+  d.NoDataNear = type == GDT_Float32 || type == GDT_Float64;
   this->HasNoDataValue = d.HasNoData;
   this->NoDataValue = nodata;
   const int flags = GDALGetMaskFlags(level);
@@ -872,6 +875,7 @@ int vtkApertureDEMReader::Execute(vtkInformationVector* outputVector)
   ap_sample_params_init(&sp);
   sp.has_nodata = d.HasNoData;
   sp.nodata = d.NoData;
+  sp.nodata_near = d.NoDataNear;
   sp.scale = d.Scale;
   sp.offset = d.Offset;
   sp.signed_byte = d.SignedByte;

@@ -106,6 +106,7 @@ void ap_sample_params_init(ap_sample_params *p)
   }
   p->has_nodata = 0;
   p->nodata = NAN;
+  p->nodata_near = 0;
   p->scale = 1.0;
   p->offset = 0.0;
   p->signed_byte = 0;
@@ -139,8 +140,13 @@ ap_status ap_samples_to_elevation(const double *raw, size_t n, const ap_sample_p
   for (k = 0; k < n; ++k) {
     const double r = p->signed_byte && raw[k] >= 128.0 ? raw[k] - 256.0 : raw[k];
     double v;
-    /* Compare with the nodata value before scaling: nodata is defined on raw samples. */
-    if (!isfinite(r) || (p->has_nodata && r == p->nodata)) {
+    /* Compare with the nodata value before scaling: nodata is defined on raw samples. (GDAL
+     * sums two float32 samples in float, so beyond +-1.7e38, where the sum overflows, it takes
+     * any two of one sign as equal; the sum here is a double's, and no elevation lies there.) */
+    if (!isfinite(r) ||
+        (p->has_nodata && (r == p->nodata || (p->nodata_near && fabs(r - p->nodata) <
+                                                                  2.0 * FLT_EPSILON *
+                                                                    fabs(r + p->nodata))))) {
       out[k] = NAN;
       continue;
     }

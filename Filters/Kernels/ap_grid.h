@@ -51,6 +51,12 @@ ap_status ap_grid_stats_compute(const ap_grid_view *g, ap_grid_stats *stats);
 typedef struct ap_sample_params {
   int has_nodata; /**< nonzero: samples equal to `nodata` are nodata (default 0) */
   double nodata;  /**< the raster's nodata value, compared before scaling (default NaN) */
+  int nodata_near; /**< nonzero (float bands): samples near `nodata` are nodata too, as GDAL's
+                        nodata mask compares floats: |raw - nodata| < 2 FLT_EPSILON
+                        |raw + nodata|, about 2 float32 ulps (ArcGIS declares
+                        -3.4028230607370965e38 for cells of -FLT_MAX, two ulps apart); 0: equal
+                        only (integer bands, where such a width spans whole integers)
+                        (default 0) */
   double scale;   /**< elevation = raw * scale + offset (default 1); include unit factors here */
   double offset;  /**< (default 0) */
   int signed_byte; /**< nonzero: raw samples 0..255 are bytes holding two's-complement int8
@@ -62,7 +68,7 @@ typedef struct ap_sample_params {
 void ap_sample_params_init(ap_sample_params *p);
 
 /** Convert n raw samples to float32 elevations. A sample becomes NaN when it is not finite,
- *  equals the nodata value, or scales to a value outside the float range; otherwise
+ *  equals the nodata value (or is near it: nodata_near), or scales to a value outside the float range; otherwise
  *  out[k] = (float)(raw[k] * scale + offset). `raw` and `out` must not overlap.
  *  `scaled_out` (may be NULL) gets the number of samples within the float range that scale
  *  and offset took beyond it (NaN too, but a sign of a wrong scale or offset rather than of

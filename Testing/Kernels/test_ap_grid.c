@@ -133,6 +133,46 @@ static void test_samples(void)
   AP_CHECK_EQ_INT(ap_samples_to_elevation(raw, 1, &p, out, NULL), AP_OK);
   AP_CHECK_NEAR(out[0], -16374.0, 0.0);
 
+  /* nodata_near, as GDAL 3.6's nodata mask band took these float32 samples (a GeoTIFF of
+   * each, read back through its mask): ArcGIS's nodata -3.4028230607370965e38 masks cells of
+   * -FLT_MAX; -9999 masks -9999.00390625 but not -9999.005859375; 0 masks no other number. */
+  {
+    const struct {
+      double nodata, raw;
+      int is_nodata;
+    } near[] = {
+      { -3.4028230607370965e38, -FLT_MAX, 1 },
+      { -3.4028230607370965e38, -3.4028230607370965e38, 1 },
+      { -9999.0, -9999.0009765625, 1 },
+      { -9999.0, -9999.00390625, 1 },
+      { -9999.0, -9999.005859375, 0 },
+      { -9999.0, -9999.009765625, 0 },
+      { 1.0, 1.0000004768371582, 1 },
+      { 0.0, 1e-30, 0 },
+      { 0.0, -1e-30, 0 },
+    };
+    size_t k;
+    p.has_nodata = 1;
+    p.scale = 1.0;
+    p.offset = 0.0;
+    for (k = 0; k < sizeof near / sizeof near[0]; ++k) {
+      p.nodata = near[k].nodata;
+      p.nodata_near = 1;
+      AP_CHECK_EQ_INT(ap_samples_to_elevation(&near[k].raw, 1, &p, out, NULL), AP_OK);
+      AP_CHECK_EQ_INT(isnan(out[0]) != 0, near[k].is_nodata);
+      /* without it (integer bands), only the value itself */
+      p.nodata_near = 0;
+      AP_CHECK_EQ_INT(ap_samples_to_elevation(&near[k].raw, 1, &p, out, NULL), AP_OK);
+      AP_CHECK_EQ_INT(isnan(out[0]) != 0, near[k].raw == near[k].nodata);
+    }
+    /* an integer band's nodata 4294967295 (UInt32) leaves its neighbour a height (within 2
+     * FLT_EPSILON of it relatively: nodata_near would take it) */
+    p.nodata = 4294967295.0;
+    AP_CHECK_EQ_INT(ap_samples_to_elevation(&(double){ 4294967294.0 }, 1, &p, out, NULL), AP_OK);
+    AP_CHECK_NEAR(out[0], (float)4294967294.0, 0.0);
+    p.has_nodata = 0;
+  }
+
   /* Argument errors. */
   AP_CHECK_EQ_INT(ap_samples_to_elevation(raw, SIZE_MAX / 4, &p, out, NULL),
                   AP_ERR_SIZE_OVERFLOW);

@@ -18,6 +18,7 @@
 #include "vtkTestErrorObserver.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -922,6 +923,66 @@ void TestSampleEncodings()
   ExpectError(tmp + "/vast.tif", "whose grid reaches beyond the range of numbers");
 }
 
+// Which float samples are nodata: those GDAL's own mask band says are (GDAL compares floats
+// with a relative width of about two float32 ulps). ArcGIS declares -3.4028230607370965e38
+// for cells of -FLT_MAX, two ulps apart: they were read as heights of -3.4e38 m until
+// 2026-12-06. An integer band compares exactly (the width would span whole integers).
+void TestNoDataAsGDALMasks()
+{
+  const struct
+  {
+    GDALDataType type;
+    double nodata;
+    double values[4]; // row 1 of a 4 x 3 raster; the rest are heights
+    int masked;       // how many of them GDAL masks (not vacuous)
+  } cases[] = {
+    { GDT_Float32, -3.4028230607370965e38,
+      { -FLT_MAX, -3.4028230607370965e38, 5.0, -FLT_MAX }, 3 },
+    { GDT_Float32, -9999.0, { -9999.0009765625, -9999.00390625, -9999.005859375, -9999.0 }, 3 },
+    { GDT_Float64, -9999.0, { -9999.001, -9999.004, -9999.006, 7.0 }, 2 },
+    { GDT_Float32, 0.0, { 1e-30, -1e-30, 0.0, 3.0 }, 1 },
+    { GDT_Float64, 1e30, { 1.0000001e30, 1.000001e30, 2.0, 1e30 }, 2 },
+    { GDT_UInt32, 4294967295.0, { 4294967294.0, 4294967295.0, 4294967293.0, 9.0 }, 1 },
+  };
+  for (const auto& c : cases)
+  {
+    aptest::RasterSpec spec;
+    spec.type = c.type;
+    spec.hasNoData = true;
+    spec.noData = c.nodata;
+    const double* values = c.values;
+    spec.raw = [values](int, int col, int r) { return r == 1 ? values[col] : 100.0 + col; };
+    const std::string path = tmp + "/nodata-near.tif";
+    std::remove(path.c_str());
+    AP_CHECK(aptest::WriteRaster(path, spec));
+    GDALDatasetH ds = GDALOpen(path.c_str(), GA_ReadOnly);
+    AP_CHECK(ds != nullptr);
+    if (!ds)
+    {
+      continue;
+    }
+    unsigned char mask[4] = { 1, 1, 1, 1 };
+    AP_CHECK(GDALRasterIO(GDALGetMaskBand(GDALGetRasterBand(ds, 1)), GF_Read, 0, 1, 4, 1, mask,
+               4, 1, GDT_Byte, 0, 0) == CE_None);
+    GDALClose(ds);
+    Read rd(path);
+    rd.Update();
+    AP_CHECK(rd.Ok == 1);
+    int masked = 0;
+    for (int col = 0; col < 4; ++col)
+    {
+      masked += mask[col] == 0;
+      if (std::isnan(rd.Z(col, 1)) != (mask[col] == 0))
+      {
+        std::fprintf(stderr, "type %d, nodata %.17g, sample %.17g: GDAL's mask %d, read %.17g\n",
+          static_cast<int>(c.type), c.nodata, c.values[col], mask[col], rd.Z(col, 1));
+        AP_CHECK(false);
+      }
+    }
+    AP_CHECK(masked == c.masked);
+  }
+}
+
 // A decimated raster 2 million columns wide: its strips of source rows are read in pieces of
 // whole blocks (each strip of two rows would have taken 32 MiB of doubles), and the blocks on
 // either side of a piece's edge land where they belong. The VRT puts small.tif's 4 x 3 cells at
@@ -969,6 +1030,7 @@ int TestApertureDEMReader(int argc, char* argv[])
   TestWindowExtent();
   TestBadInput();
   TestSampleEncodings();
+  TestNoDataAsGDALMasks();
   TestWideDecimation();
   return aptest::Result();
 }
