@@ -438,7 +438,11 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
     }
     return 0;
   }
-  if (std::fabs(gt[2]) > 1e-12 * std::fabs(gt[1]) || std::fabs(gt[4]) > 1e-12 * std::fabs(gt[5]))
+  // Rotation terms that move the grid's far edges by under a thousandth of a cell are a
+  // writer's rounding (1e-15 on a grid of 0.0008 degree cells was refused until 2026-12-06),
+  // read as north-up; the outputs' geotransforms have none.
+  if (!(std::fabs(gt[2]) * this->RasterSize[1] <= 1e-3 * std::fabs(gt[1])) ||
+    !(std::fabs(gt[4]) * this->RasterSize[0] <= 1e-3 * std::fabs(gt[5])))
   {
     vtkErrorMacro(<< "'" << name << "' has a rotated geotransform (rotation terms " << gt[2]
                   << ", " << gt[4] << "); warp it north-up first (gdalwarp)");

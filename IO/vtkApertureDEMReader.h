@@ -51,7 +51,8 @@
  * /vsicurl/URL, is named as such; a network path that leads nowhere too), a named pipe or a socket
  * (GDAL seeks in its files; its open of a pipe would wait for a writer), a file GDAL cannot open, a
  * band that does not exist or holds complex numbers, no georeference (no geotransform, or ground
- * control points only), a rotated or mirrored geotransform, one with a pixel size of 0, or one
+ * control points only), a rotated (its far edges moved by a thousandth of a cell or more: less
+ * is read as north-up) or mirrored geotransform, one with a pixel size of 0, or one
  * whose grid reaches beyond the range of doubles, no CRS (without OverrideCRS), a band scale of 0,
  * NaN or infinity or an offset of NaN or infinity, a scale and offset that take samples beyond the
  * float range, a negative, NaN or infinite MetresPerElevationUnit, fewer than 2 x 2 output cells, a

@@ -685,6 +685,33 @@ void TestBadInput()
   rotated.gt[2] = 0.5;
   AP_CHECK(aptest::WriteRaster(tmp + "/rotated.tif", rotated));
   ExpectError(tmp + "/rotated.tif", "rotated geotransform");
+  // Rotation terms moving the far edges by over a thousandth of a cell (30 m cells, 3 rows:
+  // 0.02 m a row is 0.06 m) are a rotation; a writer's rounding error (1e-9) is none.
+  for (const double rotation : { 0.02, 1e-9 })
+  {
+    for (const int term : { 2, 4 })
+    {
+      aptest::RasterSpec nearly;
+      nearly.gt[term] = rotation;
+      std::remove((tmp + "/nearly.tif").c_str());
+      AP_CHECK(aptest::WriteRaster(tmp + "/nearly.tif", nearly));
+      if (rotation > 1e-3)
+      {
+        ExpectError(tmp + "/nearly.tif", "rotated geotransform");
+        continue;
+      }
+      Read rd(tmp + "/nearly.tif");
+      vtkImageData* img = rd.Update();
+      AP_CHECK(rd.Ok == 1 && !rd.Errors->GetError());
+      double origin[3], spacing[3];
+      img->GetOrigin(origin);
+      img->GetSpacing(spacing);
+      AP_CHECK_NEAR(origin[0], 500015.0, 0.0);
+      AP_CHECK_NEAR(origin[1], 4000000.0 - 75.0, 0.0);
+      AP_CHECK_NEAR(spacing[0], 30.0, 0.0);
+      AP_CHECK_NEAR(spacing[1], 30.0, 0.0);
+    }
+  }
 
   aptest::RasterSpec bare;
   bare.hasGeoTransform = false;
