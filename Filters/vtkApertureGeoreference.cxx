@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -762,6 +763,19 @@ bool vtkApertureGeoreference::GetCentreLonLat(double lonlat[2])
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// How far from 360 degrees the longitudes of a global grid of `cell` degree cells may sum: a
+// thousandth of a cell (cell sizes written with 9 or 10 digits, 0.333333333 for 1/3, sum to
+// 360 less 3.6e-7 over 1080 columns, and were taken for a grid one seam short until
+// 2026-12-06, or, 1e-7 over, refused as wider than the Earth).
+double SpanSlack(double cell)
+{
+  return 1e-3 * std::fabs(cell);
+}
+}
+
+//------------------------------------------------------------------------------
 bool vtkApertureGeoreference::WrapsAround()
 {
   Internals& d = *this->Impl;
@@ -769,8 +783,8 @@ bool vtkApertureGeoreference::WrapsAround()
   {
     return false;
   }
-  const double span = this->GridSize[0] * std::fabs(this->GridSpacing[0]) * d.UnitToDegrees;
-  return std::fabs(span - 360.0) <= 360.0 * 1e-9;
+  const double cell = std::fabs(this->GridSpacing[0]) * d.UnitToDegrees;
+  return std::fabs(this->GridSize[0] * cell - 360.0) <= SpanSlack(cell);
 }
 
 //------------------------------------------------------------------------------
@@ -786,15 +800,15 @@ bool vtkApertureGeoreference::CheckLongitudeSpan()
   {
     return true;
   }
-  // 1e-9 degrees of slack: a global grid of 0.05 degree cells may sum to 360 plus rounding.
-  const double span = this->GridSize[0] * this->GridSpacing[0] * d.UnitToDegrees;
-  if (span > 360.0 + 1e-9)
+  const double cell = this->GridSpacing[0] * d.UnitToDegrees;
+  const double span = this->GridSize[0] * cell;
+  if (span > 360.0 + SpanSlack(cell))
   {
     std::ostringstream msg;
-    msg << "the grid spans " << span << " degrees of longitude (" << this->GridSize[0]
-        << " columns of " << this->GridSpacing[0] * d.UnitToDegrees
+    msg << std::setprecision(12) << "the grid spans " << span << " degrees of longitude ("
+        << this->GridSize[0] << " columns of " << cell
         << " degrees), more than the 360 around the Earth";
-    if (std::fabs(span - this->GridSpacing[0] * d.UnitToDegrees - 360.0) <= 1e-9)
+    if (std::fabs(span - cell - 360.0) <= SpanSlack(cell))
     {
       // GMT's and ETOPO's gridline registration: cells centred on both -180 and 180, and on
       // the poles when the grid reaches them (their cells half beyond)

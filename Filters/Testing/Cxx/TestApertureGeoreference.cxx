@@ -368,6 +368,12 @@ void TestLongitudeSpan()
   double dx[20], dy[20], bounds[4];
   geo->SetGrid(-179.975, -9.975, 0.05, 0.05, 7200, 20); // the whole globe, 0.05 degree cells
   AP_CHECK(geo->CheckLongitudeSpan() && geo->GetRowCellSizesMetres(dx, dy));
+  geo->SetGrid(-179.8333333333, -9.5, 0.3333333334, 1.0, 1080, 20); // (360 + 7.2e-8)
+  AP_CHECK(geo->CheckLongitudeSpan());
+  geo->SetGrid(-179.8, -9.5, 0.3337, 1.0, 1080, 20);
+  AP_CHECK(!geo->CheckLongitudeSpan());
+  AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
+    "the grid spans 360.396 degrees of longitude (1080 columns of 0.3337 degrees)");
   geo->SetGrid(-170.0, -9.5, 20.0, 1.0, 40, 20);
   AP_CHECK(!geo->CheckLongitudeSpan());
   AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
@@ -488,7 +494,12 @@ void TestWrapsAround()
     { "EPSG:4326", 0.125, 0.25, 1440, true }, { "EPSG:4326", -179.875, 0.25, 1439, false },
     { "EPSG:4326", -179.9, 0.2, 1800, true }, { grads, -199.75, 0.5, 800, true },
     { grads, -199.75, 0.5, 720, false }, { "EPSG:3857", -20037508.34 + 5000.0, 10000.0, 4008,
-                                            false } };
+                                            false },
+    // cell sizes of 9 and 10 digits (1/3 degree: 3.6e-7 short of 360, 7.2e-8 over), not
+    // 1/1000 of a cell more (0.36 degree over 1080 columns)
+    { "EPSG:4326", -179.8333333335, 0.333333333, 1080, true },
+    { "EPSG:4326", -179.8333333333, 0.3333333334, 1080, true },
+    { "EPSG:4326", -179.83, 0.3336666, 1080, false } };
   for (const Case& c : cases)
   {
     vtkNew<vtkApertureGeoreference> geo;
