@@ -787,6 +787,12 @@ bool vtkApertureDEMWriter::EndFile(bool ok)
     return false;
   }
   d.Error.clear();
+  const std::string stale =
+    vtkApertureRemoveStaleSidecars(this->FileName ? this->FileName : d.Path, d.Path);
+  if (!stale.empty())
+  {
+    vtkWarningMacro(<< "wrote '" << d.Path << "', but " << stale);
+  }
   return true;
 }
 

@@ -31,7 +31,9 @@
  *
  * The file is written aside (a hidden temporary file in the same folder) and renamed into
  * place when complete, so a failed or aborted write leaves neither a partial file nor a damaged
- * earlier version behind, as the EXR writer's.
+ * earlier version behind, as the EXR writer's. The earlier file's GDAL sidecars (.aux.xml with
+ * its statistics, .ovr with its overviews, .msk) are then removed, as GDAL's own Create does:
+ * GDAL would read them with the new file (a warning names one that cannot be).
  *
  * Errors (vtkErrorMacro, nothing left behind): no file name, a file name that names something
  * other than a file (a folder, a device such as /dev/null, a pipe: left as it is), an input

@@ -995,6 +995,11 @@ int vtkApertureEXRWriter::EndStrips()
     vtkErrorMacro(<< problem);
     return 0;
   }
+  const std::string stale = vtkApertureRemoveStaleSidecars(d.Path, d.Context.Target);
+  if (!stale.empty())
+  {
+    vtkWarningMacro(<< "wrote '" << d.Path << "', but " << stale);
+  }
   return 1;
 }
 

@@ -55,7 +55,9 @@
  *
  * The file is written through a temporary file in the same folder that replaces FileName only
  * when everything was written, so a failed write leaves neither a partial file nor a damaged
- * earlier version behind.
+ * earlier version behind. The earlier file's GDAL sidecars (.aux.xml, .ovr, .msk) are then
+ * removed, as GDAL's own Create does: GDAL would read them with the new file (a warning names
+ * one that cannot be).
  *
  * Errors (vtkErrorMacro naming the file and the problem; nothing written): no file name, a file
  * name that names something other than a file (a folder, a device such as /dev/null, a pipe:

@@ -8,7 +8,9 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -97,6 +99,31 @@ inline bool vtkAperturePutInPlace(const std::string& temporary, const std::strin
 {
   return (mode < 0 || chmod(temporary.c_str(), static_cast<mode_t>(mode)) == 0) &&
     std::rename(temporary.c_str(), target.c_str()) == 0;
+}
+
+/** After a writer put its new file at `target` (vtkApertureOutputTarget of `path`, the name
+ *  it was given): removes the previous file's GDAL sidecars beside either, + ".aux.xml"
+ *  (statistics, and a georeference GDAL takes before the file's own), ".ovr" (overviews of the
+ *  old values, shown when zoomed out) and ".msk" (a mask), which GDAL would otherwise read
+ *  with the new file; GDAL's own Create removes them too. "" when none is left, else a
+ *  sentence for a warning naming the first one that could not be removed. */
+inline std::string vtkApertureRemoveStaleSidecars(
+  const std::string& path, const std::string& target)
+{
+  for (const std::string& name : { path, target })
+  {
+    for (const char* suffix : { ".aux.xml", ".ovr", ".msk" })
+    {
+      const std::string sidecar = name + suffix;
+      struct stat st;
+      if (lstat(sidecar.c_str(), &st) == 0 && unlink(sidecar.c_str()) != 0)
+      {
+        return "the previous file's sidecar '" + sidecar + "' stays beside the new one (" +
+          std::strerror(errno) + "), and GDAL reads it with it: remove it";
+      }
+    }
+  }
+  return std::string();
 }
 
 /** Whether a reader must refuse a file of this `st`: a named pipe or a socket, which the

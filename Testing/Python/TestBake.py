@@ -1561,6 +1561,46 @@ class TestBake(unittest.TestCase):
         self.assertTrue(os.path.isfile(os.path.join(frames, "0043.exr")))
         self.assertEqual(sorted(os.listdir(frames)), ["0042.exr", "0042.tif", "0043.exr"])
 
+    def test_replaces_sidecars(self):
+        # A bake over an earlier output removes that file's GDAL sidecars, as GDAL's own Create
+        # does: its overviews (.ovr, the old values QGIS shows when zoomed out), its
+        # .aux.xml (statistics of the old values, and a georeference GDAL prefers to the
+        # file's) and an external mask (.msk); the EXR's .aux.xml too (GDAL built with its EXR
+        # driver reads it). Until 2026-12-06 they stayed and GDAL read them with the new file.
+        # One that cannot be removed (here a folder) is named in a warning.
+        out, exr = self.path("sidecars.tif"), self.path("sidecars.exr")
+        status, _, err = run("bake", self.dem, out, "--products", "ApertureRadius", "-q")
+        self.assertEqual(status, 0, err)
+        ds = gdal.Open(out)
+        self.assertEqual(ds.BuildOverviews("AVERAGE", [2, 4]), 0)  # (read-only: out.tif.ovr)
+        ds.GetRasterBand(1).ComputeStatistics(False)
+        ds = None
+        with open(out + ".aux.xml", "a"):
+            pass
+        with open(exr + ".aux.xml", "w") as f:
+            f.write("<PAMDataset><GeoTransform>0, 1, 0, 0, 0, -1</GeoTransform></PAMDataset>\n")
+        for name in (out + ".ovr", out + ".aux.xml"):
+            self.assertTrue(os.path.isfile(name), name)
+        with open(out + ".msk", "w") as f:
+            f.write("an old mask")
+        status, _, err = run("bake", self.dem, out, "--exr", exr, "--products", "SkyViewFactor",
+                             "-q")
+        self.assertEqual((status, err), (0, ""))
+        self.assertEqual(sorted(n for n in os.listdir(self.tmp) if n.startswith("sidecars")),
+                         ["sidecars.exr", "sidecars.tif"])
+        ds = gdal.Open(out)
+        band = ds.GetRasterBand(1)
+        self.assertEqual((band.GetDescription(), band.GetOverviewCount()), ("SkyViewFactor", 0))
+        self.assertIsNone(band.GetMetadataItem("STATISTICS_MAXIMUM"))
+        ds = None
+        os.mkdir(out + ".ovr")
+        status, _, err = run("bake", self.dem, out, "--products", "SkyViewFactor", "-q")
+        self.assertEqual(status, 0, err)
+        self.assertEqual(err, "aperture: warning: wrote '%s', but the previous file's sidecar "
+                         "'%s.ovr' stays beside the new one (Is a directory), and GDAL reads it "
+                         "with it: remove it\n" % (out, out))
+        os.rmdir(out + ".ovr")
+
     def test_does_not_overwrite(self):
         # An output that is the input DEM, or two outputs in one file, are refused before any
         # work: the EXR would silently replace the GeoTIFF, the bands the DEM.
@@ -1571,7 +1611,11 @@ class TestBake(unittest.TestCase):
         link = self.path("link.tif")
         os.link(dem, link)
         same = self.path("same.tif")
+        ovr = self.path("o.tif.ovr")  # (a DEM named as o.tif's overviews, which a bake removes)
+        shutil.copy(self.dem, ovr)
         for args, expected in (
+                ((ovr, self.path("o.tif")), "OUT.tif %s: writing it removes %s (GDAL's sidecar "
+                 "of a file of that name), which is the DEM" % (self.path("o.tif"), ovr)),
                 ((dem, dem), "OUT.tif %s is the same file as the DEM" % dem),
                 ((dem, link), "OUT.tif %s is the same file as the DEM" % link),
                 ((dem, os.path.join(self.tmp, ".", "mine.tif")), "is the same file as the DEM"),

@@ -295,6 +295,14 @@ def _check_sources(outputs, reader):
                 raise ApertureError("%s %s is %s; choose another name" % (
                     name, path, "the same file as the DEM" if source == sources[0] else
                     "one of the files the DEM %s reads (%s)" % (sources[0], source)))
+            # (the writers remove an earlier output's GDAL sidecars: vtkApertureOutputFile.h)
+            for sidecar in (path + ".aux.xml", path + ".ovr", path + ".msk"):
+                if _same_file(sidecar, source):
+                    raise ApertureError(
+                        "%s %s: writing it removes %s (GDAL's sidecar of a file of that name), "
+                        "which is %s; choose another name" % (
+                            name, path, sidecar, "the DEM" if source == sources[0] else
+                            "one of the files the DEM %s reads" % sources[0]))
 
 
 def _dem_path(args):
