@@ -258,6 +258,7 @@ vtkApertureDEMReader::vtkApertureDEMReader()
   , BandRead(0)
   , HasNoDataValue(false)
   , NoDataValue(0.0)
+  , SouthUp(false)
   , ElevationUnitRead(0.0)
   , Impl(new Internals)
 {
@@ -350,6 +351,7 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
   this->NumberOfBands = this->BandRead = 0;
   this->HasNoDataValue = false;
   this->NoDataValue = 0.0;
+  this->SouthUp = false;
   std::string error, openWarning;
   DatasetHandle ds;
   if (!Internals::Open(this->FileName, ds, error, &openWarning))
@@ -479,6 +481,7 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
     return 0;
   }
   d.SouthUp = gt[5] > 0;
+  this->SouthUp = d.SouthUp;
 
   vtkNew<vtkApertureGeoreference> geo;
   if (this->OverrideCRS && *this->OverrideCRS)
@@ -1017,6 +1020,7 @@ void vtkApertureDEMReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BandRead: " << this->BandRead << "\n";
   os << indent << "HasNoDataValue: " << this->HasNoDataValue << "\n";
   os << indent << "NoDataValue: " << this->NoDataValue << "\n";
+  os << indent << "SouthUp: " << this->SouthUp << "\n";
   os << indent << "ElevationUnitRead: " << this->ElevationUnitRead << " ("
      << this->Impl->UnitSource << ")\n";
 }

@@ -152,14 +152,17 @@ public:
 
   ///@{
   /** Facts about the file, valid after UpdateInformation(): GDAL driver short name, raster
-   *  size in full-resolution pixels, band count, the band read, and its nodata value ("", 0
-   *  and false while no file has been read, or when the last one could not be opened). */
+   *  size in full-resolution pixels, band count, the band read, its nodata value, and whether
+   *  the file is south-up (positive pixel height: its first row is its southern one; the
+   *  output is north-up either way) ("", 0 and false while no file has been read, or when the
+   *  last one could not be opened). */
   const char* GetDriverName();
   vtkGetVector2Macro(RasterSize, int);
   vtkGetMacro(NumberOfBands, int);
   vtkGetMacro(BandRead, int);
   vtkGetMacro(HasNoDataValue, bool);
   vtkGetMacro(NoDataValue, double);
+  vtkGetMacro(SouthUp, bool);
   ///@}
 
   ///@{
@@ -202,6 +205,7 @@ protected:
   int BandRead;
   bool HasNoDataValue;
   double NoDataValue;
+  bool SouthUp;
   double ElevationUnitRead;
 
 private:

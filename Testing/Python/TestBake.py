@@ -1561,6 +1561,35 @@ class TestBake(unittest.TestCase):
         self.assertTrue(os.path.isfile(os.path.join(frames, "0043.exr")))
         self.assertEqual(sorted(os.listdir(frames)), ["0042.exr", "0042.tif", "0043.exr"])
 
+    def test_south_up(self):
+        # A south-up DEM (positive pixel height, its first row the southern one) gives the
+        # products of the same DEM north-up, written north-up with a note saying so (it was
+        # silent, and the README said "in the DEM's own grid").
+        north = rough_dem(self.path("north-up.tif"), (120, 90), 21)
+        ds = gdal.Open(north)
+        z = ds.GetRasterBand(1).ReadAsArray()
+        gt = ds.GetGeoTransform()
+        ds = None
+        south = make_dem(self.path("south-up.tif"), z[::-1],
+                         (gt[0], gt[1], 0, gt[3] + gt[5] * z.shape[0], 0, -gt[5]), 32611)
+        results = []
+        for dem in (north, south):
+            out = dem[:-4] + "-out.tif"
+            status, _, err = run("bake", dem, out, "-d", "8", "--products", "SkyViewFactor")
+            self.assertEqual(status, 0, err)
+            results.append((bands(out), err))
+        (north_bands, _, north_gt, _), north_err = results[0]
+        (south_bands, _, south_gt, _), south_err = results[1]
+        self.assertEqual(south_gt, north_gt)
+        self.assertTrue(np.array_equal(south_bands["SkyViewFactor"][0],
+                                       north_bands["SkyViewFactor"][0]))
+        self.assertNotIn("south-up", north_err)
+        self.assertIn("aperture: note: the DEM is south-up (its first row is its southern one); "
+                      "%s is written north-up: the same cells and CRS, its rows in the reverse "
+                      "order\n" % self.path("south-up-out.tif"), south_err)
+        status, _, err = run("bake", south, self.path("south-up-out.tif"), "-d", "8", "-q")
+        self.assertEqual((status, err), (0, ""))
+
     def test_replaces_sidecars(self):
         # A bake over an earlier output removes that file's GDAL sidecars, as GDAL's own Create
         # does: its overviews (.ovr, the old values QGIS shows when zoomed out), its

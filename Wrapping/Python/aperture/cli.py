@@ -1881,6 +1881,10 @@ def _bake(args, products, progress):
     # (after every refusal: a warning and then an error would be two lines for one mistake)
     _warn_extension(args.output, (".tif", ".tiff", ".gtiff"), "a GeoTIFF")
     _warn_extension(args.exr, (".exr",), "an OpenEXR file")
+    if reader.GetSouthUp() and not args.quiet:
+        print("%s: note: the DEM is south-up (its first row is its southern one); %s is "
+              "written north-up: the same cells and CRS, its rows in the reverse order"
+              % (PROG, args.output), file=sys.stderr)
     # whether each update of the sky filter (one, or a strip's) read nodata alone: a part of
     # the DEM may (a window or a strip out at sea); all of it is an error
     nodata = []
