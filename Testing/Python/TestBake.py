@@ -887,6 +887,8 @@ class TestBake(unittest.TestCase):
                 (("--radius", "inf"), "(inf given; leave --radius out for an unlimited search)"),
                 (("--radius", "0"), "(0 given; leave --radius out"),
                 (("--refraction", "1"), "--refraction must be within [0, 1)"),
+                (("--no-curvature", "--refraction", "0.13"), "--refraction bends rays over the "
+                 "curved Earth; --no-curvature has none"),
                 (("--products", "Slope"), "unknown product 'Slope'"),
                 (("--compress", "FOO"), "unknown GeoTIFF compression 'FOO'"),
                 # (the level named only when given: it said '--compress-level 1' unasked)

@@ -1791,6 +1791,11 @@ def cmd_bake(args):
     if not 4 <= args.directions <= 360:
         raise _UsageError("--directions must be within 4..360")
     _check_radius(args.radius)
+    if args.refraction is not None and args.no_curvature:
+        # (taken without a word, and the files said n/a)
+        raise _UsageError("--refraction bends rays over the curved Earth; --no-curvature has "
+                          "none")
+    args.refraction = 0.13 if args.refraction is None else args.refraction
     if not (0 <= args.refraction < 1):
         raise _UsageError("--refraction must be within [0, 1)")
     if args.threads < 0:
@@ -2353,8 +2358,8 @@ def build_parser():
                         "that the horizon sweep takes over")
     p.add_argument("--no-curvature", action="store_true",
                    help="flat Earth (default: curvature with refraction)")
-    p.add_argument("--refraction", type=float, default=0.13, metavar="K",
-                   help="refraction coefficient (default 0.13)")
+    p.add_argument("--refraction", type=float, metavar="K",
+                   help="refraction coefficient (default 0.13; not with --no-curvature)")
     p.add_argument("--threads", type=_c_int, default=0, metavar="N",
                    help="threads for the sweep and for compressing the GeoTIFF and EXR "
                         "(default 0: all cores, or those a CPU affinity or a container's CPU "
