@@ -477,6 +477,33 @@ class CommandLineSunTest(unittest.TestCase):
             self.assertEqual(len(local), rows, day)
             self.assertEqual(local[:len(clocks) - 1], clocks[:-1], day)
             self.assertEqual(local[-1], clocks[-1], day)
+        # The series ends where Python's zoneinfo puts the same clock time N days on (fold 0:
+        # the first of two, or a skipped time read with the offset before the jump): Samoa
+        # and Tokelau skipped 2011-12-30 and Kiritimati 1994-12-31 (a single row, until
+        # 2026-12-06), Santiago, Havana and Beirut skip a midnight (an hour short), New York
+        # skips 02:30 the day after the start.
+        from zoneinfo import ZoneInfo
+        for zone, at, days in (
+                ("Pacific/Apia", "2011-12-29T00:00", 1), ("Pacific/Apia", "2011-12-28T12:00", 2),
+                ("Pacific/Fakaofo", "2011-12-29T06:00", 1),
+                ("Pacific/Kiritimati", "1994-12-30T06:00", 1),
+                ("America/Santiago", "2026-09-05T00:00", 1),
+                ("America/Havana", "2026-03-07T00:00", 1),
+                ("Asia/Beirut", "2026-03-28T00:00", 1),
+                ("America/New_York", "2026-03-07T02:30", 1),
+                ("America/New_York", "2026-10-31T01:30", 1),
+                ("Europe/London", "2026-03-28T00:30", 3)):
+            first = datetime.datetime.fromisoformat(at).replace(tzinfo=ZoneInfo(zone))
+            end = (first + datetime.timedelta(days=days)).timestamp()  # (wall clock, fold 0)
+            hours = math.ceil((end - first.timestamp()) / 3600.0)
+            status, out, err = run("--at", at, "--tz", zone, "--lat", 0, "--lon", 0, "--days",
+                                   days, "--step", 60)
+            self.assertEqual(status, 0, err)
+            rows = out.strip().splitlines()[1:]
+            self.assertEqual(len(rows), hours, (zone, at))
+            self.assertGreaterEqual(hours, 23 * days, (zone, at))
+            last = datetime.datetime.fromisoformat(rows[-1].split("\t")[0].replace("Z", "+00:00"))
+            self.assertEqual(last.timestamp(), first.timestamp() + (hours - 1) * 3600, (zone, at))
         status, out, err = run("--at", "2026-06-21T00:00Z", "--lat", 0, "--lon", 0,
                                "--step", 360, "--json")
         self.assertEqual(status, 0, err)

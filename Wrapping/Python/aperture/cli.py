@@ -2163,6 +2163,25 @@ def _print_sun(record, dem, note=None):
                             subsequent_indent=" " * 13))
 
 
+def _local_instant(sun, wall):
+    """The POSIX time at which --tz's clocks (sun.GetLocalOffsetAt) show `wall` (POSIX seconds
+    of the local date and time), as Python's zoneinfo resolves it (fold 0): of two such times
+    (the clocks going back) the first; where the clocks skip it, `wall` read with the offset
+    before the jump (midnight skipped: the moment of the jump). An offset change is at most
+    a day here (Samoa skipped 2011-12-30), so the times that can show `wall` lie between 15
+    hours before it and 13 after, and the offsets before and after any change in that span
+    give them. (The end of the series was start + N days corrected by the change of offset
+    between the two, which a change of a whole day cancelled: a single row for Samoa's
+    2011-12-29, and one hour short from a midnight the clocks skip, until 2026-12-06.)"""
+    offsets = {sun.GetLocalOffsetAt(wall - 15 * 3600.0), sun.GetLocalOffsetAt(wall + 13 * 3600.0)}
+    offsets |= {sun.GetLocalOffsetAt(wall - o) for o in offsets}
+    shown = [wall - o for o in offsets if sun.GetLocalOffsetAt(wall - o) == o]
+    if shown:
+        return min(shown)
+    # (skipped: the offset before the jump is the one in force before the earliest candidate)
+    return wall - sun.GetLocalOffsetAt(wall - 15 * 3600.0)
+
+
 def cmd_sun(args):
     from aperture import vtkApertureSolarPosition
 
@@ -2237,8 +2256,7 @@ def cmd_sun(args):
     days = args.days or 1
     step = args.step or 60.0
     start = sun.GetUnixTime()
-    end = start + days * 86400.0
-    end += sun.GetLocalOffsetAt(start) - sun.GetLocalOffsetAt(end)
+    end = _local_instant(sun, start + sun.GetLocalOffsetAt(start) + days * 86400.0)
     count = max(1, int(math.ceil((end - start) / (step * 60.0) - 1e-9)))
     compute()  # (the start: any other problem is named as for one time)
     sun.SetUnixTime(start + (count - 1) * step * 60.0)
