@@ -144,6 +144,41 @@ class TestLauncher(CommandLineTest):
         self.assertTrue(line.endswith("): No module named 'aperture'"), line)
 
 
+    def test_interrupt_while_importing(self):
+        # render loads VTK's rendering modules on its first use (aperture.scene): a Ctrl-C
+        # meanwhile is KeyboardInterrupt (exit 130), though VTK's module loader turns it into
+        # an ImportError (a traceback and exit 1 until 2026-12-06) or swallows it. Modules
+        # here that do either with a SIGINT they send themselves; a plain ImportError stays
+        # one, and an ignored SIGINT stays ignored.
+        import signal
+        from aperture import cli
+        folder = self.path("modules")
+        os.makedirs(folder)
+        body = ("import os, signal\ntry:\n    os.kill(os.getpid(), signal.SIGINT)\n"
+                "    for _ in range(1000):\n        pass\nexcept KeyboardInterrupt:\n    %s\n")
+        for name, what in (("converts", 'raise ImportError("Failed to load vtkSomething")'),
+                           ("swallows", "pass"), ("broken", "pass")):
+            with open(os.path.join(folder, "aperture_test_%s.py" % name), "w") as f:
+                f.write('raise ImportError("no such library")\n' if name == "broken" else
+                        body % what)
+        sys.path.insert(0, folder)
+        previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+        try:
+            for name in ("converts", "swallows"):
+                with self.assertRaises(KeyboardInterrupt, msg=name):
+                    cli._interruptible_import("aperture_test_" + name)
+                self.assertIs(signal.getsignal(signal.SIGINT), signal.default_int_handler)
+            with self.assertRaisesRegex(ImportError, "no such library"):
+                cli._interruptible_import("aperture_test_broken")
+            sys.modules.pop("aperture_test_swallows")
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
+            self.assertEqual(cli._interruptible_import("aperture_test_swallows").__name__,
+                             "aperture_test_swallows")
+            self.assertIs(signal.getsignal(signal.SIGINT), signal.SIG_IGN)
+        finally:
+            signal.signal(signal.SIGINT, previous)
+            sys.path.remove(folder)
+
     def test_interrupt_while_loading(self):
         # Ctrl-C in the first few tenths of a second, while VTK and GDAL load: VTK's module
         # loader turned the KeyboardInterrupt into an ImportError, reported as "cannot load

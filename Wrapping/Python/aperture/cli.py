@@ -1038,9 +1038,42 @@ def _render_option_checks(args):
                           "a smaller --size" % tuple(args.size))
 
 
+def _interruptible_import(name):
+    """The module `name`, imported with a Ctrl-C meanwhile reported as one: VTK's module loader
+    turns the KeyboardInterrupt into an ImportError of whatever it was loading ("Failed to load
+    vtkRenderingOpenGL2: No module named vtkmodules.vtkFiltersGeneral", a traceback and exit 1
+    in render's first half second, until 2026-12-06) or swallows it; the signal is noted
+    here, as the launcher notes it while it loads, and KeyboardInterrupt follows. A SIGINT
+    ignored or handled otherwise is left as it is."""
+    import importlib
+    import signal
+    noted = []
+
+    def on_interrupt(signum, frame):
+        noted.append(signum)
+        raise KeyboardInterrupt
+
+    previous = signal.getsignal(signal.SIGINT)
+    ours = previous is signal.default_int_handler
+    if ours:
+        signal.signal(signal.SIGINT, on_interrupt)
+    try:
+        module = importlib.import_module(name)
+    except ImportError:
+        if noted:
+            raise KeyboardInterrupt from None
+        raise
+    finally:
+        if ours:
+            signal.signal(signal.SIGINT, previous)
+    if noted:
+        raise KeyboardInterrupt
+    return module
+
+
 def cmd_render(args):
     from aperture import vtkApertureSkyVisibility, vtkApertureTerrainMesh
-    from aperture import scene
+    scene = _interruptible_import("aperture.scene")  # (VTK's rendering: a few tenths of a s)
 
     _render_option_checks(args)
 
