@@ -849,6 +849,22 @@ class TestBake(unittest.TestCase):
         self.assertIn("argument --nodata: inf is not a Float32 number (nor nan)",
                       usage_error(self, "bake", run("bake", self.dem, m9999, "--nodata",
                                                     "inf")))
+        # a value some product takes is said in a warning: its cells of that value read as
+        # nodata (--nodata 0 took every EdgeTruncated cell of 0 without a word)
+        for nodata, products, hits in (
+                ("0", "SkyViewFactor,EdgeTruncated",
+                 "SkyViewFactor (0 to 1) and EdgeTruncated (0 or 1)"),
+                ("45", None, "ApertureRadius (0 to 90) and PositiveOpenness (0 to 180)"),
+                ("0.5", "EdgeTruncated", None), ("-100", "all", None),
+                ("-90", "HorizonAngles", "HorizonAngles (-90 to 90)")):
+            status, _, err = run("bake", self.dem, m9999, "--radius", "900", "-q", "-d", "8",
+                                 "--nodata", nodata,
+                                 *(("--products", products) if products else ()))
+            self.assertEqual(status, 0, err)
+            self.assertEqual(err, "aperture: warning: --nodata %s is also a value of %s: cells "
+                             "of that value will read as nodata; a value no product takes, "
+                             "such as -9999, or the default nan, would not\n" % (nodata, hits)
+                             if hits else "", nodata)
 
     def test_odd_terrain(self):
         # a lat/lon DEM whose north edge is the pole (the edge comes out a rounding error

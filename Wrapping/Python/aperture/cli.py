@@ -1465,6 +1465,35 @@ PRODUCTS = [
      "centre, clockwise from north)"),
 ]
 DERIVED = [name for name, *_ in PRODUCTS if name != "HorizonAngles"]
+# The values each product takes in the files (angles in degrees), as their definitions bound
+# them: a --nodata among them makes such cells read as nodata (_nodata_collisions).
+_PRODUCT_VALUES = {
+    "VisibleSolidAngle": (0.0, 2.0 * math.pi, "0 to 2 pi"),
+    "ApertureRadius": (0.0, 90.0, "0 to 90"),
+    "BentNormal": (-1.0, 1.0, "-1 to 1"),
+    "SkyViewFactor": (0.0, 1.0, "0 to 1"),
+    "DiffuseSkyFactor": (0.0, 1.0, "0 to 1"),
+    "PositiveOpenness": (0.0, 180.0, "0 to 180"),
+    "EdgeTruncated": (0.0, 1.0, "0 or 1"),
+    "HorizonAngles": (-90.0, 90.0, "-90 to 90"),
+}
+
+
+def _nodata_collisions(nodata, products):
+    """A warning when the number `nodata` (--nodata) is a value some of `products` take, else
+    None: their cells of that value would read as nodata (--nodata 0 took every EdgeTruncated
+    cell of 0 without a word)."""
+    hits = []
+    for name in products:
+        lo, hi, text = _PRODUCT_VALUES[name]
+        if lo <= nodata <= hi and (name != "EdgeTruncated" or nodata in (0.0, 1.0)):
+            hits.append("%s (%s)" % (name, text))
+    if not hits:
+        return None
+    return ("--nodata %s is also a value of %s: cells of that value will read as nodata; a "
+            "value no product takes, such as -9999, or the default nan, would not" % (
+                "%g" % nodata, hits[0] if len(hits) == 1 else
+                ", ".join(hits[:-1]) + " and " + hits[-1]))
 
 
 def _parse_products(text):
@@ -1919,6 +1948,9 @@ def _bake(args, products, progress):
     # (after every refusal: a warning and then an error would be two lines for one mistake)
     _warn_extension(args.output, (".tif", ".tiff", ".gtiff"), "a GeoTIFF")
     _warn_extension(args.exr, (".exr",), "an OpenEXR file")
+    collisions = _nodata_collisions(args.nodata, products)
+    if collisions:
+        _warn(collisions)
     if reader.GetSouthUp() and not args.quiet:
         print("%s: note: the DEM is south-up (its first row is its southern one); %s is "
               "written north-up: the same cells and CRS, its rows in the reverse order"
