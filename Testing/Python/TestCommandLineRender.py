@@ -260,6 +260,45 @@ class TestCommandLineRender(unittest.TestCase):
             _, stderr = p.communicate(timeout=120)
             self.assertEqual((p.returncode, stderr), (0, ""))
             self.assertEqual(sorted(os.listdir(kept)), sorted("k-%d.png" % k for k in range(12)))
+            # frames of an earlier, longer series that the name's pattern also names are said
+            # in a warning (they stayed without a word, and a video of the pattern showed them)
+            old = os.path.join(tmp, "old")
+            os.mkdir(old)
+            for name in ("o-1.png", "o-5.png", "o-12.png", "o-x.png", "o-3.exr", "o-03.png"):
+                open(os.path.join(old, name), "w").close()
+            status, _, stderr = run("render", "--at", "2026-06-21T12:00Z", "--frames", 3, "-o",
+                                    os.path.join(old, "o-%d.png"), "--multisamples", 0, *size)
+            self.assertEqual(status, 0, stderr)
+            self.assertIn("aperture: warning: --output: 2 files (%s to %s) beyond this series' 3 "
+                          "frames match its name, from an earlier series: a video made from the "
+                          "name would include them\n" % (os.path.join(old, "o-5.png"),
+                                                         os.path.join(old, "o-12.png")), stderr)
+            status, _, stderr = run("render", "--at", "2026-06-21T12:00Z", "--frames", 13, "-o",
+                                    os.path.join(old, "o-%d.png"), "--multisamples", 0, *size)
+            self.assertEqual(status, 0, stderr)
+            self.assertNotIn("earlier series", stderr)
+            # a frame that cannot be written (here over a limit on file sizes: the night's
+            # black frames fit, the first lit one does not) ends the series with the reason
+            # and the frames written (it said "cannot write the PNG name" alone)
+            import resource
+
+            def small_files():
+                resource.setrlimit(resource.RLIMIT_FSIZE, (6000, 6000))
+            limited = os.path.join(tmp, "limited")
+            os.mkdir(limited)
+            p = subprocess.run([APERTURE, "render", "--at", "2026-06-21T08:00Z", "--frames", "4",
+                                "--step", "60", "-o", os.path.join(limited, "l-%d.png"),
+                                "--multisamples", "0", "-q", *size], preexec_fn=small_files,
+                               capture_output=True, text=True, timeout=300)
+            self.assertEqual(p.returncode, 1, p.stderr)
+            written = sorted(os.listdir(limited))
+            self.assertGreaterEqual(len(written), 1, p.stderr)
+            self.assertTrue(p.stderr.endswith(
+                "aperture: error: cannot write the PNG %s: the write failed (out of space, or "
+                "over a limit on file sizes) (frame%s %s of 4 written)\n" % (
+                    os.path.join(limited, "l-%d.png" % len(written)),
+                    "s" if len(written) > 1 else "", "0" if len(written) == 1 else
+                    "0-%d" % (len(written) - 1))), p.stderr)
             # VTK's lighting moves its light alike: a frame is the render at its time
             status, _, stderr = run("render", "--lighting", "standard", "--at",
                                     "2026-06-21T14:00Z", "--frames", 3, "--step", 240, "-o",

@@ -985,6 +985,29 @@ def _frame_names(option, pattern, count):
     return names
 
 
+def _earlier_frames(pattern, count):
+    """The files beside a time-lapse's frames that its `pattern` names with a frame number of
+    `count` or more: frames of an earlier, longer series, which a video made from the pattern
+    (ffmpeg -i frame-%03d.png) would append to this one. Sorted by number."""
+    number = [m for m in _FRAME_NUMBER.finditer(pattern) if m.group(0) != "%%"]
+    if not number:
+        return []
+    head, tail = pattern[:number[0].start()], pattern[number[0].end():]
+    folder, head = os.path.split(head.replace("%%", "%"))
+    shape = re.compile(re.escape(head) + r" *(\d+)" + re.escape(tail.replace("%%", "%")) + "$")
+    try:
+        names = os.listdir(folder or ".")
+    except OSError:
+        return []
+    found = []
+    for name in names:
+        m = shape.match(name)
+        path = os.path.join(folder, name)
+        if m and int(m.group(1)) >= count and pattern % int(m.group(1)) == path:
+            found.append((int(m.group(1)), path))
+    return [path for _, path in sorted(found)]
+
+
 def _render_option_checks(args):
     """Refuse render options that another one makes meaningless (each would be ignored
     without a word), then fill in the defaults of the aperture's options."""
@@ -1120,6 +1143,16 @@ def cmd_render(args):
     for option, names in args.frame_paths:
         _warn_extension(names[0], (".png",) if option == "--output" else (".exr",),
                         "a PNG" if option == "--output" else "an OpenEXR file")
+        earlier = _earlier_frames(args.output if option == "--output" else args.exr,
+                                  args.frames) if args.frames else []
+        if earlier:
+            _warn("%s: %s beyond this series' %d frame%s match%s its name, from an earlier "
+                  "series: a video made from the name would include %s" % (
+                      option, earlier[0] if len(earlier) == 1 else "%d files (%s to %s)" % (
+                          len(earlier), earlier[0], earlier[-1]),
+                      args.frames, "" if args.frames == 1 else "s",
+                      "es" if len(earlier) == 1 else "", "it" if len(earlier) == 1 else
+                      "them"))
     misplaced = _albedo_placement_warning(args.albedo, albedo_bounds, image) if args.albedo \
         else None
     if misplaced:
@@ -1164,7 +1197,15 @@ def cmd_render(args):
     names = dict(args.frame_paths)
     with _ends_between_frames(args.frames) as between:
         for k, t in enumerate(times):
-            _render_frame(args, k, t, sun, window, renderer, mapper, exposure, names, watcher)
+            try:
+                _render_frame(args, k, t, sun, window, renderer, mapper, exposure, names,
+                              watcher)
+            except ApertureError as e:
+                if not (args.frames and k):
+                    raise
+                # (which frames are whole, as an interrupted time-lapse says)
+                raise ApertureError("%s (frame%s %s of %d written)" % (
+                    e, "s" if k > 1 else "", _ranges_text(range(k)), args.frames)) from None
             between(k)
     return 0
 

@@ -514,7 +514,15 @@ def write_png(window, path, on_warning=None, text=()):
     writer.SetInputData(grab(window, on_warning))
     writer.Write()
     if writer.GetErrorCode():
-        raise OSError("cannot write the PNG %s" % path)
+        # (VTK says no more than that a write failed: libpng's own lines say "Write Error")
+        try:
+            stat = os.statvfs(folder)
+            full = stat.f_bavail * stat.f_frsize < (1 << 20)
+        except OSError:
+            full = False
+        raise OSError("cannot write the PNG %s: %s" % (
+            path, "the disk is full" if full else "the write failed (out of space, or over "
+            "a limit on file sizes)"))
     return os.path.abspath(path)
 
 
