@@ -1160,9 +1160,8 @@ def cmd_render(args):
     sun = _render_sun(args, image, watcher)
     times, exposure = _time_lapse(args, sun) if args.frames else ([None], args.exposure)
     if not args.frames and sun.GetElevation() < 0.0:  # (the models end at the horizon)
-        _warn("the sun is %.2f degrees below the horizon%s: the terrain is unlit (the sky models "
-              "have no twilight): black" % (-sun.GetElevation(), " at that time" if args.at
-                                            else ""))
+        _warn("the sun is %.2f degrees below the horizon%s: the terrain is unlit (%s): black"
+              % (-sun.GetElevation(), " at that time" if args.at else "", _unlit_why(args)))
     # (the mesher names implausible elevations, beyond the Earth's or steeper than terrain, as
     # the sky filter does: said once is enough)
     named = [w for w in watcher.warnings if w.startswith("elevations range ")]
@@ -1260,15 +1259,22 @@ def _render_frame(args, k, t, sun, window, renderer, mapper, exposure, names, wa
         if args.frames:  # (the local time too with --tz: a day's frames in its hours)
             local = _local_text(sun, sun.GetUnixTime()) if args.tz else None
             when = "%s%s, " % (sun.GetTimeString(), " (local %s)" % local if local else "")
-        print("wrote %s (%d x %d, %s view, %ssun azimuth %.2f, elevation %.2f deg, exposure "
-              "%.2f EV)" % (path, args.size[0], args.size[1], args.view, when,
-                            sun.GetAzimuth(), sun.GetElevation(), exposure))
+        print("wrote %s (%d x %d, %s view, %ssun azimuth %.2f, elevation %.2f deg, %s)" % (
+            path, args.size[0], args.size[1], args.view, when, sun.GetAzimuth(),
+            sun.GetElevation(), "exposure %.2f EV" % exposure if args.lighting == "aperture"
+            else "VTK lighting"))
     if args.exr:
         exr_path = _write_linear_exr(args, names["--exr"][k], window, mapper, sun, watcher, k)
         if not args.quiet:
             print("wrote %s (linear radiance, %s, %s)" % (
                 exr_path, "W/m2/sr" if args.lighting == "aperture" else "VTK lighting",
                 args.exr_type))
+
+
+def _unlit_why(args):
+    """Why a sun below the horizon leaves the terrain black, for the lighting drawn."""
+    return ("the sky models have no twilight" if args.lighting == "aperture" else
+            "VTK's light, from the sun's direction, is below it")
 
 
 def _time_lapse(args, sun):
@@ -1283,8 +1289,8 @@ def _time_lapse(args, sun):
     dark = [k for k, e in enumerate(elevations) if e < 0.0]
     if dark:
         _warn("the sun is below the horizon in %d of the %d frames (%s): the terrain is unlit "
-              "there (the sky models have no twilight): black" % (
-                  len(dark), args.frames, _ranges_text(dark)))
+              "there (%s): black" % (len(dark), args.frames, _ranges_text(dark),
+                                     _unlit_why(args)))
     exposure = args.exposure
     if exposure is None and args.lighting == "aperture":
         sun.SetUnixTime(times[elevations.index(max(elevations))])
