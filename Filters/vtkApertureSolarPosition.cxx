@@ -18,6 +18,7 @@
 #include "ap_time.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cmath>
 #include <cstring>
@@ -52,6 +53,42 @@ ap_instant ToInstant(double seconds)
   t.unix_seconds = static_cast<int64_t>(whole);
   t.fraction = seconds - whole;
   return t;
+}
+
+// What is wrong with a date of numbers (YYYY-MM-DD, the year with up to 6 digits and a sign)
+// that names no day of the calendar: "February 2023 has 28 days", "there is no month 13";
+// "" for any other text.
+std::string NoSuchDay(const std::string& text)
+{
+  static const char* const months[] = { "January", "February", "March", "April", "May", "June",
+    "July", "August", "September", "October", "November", "December" };
+  size_t k = text[0] == '+' || text[0] == '-' ? 1 : 0;
+  const size_t digits = k;
+  while (k < text.size() && k - digits < 7 && std::isdigit(static_cast<unsigned char>(text[k])))
+  {
+    ++k;
+  }
+  if (k - digits < 4 || text.size() < k + 6 || text[k] != '-' || text[k + 3] != '-' ||
+    !std::isdigit(static_cast<unsigned char>(text[k + 1])) ||
+    !std::isdigit(static_cast<unsigned char>(text[k + 2])) ||
+    !std::isdigit(static_cast<unsigned char>(text[k + 4])) ||
+    !std::isdigit(static_cast<unsigned char>(text[k + 5])))
+  {
+    return std::string();
+  }
+  const long long year = std::stoll(text.substr(0, k));
+  const int month = std::stoi(text.substr(k + 1, 2)), day = std::stoi(text.substr(k + 4, 2));
+  if (month < 1 || month > 12)
+  {
+    return "there is no month " + text.substr(k + 1, 2) + " (01 to 12)";
+  }
+  const int last = ap_time_days_in_month(year, month);
+  if (day < 1 || day > last)
+  {
+    return std::string(months[month - 1]) + " " + std::to_string(year) + " has " +
+      std::to_string(last) + " days";
+  }
+  return std::string();
 }
 
 double FromInstant(const ap_instant& t)
@@ -293,8 +330,10 @@ bool vtkApertureSolarPosition::SetTime(const char* iso8601)
   {
     // (two forms ISO 8601 has that are not taken here, said as such)
     const std::string clock = text.size() > 11 ? text.substr(11) : std::string();
+    const std::string noSuchDay = text.empty() ? std::string() : NoSuchDay(text);
     d.Error = "cannot read the time '" + text + "': " +
       (st == AP_ERR_OUT_OF_RANGE ? std::string("the year is outside -2000..6000")
+          : !noSuchDay.empty() ? noSuchDay
           : clock.compare(0, 3, "24:") == 0
           ? std::string("24:00 is not taken: write 00:00 of the next day")
           : clock.size() >= 8 && clock.compare(5, 3, ":60") == 0

@@ -575,6 +575,25 @@ void TestBadInput()
   AP_CHECK(!sun->SetTime("2016-12-31T23:59:61Z")); // (no such second at all)
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "not a valid ISO 8601");
   AP_CHECK(!sun->SetTime("2026-02-29T12:00Z"));
+  // a date that is no day of the calendar, said as such (until 2026-12-06 "not a valid ISO
+  // 8601 date and time"); the proleptic Gregorian rule for leap years
+  const char* const days[][2] = { { "2026-02-29T12:00Z", "February 2026 has 28 days" },
+    { "2023-02-30T12:00Z", "February 2023 has 28 days" },
+    { "2024-04-31T12:00", "April 2024 has 30 days" },
+    { "1900-02-29T00:00Z", "February 1900 has 28 days" },
+    { "2026-13-01T00:00Z", "there is no month 13 (01 to 12)" },
+    { "2026-00-10T00:00Z", "there is no month 00 (01 to 12)" },
+    { "2026-01-00T00:00Z", "January 2026 has 31 days" },
+    { "-0100-02-29T00:00Z", "February -100 has 28 days" } };
+  for (const auto& day : days)
+  {
+    AP_CHECK(!sun->SetTime(day[0]));
+    AP_CHECK_CONTAINS(sun->GetErrorMessage(),
+      std::string("cannot read the time '") + day[0] + "': " + day[1]);
+  }
+  AP_CHECK(sun->SetTime("2000-02-29T12:00Z") && sun->SetTime("2024-02-29T12:00Z"));
+  AP_CHECK(!sun->SetTime("2024-02-29T25:00Z")); // (the day is fine: the usual message)
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "not a valid ISO 8601");
   AP_CHECK(!sun->SetTime("7000-01-01T00:00Z"));
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "-2000..6000");
   // instants beyond int64_t's seconds: no time to write, and an error (their conversion was
