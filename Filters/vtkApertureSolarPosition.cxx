@@ -379,7 +379,10 @@ bool vtkApertureSolarPosition::SetTime(const char* iso8601)
   }
   if (st != AP_OK)
   {
-    d.Error = "cannot convert the time '" + text + "': " + ap_status_string(st);
+    // (a local time within the years whose instant is not: its offset takes it past an end)
+    d.Error = "cannot convert the time '" + text + "': " +
+      (st == AP_ERR_OUT_OF_RANGE ? std::string("in UTC the year is outside -2000..6000")
+                                 : std::string(ap_status_string(st)));
     vtkErrorMacro(<< d.Error);
     return false;
   }

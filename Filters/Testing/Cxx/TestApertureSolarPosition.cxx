@@ -596,6 +596,14 @@ void TestBadInput()
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "not a valid ISO 8601");
   AP_CHECK(!sun->SetTime("7000-01-01T00:00Z"));
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "-2000..6000");
+  // a time within the years whose offset takes it past an end: said so (it was "an input is
+  // outside its valid range")
+  for (const char* t : { "6000-12-31T23:59-12:00", "-2000-01-01T00:00+14:00" })
+  {
+    AP_CHECK(!sun->SetTime(t));
+    AP_CHECK_CONTAINS(sun->GetErrorMessage(), std::string("cannot convert the time '") + t +
+        "': in UTC the year is outside -2000..6000");
+  }
   // instants beyond int64_t's seconds: no time to write, and an error (their conversion was
   // undefined behaviour until 2026-12-06, found by -fsanitize=float-cast-overflow)
   for (double t : { 1e300, -1e300, 9.3e18, -9.3e18 })
