@@ -35,6 +35,33 @@ inline void vtkApertureCopyElevations(vtkDataArray* a, vtkIdType begin, vtkIdTyp
   }
 }
 
+// After a filter carried its input's point data `in` to `out`: heights it took from the active
+// scalars for want of an array named `name` (the default "Elevation": an image made by hand)
+// come out as the point array Elevation too, as from the reader (the same values, their
+// memory shared): in place of unnamed scalars, beside named ones.
+inline void vtkApertureNameElevation(
+  vtkDataSetAttributes* in, vtkDataSetAttributes* out, const char* name)
+{
+  vtkDataArray* carried = out->GetScalars();
+  if (!carried || !name || std::string(name) != "Elevation" || in->GetArray("Elevation") ||
+    out->GetArray("Elevation"))
+  {
+    return;
+  }
+  vtkDataArray* named = carried->NewInstance();
+  named->ShallowCopy(carried);
+  named->SetName("Elevation");
+  if (carried->GetName() && *carried->GetName())
+  {
+    out->AddArray(named);
+  }
+  else
+  {
+    out->SetScalars(named);
+  }
+  named->Delete();
+}
+
 // The elevation array of point data `pd`: the array named `name`, or, when there is none so
 // named and `name` is the filters' default "Elevation", the active scalars (an image made by
 // hand, as VTK's imaging filters take it). Any numeric type, one component. nullptr when there

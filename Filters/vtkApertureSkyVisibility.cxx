@@ -1084,6 +1084,8 @@ int vtkApertureSkyVisibility::Execute(
       CopyCellData(input, inExt, output, outExt);
     }
     output->GetFieldData()->PassData(input->GetFieldData());
+    vtkApertureNameElevation(
+      input->GetPointData(), output->GetPointData(), this->ElevationArrayName);
     geo->AttachToImage(output); // the GeoTransform of the output's extent
     for (Product& pr : products)
     {

@@ -348,7 +348,9 @@ public:
   ///@{
   /** Name of the input's point array of elevations (metres; one component, any numeric type).
    *  Default "Elevation", which an input without an array so named takes from its active point
-   *  scalars; a name the input lacks is an error naming the arrays it has. */
+   *  scalars (which then come out as the point array `Elevation` too, as from the reader: the
+   *  same values, sharing their memory; instead of unnamed scalars, beside named ones); a
+   *  name the input lacks is an error naming the arrays it has. */
   vtkSetStringMacro(ElevationArrayName);
   vtkGetStringMacro(ElevationArrayName);
   ///@}

@@ -836,26 +836,7 @@ int vtkApertureTerrainMesh::Execute(
   {
     outPD->PassData(input->GetPointData());
   }
-  vtkDataArray* carried = outPD->GetScalars();
-  if (carried && this->ElevationArrayName &&
-    std::string(this->ElevationArrayName) == "Elevation" &&
-    !input->GetPointData()->GetArray("Elevation") && !outPD->GetArray("Elevation"))
-  {
-    // heights taken from the active scalars for want of an Elevation array (an image made by
-    // hand) come out as the point array Elevation too, as from the reader: the same values,
-    // their memory shared; it replaces unnamed scalars, and stands beside named ones
-    vtkSmartPointer<vtkDataArray> named = vtk::TakeSmartPointer(carried->NewInstance());
-    named->ShallowCopy(carried);
-    named->SetName("Elevation");
-    if (carried->GetName() && *carried->GetName())
-    {
-      outPD->AddArray(named);
-    }
-    else
-    {
-      outPD->SetScalars(named);
-    }
-  }
+  vtkApertureNameElevation(input->GetPointData(), outPD, this->ElevationArrayName);
   if (bentOut)
   {
     outPD->RemoveArray("BentNormal");

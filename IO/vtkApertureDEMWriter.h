@@ -13,9 +13,10 @@
  * were converted again on reading.
  *
  * Bands: every point array named in ArrayNames, in that order (all numeric point arrays, in the
- * image's order, when the list is empty; arrays that are not numeric are then skipped). A
- * one-component array is one band described by its name; an array of c > 1 components gives c
- * bands described `<name>_<component name>`, or `<name>_<k>` where the component has no name.
+ * image's order, when the list is empty; arrays that are not numeric or have no name, which a
+ * band's description needs, are then skipped). A one-component array is one band described by
+ * its name; an array of c > 1 components gives c bands described `<name>_<component name>`,
+ * or `<name>_<k>` where the component has no name.
  * Band metadata added with AddBandMetadata is attached to the bands whose description starts
  * with the given array name.
  *

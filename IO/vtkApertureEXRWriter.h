@@ -14,8 +14,8 @@
  *
  * Channels:
  * - The point arrays named with AddArrayName, in any order (all numeric point arrays when none
- *   is named; arrays that are not numeric are then skipped). A one-component array gives one
- *   channel named like the array; an array of c > 1 components gives c channels
+ *   is named; arrays that are not numeric or have no name are then skipped). A one-component
+ *   array gives one channel named like the array; an array of c > 1 components gives c channels
  *   `<name>.<component name>`, or `<name>.<k>` (k = 0 .. c-1) where the component has no name.
  *   A '.' in a component name becomes '_': OpenEXR tools take the text before a channel's last
  *   '.' as its layer, so `HorizonAngles.az011.25` would be a channel `25` of a layer of its own,

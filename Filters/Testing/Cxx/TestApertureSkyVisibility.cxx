@@ -444,6 +444,25 @@ void TestArrayTypesAndUnits()
   unnamed->GetPointData()->RemoveArray("Elevation");
   unnamed->GetPointData()->SetScalars(dem16);
   CheckSameBits(Sky(unnamed, setup), expected, "the active scalars 'band1'");
+  // ... which come out as the point array Elevation too (their memory shared), beside band1,
+  // and in place of unnamed scalars, as the terrain mesh's do (until 2026-12-06 unnamed ones
+  // stayed unnamed, and a writer, which writes named arrays, left the heights out)
+  {
+    auto named = Sky(unnamed, setup);
+    vtkPointData* pd = named->GetPointData();
+    AP_CHECK(pd->GetArray("band1") && pd->GetArray("Elevation") &&
+      pd->GetArray("Elevation")->GetVoidPointer(0) == pd->GetArray("band1")->GetVoidPointer(0));
+    dem16->SetName(nullptr);
+    unnamed->Modified();
+    auto renamed = Sky(unnamed, setup);
+    pd = renamed->GetPointData();
+    AP_CHECK(pd->GetScalars() && pd->GetScalars()->GetName() &&
+      std::string(pd->GetScalars()->GetName()) == "Elevation");
+    AP_CHECK(unnamed->GetPointData()->GetScalars()->GetName() == nullptr); // (the input's kept)
+    AP_CHECK(pd->GetArray("Elevation") &&
+      pd->GetArray("Elevation")->GetTuple1(5 * 30 + 7) == rounded(7, 5));
+    CheckSameBits(renamed, expected, "unnamed active scalars");
+  }
   // doubles beyond the float range (and infinities) are nodata, as NaN is
   auto holes = MakeDEM("EPSG:32633", 400000, 5000000, 30, 30, 30, 20, [&](int i, int j) {
     return i == 7 && j == 5 ? std::numeric_limits<float>::quiet_NaN() : rounded(i, j);
