@@ -1660,9 +1660,18 @@ class TestBake(unittest.TestCase):
         same = self.path("same.tif")
         ovr = self.path("o.tif.ovr")  # (a DEM named as o.tif's overviews, which a bake removes)
         shutil.copy(self.dem, ovr)
+        os.symlink("o.tif", self.path("to-o.tif"))
         for args, expected in (
                 ((ovr, self.path("o.tif")), "OUT.tif %s: writing it removes %s (GDAL's sidecar "
                  "of a file of that name), which is the DEM" % (self.path("o.tif"), ovr)),
+                # (through a link to o.tif, and one output's sidecar being the other: both
+                # were removed after the bake until the review of f445182)
+                ((ovr, self.path("to-o.tif")), "OUT.tif %s: writing it removes %s (GDAL's "
+                 "sidecar of a file of that name), which is the DEM" % (self.path("to-o.tif"),
+                                                                        ovr)),
+                ((dem, self.path("b.exr.msk"), "--exr", self.path("b.exr")), "--exr %s: writing "
+                 "it removes %s (GDAL's sidecar of a file of that name), which is OUT.tif %s" % (
+                     self.path("b.exr"), self.path("b.exr.msk"), self.path("b.exr.msk"))),
                 ((dem, dem), "OUT.tif %s is the same file as the DEM" % dem),
                 ((dem, link), "OUT.tif %s is the same file as the DEM" % link),
                 ((dem, os.path.join(self.tmp, ".", "mine.tif")), "is the same file as the DEM"),

@@ -287,22 +287,27 @@ def _check_sources(outputs, reader):
     """Refuse an output that is one of the files GDAL reads for the DEM (after the reader's
     UpdateInformation): a VRT's sources, a format's other parts, where _check_outputs saw
     only the DEM's own name (a bake over a VRT's source changed the DEM under its strips).
-    outputs: (option, path) pairs; empty paths skipped."""
+    And one whose GDAL sidecars, which the writers remove when they put it in place (beside its
+    name and beside the target of its links: vtkApertureOutputFile.h), are one of those files
+    or another output. outputs: (option, path) pairs; empty paths skipped."""
     sources = [reader.GetFile(i) for i in range(reader.GetNumberOfFiles())]
+    taken = {os.path.realpath(path): (name, path) for name, path in outputs if path}
     for name, path in outputs:
         for source in sources if path else ():
             if _same_file(path, source):
                 raise ApertureError("%s %s is %s; choose another name" % (
                     name, path, "the same file as the DEM" if source == sources[0] else
                     "one of the files the DEM %s reads (%s)" % (sources[0], source)))
-            # (the writers remove an earlier output's GDAL sidecars: vtkApertureOutputFile.h)
-            for sidecar in (path + ".aux.xml", path + ".ovr", path + ".msk"):
-                if _same_file(sidecar, source):
-                    raise ApertureError(
-                        "%s %s: writing it removes %s (GDAL's sidecar of a file of that name), "
-                        "which is %s; choose another name" % (
-                            name, path, sidecar, "the DEM" if source == sources[0] else
-                            "one of the files the DEM %s reads" % sources[0]))
+        beside = dict.fromkeys([path, os.path.realpath(path)]) if path else ()
+        for sidecar in (b + suffix for b in beside for suffix in (".aux.xml", ".ovr", ".msk")):
+            other = taken.get(os.path.realpath(sidecar))
+            which = [("the DEM" if source == sources[0] else "one of the files the DEM %s "
+                      "reads" % sources[0]) for source in sources if _same_file(sidecar, source)]
+            if which or other:
+                raise ApertureError(
+                    "%s %s: writing it removes %s (GDAL's sidecar of a file of that name), "
+                    "which is %s; choose another name" % (
+                        name, path, sidecar, which[0] if which else "%s %s" % other))
 
 
 def _dem_path(args):
