@@ -193,16 +193,17 @@ public:
 
   /**
    * False (with GetErrorMessage giving the span) when the CRS is geographic and the grid spans
-   * more than 360 degrees of longitude, so that its columns would cover the same ground twice
-   * (a wrong cell size or unit); true otherwise, and for every projected CRS. GetBoundsLonLat
+   * more than 360 degrees of longitude by over a thousandth of a cell, so that its columns
+   * would cover the same ground twice (a wrong cell size or unit; cell sizes rounded to 9 or
+   * 10 digits stay within); true otherwise, and for every projected CRS. GetBoundsLonLat
    * and GetRowCellSizesMetres check it first.
    */
   bool CheckLongitudeSpan();
 
   /**
    * True when the CRS is geographic and the grid's columns span 360 degrees of longitude (to
-   * 1e-9 of it), so that its east and west edges meet: a global DEM, whose last column's
-   * eastern neighbour is its first. False otherwise, and without a CRS or grid.
+   * a thousandth of a cell), so that its east and west edges meet: a global DEM, whose last
+   * column's eastern neighbour is its first. False otherwise, and without a CRS or grid.
    */
   bool WrapsAround();
 

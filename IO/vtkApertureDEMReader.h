@@ -8,8 +8,10 @@
  * are converted (the band's unit, else the height unit of a compound CRS, else metres;
  * MetresPerElevationUnit overrides them). Nodata
  * (the band's nodata value, a GDAL mask, NaN, an infinity, or a value that does not fit a
- * float) becomes NaN; a Float32 band's nodata value is compared rounded to float, as GDAL's
- * mask does. GDAL 3.6's Int8 (a Byte band with PIXELTYPE=SIGNEDBYTE) is read as signed.
+ * float) becomes NaN; a Float32 band's nodata value is compared rounded to float, and a float
+ * band's samples within about two float32 ulps of it (relatively) are nodata too, as GDAL's
+ * mask takes them (ArcGIS declares -3.4028230607370965e38 for cells of -FLT_MAX); an
+ * integer band's compare exactly. GDAL 3.6's Int8 (a Byte band with PIXELTYPE=SIGNEDBYTE) is read as signed.
  * The grid follows vtkApertureGeoreference's conventions: origin and
  * spacing in CRS units, origin at the centre of the south-west cell, row 0 south, identity
  * direction. North-up and south-up rasters both come out north-up (rows are flipped once,
@@ -51,8 +53,8 @@
  * /vsicurl/URL, is named as such; a network path that leads nowhere too), a named pipe or a socket
  * (GDAL seeks in its files; its open of a pipe would wait for a writer), a file GDAL cannot open, a
  * band that does not exist or holds complex numbers, no georeference (no geotransform, or ground
- * control points only), a rotated (its far edges moved by a thousandth of a cell or more: less
- * is read as north-up) or mirrored geotransform, one with a pixel size of 0, or one
+ * control points only), a rotated (its far edges moved by more than a thousandth of a cell:
+ * less is read as north-up) or mirrored geotransform, one with a pixel size of 0, or one
  * whose grid reaches beyond the range of doubles, no CRS (without OverrideCRS), a band scale of 0,
  * NaN or infinity or an offset of NaN or infinity, a scale and offset that take samples beyond the
  * float range, a negative, NaN or infinite MetresPerElevationUnit, fewer than 2 x 2 output cells, a

@@ -68,9 +68,9 @@ typedef struct ap_sample_params {
 void ap_sample_params_init(ap_sample_params *p);
 
 /** Convert n raw samples to float32 elevations. A sample becomes NaN when it is not finite,
- *  equals the nodata value (or is near it: nodata_near), or scales to a value outside the float range; otherwise
- *  out[k] = (float)(raw[k] * scale + offset). `raw` and `out` must not overlap.
- *  `scaled_out` (may be NULL) gets the number of samples within the float range that scale
+ *  equals the nodata value (or is near it: nodata_near), or scales to a value outside the
+ *  float range; otherwise out[k] = (float)(raw[k] * scale + offset). `raw` and `out` must not
+ *  overlap. `scaled_out` (may be NULL) gets the number of samples within the float range that scale
  *  and offset took beyond it (NaN too, but a sign of a wrong scale or offset rather than of
  *  an undeclared huge nodata value such as -1.8e308).
  *  Never fails on data; returns AP_ERR_NULL_POINTER / AP_ERR_INVALID_ARGUMENT (non-finite

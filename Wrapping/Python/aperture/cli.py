@@ -2366,9 +2366,9 @@ def cmd_sun(args):
         return 0
 
     # A time series from --at: every --step minutes before --days days have passed (at least
-    # the start): local days, to the same clock time N days later, 23 or 25 hours for a day
-    # the clocks change in --tz (a day of 24 hours from local midnight missed 23:00 on the
-    # autumn's, until 2026-12-06). The last time is computed first, so that a series running
+    # the start): local days, to the same clock time N days later (_local_instant), 23 or 25
+    # hours for a day the clocks change by an hour in --tz (24 from local midnight missed 23:00
+    # on the autumn's, until 2026-12-06). The last time is computed first, so that a series running
     # past the algorithm's years fails before it prints, and JSON is streamed, as the text is.
     days = args.days or 1
     step = args.step or 60.0
@@ -2576,7 +2576,7 @@ def build_parser():
     p.add_argument("--days", type=_c_int, metavar="N",
                    help="a time series from --at over N days (default 1 with --step): local "
                         "days with --tz, to the same clock time N days on (23 or 25 hours on "
-                        "a day the clocks change)")
+                        "a day the clocks change by an hour)")
     p.add_argument("--step", type=float, metavar="MIN",
                    help="time-series step in minutes, at least 1/60 (default 60 with --days); "
                         "the series has every step before --days days have passed")
