@@ -57,14 +57,15 @@ ap_instant ToInstant(double seconds)
 
 // What is wrong with a date of numbers (YYYY-MM-DD, the year with up to 6 digits and a sign)
 // that names no day of the calendar: "February 2023 has 28 days", "there is no month 13";
-// "" for any other text.
+// "" for any other text, and for text that would not parse with its day and month 01 (so that
+// a fixed day does not meet another error).
 std::string NoSuchDay(const std::string& text)
 {
   static const char* const months[] = { "January", "February", "March", "April", "May", "June",
     "July", "August", "September", "October", "November", "December" };
   size_t k = text[0] == '+' || text[0] == '-' ? 1 : 0;
   const size_t digits = k;
-  while (k < text.size() && k - digits < 7 && std::isdigit(static_cast<unsigned char>(text[k])))
+  while (k < text.size() && k - digits < 6 && std::isdigit(static_cast<unsigned char>(text[k])))
   {
     ++k;
   }
@@ -73,6 +74,14 @@ std::string NoSuchDay(const std::string& text)
     !std::isdigit(static_cast<unsigned char>(text[k + 2])) ||
     !std::isdigit(static_cast<unsigned char>(text[k + 4])) ||
     !std::isdigit(static_cast<unsigned char>(text[k + 5])))
+  {
+    return std::string();
+  }
+  std::string firstDay = text;
+  firstDay.replace(k + 1, 2, "01");
+  firstDay.replace(k + 4, 2, "01");
+  ap_parsed_time parsed;
+  if (ap_time_parse_iso8601(firstDay.c_str(), &parsed) != AP_OK)
   {
     return std::string();
   }
