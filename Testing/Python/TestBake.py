@@ -856,6 +856,7 @@ class TestBake(unittest.TestCase):
                  "SkyViewFactor (0 to 1) and EdgeTruncated (0 or 1)"),
                 ("45", None, "ApertureRadius (0 to 90) and PositiveOpenness (0 to 180)"),
                 ("0.5", "EdgeTruncated", None), ("-100", "all", None),
+                ("1.0000001", "EdgeTruncated", "EdgeTruncated (0 or 1)"),  # (GDAL's width)
                 ("-90", "HorizonAngles", "HorizonAngles (-90 to 90)")):
             status, _, err = run("bake", self.dem, m9999, "--radius", "900", "-q", "-d", "8",
                                  "--nodata", nodata,

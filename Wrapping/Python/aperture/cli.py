@@ -1008,7 +1008,9 @@ def _earlier_frames(pattern, count):
     for name in names:
         m = shape.match(name)
         path = os.path.join(folder, name)
-        if m and int(m.group(1)) >= count and pattern % int(m.group(1)) == path:
+        # (normalised: the pattern's folder may be written ./ or with doubled slashes)
+        if m and int(m.group(1)) >= count and \
+                os.path.normpath(pattern % int(m.group(1))) == os.path.normpath(path):
             found.append((int(m.group(1)), path))
     return [path for _, path in sorted(found)]
 
@@ -1536,15 +1538,19 @@ def _nodata_collisions(nodata, products):
     None: their cells of that value would read as nodata (--nodata 0 took every EdgeTruncated
     cell of 0 without a word)."""
     hits = []
+    # (a reader of the file, GDAL's mask among them, takes as nodata what lies within about
+    # two float32 ulps of it, relatively: ap_sample_params.nodata_near)
+    near = 4.0 * 1.1920928955078125e-07 * abs(nodata)
     for name in products:
         lo, hi, text = _PRODUCT_VALUES[name]
-        if lo <= nodata <= hi and (name != "EdgeTruncated" or nodata in (0.0, 1.0)):
+        if lo - near <= nodata <= hi + near and (
+                name != "EdgeTruncated" or min(abs(nodata), abs(nodata - 1.0)) <= near):
             hits.append("%s (%s)" % (name, text))
     if not hits:
         return None
     return ("--nodata %s is also a value of %s: cells of that value will read as nodata; a "
             "value no product takes, such as -9999, or the default nan, would not" % (
-                "%g" % nodata, hits[0] if len(hits) == 1 else
+                "%.9g" % nodata, hits[0] if len(hits) == 1 else
                 ", ".join(hits[:-1]) + " and " + hits[-1]))
 
 
