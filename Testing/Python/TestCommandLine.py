@@ -175,6 +175,15 @@ class TestLauncher(CommandLineTest):
             self.assertEqual(cli._interruptible_import("aperture_test_swallows").__name__,
                              "aperture_test_swallows")
             self.assertIs(signal.getsignal(signal.SIGINT), signal.SIG_IGN)
+            # (a thread other than the main one cannot set handlers: it imports plainly)
+            import threading
+            signal.signal(signal.SIGINT, signal.default_int_handler)
+            got = []
+            thread = threading.Thread(target=lambda: got.append(
+                cli._interruptible_import("aperture_test_swallows").__name__))
+            thread.start()
+            thread.join()
+            self.assertEqual(got, ["aperture_test_swallows"])
         finally:
             signal.signal(signal.SIGINT, previous)
             sys.path.remove(folder)

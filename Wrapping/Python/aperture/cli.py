@@ -1086,7 +1086,10 @@ def _interruptible_import(name):
     previous = signal.getsignal(signal.SIGINT)
     ours = previous is signal.default_int_handler
     if ours:
-        signal.signal(signal.SIGINT, on_interrupt)
+        try:
+            signal.signal(signal.SIGINT, on_interrupt)
+        except ValueError:  # (not the main thread: signals are the main thread's)
+            ours = False
     try:
         module = importlib.import_module(name)
     except ImportError:
