@@ -6,9 +6,12 @@
 #ifndef vtkApertureElevation_h
 #define vtkApertureElevation_h
 
+#include "vtkAlgorithm.h"
 #include "vtkDataArray.h"
+#include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkFloatArray.h"
+#include "vtkInformation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,6 +36,49 @@ inline void vtkApertureCopyElevations(vtkDataArray* a, vtkIdType begin, vtkIdTyp
   {
     z[k] = finite(static_cast<float>(a->GetComponent(k, 0)));
   }
+}
+
+// The name of the elevation array a filter `self` reads from point data `pd`: the one its
+// SetInputArrayToProcess(0, ...) selected, as VTK's filters and ParaView select theirs, when
+// that selection changed after the filter was made (`made`: its MTime then; vtkImageAlgorithm
+// selects the point scalars itself): a point array by name, or the point scalars (their
+// name; "Elevation", which falls back on them, when they have none). Else `fallback` (the
+// filter's ElevationArrayName). "" with *problem set when the selection is not of point data,
+// or an attribute other than the scalars. (Until 2026-12-06 the selection was ignored.)
+inline std::string vtkApertureSelectedElevationName(vtkAlgorithm* self, vtkMTimeType made,
+  vtkDataSetAttributes* pd, const char* fallback, std::string* problem)
+{
+  vtkInformation* info = self->GetInputArrayInformation(0);
+  if (!info || info->GetMTime() <= made ||
+    !(info->Has(vtkDataObject::FIELD_NAME()) || info->Has(vtkDataObject::FIELD_ATTRIBUTE_TYPE())))
+  {
+    return fallback ? fallback : "";
+  }
+  const int association = info->Has(vtkDataObject::FIELD_ASSOCIATION())
+    ? info->Get(vtkDataObject::FIELD_ASSOCIATION())
+    : vtkDataObject::FIELD_ASSOCIATION_POINTS;
+  if (association != vtkDataObject::FIELD_ASSOCIATION_POINTS &&
+    association != vtkDataObject::FIELD_ASSOCIATION_POINTS_THEN_CELLS)
+  {
+    *problem = "SetInputArrayToProcess selects an array that is not point data; the elevations "
+               "are a point array (ElevationArrayName)";
+    return "";
+  }
+  if (info->Has(vtkDataObject::FIELD_NAME()))
+  {
+    return info->Get(vtkDataObject::FIELD_NAME());
+  }
+  const int attribute = info->Get(vtkDataObject::FIELD_ATTRIBUTE_TYPE());
+  if (attribute != vtkDataSetAttributes::SCALARS)
+  {
+    *problem = std::string("SetInputArrayToProcess selects the point ") +
+      vtkDataSetAttributes::GetAttributeTypeAsString(attribute) +
+      ", not the scalars or an array by name; the elevations are one value a point";
+    return "";
+  }
+  vtkDataArray* scalars = pd ? pd->GetScalars() : nullptr;
+  return scalars && scalars->GetName() && *scalars->GetName() ? scalars->GetName()
+                                                              : "Elevation";
 }
 
 // After a filter carried its input's point data `in` to `out`: heights it took from the active

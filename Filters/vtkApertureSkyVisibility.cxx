@@ -378,8 +378,10 @@ vtkApertureSkyVisibility::vtkApertureSkyVisibility()
   , AnglesInDegrees(false)
   , FloatEdgeTruncated(false)
   , ElevationArrayName(nullptr)
+  , ArraySelectionMade(0)
 {
   this->SetElevationArrayName("Elevation");
+  this->ArraySelectionMade = this->GetInputArrayInformation(0)->GetMTime();
 }
 
 //------------------------------------------------------------------------------
@@ -709,8 +711,11 @@ int vtkApertureSkyVisibility::Execute(
   }
   const int nx = inExt[1] - inExt[0] + 1, ny = inExt[3] - inExt[2] + 1;
   std::string missing;
-  vtkDataArray* elevation =
-    vtkApertureElevationArray(input->GetPointData(), this->ElevationArrayName, &missing);
+  const std::string elevationName = vtkApertureSelectedElevationName(
+    this, this->ArraySelectionMade, input->GetPointData(), this->ElevationArrayName, &missing);
+  vtkDataArray* elevation = missing.empty()
+    ? vtkApertureElevationArray(input->GetPointData(), elevationName.c_str(), &missing)
+    : nullptr;
   if (!elevation)
   {
     vtkErrorMacro(<< missing);
@@ -1084,8 +1089,7 @@ int vtkApertureSkyVisibility::Execute(
       CopyCellData(input, inExt, output, outExt);
     }
     output->GetFieldData()->PassData(input->GetFieldData());
-    vtkApertureNameElevation(
-      input->GetPointData(), output->GetPointData(), this->ElevationArrayName);
+    vtkApertureNameElevation(input->GetPointData(), output->GetPointData(), elevationName.c_str());
     geo->AttachToImage(output); // the GeoTransform of the output's extent
     for (Product& pr : products)
     {

@@ -350,7 +350,10 @@ public:
    *  Default "Elevation", which an input without an array so named takes from its active point
    *  scalars (which then come out as the point array `Elevation` too, as from the reader: the
    *  same values, sharing their memory; instead of unnamed scalars, beside named ones); a
-   *  name the input lacks is an error naming the arrays it has. */
+   *  name the input lacks is an error naming the arrays it has. SetInputArrayToProcess(0, 0,
+   *  0, points, name), the way VTK's filters and ParaView select arrays, selects one in its
+   *  place (or the point scalars, by attribute type); a selection of cell data or of another
+   *  attribute is an error. */
   vtkSetStringMacro(ElevationArrayName);
   vtkGetStringMacro(ElevationArrayName);
   ///@}
@@ -396,6 +399,7 @@ protected:
   bool AnglesInDegrees;
   bool FloatEdgeTruncated;
   char* ElevationArrayName;
+  vtkMTimeType ArraySelectionMade; // (the input array selection's MTime when made)
 
 private:
   vtkApertureSkyVisibility(const vtkApertureSkyVisibility&) = delete;

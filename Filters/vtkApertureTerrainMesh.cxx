@@ -54,6 +54,7 @@ static_assert(sizeof(vtkTypeInt64) == sizeof(int64_t), "the C core writes 64-bit
 //------------------------------------------------------------------------------
 vtkApertureTerrainMesh::vtkApertureTerrainMesh()
   : ElevationArrayName(nullptr)
+  , ArraySelectionMade(0)
   , VerticalExaggeration(1.0)
   , OutputPointsPrecision(SINGLE_PRECISION)
   , ComputeNormals(true)
@@ -61,6 +62,7 @@ vtkApertureTerrainMesh::vtkApertureTerrainMesh()
   , MemoryLimit(0)
 {
   this->SetElevationArrayName("Elevation");
+  this->ArraySelectionMade = this->GetInputArrayInformation(0)->GetMTime();
 }
 
 //------------------------------------------------------------------------------
@@ -417,8 +419,11 @@ int vtkApertureTerrainMesh::Execute(
     return 0;
   }
   std::string missing;
-  vtkDataArray* elevation =
-    vtkApertureElevationArray(input->GetPointData(), this->ElevationArrayName, &missing);
+  const std::string elevationName = vtkApertureSelectedElevationName(
+    this, this->ArraySelectionMade, input->GetPointData(), this->ElevationArrayName, &missing);
+  vtkDataArray* elevation = missing.empty()
+    ? vtkApertureElevationArray(input->GetPointData(), elevationName.c_str(), &missing)
+    : nullptr;
   if (!elevation)
   {
     vtkErrorMacro(<< missing);
@@ -836,7 +841,7 @@ int vtkApertureTerrainMesh::Execute(
   {
     outPD->PassData(input->GetPointData());
   }
-  vtkApertureNameElevation(input->GetPointData(), outPD, this->ElevationArrayName);
+  vtkApertureNameElevation(input->GetPointData(), outPD, elevationName.c_str());
   if (bentOut)
   {
     outPD->RemoveArray("BentNormal");
@@ -856,7 +861,7 @@ int vtkApertureTerrainMesh::Execute(
     }
     if (margin)
     {
-      const std::string problem = MarginNormals(margin, this->ElevationArrayName, exaggeration,
+      const std::string problem = MarginNormals(margin, elevationName.c_str(), exaggeration,
         ext, enu, geo, lonlat0, ellipsoid, centre, site ? siteUnit : 0.0, seam, nptr);
       if (!problem.empty())
       {

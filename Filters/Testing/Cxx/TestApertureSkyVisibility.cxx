@@ -499,6 +499,77 @@ void TestArrayTypesAndUnits()
   }
 }
 
+// SetInputArrayToProcess(0, ...) selects the elevations as VTK's filters take theirs (it was
+// ignored until 2026-12-06): a point array by name, or the point scalars by attribute type,
+// once called (vtkImageAlgorithm's own default selection of the scalars leaves the
+// ElevationArrayName in force); cell data or another attribute is an error. A flat array
+// selected gives a sky-view factor of 1 everywhere.
+void ExpectError(vtkImageData* dem, const Setup& setup, const std::string& expected);
+
+void TestInputArraySelection()
+{
+  const Setup setup = [](vtkApertureSkyVisibility* s) { s->SetMaximumDistance(300.0); };
+  auto dem = MakeDEM("EPSG:32633", 400000, 5000000, 30, 30, 20, 20, Rough);
+  auto expected = Sky(dem, setup);
+  vtkNew<vtkFloatArray> flat;
+  flat->SetName("flat");
+  flat->SetNumberOfTuples(400);
+  flat->Fill(250.0);
+  dem->GetPointData()->AddArray(flat);
+  auto allFlat = [](vtkImageData* out, const char* what) {
+    vtkDataArray* svf = out->GetPointData()->GetArray("SkyViewFactor");
+    AP_CHECK(svf != nullptr);
+    for (vtkIdType k = 0; svf && k < svf->GetNumberOfTuples(); ++k)
+    {
+      if (std::fabs(svf->GetTuple1(k) - 1.0) > 1e-6)
+      {
+        std::printf("%s: SkyViewFactor %g at %lld\n", what, svf->GetTuple1(k),
+          static_cast<long long>(k));
+        AP_CHECK(false);
+        break;
+      }
+    }
+  };
+  allFlat(Sky(dem, [&](vtkApertureSkyVisibility* s) {
+    setup(s);
+    s->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "flat");
+  }),
+    "by name");
+  // the scalars: 'flat' made active; without the call, Elevation is still read
+  dem->GetPointData()->SetActiveScalars("flat");
+  CheckSameBits(Sky(dem, setup), expected, "the default selection, flat scalars beside");
+  allFlat(Sky(dem, [&](vtkApertureSkyVisibility* s) {
+    setup(s);
+    s->SetInputArrayToProcess(
+      0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+  }),
+    "the point scalars");
+  // ... and the Elevation array selected by name, whatever the scalars
+  CheckSameBits(Sky(dem,
+                  [&](vtkApertureSkyVisibility* s) {
+                    setup(s);
+                    s->SetInputArrayToProcess(
+                      0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Elevation");
+                  }),
+    expected, "Elevation by name");
+  ExpectError(dem,
+    [](vtkApertureSkyVisibility* s) {
+      s->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "flat");
+    },
+    "SetInputArrayToProcess selects an array that is not point data");
+  ExpectError(dem,
+    [](vtkApertureSkyVisibility* s) {
+      s->SetInputArrayToProcess(
+        0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::VECTORS);
+    },
+    "SetInputArrayToProcess selects the point Vectors, not the scalars");
+  ExpectError(dem,
+    [](vtkApertureSkyVisibility* s) {
+      s->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Height");
+    },
+    "the input has no point array named 'Height'");
+}
+
 // An observer aborting at the first progress event (the executive's own, at 0, before the
 // filter runs): the filter stops at its first checkpoint (its progress 0 after the copy of the
 // elevations), before any sector, and the update fails with no products.
@@ -741,6 +812,7 @@ int TestApertureSkyVisibility(int, char*[])
   TestAntimeridian();
   TestNodata();
   TestArrayTypesAndUnits();
+  TestInputArraySelection();
   TestAbort();
   TestOverlappingScopes();
   TestErrors();

@@ -634,6 +634,46 @@ void ExpectError(vtkImageData* dem, const std::string& expected, const char* arr
   AP_CHECK(mesher->GetOutput()->GetNumberOfCells() == 0);
 }
 
+// SetInputArrayToProcess(0, ...) selects the elevations, as VTK's filters take theirs (it was
+// ignored until 2026-12-06): the mesh of a point array selected by name is the mesh of a DEM
+// holding it as Elevation; cell data is an error.
+void TestInputArraySelection()
+{
+  const int nx = 6, ny = 5;
+  auto rough = [](int i, int j) { return static_cast<float>(40 * i - 25 * j + (i * j) % 7); };
+  auto other = [](int i, int j) { return static_cast<float>(300 - 7 * i + 11 * j); };
+  auto dem = MakeDEM("EPSG:32633", 400000.0, 5000000.0, 30.0, 30.0, nx, ny, rough);
+  auto expected = Mesh(MakeDEM("EPSG:32633", 400000.0, 5000000.0, 30.0, 30.0, nx, ny, other));
+  vtkNew<vtkFloatArray> heights;
+  heights->SetName("heights");
+  heights->SetNumberOfTuples(nx * ny);
+  for (vtkIdType k = 0; k < nx * ny; ++k)
+  {
+    heights->SetValue(k, other(static_cast<int>(k % nx), static_cast<int>(k / nx)));
+  }
+  dem->GetPointData()->AddArray(heights);
+  ObservedMesher m(dem);
+  m.Mesher->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  m.Mesher->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "heights");
+  AP_CHECK(m.Mesher->GetExecutive()->Update() == 1 && !m.Errors->GetError());
+  vtkPolyData* got = m.Mesher->GetOutput();
+  AP_CHECK(got->GetNumberOfPoints() == expected->GetNumberOfPoints());
+  for (vtkIdType k = 0; k < got->GetNumberOfPoints() && k < expected->GetNumberOfPoints(); ++k)
+  {
+    double a[3], b[3];
+    got->GetPoint(k, a);
+    expected->GetPoint(k, b);
+    AP_CHECK(a[0] == b[0] && a[1] == b[1] && a[2] == b[2]);
+  }
+  ObservedMesher cells(dem);
+  cells.Mesher->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "heights");
+  AP_CHECK(cells.Mesher->GetExecutive()->Update() == 0);
+  AP_CHECK(cells.Errors->GetErrorMessage().find(
+             "SetInputArrayToProcess selects an array that is not point data") !=
+    std::string::npos);
+}
+
 // MemoryLimit: a 3 x 3 mesh's estimate, 9 points x (4 + 24 + 12 + 12 + 8) bytes and two
 // triangles a point (the mesh has 8) of three ids and an offset of 4 bytes, is 828 bytes, 936
 // with a BentNormal to rotate; refused by name one byte short, made at the limit.
@@ -793,6 +833,7 @@ int TestApertureTerrainMesh(int, char*[])
   TestBentNormalFrame();
   TestHolesAndArrays();
   TestScalarsOfAnyType();
+  TestInputArraySelection();
   TestGlobal();
   TestNonFiniteAndImplausible();
   TestExaggeration();
