@@ -972,11 +972,16 @@ def _frame_option_checks(args):
 _FRAME_NUMBER = re.compile(r"%(?:%|(0?[1-9]?)d)")
 
 
+def _frame_numbers(pattern):
+    """The matches of the frame number's %d, %Nd or %0Nd in `pattern` (not its %% signs)."""
+    return [m for m in _FRAME_NUMBER.finditer(pattern) if m.group(0) != "%%"]
+
+
 def _frame_names(option, pattern, count):
     """The `count` file names of a time-lapse output given as `pattern`, a name holding the
     frame number as %d, or %Nd / %0Nd (a width N of 1 to 9), and %% for a % sign. A usage error
     for any other % in it, two numbers, or (count > 1) none."""
-    numbers = [m for m in _FRAME_NUMBER.finditer(pattern) if m.group(0) != "%%"]
+    numbers = _frame_numbers(pattern)
     bare = _FRAME_NUMBER.sub("", pattern)
     if "%" in bare or len(numbers) > 1:
         raise _UsageError("%s %s: the frame number is written %%d, %%4d or %%04d in the name "
@@ -994,7 +999,7 @@ def _earlier_frames(pattern, count):
     """The files beside a time-lapse's frames that its `pattern` names with a frame number of
     `count` or more: frames of an earlier, longer series, which a video made from the pattern
     (ffmpeg -i frame-%03d.png) would append to this one. Sorted by number."""
-    number = [m for m in _FRAME_NUMBER.finditer(pattern) if m.group(0) != "%%"]
+    number = _frame_numbers(pattern)
     if not number:
         return []
     head, tail = pattern[:number[0].start()], pattern[number[0].end():]
@@ -1007,11 +1012,11 @@ def _earlier_frames(pattern, count):
     found = []
     for name in names:
         m = shape.match(name)
+        k = int(m.group(1)) if m else -1
         path = os.path.join(folder, name)
         # (normalised: the pattern's folder may be written ./ or with doubled slashes)
-        if m and int(m.group(1)) >= count and \
-                os.path.normpath(pattern % int(m.group(1))) == os.path.normpath(path):
-            found.append((int(m.group(1)), path))
+        if k >= count and os.path.normpath(pattern % k) == os.path.normpath(path):
+            found.append((k, path))
     return [path for _, path in sorted(found)]
 
 
@@ -2299,13 +2304,12 @@ def _local_instant(sun, wall):
     give them. (The end of the series was start + N days corrected by the change of offset
     between the two, which a change of a whole day cancelled: a single row for Samoa's
     2011-12-29, and one hour short from a midnight the clocks skip, until 2026-12-06.)"""
-    offsets = {sun.GetLocalOffsetAt(wall - 15 * 3600.0), sun.GetLocalOffsetAt(wall + 13 * 3600.0)}
+    before = sun.GetLocalOffsetAt(wall - 15 * 3600.0)
+    offsets = {before, sun.GetLocalOffsetAt(wall + 13 * 3600.0)}
     offsets |= {sun.GetLocalOffsetAt(wall - o) for o in offsets}
     shown = [wall - o for o in offsets if sun.GetLocalOffsetAt(wall - o) == o]
-    if shown:
-        return min(shown)
     # (skipped: the offset before the jump is the one in force before the earliest candidate)
-    return wall - sun.GetLocalOffsetAt(wall - 15 * 3600.0)
+    return min(shown) if shown else wall - before
 
 
 def cmd_sun(args):
