@@ -84,6 +84,13 @@ def rough_dem(path, shape, seed, hole=None):
     return path
 
 
+def cpu_seconds(pid):
+    """The CPU time of process `pid` so far: utime + stime of every thread, /proc/PID/stat."""
+    with open("/proc/%d/stat" % pid) as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
 def signals_at_default():
     """For preexec_fn: SIGINT, SIGTERM and SIGHUP at their defaults in the child, whatever this
     test inherited (a background job ignores SIGINT, nohup SIGHUP, and the command keeps that)."""
@@ -989,13 +996,7 @@ class TestBake(unittest.TestCase):
         import time
         dem = rough_dem(self.path("interrupt.tif"), (2048, 2048), 11)
         out = self.path("interrupt-out.tif")
-        tick = os.sysconf("SC_CLK_TCK")
         tgkill = ctypes.CDLL(None, use_errno=True).tgkill  # (glibc >= 2.30)
-
-        def cpu(pid):  # utime + stime of every thread, from /proc/PID/stat
-            with open("/proc/%d/stat" % pid) as f:
-                fields = f.read().rsplit(")", 1)[1].split()
-            return (int(fields[11]) + int(fields[12])) / tick
 
         def worker(pid):  # a thread other than the main one that takes SIGINT, or None
             for tid in sorted(int(t) for t in os.listdir("/proc/%d/task" % pid)):
@@ -1020,11 +1021,11 @@ class TestBake(unittest.TestCase):
                                  stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                                  preexec_fn=signals_at_default)
             start = time.perf_counter()
-            while cpu(p.pid) < 2.0 or (to_worker and worker(p.pid) is None):
+            while cpu_seconds(p.pid) < 2.0 or (to_worker and worker(p.pid) is None):
                 self.assertLess(time.perf_counter() - start, 120, "the bake never got the CPU")
                 self.assertIsNone(p.poll(), "the bake ended before it was interrupted")
                 time.sleep(0.02)
-            sent, sent_at = cpu(p.pid), time.perf_counter()
+            sent, sent_at = cpu_seconds(p.pid), time.perf_counter()
             if to_worker:
                 # (VTK 9.1's threads last one parallel loop, 0.1-1 s here: one may end between
                 # the listing and the signal)
@@ -1064,12 +1065,6 @@ class TestBake(unittest.TestCase):
         import time
         dem = rough_dem(self.path("ignored.tif"), (2048, 2048), 12)
         out = self.path("ignored-out.tif")
-        tick = os.sysconf("SC_CLK_TCK")
-
-        def cpu(pid):
-            with open("/proc/%d/stat" % pid) as f:
-                fields = f.read().rsplit(")", 1)[1].split()
-            return (int(fields[11]) + int(fields[12])) / tick
 
         def like_nohup_in_the_background():
             signals_at_default()
@@ -1081,7 +1076,7 @@ class TestBake(unittest.TestCase):
                                  stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                                  preexec_fn=like_nohup_in_the_background)
             start = time.perf_counter()
-            while cpu(p.pid) < 1.2:
+            while cpu_seconds(p.pid) < 1.2:
                 self.assertLess(time.perf_counter() - start, 120, "the bake never got the CPU")
                 self.assertIsNone(p.poll(), "the bake ended before the signals")
                 time.sleep(0.02)
