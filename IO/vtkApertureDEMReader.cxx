@@ -436,7 +436,11 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
     }
     else
     {
-      vtkErrorMacro(<< "'" << name << "' has no georeference (no geotransform)");
+      // (a heightmap from a picture or a game engine: gdal_translate writes a GeoTIFF of it
+      // with a grid, where gdal_edit.py cannot update a PNG)
+      vtkErrorMacro(<< "'" << name << "' has no georeference (no geotransform); give it a "
+                    << "grid first (gdal_translate -a_ullr ULX ULY LRX LRY, with -a_srs CRS, "
+                    << "to a GeoTIFF)");
     }
     return 0;
   }

@@ -647,7 +647,9 @@ class TestBadInput(CommandLineTest):
 
     def test_no_georeference(self):
         p = make_raster(self.path("plain.tif"), np.ones((3, 3)), None, srs=None)
-        self.assert_error("has no georeference", "info", p)
+        self.assert_error("'%s' has no georeference (no geotransform); give it a grid first "
+                          "(gdal_translate -a_ullr ULX ULY LRX LRY, with -a_srs CRS, to a "
+                          "GeoTIFF)" % p, "info", p)
 
     def test_gcps_only(self):
         gcps = [gdal.GCP(10.0 + 0.01 * x, 45.0 - 0.01 * y, 0.0, x, y)
