@@ -566,9 +566,29 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
   d.Out[1] = d.Window[3] / d.Factor;
   if (d.Out[0] < 2 || d.Out[1] < 2)
   {
-    vtkErrorMacro(<< "'" << name << "' gives a " << d.Out[0] << " x " << d.Out[1]
-                  << " grid (after subwindow, overview and decimation); at least 2 x 2 "
-                     "cells are needed");
+    // (the steps taken named, only those: a 1 x 1 raster read whole was "a 1 x 1 grid (after
+    // subwindow, overview and decimation)")
+    std::vector<std::string> steps;
+    if (w[0] || w[1] || w[2] || w[3])
+    {
+      steps.emplace_back("subwindow");
+    }
+    if (d.Level >= 0)
+    {
+      steps.emplace_back("overview");
+    }
+    if (d.Factor > 1)
+    {
+      steps.emplace_back("decimation");
+    }
+    std::string after;
+    for (size_t k = 0; k < steps.size(); ++k)
+    {
+      after += (k == 0 ? " (after " : k + 1 == steps.size() ? " and " : ", ") + steps[k];
+    }
+    vtkErrorMacro(<< "'" << name << "' " << (steps.empty() ? "is a " : "gives a ") << d.Out[0]
+                  << " x " << d.Out[1] << (steps.empty() ? " raster" : " grid" + after + ")")
+                  << "; at least 2 x 2 cells are needed");
     return 0;
   }
 

@@ -835,8 +835,16 @@ class TestBadInput(CommandLineTest):
         self.assert_usage_error("--decimate must be 1 or more", "info", "--decimate", "0")
         # messages of the reader and the light in the command line's words (they named
         # SubWindow and Turbidity, properties, until 2026-12-06)
-        self.assert_error("gives a 0 x 0 grid (after --srcwin, --overview and --decimate)",
-                          "info", "--decimate", "1000")
+        # (the steps that made the grid too small in the options' words, only those given:
+        # until 2026-12-06 all three for any)
+        self.assert_error("gives a 0 x 0 grid (after --decimate); at least 2 x 2", "info",
+                          "--decimate", "1000")
+        p = make_raster(self.path("row.tif"), np.ones((1, 5)), (500000, 30, 0, 4000000, 0, -30))
+        self.assert_error("'%s' is a 5 x 1 raster; at least 2 x 2 cells are needed" % p, "info",
+                          p)
+        p = make_raster(self.path("small.tif"), np.ones((4, 4)), (500000, 30, 0, 4000000, 0, -30))
+        self.assert_error("gives a 1 x 2 grid (after --srcwin and --decimate)", "info", p,
+                          "--srcwin", "0", "0", "1", "4", "--decimate", "2")
         sun = ("sun", "--lat", "40", "--lon", "0", "--at", "2026-06-21T12:00Z")
         # (the light's ranges are options' ranges: usage errors, as the command's own checks)
         self.assert_usage_error("argument --turbidity: 11 is outside 2..10", *sun,

@@ -679,7 +679,33 @@ void TestBadInput()
   tiny.nx = 1;
   tiny.ny = 1;
   AP_CHECK(aptest::WriteRaster(tmp + "/tiny.tif", tiny));
-  ExpectError(tmp + "/tiny.tif", "gives a 1 x 1 grid");
+  ExpectError(tmp + "/tiny.tif", "/tiny.tif' is a 1 x 1 raster; at least 2 x 2 cells are needed");
+  // A grid too small names the steps that made it so, only those taken (4 x 3 cells, an
+  // overview of 2 x 2)
+  const std::string narrow = tmp + "/narrow.tif";
+  AP_CHECK(aptest::WriteRaster(narrow, aptest::RasterSpec()));
+  {
+    GDALDatasetH ds = GDALOpen(narrow.c_str(), GA_Update);
+    int levels[1] = { 2 };
+    AP_CHECK(ds && GDALBuildOverviews(ds, "NEAREST", 1, levels, 0, nullptr, nullptr, nullptr) ==
+        CE_None);
+    GDALClose(ds);
+  }
+  ExpectError(narrow, "' gives a 1 x 3 grid (after subwindow); at least 2 x 2",
+    [](vtkApertureDEMReader* r) { r->SetSubWindow(2, 0, 1, 0); });
+  ExpectError(narrow, "' gives a 2 x 1 grid (after decimation); at least 2 x 2",
+    [](vtkApertureDEMReader* r) { r->SetDecimation(2); });
+  ExpectError(narrow, "' gives a 1 x 1 grid (after overview and decimation); at least 2 x 2",
+    [](vtkApertureDEMReader* r) {
+      r->SetOverviewLevel(0);
+      r->SetDecimation(2);
+    });
+  ExpectError(narrow, "' gives a 1 x 1 grid (after subwindow, overview and decimation); at",
+    [](vtkApertureDEMReader* r) {
+      r->SetSubWindow(0, 0, 4, 2);
+      r->SetOverviewLevel(0);
+      r->SetDecimation(2);
+    });
 
   aptest::RasterSpec rotated;
   rotated.gt[2] = 0.5;

@@ -341,8 +341,9 @@ _READER_PHRASES = (
     (re.compile(r"^OverrideCRS: "), "--srs: "),
     (re.compile(r"set OverrideCRS \(aperture: (--srs EPSG:xxxx)\)"), r"give one with \1"),
     (re.compile(r"MetresPerElevationUnit"), "--zfactor"),
-    (re.compile(r"\(after subwindow, overview and decimation\)"),
-     "(after --srcwin, --overview and --decimate)"),
+    (re.compile(r"\(after [a-z, ]+\)"),  # (the reader's steps, only those taken)
+     lambda m: m.group(0).replace("subwindow", "--srcwin").replace("overview", "--overview")
+     .replace("decimation", "--decimate")),
     (re.compile(r"\bLinkeTurbidity must be within"), "--linke-turbidity must be within"),
     (re.compile(r"\bTurbidity must be within"), "--turbidity must be within"),
 )
