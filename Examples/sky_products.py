@@ -31,8 +31,12 @@ def get_program_parameters():
 
 
 def grey(values, low, high):
-    """values in [low, high] -> 0..255; nodata (NaN) -> 0."""
-    scaled = np.clip((values - low) / (high - low), 0.0, 1.0) * 255.0
+    """values in [low, high] -> 0..255 (all white where low = high: a flat DEM's open cells, or
+    a mostly flat one's); nodata (NaN) -> 0."""
+    span = high - low
+    with np.errstate(invalid="ignore"):  # (NaN compares false: nodata, black below)
+        scaled = (np.clip((values - low) / span, 0.0, 1.0) if span > 0 else
+                  (values >= high).astype(float)) * 255.0
     return np.where(np.isnan(values), 0, np.rint(scaled)).astype(np.uint8)
 
 

@@ -2,16 +2,19 @@
 """Run one of Examples/ as a user would and check what it wrote, so that an example which
 writes an empty mesh or a blank picture fails (its exit status alone would not):
 
-    run_example.py EXAMPLE.py OUTPUT [ARGUMENTS...]    (runs EXAMPLE.py ARGUMENTS -o OUTPUT)
+    run_example.py EXAMPLE.py OUTPUT [--flat] [ARGUMENTS...]
+        (runs EXAMPLE.py ARGUMENTS -o OUTPUT; --flat: sky_products.py on a flat DEM it writes)
 
 - read_and_mesh.py: the embedded DEM's mesh: 403 x 344 points, two triangles per cell, its
   arrays, about 30 x 32 km (cells of 74.85 m x 92.47 m at the centre) and its 840 m of relief
   (the Earth's curvature lowers the edges by up to 18 m more);
 - sky_products.py: SkyViewFactor and DiffuseSkyFactor side by side, 403 x 344 each, with the 4
   white columns between them, each stretched from black (its 0.5th percentile) to white (1);
+  with --flat, on a flat 60 x 50 DEM with a 2 x 2 hole: white but for the hole (the stretch
+  from 1 to 1 divided by 0 until 2026-12-06: a black picture);
 - the rendering examples: a picture of the documented size in which the terrain covers a
   tenth or more and is shaded (not uniform, not black).
-Every example must also print no error on its way (VTK's or its own).
+Every example must also print no error on its way (VTK's or its own) and no numpy warning.
 """
 import os
 import subprocess
@@ -72,6 +75,29 @@ def check_sky(path):
                 path, name, 100 * black, half.max(), half.std()))
 
 
+def write_flat_dem(path):
+    """A flat 60 x 50 GeoTIFF at 500 m, cells 2 x 2 of rows 10-11, columns 20-21 nodata."""
+    from osgeo import gdal
+    z = np.full((50, 60), 500.0, np.float32)
+    z[10:12, 20:22] = -9999.0
+    ds = gdal.GetDriverByName("GTiff").Create(path, 60, 50, 1, gdal.GDT_Float32)
+    ds.SetGeoTransform((500000.0, 30.0, 0.0, 4000000.0, 0.0, -30.0))
+    ds.SetProjection("EPSG:32633")
+    ds.GetRasterBand(1).SetNoDataValue(-9999.0)
+    ds.GetRasterBand(1).WriteArray(z)
+    ds = None
+
+
+def check_flat_sky(path):
+    grey = read_picture(path)[0]
+    expected = np.full((50, 124), 255)
+    for left in (0, 64):
+        expected[10:12, left + 20:left + 22] = 0
+    if grey.shape != expected.shape or (grey != expected).any():
+        fail("%s: the flat DEM's picture is not white but for its hole (%s pixels, %d black)"
+             % (path, grey.shape, (grey == 0).sum()))
+
+
 def check_render(path, size):
     rgb = read_picture(path)
     if rgb.shape[0] != 3 or rgb.shape[1:] != (size[1], size[0]):
@@ -87,6 +113,10 @@ def check_render(path, size):
 
 def main(argv):
     example, output, arguments = argv[0], argv[1], argv[2:]
+    flat = arguments[:1] == ["--flat"]
+    if flat:
+        arguments = [os.path.splitext(output)[0] + "-dem.tif"] + arguments[1:]
+        write_flat_dem(arguments[0])
     if os.path.exists(output):
         os.remove(output)  # (the check reads what this run wrote)
     p = subprocess.run([sys.executable, example] + arguments + ["-o", output],
@@ -98,11 +128,13 @@ def main(argv):
     # for the aperture model without the arrays it needs until 2026-12-06)
     if any(mark in p.stderr for mark in ("ERR|", "ERROR", "Error")):  # (VTK's logger: ERR|)
         fail("%s printed an error:\n%s" % (example, p.stderr))
+    if "RuntimeWarning" in p.stderr:  # (numpy's: a division by 0, a NaN cast)
+        fail("%s printed a warning:\n%s" % (example, p.stderr))
     name = os.path.basename(example)
     if name == "read_and_mesh.py":
         check_mesh(output)
     elif name == "sky_products.py":
-        check_sky(output)
+        (check_flat_sky if flat else check_sky)(output)
     elif name in PICTURES:
         check_render(output, PICTURES[name])
     else:
