@@ -11,6 +11,7 @@ vtkApertureLightingMapper, with vtkApertureSolarPosition giving the sun's direct
 mesh frame, its colour and strength, and the sky's radiance."""
 import argparse
 import math
+import sys
 
 from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkRenderer, vtkRenderWindow,
@@ -25,7 +26,8 @@ def get_program_parameters():
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("dem", nargs="?", help="DEM raster (default: the embedded DEM)")
     parser.add_argument("--at", default="2026-10-15T16:00", help="local time (ISO 8601)")
-    parser.add_argument("--tz", default="America/New_York", help="IANA time zone")
+    parser.add_argument("--tz", default="America/New_York",
+                        help="IANA time zone (default: the embedded DEM's; give another DEM's)")
     parser.add_argument("--sun-scale", type=float, default=1.0)
     parser.add_argument("--exposure", type=float,
                         help="EV (default: automatic, aperture.scene.auto_exposure)")
@@ -62,6 +64,10 @@ def main():
     sun.GetSkyCap([0, 0, 1], 90.0, [0, 0, 1], mean, sky_irradiance)
     print("sun: azimuth %.2f, elevation %.2f deg, %.0f W/m2 direct normal"
           % (sun.GetAzimuth(), sun.GetElevation(), sun.GetDirectNormalIrradiance()))
+    if sun.GetElevation() < 0.0:  # (the sky models have no twilight: a black terrain)
+        print("warning: the sun is %.2f degrees below the horizon at %s in %s: the terrain is "
+              "unlit (black); give the DEM's local time and zone with --at and --tz"
+              % (-sun.GetElevation(), args.at, args.tz), file=sys.stderr)
 
     # 5. the mapper: uniforms only, so moving the sun later costs one draw
     mapper = aperture.vtkApertureLightingMapper()

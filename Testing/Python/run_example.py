@@ -2,8 +2,9 @@
 """Run one of Examples/ as a user would and check what it wrote, so that an example which
 writes an empty mesh or a blank picture fails (its exit status alone would not):
 
-    run_example.py EXAMPLE.py OUTPUT [--flat] [ARGUMENTS...]
-        (runs EXAMPLE.py ARGUMENTS -o OUTPUT; --flat: sky_products.py on a flat DEM it writes)
+    run_example.py EXAMPLE.py OUTPUT [--flat | --night] [ARGUMENTS...]
+        (runs EXAMPLE.py ARGUMENTS -o OUTPUT; --flat: sky_products.py on a flat DEM it writes;
+        --night: a rendering example whose sun is below the horizon)
 
 - read_and_mesh.py: the embedded DEM's mesh: 403 x 344 points, two triangles per cell, its
   arrays, about 30 x 32 km (cells of 74.85 m x 92.47 m at the centre) and its 840 m of relief
@@ -13,7 +14,8 @@ writes an empty mesh or a blank picture fails (its exit status alone would not):
   with --flat, on a flat 60 x 50 DEM with a 2 x 2 hole: white but for the hole (the stretch
   from 1 to 1 divided by 0 until 2026-12-06: a black picture);
 - the rendering examples: a picture of the documented size in which the terrain covers a
-  tenth or more and is shaded (not uniform, not black).
+  tenth or more and is shaded (not uniform, not black); with --night, black terrain and a
+  warning that says why (lit_terrain.py wrote it silently until 2026-12-06).
 Every example must also print no error on its way (VTK's or its own) and no numpy warning.
 """
 import os
@@ -98,14 +100,19 @@ def check_flat_sky(path):
              % (path, grey.shape, (grey == 0).sum()))
 
 
-def check_render(path, size):
+def check_render(path, size, night=False):
     rgb = read_picture(path)
     if rgb.shape[0] != 3 or rgb.shape[1:] != (size[1], size[0]):
         fail("%s is not a %d x %d RGB picture: %s" % (path, size[0], size[1], rgb.shape))
     background = rgb[:, 0, 0]  # (a corner: the sky behind the terrain)
     terrain = np.abs(rgb - background[:, None, None]).max(axis=0) > 3
     luminance = rgb.mean(axis=0)[terrain]
-    if not (terrain.mean() >= 0.1 and luminance.std() > 10 and luminance.mean() > 20):
+    if night:
+        # (its edges blend into the background)
+        lit = not (terrain.mean() >= 0.1 and np.percentile(luminance, 98) <= 3)
+    else:
+        lit = terrain.mean() >= 0.1 and luminance.std() > 10 and luminance.mean() > 20
+    if lit == night:
         fail("%s: terrain on %.0f%% of the picture, luminance %.1f +- %.1f" % (
             path, 100 * terrain.mean(), luminance.mean() if terrain.any() else 0,
             luminance.std() if terrain.any() else 0))
@@ -113,10 +120,12 @@ def check_render(path, size):
 
 def main(argv):
     example, output, arguments = argv[0], argv[1], argv[2:]
-    flat = arguments[:1] == ["--flat"]
+    flat, night = arguments[:1] == ["--flat"], arguments[:1] == ["--night"]
     if flat:
         arguments = [os.path.splitext(output)[0] + "-dem.tif"] + arguments[1:]
         write_flat_dem(arguments[0])
+    elif night:
+        arguments = arguments[1:]
     if os.path.exists(output):
         os.remove(output)  # (the check reads what this run wrote)
     p = subprocess.run([sys.executable, example] + arguments + ["-o", output],
@@ -136,7 +145,9 @@ def main(argv):
     elif name == "sky_products.py":
         (check_flat_sky if flat else check_sky)(output)
     elif name in PICTURES:
-        check_render(output, PICTURES[name])
+        if night and "below the horizon" not in p.stderr:
+            fail("%s said nothing of the sun below the horizon" % example)
+        check_render(output, PICTURES[name], night)
     else:
         fail("no check for the example " + name)
     print("run_example: %s wrote %s, checked" % (name, output))
