@@ -77,7 +77,8 @@
  * WrapsAround), has no east and west edges: they join, and the cells beside the antimeridian
  * see the terrain on its other side (within the search distance, and at most half the globe's
  * columns either way; a sub-extent whose halo crosses it reads every column); the products do
- * not depend on where the grid's seam lies, except in rows where the search reaches farther
+ * not depend on where the grid's seam lies (EdgeTruncated without a search distance can:
+ * ap_horizon.h says where), except in rows where the search reaches farther
  * than half the parallel's circumference (within about a degree of a pole), where a ray along
  * the parallel would circle the pole and stops where the seam's copy ends. (The sweep's copy
  * of the elevations and its state then cover those columns too, GetWrapColumns on each side:

@@ -134,6 +134,13 @@
  *                         flagged, yet an edge cell's openness is 132° at D = 32: the sectors
  *                         leaving the DEM at once count −π/2). With a max_distance the flag
  *                         does not use z_max, which a piece of a DEM would not know.
+ *                         Without one, on a grid with per-row cell sizes, the sweep takes a
+ *                         cell's reach from the two lines that bracket it (the nearer of
+ *                         their last samples on the grid), not from its own rhumb line: the
+ *                         flag can be set on cells whose own ray reaches up to about a row
+ *                         farther than the threshold (0.6% of a global 0.5° DEM's cells; a
+ *                         probe of 2026-12-06 found none missed), and on a global DEM those
+ *                         cells change with the seam's place (the other products do not).
  *  The sums converge as O(1/D²) to the continuous integrals. With scale_metric each sector's
  *  terms carry its weight ω and B's horizontal its ground direction (see there).
  *
