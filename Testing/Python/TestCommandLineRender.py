@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """`aperture render` end to end (runs under Xvfb): a PNG of the requested size that is not
 blank, for both views, and one-line errors for bad options."""
+import math
 import os
 import shutil
 import subprocess
@@ -28,6 +29,7 @@ def render_rgb(test, out, *args):
     status, _, stderr = run("render", "-o", out, "--size", "200x120", "--sun-az", "225",
                             "--sun-el", "20", *args)
     test.assertEqual(status, 0, stderr)
+    test.assertNotIn("have no sky in", stderr)  # (a --baked bake of the DEM lights every cell)
     return png_pixels_and_text(out)[0]
 
 
@@ -921,6 +923,9 @@ class TestCommandLineRender(unittest.TestCase):
                      "covers another grid than the DEM"),
                     ("nad83.tif", lambda ds: ds.SetProjection("EPSG:4269"),
                      "is in another CRS (NAD83) than the DEM (WGS 84)"),
+                    # (a traceback until 2026-12-06: int(round(nan)))
+                    ("nan.tif", lambda ds: ds.SetGeoTransform([math.nan] + gt[1:]),
+                     "covers another grid than the DEM (geotransform (nan, "),
                     ("feet.tif",
                      lambda ds: ds.SetMetadataItem("SOURCE_ELEVATION_UNIT", "0.3048 m (--zfactor)"),
                      "was baked from elevations in units of 0.3048 m (--zfactor); the DEM is read "
@@ -983,6 +988,25 @@ class TestCommandLineRender(unittest.TestCase):
                 if expected:
                     self.assertIn(expected, stderr)
             src = None
+            # a bake without sky where the DEM has heights (of the DEM before its voids were
+            # filled; values no bake has): drawn black, and said (silent until 2026-12-06)
+            holes = os.path.join(tmp, "holes.tif")
+            ds = gdal.GetDriverByName("GTiff").CreateCopy(holes, gdal.Open(baked))
+            names = {ds.GetRasterBand(b).GetDescription(): b for b in range(1, ds.RasterCount + 1)}
+            radius = ds.GetRasterBand(names["ApertureRadius"]).ReadAsArray()
+            radius[:10, :] = np.nan  # 10 rows of 403 cells: 4030
+            radius[10, :5] = -1.0  # (5 more)
+            ds.GetRasterBand(names["ApertureRadius"]).WriteArray(radius)
+            east = ds.GetRasterBand(names["BentNormal_E"]).ReadAsArray()
+            east[11, :7] = 0.5  # (not a unit vector: 7 more)
+            ds.GetRasterBand(names["BentNormal_E"]).WriteArray(east)
+            ds = None
+            status, _, stderr = run("render", "-o", os.path.join(tmp, "x.png"), "--size",
+                                    "200x120", "--baked", holes)
+            self.assertEqual(status, 0, stderr)
+            self.assertIn("warning: 4042 of the DEM's cells with heights (2.9%%) have no sky in "
+                          "%s (nodata, or no unit BentNormal and ApertureRadius of 0..180 "
+                          "degrees): they are drawn black; bake this DEM again" % holes, stderr)
             # a damaged bake (cut short, uncompressed: its header whole, its tiles missing):
             # GDAL's message, not a traceback
             whole = os.path.join(tmp, "whole.tif")

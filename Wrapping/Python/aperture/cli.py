@@ -736,7 +736,7 @@ def _attach_baked(image, path, reader):
 def _attach_baked_bands(image, path, ds, reader):
     """_attach_baked's checks and copies, from the open dataset `ds`."""
     import numpy as np
-    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
     bands = {ds.GetRasterBand(b).GetDescription(): b for b in range(1, ds.RasterCount + 1)}
     need = ["BentNormal_E", "BentNormal_N", "BentNormal_U", "ApertureRadius"]
     missing = [n for n in need if n not in bands]
@@ -805,6 +805,18 @@ def _attach_baked_bands(image, path, ds, reader):
         return values
     bent = np.stack([read("BentNormal_E"), read("BentNormal_N"), read("BentNormal_U")], -1)
     radius = np.radians(read("ApertureRadius")).astype(np.float32)
+    # A bake of this DEM has a unit bent normal and a radius in 0..180 degrees wherever the
+    # DEM has a height; a cell without them is drawn black (a bake of the DEM with voids since
+    # filled lit half of it black, silently, until 2026-12-06)
+    elevation = vtk_to_numpy(image.GetPointData().GetArray("Elevation")).reshape(ny, nx)
+    with np.errstate(invalid="ignore"):
+        sky = ((np.abs(np.linalg.norm(bent, axis=-1) - 1.0) <= 1e-3) &
+               (radius >= 0.0) & (radius <= np.float32(math.pi)))
+    unlit = int(np.count_nonzero(np.isfinite(elevation) & ~sky))
+    if unlit:
+        _warn("%d of the DEM's cells with heights (%.1f%%) have no sky in %s (nodata, or no "
+              "unit BentNormal and ApertureRadius of 0..180 degrees): they are drawn black; "
+              "bake this DEM again" % (unlit, 100.0 * unlit / elevation.size, path))
     for name, values in (("BentNormal", bent.reshape(-1, 3)), ("ApertureRadius", radius.ravel())):
         array = numpy_to_vtk(np.ascontiguousarray(values), deep=1)
         array.SetName(name)
@@ -815,8 +827,8 @@ def _window_in(outer_gt, outer_size, inner_gt, inner_size):
     """(column, row) of the grid (inner_gt, inner_size) within the grid (outer_gt, outer_size):
     the same cells (to 1e-3 of a cell), the inner corner on an outer cell's, inside it; else
     None. A rotated grid is taken only when the two are the same."""
-    if outer_gt is None:
-        return None
+    if outer_gt is None or not all(math.isfinite(v) for v in outer_gt):
+        return None  # (a NaN origin was a traceback: int(round(nan)))
     cell = max(abs(inner_gt[1]), abs(inner_gt[5]))
     if any(abs(outer_gt[k] - inner_gt[k]) > 1e-3 * cell for k in (1, 2, 4, 5)):
         return None
