@@ -462,6 +462,19 @@ class TestInfo(CommandLineTest):
         self.assertEqual(d["crs"], "WGS 84 / UTM zone 32N")
         self.assertEqual(d["elevation_range"], [0.0, 11.0])
 
+    def test_huge_elevations(self):
+        # the range of cells beyond 1e38 (float32 up to 3.4e38) as they are: VTK 9.1's
+        # GetRange clamps to +-1e38, and the range said 1e38 where no cell has it (and its
+        # warning repeated it) until 2026-12-06
+        for sign in (1, -1):
+            rows = np.full((4, 5), sign * 2e38)
+            rows[1, 2] = sign * 2.2e38
+            p = make_raster(self.path("huge.tif"), rows, (500000, 30, 0, 4000000, 0, -30))
+            d, err = self.info(p)
+            ends = [float(np.float32(sign * 2e38)), float(np.float32(sign * 2.2e38))]
+            self.assertEqual(d["elevation_range"], sorted(ends))
+            self.assertIn("elevations range from %g to %g m" % tuple(sorted(ends)), err)
+
     def test_bands_windows_decimation(self):
         rows = np.arange(6 * 8, dtype=float).reshape(6, 8)
         p = make_raster(self.path("bands.tif"), rows, (500000, 30, 0, 4000000, 0, -30), bands=3)

@@ -520,10 +520,13 @@ def elevation_statistics(reader, watcher, whole, strip_bytes, progress=None):
                 raise
             nodata_count = nx * ny
             break
-        array = image.GetPointData().GetArray("Elevation")
-        a, b = array.GetRange()  # (NaN, the reader's nodata, skipped)
-        low, high = min(low, a), max(high, b)
-        nodata_count += int(np.count_nonzero(np.isnan(vtk_to_numpy(array))))
+        values = vtk_to_numpy(image.GetPointData().GetArray("Elevation"))
+        nodata = int(np.count_nonzero(np.isnan(values)))  # (the reader's nodata)
+        if nodata < values.size:
+            # (not the array's GetRange, which VTK 9.1 clamps to +-1e38: cells all 2e38 were
+            # described as ranging from 1e38, a value no cell has)
+            low, high = min(low, float(np.nanmin(values))), max(high, float(np.nanmax(values)))
+        nodata_count += nodata
         if progress:
             progress((whole[3] - bottom + 1) / ny)
     return ([low, high] if low <= high else None), nodata_count
