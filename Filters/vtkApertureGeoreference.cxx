@@ -387,7 +387,11 @@ bool vtkApertureGeoreference::CheckGrid()
   }
   std::ostringstream msg;
   msg << "the grid describes no cells: origin " << o[0] << ", " << o[1] << ", cell size " << s[0]
-      << " x " << s[1] << " (each must be positive), " << n[0] << " x " << n[1] << " cells";
+      << " x " << s[1] << " (each must be positive), " << n[0] << " x " << n[1] << " cells"
+      << (std::isfinite(o[0]) && std::isfinite(o[1]) && s[0] > 0.0 && s[1] > 0.0 &&
+             std::isfinite(s[0]) && std::isfinite(s[1]) && n[0] >= 1 && n[1] >= 1
+           ? " (its far edges are not finite numbers)"
+           : "");
   this->Impl->Error = msg.str();
   return false;
 }
@@ -429,6 +433,22 @@ bool vtkApertureGeoreference::SetFromImage(vtkImageData* image)
   }
   int extent[6];
   image->GetExtent(extent);
+  // (a spacing of 1e308 on 10 cells: the writers wrote a geotransform of inf, which no reader
+  // takes, until 2026-12-06)
+  for (int a = 0; a < 2; ++a)
+  {
+    const double low = origin[a] + (extent[2 * a] - 0.5) * spacing[a];
+    const double high = origin[a] + (extent[2 * a + 1] + 0.5) * spacing[a];
+    if (!std::isfinite(low) || !std::isfinite(high))
+    {
+      std::ostringstream msg;
+      msg << "the image's " << (a ? "south and north" : "west and east")
+          << " edges are not finite numbers (origin " << origin[a] << ", spacing " << spacing[a]
+          << ", extent " << extent[2 * a] << ".." << extent[2 * a + 1] << ")";
+      d.Error = msg.str();
+      return false;
+    }
+  }
   const char* crs = GetAttachedCRS(image);
   if (!crs)
   {
@@ -746,6 +766,10 @@ bool vtkApertureGeoreference::LonLatToCRS(double lon, double lat, double xy[2])
 //------------------------------------------------------------------------------
 bool vtkApertureGeoreference::GetCentreLonLat(double lonlat[2])
 {
+  if (!this->CheckGrid()) // (a grid of no cells had a centre until 2026-12-06)
+  {
+    return false;
+  }
   const double xc = this->GridOrigin[0] + 0.5 * (this->GridSize[0] - 1) * this->GridSpacing[0];
   const double yc = this->GridOrigin[1] + 0.5 * (this->GridSize[1] - 1) * this->GridSpacing[1];
   if (!this->CRSToLonLat(xc, yc, lonlat))

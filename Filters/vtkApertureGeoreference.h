@@ -105,7 +105,8 @@ public:
   /**
    * Take the CRS from the image's field data (`CRS`) and the grid from the image's origin,
    * spacing and extent (the extent it holds). False, with a message, if the image has no CRS,
-   * a non-identity direction matrix, or non-positive spacing.
+   * a non-identity direction matrix, a spacing that is not positive and finite, an origin
+   * that is not finite, or edges beyond the range of doubles (a spacing of 1e308).
    */
   bool SetFromImage(vtkImageData* image);
 

@@ -507,13 +507,26 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
   }
   else
   {
-    vtkWarningMacro(<< "writing '" << path << "' without a CRS: " << geo->GetErrorMessage());
     gt[0] = origin[0] + (whole[0] - 0.5) * spacing[0];
     gt[1] = spacing[0];
     gt[2] = 0.0;
     gt[3] = origin[1] + (whole[3] + 0.5) * spacing[1];
     gt[4] = 0.0;
     gt[5] = -spacing[1];
+  }
+  // (of the whole extent, which a strip is part of: a spacing of 1e308 wrote a geotransform of
+  // inf, which no reader takes, until 2026-12-06)
+  if (!std::isfinite(gt[0]) || !std::isfinite(gt[3]) || !std::isfinite(gt[0] + nx * gt[1]) ||
+    !std::isfinite(gt[3] + ny * gt[5]))
+  {
+    vtkErrorMacro(<< "cannot write '" << path << "': the grid's edges are not finite numbers "
+                  << "(origin " << origin[0] << ", " << origin[1] << ", spacing " << spacing[0]
+                  << ", " << spacing[1] << ", " << nx << " x " << ny << " cells)");
+    return false;
+  }
+  if (!hasCRS)
+  {
+    vtkWarningMacro(<< "writing '" << path << "' without a CRS: " << geo->GetErrorMessage());
   }
 
   // 3. Create the file (its nodata value checked first: nothing of GDAL's made yet).

@@ -212,7 +212,15 @@ void TestErrors()
     AP_CHECK_CONTAINS(geo->GetErrorMessage(), "the grid describes no cells: origin 0, 0, ");
     AP_CHECK(!geo->GetBoundsLonLat(bounds));
     AP_CHECK_CONTAINS(geo->GetErrorMessage(), "the grid describes no cells");
+    double centre[2]; // (a centre until 2026-12-06)
+    AP_CHECK(!geo->GetCentreLonLat(centre));
+    AP_CHECK_CONTAINS(geo->GetErrorMessage(), "the grid describes no cells");
   }
+  // edges beyond the doubles: said so
+  geo->SetGrid(0.0, 0.0, 1e308, 1.0, 10, 10);
+  AP_CHECK(!geo->GetBoundsLonLat(bounds));
+  AP_CHECK_CONTAINS(geo->GetErrorMessage(), " 10 x 10 cells (its far edges are not finite "
+                                            "numbers)");
   geo->SetGrid(0.0, 0.0, 1e-300, 1e-300, 10, 10);
   AP_CHECK(!geo->GetCellSizeMetres(size));
   AP_CHECK_CONTAINS(geo->GetErrorMessage(), "the grid's cells have no positive size on the "

@@ -802,24 +802,33 @@ void TestErrors()
   // NaN, a negative spacing as a mirrored one, zero as none, each with only a warning).
   for (bool withCRS : { true, false })
   {
-    for (int bad = 0; bad < 3; ++bad)
+    for (int bad = 0; bad < 4; ++bad)
     {
       auto image = MakeImage(withCRS);
       if (bad == 0)
       {
         image->SetOrigin(std::nan(""), 5000015.0, 0.0);
       }
-      else
+      else if (bad < 3)
       {
         image->SetSpacing(30.0, bad == 1 ? -30.0 : 0.0, 1.0);
+      }
+      else
+      {
+        // edges beyond the doubles (written as a geotransform of inf until 2026-12-06)
+        image->SetSpacing(30.0, 1e308, 1.0);
       }
       const std::string path = tmp + "/badgrid.tif";
       vtkNew<vtkApertureDEMWriter> w;
       w->SetInputData(image);
       w->SetFileName(path.c_str());
-      ExpectError(w, withCRS ? "the image has a CRS but its georeference cannot be written"
-                             : "the image's spacing must be positive and finite and its origin "
-                               "finite to make a geotransform");
+      ExpectError(w, bad == 3
+          ? (withCRS ? "georeference cannot be written to '" + path + "': the image's south and "
+                       "north edges are not finite numbers (origin "
+                     : "cannot write '" + path + "': the grid's edges are not finite numbers")
+          : withCRS ? "the image has a CRS but its georeference cannot be written"
+                    : "the image's spacing must be positive and finite and its origin "
+                      "finite to make a geotransform");
       struct stat sb;
       AP_CHECK(stat(path.c_str(), &sb) != 0);
     }

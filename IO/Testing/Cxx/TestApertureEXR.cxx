@@ -1186,6 +1186,19 @@ void TestWriterErrors()
     ExpectWriterError(w, "the image has a CRS but its georeference cannot be written");
   }
   {
+    // edges beyond the doubles: a geotransform of inf, which the reader refused, was written
+    // until 2026-12-06
+    auto huge = MakeImage(true);
+    huge->SetSpacing(1e308, 30.0, 1.0);
+    vtkNew<vtkApertureEXRWriter> w;
+    w->SetInputData(huge);
+    w->SetFileName((tmp + "/huge.exr").c_str());
+    ExpectWriterError(w, "the image has a CRS but its georeference cannot be written to '" +
+        tmp + "/huge.exr': the image's west and east edges are not finite numbers (origin ");
+    struct stat sb;
+    AP_CHECK(stat((tmp + "/huge.exr").c_str(), &sb) != 0);
+  }
+  {
     vtkNew<vtkApertureEXRWriter> w;
     w->SetInputData(image);
     w->SetFileName("/nonexistent-folder/x.exr");
