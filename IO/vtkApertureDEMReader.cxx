@@ -189,7 +189,7 @@ struct vtkApertureDEMReader::Internals
           "/vsicurl/" + name + "'), where this machine can reach it";
         return false;
       }
-      error = "file '" + name + "' does not exist";
+      error = vtkApertureMissingFileMessage(name);
       return false;
     }
     if (!virtualPath && vtkApertureUnreadableStream(sb))
@@ -219,6 +219,13 @@ struct vtkApertureDEMReader::Internals
             "' (no such file there, or the server cannot be reached from this machine" +
             (why.empty() ? std::string() : ": " + why) + ")"
                         : "file '" + name + "' does not exist";
+        return false;
+      }
+      // (a file without read permission was "not a raster format GDAL recognises")
+      const std::string unreadable = virtualPath ? "" : vtkApertureUnreadableReason(fileName);
+      if (!unreadable.empty())
+      {
+        error = "cannot read '" + name + "': " + unreadable;
         return false;
       }
       error = "GDAL cannot open '" + name + "' as a raster: " +

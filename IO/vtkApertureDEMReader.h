@@ -51,7 +51,8 @@
  *
  * Errors (vtkErrorMacro, failed update, empty output): a missing file (a URL, which GDAL reads as
  * /vsicurl/URL, is named as such; a network path that leads nowhere too), a named pipe or a socket
- * (GDAL seeks in its files; its open of a pipe would wait for a writer), a file GDAL cannot open, a
+ * (GDAL seeks in its files; its open of a pipe would wait for a writer), a file the process may
+ * not read (the system's reason: "Permission denied"), a file GDAL cannot open, a
  * band that does not exist or holds complex numbers, no georeference (no geotransform, or ground
  * control points only), a rotated (its far edges moved by more than a thousandth of a cell:
  * less is read as north-up) or mirrored geotransform, one with a pixel size of 0, or one

@@ -189,7 +189,7 @@ struct vtkApertureEXRReader::Internals
     struct stat sb;
     if (stat(fileName, &sb) != 0)
     {
-      error = "file '" + name + "' does not exist";
+      error = vtkApertureMissingFileMessage(name);
       return false;
     }
     if (vtkApertureUnreadableStream(sb))
@@ -203,14 +203,16 @@ struct vtkApertureEXRReader::Internals
     // Every OpenEXR file starts with the magic number 20000630 (little-endian).
     unsigned char magic[4] = { 0, 0, 0, 0 };
     FILE* f = std::fopen(fileName, "rb");
-    const size_t got = f ? std::fread(magic, 1, 4, f) : 0;
-    if (f)
+    if (!f) // (was "not an OpenEXR file (it cannot be opened)" for a file without permission)
     {
-      std::fclose(f);
+      error = "cannot read '" + name + "': " + std::strerror(errno);
+      return false;
     }
+    const size_t got = std::fread(magic, 1, 4, f);
+    std::fclose(f);
     if (got != 4 || magic[0] != 0x76 || magic[1] != 0x2f || magic[2] != 0x31 || magic[3] != 0x01)
     {
-      error = "'" + name + "' is not an OpenEXR file" + (f ? "" : " (it cannot be opened)");
+      error = "'" + name + "' is not an OpenEXR file";
       return false;
     }
     const exr_context_initializer_t init = vtkApertureEXRErrorTrap::Initializer();

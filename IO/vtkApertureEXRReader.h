@@ -33,7 +33,8 @@
  * UpdateInformation().
  *
  * Errors (vtkErrorMacro, failed update, empty output): no file name, a missing file, a named
- * pipe or socket (its open would wait for a writer), a file that is not OpenEXR (or whose
+ * pipe or socket (its open would wait for a writer), a file the process may not read (the
+ * system's reason: "Permission denied"), a file that is not OpenEXR (or whose
  * header is damaged), a multi-part, tiled, deep scanline or deep tiled file (the message says
  * which), no channels or an empty data window, a channel that is subsampled (x or y sampling
  * other than 1), a data window larger than the machine's memory as float (a huge image or a

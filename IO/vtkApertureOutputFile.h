@@ -4,6 +4,7 @@
 #ifndef vtkApertureOutputFile_h
 #define vtkApertureOutputFile_h
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -132,6 +133,30 @@ inline std::string vtkApertureRemoveStaleSidecars(
 inline bool vtkApertureUnreadableStream(const struct stat& st)
 {
   return S_ISFIFO(st.st_mode) || S_ISSOCK(st.st_mode);
+}
+
+/** Why a reader cannot read `path`: "" when it can be opened for reading, else the system's
+ *  reason ("Permission denied"; "No such file or directory" after stat failed). A library
+ *  that cannot open it says it is not of its format (GDAL: "not a raster format GDAL
+ *  recognises" for a file without read permission). */
+inline std::string vtkApertureUnreadableReason(const char* path)
+{
+  const int fd = open(path, O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd >= 0)
+  {
+    close(fd);
+    return std::string();
+  }
+  return std::strerror(errno);
+}
+
+/** The reader's message for `path` that stat(2) did not find (errno as it left it): that it
+ *  does not exist, or why it cannot be reached (a folder on its way without permission). */
+inline std::string vtkApertureMissingFileMessage(const std::string& path)
+{
+  return (errno == ENOENT || errno == ENOTDIR)
+    ? "file '" + path + "' does not exist"
+    : "cannot read '" + path + "': " + std::strerror(errno);
 }
 
 #endif

@@ -17,6 +17,7 @@ import unittest
 import numpy as np
 from osgeo import gdal, osr
 
+from privileges import unprivileged
 from rasters import make_dem
 from usage import usage_error
 
@@ -1473,23 +1474,13 @@ class TestBake(unittest.TestCase):
             self.assertEqual(p.stderr, "aperture: error: cannot write %s %s: the folder does not "
                              "take new files (Read-only file system)\n" % (name, path))
             self.assertFalse(os.path.exists(tif))
-        # Root writes read-only files: it runs the bake without the capabilities that let it
-        # (the clone may be under /root, which an unprivileged user could not enter).
-        unprivileged = []
-        if os.geteuid() == 0:
-            if not shutil.which("setpriv"):
-                self.skipTest("no setpriv (util-linux)")
-            unprivileged = ["setpriv", "--bounding-set", "-dac_override,-dac_read_search,-fowner",
-                            "--"]
+        # (root runs the bake without the capabilities that let it write read-only files)
         locked = self.path("locked.tif")
         with open(locked, "w") as f:
             f.write("keep")
         os.chmod(locked, 0o444)
-        probe = subprocess.run(unprivileged + ["sh", "-c", 'echo x >> "$0"', locked],
-                               capture_output=True)
-        if probe.returncode == 0:
-            self.skipTest("this process may write read-only files (capabilities not droppable)")
-        p = subprocess.run(unprivileged + [APERTURE, "bake", self.dem, locked],
+        p = subprocess.run(unprivileged(self, locked, "write") +
+                           [APERTURE, "bake", self.dem, locked],
                            capture_output=True, text=True, timeout=300)
         self.assertEqual(p.returncode, 1, p.stderr)
         self.assertEqual(p.stderr, "aperture: error: cannot write OUT.tif %s: the file "

@@ -15,6 +15,7 @@ import unittest
 import numpy as np
 from osgeo import gdal, osr
 
+from privileges import unprivileged
 from usage import usage_error
 
 gdal.UseExceptions()
@@ -657,6 +658,37 @@ class TestBadInput(CommandLineTest):
         p = make_raster(self.path("inf.tif"), np.ones((3, 3)), (np.inf, 30, 0, 4000000, 0, -30))
         self.assert_error("'%s' has a geotransform whose origin is not finite (inf, 4e+06); set "
                           "its corners first (gdal_edit.py -a_ullr)" % p, "info", p)
+
+    def test_unreadable(self):
+        # a DEM without read permission, or in a folder that may not be entered: said so (GDAL
+        # called the first "not a raster format GDAL recognises", and the second did "not
+        # exist", until 2026-12-06); the EXR reader too ("not an OpenEXR file")
+        p = make_raster(self.path("locked.tif"), np.ones((3, 3)), (500000, 30, 0, 4000000, 0, -30))
+        folder = self.path("closed")
+        os.mkdir(folder)
+        inside = make_raster(os.path.join(folder, "a.tif"), np.ones((3, 3)),
+                             (500000, 30, 0, 4000000, 0, -30))
+        exr = self.path("locked.exr")
+        with open(exr, "wb") as f:
+            f.write(b"\x76\x2f\x31\x01")
+        for path in (p, exr):
+            os.chmod(path, 0)
+        os.chmod(folder, 0)
+        try:
+            for path in (p, inside):
+                r = subprocess.run(unprivileged(self, path, "read") + [APERTURE, "info", path],
+                                   capture_output=True, text=True, timeout=120)
+                self.assertEqual((r.returncode, r.stderr), (
+                    1, "aperture: error: cannot read '%s': Permission denied\n" % path))
+            script = ("import aperture, sys\nr = aperture.vtkApertureEXRReader()\n"
+                      "r.SetFileName(sys.argv[1])\nr.Update()")
+            r = subprocess.run(unprivileged(self, exr, "read") +
+                               [os.path.join(BUILD, "bin", "aperture-python"), "-c", script, exr],
+                               capture_output=True, text=True, timeout=120)
+            self.assertIn("cannot read '%s': Permission denied" % exr, r.stderr)
+            self.assertNotIn("OpenEXR file", r.stderr)
+        finally:
+            os.chmod(folder, 0o755)
 
     def test_no_georeference(self):
         p = make_raster(self.path("plain.tif"), np.ones((3, 3)), None, srs=None)
