@@ -319,9 +319,28 @@ void vtkApertureLightingMapper::MapArrays()
   }
 }
 
+void vtkApertureLightingMapper::DropResizedSkyTable(const char* where)
+{
+  vtkFloatArray* t = this->SkyTable;
+  const vtkIdType tuples = static_cast<vtkIdType>(this->SkyTableSize[0]) *
+    this->SkyTableSize[1] * this->SkyTableSize[2];
+  if (!t || (t->GetNumberOfComponents() == 3 && t->GetNumberOfTuples() == tuples))
+  {
+    return;
+  }
+  // (a segfault until 2026-12-06: the upload and the lookups read the sizes given)
+  vtkErrorMacro(<< where << "the sky table now has " << t->GetNumberOfTuples()
+                << " tuples of " << t->GetNumberOfComponents() << " components, not the "
+                << this->SkyTableSize[0] << " x " << this->SkyTableSize[1] << " x "
+                << this->SkyTableSize[2] << " RGB tuples given to SetSkyTable; shading with "
+                << "the uniform SkyRadiance instead");
+  this->SetSkyTable(nullptr, 0, 0, 0);
+}
+
 //------------------------------------------------------------------------------
 void vtkApertureLightingMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
 {
+  this->DropResizedSkyTable("");
   bool aperture = false;
   if (this->LightingModel == APERTURE)
   {
@@ -511,6 +530,7 @@ bool vtkApertureLightingMapper::ComputeReference(vtkPolyData* mesh, const double
   p.intersection = this->IntersectionMode == SMOOTHSTEP ? AP_LIGHT_SMOOTHSTEP : AP_LIGHT_EXACT;
   p.lambert = this->LambertMode == EXACT_CAP ? AP_LIGHT_EXACTCAP : AP_LIGHT_CENTROID;
   p.exposure = this->Exposure;
+  this->DropResizedSkyTable("ComputeReference: ");
   if (this->SkyTable)
   {
     p.sky_table = this->SkyTable->GetPointer(0);

@@ -129,7 +129,10 @@ public:
    * float texture (again only when the table or its MTime changes). nullptr: back to the
    * uniform SkyRadiance. Switching between a table and none compiles the other shader variant
    * (and uploads the geometry once); replacing one table by another, as when the sun moves,
-   * does not. Wrong sizes are an error, and the previous sky (table or uniform) stays.
+   * does not. Wrong sizes are an error, and the previous sky (table or uniform) stays. The
+   * table's values may change in place (Modified() uploads them); its size may not: a table
+   * of other sizes at a draw or ComputeReference is an error there, and the uniform sky
+   * replaces it (give a new size with SetSkyTable again).
    */
   void SetSkyTable(vtkFloatArray* table, int azimuths, int elevations, int radii);
   vtkFloatArray* GetSkyTable() { return this->SkyTable; }
@@ -211,6 +214,10 @@ protected:
   /** True when `mesh` (default: the input) has the APERTURE model's arrays; else
    *  InputProblem says why. */
   bool CheckInput(vtkPolyData* mesh = nullptr);
+  /** Before a draw or a reference: a sky table whose array changed its size after
+   *  SetSkyTable (a DeepCopy into it, a ComputeSkyTable of other sizes) is dropped, with an
+   *  error, for the uniform SkyRadiance (its upload and lookups would read past it). */
+  void DropResizedSkyTable(const char* where);
   /** Map the three arrays to the shader's vertex attributes, leaving others mapped (none of
    *  the three without the APERTURE model in use). */
   void MapArrays();

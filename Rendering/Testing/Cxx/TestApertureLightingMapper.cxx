@@ -490,6 +490,34 @@ void TestBadInput()
   s.Mapper->SetSkyTable(small, 16, 6, 5);
   AP_CHECK(s.Errors->GetError());
   AP_CHECK(s.Mapper->GetSkyTable() == nullptr);
+  // a table that changes its size after SetSkyTable (DeepCopy, ComputeSkyTable of other sizes
+  // into it): an error at the draw or reference, and the uniform sky (the upload and the
+  // lookups read the sizes given: a segfault until 2026-12-06)
+  s.Errors->Clear();
+  const std::vector<Vec> uniform = s.Radiance();
+  for (const bool draw : { true, false })
+  {
+    vtkNew<vtkFloatArray> resized;
+    resized->SetNumberOfComponents(3);
+    resized->SetNumberOfTuples(16 * 6 * 5);
+    resized->Fill(400.0); // (a brighter sky than the uniform one)
+    s.Mapper->SetSkyTable(resized, 16, 6, 5);
+    AP_CHECK(!s.Errors->GetError() && s.Mapper->GetSkyTable() == resized);
+    resized->DeepCopy(small); // (10 tuples)
+    vtkNew<vtkDoubleArray> cpu;
+    got = draw ? s.Radiance() : std::vector<Vec>();
+    AP_CHECK(draw || s.Mapper->ComputeReference(nodata, kGrey, cpu, nullptr));
+    AP_CHECK(s.Errors->GetError());
+    AP_CHECK_CONTAINS(s.Errors->GetErrorMessage(), std::string(draw ? "" : "ComputeReference: ") +
+        "the sky table now has 10 tuples of 3 components, not the 16 x 6 x 5 RGB tuples given "
+        "to SetSkyTable; shading with the uniform SkyRadiance instead");
+    AP_CHECK(s.Mapper->GetSkyTable() == nullptr);
+    for (int k = 0; draw && k < N * N; ++k)
+    {
+      AP_CHECK(got[k][1] == uniform[k][1] || (std::isnan(got[k][1]) && std::isnan(uniform[k][1])));
+    }
+    s.Errors->Clear();
+  }
 
   auto missing = GridMesh([](int) { return kUp; }, [](int) { return kUp; },
     [](int) { return 1.0; });
