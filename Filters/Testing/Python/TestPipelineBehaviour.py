@@ -173,6 +173,51 @@ print(w.errors[0] if w.errors else mesher.GetOutput().GetNumberOfPoints())
         mesher.Update()  # (and, done, not again)
         self.assertEqual(len(starts), 1)
 
+    def testPiecesWithoutPoints(self):
+        # More pieces than VTK's split has points to give: the pieces it leaves empty are empty
+        # meshes, so that the pieces' triangles add up to the whole mesh's. They meshed what
+        # the input still held from the update before (1000 pieces of 20 x 20 points summed
+        # 609 whole meshes with SetInputData; a reader's input its previous piece with its
+        # margin) until 2026-12-06.
+        from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
+        tmp = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, tmp, True)
+        path = os.path.join(tmp, "small.tif")
+        ds = gdal.GetDriverByName("GTiff").Create(path, 20, 20, 1, gdal.GDT_Float32)
+        ds.SetGeoTransform((500000, 30, 0, 4000600, 0, -30))
+        srs = osr.SpatialReference()
+        srs.ImportFromEPSG(32611)
+        ds.SetSpatialRef(srs)
+        ds.GetRasterBand(1).WriteArray(np.add.outer(np.arange(20.0), np.arange(20.0) ** 1.5))
+        ds = None
+        reader = aperture.vtkApertureDEMReader()
+        reader.SetFileName(path)
+        reader.Update()
+        image = reader.GetOutput()
+        translator = vtkExtentTranslator()
+        for normals in (True, False):
+            for given in (True, False):
+                m = aperture.vtkApertureTerrainMesh()
+                m.SetComputeNormals(normals)
+                if given:
+                    m.SetInputData(image)
+                else:
+                    r = aperture.vtkApertureDEMReader()
+                    r.SetFileName(path)
+                    m.SetInputConnection(r.GetOutputPort())
+                for pieces in (361, 400, 1000):
+                    triangles = 0
+                    for piece in range(pieces):
+                        m.UpdatePiece(piece, pieces, 0)
+                        ext = [0] * 6
+                        translator.PieceToExtentThreadSafe(piece, pieces, 0,
+                                                           [0, 19, 0, 19, 0, 0], ext,
+                                                           vtkExtentTranslator.BLOCK_MODE, 0)
+                        if ext[1] < ext[0] or ext[3] < ext[2]:
+                            self.assertEqual(m.GetOutput().GetNumberOfPoints(), 0)
+                        triangles += m.GetOutput().GetNumberOfPolys()
+                    self.assertEqual(triangles, 2 * 19 * 19, (normals, given, pieces))
+
     def testStreamingPieces(self):
         from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
         translator = vtkExtentTranslator()
