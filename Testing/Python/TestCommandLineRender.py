@@ -594,12 +594,16 @@ class TestCommandLineRender(unittest.TestCase):
                 g.write(f.read()[:300])
             heights = os.path.join(tmp, "heights.tif")
             gdal.GetDriverByName("GTiff").Create(heights, 8, 8, 1, gdal.GDT_Float32)
+            signed = os.path.join(tmp, "signed.tif")  # (said "8- or 16-bit" until 2026-12-06)
+            gdal.GetDriverByName("GTiff").Create(signed, 8, 8, 1, gdal.GDT_Int16)
             five = os.path.join(tmp, "five.tif")
             gdal.GetDriverByName("GTiff").Create(five, 8, 8, 5, gdal.GDT_Byte)
             for path, expected in (
                     (cut, "cannot read the albedo image %s: " % cut),
                     (heights, "the albedo image %s has Float32 samples (elevations?); --albedo "
-                              "takes a picture of 8- or 16-bit samples" % heights),
+                              "takes a picture of unsigned 8- or 16-bit samples" % heights),
+                    (signed, "the albedo image %s has Int16 samples (elevations?); --albedo "
+                             "takes a picture of unsigned 8- or 16-bit samples" % signed),
                     (five, "the albedo image %s has 5 bands; --albedo takes 1 (grey), 2 (grey, "
                            "alpha), 3 (RGB) or 4 (RGBA)" % five)):
                 status, _, stderr = run("render", "-o", os.path.join(tmp, "x.png"),

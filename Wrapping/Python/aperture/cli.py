@@ -1369,8 +1369,8 @@ ALBEDO_MAX_SIDE = 4096  # texels on the albedo texture's longer side
 def _read_albedo(path):
     """The --albedo picture as a VTK image of RGB bytes, row 0 south (as the mesh's texture
     coordinates), read with GDAL: 1 band grey (or a palette), 2 grey (or a palette) and alpha,
-    3 RGB, 4 RGBA (alpha is ignored), 8- or 16-bit samples (16-bit scaled by 255/65535), at most
-    ALBEDO_MAX_SIDE pixels on its longer side (a larger one averaged down, through the file's
+    3 RGB, 4 RGBA (alpha is ignored), unsigned 8- or 16-bit samples (16-bit scaled by
+    255/65535), at most ALBEDO_MAX_SIDE pixels on its longer side (a larger one averaged down, through the file's
     overviews when it has them); and its bounds in degrees (west, south, east, north) when it
     is georeferenced, else None."""
     import numpy as np
@@ -1389,7 +1389,8 @@ def _read_albedo(path):
     kind = gdal.GetDataTypeName(bands[0].DataType)
     if kind not in ("Byte", "UInt16"):
         raise ApertureError("the albedo image %s has %s samples (elevations?); --albedo takes a "
-                            "picture of 8- or 16-bit samples (PNG, JPEG, TIFF)" % (path, kind))
+                            "picture of unsigned 8- or 16-bit samples (PNG, JPEG, TIFF)"
+                            % (path, kind))
     palette = bands[0].GetColorTable() if len(bands) <= 2 else None  # (with alpha: 2 bands)
     scale = min(1.0, ALBEDO_MAX_SIDE / max(ds.RasterXSize, ds.RasterYSize))
     width = max(1, round(ds.RasterXSize * scale))
