@@ -41,6 +41,16 @@ vtkImageData* vtkApertureLinearCapture::Capture(vtkRenderer* renderer)
     return nullptr;
   }
   const int* viewport = renderer->GetSize(); // (pixels: the texture's size below)
+  if (viewport[0] < 1 || viewport[1] < 1)
+  {
+    // (VTK's framebuffer pass printed its diagnosis of an incomplete framebuffer, 40 lines,
+    // and this only "could not read the float framebuffer back", until 2026-12-06)
+    const double* v = renderer->GetViewport();
+    vtkErrorMacro(<< "the renderer's viewport is " << viewport[0] << " x " << viewport[1]
+                  << " pixels (Viewport " << v[0] << ", " << v[1] << ", " << v[2] << ", " << v[3]
+                  << " of the window): nothing to capture");
+    return nullptr;
+  }
   const double asked = 4.0 * sizeof(float) * viewport[0] * static_cast<double>(viewport[1]);
   if (asked >= GetMaximumBytes())
   {

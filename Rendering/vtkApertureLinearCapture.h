@@ -14,7 +14,8 @@
  * zero radiance there).
  *
  * Errors (vtkErrorMacro, nullptr): no renderer or window, not an OpenGL renderer, a viewport
- * too large to read back (GetMaximumBytes), or the float texture could not be read back.
+ * of no pixels (an empty or inverted Viewport) or too large to read back (GetMaximumBytes), or
+ * the float texture could not be read back.
  */
 #ifndef vtkApertureLinearCapture_h
 #define vtkApertureLinearCapture_h

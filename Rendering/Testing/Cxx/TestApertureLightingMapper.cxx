@@ -573,6 +573,20 @@ void TestBadInput()
   {
     huge->Delete();
   }
+  // a viewport of no pixels (empty, or inverted): said, before anything is rendered (VTK's
+  // framebuffer pass printed 40 lines of its own until 2026-12-06)
+  w.Window->SetSize(64, 64);
+  for (const double x1 : { 0.5, 0.2 })
+  {
+    captureErrors->Clear();
+    w.Renderer->SetViewport(0.5, 0.0, x1, 1.0);
+    AP_CHECK(capture->Capture(w.Renderer) == nullptr);
+    AP_CHECK_CONTAINS(captureErrors->GetErrorMessage(),
+      std::string("the renderer's viewport is ") + (x1 == 0.5 ? "0" : "-19") +
+        " x 64 pixels (Viewport 0.5, 0, ");
+    AP_CHECK_CONTAINS(captureErrors->GetErrorMessage(), "of the window): nothing to capture");
+  }
+  w.Renderer->SetViewport(0.0, 0.0, 1.0, 1.0);
 }
 } // namespace
 
