@@ -815,11 +815,12 @@ def _attach_baked_bands(image, path, ds, reader):
     with np.errstate(invalid="ignore"):
         sky = ((np.abs(np.linalg.norm(bent, axis=-1) - 1.0) <= 1e-3) &
                (radius >= 0.0) & (radius <= np.float32(math.pi)))
-    unlit = int(np.count_nonzero(np.isfinite(elevation) & ~sky))
+    heights = np.isfinite(elevation)
+    unlit = int(np.count_nonzero(heights & ~sky))
     if unlit:
         _warn("%d of the DEM's cells with heights (%.1f%%) have no sky in %s (nodata, or no "
               "unit BentNormal and ApertureRadius of 0..180 degrees): they are drawn black; "
-              "bake this DEM again" % (unlit, 100.0 * unlit / elevation.size, path))
+              "bake this DEM again" % (unlit, 100.0 * unlit / np.count_nonzero(heights), path))
     for name, values in (("BentNormal", bent.reshape(-1, 3)), ("ApertureRadius", radius.ravel())):
         array = numpy_to_vtk(np.ascontiguousarray(values), deep=1)
         array.SetName(name)
@@ -1370,9 +1371,9 @@ def _read_albedo(path):
     """The --albedo picture as a VTK image of RGB bytes, row 0 south (as the mesh's texture
     coordinates), read with GDAL: 1 band grey (or a palette), 2 grey (or a palette) and alpha,
     3 RGB, 4 RGBA (alpha is ignored), unsigned 8- or 16-bit samples (16-bit scaled by
-    255/65535), at most ALBEDO_MAX_SIDE pixels on its longer side (a larger one averaged down, through the file's
-    overviews when it has them); and its bounds in degrees (west, south, east, north) when it
-    is georeferenced, else None."""
+    255/65535), at most ALBEDO_MAX_SIDE pixels on its longer side (a larger one averaged down,
+    through the file's overviews when it has them); and its bounds in degrees (west, south,
+    east, north) when it is georeferenced, else None."""
     import numpy as np
     from osgeo import gdal
     from vtkmodules.util.numpy_support import numpy_to_vtk
