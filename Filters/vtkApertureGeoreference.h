@@ -151,8 +151,9 @@ public:
    * the first, middle and last rows and columns (to a millionth of a cell). Ground cell sizes
    * then depend on the row alone, so GetRowCellSizesMetres holds for every cell, and the
    * meridian convergence is 0.
-   * False for other projections (transverse Mercator, conic, polar, sinusoidal), and without
-   * a CRS or a grid of at least 2 x 2 cells.
+   * False for other projections (transverse Mercator, conic, polar, sinusoidal), without a
+   * CRS, and for a projection without a grid of at least 2 x 2 cells (a geographic or local
+   * CRS needs no grid: true for any).
    */
   bool HasMeridianColumns();
 

@@ -62,8 +62,9 @@ public:
 
   ///@{
   /**
-   * The instant. SetTime parses ISO 8601: "YYYY-MM-DD[THH:MM[:SS[.fff]]]" followed by "Z",
-   * "±HH:MM", "±HHMM" or "±HH", or by nothing: a local time in TimeZone. False (and the
+   * The instant. SetTime parses ISO 8601: "YYYY-MM-DD" (midnight, a local time in TimeZone)
+   * or "YYYY-MM-DDTHH:MM[:SS[.fff]]" followed by "Z", "±HH:MM", "±HHMM" or "±HH", or by
+   * nothing: a local time in TimeZone (a date alone takes no offset). False (and the
    * previous time kept) for text that does not parse, an impossible date, a year outside
    * −2000..6000, a local time without a TimeZone, or one that a clock change skips or repeats.
    * There is no default time: until one is set, GetUnixTime is NaN and Compute() fails

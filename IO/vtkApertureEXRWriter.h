@@ -28,7 +28,8 @@
  * Samples are converted to 32-bit float (PixelType FLOAT, the default) or 16-bit half (HALF) in
  * every channel: doubles and integers above 2^24 lose precision in FLOAT; HALF keeps 11
  * significant bits (relative error <= 2^-11; below its smallest normal number, 6.1e-5, absolute
- * error <= 2^-25, 3e-8) and turns magnitudes above 65504 into infinities.
+ * error <= 2^-25, 3e-8), rounds magnitudes up to 65520 to its largest, 65504, and turns
+ * larger ones into infinities.
  * NaN (Aperture's nodata) is written as NaN in both.
  *
  * Compression: lossless only, ZIP (default; 16 scanlines per block), ZIPS (1), RLE (1),

@@ -128,7 +128,7 @@ public:
    * ap_light_sky_lookup), `azimuths` x `elevations` x `radii` RGB tuples, uploaded as a small
    * float texture (again only when the table or its MTime changes). nullptr: back to the
    * uniform SkyRadiance. Switching between a table and none compiles the other shader variant
-   * (and uploads the geometry once); replacing one table by another, as when the sun moves,
+   * (the geometry is not uploaded again); replacing one table by another, as when the sun moves,
    * does not. Wrong sizes are an error, and the previous sky (table or uniform) stays. The
    * table's values may change in place (Modified() uploads them); its size may not: a table
    * of other sizes at a draw or ComputeReference is an error there, and the uniform sky

@@ -416,8 +416,10 @@ void TestAgainstReference()
       }
     }
   }
+  const int beforeTable = s.Mapper->GetGeometryUploads();
   s.Mapper->SetSkyTable(table, na, ne, nr);
   check("a sky table");
+  AP_CHECK(s.Mapper->GetGeometryUploads() == beforeTable); // (another shader variant only)
   s.Mapper->SetShadingFrequency(vtkApertureLightingMapper::PER_VERTEX);
   check("per-vertex shading");
   s.Mapper->SetShadingFrequency(vtkApertureLightingMapper::PER_FRAGMENT);
