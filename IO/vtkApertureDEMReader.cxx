@@ -561,9 +561,12 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
   // Decimation's blocks align to the level's top-left corner, not the window's, so that every
   // window of a raster reads cells of one grid: the window grows to the blocks it touches, less
   // a partial block at the level's east or south edge.
+  vtkTypeInt64 lost[2] = { 0, 0 }; // the window's columns and rows in such a partial block
   for (int a = 0; a < 2; ++a)
   {
     const vtkTypeInt64 f = d.Factor, size = a ? levelY : levelX;
+    const vtkTypeInt64 reach = d.Window[a] + d.Window[a + 2], kept = size / f * f;
+    lost[a] = reach > kept ? reach - std::max<vtkTypeInt64>(kept, d.Window[a]) : 0;
     const vtkTypeInt64 first = d.Window[a] / f;
     const vtkTypeInt64 end = std::min((d.Window[a] + d.Window[a + 2] + f - 1) / f, size / f);
     d.Window[a] = static_cast<int>(first * f);
@@ -610,6 +613,7 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
   d.Origin[0] = west + 0.5 * d.Spacing[0];
   d.Origin[1] = south + 0.5 * d.Spacing[1];
   const int dropped = levelX % d.Factor;
+  bool told = false;
   if (dropped && d.Window[0] == 0 && d.Window[2] == levelX - dropped)
   {
     // A global DEM's east and west edges join (vtkApertureGeoreference::WrapsAround); a
@@ -633,7 +637,33 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
                       << levelX << " keeps them joined (" << below
                       << (above < levelX ? " or " + std::to_string(above) : std::string())
                       << ")");
+      told = true;
     }
+  }
+  if (told)
+  {
+    lost[0] = 0; // (its columns said above)
+  }
+  if (lost[0] || lost[1])
+  {
+    // (dropped silently until 2026-12-06: cells with data at the edge a user asked for)
+    std::ostringstream what;
+    if (lost[0])
+    {
+      what << "its last " << (lost[0] == 1 ? "column" : std::to_string(lost[0]) + " columns")
+           << " (east)";
+    }
+    if (lost[1])
+    {
+      what << (lost[0] ? " and " : "") << "its last "
+           << (lost[1] == 1 ? "row" : std::to_string(lost[1]) + " rows")
+           << (d.SouthUp ? " (north)" : " (south)");
+    }
+    vtkWarningMacro(<< "'" << name << "': decimation by " << d.Factor << " leaves out "
+                    << what.str() << (d.Level >= 0 ? " of the overview" : "")
+                    << ", partial " << d.Factor << " x " << d.Factor
+                    << " blocks; a factor dividing " << levelX << " x " << levelY
+                    << " keeps every cell");
   }
 
   // Sample conversion: nodata, scale/offset and vertical unit, from the base band.

@@ -30,7 +30,8 @@
  * - Decimation: an integer factor f >= 1; each output cell is the mean of the valid cells of an
  *   f x f block (nodata ignored; all-nodata blocks stay nodata); a partial block at the end
  *   of the file's columns or rows is dropped (the east or south edge; the north one for a
- *   south-up raster, whose file rows run north). Applied to the overview level; the blocks
+ *   south-up raster, whose file rows run north), with a warning naming the columns and rows
+ *   left out when the SubWindow reaches them. Applied to the overview level; the blocks
  *   align to its top-left corner (its first row and column in the file), not to the
  *   SubWindow's, which gets every block it touches, so that the windows of one raster read
  *   cells of one grid. A global DEM (360 degrees of longitude) read across its

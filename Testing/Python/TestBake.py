@@ -772,6 +772,12 @@ class TestBake(unittest.TestCase):
                  "the partial blocks at the east and south edges)")):
             status, stdout, err = run("bake", dem, out, *options)
             self.assertEqual(status, 1, err)
+            if "--decimate" in options:  # (the reader's warning of the blocks left out first)
+                warning, err = err.split("\n", 1)
+                self.assertEqual(warning, "aperture: warning: '%s': decimation by 3 leaves out "
+                                 "its last 2 columns (east) and its last 2 rows (south), partial "
+                                 "3 x 3 blocks; a factor dividing 200 x 170 keeps every cell"
+                                 % dem)
             self.assertEqual(err.strip(), "aperture: error: " + message, options)
             self.assertFalse(os.path.exists(out))
         # (a mistake in the option itself: a usage error)

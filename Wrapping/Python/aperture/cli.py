@@ -66,7 +66,9 @@ def _add_read_options(parser, dem_required=False, srcwin_help=None, dem_option=N
                    help="read GDAL overview level K (0-based) instead of full resolution")
     g.add_argument("--decimate", type=_c_int, default=_READ_DEFAULTS["decimate"], metavar="F",
                    help="average F x F blocks of cells (nodata ignored), aligned to the "
-                        "raster's top-left corner (a --srcwin gets every block it touches)")
+                        "raster's top-left corner (a --srcwin gets every whole block it "
+                        "touches; a partial block at the east or south edge is left out, with "
+                        "a warning)")
     g.add_argument("--srs", type=_crs_text, metavar="CRS",
                    help="use this CRS instead of the file's (EPSG:xxxx, WKT or PROJ string)")
     g.add_argument("--zfactor", type=_parse_zfactor, default=_READ_DEFAULTS["zfactor"],
