@@ -715,7 +715,8 @@ class TestBake(unittest.TestCase):
         south = same_in_strips(rough_dem(self.path("south.tif"), (700, 150), 12, np.s_[:500, :]))
         self.assertTrue(np.isfinite(south["SkyViewFactor"][0][500:]).all())
         # a window out at sea (its rows 400..599 and the 52 around them: no data) is written,
-        # nodata, with a warning; one reaching within 1500 m of the shore is not warned about
+        # nodata, with a warning; so is one whose search reaches the shore (silent until
+        # 2026-12-06), at once and in strips; one holding a cell of land is not warned about
         sea = self.path("coast-sea.tif")
         status, _, err = run("bake", dem, sea, *options, "--srcwin", 10, 400, 100, 200,
                              "--exr", self.path("coast-sea.exr"))
@@ -728,7 +729,15 @@ class TestBake(unittest.TestCase):
         for name in whole:
             np.testing.assert_array_equal(window[name][0], whole[name][0][400:600, 10:110],
                                           err_msg=name)
-        status, _, err = run("bake", dem, sea, *options, "--srcwin", 10, 240, 100, 200)
+        for strips in ([], ["--max-memory", "3M"]):  # (2 strips, without HorizonAngles)
+            status, out, err = run("bake", dem, sea, *options[:4], "--srcwin", 10, 240, 100,
+                                   400, *strips)
+            self.assertEqual((status, err), (0, "aperture: warning: every cell of --srcwin 10 "
+                             "240 100 400 is nodata (the DEM around it has data), and so is "
+                             "every product\n"))
+            self.assertIn("strips" if strips else "wrote", out)
+        status, _, err = run("bake", dem, sea, *options[:4], "--srcwin", 10, 199, 100, 400,
+                             "--max-memory", "3M")
         self.assertEqual((status, err), (0, ""))
         # no data anywhere: an error at once (the reader's) and in strips (when the first strip
         # has none, the rest of the DEM is read for data before any is baked), no output left

@@ -1919,6 +1919,17 @@ def _write_strips(watcher, clip, window, extents, outputs, guard, started, compu
             output.AbandonStrips()
 
 
+def _has_heights(image, extent):
+    """Whether any cell of `extent` (within the image's) has an elevation (not NaN)."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    e = image.GetExtent()
+    z = vtk_to_numpy(image.GetPointData().GetArray("Elevation"))
+    z = z.reshape(e[3] - e[2] + 1, e[1] - e[0] + 1)
+    return bool(np.isfinite(z[extent[2] - e[2]:extent[3] - e[2] + 1,
+                              extent[0] - e[0]:extent[1] - e[0] + 1]).any())
+
+
 def _outputs_left(error, written=(), removed=()):
     """`error` (an ApertureError) with what a failed bake leaves of its other outputs: the
     user need not guess whether a file there is this bake's, whole."""
@@ -2046,6 +2057,8 @@ def _bake(args, products, progress):
     nodata = []
     sky.AddObserver("EndEvent", lambda obj, _: nodata.append(obj.GetInputAllNodata()))
 
+    heights = []  # whether each strip of the window (or all of it) has a cell with a height
+
     def first_strip(k):
         # A first strip of nodata, reading the whole DEM's rows in strips: the rest is read
         # for a cell with data, so that a DEM without one is refused now, the reader's way,
@@ -2054,6 +2067,7 @@ def _bake(args, products, progress):
                 not _has_data(args, watcher, whole, rows):
             raise ApertureError("every cell of '%s' band %d is nodata"
                                 % (_dem_path(args), args.band or 1))
+        heights.append(_has_heights(clip.GetOutput(), extents[k]))
     provenance = _provenance(args, products, reader)
     definitions = {name: (unit, text) for name, unit, text in PRODUCTS}
     writer.SetFileName(native_path(args.output))
@@ -2124,6 +2138,7 @@ def _bake(args, products, progress):
                 # (the reader has run: the sky filter alone)
                 result = watcher.update(sky, "bake", extent=window)
                 sweep_seconds = time.perf_counter() - sweep_start
+                heights.append(_has_heights(result, window))
                 image = _product_image(result, products)
                 nx, ny, _ = image.GetDimensions()
                 for output, path in outputs:
@@ -2143,6 +2158,11 @@ def _bake(args, products, progress):
         _warn("every cell of the DEM read for --srcwin %s (the window and %s around it) is "
               "nodata, and so is every product" % (" ".join(map(str, args.srcwin or ())),
                                                    "%g m" % (args.radius or 0)))
+    elif heights and not any(heights):
+        # (a window at sea beside land, whose search reads the land: written silently until
+        # 2026-12-06, where a radius that read only the sea had this warning)
+        _warn("every cell of --srcwin %s is nodata (the DEM around it has data), and so is "
+              "every product" % " ".join(map(str, args.srcwin or ())))
     written = [os.path.abspath(path) for _, path in outputs]
     if progress:
         progress(1.0)
