@@ -34,6 +34,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <new>
+#include <numeric>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -258,6 +259,7 @@ vtkApertureDEMReader::vtkApertureDEMReader()
   , BandIndex(0)
   , OverviewLevel(-1)
   , Decimation(1)
+  , PartialBlockWarning(true)
   , OverrideCRS(nullptr)
   , MemoryLimit(0)
   , MetresPerElevationUnit(0.0)
@@ -640,30 +642,56 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
       told = true;
     }
   }
-  if (told)
-  {
-    lost[0] = 0; // (its columns said above)
-  }
-  if (lost[0] || lost[1])
+  if (this->PartialBlockWarning && (lost[0] || lost[1]))
   {
     // (dropped silently until 2026-12-06: cells with data at the edge a user asked for)
     std::ostringstream what;
-    if (lost[0])
+    if (lost[0] && !told) // (a global DEM's columns are said above)
     {
       what << "its last " << (lost[0] == 1 ? "column" : std::to_string(lost[0]) + " columns")
            << " (east)";
     }
     if (lost[1])
     {
-      what << (lost[0] ? " and " : "") << "its last "
+      what << (what.tellp() > 0 ? " and " : "") << "its last "
            << (lost[1] == 1 ? "row" : std::to_string(lost[1]) + " rows")
            << (d.SouthUp ? " (north)" : " (south)");
     }
-    vtkWarningMacro(<< "'" << name << "': decimation by " << d.Factor << " leaves out "
-                    << what.str() << (d.Level >= 0 ? " of the overview" : "")
-                    << ", partial " << d.Factor << " x " << d.Factor
-                    << " blocks; a factor dividing " << levelX << " x " << levelY
-                    << " keeps every cell");
+    // the factors nearest that keep every cell: those dividing the sizes of the axes with
+    // cells left out (at most half of each, for 2 x 2 cells)
+    const int g = std::gcd(lost[0] ? levelX : 0, lost[1] ? levelY : 0);
+    const int most =
+      std::min(g, std::min(lost[0] ? levelX / 2 : VTK_INT_MAX, lost[1] ? levelY / 2 : VTK_INT_MAX));
+    const std::string sizes = lost[0] && lost[1] ? std::to_string(levelX) + " and " +
+        std::to_string(levelY)
+                                                 : std::to_string(g);
+    int below = d.Factor - 1, above = d.Factor + 1;
+    while (below > 1 && g % below)
+    {
+      --below;
+    }
+    while (above <= most && g % above)
+    {
+      ++above;
+    }
+    std::ostringstream remedy;
+    if (below > 1 || above <= most)
+    {
+      remedy << "; a factor dividing " << sizes << " keeps every cell ("
+             << (below > 1 ? std::to_string(below) : std::string())
+             << (below > 1 && above <= most ? " or " : "")
+             << (above <= most ? std::to_string(above) : std::string()) << ")";
+    }
+    else
+    {
+      remedy << " (no factor above 1 divides " << sizes << ")";
+    }
+    if (what.tellp() > 0)
+    {
+      vtkWarningMacro(<< "'" << name << "': decimation by " << d.Factor << " leaves out "
+                      << what.str() << (d.Level >= 0 ? " of the overview" : "") << ", partial "
+                      << d.Factor << " x " << d.Factor << " blocks" << remedy.str());
+    }
   }
 
   // Sample conversion: nodata, scale/offset and vertical unit, from the base band.
@@ -1072,6 +1100,7 @@ void vtkApertureDEMReader::PrintSelf(ostream& os, vtkIndent indent)
      << this->SubWindow[2] << ", " << this->SubWindow[3] << "\n";
   os << indent << "OverviewLevel: " << this->OverviewLevel << "\n";
   os << indent << "Decimation: " << this->Decimation << "\n";
+  os << indent << "PartialBlockWarning: " << this->PartialBlockWarning << "\n";
   os << indent << "OverrideCRS: " << (this->OverrideCRS ? this->OverrideCRS : "(none)") << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
   os << indent << "MetresPerElevationUnit: " << this->MetresPerElevationUnit << "\n";

@@ -119,6 +119,15 @@ public:
   ///@}
 
   ///@{
+  /** Whether a warning names the cells that decimation's partial blocks leave out where the
+   *  SubWindow reaches them (default on). A caller that reads the whole grid for a window of
+   *  its own (with a halo around it) turns it off and asks a reader with that window. */
+  vtkSetMacro(PartialBlockWarning, bool);
+  vtkGetMacro(PartialBlockWarning, bool);
+  vtkBooleanMacro(PartialBlockWarning, bool);
+  ///@}
+
+  ///@{
   /** CRS to use instead of the file's (WKT, "EPSG:xxxx", PROJ string); empty = the file's. */
   vtkSetStringMacro(OverrideCRS);
   vtkGetStringMacro(OverrideCRS);
@@ -200,6 +209,7 @@ protected:
   int SubWindow[4];
   int OverviewLevel;
   int Decimation;
+  bool PartialBlockWarning;
   char* OverrideCRS;
   vtkTypeInt64 MemoryLimit;
   double MetresPerElevationUnit;

@@ -338,18 +338,27 @@ void TestWindowsAndLevels()
   // the partial blocks left out (column 6, row 4) are said (silently until 2026-12-06); a
   // window that does not reach them, or a factor that divides the raster, says nothing
   AP_CHECK_CONTAINS(dec.Warnings->GetWarningMessage(), "windows.tif': decimation by 2 leaves "
-    "out its last column (east) and its last row (south), partial 2 x 2 blocks; a factor "
-    "dividing 7 x 5 keeps every cell");
+    "out its last column (east) and its last row (south), partial 2 x 2 blocks (no factor "
+    "above 1 divides 7 and 5)");
   const struct
   {
     int window[4], factor;
     const char* said; // nullptr: nothing
   } partial[] = { { { 0, 0, 6, 4 }, 2, nullptr }, { { 0, 0, 0, 0 }, 1, nullptr },
-    { { 3, 0, 0, 4 }, 2, "leaves out its last column (east), partial 2 x 2" },
-    { { 0, 0, 6, 0 }, 2, "leaves out its last row (south), partial 2 x 2" } };
+    { { 3, 0, 0, 4 }, 2, "leaves out its last column (east), partial 2 x 2 blocks (no factor "
+                         "above 1 divides 7)" },
+    { { 0, 0, 6, 0 }, 2, "leaves out its last row (south), partial 2 x 2" }, { { 0 }, 1, "" } };
   for (const auto& u : partial)
   {
     Read part(path);
+    if (u.said && !*u.said) // (off: nothing said where it would be)
+    {
+      part.Reader->PartialBlockWarningOff();
+      part.Reader->SetDecimation(2);
+      part.Update();
+      AP_CHECK(part.Ok == 1 && !part.Warnings->GetWarning());
+      continue;
+    }
     part.Reader->SetSubWindow(u.window[0], u.window[1], u.window[2], u.window[3]);
     part.Reader->SetDecimation(u.factor);
     part.Update();
@@ -432,12 +441,16 @@ void TestGlobalDecimation()
                    "last 1 of 36 columns (a partial block): the grid read does not, so its east "
                    "and west edges do not join; a factor dividing 36 keeps them joined (4 or 6)" },
     { &path, 7, 36, "decimation by 7 drops its last 1 of 36 columns" },
-    { &path, 4, 0, nullptr }, { &path, 5, 20, nullptr }, { &shortPath, 5, 0, nullptr } };
+    { &path, 4, 0, nullptr }, { &path, 5, 20, nullptr }, { &shortPath, 5, 0, nullptr },
+    // (its rows too: one warning of them, naming the factors that keep the rows and columns)
+    { &path, -5, 0, "global.tif': decimation by 5 leaves out its last 3 rows (south), partial "
+                    "5 x 5 blocks; a factor dividing 36 and 18 keeps every cell (3 or 6)" } };
   for (const Case& c : cases)
   {
     Read r(*c.file);
-    r.Reader->SetDecimation(c.factor);
-    r.Reader->SetSubWindow(0, 0, c.window, 18 / c.factor * c.factor); // (columns 0: all)
+    const int f = std::abs(c.factor); // (negative: all 18 rows)
+    r.Reader->SetDecimation(f);
+    r.Reader->SetSubWindow(0, 0, c.window, c.factor < 0 ? 0 : 18 / f * f); // (0: to the edge)
     r.Update();
     AP_CHECK(r.Ok == 1);
     AP_CHECK(!!r.Warnings->GetWarning() == (c.warning != nullptr));

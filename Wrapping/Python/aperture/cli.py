@@ -67,8 +67,8 @@ def _add_read_options(parser, dem_required=False, srcwin_help=None, dem_option=N
     g.add_argument("--decimate", type=_c_int, default=_READ_DEFAULTS["decimate"], metavar="F",
                    help="average F x F blocks of cells (nodata ignored), aligned to the "
                         "raster's top-left corner (a --srcwin gets every whole block it "
-                        "touches; a partial block at the east or south edge is left out, with "
-                        "a warning)")
+                        "touches; a partial block at the east or south edge, north if the "
+                        "raster is south-up, is left out, with a warning)")
     g.add_argument("--srs", type=_crs_text, metavar="CRS",
                    help="use this CRS instead of the file's (EPSG:xxxx, WKT or PROJ string)")
     g.add_argument("--zfactor", type=_parse_zfactor, default=_READ_DEFAULTS["zfactor"],
@@ -1786,6 +1786,13 @@ def _window_reading(args, watcher, sky):
     its halo), the grid's whole extent). Nothing is read."""
     from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
     reader = _dem_reader(args, watcher, subwindow=False)
+    if args.srcwin and args.decimate > 1:
+        # (the partial blocks at the edges said only when --srcwin reaches them, as a reader
+        # of the window says them: the whole grid's reader warned for any window until
+        # 2026-12-06; that reader's errors are not this reading's: a window under 2 x 2
+        # cells is baked all the same)
+        reader.PartialBlockWarningOff()
+        _dem_reader(args, Watcher(on_warning=_warn)).UpdateInformation()
     sky.SetInputConnection(reader.GetOutputPort())
     watcher.update_information(sky)
     whole = reader.GetOutputInformation(0).Get(sddp.WHOLE_EXTENT())
