@@ -385,13 +385,12 @@ bool vtkApertureGeoreference::CheckGrid()
   {
     return true;
   }
+  const bool cells = std::isfinite(o[0]) && std::isfinite(o[1]) && s[0] > 0.0 && s[1] > 0.0 &&
+    std::isfinite(s[0]) && std::isfinite(s[1]) && n[0] >= 1 && n[1] >= 1;
   std::ostringstream msg;
-  msg << "the grid describes no cells: origin " << o[0] << ", " << o[1] << ", cell size " << s[0]
-      << " x " << s[1] << " (each must be positive), " << n[0] << " x " << n[1] << " cells"
-      << (std::isfinite(o[0]) && std::isfinite(o[1]) && s[0] > 0.0 && s[1] > 0.0 &&
-             std::isfinite(s[0]) && std::isfinite(s[1]) && n[0] >= 1 && n[1] >= 1
-           ? " (its far edges are not finite numbers)"
-           : "");
+  msg << (cells ? "the grid's far edges are not finite numbers" : "the grid describes no cells")
+      << ": origin " << o[0] << ", " << o[1] << ", cell size " << s[0] << " x " << s[1]
+      << (cells ? "" : " (each must be positive)") << ", " << n[0] << " x " << n[1] << " cells";
   this->Impl->Error = msg.str();
   return false;
 }

@@ -514,14 +514,11 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     gt[4] = 0.0;
     gt[5] = -spacing[1];
   }
-  // (of the whole extent, which a strip is part of: a spacing of 1e308 wrote a geotransform of
-  // inf, which no reader takes, until 2026-12-06)
-  if (!std::isfinite(gt[0]) || !std::isfinite(gt[3]) || !std::isfinite(gt[0] + nx * gt[1]) ||
-    !std::isfinite(gt[3] + ny * gt[5]))
+  // (of the whole extent, which a strip is part of)
+  const std::string edges = vtkApertureGeoTransformProblem(path, gt, nx, ny, origin, spacing);
+  if (!edges.empty())
   {
-    vtkErrorMacro(<< "cannot write '" << path << "': the grid's edges are not finite numbers "
-                  << "(origin " << origin[0] << ", " << origin[1] << ", spacing " << spacing[0]
-                  << ", " << spacing[1] << ", " << nx << " x " << ny << " cells)");
+    vtkErrorMacro(<< edges);
     return false;
   }
   if (!hasCRS)

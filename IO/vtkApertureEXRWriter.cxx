@@ -767,13 +767,11 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
     geo->SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],
       spacing[0], spacing[1], nx, ny);
     geo->GetGeoTransform(gt);
-    if (!std::isfinite(gt[0]) || !std::isfinite(gt[3]) || !std::isfinite(gt[0] + nx * gt[1]) ||
-      !std::isfinite(gt[3] + ny * gt[5]))
+    // (of the whole extent, which a strip is part of)
+    const std::string edges = vtkApertureGeoTransformProblem(path, gt, nx, ny, origin, spacing);
+    if (!edges.empty())
     {
-      // (of the whole extent, which a strip is part of; its reader refused the file)
-      vtkErrorMacro(<< "cannot write '" << path << "': the grid's edges are not finite numbers "
-                    << "(origin " << origin[0] << ", " << origin[1] << ", spacing " << spacing[0]
-                    << ", " << spacing[1] << ", " << nx << " x " << ny << " cells)");
+      vtkErrorMacro(<< edges);
       return 0;
     }
     // %.17g (round-trips every double), in the classic locale so that a program locale with

@@ -66,9 +66,9 @@
  * not numeric or does not have one tuple per point, a color array that does not exist or has
  * neither 3 nor 4 components, two arrays giving the same channel name, nothing to write, a
  * `CRS` array with an unusable georeference (rotated direction matrix, non-positive spacing,
- * edges beyond the range of doubles, CRS GDAL cannot parse), and OpenEXR failing to create or write the file (its own message is
- * included). An unknown compression name is an error of SetCompression(const char*), which
- * then keeps the previous setting.
+ * edges beyond the range of doubles, CRS GDAL cannot parse), and OpenEXR failing to create or
+ * write the file (its own message is included). An unknown compression name is an error of
+ * SetCompression(const char*), which then keeps the previous setting.
  *
  * Example:
  * @code

@@ -10,8 +10,10 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -157,6 +159,24 @@ inline std::string vtkApertureMissingFileMessage(const std::string& path)
   return (errno == ENOENT || errno == ENOTDIR)
     ? "file '" + path + "' does not exist"
     : "cannot read '" + path + "': " + std::strerror(errno);
+}
+
+/** Why a writer cannot record the geotransform `gt` of an `nx` x `ny` grid of the image of
+ *  `origin` and `spacing` in `path`: its edges are not finite numbers (a spacing of 1e308
+ *  wrote a geotransform of inf, which no reader takes, until 2026-12-06); "" when it can. */
+inline std::string vtkApertureGeoTransformProblem(const std::string& path, const double gt[6],
+  int nx, int ny, const double origin[3], const double spacing[3])
+{
+  if (std::isfinite(gt[0]) && std::isfinite(gt[3]) && std::isfinite(gt[0] + nx * gt[1]) &&
+    std::isfinite(gt[3] + ny * gt[5]))
+  {
+    return std::string();
+  }
+  std::ostringstream msg;
+  msg << "cannot write '" << path << "': the grid's edges are not finite numbers (origin "
+      << origin[0] << ", " << origin[1] << ", spacing " << spacing[0] << ", " << spacing[1]
+      << ", " << nx << " x " << ny << " cells)";
+  return msg.str();
 }
 
 #endif

@@ -219,8 +219,8 @@ void TestErrors()
   // edges beyond the doubles: said so
   geo->SetGrid(0.0, 0.0, 1e308, 1.0, 10, 10);
   AP_CHECK(!geo->GetBoundsLonLat(bounds));
-  AP_CHECK_CONTAINS(geo->GetErrorMessage(), " 10 x 10 cells (its far edges are not finite "
-                                            "numbers)");
+  AP_CHECK_CONTAINS(geo->GetErrorMessage(), "the grid's far edges are not finite numbers: "
+                                            "origin 0, 0, cell size 1e+308 x 1, 10 x 10 cells");
   geo->SetGrid(0.0, 0.0, 1e-300, 1e-300, 10, 10);
   AP_CHECK(!geo->GetCellSizeMetres(size));
   AP_CHECK_CONTAINS(geo->GetErrorMessage(), "the grid's cells have no positive size on the "
