@@ -11,6 +11,7 @@ vtkApertureLightingMapper, with vtkApertureSolarPosition giving the sun's direct
 mesh frame, its colour and strength, and the sky's radiance."""
 import argparse
 import math
+import re
 import sys
 
 from vtkmodules.vtkIOImage import vtkPNGWriter
@@ -65,9 +66,11 @@ def main():
     print("sun: azimuth %.2f, elevation %.2f deg, %.0f W/m2 direct normal"
           % (sun.GetAzimuth(), sun.GetElevation(), sun.GetDirectNormalIrradiance()))
     if sun.GetElevation() < 0.0:  # (the sky models have no twilight: a black terrain)
-        print("warning: the sun is %.2f degrees below the horizon at %s in %s: the terrain is "
+        offset = re.search(r"(Z|[+-][0-9:]+)$", args.at.split("T")[-1])  # (--tz unused)
+        print("warning: the sun is %.2f degrees below the horizon at %s%s: the terrain is "
               "unlit (black); give the DEM's local time and zone with --at and --tz"
-              % (-sun.GetElevation(), args.at, args.tz), file=sys.stderr)
+              % (-sun.GetElevation(), args.at, "" if offset else " in " + args.tz),
+              file=sys.stderr)
 
     # 5. the mapper: uniforms only, so moving the sun later costs one draw
     mapper = aperture.vtkApertureLightingMapper()

@@ -2066,7 +2066,7 @@ def _bake(args, products, progress):
 
     heights = []  # whether each strip of the window (or all of it) has a cell with a height
 
-    def first_strip(k):
+    def after_strip(k):
         # A first strip of nodata, reading the whole DEM's rows in strips: the rest is read
         # for a cell with data, so that a DEM without one is refused now, the reader's way,
         # not after baking and writing it all (a 60000^2 DEM of nodata: 50 s instead of 450).
@@ -2128,7 +2128,7 @@ def _bake(args, products, progress):
             sweep_start = time.perf_counter()
             with _abort_on_interrupt(sky, *writers) as guard:
                 _write_strips(watcher, clip, window, extents, outputs, guard, started,
-                              computed=first_strip)
+                              computed=after_strip)
             sweep_seconds = time.perf_counter() - sweep_start
             nx, ny = _extent_size(window)
         else:
@@ -2161,7 +2161,7 @@ def _bake(args, products, progress):
             if os.path.isfile(path):  # (never a device or a pipe: _check_outputs refused them)
                 os.remove(path)
         raise
-    if nodata and all(nodata):  # (a part of the DEM: a window with a radius; first_strip)
+    if nodata and all(nodata):  # (a part of the DEM: a window with a radius; after_strip)
         _warn("every cell of the DEM read for --srcwin %s (the window and %s around it) is "
               "nodata, and so is every product" % (" ".join(map(str, args.srcwin or ())),
                                                    "%g m" % (args.radius or 0)))
