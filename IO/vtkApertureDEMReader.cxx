@@ -137,6 +137,24 @@ void LevelSpan(int w, int size, int full, int level, int& first, int& count)
   first = static_cast<int>(std::floor(w / scale));
   count = std::min(level, static_cast<int>(std::ceil(end / scale))) - first;
 }
+
+// The decimation factors nearest `f` that divide `n`, within lowest..highest, as the
+// decimation warnings name them: "4 or 6", "4", "6", or "" when none is.
+std::string NearestDivisors(int n, int f, int lowest, int highest)
+{
+  int below = f - 1, above = f + 1;
+  while (below >= lowest && n % below)
+  {
+    --below;
+  }
+  while (above <= highest && n % above)
+  {
+    ++above;
+  }
+  const bool hasBelow = below >= lowest, hasAbove = above <= highest;
+  return (hasBelow ? std::to_string(below) : std::string()) +
+    (hasBelow && hasAbove ? " or " : "") + (hasAbove ? std::to_string(above) : std::string());
+}
 } // namespace
 
 // What RequestInformation resolved from the file and the options; RequestData reuses it.
@@ -623,22 +641,13 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
     geo->SetGrid(gt[0] + 0.5 * levelDx, 0.0, levelDx, 1.0, levelX, 2);
     if (geo->WrapsAround())
     {
-      int below = d.Factor, above = d.Factor;
-      while (levelX % below)
-      {
-        --below;
-      }
-      while (above < levelX && levelX % above)
-      {
-        ++above;
-      }
+      // (1 divides any: a factor below is always named)
       vtkWarningMacro(<< "'" << name << "' spans 360 degrees of longitude, but decimation by "
                       << d.Factor << " drops its last " << dropped << " of " << levelX
                       << " columns (a partial block): the grid read does not, so its east and "
                          "west edges do not join; a factor dividing "
-                      << levelX << " keeps them joined (" << below
-                      << (above < levelX ? " or " + std::to_string(above) : std::string())
-                      << ")");
+                      << levelX << " keeps them joined ("
+                      << NearestDivisors(levelX, d.Factor, 1, levelX - 1) << ")");
       told = true;
     }
   }
@@ -660,37 +669,20 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
     // the factors nearest that keep every cell: those dividing the sizes of the axes with
     // cells left out (at most half of each, for 2 x 2 cells)
     const int g = std::gcd(lost[0] ? levelX : 0, lost[1] ? levelY : 0);
-    const int most =
-      std::min(g, std::min(lost[0] ? levelX / 2 : VTK_INT_MAX, lost[1] ? levelY / 2 : VTK_INT_MAX));
-    const std::string sizes = lost[0] && lost[1] ? std::to_string(levelX) + " and " +
-        std::to_string(levelY)
-                                                 : std::to_string(g);
-    int below = d.Factor - 1, above = d.Factor + 1;
-    while (below > 1 && g % below)
-    {
-      --below;
-    }
-    while (above <= most && g % above)
-    {
-      ++above;
-    }
-    std::ostringstream remedy;
-    if (below > 1 || above <= most)
-    {
-      remedy << "; a factor dividing " << sizes << " keeps every cell ("
-             << (below > 1 ? std::to_string(below) : std::string())
-             << (below > 1 && above <= most ? " or " : "")
-             << (above <= most ? std::to_string(above) : std::string()) << ")";
-    }
-    else
-    {
-      remedy << " (no factor above 1 divides " << sizes << ")";
-    }
+    const int most = std::min(
+      { g, lost[0] ? levelX / 2 : VTK_INT_MAX, lost[1] ? levelY / 2 : VTK_INT_MAX });
+    const std::string sizes = lost[0] && lost[1]
+      ? std::to_string(levelX) + " and " + std::to_string(levelY)
+      : std::to_string(g);
+    const std::string factors = NearestDivisors(g, d.Factor, 2, most);
     if (what.tellp() > 0)
     {
       vtkWarningMacro(<< "'" << name << "': decimation by " << d.Factor << " leaves out "
                       << what.str() << (d.Level >= 0 ? " of the overview" : "") << ", partial "
-                      << d.Factor << " x " << d.Factor << " blocks" << remedy.str());
+                      << d.Factor << " x " << d.Factor << " blocks"
+                      << (factors.empty() ? " (no factor above 1 divides " + sizes + ")"
+                                          : "; a factor dividing " + sizes +
+                              " keeps every cell (" + factors + ")"));
     }
   }
 
