@@ -391,6 +391,19 @@ def _read(watcher, reader, extent=None):
         return watcher.update(reader, extent=extent)
 
 
+def _has_heights(image, extent=None):
+    """Whether any cell of `extent` (within the image's; default all of it) has an elevation
+    (not NaN, the reader's nodata)."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    e = image.GetExtent()
+    extent = extent or e
+    z = vtk_to_numpy(image.GetPointData().GetArray("Elevation"))
+    z = z.reshape(e[3] - e[2] + 1, e[1] - e[0] + 1)
+    return bool(np.isfinite(z[extent[2] - e[2]:extent[3] - e[2] + 1,
+                              extent[0] - e[0]:extent[1] - e[0] + 1]).any())
+
+
 def _has_data(args, watcher, whole, rows):
     """Whether any cell of the grid the arguments read (band, overview, decimation; `whole`,
     its extent) has data, read in strips of `rows` rows."""
@@ -398,8 +411,7 @@ def _has_data(args, watcher, whole, rows):
     for top in range(whole[3], whole[2] - 1, -rows):
         image = _read(watcher, reader, [whole[0], whole[1], max(whole[2], top - rows + 1), top,
                                         0, 0])
-        low, high = image.GetPointData().GetArray("Elevation").GetRange()  # (NaN skipped)
-        if low <= high:
+        if _has_heights(image):
             return True
     return False
 
@@ -425,8 +437,7 @@ def _read_centre(args, watcher):
         mid = whole[a] + (n - 1) // 2
         block[a:a + 2] = (mid - 1, mid + 1) if n % 2 and n >= 3 else (mid, mid + (n > 1))
     image = _read(watcher, reader, block)
-    low, high = image.GetPointData().GetArray("Elevation").GetRange()  # (NaN skipped)
-    return image if low <= high else _read(watcher, reader, list(whole))
+    return image if _has_heights(image) else _read(watcher, reader, list(whole))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -1924,17 +1935,6 @@ def _write_strips(watcher, clip, window, extents, outputs, guard, started, compu
     finally:
         for output in begun:
             output.AbandonStrips()
-
-
-def _has_heights(image, extent):
-    """Whether any cell of `extent` (within the image's) has an elevation (not NaN)."""
-    import numpy as np
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    e = image.GetExtent()
-    z = vtk_to_numpy(image.GetPointData().GetArray("Elevation"))
-    z = z.reshape(e[3] - e[2] + 1, e[1] - e[0] + 1)
-    return bool(np.isfinite(z[extent[2] - e[2]:extent[3] - e[2] + 1,
-                              extent[0] - e[0]:extent[1] - e[0] + 1]).any())
 
 
 def _outputs_left(error, written=(), removed=()):
