@@ -379,14 +379,12 @@ bool vtkApertureGeoreference::CheckGrid()
   const double* o = this->GridOrigin;
   const double* s = this->GridSpacing;
   const int* n = this->GridSize;
-  if (std::isfinite(o[0]) && std::isfinite(o[1]) && s[0] > 0.0 && s[1] > 0.0 &&
-    std::isfinite(s[0]) && std::isfinite(s[1]) && n[0] >= 1 && n[1] >= 1 &&
-    std::isfinite(o[0] + n[0] * s[0]) && std::isfinite(o[1] + n[1] * s[1]))
+  const bool cells = std::isfinite(o[0]) && std::isfinite(o[1]) && s[0] > 0.0 && s[1] > 0.0 &&
+    std::isfinite(s[0]) && std::isfinite(s[1]) && n[0] >= 1 && n[1] >= 1;
+  if (cells && std::isfinite(o[0] + n[0] * s[0]) && std::isfinite(o[1] + n[1] * s[1]))
   {
     return true;
   }
-  const bool cells = std::isfinite(o[0]) && std::isfinite(o[1]) && s[0] > 0.0 && s[1] > 0.0 &&
-    std::isfinite(s[0]) && std::isfinite(s[1]) && n[0] >= 1 && n[1] >= 1;
   std::ostringstream msg;
   msg << (cells ? "the grid's far edges are not finite numbers" : "the grid describes no cells")
       << ": origin " << o[0] << ", " << o[1] << ", cell size " << s[0] << " x " << s[1]
