@@ -164,6 +164,16 @@ inline vtkDataArray* vtkApertureElevationArray(
   return nullptr;
 }
 
+// The elevation array a filter `self` reads from point data `pd`, and its name in `name`:
+// vtkApertureSelectedElevationName's choice (the selection, else `fallback`), looked up as
+// vtkApertureElevationArray does. nullptr with *problem set when there is none.
+inline vtkDataArray* vtkApertureSelectedElevation(vtkAlgorithm* self, vtkMTimeType made,
+  vtkDataSetAttributes* pd, const char* fallback, std::string& name, std::string* problem)
+{
+  name = vtkApertureSelectedElevationName(self, made, pd, fallback, problem);
+  return problem->empty() ? vtkApertureElevationArray(pd, name.c_str(), problem) : nullptr;
+}
+
 // "" when every point array of `pd` (elevations, and what the filters pass on) holds one
 // tuple per point of an nx x ny image, else the problem, naming the first that does not: an
 // image assembled by hand can disagree with itself, and copies of a short array read past it.

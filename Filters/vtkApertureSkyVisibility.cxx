@@ -711,11 +711,9 @@ int vtkApertureSkyVisibility::Execute(
   }
   const int nx = inExt[1] - inExt[0] + 1, ny = inExt[3] - inExt[2] + 1;
   std::string missing;
-  const std::string elevationName = vtkApertureSelectedElevationName(
-    this, this->ArraySelectionMade, input->GetPointData(), this->ElevationArrayName, &missing);
-  vtkDataArray* elevation = missing.empty()
-    ? vtkApertureElevationArray(input->GetPointData(), elevationName.c_str(), &missing)
-    : nullptr;
+  std::string elevationName;
+  vtkDataArray* elevation = vtkApertureSelectedElevation(this, this->ArraySelectionMade,
+    input->GetPointData(), this->ElevationArrayName, elevationName, &missing);
   if (!elevation)
   {
     vtkErrorMacro(<< missing);

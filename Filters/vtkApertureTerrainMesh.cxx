@@ -431,11 +431,9 @@ int vtkApertureTerrainMesh::Execute(
     return 0;
   }
   std::string missing;
-  const std::string elevationName = vtkApertureSelectedElevationName(
-    this, this->ArraySelectionMade, input->GetPointData(), this->ElevationArrayName, &missing);
-  vtkDataArray* elevation = missing.empty()
-    ? vtkApertureElevationArray(input->GetPointData(), elevationName.c_str(), &missing)
-    : nullptr;
+  std::string elevationName;
+  vtkDataArray* elevation = vtkApertureSelectedElevation(this, this->ArraySelectionMade,
+    input->GetPointData(), this->ElevationArrayName, elevationName, &missing);
   if (!elevation)
   {
     vtkErrorMacro(<< missing);
