@@ -143,9 +143,12 @@ struct StripLayout
   }
 };
 
-// Fill `rows` scanlines starting at scanline y0 of one channel (float, nx per row).
-void FillScanlines(const Channel& ch, const StripLayout& at, int nx, int y0, int rows, float* dst)
+// Fill `rows` scanlines starting at scanline y0 of one channel (float, nx per row). Returns
+// how many finite samples (doubles, or integers as doubles) were beyond the floats: infinite.
+uint64_t FillScanlines(
+  const Channel& ch, const StripLayout& at, int nx, int y0, int rows, float* dst)
 {
+  uint64_t overflow = 0;
   const int nc = ch.Array->GetNumberOfComponents();
   auto* fa = vtkFloatArray::SafeDownCast(ch.Array);
   auto* da = vtkDoubleArray::SafeDownCast(ch.Array);
@@ -166,18 +169,27 @@ void FillScanlines(const Channel& ch, const StripLayout& at, int nx, int y0, int
       const double* src = da->GetPointer(0) + first * nc + ch.Component;
       for (int i = 0; i < nx; ++i)
       {
-        out[i] = static_cast<float>(src[static_cast<size_t>(i) * nc]);
+        const double value = src[static_cast<size_t>(i) * nc];
+        out[i] = static_cast<float>(value);
+        overflow += std::isinf(out[i]) && std::isfinite(value);
       }
     }
     else
     {
       for (int i = 0; i < nx; ++i)
       {
-        out[i] = static_cast<float>(ch.Array->GetComponent(first + i, ch.Component));
+        const double value = ch.Array->GetComponent(first + i, ch.Component);
+        out[i] = static_cast<float>(value);
+        overflow += std::isinf(out[i]) && std::isfinite(value);
       }
     }
   }
+  return overflow;
 }
+
+// The smallest magnitude OpenEXR's float-to-half conversion (round to nearest even) turns
+// into an infinity: halfway between the largest half, 65504, and 2^16.
+constexpr float HalfOverflow = 65520.0f;
 
 // Values that are written whole before they are read: no zero fill, as std::vector's resize
 // would do (on large chunks, zeroing fresh pages cost a third of a ZIP write), and the
@@ -209,6 +221,7 @@ struct ChunkJob
   Buffer<uint8_t> Bytes;
   exr_result_t Result = EXR_ERR_SUCCESS;
   std::string Message;
+  std::vector<uint64_t> Overflow; // per channel: finite samples written as infinities
 };
 
 // The encoding pipeline's last step, instead of writing: keep the compressed bytes (or the
@@ -317,6 +330,7 @@ void EncodeChunk(exr_context_t ctx, int part, const std::vector<Channel>& channe
     }
   }
   const size_t chunkValues = static_cast<size_t>(job.Info.height) * static_cast<size_t>(nx);
+  job.Overflow.assign(channels.size(), 0);
   for (int c = 0; rv == EXR_ERR_SUCCESS && c < encoder.channel_count; ++c)
   {
     exr_coding_channel_info_t& out = encoder.channels[c];
@@ -327,7 +341,16 @@ void EncodeChunk(exr_context_t ctx, int part, const std::vector<Channel>& channe
       break;
     }
     float* dst = scratch.Data.get() + found->second * chunkValues;
-    FillScanlines(channels[found->second], at, nx, job.Info.start_y, job.Info.height, dst);
+    uint64_t& overflow = job.Overflow[found->second];
+    overflow =
+      FillScanlines(channels[found->second], at, nx, job.Info.start_y, job.Info.height, dst);
+    if (out.data_type == EXR_PIXEL_HALF)
+    {
+      for (size_t k = 0; k < chunkValues; ++k)
+      {
+        overflow += std::fabs(dst[k]) >= HalfOverflow && std::isfinite(dst[k]);
+      }
+    }
     out.encode_from_ptr = reinterpret_cast<const uint8_t*>(dst);
     out.user_pixel_stride = static_cast<int32_t>(sizeof(float));
     out.user_line_stride = static_cast<int32_t>(sizeof(float)) * nx;
@@ -376,6 +399,7 @@ struct vtkApertureEXRWriter::Internals
   int ZipLevel = 0; // CompressionLevel for ZIP and ZIPS, else 0 (ChunkJob::ZipLevel)
   int Whole[6] = { 0, -1, 0, -1, 0, 0 };
   int NextRow = -1;    // the next image row to write (north first)
+  std::vector<uint64_t> Overflow; // per channel: finite samples written as infinities
   bool Failed = false;  // a strip failed (reported)
   bool Written = false; // the last WriteData wrote its file
 };
@@ -704,6 +728,7 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
   d.Context.Discard(); // (a file begun and never ended)
   d.Channels.clear();
   d.ByName.clear();
+  d.Overflow.clear();
   d.Failed = false;
   d.NextRow = whole[2] - 1;
   if (!this->FileName || !*this->FileName)
@@ -937,6 +962,11 @@ int vtkApertureEXRWriter::WriteStrip(vtkImageData* strip)
           rv = job.Result;
           if (rv == EXR_ERR_SUCCESS)
           {
+            d.Overflow.resize(job.Overflow.size());
+            for (size_t c = 0; c < job.Overflow.size(); ++c)
+            {
+              d.Overflow[c] += job.Overflow[c];
+            }
             rv = exr_write_scanline_chunk(
               ctx, d.Part, job.Info.start_y, job.Bytes.Data.get(), job.Bytes.Size);
           }
@@ -1007,6 +1037,23 @@ int vtkApertureEXRWriter::EndStrips()
   if (!stale.empty())
   {
     vtkWarningMacro(<< "wrote '" << d.Path << "', but " << stale);
+  }
+  std::ostringstream overflow; // "1 in channel 'A', 3 in 'B'"
+  for (size_t c = 0; c < d.Overflow.size() && c < d.Channels.size(); ++c)
+  {
+    if (d.Overflow[c] > 0)
+    {
+      const bool first = overflow.tellp() == 0;
+      overflow << (first ? "" : ", ") << d.Overflow[c] << (first ? " in channel '" : " in '")
+               << d.Channels[c].Name << "'";
+    }
+  }
+  if (overflow.tellp() > 0)
+  {
+    const bool half = this->PixelType == HALF;
+    vtkWarningMacro(<< "wrote '" << d.Path << "' with infinities for finite samples beyond "
+                    << (half ? "HALF's largest number, 65504" : "the largest float, 3.4e38")
+                    << ": " << overflow.str() << (half ? "; PixelType FLOAT keeps them" : ""));
   }
   return 1;
 }

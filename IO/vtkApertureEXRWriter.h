@@ -28,8 +28,9 @@
  * Samples are converted to 32-bit float (PixelType FLOAT, the default) or 16-bit half (HALF) in
  * every channel: doubles and integers above 2^24 lose precision in FLOAT; HALF keeps 11
  * significant bits (relative error <= 2^-11; below its smallest normal number, 6.1e-5, absolute
- * error <= 2^-25, 3e-8), rounds magnitudes up to 65520 to its largest, 65504, and turns
- * larger ones into infinities.
+ * error <= 2^-25, 3e-8), rounds magnitudes below 65520 to its largest, 65504, and turns
+ * larger ones into infinities. Finite samples written as infinities (beyond HALF's range, or
+ * doubles beyond the floats') are counted per channel in a warning once the file is written.
  * NaN (Aperture's nodata) is written as NaN in both.
  *
  * Compression: lossless only, ZIP (default; 16 scanlines per block), ZIPS (1), RLE (1),

@@ -554,8 +554,9 @@ void TestRoundTrip()
 
 //------------------------------------------------------------------------------
 // HALF: every channel 16-bit in the file; values back within half precision (11 significant
-// bits: |error| <= 2^-11 |value| for normal halves, round to nearest), NaN stays NaN, and a
-// magnitude above the largest half (65504) becomes infinity as documented.
+// bits: |error| <= 2^-11 |value| for normal halves, round to nearest), NaN stays NaN, a
+// magnitude just below 65520 becomes the largest half (65504), and one of 65520 or more
+// becomes an infinity as documented, counted in a warning per channel.
 void TestHalf()
 {
   const std::string path = tmp + "/half.exr";
@@ -568,8 +569,14 @@ void TestHalf()
       z->SetValue(k, z->GetValue(k) + 0.1234f);
     }
   }
-  z->SetValue(NX - 1, 70000.0f); // (NX-1, 0)
+  z->SetValue(NX - 1, 70000.0f);                    // (NX-1, 0): +inf
+  z->SetValue(NX - 2, -65520.0f);                   // -inf (half-way to 2^16, even: up)
+  z->SetValue(NX - 3, std::nextafter(65520.0f, 0.0f)); // 65504
+  vtkFloatArray* vector = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Vector"));
+  vector->SetComponent(NX, 1, 1e6f); // (0, 1)'s N: +inf
   vtkNew<vtkApertureEXRWriter> writer;
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  writer->AddObserver(vtkCommand::WarningEvent, warnings);
   writer->SetInputData(image);
   writer->SetFileName(path.c_str());
   writer->AddArrayName("Elevation");
@@ -580,6 +587,10 @@ void TestHalf()
   AP_CHECK(writer->GetPixelType() == vtkApertureEXRWriter::HALF);
   AP_CHECK(std::string(writer->GetPixelTypeAsString()) == "HALF");
   writer->Write();
+  AP_CHECK(warnings->GetWarning());
+  AP_CHECK_CONTAINS(warnings->GetWarningMessage(),
+    "with infinities for finite samples beyond HALF's largest number, 65504: 2 in channel "
+    "'Elevation', 1 in 'Vector.N'; PixelType FLOAT keeps them");
 
   const RawImage raw = ReadRaw(path);
   AP_CHECK(raw.Ok && raw.Channels.size() == 4);
@@ -599,9 +610,13 @@ void TestHalf()
     {
       AP_CHECK(std::isnan(got));
     }
-    else if (k == NX - 1)
+    else if (k == NX - 1 || k == NX - 2)
     {
-      AP_CHECK(std::isinf(got) && got > 0);
+      AP_CHECK(std::isinf(got) && (got > 0) == (want > 0));
+    }
+    else if (k == NX - 3)
+    {
+      AP_CHECK(got == 65504.0);
     }
     else
     {
@@ -611,6 +626,28 @@ void TestHalf()
   vtkDataArray* v = back->GetPointData()->GetArray("Vector");
   AP_CHECK(v && v->GetNumberOfComponents() == 3);
   AP_CHECK(v && v->GetComponent(2 * NX + 3, 0) == 3.0); // small integers are exact in half
+  AP_CHECK(v && std::isinf(v->GetComponent(NX, 1)));
+
+  // FLOAT: doubles beyond the floats are the infinities counted; a written file of none
+  // warns of nothing (nor do infinities in the input).
+  vtkDoubleArray* w = vtkDoubleArray::SafeDownCast(image->GetPointData()->GetArray("Weights"));
+  w->SetComponent(0, 0, 1e39);
+  w->SetComponent(1, 1, -1e300);
+  w->SetComponent(2, 1, std::numeric_limits<double>::infinity());
+  writer->SetPixelType(vtkApertureEXRWriter::FLOAT);
+  writer->ClearArrayNames();
+  writer->AddArrayName("Weights");
+  warnings->Clear();
+  writer->Write();
+  AP_CHECK_CONTAINS(warnings->GetWarningMessage(),
+    "with infinities for finite samples beyond the largest float, 3.4e38: 1 in channel "
+    "'Weights.0', 1 in 'Weights.1'");
+  AP_CHECK(warnings->GetWarningMessage().find("PixelType") == std::string::npos);
+  writer->ClearArrayNames();
+  writer->AddArrayName("Elevation");
+  warnings->Clear();
+  writer->Write();
+  AP_CHECK(!warnings->GetWarning());
 }
 
 //------------------------------------------------------------------------------
@@ -863,16 +900,20 @@ void TestDeflateChunks()
     }
     return image;
   };
+  std::string warning; // the last write's
   auto write = [&](vtkImageData* image, const char* compression, int level, int type,
                  const std::string& name) {
     const std::string path = tmp + "/deflate_" + name + ".exr";
     vtkNew<vtkApertureEXRWriter> writer;
+    vtkNew<vtkTest::ErrorObserver> warnings;
+    writer->AddObserver(vtkCommand::WarningEvent, warnings);
     writer->SetInputData(image);
     writer->SetFileName(path.c_str());
     writer->SetCompression(compression);
     writer->SetCompressionLevel(level);
     writer->SetPixelType(type);
     AP_CHECK(writer->Write() == 1);
+    warning = warnings->GetWarningMessage();
     return path;
   };
   auto fileSize = [](const std::string& path) {
@@ -885,6 +926,22 @@ void TestDeflateChunks()
     const std::string t = type == vtkApertureEXRWriter::FLOAT ? "float" : "half";
     const RawImage plain = ReadRaw(write(both, "NONE", 1, type, t + "_none"));
     AP_CHECK(plain.Ok);
+    // the random bits' finite floats that HALF made infinities, counted in the warning
+    int infinite = 0;
+    for (int y = 0; plain.Ok && y < ny; ++y)
+    {
+      for (int x = 0; x < nx; ++x)
+      {
+        const float v = bits[static_cast<size_t>(ny - 1 - y) * nx + x];
+        infinite += std::isfinite(v) && std::isinf(plain.At("Bits", x, y));
+      }
+    }
+    AP_CHECK(type == vtkApertureEXRWriter::FLOAT ? infinite == 0 && warning.empty()
+                                                  : infinite > 1000);
+    if (type == vtkApertureEXRWriter::HALF)
+    {
+      AP_CHECK_CONTAINS(warning, ": " + std::to_string(infinite) + " in channel 'Bits';");
+    }
     for (int y = 0; plain.Ok && type == vtkApertureEXRWriter::FLOAT && y < ny; ++y)
     {
       for (int x = 0; x < nx; ++x) // (scanline y is VTK row ny - 1 - y)
