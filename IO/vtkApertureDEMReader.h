@@ -6,12 +6,12 @@
  * Output: a vtkImageData with one float32 point array `Elevation` in metres: the band's scale
  * and offset are applied, and feet, US survey feet and the metre's multiples (mm, cm, dm, km)
  * are converted (the band's unit, else the height unit of a compound CRS, else metres;
- * MetresPerElevationUnit overrides them). Nodata
- * (the band's nodata value, a GDAL mask, NaN, an infinity, or a value that does not fit a
- * float) becomes NaN; a Float32 band's nodata value is compared rounded to float, and a float
- * band's samples within about two float32 ulps of it (relatively) are nodata too, as GDAL's
- * mask takes them (ArcGIS declares -3.4028230607370965e38 for cells of -FLT_MAX); an
- * integer band's compare exactly. GDAL 3.6's Int8 (a Byte band with PIXELTYPE=SIGNEDBYTE) is read as signed.
+ * MetresPerElevationUnit overrides them). Nodata (the band's nodata value, a GDAL mask, NaN,
+ * an infinity, or a value that does not fit a float) becomes NaN; a Float32 band's nodata
+ * value is compared rounded to float, and a float band's samples within about two float32
+ * ulps of it (relatively) are nodata too, as GDAL's mask takes them (ArcGIS declares
+ * -3.4028230607370965e38 for cells of -FLT_MAX); an integer band's compare exactly. GDAL 3.6's
+ * Int8 (a Byte band with PIXELTYPE=SIGNEDBYTE) is read as signed.
  * The grid follows vtkApertureGeoreference's conventions: origin and
  * spacing in CRS units, origin at the centre of the south-west cell, row 0 south, identity
  * direction. North-up and south-up rasters both come out north-up (rows are flipped once,
