@@ -32,6 +32,7 @@
 #include <cstdlib>
 #include <iomanip>
 #include <limits>
+#include <locale>
 #include <memory>
 #include <new>
 #include <sstream>
@@ -1106,9 +1107,13 @@ int vtkApertureSkyVisibility::Execute(
       {
         for (int d = 0; d < D; ++d)
         {
-          char label[32];
-          std::snprintf(label, sizeof(label), "az%06.2f", 360.0 * d / D);
-          arr->SetComponentName(d, label);
+          // ("az011.25" in any locale: a program's LC_NUMERIC would make it "az011,25" in
+          // printf, and so in the band descriptions and EXR channels written from it)
+          std::ostringstream label;
+          label.imbue(std::locale::classic());
+          label << "az" << std::fixed << std::setprecision(2) << std::setw(6)
+                << std::setfill('0') << 360.0 * d / D;
+          arr->SetComponentName(d, label.str().c_str());
         }
       }
       output->GetPointData()->AddArray(arr);

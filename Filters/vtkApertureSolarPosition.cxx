@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <locale>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -117,12 +118,14 @@ std::string FormatUTC(double seconds)
   return buf;
 }
 
-/** A number as %g gives it, so that 1e20 reads as 1e+20 and not as twenty digits. */
+/** A number as %g gives it, so that 1e20 reads as 1e+20 and not as twenty digits (with a '.'
+ * in any locale). */
 std::string Number(double value)
 {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%g", value);
-  return buf;
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  s << value; // (%g: precision 6, neither fixed nor scientific)
+  return s.str();
 }
 
 /** An instant for a message: ISO 8601 UTC, or the year when the formatter's range ends. */

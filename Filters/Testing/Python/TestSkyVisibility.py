@@ -901,6 +901,61 @@ class TestSkyVisibility(Testing.vtkTest):
             if i != nx // 2:
                 self.assertGreater(abs(lon + 45.0), 8.5)  # (the convergence's change)
 
+    def testNamesInAnyLocale(self):
+        # A program whose LC_NUMERIC writes decimal commas (a Qt host, or setlocale in
+        # Python) still gets HorizonAngles components "az011.25", which become GeoTIFF band
+        # descriptions and EXR channels; until 2026-12-07 printf made them "az011,25", and
+        # the solar position's messages "5000,5". The locale is compiled into a folder of
+        # the test's own (LOCPATH) from Debian's `locales` sources: no system change.
+        import shutil
+        import subprocess
+        import tempfile
+        localedef = shutil.which("localedef")
+        if not localedef or not os.path.exists("/usr/share/i18n/locales/de_DE"):
+            self.skipTest("no localedef or no de_DE locale source (Debian package locales)")
+        with tempfile.TemporaryDirectory() as folder:
+            made = subprocess.run([localedef, "-i", "de_DE", "-f", "UTF-8",
+                                   os.path.join(folder, "de_DE.UTF-8")],
+                                  capture_output=True, text=True)
+            self.assertTrue(os.path.isdir(os.path.join(folder, "de_DE.UTF-8")), made.stderr)
+            script = """
+import locale
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.vtkCommonDataModel import vtkImageData
+import aperture
+locale.setlocale(locale.LC_ALL, "")
+assert "%.2f" % 1.5 == "1.50" and locale.format_string("%.2f", 1.5) == "1,50"
+image = vtkImageData()
+image.SetDimensions(4, 3, 1)
+image.SetSpacing(30, 30, 1)
+values = numpy_to_vtk(np.arange(12, dtype=np.float32), deep=1)
+values.SetName("Elevation")
+image.GetPointData().SetScalars(values)
+geo = aperture.vtkApertureGeoreference()
+assert geo.SetCRS("EPSG:32633")
+geo.AttachToImage(image)
+f = aperture.vtkApertureSkyVisibility()
+f.SetInputData(image)
+f.SetNumberOfDirections(32)
+f.ComputeHorizonAnglesOn()
+f.Update()
+h = f.GetOutput().GetPointData().GetArray("HorizonAngles")
+print(" ".join(h.GetComponentName(d) for d in (0, 1, 31)))
+sun = aperture.vtkApertureSolarPosition()
+sun.GlobalWarningDisplayOff()
+sun.SetTime("2026-06-21T12:00Z")
+sun.SetPressure(5000.5)
+print(sun.Compute(), sun.GetErrorMessage())
+"""
+            env = dict(os.environ, LOCPATH=folder, LC_ALL="de_DE.UTF-8")
+            p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                               env=env, timeout=120)
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        names, message = p.stdout.splitlines()[:2]
+        self.assertEqual(names, "az000.00 az011.25 az348.75")
+        self.assertEqual(message, "False the pressure 5000.5 hPa is outside 0..5000 hPa")
+
     def testSectorsOfProjectionsNotConformal(self):
         # A projection that is not conformal shears the grid: the sweep's sectors, even in
         # grid azimuth, lie unevenly on the ground (sinusoidal at 45 N, 15 E: a cell's steps
