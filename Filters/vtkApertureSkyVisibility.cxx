@@ -526,9 +526,10 @@ static void CopyCellData(vtkImageData* input, const int inExt[6], vtkImageData* 
 int vtkApertureSkyVisibility::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  int ok = 0;
   try
   {
-    return this->Execute(inputVector, outputVector);
+    ok = this->Execute(inputVector, outputVector);
   }
   catch (const std::bad_alloc&)
   {
@@ -546,7 +547,6 @@ int vtkApertureSkyVisibility::RequestData(
     vtkErrorMacro(<< "out of memory: "
                   << NeedsText(
                        dims[0], dims[1], onx, ony, size.str(), this->ComputeHorizonAngles));
-    return 0;
   }
   catch (const std::system_error& e)
   {
@@ -554,8 +554,15 @@ int vtkApertureSkyVisibility::RequestData(
     // system refuses one, e.g. no memory left for its stack)
     vtkErrorMacro(<< vtkApertureThreadsRefused(
                     vtkApertureSMPConfig(this->NumberOfThreads).MaxNumberOfThreads, e));
-    return 0;
   }
+  // (a failed update leaves an empty image: vtkImageData::PrepareForNewData keeps the last
+  // run's scalars, the elevations, which then stood in an output of no points)
+  vtkImageData* output = ok ? nullptr : vtkImageData::GetData(outputVector);
+  if (output)
+  {
+    output->Initialize();
+  }
+  return ok;
 }
 
 //------------------------------------------------------------------------------

@@ -852,9 +852,10 @@ int vtkApertureDEMReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   this->Impl->Reading[0] = this->Impl->Reading[1] = 0;
+  int ok = 0;
   try
   {
-    return this->Execute(outputVector);
+    ok = this->Execute(outputVector);
   }
   catch (const std::bad_alloc&)
   {
@@ -865,8 +866,8 @@ int vtkApertureDEMReader::RequestData(
                   << " cells of '" << this->FileName << "' (the elevations alone take "
                   << vtkApertureHumanBytes(4.0 * d.Reading[0] * d.Reading[1])
                   << " as float32); read a SubWindow, or use Decimation or an OverviewLevel");
-    return 0;
   }
+  return vtkApertureEmptyOutputUnless(ok, outputVector);
 }
 
 //------------------------------------------------------------------------------

@@ -528,17 +528,18 @@ int vtkApertureEXRReader::ReadInformation(vtkInformationVector* outputVector)
 int vtkApertureEXRReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  int ok = 0;
   try
   {
-    return this->Execute(outputVector);
+    ok = this->Execute(outputVector);
   }
   catch (const std::bad_alloc&)
   {
     // (a header may promise more pixels than memory holds: a huge image, or a corrupt one)
     vtkErrorMacro(<< "out of memory reading '" << (this->FileName ? this->FileName : "")
                   << "': its header gives " << this->Impl->SizeText());
-    return 0;
   }
+  return vtkApertureEmptyOutputUnless(ok, outputVector);
 }
 
 //------------------------------------------------------------------------------

@@ -59,6 +59,59 @@ class TestPipelineBehaviour(Testing.vtkTest):
         self.assertEqual(len(runs), 3)
         self.assertEqual(mesher.GetOutput().GetNumberOfPoints(), 201 * 172)
 
+    def testFailedUpdateLeavesNothing(self):
+        # An update that fails leaves an empty output, as VTK's own filters do, not the last
+        # run's elevations in an image of no points: vtkImageData::PrepareForNewData keeps
+        # the scalars, which the sky filter's output shares with its input (until 2026-12-07
+        # a failed run kept "Elevation", 0 points and an empty extent).
+        from aperture.errors import Watcher
+        reader = aperture.vtkApertureDEMReader()
+        reader.SetFileName(self.path)
+        reader.SetDecimation(8)
+        reader.PartialBlockWarningOff()
+        sky = aperture.vtkApertureSkyVisibility()
+        sky.SetInputConnection(reader.GetOutputPort())
+        mesher = aperture.vtkApertureTerrainMesh()
+        mesher.SetInputConnection(sky.GetOutputPort())
+        for stage, setter, value in [(sky, "SetNumberOfDirections", 3),
+                                     (sky, "SetRefractionCoefficient", 1.5),
+                                     (reader, "SetBandIndex", 1)]:
+            watch = Watcher()
+            watch.watch(sky)
+            watch.watch(mesher.GetExecutive())
+            mesher.Update()
+            self.assertFalse(watch.errors, watch.errors)
+            self.assertEqual(sky.GetOutput().GetPointData().GetNumberOfArrays(), 8)
+            self.assertGreater(mesher.GetOutput().GetNumberOfPoints(), 0)
+            getattr(stage, setter)(value)
+            if stage is reader:  # (a raster whose every cell is nodata, found once read)
+                array = np.full((20, 30), -9999, dtype=np.int16)
+                folder = tempfile.mkdtemp()
+                self.addCleanup(shutil.rmtree, folder)
+                path = os.path.join(folder, "nodata.tif")
+                ds = gdal.GetDriverByName("GTiff").Create(path, 30, 20, 1, gdal.GDT_Int16)
+                ds.SetGeoTransform((300000, 30, 0, 5000000, 0, -30))
+                srs = osr.SpatialReference()
+                srs.ImportFromEPSG(32633)
+                ds.SetSpatialRef(srs)
+                ds.GetRasterBand(1).SetNoDataValue(-9999)
+                ds.GetRasterBand(1).WriteArray(array)
+                ds = None
+                reader.SetFileName(path)
+                reader.SetDecimation(1)
+                watch.watch(reader)
+            mesher.Update()
+            self.assertTrue(watch.errors, setter)
+            output = stage.GetOutput()  # (downstream of it, VTK runs nothing)
+            self.assertEqual(output.GetNumberOfPoints(), 0, setter)
+            self.assertEqual(output.GetPointData().GetNumberOfArrays(), 0, setter)
+            getattr(stage, setter)({"SetNumberOfDirections": 32,
+                                    "SetRefractionCoefficient": 0.13,
+                                    "SetBandIndex": 1}[setter])
+            if stage is reader:
+                reader.SetFileName(self.path)
+                reader.SetDecimation(8)
+
     def testSkyPassesCellData(self):
         # The sky filter passes the input's cell data over the output's cells, as VTK's image
         # filters do (until 2026-12-06 it dropped it; point and field data passed).

@@ -926,6 +926,17 @@ void TestBadInput()
     AP_CHECK(rd.Reader->GetNumberOfFiles() == 0 && !rd.Reader->GetFile(0));
     AP_CHECK(rd.Reader->GetOutput()->GetNumberOfPoints() == 0); // (the last file's stayed)
   }
+  {
+    // nor does a file that fails once read (every cell nodata): until 2026-12-07 the last
+    // file's elevations stayed in the output of no points (vtkImageData keeps its scalars)
+    Read rd(tmp + "/small.tif");
+    AP_CHECK(rd.Update()->GetPointData()->GetNumberOfArrays() == 1 && rd.Ok == 1);
+    rd.Reader->SetFileName((tmp + "/allnodata.tif").c_str());
+    vtkImageData* out = rd.Update();
+    AP_CHECK_CONTAINS(rd.Errors->GetErrorMessage(), "is nodata");
+    AP_CHECK(rd.Ok == 0 && out->GetNumberOfPoints() == 0);
+    AP_CHECK(out->GetPointData()->GetNumberOfArrays() == 0);
+  }
 }
 // How samples become elevations where the file's declarations are not what they seem: GDAL
 // 3.6's Int8 (a Byte band flagged PIXELTYPE=SIGNEDBYTE), a float band's nodata value that is

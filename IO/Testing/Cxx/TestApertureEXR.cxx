@@ -1333,6 +1333,19 @@ void TestReaderErrors()
     AP_CHECK(rd.Update()->GetNumberOfPoints() > 0 && rd.Ok == 1);
     rd.Reader->SetFileName((tmp + "/nothing-here.exr").c_str());
     AP_CHECK(rd.Update()->GetNumberOfPoints() == 0 && rd.Ok == 0);
+    AP_CHECK(rd.Update()->GetPointData()->GetNumberOfArrays() == 0);
+    // and one whose pixels fail to read (cut off in the middle): until 2026-12-07 the last
+    // file's RGB stayed in the output of no points (vtkImageData keeps its scalars)
+    const std::string bytes = aptest::ReadFileBytes(tmp + "/rgb.exr");
+    const std::string cut = tmp + "/cut.exr";
+    AP_CHECK(bytes.size() > 100 && aptest::WriteText(cut, bytes.substr(0, bytes.size() - 20)));
+    rd.Reader->SetFileName((tmp + "/rgb.exr").c_str());
+    AP_CHECK(rd.Update()->GetPointData()->GetScalars() != nullptr && rd.Ok == 1);
+    rd.Reader->SetFileName(cut.c_str());
+    vtkImageData* out = rd.Update();
+    AP_CHECK_CONTAINS(rd.Errors->GetErrorMessage(), "cut.exr");
+    AP_CHECK(rd.Ok == 0 && out->GetNumberOfPoints() == 0);
+    AP_CHECK(out->GetPointData()->GetNumberOfArrays() == 0);
   }
   ExpectReaderError("", "no file name was set");
   ExpectReaderError(
