@@ -16,6 +16,20 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 import aperture
 
 
+def write_dem(path, z, gt, epsg, nodata=None):
+    """A one-band float32 GeoTIFF of the elevations z (row 0 north); returns path."""
+    ds = gdal.GetDriverByName("GTiff").Create(path, z.shape[1], z.shape[0], 1, gdal.GDT_Float32)
+    ds.SetGeoTransform(gt)
+    srs = osr.SpatialReference()
+    srs.ImportFromEPSG(epsg)
+    ds.SetSpatialRef(srs)
+    if nodata is not None:
+        ds.GetRasterBand(1).SetNoDataValue(nodata)
+    ds.GetRasterBand(1).WriteArray(z)
+    ds = None
+    return path
+
+
 class TestPipelineBehaviour(Testing.vtkTest):
     def setUp(self):
         try:
@@ -85,19 +99,11 @@ class TestPipelineBehaviour(Testing.vtkTest):
             self.assertGreater(mesher.GetOutput().GetNumberOfPoints(), 0)
             getattr(stage, setter)(value)
             if stage is reader:  # (a raster whose every cell is nodata, found once read)
-                array = np.full((20, 30), -9999, dtype=np.int16)
                 folder = tempfile.mkdtemp()
                 self.addCleanup(shutil.rmtree, folder)
-                path = os.path.join(folder, "nodata.tif")
-                ds = gdal.GetDriverByName("GTiff").Create(path, 30, 20, 1, gdal.GDT_Int16)
-                ds.SetGeoTransform((300000, 30, 0, 5000000, 0, -30))
-                srs = osr.SpatialReference()
-                srs.ImportFromEPSG(32633)
-                ds.SetSpatialRef(srs)
-                ds.GetRasterBand(1).SetNoDataValue(-9999)
-                ds.GetRasterBand(1).WriteArray(array)
-                ds = None
-                reader.SetFileName(path)
+                reader.SetFileName(write_dem(os.path.join(folder, "nodata.tif"),
+                                             np.full((20, 30), -9999.0),
+                                             (300000, 30, 0, 5000000, 0, -30), 32633, -9999))
                 reader.SetDecimation(1)
                 watch.watch(reader)
             mesher.Update()
@@ -235,14 +241,9 @@ print(w.errors[0] if w.errors else mesher.GetOutput().GetNumberOfPoints())
         from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
         tmp = tempfile.mkdtemp()
         self.addCleanup(shutil.rmtree, tmp, True)
-        path = os.path.join(tmp, "small.tif")
-        ds = gdal.GetDriverByName("GTiff").Create(path, 20, 20, 1, gdal.GDT_Float32)
-        ds.SetGeoTransform((500000, 30, 0, 4000600, 0, -30))
-        srs = osr.SpatialReference()
-        srs.ImportFromEPSG(32611)
-        ds.SetSpatialRef(srs)
-        ds.GetRasterBand(1).WriteArray(np.add.outer(np.arange(20.0), np.arange(20.0) ** 1.5))
-        ds = None
+        path = write_dem(os.path.join(tmp, "small.tif"),
+                         np.add.outer(np.arange(20.0), np.arange(20.0) ** 1.5),
+                         (500000, 30, 0, 4000600, 0, -30), 32611)
         reader = aperture.vtkApertureDEMReader()
         reader.SetFileName(path)
         reader.Update()
