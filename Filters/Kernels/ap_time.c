@@ -271,14 +271,22 @@ static ap_status format_iso8601(ap_instant t, int with_offset, int32_t utc_offse
     return st;
   }
   s = t.unix_seconds + utc_offset;
-  /* Round the fraction to the digits shown; a carry moves to the seconds. */
+  /* Round the fraction to the digits shown; a carry moves to the seconds, except beyond the
+   * range's last second, where the digits are truncated (text the parser reads back). */
   rounded = floor(t.fraction * (double)pow10[fraction_digits] + 0.5);
   units = (int64_t)rounded;
   if (units >= pow10[fraction_digits]) {
-    units -= pow10[fraction_digits];
-    ++s;
+    if (t.unix_seconds < AP_TIME_UNIX_MAX) {
+      units -= pow10[fraction_digits];
+      ++s;
+    } else {
+      units = pow10[fraction_digits] - 1;
+    }
   }
   civil_from_seconds(s, 0.0, &c);
+  if (c.year < AP_TIME_YEAR_MIN || c.year > AP_TIME_YEAR_MAX) {
+    return AP_ERR_OUT_OF_RANGE; /* a local time at the range's ends, in the year beyond */
+  }
   if (c.year < 0) {
     n = snprintf(tmp, sizeof tmp, "-%04d", -c.year);
   } else {

@@ -98,7 +98,8 @@ typedef struct ap_julian_day {
 ap_status ap_instant_to_julian_day(ap_instant t, ap_julian_day *out);
 
 /** Write t as ISO 8601 UTC, "YYYY-MM-DDTHH:MM:SSZ" or with `fraction_digits` (0..9) digits after
- *  a '.', rounded to nearest (a carry may advance the seconds, and so the date). Years 0..9999
+ *  a '.', rounded to nearest (a carry may advance the seconds, and so the date; in the range's
+ *  last second the digits are truncated instead, so that the text stays in range). Years 0..9999
  *  have 4 digits, negative years are written "-YYYY" (e.g. "-0044-03-15T12:00:00Z"). `size`
  *  counts the terminating NUL (21 + fraction digits + (1 if any) + (1 if year < 0) suffices).
  *  Errors: NULL_POINTER; INVALID_ARGUMENT (fraction_digits or t.fraction bad); OUT_OF_RANGE;
@@ -108,7 +109,9 @@ ap_status ap_instant_format_iso8601(ap_instant t, int fraction_digits, char *buf
 /** As ap_instant_format_iso8601 but as the local time at `utc_offset` seconds east of UTC
  *  (|utc_offset| < 26 h), with the offset as "+HH:MM"/"-HH:MM" ("+00:00" for 0), or
  *  "+HH:MM:SS" when the offset has seconds (historical local mean time; not ISO 8601, and not
- *  read back by ap_time_parse_iso8601). Needs up to 6 (or 9) more bytes than the UTC form. */
+ *  read back by ap_time_parse_iso8601). Needs up to 6 (or 9) more bytes than the UTC form.
+ *  AP_ERR_OUT_OF_RANGE also for a local time in the year before or after the supported range
+ *  (an instant in its first or last hours), which ap_time_parse_iso8601 would not read. */
 ap_status ap_instant_format_iso8601_local(ap_instant t, int32_t utc_offset, int fraction_digits,
                                           char *buf, size_t size);
 

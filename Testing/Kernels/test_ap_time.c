@@ -469,6 +469,35 @@ static void test_format(void)
   AP_CHECK_EQ_INT(ap_instant_from_civil(&c, &t), AP_OK);
   AP_CHECK_EQ_INT(ap_instant_format_iso8601(t, 0, buf, sizeof buf), AP_OK);
   AP_CHECK(strcmp(buf, "6000-12-31T23:59:59Z") == 0);
+  /* In the range's last second the digits are truncated, not carried into the year 6001,
+   * which the parser refuses (until 2026-12-07: "6001-01-01T00:00:00Z"); every text parses. */
+  t.fraction = 0.99999999999;
+  for (int digits = 0; digits <= 9; ++digits) {
+    ap_parsed_time parsed;
+    AP_CHECK_EQ_INT(ap_instant_format_iso8601(t, digits, buf, sizeof buf), AP_OK);
+    AP_CHECK(strncmp(buf, "6000-12-31T23:59:59", 19) == 0);
+    AP_CHECK(digits == 0 || strncmp(buf + 19, ".999999999", (size_t)digits + 1) == 0);
+    AP_CHECK_EQ_INT(ap_time_parse_iso8601(buf, &parsed), AP_OK);
+  }
+  t.unix_seconds = AP_TIME_UNIX_MAX - 1; /* (a second before it carries as always) */
+  AP_CHECK_EQ_INT(ap_instant_format_iso8601(t, 3, buf, sizeof buf), AP_OK);
+  AP_CHECK(strcmp(buf, "6000-12-31T23:59:59.000Z") == 0);
+  /* A local time in the year beyond either end is out of range (the parser would refuse it);
+   * the same instants on the other side of UTC are written. */
+  AP_CHECK_EQ_INT(ap_instant_format_iso8601_local(instant(AP_TIME_UNIX_MAX), 3600, 0, buf,
+                                                  sizeof buf),
+                  AP_ERR_OUT_OF_RANGE);
+  AP_CHECK_EQ_INT(ap_instant_format_iso8601_local(instant(AP_TIME_UNIX_MAX), -3600, 0, buf,
+                                                  sizeof buf),
+                  AP_OK);
+  AP_CHECK(strcmp(buf, "6000-12-31T22:59:59-01:00") == 0);
+  AP_CHECK_EQ_INT(ap_instant_format_iso8601_local(instant(AP_TIME_UNIX_MIN), -60, 0, buf,
+                                                  sizeof buf),
+                  AP_ERR_OUT_OF_RANGE);
+  AP_CHECK_EQ_INT(ap_instant_format_iso8601_local(instant(AP_TIME_UNIX_MIN), 60, 0, buf,
+                                                  sizeof buf),
+                  AP_OK);
+  AP_CHECK(strcmp(buf, "-2000-01-01T00:01:00+00:01") == 0);
   /* Local forms. */
   AP_CHECK_EQ_INT(ap_instant_format_iso8601_local(instant(1782043200), 7200, 0, buf, sizeof buf),
                   AP_OK);

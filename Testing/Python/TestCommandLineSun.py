@@ -191,6 +191,11 @@ class CommandLineSunTest(unittest.TestCase):
         status, out, err = run("--at", "2026-06-21T12:00:00.5Z", "--lat", 47, "--lon", 8)
         self.assertEqual(status, 0, err)
         self.assertIn("Time:        2026-06-21T12:00:01Z (local 2026-06-21T12:00:01+00:00)", out)
+        # but not past the last second of the years -2000..6000, which the parser refuses:
+        # both times truncated there (until 2026-12-07 "6001-01-01T00:00:00Z", twice)
+        status, out, err = run("--at", "6000-12-31T23:59:59.9Z", "--lat", 47, "--lon", 8)
+        self.assertEqual(status, 0, err)
+        self.assertIn("Time:        6000-12-31T23:59:59Z (local 6000-12-31T23:59:59+00:00)", out)
         # --delta-t nan was the estimate, without a word
         for value in ("nan", "1e300", "-100001"):  # (1e300 was refused by the light's check)
             self.assertEqual(self.usage_error_of("--at", "2026-06-21T12:00Z", "--lat", 47,

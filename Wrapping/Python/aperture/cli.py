@@ -2207,6 +2207,9 @@ def _offset_text(seconds):
     return text + (":%02d" % (seconds % 60) if seconds % 60 else "")
 
 
+_LAST_SECOND = 127206115199  # 6000-12-31T23:59:59Z, ap_time.h's AP_TIME_UNIX_MAX
+
+
 def _local_text(sun, unix_seconds):
     """ISO 8601 local time (to the second) of an instant on the clock of the sun's place: the
     time zone's offset at that instant (a sunset after a clock change has the new one), else
@@ -2216,9 +2219,12 @@ def _local_text(sun, unix_seconds):
         return None
     offset = sun.GetLocalOffsetAt(unix_seconds)
     tz = datetime.timezone(datetime.timedelta(seconds=offset))
+    whole = math.floor(unix_seconds)
+    # (half a second up, as the UTC strings round, Python's round() going to even; not past
+    # the algorithm's last second, 6000-12-31T23:59:59Z, where they are truncated)
+    whole += unix_seconds - whole >= 0.5 and whole < _LAST_SECOND
     try:
-        # (half a second up, as the UTC strings round: Python's round() goes to even)
-        when = datetime.datetime.fromtimestamp(math.floor(unix_seconds + 0.5), tz)
+        when = datetime.datetime.fromtimestamp(whole, tz)
     except (OverflowError, OSError, ValueError):
         return None  # outside Python's years 1..9999: the UTC string is still given
     return when.isoformat()
