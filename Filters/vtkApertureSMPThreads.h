@@ -57,6 +57,17 @@ void vtkApertureSMPScope(const vtkSMPTools::Config& config, F&& f)
   std::unique_lock<std::recursive_mutex> lock(vtkApertureSMPScopeMutex(), std::try_to_lock);
   if (lock.owns_lock())
   {
+    // The scope's backend is made the active one first: VTK 9.1's LocalScope gives its thread
+    // count to the backend active before it (Initialize, then SetBackend) and restores the
+    // count on the scope's own, so that Debian's default TBB backend kept a NumberOfThreads
+    // below the cores (its thread limit and GetEstimatedNumberOfThreads) for the rest of the
+    // process. Switched back afterwards, which also refreshes its count to the one restored.
+    struct Backend
+    {
+      const std::string Previous = vtkSMPTools::GetBackend();
+      ~Backend() { vtkSMPTools::SetBackend(this->Previous.c_str()); }
+    } restore;
+    vtkSMPTools::SetBackend(config.Backend.c_str());
     vtkSMPTools::LocalScope(config, std::forward<F>(f));
   }
   else

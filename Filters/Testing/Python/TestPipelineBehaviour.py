@@ -118,6 +118,49 @@ class TestPipelineBehaviour(Testing.vtkTest):
                 reader.SetFileName(self.path)
                 reader.SetDecimation(8)
 
+    def testThreadCountsLeaveVTKAlone(self):
+        # An update on fewer threads than the cores leaves the process's VTK as it found it:
+        # VTK 9.1's LocalScope gave the count to the backend active before the scope's own,
+        # and Debian's default, TBB, kept it (its thread limit and estimate: 1 after one
+        # update on one thread, for every later VTK filter) until 2026-12-07. In a process
+        # of its own, with TBB active (the default here; skipped where VTK has no TBB).
+        import subprocess
+        script = """
+import numpy as np
+from vtkmodules.vtkCommonCore import vtkSMPTools
+import aperture
+if not vtkSMPTools.SetBackend("TBB") or vtkSMPTools.GetEstimatedNumberOfThreads() < 2:
+    print("skip")
+    raise SystemExit
+before = vtkSMPTools.GetEstimatedNumberOfThreads()
+reader = aperture.vtkApertureDEMReader()
+reader.SetFileName(aperture.default_dem())
+reader.SetDecimation(8)
+reader.PartialBlockWarningOff()
+sky = aperture.vtkApertureSkyVisibility()
+sky.SetInputConnection(reader.GetOutputPort())
+sky.SetNumberOfThreads(1)
+sky.Update()
+seen = [(vtkSMPTools.GetBackend(), vtkSMPTools.GetEstimatedNumberOfThreads())]
+for writer, name in ((aperture.vtkApertureEXRWriter(), "out.exr"),
+                     (aperture.vtkApertureDEMWriter(), "out.tif")):
+    writer.SetInputConnection(sky.GetOutputPort())
+    writer.SetFileName(name)
+    writer.SetNumberOfThreads(1)
+    writer.Write()
+    seen.append((vtkSMPTools.GetBackend(), vtkSMPTools.GetEstimatedNumberOfThreads()))
+print(before, seen)
+"""
+        folder = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, folder)
+        p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                           cwd=folder, timeout=120)
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        if p.stdout.strip() == "skip":
+            self.skipTest("VTK has no TBB backend, or this machine one core")
+        before, seen = p.stdout.split(" ", 1)
+        self.assertEqual(seen.strip(), repr([("TBB", int(before))] * 3))
+
     def testSkyPassesCellData(self):
         # The sky filter passes the input's cell data over the output's cells, as VTK's image
         # filters do (until 2026-12-06 it dropped it; point and field data passed).
