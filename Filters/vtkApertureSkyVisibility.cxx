@@ -529,11 +529,11 @@ int vtkApertureSkyVisibility::RequestData(
   int ok = 0;
   try
   {
-    ok = this->Execute(inputVector, outputVector);
+    ok = this->RunRequestData(inputVector, outputVector);
   }
   catch (const std::bad_alloc&)
   {
-    // (VTK's arrays and std::vector throw; Execute throws on the kernel's
+    // (VTK's arrays and std::vector throw; RunRequestData throws on the kernel's
     // AP_ERR_OUT_OF_MEMORY)
     int dims[3], ext[6];
     vtkApertureInputDimensions(inputVector[0], dims);
@@ -666,7 +666,7 @@ double vtkApertureSkyVisibility::OutputBytesPerCell() const
 }
 
 //------------------------------------------------------------------------------
-int vtkApertureSkyVisibility::Execute(
+int vtkApertureSkyVisibility::RunRequestData(
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);

@@ -376,7 +376,7 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   /** RequestData's work; RequestData turns a failed allocation in it into an error. */
-  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  int RunRequestData(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
   /** Bytes of the requested outputs per cell. */
   double OutputBytesPerCell() const;
 

@@ -285,7 +285,7 @@ int vtkApertureTerrainMesh::RequestData(
 {
   try
   {
-    const int ok = this->Execute(inputVector, outputVector);
+    const int ok = this->RunRequestData(inputVector, outputVector);
     if (!ok)
     {
       // An aborted or failed update leaves no mesh; without this mark the executive would
@@ -327,7 +327,7 @@ double vtkApertureTerrainMesh::EstimateBytes(double n, bool bentNormal, double c
 }
 
 //------------------------------------------------------------------------------
-int vtkApertureTerrainMesh::Execute(
+int vtkApertureTerrainMesh::RunRequestData(
   vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);

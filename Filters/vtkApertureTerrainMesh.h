@@ -169,7 +169,7 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   /** RequestData's work; RequestData turns a failed allocation in it into an error. */
-  int Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
+  int RunRequestData(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
   char* ElevationArrayName;
   vtkMTimeType ArraySelectionMade; // (the input array selection's MTime when made)

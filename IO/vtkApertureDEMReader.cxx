@@ -855,7 +855,7 @@ int vtkApertureDEMReader::RequestData(
   int ok = 0;
   try
   {
-    ok = this->Execute(outputVector);
+    ok = this->RunRequestData(outputVector);
   }
   catch (const std::bad_alloc&)
   {
@@ -871,7 +871,7 @@ int vtkApertureDEMReader::RequestData(
 }
 
 //------------------------------------------------------------------------------
-int vtkApertureDEMReader::Execute(vtkInformationVector* outputVector)
+int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
 {
   Internals& d = *this->Impl;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);

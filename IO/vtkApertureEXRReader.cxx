@@ -531,7 +531,7 @@ int vtkApertureEXRReader::RequestData(
   int ok = 0;
   try
   {
-    ok = this->Execute(outputVector);
+    ok = this->RunRequestData(outputVector);
   }
   catch (const std::bad_alloc&)
   {
@@ -543,7 +543,7 @@ int vtkApertureEXRReader::RequestData(
 }
 
 //------------------------------------------------------------------------------
-int vtkApertureEXRReader::Execute(vtkInformationVector* outputVector)
+int vtkApertureEXRReader::RunRequestData(vtkInformationVector* outputVector)
 {
   Internals& d = *this->Impl;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);

@@ -96,7 +96,7 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
   /** RequestData's work; RequestData turns a failed allocation in it into an error. */
-  int Execute(vtkInformationVector* outputVector);
+  int RunRequestData(vtkInformationVector* outputVector);
 
   char* FileName;
 
