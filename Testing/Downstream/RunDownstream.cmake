@@ -50,3 +50,31 @@ if (WRAP_PYTHON)
     "print(p)\n")
   run("byte-compiled at install" "${PYTHON}" -c "${compiled_check}")
 endif ()
+
+# the licence and the documentation, the README's pictures beside it
+foreach (doc LICENSE README.md Documents/Rasters.md Documents/images/jacksboro-oblique.png)
+  if (NOT EXISTS "${prefix}/share/doc/Aperture/${doc}")
+    message(FATAL_ERROR "the install has no share/doc/Aperture/${doc}")
+  endif ()
+endforeach ()
+
+# install_manifest.txt names every file the install made (the byte-compiled ones too: an
+# uninstall by it left them until 2026-12-07, and `import aperture` then found an empty
+# namespace package), so that removing what it names leaves no file behind.
+file(STRINGS "${APERTURE_BUILD_DIR}/install_manifest.txt" manifest)
+file(GLOB_RECURSE installed LIST_DIRECTORIES false "${prefix}/*")
+list(SORT manifest)
+list(SORT installed)
+if (NOT manifest STREQUAL installed)
+  set(unlisted ${installed})
+  list(REMOVE_ITEM unlisted ${manifest})
+  message(FATAL_ERROR "install_manifest.txt does not name what was installed; unnamed: "
+    "${unlisted}")
+endif ()
+file(REMOVE ${manifest})
+file(GLOB_RECURSE left LIST_DIRECTORIES false "${prefix}/*")
+if (left)
+  message(FATAL_ERROR "files left after removing the manifest's: ${left}")
+endif ()
+list(LENGTH manifest count)
+message(STATUS "install_manifest.txt names all ${count} files installed: ok")
