@@ -216,7 +216,9 @@ public:
    *  threads the system refuses to start (no memory for their stacks) fail the update with an error
    *  saying so. The backend and count are set for the process while the update's parallel work
    *  runs (vtkSMPTools::LocalScope); an Aperture update whose work starts meanwhile on another
-   *  thread runs on them instead of its own, so that the process's configuration is restored. */
+   *  thread runs on them instead of its own, so that the process's configuration is restored.
+   *  VTK's environment variables VTK_SMP_BACKEND_IN_USE and VTK_SMP_MAX_THREADS do not apply:
+   *  this property (the command line's --threads) sets the count. */
   vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
