@@ -91,8 +91,9 @@ class TestPipelineBehaviour(Testing.vtkTest):
                                      (sky, "SetRefractionCoefficient", 1.5),
                                      (reader, "SetBandIndex", 1)]:
             watch = Watcher()
-            watch.watch(sky)
-            watch.watch(mesher.GetExecutive())
+            for algorithm in (reader, sky, mesher):
+                watch.watch(algorithm)
+                watch.watch(algorithm.GetExecutive())
             mesher.Update()
             self.assertFalse(watch.errors, watch.errors)
             self.assertEqual(sky.GetOutput().GetPointData().GetNumberOfArrays(), 8)
@@ -105,7 +106,6 @@ class TestPipelineBehaviour(Testing.vtkTest):
                                              np.full((20, 30), -9999.0),
                                              (300000, 30, 0, 5000000, 0, -30), 32633, -9999))
                 reader.SetDecimation(1)
-                watch.watch(reader)
             mesher.Update()
             self.assertTrue(watch.errors, setter)
             output = stage.GetOutput()  # (downstream of it, VTK runs nothing)
