@@ -313,6 +313,33 @@ bool vtkApertureGeoreference::SetCRS(const char* definition)
     return false;
   }
   OSRSetAxisMappingStrategy(srs, OAMS_TRADITIONAL_GIS_ORDER);
+  // A geographic CRS's x and y are read as longitude east and latitude north (its units and
+  // prime meridian converted) without PROJ: refused where they are not, which PROJ would have
+  // placed elsewhere on Earth (a rotated pole's grid near its own equator, not the Earth's).
+  std::string unusable;
+  if (OSRIsGeographic(srs) && OSRIsDerivedGeographic(srs))
+  {
+    unusable = "is a rotated-pole (derived geographic) CRS, whose coordinates are not the "
+               "Earth's longitudes and latitudes";
+  }
+  for (int axis = 0; unusable.empty() && OSRIsGeographic(srs) && axis < 2; ++axis)
+  {
+    OGRAxisOrientation orientation = OAO_Other;
+    OSRGetAxis(srs, "GEOGCS", axis, &orientation);
+    if (orientation == OAO_West || orientation == OAO_South)
+    {
+      unusable = std::string("has its ") + (axis == 0 ? "first" : "second") + " axis pointing " +
+        (orientation == OAO_West ? "west" : "south");
+    }
+  }
+  if (!unusable.empty())
+  {
+    const char* name = OSRGetName(srs);
+    d.Error = std::string("the CRS '") + (name ? name : "unnamed") + "' " + unusable +
+      "; warp the DEM to a geographic or projected CRS first (gdalwarp -t_srs EPSG:4326)";
+    OSRRelease(srs);
+    return false;
+  }
   char* wkt = nullptr;
   const char* options[] = { "FORMAT=WKT2_2019", "MULTILINE=NO", nullptr };
   if (OSRExportToWktEx(srs, &wkt, options) != OGRERR_NONE || !wkt)

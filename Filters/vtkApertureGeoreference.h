@@ -72,8 +72,11 @@ public:
 
   /**
    * Set the CRS from anything GDAL's OSRSetFromUserInput accepts: WKT, "EPSG:32611", a PROJ
-   * string. Stored as WKT2:2019. Returns false (and keeps the previous CRS) if GDAL cannot
-   * parse it. An empty string or nullptr clears the CRS.
+   * string. Stored as WKT2:2019. Returns false (and keeps the previous CRS, GetErrorMessage
+   * says why) if GDAL cannot parse it, or for a geographic CRS whose coordinates are not
+   * longitude east and latitude north: a rotated pole (derived geographic, as climate models'
+   * grids), or an axis pointing west or south; the grid would be placed elsewhere on Earth.
+   * An empty string or nullptr clears the CRS.
    */
   bool SetCRS(const char* definition);
 

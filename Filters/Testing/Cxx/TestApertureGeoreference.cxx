@@ -162,6 +162,29 @@ void TestErrors()
   AP_CHECK(!geo->CRSToLonLat(0, 0, ll));
   AP_CHECK(std::string(geo->GetErrorMessage()).find("no geographic coordinates") !=
     std::string::npos);
+  // Geographic CRSs whose x and y are not longitude east and latitude north are refused (the
+  // previous CRS kept): until 2026-12-07 a rotated pole's grid near its own equator was read
+  // as if on the Earth's, and a west/south axis as east/north, silently 20-30 degrees off.
+  AP_CHECK(geo->SetCRS("EPSG:4326"));
+  const std::string wgs84 = geo->GetCRS();
+  AP_CHECK(!geo->SetCRS("+proj=ob_tran +o_proj=longlat +o_lat_p=30 +o_lon_p=0 +lon_0=10 "
+                        "+ellps=WGS84"));
+  AP_CHECK_CONTAINS(geo->GetErrorMessage(),
+    "is a rotated-pole (derived geographic) CRS, whose coordinates are not the Earth's "
+    "longitudes and latitudes; warp the DEM to a geographic or projected CRS first");
+  AP_CHECK(!geo->SetCRS("+proj=longlat +ellps=WGS84 +axis=wsu"));
+  AP_CHECK_CONTAINS(geo->GetErrorMessage(), "has its first axis pointing west");
+  AP_CHECK(!geo->SetCRS("+proj=longlat +ellps=WGS84 +axis=ens"));
+  AP_CHECK_CONTAINS(geo->GetErrorMessage(), "has its second axis pointing south");
+  AP_CHECK(geo->GetCRS() == wgs84);
+  // (latitude first, as EPSG:4326 itself declares, is read in GIS order: x the longitude)
+  AP_CHECK(geo->SetCRS("+proj=longlat +ellps=WGS84 +axis=neu"));
+  AP_CHECK(geo->CRSToLonLat(-84.3, 36.3, ll) && ll[0] == -84.3 && ll[1] == 36.3);
+  // a projected CRS with westing and southing axes goes through PROJ, which honours them:
+  // EPSG:2053 (Hartebeesthoek94 / Lo29, South Africa), the point 30 km west, 3000 km south of
+  // its origin (29 E on the equator) lies west of 29 E
+  AP_CHECK(geo->SetCRS("EPSG:2053"));
+  AP_CHECK(geo->CRSToLonLat(30000.0, 3000000.0, ll) && ll[0] < 29.0 && ll[1] < -27.0);
   AP_CHECK(geo->SetCRS("EPSG:4978")); // WGS 84 geocentric
   AP_CHECK(!geo->CRSToLonLat(4e6, 4e6, ll));
   AP_CHECK(std::string(geo->GetErrorMessage()).find("is geocentric") != std::string::npos);
