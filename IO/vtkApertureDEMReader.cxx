@@ -471,6 +471,15 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
     }
     return 0;
   }
+  // (first: a NaN pixel size made every test below true, and was called a rotation)
+  if (!std::isfinite(gt[1]) || !std::isfinite(gt[5]) || !std::isfinite(gt[2]) ||
+    !std::isfinite(gt[4]))
+  {
+    vtkErrorMacro(<< "'" << name << "' has a geotransform whose pixel size is not a finite "
+                  << "number (width " << gt[1] << ", height " << gt[5] << ", rotation terms "
+                  << gt[2] << ", " << gt[4] << "); set its corners first (gdal_edit.py -a_ullr)");
+    return 0;
+  }
   // Rotation terms that move the grid's far edges by under a thousandth of a cell are a
   // writer's rounding (1e-15 on a grid of 0.0008 degree cells was refused until 2026-12-06),
   // read as north-up; the outputs' geotransforms have none.
@@ -495,7 +504,7 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
                   << "); set its corners first (gdal_edit.py -a_ullr)");
     return 0;
   }
-  if (!(gt[1] > 0) || !std::isfinite(gt[1]) || !std::isfinite(gt[5]))
+  if (!(gt[1] > 0))
   {
     vtkErrorMacro(<< "'" << name << "' has an unsupported geotransform (pixel width " << gt[1]
                   << ", pixel height " << gt[5] << "); warp it north-up first (gdalwarp)");

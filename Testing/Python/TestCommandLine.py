@@ -659,6 +659,24 @@ class TestBadInput(CommandLineTest):
         self.assert_error("'%s' has a geotransform whose origin is not finite (inf, 4e+06); set "
                           "its corners first (gdal_edit.py -a_ullr)" % p, "info", p)
 
+    def test_pixel_size_not_a_number(self):
+        # named as the pixel size's problem: a NaN width was "a rotated geotransform (rotation
+        # terms 0, 0)" until 2026-12-07, an infinite one "an origin that is not finite" (GDAL
+        # computes an .asc file's origin from it)
+        for name, gt, shown in (("nan.tif", (500000, np.nan, 0, 4000000, 0, -30), "nan, -30"),
+                                ("inf.tif", (500000, 30, 0, 4000000, 0, -np.inf), "30, -inf")):
+            p = make_raster(self.path(name), np.ones((3, 3)), gt)
+            self.assert_error("'%s' has a geotransform whose pixel size is not a finite number "
+                              "(width %s, height %s, rotation terms 0, 0); set its corners "
+                              "first (gdal_edit.py -a_ullr)" % ((p,) + tuple(shown.split(", "))),
+                              "info", p)
+        asc = self.path("nan.asc")
+        with open(asc, "w") as f:
+            f.write("ncols 3\nnrows 3\nxllcorner 500000\nyllcorner 4000000\ncellsize inf\n"
+                    "1 2 3\n4 5 6\n7 8 9\n")
+        self.assert_error("has a geotransform whose pixel size is not a finite number",
+                          "info", asc, "--srs", "EPSG:32611")
+
     def test_unreadable(self):
         # a DEM without read permission, or in a folder that may not be entered: said so (GDAL
         # called the first "not a raster format GDAL recognises", and the second did "not
