@@ -174,7 +174,7 @@ void TestErrors()
     "longitudes and latitudes; warp the DEM to a geographic or projected CRS first");
   AP_CHECK(!geo->SetCRS("+proj=longlat +ellps=WGS84 +axis=wsu"));
   AP_CHECK_CONTAINS(geo->GetErrorMessage(), "has its first axis pointing west");
-  AP_CHECK(!geo->SetCRS("+proj=longlat +ellps=WGS84 +axis=ens"));
+  AP_CHECK(!geo->SetCRS("+proj=longlat +ellps=WGS84 +axis=esu"));
   AP_CHECK_CONTAINS(geo->GetErrorMessage(), "has its second axis pointing south");
   AP_CHECK(geo->GetCRS() == wgs84);
   // (latitude first, as EPSG:4326 itself declares, is read in GIS order: x the longitude)
