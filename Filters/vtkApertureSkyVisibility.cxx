@@ -224,7 +224,33 @@ bool HaloCells(vtkApertureGeoreference* geo, double distance, int j0, int j1, in
   double mx = std::numeric_limits<double>::infinity(), my = mx;
   const int chunk = 4096;
   std::vector<double> dx(chunk), dy(chunk);
+  // A lat/lon grid's cells narrow (dx) and lengthen (dy, the meridian's radius) from the
+  // equator towards either pole: the smallest of a run of rows are at its ends and at the row
+  // nearest the equator, which are all it measures (a DEM declaring 2^31 rows of 1e-10 degree
+  // measured each, an hour before its memory was found wanting).
+  double grid[2], spacing[2];
+  geo->GetGridOrigin(grid);
+  geo->GetGridSpacing(spacing);
+  const double equator = -grid[1] / spacing[1]; // (the grid row at latitude 0)
+  const bool byLatitude = geo->IsGeographic() && std::isfinite(equator);
   const auto measure = [&](int first, int count) {
+    if (byLatitude && count > 4)
+    {
+      const double last = first + count - 1.0;
+      const double near = std::max<double>(first, std::min(last, std::floor(equator)));
+      const int rows[4] = { first, static_cast<int>(near),
+        static_cast<int>(std::min(last, near + 1.0)), first + count - 1 };
+      for (int r : rows)
+      {
+        if (!geo->GetRowCellSizesMetres(r, 1, dx.data(), dy.data()))
+        {
+          return false;
+        }
+        mx = std::min(mx, dx[0]);
+        my = std::min(my, dy[0]);
+      }
+      return true;
+    }
     for (int c = 0; c < count; c += chunk)
     {
       const int n = std::min(chunk, count - c);
@@ -299,7 +325,12 @@ void InputExtentOf(
 {
   std::copy(whole, whole + 6, in);
   int halo[2];
-  if (!(distance > 0) || !HaloCells(geo, distance, ext[2] - whole[2], ext[3] - whole[2], halo))
+  // (the whole extent needs no halo: measuring every row of a projected grid declaring 2^31
+  // of them for one took an hour)
+  const bool all = ext[0] <= whole[0] && ext[1] >= whole[1] && ext[2] <= whole[2] &&
+    ext[3] >= whole[3];
+  if (all || !(distance > 0) ||
+    !HaloCells(geo, distance, ext[2] - whole[2], ext[3] - whole[2], halo))
   {
     return;
   }

@@ -476,6 +476,23 @@ class TestBake(unittest.TestCase):
             self.assertEqual(err.strip(), "aperture: error: bake: the DEM's grid of 2147483647 x "
                              "2147483647 cells has more than the 1000000001 cells a side the "
                              "sweep can place its pieces in; bake a decimated DEM")
+            # The whole grid, and (lat/lon) a column of it through every row, in a moment: the
+            # halo came from every row's cell sizes, an hour's geodesics for 2^31 rows (the
+            # bake of the whole grid with a radius ignored Ctrl-C meanwhile) until 2026-12-07;
+            # a lat/lon grid's smallest cells of a run of rows are at its ends or the equator.
+            start = time.monotonic()
+            self.assertTrue(sky.ComputeInputExtent(whole, read))
+            self.assertEqual(tuple(read), whole)
+            if path == latlon:
+                self.assertTrue(sky.ComputeInputExtent((0, 99, 0, 2147483646, 0, 0), read))
+                # (the narrowest cells, at the south row: 21.47 degrees south of 10 N)
+                south = math.radians(10.0 - 2147483646e-8)
+                w = math.sqrt(1 - e2 * math.sin(south) ** 2)
+                hx = math.ceil(1.0 / (a / w * math.cos(south) * step)) + 2
+                self.assertEqual(tuple(read), (0, 99 + hx, 0, 2147483646, 0, 0))
+            status, out, err = run("bake", path, self.path("billions.tif"), "--radius", 1)
+            self.assertEqual((status, out), (1, ""), err)
+            self.assertLess(time.monotonic() - start, 60.0)
 
     def test_window_of_a_large_dem(self):
         # A window of a 60000^2 DEM (13.4 GiB of elevations, a 75 GB bake) with a radius reads
