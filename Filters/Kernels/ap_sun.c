@@ -417,7 +417,9 @@ const char *ap_sun_params_invalid(const ap_sun_params *p, double *lo, double *hi
     { "delta_t", isnan(p->delta_t) ? 0.0 : p->delta_t, -100000.0, 100000.0, 0, 0 },
     { "delta_ut1", p->delta_ut1, -1.0, 1.0, 1, 1 },
     { "pressure", p->pressure, 0.0, 5000.0, 0, 0 },
-    { "temperature", p->temperature, -273.0, 6000.0, 1, 0 },
+    /* (not SPA's -273..6000: near -273 the refraction's factor 283 / (273 + T) lifted the
+     * sun by tens of degrees, past the zenith; the air at the ground stays within these) */
+    { "temperature", p->temperature, -100.0, 100.0, 0, 0 },
     { "atmos_refract", p->atmos_refract, 0.0, 4.0, 0, 0 },
   };
   return ap_range_first_outside(fields, sizeof fields / sizeof fields[0], lo, hi);

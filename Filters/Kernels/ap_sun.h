@@ -48,7 +48,8 @@ typedef struct ap_sun_params {
                              polynomials, see ap_sun_delta_t_estimate() */
   double delta_ut1;     /**< UT1 − UTC (s), −1 < delta_ut1 < 1 (default 0; IERS Bulletin A) */
   double pressure;      /**< mean local air pressure (hPa = mbar), 0..5000 (default 1013.25) */
-  double temperature;   /**< mean local air temperature (°C), −273 < T <= 6000 (default 15) */
+  double temperature;   /**< mean local air temperature (°C), −100..100 (default 15; SPA's
+                         *   −273..6000 let the refraction lift the sun past the zenith) */
   double atmos_refract; /**< refraction at the horizon (deg), 0..4 (default 0.5667): sets the
                              lowest sun elevation −(0.26667 + atmos_refract) at which
                              refraction is still applied, and the rise/set altitude */
@@ -100,7 +101,7 @@ ap_status ap_sun_params_validate(const ap_sun_params *p);
 
 /** The first field of p that ap_sun_params_validate refuses, for messages: its name in the
  *  struct ("delta_t", "delta_ut1", "pressure", "temperature", "atmos_refract"), its range in
- *  *lo and *hi (either may be NULL; delta_ut1's ends and temperature's lower end excluded).
+ *  *lo and *hi (either may be NULL; delta_ut1's ends excluded).
  *  NULL when every field is valid, or p is NULL. */
 const char *ap_sun_params_invalid(const ap_sun_params *p, double *lo, double *hi);
 

@@ -651,20 +651,17 @@ def _memory_size(text):
     return int(value)
 
 
-def _number_in(lo, hi, unit="", above=False):
-    """A float option within lo..hi (above lo when `above`): outside, or NaN, a usage error
-    naming the range, before any file is read (the C core's ranges, which the filters check
-    again for other callers)."""
+def _number_in(lo, hi, unit=""):
+    """A float option within lo..hi: outside, or NaN, a usage error naming the range, before
+    any file is read (the C core's ranges, which the filters check again for other callers)."""
     def number(text):
         try:
             value = float(text)
         except ValueError:
             raise argparse.ArgumentTypeError("invalid float value: %r" % text)
-        if not ((value > lo if above else value >= lo) and value <= hi):
-            unit_text = " " + unit if unit else ""
-            raise argparse.ArgumentTypeError(
-                ("%s must be above %g and at most %g%s" if above else "%s is outside %g..%g%s")
-                % (text, lo, hi, unit_text))
+        if not lo <= value <= hi:
+            raise argparse.ArgumentTypeError("%s is outside %g..%g%s"
+                                             % (text, lo, hi, " " + unit if unit else ""))
         return value
     return number
 
@@ -2628,9 +2625,9 @@ def build_parser():
                         "--dem: the DEM's height at its centre)")
     p.add_argument("--pressure", type=_number_in(0, 5000, "hPa"), default=1013.25, metavar="HPA",
                    help="air pressure for refraction, hPa, 0..5000 (default 1013.25)")
-    p.add_argument("--temperature", type=_number_in(-273, 6000, "C", above=True), default=15.0,
-                   metavar="C", help="air temperature for refraction, degrees C, above -273 up "
-                                     "to 6000 (default 15)")
+    p.add_argument("--temperature", type=_number_in(-100, 100, "C"), default=15.0,
+                   metavar="C", help="air temperature for refraction, degrees C, -100..100 "
+                                     "(default 15)")
     p.add_argument("--no-refraction", action="store_true",
                    help="report geometric elevations as the apparent ones")
     p.add_argument("--sky", choices=sorted(SKY_MODELS), default="preetham",
