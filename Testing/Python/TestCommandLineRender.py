@@ -944,6 +944,15 @@ class TestCommandLineRender(unittest.TestCase):
                 self.assertEqual(status, 1, stderr)
                 self.assertEqual(len(stderr.strip().splitlines()), 1, stderr)
                 self.assertIn(expected, stderr)
+            # complex samples: refused by name (numpy warned, with its source line, and the
+            # real parts were taken until 2026-12-07)
+            other = os.path.join(tmp, "complex.tif")
+            gdal.Translate(other, baked, outputType=gdal.GDT_CFloat32)
+            status, _, stderr = run("render", "-o", os.path.join(tmp, "x.png"), "--size",
+                                    "200x120", "--baked", other)
+            self.assertEqual((status, len(stderr.strip().splitlines())), (1, 1), stderr)
+            self.assertIn("complex.tif band BentNormal_E holds complex numbers (CFloat32), not "
+                          "the products 'aperture bake' writes: bake this DEM", stderr)
             # the bake's EXR: said so (GDAL's "not recognized as a supported file format" until
             # 2026-12-06)
             status, _, stderr = run("render", "-o", os.path.join(tmp, "x.png"), "--size",

@@ -756,6 +756,13 @@ def _attach_baked_bands(image, path, ds, reader):
     if missing:
         raise ApertureError("%s has no band %s: bake it with 'aperture bake' and its default "
                             "products" % (path, ", ".join(missing)))
+    from osgeo import gdal
+    for name in need:  # (numpy warned casting complex samples and kept their real parts)
+        band = ds.GetRasterBand(bands[name])
+        if gdal.DataTypeIsComplex(band.DataType):
+            raise ApertureError("%s band %s holds complex numbers (%s), not the products "
+                                "'aperture bake' writes: bake this DEM"
+                                % (path, name, gdal.GetDataTypeName(band.DataType)))
     nx, ny, _ = image.GetDimensions()
     xoff = yoff = 0
     # the same size is not the same grid: a bake of another DEM (or of another --srcwin,
