@@ -115,6 +115,8 @@
  * coastal DEM, is no error: its products are nodata (NaN; EdgeTruncated 0, or NaN as float),
  * as the whole run's are there, and GetInputAllNodata() says so.
  *
+ * An input of no points (an empty image, or an empty update extent) gives an empty output and
+ * no error, as VTK's filters do.
  * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, a point
  * array without one tuple per point of the input, no CRS or no metric cell size, every cell
  * nodata in an input that is the whole DEM (an update of all of it, or an unlimited distance),

@@ -69,6 +69,8 @@
  * origin), `FrameEllipsoid` (semi-major axis in metres, flattening) and
  * `VerticalExaggeration`; the input's `CRS` and `GeoTransform` are passed through.
  *
+ * An input of no points (an empty image, or an empty update extent) gives an empty mesh and no
+ * error, as VTK's filters do.
  * Errors (vtkErrorMacro and a failed update): no elevation array or one of several components,
  * a whole DEM smaller than 2 x 2 (a streamed piece that thin just gives an empty mesh), a point
  * array without one tuple per point of the input, no CRS or one without geographic coordinates
