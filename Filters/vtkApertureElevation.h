@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -79,6 +80,41 @@ inline std::string vtkApertureSelectedElevationName(vtkAlgorithm* self, vtkMTime
   vtkDataArray* scalars = pd ? pd->GetScalars() : nullptr;
   return scalars && scalars->GetName() && *scalars->GetName() ? scalars->GetName()
                                                               : "Elevation";
+}
+
+// A filter's SetElevationArrayName: the later of it and SetInputArrayToProcess(0, ...) wins,
+// so a selection made before (its info changed after `made`) is taken away, and the same
+// selection made again counts anew: until 2026-12-07 a name set after any selection was
+// kept, and ignored. True when the filter is modified (a new name, or a selection replaced).
+inline bool vtkApertureSetElevationName(
+  vtkAlgorithm* self, vtkMTimeType& made, char*& field, const char* name)
+{
+  vtkInformation* info = self->GetInputArrayInformation(0);
+  const bool selected = info->GetMTime() > made &&
+    (info->Has(vtkDataObject::FIELD_NAME()) || info->Has(vtkDataObject::FIELD_ATTRIBUTE_TYPE()));
+  if (selected)
+  {
+    // (VTK's SetInputArrayToProcess leaves an unchanged selection's time as it is)
+    info->Remove(vtkDataObject::FIELD_NAME());
+    info->Remove(vtkDataObject::FIELD_ATTRIBUTE_TYPE());
+  }
+  made = info->GetMTime();
+  const bool same = (!name && !field) || (name && field && std::string(name) == field);
+  if (same && !selected)
+  {
+    return false;
+  }
+  if (!same)
+  {
+    delete[] field;
+    field = nullptr;
+    if (name)
+    {
+      field = new char[std::strlen(name) + 1];
+      std::strcpy(field, name);
+    }
+  }
+  return true;
 }
 
 // After a filter carried its input's point data `in` to `out`: heights it took from the active

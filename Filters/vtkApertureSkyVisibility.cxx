@@ -1575,6 +1575,15 @@ int vtkApertureSkyVisibility::RunRequestData(
 }
 
 //------------------------------------------------------------------------------
+void vtkApertureSkyVisibility::SetElevationArrayName(const char* name)
+{
+  if (vtkApertureSetElevationName(this, this->ArraySelectionMade, this->ElevationArrayName, name))
+  {
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkApertureSkyVisibility::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

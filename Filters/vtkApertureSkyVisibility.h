@@ -358,8 +358,8 @@ public:
    *  name the input lacks is an error naming the arrays it has. SetInputArrayToProcess(0, 0,
    *  0, points, name), the way VTK's filters and ParaView select arrays, selects one in its
    *  place (or the point scalars, by attribute type); a selection of cell data or of another
-   *  attribute is an error. */
-  vtkSetStringMacro(ElevationArrayName);
+   *  attribute is an error. Of the two, the one made last holds. */
+  void SetElevationArrayName(const char* name);
   vtkGetStringMacro(ElevationArrayName);
   ///@}
 

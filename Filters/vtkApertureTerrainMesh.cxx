@@ -942,6 +942,15 @@ int vtkApertureTerrainMesh::RunRequestData(
 }
 
 //------------------------------------------------------------------------------
+void vtkApertureTerrainMesh::SetElevationArrayName(const char* name)
+{
+  if (vtkApertureSetElevationName(this, this->ArraySelectionMade, this->ElevationArrayName, name))
+  {
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkApertureTerrainMesh::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

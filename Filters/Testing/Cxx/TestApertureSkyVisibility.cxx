@@ -552,6 +552,23 @@ void TestInputArraySelection()
                       0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Elevation");
                   }),
     expected, "Elevation by name");
+  // Of ElevationArrayName and a selection, the one made last holds (until 2026-12-07 a name
+  // set after any selection was kept, and ignored): one filter, updated after each.
+  {
+    vtkNew<vtkApertureSkyVisibility> s;
+    setup(s);
+    s->SetInputData(dem);
+    s->SetComputeHorizonAngles(true); // (as Sky's)
+    s->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "flat");
+    s->Update();
+    allFlat(s->GetOutput(), "selected");
+    s->SetElevationArrayName("Elevation"); // (the name it had: the selection replaced)
+    s->Update();
+    CheckSameBits(s->GetOutput(), expected, "the name after a selection");
+    s->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "flat");
+    s->Update();
+    allFlat(s->GetOutput(), "selected again");
+  }
   ExpectError(dem,
     [](vtkApertureSkyVisibility* s) {
       s->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "flat");

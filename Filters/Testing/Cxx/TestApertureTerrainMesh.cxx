@@ -665,6 +665,20 @@ void TestInputArraySelection()
     expected->GetPoint(k, b);
     AP_CHECK(a[0] == b[0] && a[1] == b[1] && a[2] == b[2]);
   }
+  // Of ElevationArrayName and a selection, the one made last holds (until 2026-12-07 a name
+  // set after any selection was kept, and ignored): the DEM's own Elevation again.
+  m.Mesher->SetElevationArrayName("Elevation");
+  AP_CHECK(m.Mesher->GetExecutive()->Update() == 1 && !m.Errors->GetError());
+  auto own = Mesh(MakeDEM("EPSG:32633", 400000.0, 5000000.0, 30.0, 30.0, nx, ny, rough));
+  got = m.Mesher->GetOutput();
+  AP_CHECK(got->GetNumberOfPoints() == own->GetNumberOfPoints());
+  for (vtkIdType k = 0; k < got->GetNumberOfPoints() && k < own->GetNumberOfPoints(); ++k)
+  {
+    double a[3], b[3];
+    got->GetPoint(k, a);
+    own->GetPoint(k, b);
+    AP_CHECK(a[0] == b[0] && a[1] == b[1] && a[2] == b[2]);
+  }
   ObservedMesher cells(dem);
   cells.Mesher->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "heights");
