@@ -131,7 +131,19 @@ void vtkApertureDEMWriter::AddMetadata(const char* key, const char* value)
 {
   if (key && *key)
   {
-    this->Impl->Metadata.emplace_back(key, value ? value : "");
+    // (a key added again replaces its value: a loop of writes adding one per frame grew the
+    // list, and every write's time, without end)
+    auto& items = this->Impl->Metadata;
+    const auto same = std::find_if(
+      items.begin(), items.end(), [key](const auto& kv) { return kv.first == key; });
+    if (same == items.end())
+    {
+      items.emplace_back(key, value ? value : "");
+    }
+    else
+    {
+      same->second = value ? value : "";
+    }
     this->Modified();
   }
 }
@@ -142,7 +154,18 @@ void vtkApertureDEMWriter::AddBandMetadata(
 {
   if (arrayName && *arrayName && key && *key)
   {
-    this->Impl->BandMetadata.push_back({ arrayName, key, value ? value : "" });
+    auto& items = this->Impl->BandMetadata; // (as AddMetadata: a key added again replaces)
+    const auto same = std::find_if(items.begin(), items.end(), [&](const auto& item) {
+      return item.Array == arrayName && item.Key == key;
+    });
+    if (same == items.end())
+    {
+      items.push_back({ arrayName, key, value ? value : "" });
+    }
+    else
+    {
+      same->Value = value ? value : "";
+    }
     this->Modified();
   }
 }

@@ -176,9 +176,11 @@ public:
   ///@}
 
   ///@{
-  /** Dataset metadata (key = value, the GeoTIFF's GDAL metadata domain), written with the file. */
+  /** Dataset metadata (key = value, the GeoTIFF's GDAL metadata domain), written with the file;
+   *  a key added again replaces its value. */
   void AddMetadata(const char* key, const char* value);
-  /** Metadata for the bands of one array (all its components). */
+  /** Metadata for the bands of one array (all its components); the same array and key added
+   *  again replaces the value. */
   void AddBandMetadata(const char* arrayName, const char* key, const char* value);
   void ClearMetadata();
   ///@}

@@ -41,6 +41,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -739,6 +740,12 @@ void TestMetadataAndPlainPicture()
   writer->AddMetadata("aperture:software", "aperture 0.1");
   writer->AddMetadata("Provenance", "first");
   writer->AddMetadata("Provenance", "slope of dem.tif (Horn 1981)");
+  // (the later value replaces the earlier one in the writer too: until 2026-12-07 both were
+  // kept, the last written, and a loop adding one a frame grew the list without end)
+  std::ostringstream state;
+  writer->Print(state);
+  AP_CHECK_CONTAINS(state.str(), "Metadata: 2 items\n");
+  AP_CHECK(state.str().find("Provenance = first") == std::string::npos);
   writer->Write();
 
   const RawImage raw = ReadRaw(path);
