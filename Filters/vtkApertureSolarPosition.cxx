@@ -529,6 +529,9 @@ bool vtkApertureSolarPosition::SetPlaceFromImage(vtkImageData* dem)
   this->Longitude = std::remainder(lonlat[0], 360.0);
   this->Latitude = lonlat[1];
   this->Height = height;
+  // (the new DEM's at once: the last one's stayed until a Compute succeeded, so that a local
+  // grid, on which Compute fails for want of a place, kept a UTM DEM's)
+  this->Convergence = ConvergenceAt(geo, this->Longitude, this->Latitude);
   d.Error.clear();
   return true;
 }

@@ -122,7 +122,7 @@ public:
 
   ///@{
   /** Atmosphere for refraction: mean air pressure (hPa, 0..5000, default 1013.25) and
-   *  temperature (°C, above −273 up to 6000, default 15); Refraction off gives geometric
+   *  temperature (°C, −100..100, default 15); Refraction off gives geometric
    *  elevations (default on). Values out of range make Compute() fail, naming them. */
   vtkSetMacro(Pressure, double);
   vtkGetMacro(Pressure, double);
@@ -176,9 +176,10 @@ public:
   bool Compute();
 
   /**
-   * No time or ephemeris: put the sun at this true azimuth and elevation (degrees, e.g. for a
-   * hillshade-like picture), at 1 AU with its mean disc (0.26656°), and compute the light for it
-   * as Compute() does. Time results (sunrise, equation of time, ...) are NaN. False for an
+   * No time or ephemeris: put the sun at this azimuth (from true north) and elevation (degrees,
+   * e.g. for a hillshade-like picture; the elevation is both the apparent and the geometric
+   * one: no refraction is added), at 1 AU with its mean disc (0.26656°), and compute the light
+   * for it as Compute() does. Time results (sunrise, equation of time, ...) are NaN. False for an
    * elevation outside −90..90 or a non-finite azimuth.
    */
   bool ComputeForDirection(double azimuth, double elevation);

@@ -487,7 +487,15 @@ void TestLocalGrid()
   vtkNew<vtkTest::ErrorObserver> errors;
   sun->AddObserver(vtkCommand::ErrorEvent, errors);
   AP_CHECK(sun->SetTime("2026-06-21T12:00Z"));
+  // (after a UTM DEM east of its zone's meridian, whose convergence the local grid's 0
+  // replaces at once: until 2026-12-07 it stayed until a Compute succeeded, which on a local
+  // grid none does)
+  AP_CHECK(sun->SetPlaceFromImage(MakeUTM(800000.0, 5500000.0)));
+  const double gamma = sun->GetGridConvergence();
+  AP_CHECK(sun->Compute() && sun->GetGridConvergence() == gamma && gamma > 2.0);
   AP_CHECK(sun->SetPlaceFromImage(dem));
+  AP_CHECK(sun->GetGridConvergence() == 0.0);
+  AP_CHECK(!sun->Compute() && sun->GetGridConvergence() == 0.0);
   AP_CHECK(std::isnan(sun->GetLatitude()) && std::isnan(sun->GetLongitude()));
   AP_CHECK_NEAR(sun->GetHeight(), 250.0, 0.0);
   // the height is the "Elevation" array's, whatever the active scalars are (a sky product
