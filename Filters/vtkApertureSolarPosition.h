@@ -147,7 +147,10 @@ public:
    * Atmosphere for the light: sky model (SKY_PREETHAM, default; SKY_CIE_CLEAR; SKY_CIE_OVERCAST;
    * SKY_UNIFORM), Preetham turbidity (2..10, default 3: clear), Linke turbidity for the beam's
    * strength (1..8, default 3), and the sky's horizontal irradiance in W/m² (negative, the
-   * default: from the model; Preetham has its own scale, the others take ESRA's diffuse).
+   * default: from the model; Preetham has its own scale, CIE overcast a quarter of the clear
+   * day's global irradiance, the others ESRA's diffuse). The direct beam is the clear-sky beam
+   * of the Linke turbidity whatever the sky: an overcast day, whose sky then holds all its
+   * light, is its sky without the beam (leave the sun's light out).
    */
   enum SkyModels
   {
@@ -306,7 +309,8 @@ public:
    * The sky over the spherical cap of axis `axis` (ENU) and angular radius `radius` (degrees,
    * 0..90): its mean radiance (W/m²/sr, RGB; directions below the horizon count as dark) and
    * the irradiance it sends onto a surface of normal `normal` (W/m², RGB, cosine-weighted).
-   * Deterministic quadrature, relative error below 5e-4 (ap_sky.h). False on bad input.
+   * Deterministic quadrature, relative error below 5e-4 with the sun above about 15°, up to
+   * about 1% with it lower (ap_sky.h gives the measure and the remedy). False on bad input.
    */
   bool GetSkyCap(const double axis[3], double radius, const double normal[3], double meanRGB[3],
     double irradianceRGB[3]);

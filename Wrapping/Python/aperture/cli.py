@@ -2638,7 +2638,9 @@ def build_parser():
     p.add_argument("--no-refraction", action="store_true",
                    help="report geometric elevations as the apparent ones")
     p.add_argument("--sky", choices=sorted(SKY_MODELS), default="preetham",
-                   help="sky radiance model (default preetham)")
+                   help="sky radiance model (default preetham); the direct beam is the "
+                        "clear-sky one whatever the sky: under cie-overcast, whose sky holds "
+                        "the whole overcast day's light, leave the beam out")
     _add_atmosphere_options(p)
     p.add_argument("--delta-t", type=_number_in(-100000, 100000, "s"), metavar="S",
                    help="TT - UT1 in seconds, -100000..100000 (default: estimated for the "
