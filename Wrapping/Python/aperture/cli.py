@@ -2653,10 +2653,13 @@ def build_parser():
                    help="time-series step in minutes, at least 1/60 (default 60 with --days); "
                         "the series has every step before --days days have passed")
     p.add_argument("--json", action="store_true",
-                   help="print one JSON object (a list for a time series) with keys "
-                        "azimuth_deg, elevation_deg, zenith_deg, elevation_true_deg, "
-                        "angular_radius_deg, distance_au, equation_of_time_min, sunrise, "
-                        "transit, sunset and, with --dem, grid_azimuth_deg, direction_enu")
+                   help="print one JSON object (a list for a time series) of the text's "
+                        "values, units in the key names: among them azimuth_deg, "
+                        "elevation_deg, zenith_deg, elevation_true_deg, angular_radius_deg, "
+                        "distance_au, equation_of_time_min, sunrise, transit, sunset (and "
+                        "*_local), the light (air_mass, direct_normal_irradiance_w_m2, "
+                        "sun_rgb_w_m2, sky_*) and, with --dem, grid_azimuth_deg, "
+                        "direction_enu")
     _add_read_options(p, dem_option="take the place (and frame) from this DEM's centre (of "
                                     "the window read, with --srcwin)")
     p.set_defaults(func=cmd_sun)
