@@ -60,8 +60,10 @@ endforeach ()
 
 # install_manifest.txt names every file the install made (the byte-compiled ones too: an
 # uninstall by it left them until 2026-12-07, and `import aperture` then found an empty
-# namespace package), so that removing what it names leaves no file behind.
-file(STRINGS "${APERTURE_BUILD_DIR}/install_manifest.txt" manifest)
+# namespace package), and the uninstall target removes them and the folders of ours left
+# empty, so that the package no longer imports.
+set(manifest_path "${APERTURE_BUILD_DIR}/install_manifest.txt")
+file(STRINGS "${manifest_path}" manifest)
 file(GLOB_RECURSE installed LIST_DIRECTORIES false "${prefix}/*")
 list(SORT manifest)
 list(SORT installed)
@@ -71,10 +73,37 @@ if (NOT manifest STREQUAL installed)
   message(FATAL_ERROR "install_manifest.txt does not name what was installed; unnamed: "
     "${unlisted}")
 endif ()
-file(REMOVE ${manifest})
-file(GLOB_RECURSE left LIST_DIRECTORIES false "${prefix}/*")
-if (left)
-  message(FATAL_ERROR "files left after removing the manifest's: ${left}")
+function(uninstall)
+  run("uninstall" "${CMAKE_COMMAND}" -E env ${ARGN} "${CMAKE_COMMAND}"
+    "-DMANIFEST=${manifest_path}" -P "${APERTURE_SOURCE_DIR}/Utilities/Uninstall.cmake")
+endfunction()
+function(check_nothing_left root)
+  file(GLOB_RECURSE left LIST_DIRECTORIES true "${root}/*")
+  foreach (path IN LISTS left)
+    if (NOT IS_DIRECTORY "${path}" OR path MATCHES "/[Aa]perture(/|$)")
+      message(FATAL_ERROR "the uninstall left ${path}")
+    endif ()
+  endforeach ()
+endfunction()
+uninstall()
+check_nothing_left("${prefix}")
+if (WRAP_PYTHON)
+  run("no package after the uninstall" "${CMAKE_COMMAND}" -E env
+    "PYTHONPATH=${prefix}/${PYTHON_DESTINATION}" "${PYTHON}" -c
+    "import importlib.util as u; assert u.find_spec('aperture') is None, u.find_spec('aperture')")
 endif ()
+# Staged (DESTDIR): the manifest names the files where they will be, without the stage, and
+# the uninstall with the same DESTDIR removes them.
+set(stage "${WORK_DIR}/stage")
+run("staged install" "${CMAKE_COMMAND}" -E env "DESTDIR=${stage}" "${CMAKE_COMMAND}" --install
+  "${APERTURE_BUILD_DIR}" --prefix "${WORK_DIR}/usr")
+file(STRINGS "${manifest_path}" manifest)
+foreach (f IN LISTS manifest)
+  if (f MATCHES "^${stage}/" OR NOT EXISTS "${stage}${f}")
+    message(FATAL_ERROR "the staged install's manifest names ${f}")
+  endif ()
+endforeach ()
+uninstall("DESTDIR=${stage}")
+check_nothing_left("${stage}")
 list(LENGTH manifest count)
-message(STATUS "install_manifest.txt names all ${count} files installed: ok")
+message(STATUS "install_manifest.txt names all ${count} files installed; uninstalled: ok")
