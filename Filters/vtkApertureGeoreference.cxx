@@ -316,21 +316,34 @@ bool vtkApertureGeoreference::SetCRS(const char* definition)
   // A geographic CRS's x and y are read as longitude east and latitude north (its units and
   // prime meridian converted) without PROJ: refused where they are not, which PROJ would have
   // placed elsewhere on Earth (a rotated pole's grid near its own equator, not the Earth's).
+  // (of a compound CRS, its horizontal part: GDAL says a compound CRS over a rotated pole is
+  // geographic, but not derived geographic)
+  OGRSpatialReferenceH horizontal = OSRIsCompound(srs) ? OSRClone(srs) : nullptr;
+  if (horizontal && OSRStripVertical(horizontal) != OGRERR_NONE)
+  {
+    OSRRelease(horizontal);
+    horizontal = nullptr;
+  }
+  OGRSpatialReferenceH plane = horizontal ? horizontal : srs;
   std::string unusable;
-  if (OSRIsGeographic(srs) && OSRIsDerivedGeographic(srs))
+  if (OSRIsGeographic(plane) && OSRIsDerivedGeographic(plane))
   {
     unusable = "is a rotated-pole (derived geographic) CRS, whose coordinates are not the "
                "Earth's longitudes and latitudes";
   }
-  for (int axis = 0; unusable.empty() && OSRIsGeographic(srs) && axis < 2; ++axis)
+  for (int axis = 0; unusable.empty() && OSRIsGeographic(plane) && axis < 2; ++axis)
   {
     OGRAxisOrientation orientation = OAO_Other;
-    OSRGetAxis(srs, "GEOGCS", axis, &orientation);
+    OSRGetAxis(plane, "GEOGCS", axis, &orientation);
     if (orientation == OAO_West || orientation == OAO_South)
     {
       unusable = std::string("has its ") + (axis == 0 ? "first" : "second") + " axis pointing " +
         (orientation == OAO_West ? "west" : "south");
     }
+  }
+  if (horizontal)
+  {
+    OSRRelease(horizontal);
   }
   if (!unusable.empty())
   {

@@ -172,6 +172,10 @@ void TestErrors()
   AP_CHECK_CONTAINS(geo->GetErrorMessage(),
     "is a rotated-pole (derived geographic) CRS, whose coordinates are not the Earth's "
     "longitudes and latitudes; warp the DEM to a geographic or projected CRS first");
+  // (and as the horizontal part of a compound CRS, which GDAL calls geographic, not derived)
+  AP_CHECK(!geo->SetCRS("+proj=ob_tran +o_proj=longlat +o_lat_p=30 +o_lon_p=0 +lon_0=10 "
+                        "+ellps=WGS84 +geoidgrids=egm96_15.gtx +vunits=m"));
+  AP_CHECK_CONTAINS(geo->GetErrorMessage(), "is a rotated-pole (derived geographic) CRS");
   AP_CHECK(!geo->SetCRS("+proj=longlat +ellps=WGS84 +axis=wsu"));
   AP_CHECK_CONTAINS(geo->GetErrorMessage(), "has its first axis pointing west");
   AP_CHECK(!geo->SetCRS("+proj=longlat +ellps=WGS84 +axis=esu"));
