@@ -196,6 +196,10 @@ class CommandLineSunTest(unittest.TestCase):
         status, out, err = run("--at", "6000-12-31T23:59:59.9Z", "--lat", 47, "--lon", 8)
         self.assertEqual(status, 0, err)
         self.assertIn("Time:        6000-12-31T23:59:59Z (local 6000-12-31T23:59:59+00:00)", out)
+        # nor as a local time in the year 6001, east of UTC, which --at would refuse
+        r = self.json_of("--at", "6000-12-31T23:59:59.9Z", "--lat", 35, "--lon", 139, "--tz",
+                         "Asia/Tokyo")
+        self.assertEqual((r["time_utc"], r["time_local"]), ("6000-12-31T23:59:59Z", None))
         # --delta-t nan was the estimate, without a word
         for value in ("nan", "1e300", "-100001"):  # (1e300 was refused by the light's check)
             self.assertEqual(self.usage_error_of("--at", "2026-06-21T12:00Z", "--lat", 47,

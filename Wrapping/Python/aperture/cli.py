@@ -2231,7 +2231,9 @@ def _local_text(sun, unix_seconds):
         when = datetime.datetime.fromtimestamp(whole, tz)
     except (OverflowError, OSError, ValueError):
         return None  # outside Python's years 1..9999: the UTC string is still given
-    return when.isoformat()
+    # (a local time in the year 6001, an instant of the range's last hours east of UTC, is
+    # text that --at refuses, as the C core's local form does)
+    return when.isoformat() if when.year <= 6000 else None
 
 
 def _sun_record(sun, with_dem):
