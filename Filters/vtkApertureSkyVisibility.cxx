@@ -2,6 +2,7 @@
 #include "vtkApertureSkyVisibility.h"
 
 #include "vtkApertureElevation.h"
+#include "vtkApertureEmptyOutput.h"
 #include "vtkApertureGeoreference.h"
 #include "vtkApertureMemory.h"
 #include "vtkApertureSMPThreads.h"
@@ -586,14 +587,7 @@ int vtkApertureSkyVisibility::RequestData(
     vtkErrorMacro(<< vtkApertureThreadsRefused(
                     vtkApertureSMPConfig(this->NumberOfThreads).MaxNumberOfThreads, e));
   }
-  // (a failed update leaves an empty image: vtkImageData::PrepareForNewData keeps the last
-  // run's scalars, the elevations, which then stood in an output of no points)
-  vtkImageData* output = ok ? nullptr : vtkImageData::GetData(outputVector);
-  if (output)
-  {
-    output->Initialize();
-  }
-  return ok;
+  return vtkApertureEmptyOutputUnless(ok, outputVector);
 }
 
 //------------------------------------------------------------------------------

@@ -5,7 +5,7 @@
 #include "vtkApertureGeoreference.h"
 #include "vtkApertureMemory.h"
 #include "vtkApertureOutputFile.h"
-#include "vtkApertureReaderOutput.h"
+#include "vtkApertureEmptyOutput.h"
 
 #include "vtkDataObject.h"
 #include "vtkFloatArray.h"
