@@ -41,11 +41,13 @@ inline void vtkApertureCopyElevations(vtkDataArray* a, vtkIdType begin, vtkIdTyp
 
 // The name of the elevation array a filter `self` reads from point data `pd`: the one its
 // SetInputArrayToProcess(0, ...) selected, as VTK's filters and ParaView select theirs, when
-// that selection changed after the filter was made (`made`: its MTime then; vtkImageAlgorithm
-// selects the point scalars itself): a point array by name, or the point scalars (their
-// name; "Elevation", which falls back on them, when they have none). Else `fallback` (the
-// filter's ElevationArrayName). "" with *problem set when the selection is not of point data,
-// or an attribute other than the scalars. (Until 2026-12-06 the selection was ignored.)
+// that selection changed after `made` (its MTime when the ElevationArrayName was last set:
+// vtkApertureSetElevationName, which the constructors call too, takes a selection made before
+// away, vtkImageAlgorithm's default one of the point scalars included): a point array by
+// name, or the point scalars (their name; "Elevation", which falls back on them, when they
+// have none). Else `fallback` (the filter's ElevationArrayName). "" with *problem set when
+// the selection is not of point data, or an attribute other than the scalars. (Until
+// 2026-12-06 the selection was ignored.)
 inline std::string vtkApertureSelectedElevationName(vtkAlgorithm* self, vtkMTimeType made,
   vtkDataSetAttributes* pd, const char* fallback, std::string* problem)
 {

@@ -413,8 +413,9 @@ vtkApertureSkyVisibility::vtkApertureSkyVisibility()
   , ElevationArrayName(nullptr)
   , ArraySelectionMade(0)
 {
+  // (taking vtkImageAlgorithm's default selection of the point scalars away: the name holds
+  // until SetInputArrayToProcess selects an array, the scalars included)
   this->SetElevationArrayName("Elevation");
-  this->ArraySelectionMade = this->GetInputArrayInformation(0)->GetMTime();
 }
 
 //------------------------------------------------------------------------------

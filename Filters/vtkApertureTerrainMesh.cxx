@@ -61,8 +61,9 @@ vtkApertureTerrainMesh::vtkApertureTerrainMesh()
   , GenerateTextureCoordinates(true)
   , MemoryLimit(0)
 {
+  // (taking any default selection away: the name holds
+  // until SetInputArrayToProcess selects an array, the scalars included)
   this->SetElevationArrayName("Elevation");
-  this->ArraySelectionMade = this->GetInputArrayInformation(0)->GetMTime();
 }
 
 //------------------------------------------------------------------------------
