@@ -131,19 +131,11 @@ void vtkApertureDEMWriter::AddMetadata(const char* key, const char* value)
 {
   if (key && *key)
   {
-    // (a key added again replaces its value: a loop of writes adding one per frame grew the
-    // list, and every write's time, without end)
-    auto& items = this->Impl->Metadata;
-    const auto same = std::find_if(
-      items.begin(), items.end(), [key](const auto& kv) { return kv.first == key; });
-    if (same == items.end())
-    {
-      items.emplace_back(key, value ? value : "");
-    }
-    else
-    {
-      same->second = value ? value : "";
-    }
+    // (GDAL's keys are alike whatever their case)
+    vtkApertureReplaceOrAppend(this->Impl->Metadata, { key, value ? value : "" },
+      [key](const std::pair<std::string, std::string>& kv) {
+        return EQUAL(kv.first.c_str(), key);
+      });
     this->Modified();
   }
 }
@@ -154,18 +146,10 @@ void vtkApertureDEMWriter::AddBandMetadata(
 {
   if (arrayName && *arrayName && key && *key)
   {
-    auto& items = this->Impl->BandMetadata; // (as AddMetadata: a key added again replaces)
-    const auto same = std::find_if(items.begin(), items.end(), [&](const auto& item) {
-      return item.Array == arrayName && item.Key == key;
-    });
-    if (same == items.end())
-    {
-      items.push_back({ arrayName, key, value ? value : "" });
-    }
-    else
-    {
-      same->Value = value ? value : "";
-    }
+    vtkApertureReplaceOrAppend(this->Impl->BandMetadata, { arrayName, key, value ? value : "" },
+      [&](const Internals::BandItem& item) {
+        return item.Array == arrayName && EQUAL(item.Key.c_str(), key);
+      });
     this->Modified();
   }
 }

@@ -507,18 +507,8 @@ void vtkApertureEXRWriter::AddMetadata(const char* key, const char* value)
                   << "; the item is not added");
     return;
   }
-  // (replaced in place: a loop of writes adding one per frame grew the list without end)
-  auto& items = this->Impl->Metadata;
-  const auto same =
-    std::find_if(items.begin(), items.end(), [key](const auto& kv) { return kv.first == key; });
-  if (same == items.end())
-  {
-    items.emplace_back(key, value ? value : "");
-  }
-  else
-  {
-    same->second = value ? value : "";
-  }
+  vtkApertureReplaceOrAppend(this->Impl->Metadata, { key, value ? value : "" },
+    [key](const std::pair<std::string, std::string>& kv) { return kv.first == key; });
   this->Modified();
 }
 

@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include <cstring>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 /** What `st` is when it is not a regular file: "a folder", "a device", "a pipe", "a socket",
@@ -177,6 +179,23 @@ inline std::string vtkApertureGeoTransformProblem(const std::string& path, const
       << origin[0] << ", " << origin[1] << ", spacing " << spacing[0] << ", " << spacing[1]
       << ", " << nx << " x " << ny << " cells)";
   return msg.str();
+}
+
+/** Metadata a writer keeps for its file: `item` in place of the one `same` finds in `items`,
+ *  else appended. A key added again replaces its value: a loop of writes adding one per frame
+ *  grew the lists, and every write's time, without end (until 2026-12-07). */
+template <typename T, typename Same>
+void vtkApertureReplaceOrAppend(std::vector<T>& items, T item, Same same)
+{
+  const auto found = std::find_if(items.begin(), items.end(), same);
+  if (found == items.end())
+  {
+    items.push_back(std::move(item));
+  }
+  else
+  {
+    *found = std::move(item);
+  }
 }
 
 #endif

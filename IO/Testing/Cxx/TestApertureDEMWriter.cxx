@@ -106,11 +106,12 @@ void TestWriteAndReadBack()
   writer->SetInputData(MakeImage(true));
   writer->SetFileName(path.c_str());
   writer->AddMetadata("PRODUCT", "first");
-  writer->AddMetadata("PRODUCT", "test");
+  writer->AddMetadata("Product", "test");
   writer->AddBandMetadata("Vector", "UNITS", "foot");
-  writer->AddBandMetadata("Vector", "UNITS", "metre");
-  // a key added again replaces its value (until 2026-12-07 each was kept, the last written:
-  // a loop of writes adding one a frame grew the lists, and every write's time, without end)
+  writer->AddBandMetadata("Vector", "units", "metre");
+  // a key added again replaces its value, in any case as GDAL's keys (until 2026-12-07 each
+  // was kept, the last written: a loop of writes adding one a frame grew the lists, and every
+  // write's time, without end)
   std::ostringstream state;
   writer->Print(state);
   AP_CHECK_CONTAINS(state.str(), "Metadata items: 1\n");
