@@ -310,7 +310,7 @@ public:
    * 0..90): its mean radiance (W/m²/sr, RGB; directions below the horizon count as dark) and
    * the irradiance it sends onto a surface of normal `normal` (W/m², RGB, cosine-weighted).
    * Deterministic quadrature, relative error below 5e-4 with the sun above about 15°, up to
-   * about 1% with it lower (ap_sky.h gives the measure and the remedy). False on bad input.
+   * about 1% with it lower (ap_sky.h gives the measure). False on bad input.
    */
   bool GetSkyCap(const double axis[3], double radius, const double normal[3], double meanRGB[3],
     double irradianceRGB[3]);
