@@ -15,7 +15,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -42,12 +41,12 @@ inline void vtkApertureCopyElevations(vtkDataArray* a, vtkIdType begin, vtkIdTyp
 // The name of the elevation array a filter `self` reads from point data `pd`: the one its
 // SetInputArrayToProcess(0, ...) selected, as VTK's filters and ParaView select theirs, when
 // that selection changed after `made` (its MTime when the ElevationArrayName was last set:
-// vtkApertureSetElevationName, which the constructors call too, takes a selection made before
-// away, vtkImageAlgorithm's default one of the point scalars included): a point array by
-// name, or the point scalars (their name; "Elevation", which falls back on them, when they
-// have none). Else `fallback` (the filter's ElevationArrayName). "" with *problem set when
-// the selection is not of point data, or an attribute other than the scalars. (Until
-// 2026-12-06 the selection was ignored.)
+// vtkApertureDropElevationSelection, which the constructors' setting calls too, takes a
+// selection made before away, vtkImageAlgorithm's default one of the point scalars
+// included): a point array by name, or the point scalars (their name; "Elevation", which
+// falls back on them, when they have none). Else `fallback` (the filter's
+// ElevationArrayName). "" with *problem set when the selection is not of point data, or an
+// attribute other than the scalars. (Until 2026-12-06 the selection was ignored.)
 inline std::string vtkApertureSelectedElevationName(vtkAlgorithm* self, vtkMTimeType made,
   vtkDataSetAttributes* pd, const char* fallback, std::string* problem)
 {
@@ -84,12 +83,12 @@ inline std::string vtkApertureSelectedElevationName(vtkAlgorithm* self, vtkMTime
                                                               : "Elevation";
 }
 
-// A filter's SetElevationArrayName: the later of it and SetInputArrayToProcess(0, ...) wins,
-// so a selection made before (its info changed after `made`) is taken away, and the same
-// selection made again counts anew: until 2026-12-07 a name set after any selection was
-// kept, and ignored. True when the filter is modified (a new name, or a selection replaced).
-inline bool vtkApertureSetElevationName(
-  vtkAlgorithm* self, vtkMTimeType& made, char*& field, const char* name)
+// The first step of a filter's SetElevationArrayName (VTK's string setter the second): of it
+// and SetInputArrayToProcess(0, ...) the later holds, so a selection made before (its info
+// changed after `made`) is taken away, and the same selection made again counts anew (until
+// 2026-12-07 a name set after any selection was kept, and ignored). True when one was taken
+// away: the filter is then modified, even if its name stays.
+inline bool vtkApertureDropElevationSelection(vtkAlgorithm* self, vtkMTimeType& made)
 {
   vtkInformation* info = self->GetInputArrayInformation(0);
   const bool selected = info->GetMTime() > made &&
@@ -101,22 +100,7 @@ inline bool vtkApertureSetElevationName(
     info->Remove(vtkDataObject::FIELD_ATTRIBUTE_TYPE());
   }
   made = info->GetMTime();
-  const bool same = (!name && !field) || (name && field && std::string(name) == field);
-  if (same && !selected)
-  {
-    return false;
-  }
-  if (!same)
-  {
-    delete[] field;
-    field = nullptr;
-    if (name)
-    {
-      field = new char[std::strlen(name) + 1];
-      std::strcpy(field, name);
-    }
-  }
-  return true;
+  return selected;
 }
 
 // After a filter carried its input's point data `in` to `out`: heights it took from the active

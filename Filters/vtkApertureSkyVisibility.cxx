@@ -1572,10 +1572,11 @@ int vtkApertureSkyVisibility::RunRequestData(
 //------------------------------------------------------------------------------
 void vtkApertureSkyVisibility::SetElevationArrayName(const char* name)
 {
-  if (vtkApertureSetElevationName(this, this->ArraySelectionMade, this->ElevationArrayName, name))
+  if (vtkApertureDropElevationSelection(this, this->ArraySelectionMade))
   {
     this->Modified();
   }
+  vtkSetStringBodyMacro(ElevationArrayName, name);
 }
 
 //------------------------------------------------------------------------------

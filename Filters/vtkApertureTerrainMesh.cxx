@@ -61,8 +61,8 @@ vtkApertureTerrainMesh::vtkApertureTerrainMesh()
   , GenerateTextureCoordinates(true)
   , MemoryLimit(0)
 {
-  // (taking any default selection away: the name holds
-  // until SetInputArrayToProcess selects an array, the scalars included)
+  // (taking any default selection away: the name holds until SetInputArrayToProcess selects
+  // an array, the scalars included)
   this->SetElevationArrayName("Elevation");
 }
 
@@ -945,10 +945,11 @@ int vtkApertureTerrainMesh::RunRequestData(
 //------------------------------------------------------------------------------
 void vtkApertureTerrainMesh::SetElevationArrayName(const char* name)
 {
-  if (vtkApertureSetElevationName(this, this->ArraySelectionMade, this->ElevationArrayName, name))
+  if (vtkApertureDropElevationSelection(this, this->ArraySelectionMade))
   {
     this->Modified();
   }
+  vtkSetStringBodyMacro(ElevationArrayName, name);
 }
 
 //------------------------------------------------------------------------------
