@@ -36,7 +36,7 @@
  * Rec.709 RGB) is available in any direction and averaged over a spherical cap, e.g. the
  * aperture of a terrain cell. Below the horizon the beam is zero; no model has twilight. (The
  * sky is prepared when first asked for after a Compute, with that Compute's parameters: its
- * horizontal irradiance is a quadrature, 0.17 ms for the Preetham and CIE clear skies, 13 times
+ * horizontal irradiance is a quadrature, 0.23 ms for the Preetham and CIE clear skies, 17 times
  * the position's cost, which a series of positions alone does not pay.)
  *
  * @sa vtkApertureGeoreference vtkApertureTerrainMesh vtkApertureSkyVisibility
@@ -309,8 +309,9 @@ public:
    * The sky over the spherical cap of axis `axis` (ENU) and angular radius `radius` (degrees,
    * 0..90): its mean radiance (W/m²/sr, RGB; directions below the horizon count as dark) and
    * the irradiance it sends onto a surface of normal `normal` (W/m², RGB, cosine-weighted).
-   * Deterministic quadrature, relative error below 5e-4 with the sun above about 15°, up to
-   * about 1% with it lower (ap_sky.h gives the measure). False on bad input.
+   * Deterministic quadrature: errors below 2e-4 of the zenith radiance (Preetham sky), below
+   * 5e-4 (CIE clear) with the sun above about 15°, up to 3e-3 with it lower (about 0.1% of the
+   * value; ap_sky.h gives the measure). False on bad input.
    */
   bool GetSkyCap(const double axis[3], double radius, const double normal[3], double meanRGB[3],
     double irradianceRGB[3]);
@@ -322,7 +323,7 @@ public:
    * (`radii` nodes from 0 to 90°), in the layout and with the interpolation of
    * ap_light_sky_lookup (ap_light.h). `table` gets 3 components and azimuths × elevations ×
    * radii tuples. False before Compute or for sizes outside 4..256, 2..256, 2..256.
-   * About 25 µs per cap: 32 × 9 × 9 caps take 65 ms.
+   * About 35 µs per cap: 32 × 9 × 9 caps take 90 ms (Preetham sky).
    */
   bool ComputeSkyTable(vtkFloatArray* table, int azimuths = 32, int elevations = 9, int radii = 9);
 

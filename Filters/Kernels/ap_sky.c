@@ -12,14 +12,9 @@
 #define DEG (PI / 180.0)
 #define SKY_MAGIC 0x41534b59u /* "ASKY": set by ap_sky_prepare */
 
-/* Order of the quadrature about the sun that normalises the sky to E_h (ap_sky_prepare). */
+/* Order of the quadrature about the zenith that normalises the sky to E_h (ap_sky_prepare). */
 #define NORM_RINGS 24
 #define NORM_SECTORS 96
-
-/* The sun is the pole of a cap's quadrature when it lies at least this fraction as deep inside
- * the region as the best other pole: a pole close to the boundary makes the ray lengths vary
- * steeply with ψ, which costs more than the circumsolar cusp away from the pole does. */
-#define SUN_POLE_DEPTH 0.15
 
 /* ---------------------------------------------------------------------------------------------
  * Tables (380..780 nm every 10 nm)
@@ -601,6 +596,7 @@ typedef struct region {
   const double *u[3];
   double c[3];
   const double *n; /* cosine weight max(0, n·ω), or NULL */
+  const double *cusp; /* the sun's circumsolar cusp away from the pole, or NULL */
 } region;
 
 /* Sorted ψ in [0, 2π) (about the pole, frame e1, e2) of the region's corners: the points where
@@ -663,20 +659,31 @@ static void ray_integrate(const ap_sky_state *s, dir_fn f, const region *g, cons
       return;
     }
   }
-  double half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
-  for (int k = 0; k < rings; ++k) {
-    double t = mid + half * node[k];
-    double ct = cos(t), st = sin(t);
-    double w[3] = { ct * c[0] + st * d[0], ct * c[1] + st * d[1], ct * c[2] + st * d[2] };
-    double v[3];
-    f(s, w, v);
-    double wt = half * weight[k] * st;
-    if (g->n) {
-      wt *= fmax(0.0, dot3(g->n, w));
+  double cut[3] = { lo, hi, hi };
+  int pieces = 1;
+  if (g->cusp) {
+    double ts = atan2(dot3(d, g->cusp), dot3(c, g->cusp)); /* the ray's nearest to the sun */
+    if (ts > lo && ts < hi) {
+      cut[1] = ts;
+      pieces = 2;
     }
-    out[0] += wt * v[0];
-    out[1] += wt * v[1];
-    out[2] += wt * v[2];
+  }
+  for (int p = 0; p < pieces; ++p) {
+    double half = 0.5 * (cut[p + 1] - cut[p]), mid = 0.5 * (cut[p + 1] + cut[p]);
+    for (int k = 0; k < rings; ++k) {
+      double t = mid + half * node[k];
+      double ct = cos(t), st = sin(t);
+      double w[3] = { ct * c[0] + st * d[0], ct * c[1] + st * d[1], ct * c[2] + st * d[2] };
+      double v[3];
+      f(s, w, v);
+      double wt = half * weight[k] * st;
+      if (g->n) {
+        wt *= fmax(0.0, dot3(g->n, w));
+      }
+      out[0] += wt * v[0];
+      out[1] += wt * v[1];
+      out[2] += wt * v[2];
+    }
   }
 }
 
@@ -688,8 +695,17 @@ static void region_integrate(const ap_sky_state *s, dir_fn f, const region *g, i
 {
   double e1[3], e2[3];
   frame(g->pole, e1, e2);
-  double b[7];
+  double b[8];
   int m = region_corners(g, e1, e2, b);
+  if (g->cusp) { /* the sun's direction about the pole: its cusp on a piece's end */
+    double a = atan2(dot3(g->cusp, e2), dot3(g->cusp, e1));
+    a = a < 0.0 ? a + 2.0 * PI : a;
+    int j = m++;
+    for (; j > 0 && b[j - 1] > a; --j) {
+      b[j] = b[j - 1];
+    }
+    b[j] = a;
+  }
   if (m == 0) {
     b[0] = 0.0;
     m = 1;
@@ -794,10 +810,17 @@ static double deep_point(const region *g, double r, double p[3])
 
 static const double up_dir[3] = { 0.0, 0.0, 1.0 };
 
+/* The cusp of a sky with a circumsolar peak (CIE clear, Preetham: the callers check) for a
+ * region about `pole`: the sun, unless it is the pole itself, where the polar rule is smooth. */
+static const double *cusp_of(const ap_sky_state *s, const double pole[3])
+{
+  return dot3(s->sun, pole) < 1.0 - 1e-12 ? s->sun : NULL;
+}
+
 /* The cap (unit axis a, radius r in (0, π/2]) ∩ sky [∩ front of n] as a region, with its pole
- * strictly inside: the sun when the sky has a circumsolar peak and the sun is inside (the
- * peak's cusp then sits at the pole, where the rule is smooth), else a deep interior point, so
- * that no boundary passes through the pole. Returns 0 if the region has no interior. */
+ * strictly inside, a deep interior point, so that no boundary passes near the pole; the sun's
+ * cusp, if the sky has one, is cut out (region_integrate, ray_integrate). Returns 0 if the
+ * region has no interior. */
 static int cap_region(const ap_sky_state *s, const double a[3], double r, const double *n,
                       double pole[3], region *g)
 {
@@ -812,6 +835,7 @@ static int cap_region(const ap_sky_state *s, const double a[3], double r, const 
   }
   g->n = n;
   g->pole = pole;
+  g->cusp = NULL;
   double dp;
   if (depth(g, a) >= 0.5 * r) { /* the axis is deep enough: no search */
     pole[0] = a[0];
@@ -824,11 +848,8 @@ static int cap_region(const ap_sky_state *s, const double a[3], double r, const 
   if (!(dp > 0.0)) {
     return 0;
   }
-  if ((s->model == AP_SKY_CIE_CLEAR || s->model == AP_SKY_PREETHAM) &&
-      depth(g, s->sun) >= SUN_POLE_DEPTH * dp) {
-    pole[0] = s->sun[0];
-    pole[1] = s->sun[1];
-    pole[2] = s->sun[2];
+  if (s->model == AP_SKY_CIE_CLEAR || s->model == AP_SKY_PREETHAM) {
+    g->cusp = cusp_of(s, pole);
   }
   return 1;
 }
@@ -906,12 +927,11 @@ ap_status ap_sky_prepare(const ap_sky_params *p, const double sun[3], ap_sky_sta
                         t * (-0.04214 * th3 + 0.08970 * th2 - 0.04153 * th + 0.00516) +
                         (0.15346 * th3 - 0.26756 * th2 + 0.06670 * th + 0.26688);
     }
-    /* over the sky (z >= 0), cosine to up; about the sun (its cusp then at the pole) unless it
-     * is low, when a pole that close to the boundary would cost more than the cusp */
+    /* over the sky (z >= 0), cosine to up, about the zenith with the sun's cusp cut out */
     double node[NORM_RINGS], weight[NORM_RINGS], v[3];
     gauss_legendre(NORM_RINGS, node, weight);
-    int sun_pole = asin(clamp1(s->sun[2])) >= SUN_POLE_DEPTH * 0.5 * PI;
-    region g = { sun_pole ? s->sun : up_dir, 1, { up_dir, NULL, NULL }, { 0.0, 0.0, 0.0 }, up_dir };
+    region g = { up_dir, 1, { up_dir, NULL, NULL }, { 0.0, 0.0, 0.0 }, up_dir, NULL };
+    g.cusp = cusp_of(s, up_dir);
     region_integrate(s, shape_fn, &g, NORM_RINGS, node, weight, NORM_SECTORS, v);
     integral = v[0];
   }

@@ -2466,7 +2466,7 @@ def cmd_sun(args):
             print(" " + text + ("," if k + 1 < count else ""))
             continue
         # (the table's columns alone: the sky, which the JSON's light keys need, is prepared
-        # only when asked for, and would take 13 times the position's time)
+        # only when asked for, and would take 17 times the position's time)
         if not sun.Compute():
             raise ApertureError(sun.GetErrorMessage())
         row = [sun.GetTimeString(), _local_text(sun, sun.GetUnixTime()) or "n/a",
