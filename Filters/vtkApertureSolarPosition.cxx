@@ -1118,17 +1118,25 @@ bool vtkApertureSolarPosition::ComputeSkyTable(
         const double az = (i + 0.5) * 4.0 * halfPi / azimuths;
         const double axis[3] = { std::cos(el) * std::sin(az), std::cos(el) * std::cos(az),
           std::sin(el) };
-        double mean[3];
-        if (ap_sky_cap(&d.Sky, axis, r, nullptr, mean, nullptr) != AP_OK)
+        // the cap's radiance weighted by the cosine to its axis: ∫cap L (a·ω) dω / (π sin² r),
+        // so that an aperture facing its own axis (level open ground, a pit's floor) gets the
+        // sky's exact irradiance; the point cap's is the radiance at the axis
+        double value[3];
+        const double sr = std::sin(r);
+        const ap_status st = k == 0
+          ? ap_sky_cap(&d.Sky, axis, 0.0, nullptr, value, nullptr)
+          : ap_sky_cap(&d.Sky, axis, r, axis, nullptr, value);
+        if (st != AP_OK)
         {
           d.Error = "ComputeSkyTable: the sky model failed for a cap";
           vtkErrorMacro(<< d.Error);
           return false;
         }
+        const double scale = k == 0 ? 1.0 : 1.0 / (2.0 * halfPi * sr * sr);
         float* v = out + 3 * ((static_cast<size_t>(k) * elevations + j) * azimuths + i);
         for (int c = 0; c < 3; ++c)
         {
-          v[c] = static_cast<float>(std::max(0.0, mean[c]));
+          v[c] = static_cast<float>(std::max(0.0, value[c] * scale));
         }
       }
     }

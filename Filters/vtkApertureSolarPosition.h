@@ -317,8 +317,12 @@ public:
     double irradianceRGB[3]);
 
   /**
-   * Tabulate the sky for vtkApertureLightingMapper's SKY_TABLE mode: the mean radiance (W/m²/sr,
-   * RGB; dark below the horizon) of caps whose axes sample azimuth (`azimuths` cells, centred on
+   * Tabulate the sky for vtkApertureLightingMapper's SKY_TABLE mode: the radiance (W/m²/sr,
+   * RGB; dark below the horizon) of caps weighted by the cosine to the cap's axis a, that is
+   * GetSkyCap's irradiance onto a surface facing a over π sin² r (the radiance at a for r = 0),
+   * so that the lighting's L · C(n·a, sin² r) is the sky's exact irradiance for a surface that
+   * faces its aperture's axis (level open ground: the horizontal irradiance), and close to it
+   * for others. The axes sample azimuth (`azimuths` cells, centred on
    * (i + ½) 360 / azimuths degrees), elevation (`elevations` nodes from 0 to 90°) and radius
    * (`radii` nodes from 0 to 90°), in the layout and with the interpolation of
    * ap_light_sky_lookup (ap_light.h). `table` gets 3 components and azimuths × elevations ×

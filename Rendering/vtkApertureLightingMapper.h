@@ -123,8 +123,9 @@ public:
   void SetSkyRadiance(double r, double g, double b);
 
   /**
-   * Fill each aperture with the sky model averaged over that aperture instead: a table of cap
-   * mean radiances (vtkApertureSolarPosition::ComputeSkyTable; layout and trilinear lookup of
+   * Fill each aperture with the sky model over that aperture instead: a table of the caps'
+   * radiances weighted by the cosine to their axes (vtkApertureSolarPosition::ComputeSkyTable,
+   * which says why; layout and trilinear lookup of
    * ap_light_sky_lookup), `azimuths` x `elevations` x `radii` RGB tuples, uploaded as a small
    * float texture (again only when the table or its MTime changes). nullptr: back to the
    * uniform SkyRadiance. Switching between a table and none compiles the other shader variant

@@ -214,7 +214,7 @@ static void light_point_core(const light_setup *u, const double n[3], const doub
   double sky = fmax(0.0, C - S);
   double l_sky[3] = { u->l_sky[0], u->l_sky[1], u->l_sky[2] };
   if (u->params && u->params->sky_table) {
-    ap_light_sky_lookup(u->params, b, rp, l_sky); /* the sky averaged over this aperture */
+    ap_light_sky_lookup(u->params, b, rp, l_sky); /* the sky over this aperture */
   }
   for (int i = 0; i < 3; ++i) {
     e_sun[i] = u->l_sun[i] * S;

@@ -164,7 +164,8 @@ typedef struct ap_light_params {
   double exposure;             /**< EV, |EV| <= AP_LIGHT_MAX_EXPOSURE; display x = Lo · 2^EV
                                     (default −6: albedo 0.3 in full sun at 45° shows 218/255) */
   const float *sky_table;      /**< optional (default NULL: the uniform sky_radiance): the sky
-                                    radiance averaged over caps, W/(m²·sr) RGB, that replaces
+                                    radiance of caps, W/(m²·sr) RGB (cosine-weighted about
+                                    their axes, as ComputeSkyTable tabulates it), that replaces
                                     sky_radiance for each point's own aperture; see
                                     ap_light_sky_lookup. Caller-owned, read only. */
   int sky_table_size[3];       /**< its azimuths, elevations and radii: 4..256, 2..256, 2..256 */
@@ -176,7 +177,7 @@ void ap_light_params_init(ap_light_params *p);
 /** The sky table's lookup, which the shader repeats exactly: for a cap of unit axis b and
  *  radius rp, with az = atan2(b_E, b_N) in [0, 2π) (clockwise from north), el = asin(b_U)
  *  clamped to [0, π/2] and r = rp clamped to [0, π/2], the table (na azimuths, ne elevations,
- *  nr radii; RGB triples, index ((k · ne + j) · na + i) · 3) holds the mean radiance of the cap
+ *  nr radii; RGB triples, index ((k · ne + j) · na + i) · 3) holds the radiance of the cap
  *  with azimuth (i + ½) 2π / na (cell-centred, wrapping around), elevation j (π/2) / (ne − 1)
  *  and radius k (π/2) / (nr − 1) (nodes at both ends), and the value is the trilinear
  *  interpolation between the eight nodes around (az, el, r). Writes rgb; NaN for a b that is

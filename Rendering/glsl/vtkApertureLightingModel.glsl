@@ -20,9 +20,9 @@ uniform vec3 apertureSkyRadiance;    // Lsky: W/m2/sr, uniform over the aperture
 // The modes are compiled variants, not uniform branches (llvmpipe pays for untaken branches):
 // AP_SMOOTHSTEP (defined: Oat & Sander's intersection, 1.4; else the exact one, 1.2),
 // AP_EXACT_CAP (defined: the exact-cap Lambert term, 6.1; else the lens centroid, 1.6) and
-// AP_SKY_TABLE (defined: the sky model averaged over each aperture, from a table).
+// AP_SKY_TABLE (defined: the sky model over each aperture, cosine-weighted, from a table).
 #ifdef AP_SKY_TABLE
-uniform sampler2D apertureSkyTable;  // cap-mean sky radiance, RGB float, (azimuth, elev + radius)
+uniform sampler2D apertureSkyTable;  // caps' sky radiance, RGB float, (azimuth, elev + radius)
 uniform int apertureSkyTableSize[3]; // azimuths, elevations, radii
 #endif
 

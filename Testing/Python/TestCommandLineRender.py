@@ -614,7 +614,7 @@ class TestCommandLineRender(unittest.TestCase):
 
     def test_sky_model(self):
         import numpy as np
-        # The sky model averaged over each aperture lights the shade towards the sun more than
+        # The sky model over each aperture lights the shade towards the sun more than
         # a uniform sky of the same total: the pictures differ, slightly, and stay alike.
         pictures = {}
         with tempfile.TemporaryDirectory() as tmp:

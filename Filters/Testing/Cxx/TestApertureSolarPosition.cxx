@@ -38,6 +38,7 @@
 namespace
 {
 const double kDeg = 3.14159265358979323846 / 180.0;
+const double kPi = 3.14159265358979323846;
 
 // A flat DEM of nx x ny cells of `step` CRS units at `height` m in `crs`, its south-west cell
 // centred at (x0, y0).
@@ -391,12 +392,16 @@ void TestSkyOnDemand()
   AP_CHECK(std::fabs(fresh(morning, 3.0, expected) - fresh(noon, 3.0, rgb)) > 1.0);
 }
 
-// ComputeSkyTable's layout, ap_light_sky_lookup's: tuple (k ne + j) na + i holds the mean
-// radiance of the cap of azimuth (i + 1/2) 360 / na, elevation j 90 / (ne - 1) and radius
-// k 90 / (nr - 1) degrees, as GetSkyCap gives it. The sizes differ per axis (8, 4, 5), so that
-// swapped axes or a missing half-cell offset show, under a morning sun of the Preetham sky
-// (brighter towards the sun, so azimuths differ); the uniform sky's caps above the horizon
-// have its radiance, and half of it for a cap on the horizon that just reaches the zenith.
+// ComputeSkyTable's layout, ap_light_sky_lookup's: tuple (k ne + j) na + i holds the radiance
+// of the cap of axis a of azimuth (i + 1/2) 360 / na, elevation j 90 / (ne - 1) and radius
+// r = k 90 / (nr - 1) degrees, weighted by the cosine to a: GetSkyCap's irradiance onto a
+// surface facing a, over π sin² r (the radiance at a for r = 0). The sizes differ per axis
+// (8, 4, 5), so that swapped axes or a missing half-cell offset show, under a morning sun of
+// the Preetham sky (brighter towards the sun, so azimuths differ). Level open ground, the
+// zenith's hemisphere, gets the sky's horizontal irradiance from it (the unweighted mean that
+// the table held before gave this sun's E_h 11% too high, 24% in red); the uniform sky's caps
+// above the horizon have its radiance, and half of it for a cap on the horizon that just
+// reaches the zenith.
 void TestSkyTable()
 {
   vtkNew<vtkApertureSolarPosition> sun;
@@ -429,17 +434,26 @@ void TestSkyTable()
         const double az = (i + 0.5) * 360.0 / na * kDeg, el = j * 90.0 / (ne - 1) * kDeg;
         const double axis[3] = { std::cos(el) * std::sin(az), std::cos(el) * std::cos(az),
           std::sin(el) };
-        double mean[3], irradiance[3];
-        AP_CHECK(sun->GetSkyCap(axis, k * 90.0 / (nr - 1), up, mean, irradiance));
+        const double r = k * 90.0 / (nr - 1), area = kPi * std::pow(std::sin(r * kDeg), 2);
+        double mean[3], irradiance[3], expected[3];
+        AP_CHECK(sun->GetSkyCap(axis, r, axis, mean, irradiance));
         for (int c = 0; c < 3; ++c)
         {
-          AP_CHECK_NEAR(at(i, j, k)[c], std::max(0.0, mean[c]), 1e-6 * mean[c] + 1e-9);
+          expected[c] = std::max(0.0, k == 0 ? mean[c] : irradiance[c] / area);
+          AP_CHECK_NEAR(at(i, j, k)[c], expected[c], 1e-6 * expected[c] + 1e-9);
         }
         spread = std::max(spread, std::fabs(at(i, j, k)[1] / at(0, j, k)[1] - 1.0));
       }
     }
   }
   AP_CHECK(spread > 0.2); // (the azimuths' caps differ: the test can tell them apart)
+  // level open ground: π times the zenith's hemisphere is the sky's E_h (a luminance)
+  {
+    const float* v = at(0, ne - 1, nr - 1);
+    const double eh = sun->GetSkyHorizontalIrradiance();
+    AP_CHECK_NEAR(kPi * (0.2126390059 * v[0] + 0.7151686788 * v[1] + 0.0721923154 * v[2]), eh,
+      5e-4 * eh);
+  }
   // Sizes outside 4..256, 2..256, 2..256 and no table are refused.
   for (const auto& size : { std::array<int, 3>{ 3, 9, 9 }, std::array<int, 3>{ 257, 9, 9 },
          std::array<int, 3>{ 32, 1, 9 }, std::array<int, 3>{ 32, 9, 1 },

@@ -2722,8 +2722,8 @@ def build_parser():
     p.add_argument("--sky", choices=("constant", "model"),
                    help="constant: one sky radiance (the uniform one giving the Preetham "
                         "sky's irradiance on level ground; default); model: each aperture "
-                        "filled with the Preetham sky averaged over that aperture (brighter "
-                        "towards the sun)")
+                        "filled with the Preetham sky over that aperture, cosine-weighted "
+                        "(brighter towards the sun)")
     p.add_argument("--exposure", type=float, metavar="EV",
                    help="exposure in EV, -30..30 (default: automatic, a flat open white "
                         "surface in the sun at about 80%% grey)")
