@@ -10,8 +10,11 @@
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkCellData.h"
 #include "vtkFloatArray.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkPointData.h"
 
 #include <algorithm>
 #include <cmath>
@@ -216,6 +219,43 @@ inline std::string vtkApertureCheckPointArrays(
     }
   }
   return std::string();
+}
+
+// `image` cropped to `want` where it holds more than that and `want` lies inside its extent:
+// `copy` gets its structure and point arrays (and its cell arrays if `cells`) cropped, and is
+// returned; else `image` itself. The filters read only what their update asked for, as VTK's
+// do: an input may hold more (a reader updated whole before, an image given with
+// SetInputData, vtkImageClip passing all of its input on with ClipData off). The crop reads
+// every point array by the image's extent, so one that disagrees with it is refused first:
+// nullptr, and `problem` says which.
+inline vtkImageData* vtkApertureCropTo(vtkImageData* image, const int want[6], vtkImageData* copy,
+  bool cells, std::string& problem)
+{
+  int have[6];
+  image->GetExtent(have);
+  bool inside = true, smaller = false;
+  for (int a = 0; a < 6; a += 2)
+  {
+    inside = inside && want[a] >= have[a] && want[a + 1] <= have[a + 1] && want[a] <= want[a + 1];
+    smaller = smaller || want[a] > have[a] || want[a + 1] < have[a + 1];
+  }
+  if (!inside || !smaller)
+  {
+    return image;
+  }
+  problem = vtkApertureCheckPointArrays(image->GetPointData(),
+    static_cast<vtkIdType>(have[1]) - have[0] + 1, static_cast<vtkIdType>(have[3]) - have[2] + 1);
+  if (!problem.empty())
+  {
+    return nullptr;
+  }
+  copy->ShallowCopy(image);
+  if (!cells)
+  {
+    copy->GetCellData()->Initialize();
+  }
+  copy->Crop(want);
+  return copy;
 }
 
 #endif

@@ -704,6 +704,25 @@ int vtkApertureSkyVisibility::RunRequestData(
   {
     return 1;
   }
+  // The DEM is the extent this update asked of the input (the output's and its halo, within
+  // the whole extent), also where the input holds more: vtkImageClip with ClipData off passes
+  // all of its input on, and its terrain beyond the clip is no part of the DEM.
+  vtkNew<vtkImageData> cropped;
+  {
+    vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+    int asked[6];
+    std::string problem;
+    if (inInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+    {
+      inInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), asked);
+      input = vtkApertureCropTo(input, asked, cropped, true, problem);
+    }
+    if (!input)
+    {
+      vtkErrorMacro(<< problem);
+      return 0;
+    }
+  }
 
   // 1. Parameters.
   if (this->NumberOfDirections < 4 || this->NumberOfDirections > 360)

@@ -215,37 +215,6 @@ std::string MarginNormals(vtkImageData* margin, const char* name, double exagger
   return std::string();
 }
 
-// `image` cropped to `want` where it holds more than that and `want` lies inside its extent:
-// `copy` gets its structure and point arrays (not its cell arrays, which the mesh does not
-// carry) cropped, and is returned; else `image` itself. The crop reads every point array by
-// the image's extent, so one that disagrees with it is refused first: nullptr, and `problem`
-// says which.
-vtkImageData* CropTo(vtkImageData* image, const int want[6], vtkImageData* copy,
-  std::string& problem)
-{
-  int have[6];
-  image->GetExtent(have);
-  bool inside = true, smaller = false;
-  for (int a = 0; a < 6; a += 2)
-  {
-    inside = inside && want[a] >= have[a] && want[a + 1] <= have[a + 1] && want[a] <= want[a + 1];
-    smaller = smaller || want[a] > have[a] || want[a + 1] < have[a + 1];
-  }
-  if (!inside || !smaller)
-  {
-    return image;
-  }
-  problem = vtkApertureCheckPointArrays(image->GetPointData(),
-    static_cast<vtkIdType>(have[1]) - have[0] + 1, static_cast<vtkIdType>(have[3]) - have[2] + 1);
-  if (!problem.empty())
-  {
-    return nullptr;
-  }
-  copy->ShallowCopy(image);
-  copy->GetCellData()->Initialize();
-  copy->Crop(want);
-  return copy;
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -378,7 +347,7 @@ int vtkApertureTerrainMesh::RunRequestData(
   {
     int asked[6];
     inInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), asked);
-    input = CropTo(input, asked, cropped, cropProblem);
+    input = vtkApertureCropTo(input, asked, cropped, false, cropProblem);
   }
   // A streamed piece read with a margin (RequestUpdateExtent): meshed over its own extent,
   // the margin kept for its boundary normals.
@@ -389,7 +358,7 @@ int vtkApertureTerrainMesh::RunRequestData(
   {
     int own[6];
     PieceExtent(inInfo, piece, pieces, own);
-    vtkImageData* alone = CropTo(input, own, pieceImage, cropProblem);
+    vtkImageData* alone = vtkApertureCropTo(input, own, pieceImage, false, cropProblem);
     if (alone != input)
     {
       margin = input;

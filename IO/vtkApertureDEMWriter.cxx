@@ -309,11 +309,8 @@ void* vtkApertureDEMWriter::CheckCompression(std::string& codec, const char*& le
 void vtkApertureDEMWriter::WriteData()
 {
   vtkImageData* input = this->GetInput();
-  int ext[6] = { 0, -1, 0, -1, 0, -1 };
-  if (input)
-  {
-    input->GetExtent(ext);
-  }
+  int ext[6];
+  vtkApertureWrittenExtent(input, this->GetInputInformation(), ext);
   if (!this->BeginFile(input, ext))
   {
     return; // (reported)

@@ -539,11 +539,8 @@ int vtkApertureEXRWriter::FillInputPortInformation(int, vtkInformation* info)
 void vtkApertureEXRWriter::WriteData()
 {
   vtkImageData* input = this->GetInput();
-  int ext[6] = { 0, -1, 0, -1, 0, -1 };
-  if (input)
-  {
-    input->GetExtent(ext);
-  }
+  int ext[6];
+  vtkApertureWrittenExtent(input, this->GetInputInformation(), ext);
   if (this->BeginStrips(input, ext) && this->WriteStrip(input))
   {
     this->Impl->Written = this->EndStrips() != 0;

@@ -19,6 +19,38 @@
 #include <string>
 
 /**
+ * The extent a writer writes of its `input` at once (not in strips): its pipeline's whole
+ * extent (`info`, the input's information; may be null) where the data holds that and more,
+ * as VTK's writers write (vtkImageClip with ClipData off passes all of its input on, beyond
+ * the clip), else the data's own extent.
+ */
+inline void vtkApertureWrittenExtent(vtkImageData* input, vtkInformation* info, int ext[6])
+{
+  const int none[6] = { 0, -1, 0, -1, 0, -1 };
+  std::copy(none, none + 6, ext);
+  if (!input)
+  {
+    return;
+  }
+  input->GetExtent(ext);
+  int whole[6];
+  if (info && info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    bool inside = true;
+    for (int a = 0; a < 6; a += 2)
+    {
+      inside =
+        inside && whole[a] >= ext[a] && whole[a + 1] <= ext[a + 1] && whole[a] <= whole[a + 1];
+    }
+    if (inside)
+    {
+      std::copy(whole, whole + 6, ext);
+    }
+  }
+}
+
+/**
  * The rows a writer's WriteStrip(strip) writes, from `next` (the next row of `whole` not yet
  * written, north first) down to `first` (set here): down to the strip's southern row, in
  * whole multiples of `multiple` rows unless that reaches whole[2]. False after reporting

@@ -197,6 +197,72 @@ print(before, seen)
         self.assertEqual(column.GetCellData().GetNumberOfArrays(), 0)
         self.assertEqual(column.GetPointData().GetArray("SkyViewFactor").GetNumberOfTuples(), 31)
 
+    def testClipDataOff(self):
+        # vtkImageClip with ClipData off (VTK's default) narrows the whole extent but passes
+        # all of its input on: VTK's filters and writers use only the whole extent's data.
+        # The sky filter used all of it (the clipped-off hill still shaded the clip, and no
+        # cell near the clip's west edge was EdgeTruncated), and both writers wrote all of it,
+        # origin included, until 2026-12-07 (in strips they wrote the clip).
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
+        from vtkmodules.vtkImagingCore import vtkImageClip
+        from vtkmodules.vtkCommonDataModel import vtkImageData
+        j, i = np.mgrid[0:40, 0:60]
+        image = vtkImageData()
+        image.SetDimensions(60, 40, 1)
+        image.SetSpacing(10.0, 10.0, 1.0)
+        image.SetOrigin(500000.0, 5000000.0, 0.0)
+        z = 300.0 * np.exp(-((i - 30.0) ** 2 + (j - 20.0) ** 2) / 200.0) + 0.001 * (i + 60 * j)
+        array = numpy_to_vtk(z.ravel().astype(np.float32), deep=1)
+        array.SetName("Elevation")
+        image.GetPointData().SetScalars(array)
+        geo = aperture.vtkApertureGeoreference()
+        self.assertTrue(geo.SetCRS("EPSG:32633") and geo.AttachToImage(image))
+        producer = vtkTrivialProducer()
+        producer.SetOutput(image)
+
+        clips = []  # (kept: a consumer does not keep its producer alive)
+        for clip_data in (0, 1):
+            clips.append(vtkImageClip())
+            clips[-1].SetInputConnection(producer.GetOutputPort())
+            clips[-1].SetOutputWholeExtent(35, 59, 5, 34, 0, 0)  # east of the hill's top
+            clips[-1].SetClipData(clip_data)
+        products = {}
+        for clip_data in (0, 1):
+            sky = aperture.vtkApertureSkyVisibility()
+            sky.SetInputConnection(clips[clip_data].GetOutputPort())
+            sky.SetMaximumDistance(100.0)
+            sky.Update()
+            out = sky.GetOutput()
+            self.assertEqual(out.GetExtent(), (35, 59, 5, 34, 0, 0))
+            products[clip_data] = {n: vtk_to_numpy(out.GetPointData().GetArray(n)).copy()
+                                   for n in ("SkyViewFactor", "EdgeTruncated")}
+        for n in ("SkyViewFactor", "EdgeTruncated"):
+            np.testing.assert_array_equal(products[0][n], products[1][n], n)
+        # the clip's west edge is the DEM's: its cells within the 100 m see the edge
+        edge = products[0]["EdgeTruncated"].reshape(30, 25)
+        self.assertTrue(edge[:, :10].all())
+
+        tmp = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, tmp)
+        for writer, reader, name in (
+                (aperture.vtkApertureDEMWriter, aperture.vtkApertureDEMReader, "c.tif"),
+                (aperture.vtkApertureEXRWriter, aperture.vtkApertureEXRReader, "c.exr")):
+            for strips in (0, 7):
+                w = writer()
+                w.SetInputConnection(clips[0].GetOutputPort())
+                w.SetFileName(os.path.join(tmp, name))
+                w.SetStripRows(strips)
+                self.assertEqual(w.Write(), 1)
+                r = reader()
+                r.SetFileName(os.path.join(tmp, name))
+                r.Update()
+                got = r.GetOutput()
+                self.assertEqual(got.GetDimensions(), (25, 30, 1), (name, strips))
+                self.assertEqual(got.GetOrigin()[:2], (500350.0, 5000050.0), (name, strips))
+                back = vtk_to_numpy(got.GetPointData().GetArray("Elevation")).reshape(30, 25)
+                np.testing.assert_array_equal(back, z[5:35, 35:60].astype(np.float32))
+
     def testMeshPieceMemoryUnderAddressLimit(self):
         # Under an address-space limit (ulimit -v) the memory left already excludes the crop
         # of a piece out of an image given whole: a 512 x 512 piece of a 1024^2 image that
