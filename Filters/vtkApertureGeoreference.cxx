@@ -540,6 +540,13 @@ bool vtkApertureGeoreference::AttachToImage(vtkImageData* image)
     d.Error = image ? "no coordinate reference system is set" : "no image";
     return false;
   }
+  vtkMatrix3x3* dir = image->GetDirectionMatrix();
+  if (dir && !dir->IsIdentity())
+  {
+    // (a GeoTransform of its origin and spacing would place it elsewhere)
+    d.Error = "the image has a rotated direction matrix; DEM grids must be north-up";
+    return false;
+  }
   vtkNew<vtkStringArray> crs;
   crs->SetName(GetCRSArrayName());
   crs->InsertNextValue(d.WKT);

@@ -125,7 +125,8 @@ public:
 
   /**
    * Store the CRS and the GeoTransform of the image's current extent in the image's field
-   * data, replacing earlier values. False if no CRS is set.
+   * data, replacing earlier values. False (the image unchanged) if no CRS is set, or for an
+   * image whose direction matrix is not the identity (as SetFromImage).
    */
   bool AttachToImage(vtkImageData* image);
 

@@ -220,6 +220,12 @@ void TestErrors()
   image->SetDirectionMatrix(rotation);
   AP_CHECK(!geo->SetFromImage(image));
   AP_CHECK(std::string(geo->GetErrorMessage()).find("north-up") != std::string::npos);
+  // nor attached to one: a GeoTransform of its origin and spacing would place it elsewhere
+  // (it did until 2026-12-07: a south-up direction put its north edge beyond its points)
+  image->GetFieldData()->Initialize();
+  AP_CHECK(!geo->AttachToImage(image));
+  AP_CHECK(std::string(geo->GetErrorMessage()).find("north-up") != std::string::npos);
+  AP_CHECK(!vtkApertureGeoreference::GetAttachedCRS(image));
 
   // A grid of no cells given to SetGrid: its queries fail saying so (they answered with cells
   // of 0 m and bounds west of east, as successes, until 2026-12-06); cells lost to rounding
