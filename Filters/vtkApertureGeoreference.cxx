@@ -38,6 +38,23 @@ static bool BeyondPole(double latitude)
   return std::fabs(latitude) - 90.0 > 1e-9;
 }
 
+// `srs` as one-line WKT2:2019; WKT1 for the CRSs that have no WKT2 form (e.g. with unusual
+// PROJ-only parameters).
+static std::string ExportWKT(OGRSpatialReferenceH srs)
+{
+  char* wkt = nullptr;
+  const char* options[] = { "FORMAT=WKT2_2019", "MULTILINE=NO", nullptr };
+  if (OSRExportToWktEx(srs, &wkt, options) != OGRERR_NONE || !wkt)
+  {
+    CPLFree(wkt);
+    wkt = nullptr;
+    OSRExportToWkt(srs, &wkt);
+  }
+  std::string text = wkt ? wkt : "";
+  CPLFree(wkt);
+  return text;
+}
+
 struct vtkApertureGeoreference::Internals
 {
   OGRSpatialReferenceH CRS = nullptr;
@@ -49,6 +66,7 @@ struct vtkApertureGeoreference::Internals
   double UnitToDegrees = 1.0;
   double PrimeMeridianDegrees = 0.0;
   std::string WKT;
+  std::string HorizontalWKT; // (GetHorizontalCRS: on first use)
   std::string Name;
   std::string UnitName;
   double UnitMetres = 0.0;         // (projected: metres per horizontal unit; else 0)
@@ -85,6 +103,7 @@ struct vtkApertureGeoreference::Internals
       this->CRS = nullptr;
     }
     this->WKT.clear();
+    this->HorizontalWKT.clear();
     this->Name.clear();
     this->UnitName.clear();
     this->UnitMetres = 0.0;
@@ -353,19 +372,9 @@ bool vtkApertureGeoreference::SetCRS(const char* definition)
     OSRRelease(srs);
     return false;
   }
-  char* wkt = nullptr;
-  const char* options[] = { "FORMAT=WKT2_2019", "MULTILINE=NO", nullptr };
-  if (OSRExportToWktEx(srs, &wkt, options) != OGRERR_NONE || !wkt)
-  {
-    // Some CRSs (e.g. with unusual PROJ-only parameters) have no WKT2 form; keep WKT1.
-    CPLFree(wkt);
-    wkt = nullptr;
-    OSRExportToWkt(srs, &wkt);
-  }
   d.Reset();
   d.CRS = srs;
-  d.WKT = wkt ? wkt : "";
-  CPLFree(wkt);
+  d.WKT = ExportWKT(srs);
   const char* name = OSRGetName(srs);
   d.Name = name ? name : "";
   char* unit = nullptr;
@@ -393,6 +402,27 @@ bool vtkApertureGeoreference::SetCRS(const char* definition)
 const char* vtkApertureGeoreference::GetCRS()
 {
   return this->Impl->WKT.c_str();
+}
+
+//------------------------------------------------------------------------------
+const char* vtkApertureGeoreference::GetHorizontalCRS()
+{
+  Internals& d = *this->Impl;
+  if (d.HorizontalWKT.empty() && d.CRS)
+  {
+    d.HorizontalWKT = d.WKT;
+    if (OSRIsCompound(d.CRS))
+    {
+      vtkApertureGDALErrorTrap trap;
+      OGRSpatialReferenceH horizontal = OSRClone(d.CRS);
+      if (horizontal && OSRStripVertical(horizontal) == OGRERR_NONE)
+      {
+        d.HorizontalWKT = ExportWKT(horizontal);
+      }
+      OSRRelease(horizontal);
+    }
+  }
+  return d.HorizontalWKT.c_str();
 }
 
 //------------------------------------------------------------------------------

@@ -614,8 +614,7 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     // (a compound CRS's vertical part would give every band its height unit: products and
     // elevations in metres read back as feet; the horizontal part places the grid)
     OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
-    ok = OSRSetFromUserInput(srs, geo->GetCRS()) == OGRERR_NONE &&
-      (!OSRIsCompound(srs) || OSRStripVertical(srs) == OGRERR_NONE) &&
+    ok = OSRSetFromUserInput(srs, geo->GetHorizontalCRS()) == OGRERR_NONE &&
       GDALSetSpatialRef(ds, srs) == CE_None;
     OSRRelease(srs);
   }

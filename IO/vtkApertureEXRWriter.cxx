@@ -806,7 +806,9 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
     {
       text << (k ? "," : "") << gt[k];
     }
-    attributes.emplace_back(CRSAttribute, geo->GetCRS());
+    // (the horizontal part of a compound CRS, as the GeoTIFF writer's: the values are no
+    // heights in its height unit)
+    attributes.emplace_back(CRSAttribute, geo->GetHorizontalCRS());
     attributes.emplace_back(GeoTransformAttribute, text.str());
   }
   for (const auto& kv : attributes)

@@ -46,7 +46,9 @@
  * - Georeference: when the image has a non-empty field-data array `CRS` (a vtkStringArray, as
  *   vtkApertureDEMReader and vtkApertureGeoreference::AttachToImage leave it), the writer takes
  *   the georeference with vtkApertureGeoreference::SetFromImage and writes
- *   `aperture:crs` (the CRS as WKT) and `aperture:geotransform` (GDAL's geotransform of the
+ *   `aperture:crs` (the CRS as WKT; of a compound CRS its horizontal part, as
+ *   vtkApertureDEMWriter writes it: the values are no heights in its height unit) and
+ *   `aperture:geotransform` (GDAL's geotransform of the
  *   written grid: west edge, cell width, 0, north edge, 0, minus the cell height; six numbers
  *   printed with %.17g and separated by commas, e.g. "300000,30,0,5000120,0,-30").
  *   These two are written after the metadata and replace metadata with the same keys.

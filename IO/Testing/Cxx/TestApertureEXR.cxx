@@ -442,6 +442,39 @@ void ExpectReaderError(const std::string& path, const std::string& expected)
 }
 
 //------------------------------------------------------------------------------
+// A compound CRS (heights in US survey feet here) is recorded as its horizontal part, as the
+// GeoTIFF writer records it: the values are no heights in its unit (elevations are written in
+// metres). Until 2026-12-07 the EXR kept the vertical part, unlike the bake's GeoTIFF beside it.
+void TestCompoundCRS()
+{
+  const std::string path = tmp + "/compound.exr";
+  auto image = MakeImage(false);
+  vtkNew<vtkApertureGeoreference> geo, horizontal;
+  AP_CHECK(geo->SetCRS("EPSG:32633+6360") && geo->AttachToImage(image));
+  AP_CHECK(horizontal->SetCRS("EPSG:32633"));
+  vtkNew<vtkApertureEXRWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(path.c_str());
+  AP_CHECK(writer->Write() == 1);
+  const RawImage raw = ReadRaw(path);
+  AP_CHECK(raw.Ok && raw.Strings.count("aperture:crs"));
+  const std::string crs = raw.Strings.count("aperture:crs") ? raw.Strings.at("aperture:crs") : "";
+  AP_CHECK(crs == horizontal->GetCRS());
+  AP_CHECK(crs.find("VERTCRS") == std::string::npos);
+  AP_CHECK(std::string(geo->GetHorizontalCRS()) == horizontal->GetCRS());
+  Read rd(path);
+  vtkImageData* back = rd.Update();
+  AP_CHECK(rd.Ok == 1);
+  vtkDataArray* z = back->GetPointData()->GetArray("Elevation");
+  vtkDataArray* was = image->GetPointData()->GetArray("Elevation");
+  AP_CHECK(z && z->GetNumberOfTuples() == was->GetNumberOfTuples());
+  for (vtkIdType k = 0; z && k < z->GetNumberOfTuples(); ++k)
+  {
+    AP_CHECK(SameValue(z->GetTuple1(k), was->GetTuple1(k)));
+  }
+}
+
+//------------------------------------------------------------------------------
 // Check fix for flipped rows: EXR scanline 0 must hold VTK's northern row (row NY-1), as
 // OpenEXR's C API reads it; FLOAT channels are exact, NaN stays NaN; the reader restores
 // arrays, components, geometry and georeference.
@@ -1670,6 +1703,7 @@ int TestApertureEXR(int argc, char* argv[])
 {
   tmp = aptest::TempDir(argc, argv);
   TestRoundTrip();
+  TestCompoundCRS();
   TestHalf();
   TestColor();
   TestMetadataAndPlainPicture();
