@@ -225,7 +225,8 @@ public:
    * not rise or set that day: GetDayKind() is then 1 (polar day) or 2 (polar night); 0 on a
    * day on which it rises or sets, which next to polar day or night may have only one of the
    * two, as may a day of 23 hours (or, on a place far from its zone's meridian, even lack the
-   * transit). -1, all three NaN, before Compute, after ComputeForDirection, or
+   * transit; so does a day between two transits more than 24 hours apart that straddle it, a
+   * few days a year where midnight falls within a minute of solar noon). -1, all three NaN, before Compute, after ComputeForDirection, or
    * when the local day lies outside the years -2000..6000 (an instant at its edge).
    */
   double GetSunrise() const { return this->Events[0]; }

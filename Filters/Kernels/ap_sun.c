@@ -722,10 +722,28 @@ ap_status ap_sun_rise_transit_set(const ap_sun_params *p, int year, int month, i
   rd.b = wrap180(g[2].alpha - alpha0);
   rd.ad = delta0 - g[0].delta;
   rd.bd = g[2].delta - delta0;
-  const double m0 = frac01((alpha0 - lon_deg - nu) / 360.0);
+  double m0 = frac01((alpha0 - lon_deg - nu) / 360.0);
   double ha0;
   r.transit_elevation = rts_altitude(&rd, m0, &ha0);
   double f[3] = { m0 - ha0 / 360.0, NAN, NAN };
+  /* The correction can take the transit out of the day, when it falls within a minute of a
+   * midnight: then the day's transit is the next cycle's (or the previous one's), if that one
+   * lies in the day; transits 24 h plus some seconds apart leave one day of the year with none
+   * (NaN; transit_elevation then stays the nearest transit's, about which, f0, the events are
+   * chosen below). */
+  const double utc = p->delta_ut1 / SECONDS_PER_DAY; /* (the day is UTC's; f are UT1's) */
+  double f0 = f[0];
+  if (f0 - utc < 0.0 || f0 - utc >= 1.0) {
+    const double m1 = m0 + (f0 - utc < 0.0 ? 1.0 : -1.0);
+    double ha1;
+    const double e1 = rts_altitude(&rd, m1, &ha1);
+    const double f1 = m1 - ha1 / 360.0;
+    f[0] = NAN;
+    if (f1 - utc >= 0.0 && f1 - utc < 1.0) {
+      f[0] = f0 = f1;
+      r.transit_elevation = e1;
+    }
+  }
 
   /* Sunrise and sunset: where the interpolated altitude crosses h0' upwards and downwards in
    * the day [0, 1] (the report's step 4-5 and 12-13 instead take the hour angle H0 from the
@@ -739,7 +757,7 @@ ap_status ap_sun_rise_transit_set(const ap_sun_params *p, int year, int month, i
   double xs[RTS_SAMPLES + 4], ys[RTS_SAMPLES + 4];
   int nx = 0;
   {
-    const double fixed[3] = { f[0] - 0.5, f[0], f[0] + 0.5 }; /* (ascending) */
+    const double fixed[3] = { f0 - 0.5, f0, f0 + 0.5 }; /* (ascending) */
     double extra[3];
     int ne = 0;
     for (int k = 0; k < 3; ++k) {
@@ -774,11 +792,11 @@ ap_status ap_sun_rise_transit_set(const ap_sun_params *p, int year, int month, i
       }
     }
     const double x = 0.5 * (lo + hi);
-    if (up && x <= f[0]) {
+    if (up && x <= f0) {
       rise_before = x; /* (the last) */
     } else if (up && isnan(rise_after)) {
       rise_after = x;
-    } else if (down && x < f[0]) {
+    } else if (down && x < f0) {
       set_before = x; /* (the last) */
     } else if (down && isnan(set_after)) {
       set_after = x;

@@ -158,7 +158,7 @@ typedef struct ap_sun_rts_result {
   double sunrise;        /**< POSIX seconds (UTC); NaN unless kind is AP_SUN_DAY_NORMAL, and */
   double transit;        /**< on a day on which the sun only sets (sunrise NaN) or only rises */
   double sunset;         /**< (sunset NaN), next to polar day or night; transit (sun on the
-                              local meridian) always set */
+                              local meridian) NaN only on a day without one (below) */
   double sunrise_hour;   /**< time of day of each event at the given UTC offset (hours, */
   double transit_hour;   /**< [0, 24)), as the report prints them; NaN where the */
   double sunset_hour;    /**< instant is NaN */
@@ -179,9 +179,12 @@ typedef struct ap_sun_rts_result {
  *  hours off, and a sunrise after the sunset. Every event lies in the day; with offset 0 the
  *  day is the report's UT day, whose events it prints in local time (its sunset of the
  *  example, 00:20 UT, is that of the evening before in local time); with the local offset
- *  these are the events of the local day. Where a day has two crossings of one kind, sunrise
- *  is the last before the transit (else the first) and sunset the first after it (else the
- *  last). Parallax is neglected, as in the report; params as for ap_sun_position (delta_ut1
+ *  these are the events of the local day. Transits fall 24 hours give or take half a minute
+ *  apart: where two more than 24 hours apart straddle a day (a few days a year at places whose
+ *  midnight is within a minute of solar noon, as at ±180° of longitude at UTC), that day has
+ *  none (NaN), and its sunrise and sunset are chosen about the nearest. Where a day has two
+ *  crossings of one kind, sunrise is the last before the transit (else the first) and sunset
+ *  the first after it (else the last). Parallax is neglected, as in the report; params as for ap_sun_position (delta_ut1
  *  shifts the results from UT1 to UTC; pressure and temperature are unused). The date is
  *  proleptic Gregorian, year in −2000..6000. Errors: NULL → AP_ERR_NULL_POINTER; bad date,
  *  place or params → AP_ERR_OUT_OF_RANGE. Polar day and night (no crossing in the day) are

@@ -255,6 +255,47 @@ static void test_pyephem_cases(void)
 }
 
 /* ALGORITHMS.md §4.4: Earth–Sun distance and solar radius at perihelion and aphelion 2025. */
+/* Transits straddling a day: at Suva's longitude (178.44° E) solar noon falls near 0 UT, and
+ * in December the transits are 24 h 28 s apart, 2025-12-11 23:59:48 and 2025-12-13 00:00:16
+ * (PyEphem): the UT day between has none. On 180° in June the same (2025-06-13 00:00:01).
+ * Until 2026-12-07 the day was given the next day's transit, outside it. */
+static void test_day_without_transit(void)
+{
+  ap_sun_params p;
+  ap_sun_params_init(&p);
+  const struct {
+    double lat, lon;
+    int y, m, d;       /* the day without a transit */
+    double before;     /* the transit before it, seconds of the day before (PyEphem) */
+    double after;      /* the transit after it, seconds of the day after (PyEphem) */
+  } cases[] = {
+    { -18.14, 178.44, 2025, 12, 12, hms(23, 59, 48), hms(0, 0, 16) },
+    { 30.0, 180.0, 2025, 6, 12, -1.0, hms(0, 0, 1) },
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
+    ap_sun_rts_result day, prev, next;
+    double t0;
+    AP_CHECK_EQ_INT(ap_sun_unix_time(cases[k].y, cases[k].m, cases[k].d, 0, 0, 0.0, &t0), AP_OK);
+    AP_CHECK_EQ_INT(ap_sun_rise_transit_set(&p, cases[k].y, cases[k].m, cases[k].d, 0.0,
+                                            cases[k].lat, cases[k].lon, &day),
+                    AP_OK);
+    AP_CHECK(isnan(day.transit) && isnan(day.transit_hour));
+    AP_CHECK_EQ_INT(day.kind, AP_SUN_DAY_NORMAL);
+    AP_CHECK(t0 <= day.sunset && day.sunset < day.sunrise && day.sunrise < t0 + 86400.0);
+    AP_CHECK_EQ_INT(ap_sun_rise_transit_set(&p, cases[k].y, cases[k].m, cases[k].d + 1, 0.0,
+                                            cases[k].lat, cases[k].lon, &next),
+                    AP_OK);
+    AP_CHECK_NEAR(next.transit - (t0 + 86400.0), cases[k].after, 1.0);
+    AP_CHECK_EQ_INT(ap_sun_rise_transit_set(&p, cases[k].y, cases[k].m, cases[k].d - 1, 0.0,
+                                            cases[k].lat, cases[k].lon, &prev),
+                    AP_OK);
+    AP_CHECK(t0 - 86400.0 <= prev.transit && prev.transit < t0);
+    if (cases[k].before >= 0.0) {
+      AP_CHECK_NEAR(prev.transit - (t0 - 86400.0), cases[k].before, 1.0);
+    }
+  }
+}
+
 static void test_angular_radius(void)
 {
   ap_sun_params p;
@@ -662,6 +703,7 @@ int main(void)
   AP_TEST_RUN(test_spa_case);
   AP_TEST_RUN(test_spa_rise_set);
   AP_TEST_RUN(test_pyephem_cases);
+  AP_TEST_RUN(test_day_without_transit);
   AP_TEST_RUN(test_angular_radius);
   AP_TEST_RUN(test_polar);
   AP_TEST_RUN(test_polar_transitions);
