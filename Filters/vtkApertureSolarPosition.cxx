@@ -303,8 +303,10 @@ struct vtkApertureSolarPosition::Internals
 
   /** UTC offset (s) that defines the local day of instant t: the zone's at t (the zone is
    *  what the caller named for the local day, whatever offset an instant was written with),
-   *  else the offset SetTime was given, else 0. */
-  int32_t DayOffset(double t) const
+   *  else the offset SetTime was given, else 0. `unknown`, if given, is set when there is a
+   *  zone that has no offset for t (an instant beyond the years), which the fallback stands
+   *  in for. */
+  int32_t DayOffset(double t, bool* unknown = nullptr) const
   {
     ap_tz_info info;
     // (a non-finite instant, or one beyond any zone's years, which ToInstant would take to
@@ -313,6 +315,10 @@ struct vtkApertureSolarPosition::Internals
       ap_tz_lookup(this->Zone.get(), ToInstant(t), &info) == AP_OK)
     {
       return info.utc_offset;
+    }
+    if (unknown && this->Zone)
+    {
+      *unknown = true;
     }
     return this->HasGivenOffset ? this->GivenOffset : 0;
   }
@@ -612,20 +618,23 @@ bool vtkApertureSolarPosition::Compute()
   // on such a day it runs at the offset of each end, and the events within the day are kept
   // (at one offset the day would end an hour early or late, and its events could be another
   // day's and depend on the hour asked about).
-  const int32_t offset = d.DayOffset(this->UnixTime);
+  // (a day reaching beyond the years, whose end the zone cannot place: at the fallback offset
+  // its end came hours early and dropped its sunset, until 2026-12-07; no events, as below)
+  bool beyond = false;
+  const int32_t offset = d.DayOffset(this->UnixTime, &beyond);
   const double localStart = std::floor((this->UnixTime + offset) / 86400.0) * 86400.0;
-  const auto midnight = [&d](double local, int32_t guess) {
+  const auto midnight = [&d, &beyond](double local, int32_t guess) {
     // (the instant of local time `local`; twice, for an offset that changes across it)
     double t = local - guess;
-    t = local - d.DayOffset(t);
-    return local - d.DayOffset(t);
+    t = local - d.DayOffset(t, &beyond);
+    return local - d.DayOffset(t, &beyond);
   };
   const double start = midnight(localStart, offset);
   const double end = midnight(localStart + 86400.0, offset);
   const int32_t startOffset = static_cast<int32_t>(localStart - start);
   const int32_t endOffset = static_cast<int32_t>(localStart + 86400.0 - end);
   ap_civil_time day;
-  bool computed = ap_instant_to_civil(ToInstant(localStart), &day) == AP_OK &&
+  bool computed = !beyond && ap_instant_to_civil(ToInstant(localStart), &day) == AP_OK &&
     (d.LastDay.Same(p, day, startOffset, this->Latitude, this->Longitude) ||
       d.LastDay.Compute(p, day, startOffset, this->Latitude, this->Longitude));
   ap_sun_day_kind kind = AP_SUN_DAY_NORMAL;

@@ -254,7 +254,11 @@ class CommandLineSunTest(unittest.TestCase):
         for args in (("--at", "6000-12-31T20:00Z", "--tz", "Pacific/Kiritimati", "--lat", 1.87,
                       "--lon", -157.4),
                      ("--at", "-2000-01-01T02:00Z", "--tz", "Pacific/Pago_Pago", "--lat", -14.3,
-                      "--lon", -170.7)):
+                      "--lon", -170.7),
+                     # (west of UTC, the day's end beyond the years: it was a normal day
+                     # without its sunset until 2026-12-07, the end placed at 00:00Z)
+                     ("--at", "6000-12-31T12:00", "--tz", "America/Los_Angeles", "--lat", 34,
+                      "--lon", -118)):
             r = self.json_of(*args)
             self.assertEqual([r[k] for k in ("day_kind", "sunrise", "transit", "sunset")],
                              [None] * 4, args)
