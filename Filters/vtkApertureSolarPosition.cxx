@@ -303,24 +303,23 @@ struct vtkApertureSolarPosition::Internals
 
   /** UTC offset (s) that defines the local day of instant t: the zone's at t (the zone is
    *  what the caller named for the local day, whatever offset an instant was written with),
-   *  else the offset SetTime was given, else 0. `unknown`, if given, is set when there is a
-   *  zone that has no offset for t (an instant beyond the years), which the fallback stands
-   *  in for. */
-  int32_t DayOffset(double t, bool* unknown = nullptr) const
+   *  else the offset SetTime was given, else 0; `beyond` where the zone has none for t (an
+   *  instant beyond the years). */
+  int32_t DayOffset(double t, int32_t beyond) const
   {
     ap_tz_info info;
     // (a non-finite instant, or one beyond any zone's years, which ToInstant would take to
-    // +-2^62: the fallback below)
+    // +-2^62: `beyond`)
     if (this->Zone && std::fabs(t) < 4.6e18 &&
       ap_tz_lookup(this->Zone.get(), ToInstant(t), &info) == AP_OK)
     {
       return info.utc_offset;
     }
-    if (unknown && this->Zone)
-    {
-      *unknown = true;
-    }
-    return this->HasGivenOffset ? this->GivenOffset : 0;
+    return this->Zone || !this->HasGivenOffset ? beyond : this->GivenOffset;
+  }
+  int32_t DayOffset(double t) const
+  {
+    return this->DayOffset(t, this->HasGivenOffset ? this->GivenOffset : 0);
   }
 };
 
@@ -618,23 +617,23 @@ bool vtkApertureSolarPosition::Compute()
   // on such a day it runs at the offset of each end, and the events within the day are kept
   // (at one offset the day would end an hour early or late, and its events could be another
   // day's and depend on the hour asked about).
-  // (a day reaching beyond the years, whose end the zone cannot place: at the fallback offset
-  // its end came hours early and dropped its sunset, until 2026-12-07; no events, as below)
-  bool beyond = false;
-  const int32_t offset = d.DayOffset(this->UnixTime, &beyond);
+  // (an end of the day beyond the years, which the zone cannot place, keeps the instant's
+  // offset: at offset 0 a day west of UTC ended hours early and lost its sunset until
+  // 2026-12-07; its events beyond the years then void the day, below)
+  const int32_t offset = d.DayOffset(this->UnixTime);
   const double localStart = std::floor((this->UnixTime + offset) / 86400.0) * 86400.0;
-  const auto midnight = [&d, &beyond](double local, int32_t guess) {
+  const auto midnight = [&d, offset](double local) {
     // (the instant of local time `local`; twice, for an offset that changes across it)
-    double t = local - guess;
-    t = local - d.DayOffset(t, &beyond);
-    return local - d.DayOffset(t, &beyond);
+    double t = local - offset;
+    t = local - d.DayOffset(t, offset);
+    return local - d.DayOffset(t, offset);
   };
-  const double start = midnight(localStart, offset);
-  const double end = midnight(localStart + 86400.0, offset);
+  const double start = midnight(localStart);
+  const double end = midnight(localStart + 86400.0);
   const int32_t startOffset = static_cast<int32_t>(localStart - start);
   const int32_t endOffset = static_cast<int32_t>(localStart + 86400.0 - end);
   ap_civil_time day;
-  bool computed = !beyond && ap_instant_to_civil(ToInstant(localStart), &day) == AP_OK &&
+  bool computed = ap_instant_to_civil(ToInstant(localStart), &day) == AP_OK &&
     (d.LastDay.Same(p, day, startOffset, this->Latitude, this->Longitude) ||
       d.LastDay.Compute(p, day, startOffset, this->Latitude, this->Longitude));
   ap_sun_day_kind kind = AP_SUN_DAY_NORMAL;

@@ -268,6 +268,11 @@ class CommandLineSunTest(unittest.TestCase):
             self.assertIn("Day:         n/a: the local day reaches beyond the years -2000..6000",
                           stdout)
             self.assertNotIn("None", stdout)
+        # a UTC+0 zone's last day ends at the end of the years: it lies within them
+        for zone in ("UTC", "Europe/London"):
+            r = self.json_of("--at", "6000-12-31T12:00", "--tz", zone, "--lat", 0, "--lon", 0)
+            self.assertEqual(r["day_kind"], "normal", zone)
+            self.assertTrue(r["sunrise"] < r["transit"] < r["sunset"] < "6001", zone)
         # one object, first a polar day, then such a day: its day kind is not the polar day's
         import aperture
         sun = aperture.vtkApertureSolarPosition()
