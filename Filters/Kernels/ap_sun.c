@@ -745,15 +745,16 @@ ap_status ap_sun_rise_transit_set(const ap_sun_params *p, int year, int month, i
     }
   }
 
-  /* Sunrise and sunset: where the interpolated altitude crosses h0' upwards and downwards in
-   * the day [0, 1] (the report's step 4-5 and 12-13 instead take the hour angle H0 from the
-   * declination at midnight and correct each event once, which near the start and end of polar
-   * day and night gave days of the wrong kind and events hours off, even in the wrong order).
-   * Sampled every 5 minutes, and at the transit and the anti-transit, the altitude's highest
-   * and lowest points, so that a graze above or below h0' between samples is not lost; each
-   * crossing found by bisection to 1e-9 day. Where the day has several of a kind, sunrise is
-   * the last before the transit (else the first) and sunset the first after it (else the
-   * last). No crossing: polar day or night by the altitude's sign, the same all day. */
+  /* Sunrise and sunset: where the interpolated altitude crosses h0' upwards and downwards in the
+   * day ([utc, 1 + utc] in UT1's fractions: UTC's day, as the transit's) (the report's step 4-5
+   * and 12-13 instead take the hour angle H0 from the declination at midnight and correct each
+   * event once, which near the start and end of polar day and night gave days of the wrong kind
+   * and events hours off, even in the wrong order). Sampled every 5 minutes, and at the transit
+   * and the anti-transit, the altitude's highest and lowest points, so that a graze above or below
+   * h0' between samples is not lost; each crossing found by bisection to 1e-9 day. Where the day
+   * has several of a kind, sunrise is the last before the transit (else the first) and sunset the
+   * first after it (else the last). No crossing: polar day or night by the altitude's sign, the
+   * same all day. */
   double xs[RTS_SAMPLES + 4], ys[RTS_SAMPLES + 4];
   int nx = 0;
   {
@@ -761,12 +762,12 @@ ap_status ap_sun_rise_transit_set(const ap_sun_params *p, int year, int month, i
     double extra[3];
     int ne = 0;
     for (int k = 0; k < 3; ++k) {
-      if (fixed[k] > 0.0 && fixed[k] < 1.0) {
+      if (fixed[k] > utc && fixed[k] < 1.0 + utc) {
         extra[ne++] = fixed[k];
       }
     }
     for (int k = 0, e = 0; k <= RTS_SAMPLES; ++k) {
-      const double x = (double)k / RTS_SAMPLES;
+      const double x = utc + (double)k / RTS_SAMPLES;
       while (e < ne && extra[e] < x) {
         xs[nx++] = extra[e++];
       }

@@ -178,17 +178,17 @@ typedef struct ap_sun_rts_result {
  *  which near the start and end of polar day and night gave days of the wrong kind, events
  *  hours off, and a sunrise after the sunset. Every event lies in the day; with offset 0 the
  *  day is the report's UT day, whose events it prints in local time (its sunset of the
- *  example, 00:20 UT, is that of the evening before in local time); with the local offset
- *  these are the events of the local day. Transits fall 24 hours give or take half a minute
- *  apart: where two more than 24 hours apart straddle a day (a few days a year at places whose
- *  midnight is within a minute of solar noon, as at ±180° of longitude at UTC), that day has
- *  none (NaN), and its sunrise and sunset are chosen about the nearest. Where a day has two
- *  crossings of one kind, sunrise is the last before the transit (else the first) and sunset
- *  the first after it (else the last). Parallax is neglected, as in the report; params as for ap_sun_position (delta_ut1
- *  shifts the results from UT1 to UTC; pressure and temperature are unused). The date is
- *  proleptic Gregorian, year in −2000..6000. Errors: NULL → AP_ERR_NULL_POINTER; bad date,
- *  place or params → AP_ERR_OUT_OF_RANGE. Polar day and night (no crossing in the day) are
- *  results (kind), not errors.
+ *  example, 00:20 UT, is that of the evening before in local time); with the local offset these are
+ *  the events of the local day. Transits fall 24 hours give or take half a minute apart: where two
+ *  more than 24 hours apart straddle a day (a few days a year at places whose midnight is within a
+ *  minute of solar noon, as at ±180° of longitude at UTC), that day has none (NaN), and its sunrise
+ *  and sunset are chosen about the nearest. Where a day has two crossings of one kind, sunrise is
+ *  the last before the transit (else the first) and sunset the first after it (else the last).
+ *  Parallax is neglected, as in the report; params as for ap_sun_position (delta_ut1 shifts the
+ *  results from UT1 to UTC; pressure and temperature are unused). The date is proleptic Gregorian,
+ *  year in −2000..6000. Errors: NULL → AP_ERR_NULL_POINTER; bad date, place or params →
+ *  AP_ERR_OUT_OF_RANGE. Polar day and night (no crossing in the day) are results (kind), not
+ *  errors.
  *  Accuracy: rise and set within 3 s and transit within 0.1 s of PyEphem (sun centre at
  *  −0.8333°, 1950–2050) for |latitude| <= 65°; the example's events within 1 s of the
  *  report's; beyond, the kind agrees with the full algorithm's elevation through the day

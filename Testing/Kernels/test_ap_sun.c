@@ -254,7 +254,6 @@ static void test_pyephem_cases(void)
          worst_az);
 }
 
-/* ALGORITHMS.md §4.4: Earth–Sun distance and solar radius at perihelion and aphelion 2025. */
 /* Transits straddling a day: at Suva's longitude (178.44° E) solar noon falls near 0 UT, and
  * in December the transits are 24 h 28 s apart, 2025-12-11 23:59:48 and 2025-12-13 00:00:16
  * (PyEphem): the UT day between has none. On 180° in June the same (2025-06-13 00:00:01).
@@ -296,6 +295,7 @@ static void test_day_without_transit(void)
   }
 }
 
+/* ALGORITHMS.md §4.4: Earth–Sun distance and solar radius at perihelion and aphelion 2025. */
 static void test_angular_radius(void)
 {
   ap_sun_params p;
