@@ -221,25 +221,32 @@ inline std::string vtkApertureCheckPointArrays(
   return std::string();
 }
 
-// `image` cropped to `want` where it holds more than that and `want` lies inside its extent:
-// `copy` gets its structure and point arrays (and its cell arrays if `cells`) cropped, and is
-// returned; else `image` itself. The filters read only what their update asked for, as VTK's
-// do: an input may hold more (a reader updated whole before, an image given with
-// SetInputData, vtkImageClip passing all of its input on with ClipData off). The crop reads
-// every point array by the image's extent, so one that disagrees with it is refused first:
-// nullptr, and `problem` says which.
+// Whether extent `inner` is not empty and lies inside `outer` (both VTK extents).
+inline bool vtkApertureExtentInside(const int inner[6], const int outer[6])
+{
+  bool inside = true;
+  for (int a = 0; a < 6; a += 2)
+  {
+    inside = inside && inner[a] <= inner[a + 1] && inner[a] >= outer[a] &&
+      inner[a + 1] <= outer[a + 1];
+  }
+  return inside;
+}
+
+// `image` cropped to `want` where it holds more than that and `want` lies inside its extent: `copy`
+// gets its structure and point arrays (and its cell arrays if `cells`) cropped, and is returned;
+// else `image` itself (also a 3-D image, which the filters refuse). The filters read only what
+// their update asked for, as VTK's do: an input may hold more (a reader updated whole before, an
+// image given with SetInputData, vtkImageClip passing all of its input on with ClipData off). The
+// crop reads every point array by the image's extent, so one that disagrees with it is refused
+// first: nullptr, and `problem` says which.
 inline vtkImageData* vtkApertureCropTo(vtkImageData* image, const int want[6], vtkImageData* copy,
   bool cells, std::string& problem)
 {
   int have[6];
   image->GetExtent(have);
-  bool inside = true, smaller = false;
-  for (int a = 0; a < 6; a += 2)
-  {
-    inside = inside && want[a] >= have[a] && want[a + 1] <= have[a + 1] && want[a] <= want[a + 1];
-    smaller = smaller || want[a] > have[a] || want[a + 1] < have[a + 1];
-  }
-  if (!inside || !smaller)
+  if (have[4] != have[5] || !vtkApertureExtentInside(want, have) ||
+    std::equal(want, want + 6, have))
   {
     return image;
   }

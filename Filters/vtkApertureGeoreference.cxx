@@ -55,6 +55,19 @@ static std::string ExportWKT(OGRSpatialReferenceH srs)
   return text;
 }
 
+// Whether the image's direction matrix is not the identity (`error` then says so): its grid is
+// rotated or mirrored, which no GeoTransform of its origin and spacing describes.
+static bool Rotated(vtkImageData* image, std::string& error)
+{
+  vtkMatrix3x3* dir = image->GetDirectionMatrix();
+  if (dir && !dir->IsIdentity())
+  {
+    error = "the image has a rotated direction matrix; DEM grids must be north-up";
+    return true;
+  }
+  return false;
+}
+
 struct vtkApertureGeoreference::Internals
 {
   OGRSpatialReferenceH CRS = nullptr;
@@ -410,14 +423,22 @@ const char* vtkApertureGeoreference::GetHorizontalCRS()
   Internals& d = *this->Impl;
   if (d.HorizontalWKT.empty() && d.CRS)
   {
-    d.HorizontalWKT = d.WKT;
-    if (OSRIsCompound(d.CRS))
+    if (!OSRIsCompound(d.CRS))
+    {
+      d.HorizontalWKT = d.WKT;
+    }
+    else
     {
       vtkApertureGDALErrorTrap trap;
       OGRSpatialReferenceH horizontal = OSRClone(d.CRS);
       if (horizontal && OSRStripVertical(horizontal) == OGRERR_NONE)
       {
         d.HorizontalWKT = ExportWKT(horizontal);
+      }
+      else
+      {
+        d.Error = "GDAL cannot separate the horizontal part of the compound CRS '" + d.Name +
+          "'" + (trap.Message().empty() ? std::string() : ": " + trap.Message());
       }
       OSRRelease(horizontal);
     }
@@ -483,10 +504,8 @@ bool vtkApertureGeoreference::SetFromImage(vtkImageData* image)
     d.Error = "no image";
     return false;
   }
-  vtkMatrix3x3* dir = image->GetDirectionMatrix();
-  if (dir && !dir->IsIdentity())
+  if (Rotated(image, d.Error))
   {
-    d.Error = "the image has a rotated direction matrix; DEM grids must be north-up";
     return false;
   }
   double spacing[3], origin[3];
@@ -570,11 +589,8 @@ bool vtkApertureGeoreference::AttachToImage(vtkImageData* image)
     d.Error = image ? "no coordinate reference system is set" : "no image";
     return false;
   }
-  vtkMatrix3x3* dir = image->GetDirectionMatrix();
-  if (dir && !dir->IsIdentity())
+  if (Rotated(image, d.Error)) // (a GeoTransform of its origin and spacing would misplace it)
   {
-    // (a GeoTransform of its origin and spacing would place it elsewhere)
-    d.Error = "the image has a rotated direction matrix; DEM grids must be north-up";
     return false;
   }
   vtkNew<vtkStringArray> crs;

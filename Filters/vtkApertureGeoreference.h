@@ -85,8 +85,9 @@ public:
 
   /** Its horizontal part, what places the grid, as WKT2:2019: of a compound CRS (a projected
    *  or geographic one with heights, EPSG:2263+6360) that CRS without its vertical part, else
-   *  the CRS itself; an empty string when none is set. What the writers record: the products
-   *  are not heights, and elevations are written in metres whatever the height unit was. */
+   *  the CRS itself; an empty string when none is set, or when GDAL cannot separate it
+   *  (GetErrorMessage says so). What the writers record: the products are not heights, and
+   *  elevations are written in metres whatever the height unit was. */
   const char* GetHorizontalCRS();
 
   /** True when a CRS is set. */

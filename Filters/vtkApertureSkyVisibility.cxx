@@ -855,8 +855,7 @@ int vtkApertureSkyVisibility::RunRequestData(
   if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
   {
     inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExt);
-    if (wholeExt[0] > inExt[0] || wholeExt[1] < inExt[1] || wholeExt[2] > inExt[2] ||
-      wholeExt[3] < inExt[3])
+    if (!vtkApertureExtentInside(inExt, wholeExt))
     {
       std::copy(inExt, inExt + 6, wholeExt); // (not a sub-extent: use the data's own)
     }

@@ -503,6 +503,11 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
                   << origin[1] << ")");
     return false;
   }
+  if (hasCRS && !*geo->GetHorizontalCRS())
+  {
+    vtkErrorMacro(<< "cannot write the CRS to '" << path << "': " << geo->GetErrorMessage());
+    return false;
+  }
   if (hasCRS)
   {
     geo->SetGrid(origin[0] + whole[0] * spacing[0], origin[1] + whole[2] * spacing[1],

@@ -777,7 +777,7 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
   if (vtkApertureGeoreference::GetAttachedCRS(input))
   {
     vtkNew<vtkApertureGeoreference> geo;
-    if (!geo->SetFromImage(input))
+    if (!geo->SetFromImage(input) || !*geo->GetHorizontalCRS())
     {
       vtkErrorMacro(<< "the image has a CRS but its georeference cannot be written to '" << path
                     << "': " << geo->GetErrorMessage());

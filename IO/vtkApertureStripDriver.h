@@ -4,6 +4,8 @@
 #ifndef vtkApertureStripDriver_h
 #define vtkApertureStripDriver_h
 
+#include "vtkApertureElevation.h" // (vtkApertureExtentInside)
+
 #include "vtkAlgorithm.h"
 #include "vtkAlgorithmOutput.h"
 #include "vtkCommand.h"
@@ -37,13 +39,7 @@ inline void vtkApertureWrittenExtent(vtkImageData* input, vtkInformation* info, 
   if (info && info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
   {
     info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-    bool inside = true;
-    for (int a = 0; a < 6; a += 2)
-    {
-      inside =
-        inside && whole[a] >= ext[a] && whole[a + 1] <= ext[a + 1] && whole[a] <= whole[a + 1];
-    }
-    if (inside)
+    if (vtkApertureExtentInside(whole, ext))
     {
       std::copy(whole, whole + 6, ext);
     }
