@@ -218,16 +218,17 @@ public:
 
   ///@{
   /**
-   * Sunrise, transit and sunset of the local day of the instant (the day in TimeZone, else at
-   * the offset SetTime was given, else the UTC day), as POSIX seconds and as ISO 8601 UTC
-   * strings (ap_sun_rise_transit_set: each within the day, from its midnight to the next, 23
-   * or 25 hours on a day the clocks change). Sunrise and sunset are NaN / "" when the sun does
-   * not rise or set that day: GetDayKind() is then 1 (polar day) or 2 (polar night); 0 on a
-   * day on which it rises or sets, which next to polar day or night may have only one of the
-   * two, as may a day of 23 hours (or, on a place far from its zone's meridian, even lack the
-   * transit; so does a day between two transits more than 24 hours apart that straddle it, a
-   * few days a year where midnight falls within a minute of solar noon). -1, all three NaN, before Compute, after ComputeForDirection, or
-   * when the local day lies outside the years -2000..6000 (an instant at its edge).
+   * Sunrise, transit and sunset of the local day of the instant (the day in TimeZone, else at the
+   * offset SetTime was given, else the UTC day), as POSIX seconds and as ISO 8601 UTC strings
+   * (ap_sun_rise_transit_set: each within the day, from its midnight to the next, 23 or 25 hours on
+   * a day the clocks change). Sunrise and sunset are NaN / "" when the sun does not rise or set
+   * that day: GetDayKind() is then 1 (polar day) or 2 (polar night); 0 on a day on which it rises
+   * or sets, which next to polar day or night may have only one of the two, as may a day of 23
+   * hours (or, on a place far from its zone's meridian, even lack the transit; so does a day
+   * between two transits more than 24 hours apart that straddle it, a few days a year where
+   * midnight falls within a minute of solar noon). -1, all three NaN, before Compute, after
+   * ComputeForDirection, or when the local day lies outside the years -2000..6000 (an instant at
+   * its edge).
    */
   double GetSunrise() const { return this->Events[0]; }
   double GetTransit() const { return this->Events[1]; }
@@ -318,16 +319,16 @@ public:
     double irradianceRGB[3]);
 
   /**
-   * Tabulate the sky for vtkApertureLightingMapper's SKY_TABLE mode: the radiance (W/m²/sr,
-   * RGB; dark below the horizon) of caps weighted by the cosine to the cap's axis a, that is
-   * GetSkyCap's irradiance onto a surface facing a over π sin² r (the radiance at a for r = 0),
-   * so that the lighting's L · C(n·a, sin² r) is the sky's exact irradiance for a surface that
-   * faces its aperture's axis (level open ground: the horizontal irradiance), and close to it
-   * for others. The axes sample azimuth (`azimuths` cells, centred on
-   * (i + ½) 360 / azimuths degrees), elevation (`elevations` nodes from 0 to 90°) and radius
-   * (`radii` nodes from 0 to 90°), in the layout and with the interpolation of
-   * ap_light_sky_lookup (ap_light.h). `table` gets 3 components and azimuths × elevations ×
-   * radii tuples. False before Compute or for sizes outside 4..256, 2..256, 2..256.
+   * Tabulate the sky for vtkApertureLightingMapper's SKY_TABLE mode: the radiance (W/m²/sr, RGB;
+   * dark below the horizon) of caps weighted by the cosine to the cap's axis a, that is GetSkyCap's
+   * irradiance onto a surface facing a over π sin² r (the radiance at a for r = 0), so that the
+   * lighting's L · C(n·a, sin² r) is the sky's irradiance through the cap for a surface that faces
+   * its axis (exactly at the table's nodes, such as level open ground: the horizontal irradiance;
+   * else as the lookup interpolates), and close to it for others. The axes sample azimuth
+   * (`azimuths` cells, centred on (i + ½) 360 / azimuths degrees), elevation (`elevations` nodes
+   * from 0 to 90°) and radius (`radii` nodes from 0 to 90°), in the layout and with the
+   * interpolation of ap_light_sky_lookup (ap_light.h). `table` gets 3 components and azimuths ×
+   * elevations × radii tuples. False before Compute or for sizes outside 4..256, 2..256, 2..256.
    * About 35 µs per cap: 32 × 9 × 9 caps take 90 ms (Preetham sky).
    */
   bool ComputeSkyTable(vtkFloatArray* table, int azimuths = 32, int elevations = 9, int radii = 9);

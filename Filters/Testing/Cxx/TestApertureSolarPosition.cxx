@@ -485,6 +485,23 @@ void TestSkyTable()
   const vtkMTimeType filled = table->GetMTime();
   AP_CHECK(sun->ComputeSkyTable(table, na, ne, nr));
   AP_CHECK(table->GetMTime() > filled);
+  // The CIE overcast sky, L = Lz (1 + 2 cos t) / 3, over caps about the zenith: weighted by
+  // the cosine, Lz / 3 (1 + 4 (1 - cos^3 r) / (3 sin^2 r)), from Lz at r = 0 to 7 Lz / 9 at 90
+  // degrees (the unweighted mean is Lz / 3 (1 + (1 + cos r))).
+  sun->SetSkyModelToCIEOvercast();
+  AP_CHECK(sun->Compute());
+  na = 4, ne = 2, nr = 5;
+  AP_CHECK(sun->ComputeSkyTable(table, na, ne, nr));
+  AP_CHECK(sun->GetSkyRadiance(up, zenith));
+  for (int k = 0; k < nr; ++k)
+  {
+    const double r = k * 0.5 * kPi / (nr - 1), c = std::cos(r), sr = std::sin(r);
+    const double expected = k == 0 ? 1.0 : (1.0 + 4.0 * (1.0 - c * c * c) / (3.0 * sr * sr)) / 3.0;
+    for (int i = 0; i < na; ++i)
+    {
+      AP_CHECK_NEAR(at(i, 1, k)[1], expected * zenith[1], 1e-5 * zenith[1]);
+    }
+  }
 }
 
 // A site grid in a local CRS: no place on the Earth. The place is taken (its height too),

@@ -272,12 +272,12 @@ def build_aperture(mesh, sun, size=(1200, 900), view="oblique", sun_scale=1.0,
                    sky_mode="constant", shading="pixel"):
     """A render window showing the mesh lit by the sun and sky of `sun` (a computed
     vtkApertureSolarPosition) through each point's aperture. The mesh needs the Normals,
-    BentNormal and ApertureRadius point arrays (bake, then mesh). Albedo: the elevation
-    colours, or `texture` (a vtkTexture draped by the mesh's TextureCoordinates). Exposure in
-    EV, None: auto_exposure. sky_mode "constant": one sky radiance everywhere (`sky`, or the
-    uniform radiance giving the model's irradiance on level ground, sky_radiance); "model":
-    each aperture filled with the sun's sky model over that aperture (a table of the caps'
-    radiances, cosine-weighted about their axes: vtkApertureSolarPosition.ComputeSkyTable). shading "pixel" (default) or "vertex":
+    BentNormal and ApertureRadius point arrays (bake, then mesh). Albedo: the elevation colours, or
+    `texture` (a vtkTexture draped by the mesh's TextureCoordinates). Exposure in EV, None:
+    auto_exposure. sky_mode "constant": one sky radiance everywhere (`sky`, or the uniform radiance
+    giving the model's irradiance on level ground, sky_radiance); "model": each aperture filled with
+    the sun's sky model over that aperture (a table of the caps' radiances, cosine-weighted about
+    their axes: vtkApertureSolarPosition.ComputeSkyTable). shading "pixel" (default) or "vertex":
     where the lighting model runs. intersection "exact" or "smoothstep", lambert "centroid" or
     "exactcap" (the mapper's modes).
     Returns (render_window, renderer, mapper). ValueError for an unknown view, sky_mode,
