@@ -75,6 +75,7 @@ struct vtkApertureGeoreference::Internals
   OGRCoordinateTransformationH ToGeographic = nullptr;
   OGRCoordinateTransformationH FromGeographic = nullptr;
   bool GeographicTried = false;
+  std::string GeographicError; // (why that try failed: Error may have been cleared since)
   // Geographic output of the CRS's own geographic CRS -> degrees east of Greenwich.
   double UnitToDegrees = 1.0;
   double PrimeMeridianDegrees = 0.0;
@@ -105,6 +106,7 @@ struct vtkApertureGeoreference::Internals
       this->Geographic = nullptr;
     }
     this->GeographicTried = false;
+    this->GeographicError.clear();
   }
 
   void Reset()
@@ -138,9 +140,21 @@ struct vtkApertureGeoreference::Internals
     }
     if (this->GeographicTried)
     {
-      return false; // Error still holds the first failure's reason
+      this->Error = this->GeographicError; // (a success in between cleared Error)
+      return false;
     }
     this->GeographicTried = true;
+    const bool ok = this->TryGeographic();
+    if (!ok)
+    {
+      this->GeographicError = this->Error;
+    }
+    return ok;
+  }
+
+  // EnsureGeographic's one try: false with Error set when the CRS has no geographic form.
+  bool TryGeographic()
+  {
     vtkApertureGDALErrorTrap trap;
     if (OSRIsLocal(this->CRS))
     {

@@ -162,6 +162,18 @@ void TestErrors()
   AP_CHECK(!geo->CRSToLonLat(0, 0, ll));
   AP_CHECK(std::string(geo->GetErrorMessage()).find("no geographic coordinates") !=
     std::string::npos);
+  // a success in between does not take the reason from the next failure (the geographic
+  // form is tried once: until 2026-12-07 the later failures said nothing)
+  {
+    double cell[2];
+    geo->SetGrid(0.0, 0.0, 10.0, 10.0, 10, 10);
+    AP_CHECK(geo->GetCellSizeMetres(cell) && std::string(geo->GetErrorMessage()).empty());
+    AP_CHECK(!geo->GetCentreLonLat(ll));
+    AP_CHECK_CONTAINS(geo->GetErrorMessage(), "no geographic coordinates");
+    AP_CHECK(geo->GetCellSizeMetres(cell));
+    AP_CHECK(std::isnan(geo->ComputeMeridianConvergence(5.0, 5.0)));
+    AP_CHECK_CONTAINS(geo->GetErrorMessage(), "no geographic coordinates");
+  }
   // Geographic CRSs whose x and y are not longitude east and latitude north are refused (the
   // previous CRS kept): until 2026-12-07 a rotated pole's grid near its own equator was read
   // as if on the Earth's, and a west/south axis as east/north, silently 20-30 degrees off.
