@@ -522,7 +522,15 @@ int vtkApertureSkyVisibility::GetWrapColumns(const int input[6])
   vtkNew<vtkApertureGeoreference> geo;
   if (!geo->SetFromInformation(inInfo))
   {
-    return 0;
+    // (an image given with SetInputData carries its CRS in its field data, not in the
+    // information: the update wraps it all the same)
+    const char* crs = inInfo && inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT())
+      ? vtkApertureGeoreference::GetAttachedCRS(this->GetInputDataObject(0, 0))
+      : nullptr;
+    if (!crs || !geo->SetCRS(crs))
+    {
+      return 0;
+    }
   }
   int whole[6];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);

@@ -115,8 +115,9 @@
  * coastal DEM, is no error: its products are nodata (NaN; EdgeTruncated 0, or NaN as float),
  * as the whole run's are there, and GetInputAllNodata() says so.
  *
- * An input of no points (an empty image, or an empty update extent) gives an empty output and
- * no error, as VTK's filters do.
+ * An input of no points (an empty image, or an empty update extent of a pipeline that has not
+ * run: VTK's executive keeps an earlier update's output for one) gives an empty output and no
+ * error, as VTK's filters do.
  * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, a point
  * array without one tuple per point of the input, no CRS or no metric cell size, every cell
  * nodata in an input that is the whole DEM (an update of all of it, or an unlimited distance),
@@ -297,7 +298,8 @@ public:
    *  adds to each side of a global DEM (vtkApertureGeoreference::WrapsAround) so that its
    *  east and west edges join: the distance's halo in columns, at most half the DEM's (half
    *  without a distance); 0 for other DEMs, an input without every column, or no input
-   *  information. The update's memory is CheckMemory's for nx + 2 x this columns. */
+   *  information (the CRS from it, else from an image given with SetInputData). The update's
+   *  memory is CheckMemory's for nx + 2 x this columns. */
   int GetWrapColumns(const int input[6]);
 
   /** Threads that ran the last update's parallel work (0 before any; at most

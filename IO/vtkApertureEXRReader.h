@@ -20,9 +20,10 @@
  * - The channels R, G, B, when all three exist, become one array `RGB` with components R, G, B,
  *   or `RGBA` with A as well. It is the active scalars.
  * - Channels that share the prefix before their last '.' (`Vector.E`, `Vector.N`) become one
- *   multi-component array named by the prefix, with the suffixes as component names: R, G, B
- *   (A), or r, g, b (a), in a colour's order (a renderer's `diffuse.R`...), numbers in their
- *   order (`v.2` before `v.10`), any others in the header's (OpenEXR sorts channels by name).
+ *   multi-component array named by the prefix, with the suffixes as component names: a group
+ *   whose suffixes are all R, G, B (A), or all r, g, b (a), in a colour's order (a renderer's
+ *   `diffuse.R`...), one whose suffixes are all numbers in their order (`v.2` before `v.10`),
+ *   any other group in the header's (OpenEXR sorts channels by name: `k.20`, `k.3`, `k.x`).
  * - Every other channel becomes a one-component array named like the channel: a lone `a.b`,
  *   and the members of a group whose prefix is itself a channel name (`V` beside `V.x`, `V.y`
  *   gives three arrays `V`, `V.x`, `V.y`) or the name of the color array. Without RGB, the first

@@ -263,6 +263,31 @@ print(before, seen)
                 back = vtk_to_numpy(got.GetPointData().GetArray("Elevation")).reshape(30, 25)
                 np.testing.assert_array_equal(back, z[5:35, 35:60].astype(np.float32))
 
+    def testWrapColumnsOfAnImageGivenAsData(self):
+        # A global DEM given with SetInputData wraps as one read: GetWrapColumns, for planning
+        # an update's memory, said 0 for it until 2026-12-07 (its CRS is in its field data, not
+        # in the pipeline information a reader publishes).
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        from vtkmodules.vtkCommonDataModel import vtkImageData
+        image = vtkImageData()
+        image.SetDimensions(36, 18, 1)
+        image.SetOrigin(-175.0, -85.0, 0.0)
+        image.SetSpacing(10.0, 10.0, 1.0)
+        z = numpy_to_vtk(np.linspace(0.0, 900.0, 36 * 18).astype(np.float32), deep=1)
+        z.SetName("Elevation")
+        image.GetPointData().SetScalars(z)
+        geo = aperture.vtkApertureGeoreference()
+        self.assertTrue(geo.SetCRS("EPSG:4326") and geo.AttachToImage(image))
+        sky = aperture.vtkApertureSkyVisibility()
+        sky.SetInputData(image)
+        sky.UpdateInformation()
+        self.assertEqual(sky.GetWrapColumns([0, 35, 0, 17, 0, 0]), 18)
+        sky.SetMaximumDistance(3000e3)  # over 30 of the top row's 97 km cells: half the DEM
+        self.assertEqual(sky.GetWrapColumns([0, 35, 0, 17, 0, 0]), 18)
+        sky.SetMaximumDistance(200e3)  # a few of them
+        self.assertTrue(2 <= sky.GetWrapColumns([0, 35, 0, 17, 0, 0]) < 18)
+        self.assertEqual(sky.GetWrapColumns([0, 30, 0, 17, 0, 0]), 0)  # not every column
+
     def testMeshPieceMemoryUnderAddressLimit(self):
         # Under an address-space limit (ulimit -v) the memory left already excludes the crop
         # of a piece out of an image given whole: a 512 x 512 piece of a 1024^2 image that
