@@ -55,6 +55,19 @@ static std::string ExportWKT(OGRSpatialReferenceH srs)
   return text;
 }
 
+// A compound CRS's horizontal part (a clone without the vertical part, to OSRRelease), or
+// nullptr when `srs` is not compound or GDAL cannot separate it.
+static OGRSpatialReferenceH HorizontalPart(OGRSpatialReferenceH srs)
+{
+  OGRSpatialReferenceH horizontal = OSRIsCompound(srs) ? OSRClone(srs) : nullptr;
+  if (horizontal && OSRStripVertical(horizontal) != OGRERR_NONE)
+  {
+    OSRRelease(horizontal);
+    horizontal = nullptr;
+  }
+  return horizontal;
+}
+
 // Whether the image's direction matrix is not the identity (`error` then says so): its grid is
 // rotated or mirrored, which no GeoTransform of its origin and spacing describes.
 static bool Rotated(vtkImageData* image, std::string& error)
@@ -364,12 +377,7 @@ bool vtkApertureGeoreference::SetCRS(const char* definition)
   // placed elsewhere on Earth (a rotated pole's grid near its own equator, not the Earth's).
   // (of a compound CRS, its horizontal part: GDAL says a compound CRS over a rotated pole is
   // geographic, but not derived geographic)
-  OGRSpatialReferenceH horizontal = OSRIsCompound(srs) ? OSRClone(srs) : nullptr;
-  if (horizontal && OSRStripVertical(horizontal) != OGRERR_NONE)
-  {
-    OSRRelease(horizontal);
-    horizontal = nullptr;
-  }
+  OGRSpatialReferenceH horizontal = HorizontalPart(srs);
   OGRSpatialReferenceH plane = horizontal ? horizontal : srs;
   std::string unusable;
   if (OSRIsGeographic(plane) && OSRIsDerivedGeographic(plane))
@@ -444,17 +452,17 @@ const char* vtkApertureGeoreference::GetHorizontalCRS()
     else
     {
       vtkApertureGDALErrorTrap trap;
-      OGRSpatialReferenceH horizontal = OSRClone(d.CRS);
-      if (horizontal && OSRStripVertical(horizontal) == OGRERR_NONE)
+      OGRSpatialReferenceH horizontal = HorizontalPart(d.CRS);
+      if (horizontal)
       {
         d.HorizontalWKT = ExportWKT(horizontal);
+        OSRRelease(horizontal);
       }
       else
       {
         d.Error = "GDAL cannot separate the horizontal part of the compound CRS '" + d.Name +
           "'" + (trap.Message().empty() ? std::string() : ": " + trap.Message());
       }
-      OSRRelease(horizontal);
     }
   }
   return d.HorizontalWKT.c_str();

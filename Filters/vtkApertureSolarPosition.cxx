@@ -303,19 +303,19 @@ struct vtkApertureSolarPosition::Internals
 
   /** UTC offset (s) that defines the local day of instant t: the zone's at t (the zone is
    *  what the caller named for the local day, whatever offset an instant was written with),
-   *  else the offset SetTime was given, else 0; `beyond` where the zone has none for t (an
-   *  instant beyond the years). */
-  int32_t DayOffset(double t, int32_t beyond) const
+   *  else `fallback` (the offset SetTime was given, else 0, unless the caller knows better:
+   *  also where the zone has none for t, an instant beyond the years). */
+  int32_t DayOffset(double t, int32_t fallback) const
   {
     ap_tz_info info;
     // (a non-finite instant, or one beyond any zone's years, which ToInstant would take to
-    // +-2^62: `beyond`)
+    // +-2^62: `fallback`)
     if (this->Zone && std::fabs(t) < 4.6e18 &&
       ap_tz_lookup(this->Zone.get(), ToInstant(t), &info) == AP_OK)
     {
       return info.utc_offset;
     }
-    return this->Zone || !this->HasGivenOffset ? beyond : this->GivenOffset;
+    return fallback;
   }
   int32_t DayOffset(double t) const
   {

@@ -930,8 +930,8 @@ ap_status ap_sky_prepare(const ap_sky_params *p, const double sun[3], ap_sky_sta
     /* over the sky (z >= 0), cosine to up, about the zenith with the sun's cusp cut out */
     double node[NORM_RINGS], weight[NORM_RINGS], v[3];
     gauss_legendre(NORM_RINGS, node, weight);
-    region g = { up_dir, 1, { up_dir, NULL, NULL }, { 0.0, 0.0, 0.0 }, up_dir, NULL };
-    g.cusp = cusp_of(s, up_dir);
+    region g = { up_dir, 1, { up_dir, NULL, NULL }, { 0.0, 0.0, 0.0 }, up_dir,
+                 cusp_of(s, up_dir) };
     region_integrate(s, shape_fn, &g, NORM_RINGS, node, weight, NORM_SECTORS, v);
     integral = v[0];
   }

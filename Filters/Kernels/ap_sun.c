@@ -722,7 +722,7 @@ ap_status ap_sun_rise_transit_set(const ap_sun_params *p, int year, int month, i
   rd.b = wrap180(g[2].alpha - alpha0);
   rd.ad = delta0 - g[0].delta;
   rd.bd = g[2].delta - delta0;
-  double m0 = frac01((alpha0 - lon_deg - nu) / 360.0);
+  const double m0 = frac01((alpha0 - lon_deg - nu) / 360.0);
   double ha0;
   r.transit_elevation = rts_altitude(&rd, m0, &ha0);
   double f[3] = { m0 - ha0 / 360.0, NAN, NAN };
