@@ -438,6 +438,63 @@ static void test_pit(void)
   drop(&t);
 }
 
+/* The bottom of a shaft one cell wide (1 m cells, the cell H below its neighbours, which are
+ * level): along a ray at azimuth phi the bilinear patch rises by H t (|sin phi| + |cos phi|
+ * - t |sin phi cos phi|), so the horizon is its limit at t -> 0, atan(H (|sin phi| +
+ * |cos phi|)), and the products are the sector sums of those horizons (flat normal). With H
+ * of kilometres every horizon lies within 1e-4 rad of the zenith: the sums' terms 1 - sin h
+ * and Q(h) must not cancel in single precision (a 9 km shaft's bent normal came out 52
+ * degrees off the zenith its symmetry gives, its visible solid angle 0). */
+static void test_deep_shaft(void)
+{
+  static const double depths[3] = { 10.0, 1e3, 9e3 };
+  static const int sectors[2] = { 32, 33 };
+  int a, b, mode;
+  for (a = 0; a < 3; ++a) {
+    for (b = 0; b < 2; ++b) {
+      for (mode = 0; mode < 2; ++mode) {
+        const double H = depths[a];
+        const int D = sectors[b];
+        terrain t = make(9, 9, 1.0);
+        ap_horizon_params p = params(D, 0);
+        double *ht = (double *)malloc((size_t)D * sizeof(double));
+        double *hs = (double *)malloc((size_t)D * sizeof(double));
+        const size_t k = 4 * 9 + 4;
+        sector_sums want;
+        double len;
+        results r;
+        int d;
+        t.z[k] = (float)-H;
+        if (mode == 1) {
+          p.max_distance = 4.0;
+          set_mode(&p, MARCHED, 64);
+        }
+        for (d = 0; d < D; ++d) {
+          const double phi = 2 * PI * d / D;
+          ht[d] = atan(H * (fabs(sin(phi)) + fabs(cos(phi))));
+          hs[d] = 0.0;
+        }
+        want = sums(D, ht, hs);
+        r = compute(&t, &p);
+        for (d = 0; d < D; ++d) {
+          AP_CHECK_NEAR(r.h[k * (size_t)D + (size_t)d], ht[d], 2e-7);
+        }
+        len = sqrt(want.bx * want.bx + want.by * want.by + want.bz * want.bz);
+        AP_CHECK_NEAR(r.A[k] / want.A, 1.0, 1e-5);
+        AP_CHECK_NEAR(r.rp[k] / acos(1 - want.A / (2 * PI)), 1.0, 1e-5);
+        AP_CHECK_NEAR(r.vd[k] / (want.bz / PI), 1.0, 1e-5);
+        AP_CHECK_NEAR(r.bn[3 * k], want.bx / len, 1e-5);
+        AP_CHECK_NEAR(r.bn[3 * k + 1], want.by / len, 1e-5);
+        AP_CHECK_NEAR(r.bn[3 * k + 2], want.bz / len, 1e-6);
+        release(&r);
+        drop(&t);
+        free(ht);
+        free(hs);
+      }
+    }
+  }
+}
+
 /* Curvature: a 1000 m peak 100 km east of an observer on flat ground. The exact elevation of
  * the peak's top from a sphere of effective radius R / (1 - k) (the standard refraction
  * model) is atan2((Re + H) cos a - Re, (Re + H) sin a), a = d / Re; the sweep's parabolic drop
@@ -2373,6 +2430,7 @@ int main(void)
   AP_TEST_RUN(test_valley);
   AP_TEST_RUN(test_wall);
   AP_TEST_RUN(test_pit);
+  AP_TEST_RUN(test_deep_shaft);
   AP_TEST_RUN(test_curvature);
   AP_TEST_RUN(test_brute_force);
   AP_TEST_RUN(test_long_narrow);
