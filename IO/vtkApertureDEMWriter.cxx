@@ -26,6 +26,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -535,12 +536,17 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     vtkWarningMacro(<< "writing '" << path << "' without a CRS: " << geo->GetErrorMessage());
   }
 
-  // 3. Create the file (its nodata value checked first: nothing of GDAL's made yet).
-  const double most = anyDouble ? std::numeric_limits<double>::max()
-                                : static_cast<double>(std::numeric_limits<float>::max());
-  if (!std::isnan(this->NoDataValue) && !(std::fabs(this->NoDataValue) <= most))
+  // 3. Create the file (its nodata value checked first: nothing of GDAL's made yet). Float32
+  // bands take any value that rounds to a finite float (-3.4028235e38, numpy's and ESRI's
+  // spelling of -FLT_MAX, lies a hair beyond it), and declare that float, the cells' value.
+  const double floatLimit = 3.4028235677973366e38; // 2^128 - 2^103: rounds to infinity
+  if (!std::isnan(this->NoDataValue) &&
+    !(anyDouble ? std::fabs(this->NoDataValue) <= std::numeric_limits<double>::max()
+                : std::fabs(this->NoDataValue) < floatLimit))
   {
-    vtkErrorMacro(<< "the NoDataValue " << this->NoDataValue << " is not a finite "
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.9g", this->NoDataValue);
+    vtkErrorMacro(<< "the NoDataValue " << text << " is not a finite "
                   << (anyDouble ? "Float64" : "Float32") << " value (nor NaN)");
     return false;
   }
@@ -593,7 +599,12 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     options = CSLSetNameValue(options, "NUM_THREADS", threads.c_str());
   }
   d.Type = anyDouble ? GDT_Float64 : GDT_Float32;
-  d.NoData = this->NoDataValue;
+  d.NoData = anyDouble || std::isnan(this->NoDataValue)
+    ? this->NoDataValue
+    : static_cast<double>(static_cast<float>(
+        std::copysign(std::min(std::fabs(this->NoDataValue),
+                        static_cast<double>(std::numeric_limits<float>::max())),
+          this->NoDataValue)));
   // Written to a temporary file renamed into place when complete (EndFile): a failed or
   // aborted write leaves an earlier file as it was (GDAL deleted it before creating its own).
   // Through a symbolic link its target is replaced, the link kept, with its permissions.

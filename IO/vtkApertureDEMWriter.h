@@ -110,8 +110,10 @@ public:
   /** The nodata value the bands declare, and NaN cells are written as: NaN (default), or a
    * finite number for tools that take no NaN (an ASCII grid: gdaldem's float outputs use
    * -9999). A value a product may take (0 for an EdgeTruncated band) makes such cells read as
-   * nodata too: the caller's choice. Neither a finite Float32 nor (double arrays) Float64
-   * value: an error when writing. */
+   * nodata too: the caller's choice. Float32 bands declare the value rounded to float, which
+   * their cells hold (0.1 as 0.100000001490116; -3.4028235e38 as -FLT_MAX). A value that does
+   * not round to a finite Float32 (nor, double arrays, is a finite Float64): an error when
+   * writing. */
   vtkSetMacro(NoDataValue, double);
   vtkGetMacro(NoDataValue, double);
   ///@}

@@ -905,6 +905,21 @@ class TestBake(unittest.TestCase):
         self.assertIn("argument --nodata: inf is not a Float32 number (nor nan)",
                       usage_error(self, "bake", run("bake", self.dem, m9999, "--nodata",
                                                     "inf")))
+        # -FLT_MAX as numpy prints it and as ESRI writes it, a hair beyond it in double (refused
+        # until 2026-12-07): the bands declare -FLT_MAX, which the nodata cells hold
+        lowest = float(np.finfo(np.float32).min)
+        for text in ("-3.4028235e38", "-3.40282346639e+038"):
+            status, _, err = run("bake", self.dem, m9999, "--radius", "900", "-q", "-d", "8",
+                                 "--products", "SkyViewFactor", "--nodata", text)
+            self.assertEqual(status, 0, err)
+            ds = gdal.Open(m9999)
+            band = ds.GetRasterBand(1)
+            self.assertEqual(band.GetNoDataValue(), lowest, text)
+            self.assertEqual(float(band.ReadAsArray()[5, 5]), lowest, text)
+            ds = None
+        self.assertIn("argument --nodata: 3.4028235677973366e38 is not a Float32 number",
+                      usage_error(self, "bake", run("bake", self.dem, m9999, "--nodata",
+                                                    "3.4028235677973366e38")))
         # a value some product takes is said in a warning: its cells of that value read as
         # nodata (--nodata 0 took every EdgeTruncated cell of 0 without a word)
         for nodata, products, hits in (

@@ -226,9 +226,37 @@ void TestNoDataValue()
     vtkDataArray* z = reader->GetOutput()->GetPointData()->GetScalars();
     AP_CHECK(z && std::isnan(z->GetTuple1(2 * NX + 1)) && z->GetTuple1(2 * NX + 2) == 202.0);
   }
+  // A Float32 band declares the value as the float its cells hold: 0.1 as 0.1f (a reader
+  // comparing in double would have missed every cell), and -3.4028235e38, numpy's and ESRI's
+  // spelling of -FLT_MAX a hair beyond it, as -FLT_MAX (refused until 2026-12-07)
+  for (const double value : { 0.1, -3.4028235e38, 3.4028235677973362e38 })
+  {
+    const std::string path = tmp + "/nodata-rounded.tif";
+    const double want = value == 0.1 ? static_cast<double>(0.1f)
+                                     : std::copysign(static_cast<double>(
+                                                       std::numeric_limits<float>::max()),
+                                         value);
+    vtkNew<vtkApertureDEMWriter> writer;
+    writer->SetInputData(MakeImage(true));
+    writer->SetFileName(path.c_str());
+    writer->SetNoDataValue(value);
+    AP_CHECK(writer->Write() == 1);
+    GDALDatasetH ds = GDALOpen(path.c_str(), GA_ReadOnly);
+    AP_CHECK(ds != nullptr);
+    if (!ds)
+    {
+      return;
+    }
+    int has = 0;
+    AP_CHECK(GDALGetRasterNoDataValue(GDALGetRasterBand(ds, 1), &has) == want && has);
+    AP_CHECK(Value(ds, 1, 1, NY - 1 - 2) == want);
+    GDALClose(ds);
+  }
   vtkNew<vtkApertureDEMWriter> writer;
   writer->SetInputData(MakeImage(true));
   writer->SetFileName((tmp + "/nodata-bad.tif").c_str());
+  writer->SetNoDataValue(3.4028235677973366e38); // (2^128 - 2^103: rounds to infinity)
+  ExpectError(writer, "the NoDataValue 3.40282357e+38 is not a finite Float32 value (nor NaN)");
   writer->SetNoDataValue(1e300);
   ExpectError(writer, "the NoDataValue 1e+300 is not a finite Float32 value (nor NaN)");
   writer->SetNoDataValue(std::numeric_limits<double>::infinity());

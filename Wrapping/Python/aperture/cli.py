@@ -684,12 +684,14 @@ def _crs_text(text):
 
 
 def _nodata_value(text):
-    """--nodata: nan, or a number a Float32 band holds."""
+    """--nodata: nan, or a number a Float32 band holds: one that rounds to a finite float
+    (-3.4028235e38, numpy's and ESRI's spelling of -FLT_MAX, lies a hair beyond it), which the
+    writer declares rounded."""
     try:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError("invalid float value: %r" % text)
-    if not (math.isnan(value) or abs(value) <= 3.4028234663852886e38):
+    if not (math.isnan(value) or abs(value) < 3.4028235677973366e38):  # 2^128 - 2^103
         raise argparse.ArgumentTypeError("%s is not a Float32 number (nor nan)" % text)
     return value
 
