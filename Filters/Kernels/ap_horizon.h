@@ -62,6 +62,12 @@
  *  km, 0.041 and 1.4 swept unlimited: beyond the accuracy bounds, which hold on natural
  *  terrain. A larger near_field (up to 64 columns exact) finds such features that near; it
  *  costs 10-20% more time at 10 km on the benchmark's 1024^2 DEM at 32 or 64 columns.
+ *  Straight edges met at a grazing angle (a cliff, a wall in a DSM): the sweep evaluates the
+ *  cell's ray at its two lines' tangent columns only, which can lie cells past the edge (the
+ *  lines meet it up to a cell / tan(angle) apart). A probe (2026-12-07), a 100 m step 100 m
+ *  east on 10 m cells, D = 360, no curvature: unlimited, exact within the 32 exact columns,
+ *  then up to 1.2 degrees low (the step met at 16 degrees, 36 columns out), 0.6 beyond 64;
+ *  far-marched at 10 km, up to 2.0 low 8 to 32 columns out (the column samples), 0.3 beyond.
  *
  *  Geometry: cell sizes are given per row in metres, so lat/lon DEMs are exact: the lines
  *  follow constant ground azimuth (rhumb lines) and bend in index space as the east-west cell
