@@ -47,9 +47,10 @@
  * φ_d itself, linear between its two sectors either side (the nearer one's where the other is an
  * empty direction, -90 degrees; on a plane rising 0.7 degree north, 0.002 degree from the closed
  * form; the error grows with the sectors' width squared: on a plane rising 17 degrees, 8.6
- * degrees of turn from the centre, 1.4 degrees at D = 4, 0.7 at 8, 0.03 at 36). Cell sizes are metric per row (GeographicLib geodesics on the CRS's ellipsoid), so lat/lon
- * DEMs are exact, and so are DEMs in a normal-aspect cylindrical projection (Mercator, Web
- * Mercator, equirectangular, cylindrical equal-area: rows are parallels, columns meridians,
+ * degrees of turn from the centre, 1.4 degrees at D = 4, 0.7 at 8, 0.03 at 36). Cell sizes
+ * are metric per row (GeographicLib geodesics on the CRS's ellipsoid), so lat/lon DEMs are
+ * exact, and so are DEMs in a normal-aspect cylindrical projection (Mercator, Web Mercator,
+ * equirectangular, cylindrical equal-area: rows are parallels, columns meridians,
  * vtkApertureGeoreference::HasMeridianColumns), whose rows get their own sizes the same way. On any
  * other projection the scale changes across the DEM (about 0.1% across a whole UTM zone, 7% from 60
  * to 88 N in polar stereographic): each cell takes its own ground metric (the lengths of, and angle
