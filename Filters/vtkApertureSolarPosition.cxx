@@ -493,6 +493,11 @@ bool vtkApertureSolarPosition::SetPlaceFromImage(vtkImageData* dem)
   double lonlat[2] = { kNaN, kNaN };
   if (!geo->SetFromImage(dem) || (!geo->IsLocal() && !geo->GetCentreLonLat(lonlat)))
   {
+    // (the place is forgotten: a caller that does not check would have computed the sun of
+    // the place set before, with no error)
+    d.Geo = nullptr;
+    this->Convergence = 0.0;
+    this->Latitude = this->Longitude = kNaN;
     d.Error = std::string("the DEM has no usable georeference: ") + geo->GetErrorMessage();
     vtkErrorMacro(<< d.Error);
     return false;

@@ -112,11 +112,13 @@ public:
    * valid cell of its point array "Elevation", else of its one-component active scalars; 0 if
    * none); its longitude is taken into [-180, 180] (a lat/lon grid may run 0..360 degrees).
    * Also remembers the DEM's georeference for GetGridAzimuth and
-   * GetGridConvergence. False (with the reason) when the image has no CRS, or a CRS with no
-   * geographic equivalent other than a local one (vtkApertureGeoreference::IsLocal: a site
-   * grid, its +y axis north, γ = 0), which has no place on the Earth: Latitude and Longitude
-   * become NaN, so Compute() fails saying so until they are set, while ComputeForDirection
-   * works. SetLatitude/SetLongitude afterwards do not forget the DEM: call with nullptr.
+   * GetGridConvergence. False (with the reason) when the image has no CRS, or its centre no
+   * geographic coordinates: the place is then forgotten (Latitude and Longitude NaN, no DEM),
+   * so that Compute() fails rather than use the one set before. A DEM in a local CRS
+   * (vtkApertureGeoreference::IsLocal: a site grid, its +y axis north, γ = 0) is taken but has
+   * no place on the Earth: Latitude and Longitude become NaN, so Compute() fails saying so
+   * until they are set, while ComputeForDirection works. SetLatitude/SetLongitude afterwards
+   * do not forget the DEM: call with nullptr.
    */
   bool SetPlaceFromImage(vtkImageData* dem);
 

@@ -695,6 +695,16 @@ void TestBadInput()
   bare->SetDimensions(3, 3, 1);
   AP_CHECK(!sun->SetPlaceFromImage(bare));
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "georeference");
+  // the place set before is forgotten: Compute() computed the sun of that place without a word
+  // until 2026-12-07 (and of latitude 0, longitude 0 after a DEM whose centre is past a pole)
+  AP_CHECK(std::isnan(sun->GetLatitude()) && std::isnan(sun->GetLongitude()));
+  AP_CHECK(!sun->Compute());
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "latitude");
+  sun->SetLatitude(47.4);
+  sun->SetLongitude(8.5);
+  auto pastPole = MakeFlat("EPSG:4326", -300.0, 100.0, 1.0, 60, 40, 0.0f); // (lat 100..139)
+  AP_CHECK(!sun->SetPlaceFromImage(pastPole));
+  AP_CHECK(std::isnan(sun->GetLatitude()) && !sun->Compute());
   vtkNew<vtkLight> light;
   AP_CHECK(!sun->ConfigureLight(light));
 }
