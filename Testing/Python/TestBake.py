@@ -1235,11 +1235,13 @@ class TestBake(unittest.TestCase):
                                 "--lighting", "standard", "--size", "400x300"],
                                capture_output=True, text=True, timeout=300, preexec_fn=join)
             self.assertEqual(p.returncode, 1, p.stderr)
-            self.assertIn("rendering a mesh of %d x %d points needs about" % (n, n), p.stderr)
+            self.assertIn("rendering a mesh of %d x %d points in a picture of 400 x 300 pixels "
+                          "needs about" % (n, n), p.stderr)
             self.assertIn("under its control group's limit", p.stderr)
             factor = re.search(r"; --decimate (\d+) would fit$", p.stderr.strip())
             self.assertTrue(factor, p.stderr)
-        self.assertIn("(the mesh 126.343 MiB, drawing it and the rest", p.stderr)
+        self.assertIn("(the mesh 126.343 MiB, the picture 7.782 MiB, drawing them and the rest",
+                      p.stderr)
         p = subprocess.run([xvfb, APERTURE, "render", small, "-o", self.path("group.png"),
                             "--lighting", "standard", "--size", "400x300", "--decimate",
                             factor.group(1)], capture_output=True, text=True, timeout=300,
@@ -1272,9 +1274,10 @@ class TestBake(unittest.TestCase):
                             "--lighting", "standard", "--size", "400x300"],
                            capture_output=True, text=True, timeout=300, preexec_fn=limit)
         self.assertEqual(p.returncode, 1, p.stderr)
-        self.assertIn("rendering a mesh of 3000 x 3000 points needs about", p.stderr)
+        self.assertIn("rendering a mesh of 3000 x 3000 points in a picture of 400 x 300 pixels "
+                      "needs about", p.stderr)
         self.assertIn("of memory this process may use under its address-space limit "
-                      "(ulimit -v); --decimate ", p.stderr)
+                      "(ulimit -v) beside the ", p.stderr)
         factor = re.search(r"; --decimate (\d+) would fit$", p.stderr.strip())
         self.assertTrue(factor, p.stderr)
         p = subprocess.run([xvfb, APERTURE, "render", dem, "-o", self.path("ulimit.png"),
@@ -1287,6 +1290,46 @@ class TestBake(unittest.TestCase):
                            capture_output=True, text=True, timeout=300, preexec_fn=limit)
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertIn("strips of", p.stdout)
+
+    def test_render_picture_memory(self):
+        # The picture counts too: a 16384^2 render took 10 GB and, under a lower limit, aborted
+        # on std::bad_alloc (status 134) until 2026-12-07. Under 2 GiB of address space a
+        # 9000^2 picture with --exr is refused by name with a --size that fits, which renders
+        # under the same limit. And a DEM whose mesh cannot fit is refused before it is read:
+        # 46341^2 cells (8 GiB of elevations, which under this limit would have failed to
+        # allocate) were read for 23 s first.
+        import resource
+
+        def limit():
+            resource.setrlimit(resource.RLIMIT_AS, (2 << 30, resource.RLIM_INFINITY))
+
+        dem = zeros_vrt(self.path("picture.vrt"), 100)
+        xvfb = os.path.join(SOURCE, "Utilities", "with-xvfb.sh")
+        args = [xvfb, APERTURE, "render", dem, "-o", self.path("picture.png"), "--exr",
+                self.path("picture.exr"), "--sun-el", "30", "--multisamples", "0", "-q"]
+        p = subprocess.run(args + ["--size", "9000x9000"], capture_output=True, text=True,
+                           timeout=300, preexec_fn=limit)
+        self.assertEqual(p.returncode, 1, p.stderr)
+        self.assertIn("rendering a mesh of 100 x 100 points in a picture of 9000 x 9000 pixels "
+                      "needs about 7.041 GiB", p.stderr)
+        # (81 million pixels of 92 bytes: the framebuffers and the EXR's float read-back)
+        self.assertIn("(the mesh 1015.625 KiB, the picture 6.940 GiB,", p.stderr)
+        size = re.search(r"; --size (\d+)x(\d+) would fit$", p.stderr.strip())
+        self.assertTrue(size, p.stderr)
+        self.assertEqual(size.group(1), size.group(2))  # (the aspect kept)
+        self.assertGreater(int(size.group(1)), 1000)
+        p = subprocess.run(args + ["--size", "%sx%s" % size.groups()], capture_output=True,
+                           text=True, timeout=300, preexec_fn=limit)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        huge = zeros_vrt(self.path("picture-huge.vrt"), 46341)
+        p = subprocess.run([xvfb, APERTURE, "render", huge, "-o", self.path("picture.png"),
+                            "--lighting", "standard", "--size", "200x150"],
+                           capture_output=True, text=True, timeout=120, preexec_fn=limit)
+        self.assertEqual(p.returncode, 1, p.stderr)
+        self.assertIn("rendering a mesh of 46341 x 46341 points in a picture of 200 x 150 "
+                      "pixels needs about", p.stderr)
+        self.assertIn(" beside the 8.750 GiB that OpenGL maps and the elevations take; "
+                      "--decimate ", p.stderr)
 
     def test_usable_cores(self):
         # --threads 0 (the default) is every core the process may use: the machine's, or fewer
@@ -1338,8 +1381,8 @@ class TestBake(unittest.TestCase):
                   "from aperture.errors import ApertureError\n"
                   "cli._resident_bytes = lambda: 1 << 50\n"
                   "try:\n"
-                  "    cli._check_render_memory(argparse.Namespace(decimate=1), 10, 10, False, "
-                  "False)\n"
+                  "    cli._check_render_memory(argparse.Namespace(decimate=1, size=(16, 16), "
+                  "multisamples=0, exr=None), 10, 10, False, False, 0)\n"
                   "    print('fits')\n"
                   "except ApertureError as e:\n"
                   "    print(e)\n")
@@ -1349,10 +1392,10 @@ class TestBake(unittest.TestCase):
         self.assertEqual((p.returncode, p.stdout), (0, "fits\n"), p.stderr)
         p = subprocess.run([python, "-c", script], capture_output=True, text=True, timeout=120)
         self.assertEqual(p.returncode, 0, p.stderr)
-        self.assertTrue(p.stdout.startswith("rendering a mesh of 10 x 10 points needs about "),
-                        p.stdout)
-        self.assertTrue(p.stdout.strip().endswith(" beside the 1.000 PiB this process holds"),
-                        p.stdout)
+        self.assertTrue(p.stdout.startswith("rendering a mesh of 10 x 10 points in a picture of "
+                                            "16 x 16 pixels needs about "), p.stdout)
+        self.assertTrue(p.stdout.strip().endswith(
+            " beside the 1.000 PiB that this process holds and the elevations take"), p.stdout)
 
     def test_out_of_memory(self):
         # A DEM that fits the machine's memory but not the process's address space (ulimit -v):

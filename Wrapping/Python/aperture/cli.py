@@ -906,6 +906,16 @@ def _render_sun(args, image, watcher):
 _DRAW_FIXED_BYTES = 100 << 20
 _DRAW_BYTES_PER_POINT = 100
 _DRAW_BINS_PER_POINT, _DRAW_BINS_MAX = 120, 512 << 20
+# What the picture costs, measured the same way (the embedded DEM at 1000^2 to 12000^2 pixels,
+# 2026-12-07: 37 bytes a pixel without antialiasing, 58 with 8 samples, 83 with --exr, whose
+# float read-back outlasts the samples; in address space 41 a pixel): its framebuffers and
+# read-backs per pixel, and per pixel and sample; with --exr at least the float read-back's.
+# A 16384^2 picture took 10 GB, and aborted the process (std::bad_alloc) where less was allowed.
+_PICTURE_BYTES_PER_PIXEL, _PICTURE_BYTES_PER_SAMPLE, _PICTURE_EXR_BYTES_PER_PIXEL = 44, 3, 48
+# Under an address-space limit (ulimit -v), what OpenGL maps beyond what it makes resident (the
+# driver's libraries, its threads' stacks, reservations): 560 to 700 MiB more address space
+# than resident memory, from before the mesh to the peak, at 1000^2 to 6000^2 pixels.
+_DRAW_ADDRESS_BYTES = 768 << 20
 
 
 def _resident_bytes():
@@ -917,12 +927,14 @@ def _resident_bytes():
         return 0
 
 
-def _check_render_memory(args, nx, ny, bent, to_bake):
-    """Refuse by name, before it is made, a render of nx x ny points whose mesh and drawing
-    would not fit in the memory this process may use (past it Linux kills the process): the
-    mesher's own estimate (`bent`: with a BentNormal to carry), what drawing adds (_DRAW_*),
-    what the process holds already, and with `to_bake` the aperture's products still to be
-    made (16 bytes a point). Suggests the --decimate factor that fits."""
+def _check_render_memory(args, nx, ny, bent, to_bake, read_cells):
+    """Refuse by name, before the DEM is read, a render of nx x ny points whose mesh, drawing
+    and picture would not fit in the memory this process may use (past it Linux kills the
+    process): the elevations to read (read_cells, 4 bytes each), the mesher's own estimate
+    (`bent`: with a BentNormal to carry, 16 bytes a point of --baked products), what drawing
+    adds (_DRAW_*), the picture (_PICTURE_*: --size, --multisamples, --exr), what the process
+    holds already, and with `to_bake` the aperture's products still to be made (16 bytes a
+    point). Suggests a --decimate factor, or a --size, that fits."""
     from aperture import vtkApertureSkyVisibility as sky
     from aperture import vtkApertureTerrainMesh
     estimate = vtkApertureTerrainMesh()  # (render's mesher: the default precision)
@@ -930,24 +942,44 @@ def _check_render_memory(args, nx, ny, bent, to_bake):
     def need(n):  # the mesh, drawing it, the products
         return (estimate.EstimateBytes(float(n), bent, 0.0) + _DRAW_FIXED_BYTES
                 + _DRAW_BYTES_PER_POINT * n + min(_DRAW_BINS_PER_POINT * n, _DRAW_BINS_MAX)
-                + (16 * n if to_bake else 0))
+                + (16 * n if to_bake or bent else 0))
+
+    def picture(w, h):
+        return float(w) * h * (_PICTURE_BYTES_PER_PIXEL + max(
+            _PICTURE_BYTES_PER_SAMPLE * args.multisamples,
+            _PICTURE_EXR_BYTES_PER_PIXEL if args.exr else 0))
 
     # (an address-space limit's usable memory is what it leaves beside all that is mapped)
-    held = 0 if sky.IsMemoryAddressLimited() else _resident_bytes()
+    limited = sky.IsMemoryAddressLimited()
+    own, read = _DRAW_ADDRESS_BYTES if limited else _resident_bytes(), 4.0 * read_cells
+    held = own + read
     usable = float(sky.GetUsableMemory())
-    total = need(nx * ny)
+    width, height = args.size
+    total = need(nx * ny) + picture(width, height)
     if held + total <= usable:
         return
     mesh = estimate.EstimateBytes(float(nx * ny), bent, 0.0)
-    message = ("rendering a mesh of %d x %d points needs about %s (the mesh %s, drawing it and "
-               "the rest %s), more than the %s of memory %s%s"
-               % (nx, ny, _bytes_text(total), _bytes_text(mesh), _bytes_text(total - mesh),
+    message = ("rendering a mesh of %d x %d points in a picture of %d x %d pixels needs about "
+               "%s (the mesh %s, the picture %s, drawing them and the rest %s), more than the "
+               "%s of memory %s%s"
+               % (nx, ny, width, height, _bytes_text(total), _bytes_text(mesh),
+                  _bytes_text(picture(width, height)),
+                  _bytes_text(total - mesh - picture(width, height)),
                   _bytes_text(max(0.0, usable - held)), sky.GetUsableMemoryOwner(),
-                  " beside the %s this process holds" % _bytes_text(held) if held else ""))
-    for f in range(2, max(nx, ny) // 2 + 1):
-        if held + need((nx // f) * (ny // f)) <= usable:
-            raise ApertureError("%s; --decimate %d would fit" % (message, f * args.decimate))
-    raise ApertureError(message)
+                  " beside the %s that %s and the elevations take" % (
+                      _bytes_text(held), "OpenGL maps" if limited else "this process holds")))
+    fits = []
+    for f in range(2, min(nx, ny) // 2 + 1):  # (a mesh of at least 2 x 2 points)
+        if own + read / (f * f) + need((nx // f) * (ny // f)) + picture(width, height) <= usable:
+            fits.append("--decimate %d" % (f * args.decimate))
+            break
+    for size in range(max(width, height) - 1, 15, -1):  # (the aspect kept, 16 pixels or more)
+        w, h = (size, max(16, height * size // width)) if width >= height else (
+            max(16, width * size // height), size)
+        if held + need(nx * ny) + picture(w, h) <= usable:
+            fits.append("--size %dx%d" % (w, h))
+            break
+    raise ApertureError("%s; %s would fit" % (message, " or ".join(fits)) if fits else message)
 
 
 def _check_display():
@@ -1146,6 +1178,7 @@ def _interruptible_import(name):
 
 
 def cmd_render(args):
+    from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
     from aperture import vtkApertureSkyVisibility, vtkApertureTerrainMesh
     scene = _interruptible_import("aperture.scene")  # (VTK's rendering: a few tenths of a s)
 
@@ -1175,21 +1208,24 @@ def cmd_render(args):
         # the aperture of a --srcwin window sees the DEM around it, as bake --srcwin's does
         reader, window, read, _ = _window_reading(args, watcher, sky)
         _check_sources(outputs, reader)
-        _read(watcher, reader, read)
         _check_render_memory(args, window[1] - window[0] + 1, window[3] - window[2] + 1,
-                             True, True)
+                             True, True, _cells(read))
+        _read(watcher, reader, read)
         early = _render_sun(args, reader.GetOutput(), watcher)  # (before the bake: a DEM
         if args.frames:  # in a local CRS, a --frames series past the algorithm's years)
             _frame_times(args, early)
         with _abort_on_interrupt(sky):
             image = source = watcher.update(sky, "bake", extent=window)
     else:
-        reader, image = read_dem(args, watcher)
+        reader = _dem_reader(args, watcher)
         _check_sources(outputs, reader)
+        watcher.update_information(reader)
+        whole = reader.GetOutputInformation(0).Get(sddp.WHOLE_EXTENT())
+        _check_render_memory(args, *_extent_size(whole), bool(args.baked), False, _cells(whole))
+        image = _read(watcher, reader)
         if args.baked:
             _attach_baked(image, args.baked, reader)
         source = image
-        _check_render_memory(args, *image.GetDimensions()[:2], bool(args.baked), False)
     # (after the refusals about the outputs: not a warning, then an error, for one mistake)
     for option, names in args.frame_paths:
         _warn_extension(names[0], (".png",) if option == "--output" else (".exr",),
@@ -1832,6 +1868,12 @@ def _input_extent(watcher, sky, extent):
 def _extent_size(e):
     """Columns and rows of a VTK extent."""
     return e[1] - e[0] + 1, e[3] - e[2] + 1
+
+
+def _cells(e):
+    """Cells of a 2-D VTK extent."""
+    nx, ny = _extent_size(e)
+    return nx * ny
 
 
 def _plan_bake(args, watcher, sky):
