@@ -292,6 +292,39 @@ class TestRenderApertureDEM(Testing.vtkTest):
             reader.SetFileName(path)
             reader.Update()
             self.assertEqual(reader.GetNumberOfTextChunks(), 2)
+            # written aside and renamed into place: a failed write (over a limit on file
+            # sizes here, as on a full disk) leaves an earlier file as it was (until 2026-12-07
+            # it was gone) and no temporary file; a file replaced keeps its permissions, and a
+            # symbolic link stays one, its target written
+            import resource
+            import signal
+            keep = os.path.join(tmp, "keep.png")
+            with open(keep, "wb") as f:
+                f.write(b"an earlier frame")
+            os.chmod(keep, 0o640)
+            limits = resource.getrlimit(resource.RLIMIT_FSIZE)
+            handler = signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+            resource.setrlimit(resource.RLIMIT_FSIZE, (100, limits[1]))
+            try:
+                with self.assertRaises(OSError) as caught:
+                    scene.write_png(window, keep)
+            finally:
+                resource.setrlimit(resource.RLIMIT_FSIZE, limits)
+                signal.signal(signal.SIGXFSZ, handler)
+            self.assertIn("cannot write the PNG %s: the write failed" % keep,
+                          str(caught.exception))
+            with open(keep, "rb") as f:
+                self.assertEqual(f.read(), b"an earlier frame")
+            self.assertEqual([n for n in os.listdir(tmp) if n.endswith(".tmp")], [])
+            scene.write_png(window, keep)
+            self.assertEqual(os.stat(keep).st_mode & 0o777, 0o640)
+            with open(keep, "rb") as f:
+                self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+            link = os.path.join(tmp, "latest.png")
+            os.symlink("keep.png", link)
+            os.remove(keep)
+            self.assertEqual(scene.write_png(window, link), link)
+            self.assertTrue(os.path.islink(link) and os.path.isfile(keep))
 
     def testSkyOnly(self):
         mesh, _ = mesh_and_dem()

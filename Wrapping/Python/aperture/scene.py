@@ -10,6 +10,7 @@ the horizontal, both in degrees (gdaldem's hillshade default is azimuth 315, ele
 """
 import math
 import os
+import tempfile
 
 from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkRenderingCore import (
@@ -497,8 +498,11 @@ def write_png(window, path, on_warning=None, text=()):
     """Render and write the window's pixels to a PNG; returns the absolute path. `text`: (key,
     value) pairs of str written as the PNG's tEXt chunks: keys of 1 to 79 printable Latin-1
     characters (no leading, trailing or double space), values of Latin-1 characters without
-    NUL; TypeError or ValueError for others, before anything is drawn or written. OSError
-    when the file cannot be written; on_warning and RuntimeError as for grab."""
+    NUL; TypeError or ValueError for others, before anything is drawn or written. The PNG is
+    written aside and renamed into place, as the GeoTIFF and EXR writers do: a failed write
+    leaves an earlier file of that name as it was; a file replaced keeps its permissions, and
+    a symbolic link stays a link, its target written. OSError when the file cannot be
+    written (a read-only file, a full disk); on_warning and RuntimeError as for grab."""
     from aperture.errors import native_path
     chunks = [_png_text_chunk(pair) for pair in text]
     folder = os.path.dirname(os.path.abspath(path))
@@ -507,22 +511,44 @@ def write_png(window, path, on_warning=None, text=()):
         raise OSError("cannot write the PNG %s: %s" % (path, "it is a folder" if os.path.isdir(
             path) else "%s is not a folder" % folder if os.path.exists(folder) else
             "the folder %s does not exist" % folder))
-    writer = vtkPNGWriter()
-    writer.SetFileName(native_path(path))
-    for key, value in chunks:
-        writer.AddText(key, value)
-    writer.SetInputData(grab(window, on_warning))
-    writer.Write()
-    if writer.GetErrorCode():
-        # (VTK says no more than that a write failed: libpng's own lines say "Write Error")
-        try:
-            stat = os.statvfs(folder)
-            full = stat.f_bavail * stat.f_frsize < (1 << 20)
-        except OSError:
-            full = False
-        raise OSError("cannot write the PNG %s: %s" % (
-            path, "the disk is full" if full else "the write failed (out of space, or over "
-            "a limit on file sizes)"))
+    target = os.path.realpath(path)  # (through symbolic links: a link stays one)
+    if os.path.exists(target) and not os.access(target, os.W_OK):
+        raise OSError("cannot write the PNG %s: it is read-only" % path)
+    try:
+        mode = os.stat(target).st_mode & 0o7777
+    except OSError:  # (a new file: as open() would make it)
+        umask = os.umask(0)
+        os.umask(umask)
+        mode = 0o666 & ~umask
+    image = grab(window, on_warning)
+    try:
+        fd, temporary = tempfile.mkstemp(prefix=".aperture-", suffix=".tmp",
+                                         dir=os.path.dirname(target))
+        os.close(fd)
+    except OSError as e:
+        raise OSError("cannot write the PNG %s: %s" % (path, e.strerror)) from None
+    try:
+        writer = vtkPNGWriter()
+        writer.SetFileName(native_path(temporary))
+        for key, value in chunks:
+            writer.AddText(key, value)
+        writer.SetInputData(image)
+        writer.Write()
+        if writer.GetErrorCode():
+            # (VTK says no more than that a write failed: libpng's own lines say "Write Error")
+            try:
+                stat = os.statvfs(folder)
+                full = stat.f_bavail * stat.f_frsize < (1 << 20)
+            except OSError:
+                full = False
+            raise OSError("cannot write the PNG %s: %s" % (
+                path, "the disk is full" if full else "the write failed (out of space, or over "
+                "a limit on file sizes)"))
+        os.chmod(temporary, mode)
+        os.replace(temporary, target)
+    finally:
+        if os.path.exists(temporary):
+            os.remove(temporary)
     return os.path.abspath(path)
 
 
