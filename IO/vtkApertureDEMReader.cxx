@@ -981,6 +981,17 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
   // North-up: request row r (file order) is output row ext[3] - r; south-up: ext[2] + r.
   const int firstFileRow = d.SouthUp ? ext[2] : (d.Out[1] - 1 - ext[3]);
   vtkApertureGDALErrorTrap trap;
+  // GDAL's warnings while reading samples (a truncated JPEG's "Premature end of JPEG file",
+  // whose missing rows it fills with grey) say the values read are damaged: the first is
+  // passed on as a warning (silenced until 2026-12-07: garbage elevations without a word).
+  std::string damaged;
+  const auto noteWarning = [&damaged]() {
+    if (CPLGetLastErrorType() == CE_Warning && damaged.empty())
+    {
+      damaged = vtkApertureGDALErrorTrap::Message("a warning without a message");
+    }
+    CPLErrorReset();
+  };
   for (size_t r0 = 0; r0 < nrows; r0 += rowsPerStrip)
   {
     const size_t k = std::min(rowsPerStrip, nrows - r0);
@@ -1000,6 +1011,7 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
                       << "': " << trap.Message("unknown error"));
         return 0;
       }
+      noteWarning();
       size_t beyond = 0;
       const ap_status st =
         ap_samples_to_elevation(raw.data(), raw.size(), &sp, conv.data(), &beyond);
@@ -1027,6 +1039,7 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
                         << "': " << trap.Message("unknown error"));
           return 0;
         }
+        noteWarning();
         for (size_t q = 0; q < valid.size(); ++q)
         {
           if (!valid[q])
@@ -1059,6 +1072,12 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
     }
   }
 
+  if (!damaged.empty())
+  {
+    vtkWarningMacro(<< "GDAL warned while reading '" << this->FileName << "' band " << d.Band
+                    << ": " << damaged << " (the elevations read may be damaged: a truncated "
+                    << "or corrupt file?)");
+  }
   // A whole raster of nodata is an error; a piece of one may legitimately be empty.
   const bool whole =
     ext[0] == 0 && ext[2] == 0 && ext[1] == d.Out[0] - 1 && ext[3] == d.Out[1] - 1;

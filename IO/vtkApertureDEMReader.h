@@ -62,6 +62,9 @@
  * float range, a negative, NaN or infinite MetresPerElevationUnit, fewer than 2 x 2 output cells, a
  * whole raster of nodata, an output larger than MemoryLimit, and an output the process cannot
  * allocate (out of memory, e.g. under `ulimit -v`).
+ * A warning GDAL gives while reading the samples (a truncated JPEG's "Premature end of JPEG
+ * file", its missing rows filled with grey) says the values are damaged: the first is passed on
+ * as a vtkWarning naming the file, and the output is made.
  *
  * @sa vtkApertureDEMWriter vtkApertureGeoreference vtkApertureTerrainMesh
  */

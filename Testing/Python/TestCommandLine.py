@@ -627,6 +627,30 @@ class TestBadInput(CommandLineTest):
             f.truncate(os.path.getsize(p) // 2)
         self.assert_error("GDAL failed reading", "info", p)
 
+    def test_damaged_samples(self):
+        # A JPEG cut in half: GDAL fills its missing rows with grey and says so only in a
+        # warning, which the reader passed over until 2026-12-07 (half the cells a flat 128 m
+        # without a word); it is a warning of the command now, and the description is made.
+        mem = gdal.GetDriverByName("MEM").Create("", 300, 200, 1, gdal.GDT_Byte)
+        mem.SetGeoTransform((500000, 30, 0, 4000000, 0, -30))
+        ref = osr.SpatialReference()
+        ref.ImportFromEPSG(32611)
+        mem.SetSpatialRef(ref)
+        mem.GetRasterBand(1).WriteArray(
+            np.random.default_rng(3).integers(0, 255, (200, 300)).astype(np.uint8))
+        p = self.path("cut.jpg")
+        gdal.GetDriverByName("JPEG").CreateCopy(p, mem).FlushCache()
+        mem = None
+        with open(p, "r+b") as f:
+            f.truncate(os.path.getsize(p) // 2)
+        status, out, err = run("info", p)
+        self.assertEqual(status, 0, err)
+        self.assertIn("Size:       300 x 200 cells", out)
+        self.assertEqual(err, "aperture: warning: GDAL warned while reading '%s' band 1: libjpeg: "
+                         "Premature end of JPEG file (this warning can be turned as an error "
+                         "by setting GDAL_ERROR_ON_LIBJPEG_WARNING to TRUE) (the elevations "
+                         "read may be damaged: a truncated or corrupt file?)\n" % p)
+
     def test_missing_band(self):
         p = make_raster(self.path("one.tif"), np.ones((3, 3)), (500000, 30, 0, 4000000, 0, -30))
         self.assert_error("band 5 does not exist", "info", p, "--band", "5")
