@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
@@ -207,6 +208,20 @@ struct vtkApertureDEMReader::Internals
         error = "'" + name + "' is a URL, not a file: GDAL reads one through /vsicurl/ ('" +
           "/vsicurl/" + name + "'), where this machine can reach it";
         return false;
+      }
+      if (name.find(':') != std::string::npos)
+      {
+        // A name of GDAL's own, no file: a subdataset (NETCDF:"f.nc":z, GTIFF_DIR:2:f.tif,
+        // HDF5:...), which the check for a file refused until 2026-12-07. Opened if GDAL can.
+        const int saved = errno;
+        GDALAllRegister();
+        vtkApertureGDALErrorTrap trap;
+        ds.H = GDALOpenEx(fileName, GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+        if (ds.H)
+        {
+          return true;
+        }
+        errno = saved;
       }
       error = vtkApertureMissingFileMessage(name);
       return false;
@@ -395,7 +410,31 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
   // Band.
   if (this->NumberOfBands < 1)
   {
-    vtkErrorMacro(<< "'" << name << "' has no raster bands");
+    // (a container of several grids, a netCDF or HDF file: each is read by its own name)
+    char** subdatasets = GDALGetMetadata(ds.H, "SUBDATASETS");
+    std::ostringstream names;
+    int count = 0;
+    for (int k = 1; subdatasets; ++k)
+    {
+      const char* sub =
+        CSLFetchNameValue(subdatasets, ("SUBDATASET_" + std::to_string(k) + "_NAME").c_str());
+      if (!sub)
+      {
+        break;
+      }
+      if (++count <= 4)
+      {
+        names << (count > 1 ? ", " : "") << sub;
+      }
+    }
+    if (count > 4)
+    {
+      names << ", ...";
+    }
+    vtkErrorMacro(<< "'" << name << "' has no raster bands"
+                  << (count ? "; it holds " + std::to_string(count) + " subdataset" +
+                        (count > 1 ? "s" : "") + ", each read by its name: " + names.str()
+                            : std::string()));
     return 0;
   }
   d.Band = this->BandIndex == 0 ? 1 : this->BandIndex;

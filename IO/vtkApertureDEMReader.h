@@ -82,7 +82,9 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /** The raster to read (a path, or any GDAL dataset name such as /vsizip/...). */
+  /** The raster to read: a path, or any GDAL dataset name (/vsizip/..., a subdataset such as
+   *  NETCDF:"f.nc":z or GTIFF_DIR:2:f.tif). A file of several grids and no band of its own (a
+   *  netCDF or HDF file) is an error naming its subdatasets. */
   vtkSetFilePathMacro(FileName);
   vtkGetFilePathMacro(FileName);
   ///@}

@@ -651,6 +651,36 @@ class TestBadInput(CommandLineTest):
                          "by setting GDAL_ERROR_ON_LIBJPEG_WARNING to TRUE) (the elevations "
                          "read may be damaged: a truncated or corrupt file?)\n" % p)
 
+    def test_subdatasets(self):
+        # GDAL's names of subdatasets, which are no file, are read (refused as missing files
+        # until 2026-12-07): a GeoTIFF's second image, a netCDF file's variable; a container
+        # of variables given by its file's name names them in its error.
+        rows = np.arange(12.0).reshape(3, 4) * 10
+        tif = make_raster(self.path("pages.tif"), rows, (500000, 30, 0, 4000000, 0, -30))
+        status, out, err = run("info", "GTIFF_DIR:1:" + tif)
+        self.assertEqual(status, 0, err)
+        self.assertIn("File:       GTIFF_DIR:1:%s (GTiff, band 1 of 1)" % tif, out)
+        self.assertIn("Size:       4 x 3 cells", out)
+        self.assert_error("file 'NOSUCH:%s' does not exist" % tif, "info", "NOSUCH:" + tif)
+        if gdal.GetDriverByName("netCDF") is None:
+            self.skipTest("this GDAL has no netCDF driver")
+        nc = self.path("cube.nc")
+        ds = gdal.GetDriverByName("netCDF").Create(nc, 4, 3, 2, gdal.GDT_Float32)
+        ds.SetGeoTransform((500000, 30, 0, 4000000, 0, -30))
+        ref = osr.SpatialReference()
+        ref.ImportFromEPSG(32611)
+        ds.SetSpatialRef(ref)
+        for b in (1, 2):
+            ds.GetRasterBand(b).WriteArray(rows.astype(np.float32) + 1000 * b)
+        ds = None
+        self.assert_error("'%s' has no raster bands; it holds 2 subdatasets, each read by its "
+                          "name: NETCDF:\"%s\":Band1, NETCDF:\"%s\":Band2" % (nc, nc, nc),
+                          "info", nc)
+        status, out, err = run("info", '--json', 'NETCDF:"%s":Band2' % nc)
+        self.assertEqual(status, 0, err)
+        description = json.loads(out)
+        self.assertEqual(description["elevation_range"], [2000.0, 2110.0])
+
     def test_missing_band(self):
         p = make_raster(self.path("one.tif"), np.ones((3, 3)), (500000, 30, 0, 4000000, 0, -30))
         self.assert_error("band 5 does not exist", "info", p, "--band", "5")

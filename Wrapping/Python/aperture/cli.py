@@ -150,8 +150,10 @@ class _StepsProgress:
 
 def _full_name(path):
     """The absolute path of a file, for provenance; GDAL's virtual file names (/vsizip/...,
-    /vsicurl/...) as given, since normalising them changes what they name."""
-    return path if path.startswith("/vsi") else os.path.abspath(path)
+    /vsicurl/...) and its names of subdatasets that are no file (NETCDF:"f.nc":z) as given,
+    since normalising them changes what they name."""
+    return path if path.startswith("/vsi") or (":" in path and not os.path.exists(path)) \
+        else os.path.abspath(path)
 
 
 # GDAL's virtual file systems that read a file of the disk: an archive's member, a compressed
