@@ -51,6 +51,9 @@ def main():
     mesher.SetInputConnection(sky.GetOutputPort())
     mesher.SetVerticalExaggeration(2.0)
     mesher.Update()
+    if mesher.GetOutput().GetNumberOfPoints() == 0:  # (VTK printed the filters' error)
+        raise SystemExit("lit_terrain: no terrain to light from %s"
+                         % (args.dem or "the embedded DEM"))
 
     # 4. the sun for the DEM's centre (the origin of the mesh frame)
     sun = aperture.vtkApertureSolarPosition()

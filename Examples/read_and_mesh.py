@@ -30,6 +30,8 @@ def main():
     reader.SetFileName(args.dem or aperture.default_dem())
     reader.Update()
     dem = reader.GetOutput()
+    if dem.GetNumberOfPoints() == 0:  # (VTK printed the reader's error)
+        raise SystemExit("read_and_mesh: no DEM read from %s" % (args.dem or "the embedded DEM"))
 
     # 2. georeference: CRS and grid, in metres at the centre
     geo = aperture.vtkApertureGeoreference()

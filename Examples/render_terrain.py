@@ -43,6 +43,9 @@ def main():
     mesher.SetInputConnection(reader.GetOutputPort())
     mesher.SetVerticalExaggeration(2.0)
     mesher.Update()
+    if mesher.GetOutput().GetNumberOfPoints() == 0:  # (VTK printed the reader's error)
+        raise SystemExit("render_terrain: no terrain to render from %s"
+                         % (args.dem or "the embedded DEM"))
     lo, hi = mesher.GetOutput().GetPointData().GetArray("Elevation").GetRange()
 
     # 2. colour by elevation through Aperture's mapper

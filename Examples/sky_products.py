@@ -52,6 +52,8 @@ def main():
     sky.SetMaximumDistance(args.radius)          # 0: unlimited
     sky.Update()
     image = sky.GetOutput()
+    if image.GetNumberOfPoints() == 0:  # (VTK printed the filters' error)
+        raise SystemExit("sky_products: no sky products from %s" % (args.dem or "the embedded DEM"))
     nx, ny, _ = image.GetDimensions()
 
     def product(name):

@@ -33,12 +33,16 @@ class Viewer:
         mesher.SetInputConnection(sky.GetOutputPort())
         mesher.SetVerticalExaggeration(2.0)
         mesher.Update()
+        if mesher.GetOutput().GetNumberOfPoints() == 0:  # (VTK printed the filters' error)
+            raise SystemExit("time_of_day_viewer: no terrain to show from %s"
+                             % (args.dem or "the embedded DEM"))
         self.date, self.hour = args.date, 12.0
         self.sun = aperture.vtkApertureSolarPosition()
         # (refused up front: each frame would otherwise say why under the mapper's default sun)
         if not self.sun.SetTimeZone(args.tz) or not self.sun.SetTime(args.date + "T12:00"):
             raise SystemExit("time_of_day_viewer: " + self.sun.GetErrorMessage())
-        self.sun.SetPlaceFromImage(reader.GetOutput())
+        if not self.sun.SetPlaceFromImage(reader.GetOutput()):
+            raise SystemExit("time_of_day_viewer: " + self.sun.GetErrorMessage())
         self.mapper = aperture.vtkApertureLightingMapper()
         self.mapper.SetInputConnection(mesher.GetOutputPort())
         self.mapper.ScalarVisibilityOff()
@@ -168,8 +172,10 @@ def main():
                         help="with --frames: the last frame's PNG, or every frame's with a "
                              "frame number in the name (frame-%%03d.png)")
     args = parser.parse_args()
+    if args.frames is not None and args.frames < 1:  # (0 fell through to the window)
+        parser.error("--frames must be at least 1")
     viewer = Viewer(args)
-    if args.frames:
+    if args.frames is not None:
         viewer.frames(args.frames, args.output)
     else:
         viewer.run()

@@ -2,9 +2,12 @@
 """Run one of Examples/ as a user would and check what it wrote, so that an example which
 writes an empty mesh or a blank picture fails (its exit status alone would not):
 
-    run_example.py EXAMPLE.py OUTPUT [--flat | --night] [ARGUMENTS...]
+    run_example.py EXAMPLE.py OUTPUT [--flat | --night | --unusable] [ARGUMENTS...]
         (runs EXAMPLE.py ARGUMENTS -o OUTPUT; --flat: sky_products.py on a flat DEM it writes;
-        --night: a rendering example whose sun is below the horizon)
+        --night: a rendering example whose sun is below the horizon; --unusable: on a DEM of
+        one cell it writes, which must end in the example's one-line error, status 1, and
+        nothing written: render_terrain.py and sky_products.py ended in a traceback there,
+        time_of_day_viewer.py wrote an empty picture, until 2026-12-07)
 
 - read_and_mesh.py: the embedded DEM's mesh: 403 x 344 points, two triangles per cell, its
   arrays, about 30 x 32 km (cells of 74.85 m x 92.47 m at the centre) and its 840 m of relief
@@ -90,6 +93,16 @@ def write_flat_dem(path):
     ds = None
 
 
+def write_one_cell_dem(path):
+    """A GeoTIFF of one cell, which no example can use (the reader wants 2 x 2)."""
+    from osgeo import gdal
+    ds = gdal.GetDriverByName("GTiff").Create(path, 1, 1, 1, gdal.GDT_Float32)
+    ds.SetGeoTransform((500000.0, 30.0, 0.0, 4000000.0, 0.0, -30.0))
+    ds.SetProjection("EPSG:32633")
+    ds.GetRasterBand(1).Fill(500.0)
+    ds = None
+
+
 def check_flat_sky(path):
     grey = read_picture(path)[0]
     expected = np.full((50, 124), 255)
@@ -121,9 +134,13 @@ def check_render(path, size, night=False):
 def main(argv):
     example, output, arguments = argv[0], argv[1], argv[2:]
     flat, night = arguments[:1] == ["--flat"], arguments[:1] == ["--night"]
+    unusable = arguments[:1] == ["--unusable"]
     if flat:
         arguments = [os.path.splitext(output)[0] + "-dem.tif"] + arguments[1:]
         write_flat_dem(arguments[0])
+    elif unusable:
+        arguments = [os.path.splitext(output)[0] + "-dem.tif"] + arguments[1:]
+        write_one_cell_dem(arguments[0])
     elif night:
         arguments = arguments[1:]
     if os.path.exists(output):
@@ -131,6 +148,16 @@ def main(argv):
     p = subprocess.run([sys.executable, example] + arguments + ["-o", output],
                        stderr=subprocess.PIPE, text=True)
     sys.stderr.write(p.stderr)
+    name = os.path.basename(example)
+    if unusable:
+        last = p.stderr.strip().splitlines()[-1] if p.stderr.strip() else ""
+        if p.returncode != 1 or "Traceback" in p.stderr or os.path.exists(output) or \
+                not (last.startswith(name[:-3] + ": ") and arguments[0] in last):
+            fail("%s on a DEM of one cell: status %d, %s, its last line %r" % (
+                example, p.returncode, "wrote %s" % output if os.path.exists(output) else
+                "nothing written", last))
+        print("run_example: %s refused a DEM of one cell: %s" % (name, last))
+        return
     if p.returncode != 0:
         fail("%s exited with status %d" % (example, p.returncode))
     # (an error VTK printed, though the example went on: render_terrain.py asked its mapper
@@ -139,7 +166,6 @@ def main(argv):
         fail("%s printed an error:\n%s" % (example, p.stderr))
     if "RuntimeWarning" in p.stderr:  # (numpy's: a division by 0, a NaN cast)
         fail("%s printed a warning:\n%s" % (example, p.stderr))
-    name = os.path.basename(example)
     if name == "read_and_mesh.py":
         check_mesh(output)
     elif name == "sky_products.py":
