@@ -1024,6 +1024,10 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
   // whose missing rows it fills with grey) say the values read are damaged: the first is
   // passed on as a warning (silenced until 2026-12-07: garbage elevations without a word).
   std::string damaged;
+  // Without a declared nodata value, cells of -9999 (ESRI's and gdaldem's nodata, within the
+  // Earth's range of heights, so that no other check names it) are looked for, for a warning:
+  // a margin of them read as a 10 km cliff without a word until 2026-12-07.
+  size_t sentinels = 0;
   const auto noteWarning = [&damaged]() {
     if (CPLGetLastErrorType() == CE_Warning && damaged.empty())
     {
@@ -1051,6 +1055,10 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
         return 0;
       }
       noteWarning();
+      if (!d.HasNoData)
+      {
+        sentinels += static_cast<size_t>(std::count(raw.begin(), raw.end(), -9999.0));
+      }
       size_t beyond = 0;
       const ap_status st =
         ap_samples_to_elevation(raw.data(), raw.size(), &sp, conv.data(), &beyond);
@@ -1111,6 +1119,13 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
     }
   }
 
+  if (sentinels > 0 && d.FileScale == 1.0 && d.FileOffset == 0.0)
+  {
+    // (no count: a read in strips or windows sees a part of them)
+    vtkWarningMacro(<< "'" << this->FileName << "' band " << d.Band << " has cells of -9999, "
+                    << "a common nodata value the file does not declare: read as heights of "
+                    << "-9999 (declare it: gdal_edit.py -a_nodata -9999)");
+  }
   if (!damaged.empty())
   {
     vtkWarningMacro(<< "GDAL warned while reading '" << this->FileName << "' band " << d.Band

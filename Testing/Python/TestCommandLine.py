@@ -681,6 +681,27 @@ class TestBadInput(CommandLineTest):
         description = json.loads(out)
         self.assertEqual(description["elevation_range"], [2000.0, 2110.0])
 
+    def test_undeclared_minus_9999(self):
+        # A margin of -9999, a common nodata value that the file does not declare, lies within
+        # the Earth's heights, so that nothing named it (a 10 km cliff in the render); now a
+        # warning does. Not where the file declares it, nor for a band with a scale.
+        rows = np.full((200, 300), 250.0)  # (9 x 6 km: not steeper than terrain)
+        rows[:, :3] = -9999.0
+        gt = (500000, 30, 0, 4000000, 0, -30)
+        plain = make_raster(self.path("margin.tif"), rows, gt)
+        status, out, err = run("info", plain)
+        self.assertEqual(status, 0, err)
+        self.assertEqual(err, "aperture: warning: '%s' band 1 has cells of -9999, a common "
+                         "nodata value the file does not declare: read as heights of -9999 "
+                         "(declare it: gdal_edit.py -a_nodata -9999)\n" % plain)
+        self.assertIn("Nodata:     0 cells", out)
+        declared = make_raster(self.path("margin-declared.tif"), rows, gt, nodata=-9999.0)
+        self.assertEqual(run("info", declared)[2], "")
+        ds = gdal.Open(plain, gdal.GA_Update)
+        ds.GetRasterBand(1).SetScale(0.5)
+        ds = None
+        self.assertEqual(run("info", plain)[2], "")
+
     def test_missing_band(self):
         p = make_raster(self.path("one.tif"), np.ones((3, 3)), (500000, 30, 0, 4000000, 0, -30))
         self.assert_error("band 5 does not exist", "info", p, "--band", "5")
