@@ -4555,8 +4555,10 @@ static void sector_terms(size_t n, const float *tt_in, const float *inv, const f
  * written so that they keep float's relative precision there (a shaft's every horizon within
  * 1e-4 rad of it: 1 - sin h and Q(h) cancelled to nothing, and its bent normal came out 52
  * degrees off): 1 - sin h = cos^2 h / (1 + sin h), and Q(h) = (x - sin x) / 4 with x = 2u, u
- * the zenith distance (sector_terms), by its Taylor series below x = 1 (to x^9: within 1.5e-7
- * relatively), directly above. */
+ * the zenith distance (sector_terms), by its Taylor series to x^11 below x = 1.5 (truncated
+ * within 6e-8), directly above: either within 8e-7 of Q(h) for the float tangent, relatively,
+ * at any h (measured on 2e6 horizons: the rounding and u's 2e-7; the direct form is at its
+ * worst just above the switch, 2e-6 at x = 1 where it was taken before). */
 AP_MULTIVERSION
 static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned char *restrict e,
                              size_t n, const float *restrict ce, const float *restrict se,
@@ -4590,9 +4592,9 @@ static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned cha
     float *b = B + 3 * c0;
     for (k = 0; k < n; ++k) {
       const float x = 2.0f * u[k], x2 = x * x;
-      const float series =
-        (x * x2 / 24.0f) * (1.0f - (x2 / 20.0f) * (1.0f - (x2 / 42.0f) * (1.0f - x2 / 72.0f)));
-      const float Q = x < 1.0f ? series : 0.5f * (u[k] - se[k] * ce[k]);
+      const float tail = 1.0f - (x2 / 42.0f) * (1.0f - (x2 / 72.0f) * (1.0f - x2 / 110.0f));
+      const float series = (x * x2 / 24.0f) * (1.0f - (x2 / 20.0f) * tail);
+      const float Q = x < 1.5f ? series : 0.5f * (u[k] - se[k] * ce[k]);
       const float Qh = Q * (wt[k] * inv[k]);
       b[3 * k] += wsphi * Qh;
       b[3 * k + 1] += wcphi * Qh;

@@ -495,6 +495,53 @@ static void test_deep_shaft(void)
   }
 }
 
+/* Steep planes (slopes of 60, 80 and 88 degrees, falling toward azimuth 37, D = 33): the
+ * sectors' horizons run from the slope down to the horizontal, so their zenith distances take
+ * every value the sums' terms meet, both sides of where Q(h) changes from its series to its
+ * direct form; every product must equal the sector sums of the closed-form horizons (a
+ * symmetric shaft leaves B's horizontal 0 whatever Q is: a Q 5% off passed it). */
+static void test_steep_planes(void)
+{
+  static const double slopes[3] = { 60 * DEG, 80 * DEG, 88 * DEG };
+  const double A = 37 * DEG, cell = 10.0;
+  const int D = 33;
+  int a, d;
+  for (a = 0; a < 3; ++a) {
+    const double t = tan(slopes[a]), gx = -t * sin(A), gy = -t * cos(A);
+    terrain ter = make(61, 61, cell);
+    ap_horizon_params p = params(D, 0);
+    double ht[33], hs[33], len, n;
+    const size_t k = 30 * 61 + 30;
+    sector_sums e;
+    results r;
+    size_t i, j;
+    for (j = 0; j < ter.ny; ++j) {
+      for (i = 0; i < ter.nx; ++i) {
+        ter.z[j * ter.nx + i] =
+          (float)(gx * ((double)i - 30) * cell + gy * ((double)j - 30) * cell);
+      }
+    }
+    for (d = 0; d < D; ++d) {
+      const double phi = 2 * PI * d / D;
+      ht[d] = hs[d] = atan(gx * sin(phi) + gy * cos(phi));
+    }
+    e = sums(D, ht, hs);
+    r = compute(&ter, &p);
+    len = sqrt(e.bx * e.bx + e.by * e.by + e.bz * e.bz);
+    n = sqrt(1 + gx * gx + gy * gy);
+    for (d = 0; d < D; ++d) {
+      AP_CHECK_NEAR(r.h[k * (size_t)D + (size_t)d], ht[d], 1e-6);
+    }
+    AP_CHECK_NEAR(r.A[k] / e.A, 1.0, 2e-6);
+    AP_CHECK_NEAR(r.vd[k], (-gx * e.bx - gy * e.by + e.bz) / n / PI, 2e-6);
+    AP_CHECK_NEAR(r.bn[3 * k], e.bx / len, 2e-6);
+    AP_CHECK_NEAR(r.bn[3 * k + 1], e.by / len, 2e-6);
+    AP_CHECK_NEAR(r.bn[3 * k + 2], e.bz / len, 2e-6);
+    release(&r);
+    drop(&ter);
+  }
+}
+
 /* Curvature: a 1000 m peak 100 km east of an observer on flat ground. The exact elevation of
  * the peak's top from a sphere of effective radius R / (1 - k) (the standard refraction
  * model) is atan2((Re + H) cos a - Re, (Re + H) sin a), a = d / Re; the sweep's parabolic drop
@@ -2431,6 +2478,7 @@ int main(void)
   AP_TEST_RUN(test_wall);
   AP_TEST_RUN(test_pit);
   AP_TEST_RUN(test_deep_shaft);
+  AP_TEST_RUN(test_steep_planes);
   AP_TEST_RUN(test_curvature);
   AP_TEST_RUN(test_brute_force);
   AP_TEST_RUN(test_long_narrow);
