@@ -915,9 +915,28 @@ _DRAW_BINS_PER_POINT, _DRAW_BINS_MAX = 120, 512 << 20
 # A 16384^2 picture took 10 GB, and aborted the process (std::bad_alloc) where less was allowed.
 _PICTURE_BYTES_PER_PIXEL, _PICTURE_BYTES_PER_SAMPLE, _PICTURE_EXR_BYTES_PER_PIXEL = 44, 3, 48
 # Under an address-space limit (ulimit -v), what OpenGL maps beyond what it makes resident (the
-# driver's libraries, its threads' stacks, reservations): 560 to 700 MiB more address space
-# than resident memory, from before the mesh to the peak, at 1000^2 to 6000^2 pixels.
-_DRAW_ADDRESS_BYTES = 768 << 20
+# driver's libraries, and its rasteriser threads' stacks and malloc arenas): measured at a
+# 1000^2 picture with LP_NUM_THREADS 1, 2, 4, 8 and 16, 475, 623, 917, 1311 and 1442 MiB (the
+# same at 6000^2 with 2 threads): a base and an allowance per thread, smaller past 8.
+_DRAW_ADDRESS_BYTES, _DRAW_ADDRESS_BYTES_PER_THREAD = 400 << 20, 160 << 20
+
+
+def _llvmpipe_threads():
+    """The rasteriser threads Mesa's llvmpipe starts: LP_NUM_THREADS, else one per online CPU
+    (none on one), at most 16 (its LP_MAX_THREADS)."""
+    try:
+        threads = int(os.environ["LP_NUM_THREADS"])
+    except (KeyError, ValueError):
+        cpus = os.sysconf("SC_NPROCESSORS_ONLN") if hasattr(os, "sysconf") else 1
+        threads = cpus if cpus > 1 else 0
+    return max(0, min(threads, 16))
+
+
+def _opengl_address_bytes():
+    """What _DRAW_ADDRESS_BYTES* give for the threads llvmpipe will start."""
+    n = _llvmpipe_threads()
+    return (_DRAW_ADDRESS_BYTES + _DRAW_ADDRESS_BYTES_PER_THREAD * min(n, 8)
+            + (24 << 20) * max(0, n - 8))
 
 
 def _resident_bytes():
@@ -953,7 +972,7 @@ def _check_render_memory(args, nx, ny, bent, to_bake, read_cells):
 
     # (an address-space limit's usable memory is what it leaves beside all that is mapped)
     limited = sky.IsMemoryAddressLimited()
-    own, read = _DRAW_ADDRESS_BYTES if limited else _resident_bytes(), 4.0 * read_cells
+    own, read = _opengl_address_bytes() if limited else _resident_bytes(), 4.0 * read_cells
     held = own + read
     usable = float(sky.GetUsableMemory())
     width, height = args.size
@@ -1220,8 +1239,8 @@ def cmd_render(args):
             image = source = watcher.update(sky, "bake", extent=window)
     else:
         reader = _dem_reader(args, watcher)
+        watcher.update_information(reader)  # (which files it reads: a VRT's sources)
         _check_sources(outputs, reader)
-        watcher.update_information(reader)
         whole = reader.GetOutputInformation(0).Get(sddp.WHOLE_EXTENT())
         _check_render_memory(args, *_extent_size(whole), bool(args.baked), False, _cells(whole))
         image = _read(watcher, reader)
