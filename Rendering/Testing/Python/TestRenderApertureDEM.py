@@ -19,6 +19,7 @@ Set APERTURE_WRITE_IMAGES=folder to write the rendered images there (for new bas
 """
 import math
 import os
+import stat
 import sys
 import tempfile
 
@@ -323,8 +324,21 @@ class TestRenderApertureDEM(Testing.vtkTest):
             link = os.path.join(tmp, "latest.png")
             os.symlink("keep.png", link)
             os.remove(keep)
-            self.assertEqual(scene.write_png(window, link), link)
+            umask = os.umask(0o027)
+            try:
+                self.assertEqual(scene.write_png(window, link), link)
+            finally:
+                os.umask(umask)
             self.assertTrue(os.path.islink(link) and os.path.isfile(keep))
+            self.assertEqual(os.stat(keep).st_mode & 0o777, 0o640)  # (as open() makes a file)
+            # what is no file is not renamed over (a pipe became a PNG)
+            fifo = os.path.join(tmp, "fifo.png")
+            os.mkfifo(fifo)
+            with self.assertRaises(OSError) as caught:
+                scene.write_png(window, fifo)
+            self.assertEqual(str(caught.exception),
+                             "cannot write the PNG %s: it is not a file" % fifo)
+            self.assertTrue(stat.S_ISFIFO(os.stat(fifo).st_mode))
 
     def testSkyOnly(self):
         mesh, _ = mesh_and_dem()

@@ -10,7 +10,7 @@ the horizontal, both in degrees (gdaldem's hillshade default is azimuth 315, ele
 """
 import math
 import os
-import tempfile
+import stat
 
 from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkRenderingCore import (
@@ -512,44 +512,59 @@ def write_png(window, path, on_warning=None, text=()):
             path) else "%s is not a folder" % folder if os.path.exists(folder) else
             "the folder %s does not exist" % folder))
     target = os.path.realpath(path)  # (through symbolic links: a link stays one)
-    if os.path.exists(target) and not os.access(target, os.W_OK):
+    try:
+        existing = os.stat(target)
+    except OSError:
+        existing = None  # (a new file)
+    if existing is not None and not stat.S_ISREG(existing.st_mode):
+        # (a pipe, a device: renamed over, /dev/null would have become a PNG, as root)
+        raise OSError("cannot write the PNG %s: it is not a file" % path)
+    if existing is not None and not os.access(target, os.W_OK):
         raise OSError("cannot write the PNG %s: it is read-only" % path)
-    try:
-        mode = os.stat(target).st_mode & 0o7777
-    except OSError:  # (a new file: as open() would make it)
-        umask = os.umask(0)
-        os.umask(umask)
-        mode = 0o666 & ~umask
     image = grab(window, on_warning)
-    try:
-        fd, temporary = tempfile.mkstemp(prefix=".aperture-", suffix=".tmp",
-                                         dir=os.path.dirname(target))
-        os.close(fd)
-    except OSError as e:
-        raise OSError("cannot write the PNG %s: %s" % (path, e.strerror)) from None
+    temporary = _temporary_beside(target, path)
     try:
         writer = vtkPNGWriter()
         writer.SetFileName(native_path(temporary))
         for key, value in chunks:
             writer.AddText(key, value)
         writer.SetInputData(image)
+        # (VTK's own message, "Ran out of disk space", said in ours instead of printed)
+        writer.AddObserver("ErrorEvent", lambda caller, event: None)
         writer.Write()
         if writer.GetErrorCode():
             # (VTK says no more than that a write failed: libpng's own lines say "Write Error")
             try:
-                stat = os.statvfs(folder)
-                full = stat.f_bavail * stat.f_frsize < (1 << 20)
+                fs = os.statvfs(os.path.dirname(target))
+                full = fs.f_bavail * fs.f_frsize < (1 << 20)
             except OSError:
                 full = False
             raise OSError("cannot write the PNG %s: %s" % (
                 path, "the disk is full" if full else "the write failed (out of space, or over "
                 "a limit on file sizes)"))
-        os.chmod(temporary, mode)
+        if existing is not None:
+            os.chmod(temporary, stat.S_IMODE(existing.st_mode))
         os.replace(temporary, target)
     finally:
         if os.path.exists(temporary):
             os.remove(temporary)
     return os.path.abspath(path)
+
+
+def _temporary_beside(target, path):
+    """A new hidden file in the folder of `target` for writing it aside, made as open() makes
+    a file (0666 less the umask, which mkstemp's 0600 is not); OSError naming `path`."""
+    folder = os.path.dirname(target)
+    for _ in range(100):
+        name = os.path.join(folder, ".aperture-%d-%s.tmp" % (os.getpid(), os.urandom(4).hex()))
+        try:
+            os.close(os.open(name, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
+            return name
+        except FileExistsError:
+            continue
+        except OSError as e:
+            raise OSError("cannot write the PNG %s: %s" % (path, e.strerror)) from None
+    raise OSError("cannot write the PNG %s: no temporary file could be made beside it" % path)
 
 
 def _png_text_chunk(pair):
