@@ -212,14 +212,49 @@ struct vtkApertureDEMReader::Internals
       if (name.find(':') != std::string::npos)
       {
         // A name of GDAL's own, no file: a subdataset (NETCDF:"f.nc":z, GTIFF_DIR:2:f.tif,
-        // HDF5:...), which the check for a file refused until 2026-12-07. Opened if GDAL can.
+        // HDF5:...), which the check for a file refused until 2026-12-07. Its parts that name
+        // files (between colons, quotes stripped) are checked as a file is; then GDAL tries.
         const int saved = errno;
+        bool names = false;
+        for (size_t a = 0; a <= name.size();)
+        {
+          size_t b = name.find(':', a);
+          b = b == std::string::npos ? name.size() : b;
+          std::string part = name.substr(a, b - a);
+          if (part.size() >= 2 && part.front() == '"' && part.back() == '"')
+          {
+            part = part.substr(1, part.size() - 2);
+          }
+          struct stat ps = {};
+          if (!part.empty() && stat(part.c_str(), &ps) == 0)
+          {
+            names = true;
+            if (vtkApertureUnreadableStream(ps))
+            {
+              error = "'" + name + "' names " + vtkApertureFileKind(ps) + " ('" + part +
+                "'), not a file: GDAL reads a DEM by seeking in it; save it to a file first";
+              return false;
+            }
+          }
+          a = b + 1;
+        }
         GDALAllRegister();
         vtkApertureGDALErrorTrap trap;
         ds.H = GDALOpenEx(fileName, GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
         if (ds.H)
         {
+          if (warning)
+          {
+            *warning = trap.Message();
+          }
           return true;
+        }
+        if (names)
+        {
+          // (a file it names exists: GDAL's reason, not "does not exist")
+          error = "GDAL cannot open '" + name + "' as a raster: " +
+            trap.Message("not a raster format GDAL recognises");
+          return false;
         }
         errno = saved;
       }
@@ -1055,10 +1090,6 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
         return 0;
       }
       noteWarning();
-      if (!d.HasNoData)
-      {
-        sentinels += static_cast<size_t>(std::count(raw.begin(), raw.end(), -9999.0));
-      }
       size_t beyond = 0;
       const ap_status st =
         ap_samples_to_elevation(raw.data(), raw.size(), &sp, conv.data(), &beyond);
@@ -1094,6 +1125,10 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
             conv[q] = NAN;
           }
         }
+      }
+      for (size_t q = 0; !d.HasNoData && q < raw.size(); ++q)
+      {
+        sentinels += raw[q] == -9999.0 && (!mask || valid[q]); // (a masked cell is nodata)
       }
       for (size_t r = 0; r < k; ++r)
       {
