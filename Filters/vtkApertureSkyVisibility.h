@@ -46,8 +46,9 @@
  * of a strip 700 km long at 70 N in polar stereographic): HorizonAngles give each cell's horizon at
  * φ_d itself, linear between its two sectors either side (the nearer one's where the other is an
  * empty direction, -90 degrees; on a plane rising 0.7 degree north, 0.002 degree from the closed
- * form; the error grows with the sectors' width squared: on a plane rising 17 degrees, 8.6
- * degrees of turn from the centre, 1.4 degrees at D = 4, 0.7 at 8, 0.03 at 36). Cell sizes
+ * form; the error grows with the sectors' width, in proportion where the turn is small
+ * against it: on a plane rising 17 degrees, 8.6 degrees of turn from the centre, 1.4 degrees
+ * at D = 4, 0.7 at 8, 0.03 at 36). Cell sizes
  * are metric per row (GeographicLib geodesics on the CRS's ellipsoid), so lat/lon DEMs are
  * exact, and so are DEMs in a normal-aspect cylindrical projection (Mercator, Web Mercator,
  * equirectangular, cylindrical equal-area: rows are parallels, columns meridians,

@@ -498,6 +498,7 @@ bool vtkApertureSolarPosition::SetPlaceFromImage(vtkImageData* dem)
     d.Geo = nullptr;
     this->Convergence = 0.0;
     this->Latitude = this->Longitude = kNaN;
+    this->Height = 0.0; // (the last DEM's would have set ComputeForDirection's light)
     d.Error = std::string("the DEM has no usable georeference: ") + geo->GetErrorMessage();
     vtkErrorMacro(<< d.Error);
     return false;

@@ -113,8 +113,8 @@ public:
    * none); its longitude is taken into [-180, 180] (a lat/lon grid may run 0..360 degrees).
    * Also remembers the DEM's georeference for GetGridAzimuth and
    * GetGridConvergence. False (with the reason) when the image has no CRS, or its centre no
-   * geographic coordinates: the place is then forgotten (Latitude and Longitude NaN, no DEM),
-   * so that Compute() fails rather than use the one set before. A DEM in a local CRS
+   * geographic coordinates: the place is then forgotten (Latitude and Longitude NaN, Height 0,
+   * no DEM), so that Compute() fails rather than use the one set before. A DEM in a local CRS
    * (vtkApertureGeoreference::IsLocal: a site grid, its +y axis north, γ = 0) is taken but has
    * no place on the Earth: Latitude and Longitude become NaN, so Compute() fails saying so
    * until they are set, while ComputeForDirection works. SetLatitude/SetLongitude afterwards

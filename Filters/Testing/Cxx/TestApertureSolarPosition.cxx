@@ -693,11 +693,13 @@ void TestBadInput()
   AP_CHECK(sun->Compute());
   vtkNew<vtkImageData> bare;
   bare->SetDimensions(3, 3, 1);
+  sun->SetHeight(250.0);
   AP_CHECK(!sun->SetPlaceFromImage(bare));
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "georeference");
   // the place set before is forgotten: Compute() computed the sun of that place without a word
   // until 2026-12-07 (and of latitude 0, longitude 0 after a DEM whose centre is past a pole)
   AP_CHECK(std::isnan(sun->GetLatitude()) && std::isnan(sun->GetLongitude()));
+  AP_CHECK(sun->GetHeight() == 0.0);
   AP_CHECK(!sun->Compute());
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "latitude");
   sun->SetLatitude(47.4);
