@@ -1063,6 +1063,7 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
   // Earth's range of heights, so that no other check names it) are looked for, for a warning:
   // a margin of them read as a 10 km cliff without a word until 2026-12-07.
   size_t sentinels = 0;
+  size_t infinite = 0; // (undeclared infinities, nodata all the same: said in a warning)
   const auto noteWarning = [&damaged]() {
     if (CPLGetLastErrorType() == CE_Warning && damaged.empty())
     {
@@ -1126,9 +1127,11 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
           }
         }
       }
-      for (size_t q = 0; !d.HasNoData && q < raw.size(); ++q)
+      for (size_t q = 0; q < raw.size(); ++q)
       {
-        sentinels += raw[q] == -9999.0 && (!mask || valid[q]); // (a masked cell is nodata)
+        const bool data = !mask || valid[q]; // (a masked cell is nodata)
+        sentinels += !d.HasNoData && raw[q] == -9999.0 && data;
+        infinite += std::isinf(raw[q]) && data && !(d.HasNoData && raw[q] == d.NoData);
       }
       for (size_t r = 0; r < k; ++r)
       {
@@ -1160,6 +1163,12 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
     vtkWarningMacro(<< "'" << this->FileName << "' band " << d.Band << " has cells of -9999, "
                     << "a common nodata value the file does not declare: read as heights of "
                     << "-9999 (declare it: gdal_edit.py -a_nodata -9999)");
+  }
+  if (infinite > 0)
+  {
+    vtkWarningMacro(<< "'" << this->FileName << "' band " << d.Band << " has infinite cells "
+                    << "(+inf or -inf), which its nodata value does not declare: read as "
+                    << "nodata");
   }
   if (!damaged.empty())
   {

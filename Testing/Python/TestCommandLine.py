@@ -723,6 +723,24 @@ class TestBadInput(CommandLineTest):
         ds = None
         self.assertEqual(run("info", plain)[2], "")
 
+    def test_undeclared_infinities(self):
+        # Infinite cells that no nodata value declares are nodata, as the reader's header says,
+        # and a warning says so (silent until 2026-12-07); not where the file declares them.
+        rows = np.full((200, 300), 250.0)
+        rows[5, 5], rows[6, 6] = np.inf, -np.inf
+        gt = (500000, 30, 0, 4000000, 0, -30)
+        plain = make_raster(self.path("infinite.tif"), rows, gt)
+        status, out, err = run("info", plain)
+        self.assertEqual(status, 0, err)
+        self.assertEqual(err, "aperture: warning: '%s' band 1 has infinite cells (+inf or -inf), "
+                         "which its nodata value does not declare: read as nodata\n" % plain)
+        self.assertIn("Nodata:     2 cells", out)
+        rows[5, 5] = -np.inf
+        declared = make_raster(self.path("infinite-declared.tif"), rows, gt, nodata=-np.inf)
+        status, out, err = run("info", declared)
+        self.assertEqual((status, err), (0, ""))
+        self.assertIn("Nodata:     2 cells (nodata value -inf)", out)
+
     def test_missing_band(self):
         p = make_raster(self.path("one.tif"), np.ones((3, 3)), (500000, 30, 0, 4000000, 0, -30))
         self.assert_error("band 5 does not exist", "info", p, "--band", "5")
