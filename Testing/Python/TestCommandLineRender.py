@@ -3,6 +3,7 @@
 blank, for both views, and one-line errors for bad options."""
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -756,6 +757,44 @@ class TestCommandLineRender(unittest.TestCase):
                     self.assertEqual((status, "warning" in stderr), (0, False), stderr)
                     rgb = png_pixels_and_text(out)[0]
                     self.assertLess((rgb.sum(axis=1) == 0).mean(), 0.01, (lighting, el))
+
+    def test_continent_at_night(self):
+        # The light is the DEM centre's sun for all of the DEM: a continent (130-60 W, 20-55 N)
+        # is black while the sun is down at its centre (37.5 N, 95 W), though it stands above
+        # its north-west (until 2026-12-07 the warning said only that the sun was down). At
+        # 2025-06-21T02:40Z, 6 h after noon at 130 W, the sun there is at asin(sin 55 sin 23.4
+        # + cos 55 cos 23.4 cos 89.6) = 19.2 degrees (declination 23.4, the equation of time
+        # -1.7 min), 0.05 more refracted; one hour later 11, then 3.7, then -2.5: a series of
+        # 5 hourly frames has the sun up over part of the DEM in its first three.
+        from osgeo import gdal, osr
+        import numpy as np
+        with tempfile.TemporaryDirectory() as tmp:
+            dem = os.path.join(tmp, "continent.tif")
+            ds = gdal.GetDriverByName("GTiff").Create(dem, 71, 36, 1, gdal.GDT_Float32)
+            ds.SetGeoTransform((-130, 1, 0, 55, 0, -1))
+            ref = osr.SpatialReference()
+            ref.ImportFromEPSG(4326)
+            ds.SetSpatialRef(ref)
+            ds.GetRasterBand(1).WriteArray(
+                np.random.default_rng(4).random((36, 71)).astype(np.float32) * 500)
+            ds = None
+            status, _, stderr = run("render", dem, "-o", os.path.join(tmp, "night.png"),
+                                    "--size", "200x120", "--view", "top", "--at",
+                                    "2025-06-21T02:40Z", "-q")
+            self.assertEqual(status, 0, stderr)
+            found = re.search(r"black; the light is the DEM centre's, though over part of the "
+                              r"DEM the sun is up \(([0-9.]+) degrees at 55.00 N, 130.00 W\): "
+                              r"render that part \(--srcwin\)$", stderr.strip())
+            self.assertTrue(found, stderr)
+            self.assertAlmostEqual(float(found.group(1)), 19.25, delta=0.2)
+            status, _, stderr = run("render", dem, "-o", os.path.join(tmp, "night-%d.png"),
+                                    "--size", "64x48", "--view", "top", "--at",
+                                    "2025-06-21T02:40Z", "--frames", "5", "--step", "60", "-q")
+            self.assertEqual(status, 0, stderr)
+            self.assertIn("the sun is below the horizon in 5 of the 5 frames (0-4): the terrain "
+                          "is unlit there (the sky models have no twilight): black; in 0-2 the "
+                          "light is the DEM centre's, though over part of the DEM the sun is up "
+                          "(render that part: --srcwin)", stderr)
 
     def test_local_crs(self):
         # A site grid in a local CRS renders with the sun given by its direction, as the same

@@ -1266,10 +1266,11 @@ def cmd_render(args):
     if misplaced:
         _warn(misplaced)
     sun = _render_sun(args, image, watcher)
-    times, exposure = _time_lapse(args, sun) if args.frames else ([None], args.exposure)
+    times, exposure = _time_lapse(args, sun, image) if args.frames else ([None], args.exposure)
     if not args.frames and sun.GetElevation() < 0.0:  # (the models end at the horizon)
-        _warn("the sun is %.2f degrees below the horizon%s: the terrain is unlit (%s): black"
-              % (-sun.GetElevation(), " at that time" if args.at else "", _unlit_why(args)))
+        _warn("the sun is %.2f degrees below the horizon%s: the terrain is unlit (%s): black%s"
+              % (-sun.GetElevation(), " at that time" if args.at else "", _unlit_why(args),
+                 _sun_up_elsewhere(image, sun) if args.at else ""))
     # (the mesher names implausible elevations, beyond the Earth's or steeper than terrain, as
     # the sky filter does: said once is enough)
     named = [w for w in watcher.warnings if w.startswith("elevations range ")]
@@ -1379,13 +1380,62 @@ def _render_frame(args, k, t, sun, window, renderer, mapper, exposure, names, wa
                 args.exr_type))
 
 
+def _lonlat_bounds(image):
+    """The DEM image's geographic bounds (west, south, east, north), or None (a local CRS)."""
+    from aperture import vtkApertureGeoreference
+    geo = vtkApertureGeoreference()
+    bounds = [0.0] * 4
+    if not geo.SetFromImage(image) or geo.IsLocal() or not geo.GetBoundsLonLat(bounds):
+        return None
+    return bounds
+
+
+def _highest_sun(bounds, t):
+    """The sun's highest apparent elevation at POSIX time t over 5 x 5 places across the
+    geographic `bounds` (_lonlat_bounds): (degrees, latitude, longitude), or None."""
+    from aperture import vtkApertureSolarPosition
+    if bounds is None:
+        return None
+    west, south, east, north = bounds
+    best = None
+    probe = vtkApertureSolarPosition()
+    probe.SetUnixTime(t)
+    for i in range(5):
+        for j in range(5):
+            lon = math.remainder(west + (east - west) * i / 4.0, 360.0)
+            lat = south + (north - south) * j / 4.0
+            probe.SetLongitude(lon)
+            probe.SetLatitude(lat)
+            if probe.Compute() and (best is None or probe.GetElevation() > best[0]):
+                best = (probe.GetElevation(), lat, lon)
+    return best
+
+
+# (the clause of the warnings about a sun below the horizon where it is up over part of the DEM:
+# the render takes the light of the centre's sun for all of it, and a continent was black while
+# its west coast's sun stood at 9.5 degrees, the warning saying only that the sun was down)
+_CENTRE_LIGHT = "the light is the DEM centre's, though over part of the DEM the sun is up"
+
+
+def _sun_up_elsewhere(image, sun):
+    """For a DEM whose centre's sun is below the horizon at `sun`'s time: the warning's clause
+    saying where over the DEM it is up, or "" if nowhere."""
+    best = _highest_sun(_lonlat_bounds(image), sun.GetUnixTime())
+    if best is None or best[0] <= 0.0:
+        return ""
+    elevation, lat, lon = best
+    return ("; %s (%.1f degrees at %.2f %s, %.2f %s): render that part (--srcwin)"
+            % (_CENTRE_LIGHT, elevation, abs(lat), "N" if lat >= 0 else "S", abs(lon),
+               "E" if lon >= 0 else "W"))
+
+
 def _unlit_why(args):
     """Why a sun below the horizon leaves the terrain black, for the lighting drawn."""
     return ("the sky models have no twilight" if args.lighting == "aperture" else
             "VTK's light, from the sun's direction, is below it")
 
 
-def _time_lapse(args, sun):
+def _time_lapse(args, sun, image):
     """The --frames' times (POSIX seconds from the computed `sun`'s, every --step minutes),
     each computed before any frame is drawn (a series past the algorithm's years fails first),
     and their one exposure: --exposure, or (aperture lighting) the automatic one of the frame
@@ -1396,9 +1446,13 @@ def _time_lapse(args, sun):
     times, elevations = _frame_times(args, sun)
     dark = [k for k, e in enumerate(elevations) if e < 0.0]
     if dark:
+        bounds = _lonlat_bounds(image)
+        up = [k for k in dark if (_highest_sun(bounds, times[k]) or (0.0,))[0] > 0.0]
         _warn("the sun is below the horizon in %d of the %d frames (%s): the terrain is unlit "
-              "there (%s): black" % (len(dark), args.frames, _ranges_text(dark),
-                                     _unlit_why(args)))
+              "there (%s): black%s" % (len(dark), args.frames, _ranges_text(dark),
+                                       _unlit_why(args), "; in %s %s (render that part: "
+                                       "--srcwin)" % (_ranges_text(up), _CENTRE_LIGHT)
+                                       if up else ""))
     exposure = args.exposure
     if exposure is None and args.lighting == "aperture":
         sun.SetUnixTime(times[elevations.index(max(elevations))])
