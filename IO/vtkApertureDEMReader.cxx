@@ -212,19 +212,32 @@ struct vtkApertureDEMReader::Internals
       if (name.find(':') != std::string::npos)
       {
         // A name of GDAL's own, no file: a subdataset (NETCDF:"f.nc":z, GTIFF_DIR:2:f.tif,
-        // HDF5:...), which the check for a file refused until 2026-12-07. Its parts that name
-        // files (between colons, quotes stripped) are checked as a file is; then GDAL tries.
+        // HDF5:...), which the check for a file refused until 2026-12-07. The parts that may
+        // name files (between colons, the rest after each colon, and between quotes: a path
+        // may hold colons) are checked as a file is; then GDAL tries.
         const int saved = errno;
-        bool names = false;
+        std::vector<std::string> parts;
         for (size_t a = 0; a <= name.size();)
         {
-          size_t b = name.find(':', a);
-          b = b == std::string::npos ? name.size() : b;
-          std::string part = name.substr(a, b - a);
-          if (part.size() >= 2 && part.front() == '"' && part.back() == '"')
+          const size_t colon = name.find(':', a);
+          const size_t b = colon == std::string::npos ? name.size() : colon;
+          parts.push_back(name.substr(a, b - a));
+          parts.push_back(name.substr(a));
+          a = b + 1;
+        }
+        for (size_t q = name.find('"'); q != std::string::npos;)
+        {
+          const size_t end = name.find('"', q + 1);
+          if (end == std::string::npos)
           {
-            part = part.substr(1, part.size() - 2);
+            break;
           }
+          parts.push_back(name.substr(q + 1, end - q - 1));
+          q = name.find('"', end + 1);
+        }
+        bool names = false;
+        for (const std::string& part : parts)
+        {
           struct stat ps = {};
           if (!part.empty() && stat(part.c_str(), &ps) == 0)
           {
@@ -236,7 +249,6 @@ struct vtkApertureDEMReader::Internals
               return false;
             }
           }
-          a = b + 1;
         }
         GDALAllRegister();
         vtkApertureGDALErrorTrap trap;

@@ -12,8 +12,9 @@
  * ulps of it (relatively) are nodata too, as GDAL's mask takes them (ArcGIS declares
  * -3.4028230607370965e38 for cells of -FLT_MAX); an integer band's compare exactly. A band
  * that declares none, has no scale or offset, and has samples of -9999 outside its mask (a
- * common nodata value, within the Earth's range of heights) is read as it is, with a warning;
- * so are infinities that no nodata value declares, as nodata.
+ * common nodata value, within the Earth's range of heights) is read as it is, with a warning.
+ * Infinite samples that the nodata value does not declare are nodata, with a warning (with or
+ * without a scale or another nodata value).
  * GDAL 3.6's Int8 (a Byte band with PIXELTYPE=SIGNEDBYTE) is read as signed.
  * The grid follows vtkApertureGeoreference's conventions: origin and
  * spacing in CRS units, origin at the centre of the south-west cell, row 0 south, identity

@@ -530,7 +530,7 @@ static void test_steep_planes(void)
     len = sqrt(e.bx * e.bx + e.by * e.by + e.bz * e.bz);
     n = sqrt(1 + gx * gx + gy * gy);
     for (d = 0; d < D; ++d) {
-      AP_CHECK_NEAR(r.h[k * (size_t)D + (size_t)d], ht[d], 1e-6);
+      AP_CHECK_NEAR(r.h[k * (size_t)D + (size_t)d], ht[d], 2e-6); /* (as the gentle plane's) */
     }
     AP_CHECK_NEAR(r.A[k] / e.A, 1.0, 2e-6);
     AP_CHECK_NEAR(r.vd[k], (-gx * e.bx - gy * e.by + e.bz) / n / PI, 2e-6);

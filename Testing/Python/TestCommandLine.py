@@ -669,12 +669,12 @@ class TestBadInput(CommandLineTest):
                           "NOSUCH:" + missing)
         # a file it names exists: GDAL's reason; a pipe it names: refused (GDAL's open of one
         # would wait for a writer)
-        self.assert_error("GDAL cannot open 'GTIFF_DIR:5:%s' as a raster: %s: Requested "
-                          "directory 5 not found" % (tif, tif), "info", "GTIFF_DIR:5:" + tif)
-        fifo = self.path("pipe.tif")
-        os.mkfifo(fifo)
-        self.assert_error("'GTIFF_DIR:1:%s' names a pipe ('%s'), not a file" % (fifo, fifo),
-                          "info", "GTIFF_DIR:1:" + fifo)
+        self.assert_error("GDAL cannot open 'GTIFF_DIR:5:%s' as a raster: " % tif, "info",
+                          "GTIFF_DIR:5:" + tif)  # (GDAL's own words vary)
+        for fifo in (self.path("pipe.tif"), self.path("a:pipe.tif")):  # (a colon in its path)
+            os.mkfifo(fifo)
+            self.assert_error("'GTIFF_DIR:1:%s' names a pipe ('%s'), not a file" % (fifo, fifo),
+                              "info", "GTIFF_DIR:1:" + fifo)
         if gdal.GetDriverByName("netCDF") is None:
             self.skipTest("this GDAL has no netCDF driver")
         nc = self.path("cube.nc")

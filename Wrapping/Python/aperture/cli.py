@@ -917,19 +917,20 @@ _PICTURE_BYTES_PER_PIXEL, _PICTURE_BYTES_PER_SAMPLE, _PICTURE_EXR_BYTES_PER_PIXE
 # Under an address-space limit (ulimit -v), what OpenGL maps beyond what it makes resident (the
 # driver's libraries, and its rasteriser threads' stacks and malloc arenas): measured at a
 # 1000^2 picture with LP_NUM_THREADS 1, 2, 4, 8 and 16, 475, 623, 917, 1311 and 1442 MiB (the
-# same at 6000^2 with 2 threads): a base and an allowance per thread, smaller past 8.
+# same at 6000^2 with 2 threads): a base and an allowance per thread, smaller past 8 (and
+# assumed so up to Mesa's 32).
 _DRAW_ADDRESS_BYTES, _DRAW_ADDRESS_BYTES_PER_THREAD = 400 << 20, 160 << 20
 
 
 def _llvmpipe_threads():
-    """The rasteriser threads Mesa's llvmpipe starts: LP_NUM_THREADS, else one per online CPU
-    (none on one), at most 16 (its LP_MAX_THREADS)."""
+    """The rasteriser threads Mesa's llvmpipe starts: LP_NUM_THREADS, else one per CPU this
+    process may run on (none on one), at most 32 (Mesa 22's LP_MAX_THREADS)."""
     try:
         threads = int(os.environ["LP_NUM_THREADS"])
     except (KeyError, ValueError):
-        cpus = os.sysconf("SC_NPROCESSORS_ONLN") if hasattr(os, "sysconf") else 1
+        cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else 1
         threads = cpus if cpus > 1 else 0
-    return max(0, min(threads, 16))
+    return max(0, min(threads, 32))
 
 
 def _opengl_address_bytes():
@@ -1380,34 +1381,38 @@ def _render_frame(args, k, t, sun, window, renderer, mapper, exposure, names, wa
                 args.exr_type))
 
 
-def _lonlat_bounds(image):
-    """The DEM image's geographic bounds (west, south, east, north), or None (a local CRS)."""
+def _grid_places(image):
+    """5 x 5 places spread over the DEM image's grid, as (latitude, longitude) in degrees
+    (taken from the grid's own coordinates: a projected DEM's box in longitude and latitude
+    reaches beyond it, and across the antimeridian its west edge lies east of its east one);
+    [] for a DEM in a local CRS."""
     from aperture import vtkApertureGeoreference
     geo = vtkApertureGeoreference()
-    bounds = [0.0] * 4
-    if not geo.SetFromImage(image) or geo.IsLocal() or not geo.GetBoundsLonLat(bounds):
-        return None
-    return bounds
+    if not geo.SetFromImage(image) or geo.IsLocal():
+        return []
+    (x0, y0, _), (dx, dy, _) = image.GetOrigin(), image.GetSpacing()
+    nx, ny, _ = image.GetDimensions()
+    places, lonlat = [], [0.0, 0.0]
+    for i in range(5):
+        for j in range(5):
+            if geo.CRSToLonLat(x0 + dx * (nx - 1) * i / 4.0, y0 + dy * (ny - 1) * j / 4.0,
+                               lonlat) and all(map(math.isfinite, lonlat)):
+                places.append((lonlat[1], math.remainder(lonlat[0], 360.0)))
+    return places
 
 
-def _highest_sun(bounds, t):
-    """The sun's highest apparent elevation at POSIX time t over 5 x 5 places across the
-    geographic `bounds` (_lonlat_bounds): (degrees, latitude, longitude), or None."""
+def _highest_sun(places, t):
+    """The sun's highest apparent elevation at POSIX time t over `places` (_grid_places):
+    (degrees, latitude, longitude), or None."""
     from aperture import vtkApertureSolarPosition
-    if bounds is None:
-        return None
-    west, south, east, north = bounds
     best = None
     probe = vtkApertureSolarPosition()
     probe.SetUnixTime(t)
-    for i in range(5):
-        for j in range(5):
-            lon = math.remainder(west + (east - west) * i / 4.0, 360.0)
-            lat = south + (north - south) * j / 4.0
-            probe.SetLongitude(lon)
-            probe.SetLatitude(lat)
-            if probe.Compute() and (best is None or probe.GetElevation() > best[0]):
-                best = (probe.GetElevation(), lat, lon)
+    for lat, lon in places:
+        probe.SetLatitude(lat)
+        probe.SetLongitude(lon)
+        if probe.Compute() and (best is None or probe.GetElevation() > best[0]):
+            best = (probe.GetElevation(), lat, lon)
     return best
 
 
@@ -1420,8 +1425,8 @@ _CENTRE_LIGHT = "the light is the DEM centre's, though over part of the DEM the 
 def _sun_up_elsewhere(image, sun):
     """For a DEM whose centre's sun is below the horizon at `sun`'s time: the warning's clause
     saying where over the DEM it is up, or "" if nowhere."""
-    best = _highest_sun(_lonlat_bounds(image), sun.GetUnixTime())
-    if best is None or best[0] <= 0.0:
+    best = _highest_sun(_grid_places(image), sun.GetUnixTime())
+    if best is None or best[0] < 0.05:  # (up, to the digit said)
         return ""
     elevation, lat, lon = best
     return ("; %s (%.1f degrees at %.2f %s, %.2f %s): render that part (--srcwin)"
@@ -1446,8 +1451,8 @@ def _time_lapse(args, sun, image):
     times, elevations = _frame_times(args, sun)
     dark = [k for k, e in enumerate(elevations) if e < 0.0]
     if dark:
-        bounds = _lonlat_bounds(image)
-        up = [k for k in dark if (_highest_sun(bounds, times[k]) or (0.0,))[0] > 0.0]
+        places = _grid_places(image)
+        up = [k for k in dark if (_highest_sun(places, times[k]) or (0.0,))[0] >= 0.05]
         _warn("the sun is below the horizon in %d of the %d frames (%s): the terrain is unlit "
               "there (%s): black%s" % (len(dark), args.frames, _ranges_text(dark),
                                        _unlit_why(args), "; in %s %s (render that part: "
