@@ -19,6 +19,7 @@
 #include "ap_horizon.h"
 
 #include "ap_atanf.h"
+#include "ap_zenith.h"
 #include "ap_memory.h"
 
 #include <math.h>
@@ -4510,10 +4511,9 @@ ap_status ap_horizon_sweep(const ap_horizon *hz, size_t b0, size_t b1)
 #define AP_TAN_MAX 1e18f
 
 /* The per-cell terms of one sector for n cells, in single precision: the cosine ce and sine se
- * of the effective horizon (tangent te), its zenith distance u = pi/2 - atan(te) (as atan(1 /
- * te) above 45 degrees: accurate to float's relative precision up to the zenith, where pi/2 -
- * atan(te) leaves 1e-7 rad of rounding), and the arctangent of the terrain horizon (tangent
- * tt_in, the sector scratch, contiguous), tangents times the cells' 1 / rho (inv: 1
+ * of the effective horizon (tangent te), its zenith distance u (ap_zenith_distance: accurate
+ * to float's relative precision up to the zenith), and the arctangent of the terrain horizon
+ * (tangent tt_in, the sector scratch, contiguous), tangents times the cells' 1 / rho (inv: 1
  * without p.scale_metric, which changes no bit). Branch-free so that it vectorises (AVX2 clone
  * where available, the same operations in the same order). A nodata cell (tt NaN) gets
  * meaningless terms, which ap_horizon_finish overwrites. */
@@ -4528,16 +4528,13 @@ static void sector_terms(size_t n, const float *tt_in, const float *inv, const f
     const float ts = (grad[2 * k] * sphi + grad[2 * k + 1] * cphi) * inv[k];
     /* The sky a cell sees lies above the horizontal, the terrain and its own tangent plane. */
     float te = tt > ts ? tt : ts;
-    float ce, a;
-    int steep;
+    float ce;
     te = te > 0.0f ? te : 0.0f;
     te = te < AP_TAN_MAX ? te : AP_TAN_MAX;
     ce = 1.0f / sqrtf(1.0f + te * te);
     ce_out[k] = ce;
     se_out[k] = te * ce;
-    steep = te > 1.0f;
-    a = ap_atanf(steep ? 1.0f / te : te);
-    u_out[k] = steep ? a : (float)AP_HALF_PI - a;
+    u_out[k] = ap_zenith_distance(te);
   }
   if (want_ht) {
     for (k = 0; k < n; ++k) {
@@ -4551,14 +4548,9 @@ static void sector_terms(size_t n, const float *tt_in, const float *inv, const f
  * sums, each weighted by the cell's omega (wt; the horizontal of B by omega / rho, the unit
  * direction once ap_horizon_finish applies S; all 1 without p.scale_metric, which changes no
  * bit). Its own function so that the loops vectorise in the AVX2 clone (the same operations
- * in the same order: no result depends on the clone). The terms that vanish at the zenith are
- * written so that they keep float's relative precision there (a shaft's every horizon within
- * 1e-4 rad of it: 1 - sin h and Q(h) cancelled to nothing, and its bent normal came out 52
- * degrees off): 1 - sin h = cos^2 h / (1 + sin h), and Q(h) = (x - sin x) / 4 with x = 2u, u
- * the zenith distance (sector_terms), by its Taylor series to x^11 below x = 1.5 (truncated
- * within 6e-8), directly above: either within 8e-7 of Q(h) for the float tangent, relatively,
- * at any h (measured on 2e6 horizons: the rounding and u's 2e-7; the direct form is at its
- * worst just above the switch, 2e-6 at x = 1 where it was taken before). */
+ * in the same order: no result depends on the clone). The terms that vanish at the zenith keep
+ * float's relative precision there (ap_zenith.h): 1 - sin h as cos^2 h / (1 + sin h), and
+ * Q(h) from the zenith distance (sector_terms) by ap_zenith_q. */
 AP_MULTIVERSION
 static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned char *restrict e,
                              size_t n, const float *restrict ce, const float *restrict se,
@@ -4591,11 +4583,7 @@ static void accumulate_terms(const ap_horizon *hz, size_t c0, const unsigned cha
   if (B) {
     float *b = B + 3 * c0;
     for (k = 0; k < n; ++k) {
-      const float x = 2.0f * u[k], x2 = x * x;
-      const float tail = 1.0f - (x2 / 42.0f) * (1.0f - (x2 / 72.0f) * (1.0f - x2 / 110.0f));
-      const float series = (x * x2 / 24.0f) * (1.0f - (x2 / 20.0f) * tail);
-      const float Q = x < 1.5f ? series : 0.5f * (u[k] - se[k] * ce[k]);
-      const float Qh = Q * (wt[k] * inv[k]);
+      const float Qh = ap_zenith_q(u[k], se[k], ce[k]) * (wt[k] * inv[k]);
       b[3 * k] += wsphi * Qh;
       b[3 * k + 1] += wcphi * Qh;
       b[3 * k + 2] += fhalf_delta * ((ce[k] * ce[k]) * wt[k]);
