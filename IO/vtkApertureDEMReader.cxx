@@ -185,6 +185,48 @@ struct vtkApertureDEMReader::Internals
   bool Valid = false;
   int Reading[2] = { 0, 0 }; // columns, rows of the request being read (for messages)
 
+  // The files a GDAL name that is no file names (between colons, the rest after each colon,
+  // and between quotes: a path may hold colons): `any` whether one exists; false, with
+  // `error`, where one is a pipe or a socket (GDAL's open of one would wait for a writer).
+  static bool NamedFiles(const std::string& name, bool& any, std::string& error)
+  {
+    std::vector<std::string> parts;
+    for (size_t a = 0; a <= name.size();)
+    {
+      const size_t colon = name.find(':', a);
+      const size_t b = colon == std::string::npos ? name.size() : colon;
+      parts.push_back(name.substr(a, b - a));
+      parts.push_back(name.substr(a));
+      a = b + 1;
+    }
+    for (size_t q = name.find('"'); q != std::string::npos;)
+    {
+      const size_t end = name.find('"', q + 1);
+      if (end == std::string::npos)
+      {
+        break;
+      }
+      parts.push_back(name.substr(q + 1, end - q - 1));
+      q = name.find('"', end + 1);
+    }
+    any = false;
+    for (const std::string& part : parts)
+    {
+      struct stat ps = {};
+      if (!part.empty() && stat(part.c_str(), &ps) == 0)
+      {
+        any = true;
+        if (vtkApertureUnreadableStream(ps))
+        {
+          error = "'" + name + "' names " + vtkApertureFileKind(ps) + " ('" + part +
+            "'), not a file: GDAL reads a DEM by seeking in it; save it to a file first";
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+
   // Open the file with a clear message on failure; *warning (when given) gets GDAL's last
   // warning while opening, if any (a GeoTIFF's unreadable keys, for instance).
   static bool Open(
@@ -198,6 +240,11 @@ struct vtkApertureDEMReader::Internals
     const std::string name(fileName);
     const bool virtualPath = name.compare(0, 4, "/vsi") == 0; // (GDAL's own: /vsizip/, ...)
     struct stat sb = {};
+    // A name of GDAL's own that is no file: a subdataset (NETCDF:"f.nc":z, GTIFF_DIR:2:f.tif,
+    // HDF5:...), refused as a missing file until 2026-12-07; opened below like a file, the
+    // files it names checked first (namesFile: one exists, so GDAL's reason if it fails).
+    bool gdalName = false, namesFile = false;
+    int statErrno = 0;
     if (!virtualPath && stat(fileName, &sb) != 0)
     {
       const size_t scheme = name.find("://");
@@ -209,71 +256,19 @@ struct vtkApertureDEMReader::Internals
           "/vsicurl/" + name + "'), where this machine can reach it";
         return false;
       }
-      if (name.find(':') != std::string::npos)
+      gdalName = name.find(':') != std::string::npos;
+      if (!gdalName)
       {
-        // A name of GDAL's own, no file: a subdataset (NETCDF:"f.nc":z, GTIFF_DIR:2:f.tif,
-        // HDF5:...), which the check for a file refused until 2026-12-07. The parts that may
-        // name files (between colons, the rest after each colon, and between quotes: a path
-        // may hold colons) are checked as a file is; then GDAL tries.
-        const int saved = errno;
-        std::vector<std::string> parts;
-        for (size_t a = 0; a <= name.size();)
-        {
-          const size_t colon = name.find(':', a);
-          const size_t b = colon == std::string::npos ? name.size() : colon;
-          parts.push_back(name.substr(a, b - a));
-          parts.push_back(name.substr(a));
-          a = b + 1;
-        }
-        for (size_t q = name.find('"'); q != std::string::npos;)
-        {
-          const size_t end = name.find('"', q + 1);
-          if (end == std::string::npos)
-          {
-            break;
-          }
-          parts.push_back(name.substr(q + 1, end - q - 1));
-          q = name.find('"', end + 1);
-        }
-        bool names = false;
-        for (const std::string& part : parts)
-        {
-          struct stat ps = {};
-          if (!part.empty() && stat(part.c_str(), &ps) == 0)
-          {
-            names = true;
-            if (vtkApertureUnreadableStream(ps))
-            {
-              error = "'" + name + "' names " + vtkApertureFileKind(ps) + " ('" + part +
-                "'), not a file: GDAL reads a DEM by seeking in it; save it to a file first";
-              return false;
-            }
-          }
-        }
-        GDALAllRegister();
-        vtkApertureGDALErrorTrap trap;
-        ds.H = GDALOpenEx(fileName, GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
-        if (ds.H)
-        {
-          if (warning)
-          {
-            *warning = trap.Message();
-          }
-          return true;
-        }
-        if (names)
-        {
-          // (a file it names exists: GDAL's reason, not "does not exist")
-          error = "GDAL cannot open '" + name + "' as a raster: " +
-            trap.Message("not a raster format GDAL recognises");
-          return false;
-        }
-        errno = saved;
+        error = vtkApertureMissingFileMessage(name);
+        return false;
       }
-      error = vtkApertureMissingFileMessage(name);
-      return false;
+      statErrno = errno;
+      if (!NamedFiles(name, namesFile, error))
+      {
+        return false;
+      }
     }
-    if (!virtualPath && vtkApertureUnreadableStream(sb))
+    if (!virtualPath && !gdalName && vtkApertureUnreadableStream(sb))
     {
       // (GDAL also opens a file more than once: one writer to a pipe would not do)
       error = "'" + name + "' is " + vtkApertureFileKind(sb) +
@@ -302,8 +297,15 @@ struct vtkApertureDEMReader::Internals
                         : "file '" + name + "' does not exist";
         return false;
       }
+      if (gdalName && !namesFile)
+      {
+        errno = statErrno; // (no file of that name, nor one it names)
+        error = vtkApertureMissingFileMessage(name);
+        return false;
+      }
       // (a file without read permission was "not a raster format GDAL recognises")
-      const std::string unreadable = virtualPath ? "" : vtkApertureUnreadableReason(fileName);
+      const std::string unreadable =
+        virtualPath || gdalName ? "" : vtkApertureUnreadableReason(fileName);
       if (!unreadable.empty())
       {
         error = "cannot read '" + name + "': " + unreadable;
