@@ -977,7 +977,8 @@ def _check_render_memory(args, nx, ny, bent, to_bake, read_cells):
     held = own + read
     usable = float(sky.GetUsableMemory())
     width, height = args.size
-    total = need(nx * ny) + picture(width, height)
+    shown = picture(width, height)
+    total = need(nx * ny) + shown
     if held + total <= usable:
         return
     mesh = estimate.EstimateBytes(float(nx * ny), bent, 0.0)
@@ -985,14 +986,13 @@ def _check_render_memory(args, nx, ny, bent, to_bake, read_cells):
                "%s (the mesh %s, the picture %s, drawing them and the rest %s), more than the "
                "%s of memory %s%s"
                % (nx, ny, width, height, _bytes_text(total), _bytes_text(mesh),
-                  _bytes_text(picture(width, height)),
-                  _bytes_text(total - mesh - picture(width, height)),
+                  _bytes_text(shown), _bytes_text(total - mesh - shown),
                   _bytes_text(max(0.0, usable - held)), sky.GetUsableMemoryOwner(),
                   " beside the %s that %s and the elevations take" % (
                       _bytes_text(held), "OpenGL maps" if limited else "this process holds")))
     fits = []
     for f in range(2, min(nx, ny) // 2 + 1):  # (a mesh of at least 2 x 2 points)
-        if own + read / (f * f) + need((nx // f) * (ny // f)) + picture(width, height) <= usable:
+        if own + read / (f * f) + need((nx // f) * (ny // f)) + shown <= usable:
             fits.append("--decimate %d" % (f * args.decimate))
             break
     for size in range(max(width, height) - 1, 15, -1):  # (the aspect kept, 16 pixels or more)
