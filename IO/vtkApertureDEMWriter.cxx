@@ -383,6 +383,17 @@ int vtkApertureDEMWriter::EndStrips()
   {
     return 0; // (nothing begun, or BeginStrips failed: reported)
   }
+  // (metadata added while the strips were written, such as a digest of them, with the rest)
+  vtkApertureGDALErrorTrap trap;
+  for (const auto& kv : d.Metadata)
+  {
+    if (!d.Failed &&
+      GDALSetMetadataItem(d.Dataset, kv.first.c_str(), kv.second.c_str(), nullptr) != CE_None)
+    {
+      d.Error = trap.Message("unknown error");
+      d.Failed = true;
+    }
+  }
   return this->EndFile(vtkApertureStripsComplete(this, d.Failed, d.NextRow, d.Whole, d.Path))
     ? 1
     : 0;

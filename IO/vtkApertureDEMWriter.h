@@ -179,7 +179,8 @@ public:
 
   ///@{
   /** Dataset metadata (key = value, the GeoTIFF's GDAL metadata domain), written with the file;
-   *  a key added again replaces its value. */
+   *  a key added again replaces its value. What is added between BeginStrips and EndStrips is
+   *  written by EndStrips (band metadata is not: it is written by BeginStrips). */
   void AddMetadata(const char* key, const char* value);
   /** Metadata for the bands of one array (all its components); the same array and key added
    *  again replaces the value. */

@@ -85,6 +85,19 @@ def rough_dem(path, shape, seed, hole=None):
     return path
 
 
+def elevation_digest(path, rows=slice(None), columns=slice(None)):
+    """BLAKE2b-128 (hex) of the 32-bit float elevations of band 1 of the DEM at `path` (its
+    nodata as NaN) in `rows` and `columns` of the file (north first), as bakes record them in
+    SOURCE_ELEVATION_DIGEST (the README, 'aperture bake'): read by GDAL, not by the reader."""
+    import hashlib
+    ds = gdal.Open(path)
+    band = ds.GetRasterBand(1)
+    z = band.ReadAsArray().astype("<f4")[rows, columns]
+    if band.GetNoDataValue() is not None:
+        z[z == np.float32(band.GetNoDataValue())] = np.nan
+    return hashlib.blake2b(np.ascontiguousarray(z).tobytes(), digest_size=16).hexdigest()
+
+
 def cpu_seconds(pid):
     """The CPU time of process `pid` so far: utime + stime of every thread, /proc/PID/stat."""
     with open("/proc/%d/stat" % pid) as f:
@@ -580,6 +593,9 @@ class TestBake(unittest.TestCase):
             np.testing.assert_array_equal(strips[name][0], whole[name][0], err_msg=name)
             self.assertEqual(strips[name][1], whole[name][1])  # units, definitions
         self.assertEqual((meta, gt, srs), (whole_meta, whole_gt, whole_srs))
+        # (with the digest of the elevations baked, which render --baked compares, the same
+        # from strips: the DEM's own, nodata cells in it)
+        self.assertEqual(meta["SOURCE_ELEVATION_DIGEST"].split(" ", 1)[0], elevation_digest(dem))
         # a window in strips: the window's cells of the whole bake; its EXR (georeferenced
         # at the window) the same as the window's at once
         window_options = options + ["--srcwin", 20, 100, 100, 560]
@@ -590,7 +606,9 @@ class TestBake(unittest.TestCase):
         self.assertEqual(status, 0, err)
         self.assertIn("for 100 x 560 cells", stdout)
         self.assertIn("in 3 strips of 256 rows", stdout)
-        window, _, _, _ = bands(strips_out)
+        window, meta, _, _ = bands(strips_out)
+        self.assertEqual(meta["SOURCE_ELEVATION_DIGEST"].split(" ", 1)[0],
+                         elevation_digest(dem, np.s_[100:660], np.s_[20:120]))
         for name in whole:
             np.testing.assert_array_equal(window[name][0], whole[name][0][100:660, 20:120],
                                           err_msg=name)

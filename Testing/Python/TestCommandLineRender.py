@@ -1000,11 +1000,30 @@ class TestCommandLineRender(unittest.TestCase):
             self.assertEqual((status, len(stderr.strip().splitlines())), (1, 1), stderr)
             self.assertIn("baked.exr is an OpenEXR file: --baked takes the GeoTIFF 'aperture "
                           "bake' writes", stderr)
-            # (with the bake's unit the same file is taken)
-            status, _, stderr = run("render", "-o", os.path.join(tmp, "x.png"), "--size",
-                                    "200x120", "--baked", os.path.join(tmp, "feet.tif"),
-                                    "--zfactor", "ft")
+            # (a bake in the unit is taken in it)
+            feet = os.path.join(tmp, "feet-baked.tif")
+            status, _, stderr = run("bake", dem, feet, "-q", "--zfactor", "ft", "--products",
+                                    "ApertureRadius,BentNormal")
             self.assertEqual(status, 0, stderr)
+            status, _, stderr = run("render", "-o", os.path.join(tmp, "x.png"), "--size",
+                                    "200x120", "--baked", feet, "--zfactor", "ft")
+            self.assertEqual(status, 0, stderr)
+            # nor is a DEM of the same cells in the same unit the bake's terrain when its
+            # heights are others: this DEM with one cell 1 m higher (another DEM of the grid,
+            # or an edit since, drew the bake's shadows silently until 2026-12-07)
+            edited = os.path.join(tmp, "edited.tif")
+            ds = gdal.GetDriverByName("GTiff").CreateCopy(edited, gdal.Open(dem))
+            z = ds.GetRasterBand(1).ReadAsArray()
+            z[170, 200] += 1
+            ds.GetRasterBand(1).WriteArray(z)
+            ds = None
+            for source, expected in ((dem, 0), (edited, 1)):
+                status, _, stderr = run("render", source, "-o", os.path.join(tmp, "x.png"),
+                                        "--size", "200x120", "--baked", baked)
+                self.assertEqual(status, expected, stderr)
+            self.assertEqual(stderr.strip(), "aperture: error: %s was baked from other elevations "
+                             "than this DEM's on the same cells (another DEM of the grid, or "
+                             "this one since changed): bake this DEM again" % baked)
             # a DEM in a compound CRS: its bake is in the horizontal part (the vertical gave
             # every band its height unit) and is taken
             compound = os.path.join(tmp, "compound.tif")

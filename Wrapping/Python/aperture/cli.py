@@ -406,6 +406,34 @@ def _has_heights(image, extent=None):
                               extent[0] - e[0]:extent[1] - e[0] + 1]).any())
 
 
+# the bake's record of the elevations it read, which render --baked compares with its own
+DIGEST_KEY = "SOURCE_ELEVATION_DIGEST"
+DIGEST_TEXT = ("%s (BLAKE2b-128 of the elevations read for the cells baked: 32-bit floats, "
+               "little-endian, nodata as NaN, rows north first, each west first; 'aperture "
+               "render --baked' compares it)")
+
+
+def _elevation_digest():
+    import hashlib
+    return hashlib.blake2b(digest_size=16)
+
+
+def _digest_rows(digest, image, extent=None):
+    """Feed the elevations of `extent` of `image` (within its extent; default all of it) into
+    `digest` (_elevation_digest's), its northern row first, as DIGEST_TEXT says."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    e = image.GetExtent()
+    extent = extent or e
+    z = vtk_to_numpy(image.GetPointData().GetArray("Elevation"))
+    z = z.reshape(e[3] - e[2] + 1, e[1] - e[0] + 1)[:, extent[0] - e[0]:extent[1] - e[0] + 1]
+    top, bottom = extent[3] - e[2], extent[2] - e[2]
+    for row in range(top, bottom - 1, -1024):  # (blocks of rows: no copy of all of them)
+        block = z[max(row - 1023, bottom):row + 1][::-1].astype("<f4")
+        block[np.isnan(block)] = np.nan  # (one NaN, whatever payload a reader gave)
+        digest.update(block.tobytes())
+
+
 def _has_data(args, watcher, whole, rows):
     """Whether any cell of the grid the arguments read (band, overview, decimation; `whole`,
     its extent) has data, read in strips of `rows` rows."""
@@ -819,6 +847,17 @@ def _attach_baked_bands(image, path, ds, reader):
         raise ApertureError("%s was baked from elevations in units of %s; the DEM is read in "
                             "units of %s: render with the bake's --zfactor"
                             % (path, baked_unit, _elevation_unit(reader)))
+    # nor are the same cells in the same unit the same terrain: another DEM of the grid, or
+    # this one edited since, drew shadows of hills it no longer has (bakes since 2026-12-07,
+    # when the DEM is the bake's grid: a window of it would need the bake's cells read)
+    recorded = (ds.GetMetadataItem(DIGEST_KEY) or "").split(" ", 1)[0]
+    if recorded and (xoff, yoff) == (0, 0) and (ds.RasterXSize, ds.RasterYSize) == (nx, ny):
+        digest = _elevation_digest()
+        _digest_rows(digest, image)
+        if digest.hexdigest() != recorded:
+            raise ApertureError("%s was baked from other elevations than this DEM's on the same "
+                                "cells (another DEM of the grid, or this one since changed): "
+                                "bake this DEM again" % path)
     # file rows run north to south, image rows south to north
     def read(name):
         band = ds.GetRasterBand(bands[name])
@@ -2203,6 +2242,10 @@ def _bake(args, products, progress):
             raise ApertureError("every cell of '%s' band %d is nodata"
                                 % (_dem_path(args), args.band or 1))
         heights.append(_has_heights(clip.GetOutput(), extents[k]))
+        _digest_rows(digest, clip.GetOutput(), extents[k])
+        if k == len(extents) - 1:  # (written by EndStrips)
+            writer.AddMetadata(DIGEST_KEY, DIGEST_TEXT % digest.hexdigest())
+    digest = _elevation_digest()  # (of the elevations read, for render --baked)
     provenance = _provenance(args, products, reader)
     definitions = {name: (unit, text) for name, unit, text in PRODUCTS}
     writer.SetFileName(native_path(args.output))
@@ -2274,6 +2317,8 @@ def _bake(args, products, progress):
                 result = watcher.update(sky, "bake", extent=window)
                 sweep_seconds = time.perf_counter() - sweep_start
                 heights.append(_has_heights(result, window))
+                _digest_rows(digest, result, window)
+                writer.AddMetadata(DIGEST_KEY, DIGEST_TEXT % digest.hexdigest())
                 image = _product_image(result, products)
                 nx, ny, _ = image.GetDimensions()
                 for output, path in outputs:
@@ -2809,8 +2854,8 @@ def build_parser():
                         "horizons as in 'aperture bake --srcwin'")
     p.add_argument("--baked", metavar="BAKED.tif",
                    help="reuse the BentNormal and ApertureRadius bands of 'aperture bake' "
-                        "output for this DEM (the same grid and CRS; a bake of the whole DEM "
-                        "serves any --srcwin of it) instead of baking")
+                        "output for this DEM (the same grid, CRS and elevations; a bake of the "
+                        "whole DEM serves any --srcwin of it) instead of baking")
     p.add_argument("--at", metavar="ISO", help="time of the sun, as for 'aperture sun' (with "
                                                "--frames: of the first frame)")
     p.add_argument("--tz", metavar="ZONE", help="IANA time zone for a local --at")
