@@ -125,7 +125,11 @@ public:
   ///@{
   /** Atmosphere for refraction: mean air pressure (hPa, 0..5000, default 1013.25) and
    *  temperature (°C, −100..100, default 15); Refraction off gives geometric
-   *  elevations (default on). Values out of range make Compute() fail, naming them. */
+   *  elevations (default on). Values out of range make Compute() fail, naming them.
+   *  Sunrise and sunset are where the sun's centre is at −0.8333° geometric (its upper limb
+   *  on the horizon through the standard 34′ of refraction), whatever the pressure and
+   *  temperature; with Refraction off at −0.26667° (the upper limb on the geometric
+   *  horizon), which moves them by minutes and may turn polar day into a day with a sunset. */
   vtkSetMacro(Pressure, double);
   vtkGetMacro(Pressure, double);
   vtkSetMacro(Temperature, double);

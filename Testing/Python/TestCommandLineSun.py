@@ -72,6 +72,62 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertEqual((first["latitude_deg"], first["longitude_deg"]), (-33.9, -18.4))
         self.assertEqual(self.json_of("--at=-1000-06-21T12:00Z", "--lat=-33.9", "--lon=-18.4"),
                          first)
+        # -inf and -nan get the option's range (argparse said "expected one argument")
+        for option, value, expected in (("--lon", "-inf", "-inf is outside -180..180"),
+                                        ("--lat", "-nan", "-nan is outside -90..90")):
+            message = self.usage_error_of("--at", "2026-06-21T12:00Z", "--lat", 0, "--lon", 0,
+                                          option, value)
+            self.assertIn("argument %s: %s degrees" % (option, expected), message)
+
+    def test_local_times_before_year_1(self):
+        # The years -2000..0 have local times as the UTC strings have them (null and "n/a"
+        # until 2026-12-07: Python's datetime has the years 1..9999): the clock of the offset,
+        # its date across a year's end, year 0 a leap year (1 BC)
+        for at, utc, local in (
+                ("0000-01-01T12:00+01:00", "0000-01-01T11:00:00Z", "0000-01-01T12:00:00+01:00"),
+                ("-0001-01-01T01:00+03:00", "-0002-12-31T22:00:00Z",
+                 "-0001-01-01T01:00:00+03:00"),
+                ("0000-02-29T23:30-05:00", "0000-03-01T04:30:00Z", "0000-02-29T23:30:00-05:00"),
+                ("-2000-01-01T10:00-01:30", "-2000-01-01T11:30:00Z",
+                 "-2000-01-01T10:00:00-01:30")):
+            r = self.json_of("--at", at, "--lat", 10, "--lon", 10)
+            self.assertEqual((r["time_utc"], r["time_local"]), (utc, local))
+            offset = int(local[-6:-3]) * 3600 + int(local[-6] + local[-2:]) * 60
+            for event in ("sunrise", "transit", "sunset"):
+                # each local event the UTC one on the offset's clock, by the UTC string's
+                # seconds of the day (these days' events lie within one date at both)
+                hms = lambda t: sum(int(v) * f for v, f in zip(t.split("T")[1][:8].split(":"),
+                                                                (3600, 60, 1)))
+                self.assertEqual((hms(r[event]) + offset) % 86400, hms(r[event + "_local"]),
+                                 (at, event, r[event], r[event + "_local"]))
+                self.assertEqual(r[event + "_local"][-6:], local[-6:])
+            status, stdout, stderr = run("--at", at, "--lat", 10, "--lon", 10)
+            self.assertEqual(status, 0, stderr)
+            self.assertNotIn("n/a", stdout)
+            self.assertIn("local: sunrise %s, " % r["sunrise_local"].split("T")[1][:8], stdout)
+
+    def test_no_refraction(self):
+        # Refraction off: geometric elevations, labelled so (they were "apparent (refracted)"
+        # in the text), and sunrise and sunset where the upper limb meets the geometric
+        # horizon (the centre at -0.26667 deg, as the help says): at 66 N on the solstice a
+        # polar day with refraction, a sunset and a sunrise without it. PyEphem 4.1.4 (sun
+        # centre at -0.26667 deg, no refraction) has 00:40:02Z and 23:23:32Z; the report's
+        # model is within 60 s of it this far north
+        args = ("--at", "2026-06-21T12:00Z", "--lat", 66, "--lon", 0)
+        self.assertEqual(self.json_of(*args)["day_kind"], "polar_day")
+        r = self.json_of(*args, "--no-refraction")
+        self.assertEqual(r["elevation_deg"], r["elevation_true_deg"])
+        self.assertEqual(r["day_kind"], "normal")
+        for event, reference in (("sunrise", 40 * 60 + 2), ("sunset", 23 * 3600 + 23 * 60 + 32)):
+            h, m, sec = map(int, r[event][11:19].split(":"))
+            self.assertLessEqual(abs(3600 * h + 60 * m + sec - reference), 60, r[event])
+        status, stdout, stderr = run(*args, "--no-refraction")
+        self.assertEqual(status, 0, stderr)
+        self.assertNotIn("apparent", stdout)
+        self.assertIn("Elevation:   %.4f deg geometric (--no-refraction)"
+                      % r["elevation_true_deg"], stdout)
+        # (--pressure 0: geometric elevations too, the day the standard refraction's)
+        self.assertEqual(self.json_of(*args, "--pressure", 0)["day_kind"], "polar_day")
 
     def test_spa_case(self):
         r = self.json_of("--at", "2003-10-17T12:30:30-07:00", "--lat", 39.742476,

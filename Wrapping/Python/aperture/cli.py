@@ -2386,23 +2386,40 @@ _LAST_SECOND = 127206115199  # 6000-12-31T23:59:59Z, ap_time.h's AP_TIME_UNIX_MA
 def _local_text(sun, unix_seconds):
     """ISO 8601 local time (to the second) of an instant on the clock of the sun's place: the
     time zone's offset at that instant (a sunset after a clock change has the new one), else
-    the offset --at was written with; None for no instant."""
-    import datetime
+    the offset --at was written with; None for no instant. The years -2000..6000 as the UTC
+    strings write them (-0001, 0000: Python's datetime, years 1..9999, had none for them
+    until 2026-12-07)."""
     if unix_seconds is None or not math.isfinite(unix_seconds):
         return None
     offset = sun.GetLocalOffsetAt(unix_seconds)
-    tz = datetime.timezone(datetime.timedelta(seconds=offset))
     whole = math.floor(unix_seconds)
     # (half a second up, as the UTC strings round, Python's round() going to even; not past
     # the algorithm's last second, 6000-12-31T23:59:59Z, where they are truncated)
     whole += unix_seconds - whole >= 0.5 and whole < _LAST_SECOND
-    try:
-        when = datetime.datetime.fromtimestamp(whole, tz)
-    except (OverflowError, OSError, ValueError):
-        return None  # outside Python's years 1..9999: the UTC string is still given
+    days, second = divmod(int(whole) + int(offset), 86400)
+    year, month, day = _civil_date(days)
     # (a local time in the year 6001, an instant of the range's last hours east of UTC, is
     # text that --at refuses, as the C core's local form does)
-    return when.isoformat() if when.year <= 6000 else None
+    if not -2000 <= year <= 6000:
+        return None
+    return "%s%04d-%02d-%02dT%02d:%02d:%02d%s" % (
+        "-" if year < 0 else "", abs(year), month, day, second // 3600, second // 60 % 60,
+        second % 60, _offset_text(offset))
+
+
+def _civil_date(days):
+    """(year, month, day) of the proleptic Gregorian calendar `days` days after 1970-01-01
+    (negative before it; year 0 is 1 BC), by H. Hinnant's days-to-civil algorithm."""
+    days += 719468  # (from 0000-03-01)
+    era = days // 146097
+    day_of_era = days - era * 146097
+    year_of_era = (day_of_era - day_of_era // 1460 + day_of_era // 36524
+                   - day_of_era // 146096) // 365
+    day_of_year = day_of_era - (365 * year_of_era + year_of_era // 4 - year_of_era // 100)
+    m = (5 * day_of_year + 2) // 153  # (months from March)
+    day = day_of_year - (153 * m + 2) // 5 + 1
+    month = m + 3 if m < 10 else m - 9
+    return year_of_era + era * 400 + (month <= 2), month, day
 
 
 def _sun_record(sun, with_dem):
@@ -2467,7 +2484,7 @@ def _day_order_note(sun, record):
                     record["longitude_deg"], advice))
 
 
-def _print_sun(record, dem, note=None):
+def _print_sun(record, dem, note=None, refraction=True):
     rows = [
         ("Time", "%s (local %s)" % (record["time_utc"], record["time_local"] or "n/a")),
         ("Place", "latitude %.6f, longitude %.6f, height %.1f m%s"
@@ -2478,11 +2495,15 @@ def _print_sun(record, dem, note=None):
             "; %.4f deg from grid north (convergence %.4f deg)"
             % (record["grid_azimuth_deg"], record["meridian_convergence_deg"])
             if "grid_azimuth_deg" in record else "")),
+    ] + ([
         ("Elevation", "%.4f deg apparent (refracted), %.4f deg geometric"
          % (record["elevation_deg"], record["elevation_true_deg"])),
         ("Zenith", "%.4f deg apparent, %.4f deg geometric"
          % (record["zenith_deg"], record["zenith_true_deg"])),
-    ]
+    ] if refraction else [  # (said "apparent (refracted)" of geometric angles until 2026-12-07)
+        ("Elevation", "%.4f deg geometric (--no-refraction)" % record["elevation_true_deg"]),
+        ("Zenith", "%.4f deg geometric" % record["zenith_true_deg"]),
+    ])
     if "direction_enu" in record:
         rows.append(("Direction", "(%.6f, %.6f, %.6f) East-North-Up in the mesh frame"
                      % tuple(record["direction_enu"])))
@@ -2507,10 +2528,13 @@ def _print_sun(record, dem, note=None):
             record["utc_offset"])))
         # each event on the clock of its own moment; its offset shown when a clock change
         # (the day of one) gives it another than the instant's
+        # (the clock time after the date's T: a year -0001 is a character longer)
+        clock = lambda text: text.split("T", 1)[1]
         rows.append(("", "local: sunrise %s, transit %s, sunset %s" % tuple(
-            "n/a" if not record[k] else record[k][11:19] if record[k][19:] ==
-            record["utc_offset"] else record[k][11:] for k in ("sunrise_local", "transit_local",
-                                                              "sunset_local"))))
+            "n/a" if not record[k] else clock(record[k])[:8] if clock(record[k])[8:] ==
+            record["utc_offset"] else clock(record[k]) for k in ("sunrise_local",
+                                                                 "transit_local",
+                                                                 "sunset_local"))))
     else:
         rows.append(("Day", "%s: the sun does not %s; transit %s" % (
             record["day_kind"].replace("_", " "),
@@ -2603,7 +2627,7 @@ def cmd_sun(args):
         if args.json:
             print(json.dumps(record, indent=2))
         else:
-            _print_sun(record, args.dem, _day_order_note(sun, record))
+            _print_sun(record, args.dem, _day_order_note(sun, record), not args.no_refraction)
         return 0
 
     # A time series from --at: every --step minutes before --days days have passed (at least
@@ -2807,7 +2831,10 @@ def build_parser():
                    metavar="C", help="air temperature for refraction, degrees C, -100..100 "
                                      "(default 15)")
     p.add_argument("--no-refraction", action="store_true",
-                   help="report geometric elevations as the apparent ones")
+                   help="report geometric elevations as the apparent ones, and sunrise and "
+                        "sunset where the sun's upper limb meets the geometric horizon (its "
+                        "centre at -0.2667 deg, not at the -0.8333 deg that the standard "
+                        "refraction gives; --pressure and --temperature do not move them)")
     p.add_argument("--sky", choices=sorted(SKY_MODELS), default="preetham",
                    help="sky radiance model (default preetham); the direct beam is the "
                         "clear-sky one whatever the sky: under cie-overcast, whose sky holds "
@@ -3025,7 +3052,8 @@ def _negative_values(parser, argv):
                 takes_value.update(o for o in action.option_strings if o.startswith("--"))
     out = []
     for arg in argv:
-        if out and out[-1] in takes_value and re.match(r"-[0-9.]", arg):
+        # (-inf, -nan: argparse said "expected one argument", not the option's range)
+        if out and out[-1] in takes_value and re.match(r"-([0-9.]|inf|nan)", arg, re.I):
             out[-1] = out[-1] + "=" + arg
         else:
             out.append(arg)
