@@ -81,6 +81,48 @@ static bool Rotated(vtkImageData* image, std::string& error)
   return false;
 }
 
+// Whether the image's origin and spacing describe cells with finite edges, their x and y
+// axes east and north; else false, with `error` set.
+static bool GridOfImage(vtkImageData* image, std::string& error)
+{
+  double spacing[3], origin[3];
+  image->GetSpacing(spacing);
+  image->GetOrigin(origin);
+  if (spacing[1] < 0.0 && spacing[0] > 0.0 && std::isfinite(spacing[1]))
+  {
+    // (numpy's north-up rows with a spacing of -dy)
+    error = "the image spacing must be positive (its y spacing is negative): VTK's rows run "
+            "from south to north; give them in that order (numpy: [::-1]) with a positive "
+            "spacing";
+    return false;
+  }
+  if (!(spacing[0] > 0) || !(spacing[1] > 0) || !std::isfinite(spacing[0]) ||
+    !std::isfinite(spacing[1]) || !std::isfinite(origin[0]) || !std::isfinite(origin[1]))
+  {
+    error = "the image spacing must be positive and finite and its origin finite";
+    return false;
+  }
+  int extent[6];
+  image->GetExtent(extent);
+  // (a spacing of 1e308 on 10 cells: the writers wrote a geotransform of inf, which no reader
+  // takes, until 2026-12-06)
+  for (int a = 0; a < 2; ++a)
+  {
+    const double low = origin[a] + (extent[2 * a] - 0.5) * spacing[a];
+    const double high = origin[a] + (extent[2 * a + 1] + 0.5) * spacing[a];
+    if (!std::isfinite(low) || !std::isfinite(high))
+    {
+      std::ostringstream msg;
+      msg << "the image's " << (a ? "south and north" : "west and east")
+          << " edges are not finite numbers (origin " << origin[a] << ", spacing " << spacing[a]
+          << ", extent " << extent[2 * a] << ".." << extent[2 * a + 1] << ")";
+      error = msg.str();
+      return false;
+    }
+  }
+  return true;
+}
+
 struct vtkApertureGeoreference::Internals
 {
   OGRSpatialReferenceH CRS = nullptr;
@@ -530,33 +572,15 @@ bool vtkApertureGeoreference::SetFromImage(vtkImageData* image)
   {
     return false;
   }
+  if (!GridOfImage(image, d.Error))
+  {
+    return false;
+  }
   double spacing[3], origin[3];
   image->GetSpacing(spacing);
   image->GetOrigin(origin);
-  if (!(spacing[0] > 0) || !(spacing[1] > 0) || !std::isfinite(spacing[0]) ||
-    !std::isfinite(spacing[1]) || !std::isfinite(origin[0]) || !std::isfinite(origin[1]))
-  {
-    d.Error = "the image spacing must be positive and finite and its origin finite";
-    return false;
-  }
   int extent[6];
   image->GetExtent(extent);
-  // (a spacing of 1e308 on 10 cells: the writers wrote a geotransform of inf, which no reader
-  // takes, until 2026-12-06)
-  for (int a = 0; a < 2; ++a)
-  {
-    const double low = origin[a] + (extent[2 * a] - 0.5) * spacing[a];
-    const double high = origin[a] + (extent[2 * a + 1] + 0.5) * spacing[a];
-    if (!std::isfinite(low) || !std::isfinite(high))
-    {
-      std::ostringstream msg;
-      msg << "the image's " << (a ? "south and north" : "west and east")
-          << " edges are not finite numbers (origin " << origin[a] << ", spacing " << spacing[a]
-          << ", extent " << extent[2 * a] << ".." << extent[2 * a + 1] << ")";
-      d.Error = msg.str();
-      return false;
-    }
-  }
   const char* crs = GetAttachedCRS(image);
   if (!crs)
   {
@@ -611,7 +635,9 @@ bool vtkApertureGeoreference::AttachToImage(vtkImageData* image)
     d.Error = image ? "no coordinate reference system is set" : "no image";
     return false;
   }
-  if (Rotated(image, d.Error)) // (a GeoTransform of its origin and spacing would misplace it)
+  // (a GeoTransform of its origin and spacing would misplace it; a flipped or NaN spacing was
+  // attached until 2026-12-07, and refused only by the filters' updates)
+  if (Rotated(image, d.Error) || !GridOfImage(image, d.Error))
   {
     return false;
   }

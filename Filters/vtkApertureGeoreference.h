@@ -133,7 +133,9 @@ public:
   /**
    * Store the CRS and the GeoTransform of the image's current extent in the image's field
    * data, replacing earlier values. False (the image unchanged) if no CRS is set, or for an
-   * image whose direction matrix is not the identity (as SetFromImage).
+   * image SetFromImage refuses for its grid: a direction matrix that is not the identity, a
+   * spacing that is not positive and finite (VTK's rows run south to north), edges beyond
+   * the doubles.
    */
   bool AttachToImage(vtkImageData* image);
 

@@ -238,6 +238,30 @@ void TestErrors()
   AP_CHECK(!geo->AttachToImage(image));
   AP_CHECK(std::string(geo->GetErrorMessage()).find("north-up") != std::string::npos);
   AP_CHECK(!vtkApertureGeoreference::GetAttachedCRS(image));
+  // nor a spacing that is not positive and finite (attached until 2026-12-07: a y spacing of
+  // -10, numpy's north-up rows, gave a GeoTransform of a south-up grid, and a NaN one a NaN
+  // origin; the filters refused them only at their updates); as SetFromImage refuses them
+  image->SetDirectionMatrix(vtkNew<vtkMatrix3x3>());
+  const double spacings[][2] = { { 10.0, -10.0 }, { NAN, 10.0 }, { 10.0, 0.0 },
+    { -10.0, 10.0 } };
+  for (const auto& s : spacings)
+  {
+    image->SetSpacing(s[0], s[1], 1.0);
+    AP_CHECK(!geo->AttachToImage(image));
+    AP_CHECK_CONTAINS(geo->GetErrorMessage(), "the image spacing must be positive");
+    AP_CHECK(!vtkApertureGeoreference::GetAttachedCRS(image));
+    AP_CHECK(!geo->SetFromImage(image));
+    AP_CHECK_CONTAINS(geo->GetErrorMessage(), "the image spacing must be positive");
+  }
+  image->SetSpacing(10.0, -10.0, 1.0); // (what to do, said)
+  AP_CHECK(!geo->AttachToImage(image));
+  AP_CHECK_CONTAINS(geo->GetErrorMessage(), "(its y spacing is negative): VTK's rows run from "
+                                            "south to north; give them in that order");
+  image->SetSpacing(1e308, 1.0, 1.0);
+  AP_CHECK(!geo->AttachToImage(image));
+  AP_CHECK_CONTAINS(geo->GetErrorMessage(), "the image's west and east edges are not finite");
+  image->SetSpacing(10.0, 10.0, 1.0);
+  AP_CHECK(geo->AttachToImage(image) && geo->SetFromImage(image));
 
   // A grid of no cells given to SetGrid: its queries fail saying so (they answered with cells
   // of 0 m and bounds west of east, as successes, until 2026-12-06); cells lost to rounding
