@@ -459,7 +459,15 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
   }
   if (names.empty())
   {
-    vtkErrorMacro(<< "the image has no named point arrays to write to '" << path << "'");
+    bool unnamed = false; // numeric arrays, all without a name (a hand-made image's scalars)
+    for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+    {
+      unnamed = unnamed || pd->GetArray(a) != nullptr;
+    }
+    vtkErrorMacro(<< "the image has no named point arrays to write to '" << path << "'"
+                  << (unnamed ? " (a band is described by its array's name: name the array, "
+                                "such as 'Elevation')"
+                              : ""));
     return false;
   }
   bool anyDouble = false;

@@ -702,7 +702,9 @@ bool vtkApertureEXRWriter::ResolveChannels(vtkImageData* input, const std::strin
     }
     vtkErrorMacro(<< "the image has no " << (unnamed ? "named " : "")
                   << "numeric point arrays to write to '" << path << "'"
-                  << (unnamed ? " (a channel is named by its array)" : ""));
+                  << (unnamed ? " (a channel is named by its array: name the array, such as "
+                                "'Elevation')"
+                              : ""));
     return false;
   }
   for (size_t k = 0; k < channels.size(); ++k)

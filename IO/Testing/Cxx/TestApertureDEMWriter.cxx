@@ -880,6 +880,22 @@ void TestErrors()
     AP_CHECK(stat((tmp + "/missing.tif").c_str(), &sb) != 0); // nothing left behind
   }
   {
+    // a hand-made image's heights as its scalars, without a name (which the filters take as
+    // its Elevation): what to do, said (the name is the band's description)
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(3, 2, 1);
+    vtkNew<vtkFloatArray> heights;
+    heights->SetNumberOfValues(6);
+    heights->Fill(100.0f);
+    image->GetPointData()->SetScalars(heights);
+    vtkNew<vtkApertureDEMWriter> w;
+    w->SetInputData(image);
+    const std::string path = tmp + "/nameless.tif";
+    w->SetFileName(path.c_str());
+    ExpectError(w, "the image has no named point arrays to write to '" + path + "' (a band is "
+                   "described by its array's name: name the array, such as 'Elevation')");
+  }
+  {
     vtkNew<vtkApertureDEMWriter> w;
     w->SetInputData(MakeImage(true));
     w->SetFileName("/nonexistent-folder/x.tif");

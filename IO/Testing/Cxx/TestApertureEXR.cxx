@@ -1271,7 +1271,7 @@ void TestWriterErrors()
     nameless->Fill(1.0f);
     strings->GetPointData()->AddArray(nameless);
     ExpectWriterError(w, "the image has no named numeric point arrays to write to '" + tmp +
-        "/strings.exr' (a channel is named by its array)");
+        "/strings.exr' (a channel is named by its array: name the array, such as 'Elevation')");
   }
   {
     auto rotated = MakeImage(true);
