@@ -1035,6 +1035,29 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
     band = GDALGetOverview(band, d.Level);
   }
   GDALRasterBandH mask = d.UseMask ? GDALGetMaskBand(band) : nullptr;
+  // GDAL decompresses a block whole, whatever part of it is read: a compressed raster stored
+  // as one strip (as Pillow writes them) held 800 MB for a 100 x 100 window of a 20000^2 one,
+  // past MemoryLimit, until 2026-12-07 (an uncompressed strip GDAL splits into rows itself)
+  int blockX = 0, blockY = 0;
+  GDALGetBlockSize(band, &blockX, &blockY);
+  const double blockBytes = static_cast<double>(blockX) * blockY *
+    GDALGetDataTypeSizeBytes(GDALGetRasterDataType(band));
+  if (static_cast<double>(bytes) + blockBytes > static_cast<double>(limit))
+  {
+    vtkErrorMacro(<< "reading " << ncols << " x " << nrows << " cells of '" << this->FileName
+                  << "' needs " << vtkApertureHumanBytes(static_cast<double>(bytes))
+                  << " as float32 and " << vtkApertureHumanBytes(blockBytes)
+                  << " for one of its blocks of " << blockX << " x " << blockY
+                  << " cells, which GDAL reads whole, more than the "
+                  << vtkApertureHumanBytes(static_cast<double>(limit))
+                  << (this->MemoryLimit > 0 ? std::string(" MemoryLimit")
+                       : source != AP_MEMORY_MACHINE
+                         ? std::string(" of memory ") + vtkApertureUsableMemoryOwner(source)
+                         : std::string(" of memory on this machine"))
+                  << "; write it in tiles first (gdal_translate -co TILED=YES -co "
+                     "COMPRESS=DEFLATE)");
+    return 0;
+  }
 
   vtkNew<vtkFloatArray> elevation;
   vtkApertureAllocate(elevation, "Elevation", 1, static_cast<vtkIdType>(cells));

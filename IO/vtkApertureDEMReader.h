@@ -43,9 +43,10 @@
  *   edges no longer join (vtkApertureGeoreference::WrapsAround): a warning says so and names
  *   the dividing factors nearest.
  * - OverrideCRS: a CRS (WKT, "EPSG:xxxx", PROJ string) used instead of the file's.
- * - MemoryLimit: the most bytes one update may allocate for the output; 0 (default) means the
- *   memory the process may use: the machine's physical memory, or its control group's limit
- *   where lower (vtkApertureSkyVisibility::GetUsableMemory).
+ * - MemoryLimit: the most bytes one update may allocate for the output and one of the file's
+ *   blocks (which GDAL reads whole: a compressed raster stored as one strip is all one block);
+ *   0 (default) means the memory the process may use: the machine's physical memory, or its
+ *   control group's limit where lower (vtkApertureSkyVisibility::GetUsableMemory).
  * - MetresPerElevationUnit: metres per elevation unit, for a file whose unit is missing or
  *   wrong; 0 (default): the file's. A band without a unit in a projected CRS in feet warns
  *   (such DEMs' heights are often feet: read as metres, their slopes would be 3.28 times too
@@ -64,8 +65,8 @@
  * whose grid reaches beyond the range of doubles, no CRS (without OverrideCRS), a band scale of 0,
  * NaN or infinity or an offset of NaN or infinity, a scale and offset that take samples beyond the
  * float range, a negative, NaN or infinite MetresPerElevationUnit, fewer than 2 x 2 output cells, a
- * whole raster of nodata, an output larger than MemoryLimit, and an output the process cannot
- * allocate (out of memory, e.g. under `ulimit -v`).
+ * whole raster of nodata, an output (with a block of the file) larger than MemoryLimit, and an
+ * output the process cannot allocate (out of memory, e.g. under `ulimit -v`).
  * A warning GDAL gives while reading the samples (a truncated JPEG's "Premature end of JPEG
  * file", its missing rows filled with grey) says the values are damaged: the first is passed on
  * as a vtkWarning naming the file, and the output is made.

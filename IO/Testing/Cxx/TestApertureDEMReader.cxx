@@ -898,6 +898,31 @@ void TestBadInput()
   ExpectError(tmp + "/huge.vrt", "3.638 TiB");
   ExpectError(tmp + "/small.tif", "more than the 16 bytes MemoryLimit",
     [](vtkApertureDEMReader* r) { r->SetMemoryLimit(16); });
+  {
+    // GDAL decompresses a block whole: a window of a compressed raster stored as one strip
+    // (2000 x 1000 Int16 cells, 3.8 MiB) counts it (it held the whole strip past MemoryLimit
+    // until 2026-12-07); stored in 256 x 256 tiles it is read under the same limit
+    aptest::RasterSpec spec;
+    spec.nx = 2000;
+    spec.ny = 1000;
+    spec.type = GDT_Int16;
+    spec.options = { "COMPRESS=DEFLATE", "BLOCKYSIZE=1000" };
+    AP_CHECK(aptest::WriteRaster(tmp + "/one-strip.tif", spec));
+    const auto window = [](vtkApertureDEMReader* r) {
+      r->SetSubWindow(0, 0, 10, 10);
+      r->SetMemoryLimit(3 << 20);
+    };
+    ExpectError(tmp + "/one-strip.tif",
+      "reading 10 x 10 cells of '" + tmp + "/one-strip.tif' needs 400 bytes as float32 and "
+        "3.815 MiB for one of its blocks of 2000 x 1000 cells, which GDAL reads whole, more "
+        "than the 3.000 MiB MemoryLimit; write it in tiles first",
+      window);
+    spec.options = { "COMPRESS=DEFLATE", "TILED=YES" };
+    AP_CHECK(aptest::WriteRaster(tmp + "/tiled.tif", spec));
+    Read rd(tmp + "/tiled.tif");
+    window(rd.Reader);
+    AP_CHECK(rd.Update()->GetNumberOfPoints() == 100 && rd.Ok == 1);
+  }
   ExpectError(tmp + "/small.tif", "is not inside the 4 x 3 raster",
     [](vtkApertureDEMReader* r) { r->SetSubWindow(3, 0, 2, 1); });
   ExpectError("", "no file name was set");
