@@ -1000,6 +1000,18 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
   int source = AP_MEMORY_MACHINE;
   const vtkTypeInt64 limit =
     this->MemoryLimit > 0 ? this->MemoryLimit : vtkApertureUsableMemory(&source);
+  // ("the 1.000 GiB MemoryLimit", "... of memory on this machine")
+  std::string allowed = vtkApertureHumanBytes(static_cast<double>(limit));
+  if (this->MemoryLimit > 0)
+  {
+    allowed += " MemoryLimit";
+  }
+  else
+  {
+    allowed += source != AP_MEMORY_MACHINE
+      ? std::string(" of memory ") + vtkApertureUsableMemoryOwner(source)
+      : std::string(" of memory on this machine");
+  }
   if (ap_size_mul(ncols, nrows, &cells) != AP_OK ||
     ap_size_mul(cells, sizeof(float), &bytes) != AP_OK ||
     bytes > static_cast<size_t>(limit))
@@ -1007,12 +1019,7 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
     vtkErrorMacro(<< "reading " << ncols << " x " << nrows << " cells of '" << this->FileName
                   << "' needs "
                   << vtkApertureHumanBytes(static_cast<double>(ncols) * nrows * 4.0)
-                  << " as float32, more than the "
-                  << vtkApertureHumanBytes(static_cast<double>(limit))
-                  << (this->MemoryLimit > 0 ? std::string(" MemoryLimit")
-                       : source != AP_MEMORY_MACHINE
-                         ? std::string(" of memory ") + vtkApertureUsableMemoryOwner(source)
-                         : std::string(" of memory on this machine"))
+                  << " as float32, more than the " << allowed
                   << "; read a SubWindow, or use Decimation or an OverviewLevel");
     return 0;
   }
@@ -1048,12 +1055,7 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
                   << "' needs " << vtkApertureHumanBytes(static_cast<double>(bytes))
                   << " as float32 and " << vtkApertureHumanBytes(blockBytes)
                   << " for one of its blocks of " << blockX << " x " << blockY
-                  << " cells, which GDAL reads whole, more than the "
-                  << vtkApertureHumanBytes(static_cast<double>(limit))
-                  << (this->MemoryLimit > 0 ? std::string(" MemoryLimit")
-                       : source != AP_MEMORY_MACHINE
-                         ? std::string(" of memory ") + vtkApertureUsableMemoryOwner(source)
-                         : std::string(" of memory on this machine"))
+                  << " cells, which GDAL reads whole, more than the " << allowed
                   << "; write it in tiles first (gdal_translate -co TILED=YES -co "
                      "COMPRESS=DEFLATE)");
     return 0;
