@@ -1136,6 +1136,50 @@ class TestBake(unittest.TestCase):
             self.assertEqual(sorted(os.listdir(self.tmp)), before, what)
             self.assertLess(used - sent, 1.0, what)
 
+    def test_interrupt_keeps_earlier_outputs(self):
+        # An interrupt while the outputs are being written leaves each whole: the earlier file
+        # of its name as it was, or (if its writer had just finished) the new one; never a
+        # temporary file. The command removed the outputs it had begun, so the earlier files
+        # it had not replaced yet were deleted (the README promises that they stay), until
+        # 2026-12-07. Rough 512^2 terrain, 32 directions and every product, DEFLATE's slowest
+        # level (3.6 s of writing): at once (SIGTERM while the GeoTIFF's temporary file exists)
+        # and in 2 strips (--max-memory; once both temporary files exist, after the first).
+        import signal
+        import time
+        folder = self.path("interrupt-earlier")
+        os.makedirs(folder)
+        dem = rough_dem(os.path.join(folder, "dem.tif"), (512, 512), 13)
+        out, exr = os.path.join(folder, "out.tif"), os.path.join(folder, "out.exr")
+        for options, temporaries in (([], 1), (["--max-memory", "30M"], 2)):
+            status, _, err = run("bake", dem, out, "--exr", exr, "-q", "-d", 4)  # (the earlier)
+            self.assertEqual(status, 0, err)
+            earlier = {}
+            for path in (out, exr):
+                with open(path, "rb") as f:
+                    earlier[path] = f.read()
+            p = subprocess.Popen([APERTURE, "bake", dem, out, "--exr", exr, "-q", "-d", "32",
+                                  "--products", "all", "--compress-level", "9"] + options,
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                 preexec_fn=signals_at_default)
+            start = time.perf_counter()
+            while len([n for n in os.listdir(folder) if n.startswith(".")]) < temporaries:
+                self.assertLess(time.perf_counter() - start, 120, "no temporary file appeared")
+                self.assertIsNone(p.poll(), "the bake ended before it was interrupted")
+                time.sleep(0.002)
+            p.send_signal(signal.SIGTERM)
+            stdout, stderr = p.communicate(timeout=300)
+            self.assertEqual((p.returncode, stdout, stderr), (143, "", ""), options)
+            self.assertEqual(sorted(os.listdir(folder)), ["dem.tif", "out.exr", "out.tif"])
+            replaced = []
+            for path in (out, exr):
+                with open(path, "rb") as f:
+                    if f.read() != earlier[path]:
+                        replaced.append(path)
+            if out in replaced:  # (its writer finished before the signal: the new GeoTIFF)
+                self.assertEqual(len(bands(out)[0]), 9 + 32, options)
+            # (the EXR is written after the GeoTIFF at once, beside it in strips)
+            self.assertNotIn(exr, replaced, options)
+
     def test_ignored_signals_stay_ignored(self):
         # A bake started with SIGINT and SIGHUP ignored (`nohup aperture bake ... &` from a
         # script: a background job ignores Ctrl-C, nohup the terminal's closing) keeps them

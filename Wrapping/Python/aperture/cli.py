@@ -2058,11 +2058,12 @@ def _plan_bake(args, watcher, sky):
     return reader, window, read, tile * fits, whole
 
 
-def _write_strips(watcher, clip, window, extents, outputs, guard, started, computed=None):
+def _write_strips(watcher, clip, window, extents, outputs, guard, computed=None):
     """Update `clip` for each extent of `window` in turn, north first, and write it into every
     (writer, path) of `outputs` (their BeginStrips with the first, EndStrips after the last);
-    on an error or an interrupt (`guard`) the files begun are abandoned, the interrupt left to
-    `guard`, and an error's message names the other outputs it leaves whole or removes.
+    on an error or an interrupt (`guard`) the files begun are abandoned (an earlier file of the
+    name stays as it was), the interrupt left to `guard`, and an error's message names the
+    other outputs it leaves whole or removes.
     computed(k), if given, runs after strip k is computed, before it is written."""
     begun = []
     finished = []  # the paths written in full
@@ -2077,7 +2078,6 @@ def _write_strips(watcher, clip, window, extents, outputs, guard, started, compu
             for output, writing in outputs:
                 if output not in begun and output.BeginStrips(strip, window):
                     begun.append(output)
-                    started.append(writing)
                 if not output.WriteStrip(strip) and not guard.interrupted:
                     # a writer may keep a failure's reason (GDAL's: a full disk) for EndStrips,
                     # which reports it and removes the file
@@ -2270,70 +2270,68 @@ def _bake(args, products, progress):
             exr.AddMetadata("aperture:definition:" + name, definitions[name][1])
     outputs = [(writer, args.output)] + ([(exr, args.exr)] if exr else [])
     writers = [output for output, _ in outputs]
-    started = []  # the outputs begun: an interrupt removes them (a writer also removes its own)
-    try:
-        if rows:
-            # In strips, north first: the sky filter computes each (reading it and its halo)
-            # and every output writes it before the next; a clip makes the window the whole
-            # extent.
-            from vtkmodules.vtkImagingCore import vtkImageClip
-            clip = vtkImageClip()
-            clip.SetInputConnection(sky.GetOutputPort())
-            clip.SetOutputWholeExtent(window)
-            clip.ClipDataOff()
-            for output in writers:
-                for name in products:
-                    output.AddArrayName(name)
-            extents = [[window[0], window[1], max(window[2], top - rows + 1), top, 0, 0]
-                       for top in range(window[3], window[2] - 1, -rows)]
-            strips = len(extents)
-            done = [-1]  # strips started
-            sky.AddObserver("StartEvent", lambda obj, _: done.__setitem__(0, done[0] + 1))
-            if progress:  # (the writers' progress runs over the rows of the window)
-                steps = _bake_steps(progress, window, None, args, products)
-                steps.observe(sky, "sky", lambda p: (done[0] + p) / strips)
-                steps.observe(writer, "tif")
-                if exr:
-                    steps.observe(exr, "exr")
-                progress(0.0)
+    # An interrupt leaves each output whole: the new file when its writer had finished, else
+    # the earlier file of that name as it was (the writers write aside and rename; this removed
+    # the outputs begun, so an interrupted rewrite deleted the earlier files it had not yet
+    # replaced, until 2026-12-07)
+    if rows:
+        # In strips, north first: the sky filter computes each (reading it and its halo)
+        # and every output writes it before the next; a clip makes the window the whole
+        # extent.
+        from vtkmodules.vtkImagingCore import vtkImageClip
+        clip = vtkImageClip()
+        clip.SetInputConnection(sky.GetOutputPort())
+        clip.SetOutputWholeExtent(window)
+        clip.ClipDataOff()
+        for output in writers:
+            for name in products:
+                output.AddArrayName(name)
+        extents = [[window[0], window[1], max(window[2], top - rows + 1), top, 0, 0]
+                   for top in range(window[3], window[2] - 1, -rows)]
+        strips = len(extents)
+        done = [-1]  # strips started
+        sky.AddObserver("StartEvent", lambda obj, _: done.__setitem__(0, done[0] + 1))
+        if progress:  # (the writers' progress runs over the rows of the window)
+            steps = _bake_steps(progress, window, None, args, products)
+            steps.observe(sky, "sky", lambda p: (done[0] + p) / strips)
+            steps.observe(writer, "tif")
+            if exr:
+                steps.observe(exr, "exr")
+            progress(0.0)
+        sweep_start = time.perf_counter()
+        with _abort_on_interrupt(sky, *writers) as guard:
+            _write_strips(watcher, clip, window, extents, outputs, guard,
+                          computed=after_strip)
+        sweep_seconds = time.perf_counter() - sweep_start
+        nx, ny = _extent_size(window)
+    else:
+        if progress:
+            steps = _bake_steps(progress, window, read, args, products)
+            for algorithm, step in ((reader, "read"), (sky, "sky"), (writer, "tif"),
+                                    (exr, "exr")):
+                if algorithm:
+                    steps.observe(algorithm, step)
+            progress(0.0)
+        _read(watcher, reader, read)
+        with _abort_on_interrupt(sky, *writers):
             sweep_start = time.perf_counter()
-            with _abort_on_interrupt(sky, *writers) as guard:
-                _write_strips(watcher, clip, window, extents, outputs, guard, started,
-                              computed=after_strip)
+            # (the reader has run: the sky filter alone)
+            result = watcher.update(sky, "bake", extent=window)
             sweep_seconds = time.perf_counter() - sweep_start
-            nx, ny = _extent_size(window)
-        else:
-            if progress:
-                steps = _bake_steps(progress, window, read, args, products)
-                for algorithm, step in ((reader, "read"), (sky, "sky"), (writer, "tif"),
-                                        (exr, "exr")):
-                    if algorithm:
-                        steps.observe(algorithm, step)
-                progress(0.0)
-            _read(watcher, reader, read)
-            with _abort_on_interrupt(sky, *writers):
-                sweep_start = time.perf_counter()
-                # (the reader has run: the sky filter alone)
-                result = watcher.update(sky, "bake", extent=window)
-                sweep_seconds = time.perf_counter() - sweep_start
-                heights.append(_has_heights(result, window))
-                _digest_rows(digest, result, window)
-                writer.AddMetadata(DIGEST_KEY, DIGEST_TEXT % digest.hexdigest())
-                image = _product_image(result, products)
-                nx, ny, _ = image.GetDimensions()
-                for output, path in outputs:
-                    output.SetInputData(image)
-                    started.append(path)
-                    try:
-                        watcher.write(output, "writing %s" % path)
-                    except ApertureError as e:
-                        # (the writer removed its file; the ones before it are whole)
-                        raise _outputs_left(e, written=started[:-1]) from None
-    except KeyboardInterrupt:
-        for path in started:
-            if os.path.isfile(path):  # (never a device or a pipe: _check_outputs refused them)
-                os.remove(path)
-        raise
+            heights.append(_has_heights(result, window))
+            _digest_rows(digest, result, window)
+            writer.AddMetadata(DIGEST_KEY, DIGEST_TEXT % digest.hexdigest())
+            image = _product_image(result, products)
+            nx, ny, _ = image.GetDimensions()
+            finished = []
+            for output, path in outputs:
+                output.SetInputData(image)
+                try:
+                    watcher.write(output, "writing %s" % path)
+                except ApertureError as e:
+                    # (the writer removed its file; the ones before it are whole)
+                    raise _outputs_left(e, written=finished) from None
+                finished.append(path)
     if nodata and all(nodata):  # (a part of the DEM: a window with a radius; after_strip)
         _warn("every cell of the DEM read for --srcwin %s (the window and %s around it) is "
               "nodata, and so is every product" % (" ".join(map(str, args.srcwin or ())),
