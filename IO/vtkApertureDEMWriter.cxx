@@ -429,6 +429,11 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     vtkErrorMacro(<< "'" << path << "' is " << what << ", not a file a GeoTIFF can be written to");
     return false;
   }
+  if (vtkApertureOutputReadOnly(path))
+  {
+    vtkErrorMacro(<< "cannot write '" << path << "': the file exists and is read-only");
+    return false;
+  }
   if (!input || input->GetNumberOfPoints() == 0)
   {
     vtkErrorMacro(<< "no input image to write to '" << path << "'");

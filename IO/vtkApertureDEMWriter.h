@@ -37,7 +37,9 @@
  * GDAL would read them with the new file (a warning names one that cannot be).
  *
  * Errors (vtkErrorMacro, nothing left behind): no file name, a file name that names something
- * other than a file (a folder, a device such as /dev/null, a pipe: left as it is), an input
+ * other than a file (a folder, a device such as /dev/null, a pipe: left as it is), a file this
+ * process may not write (read-only: left as it is, though its folder would take the rename), an
+ * input
  * that is not 2-D, a grid no geotransform can say (a non-finite origin, a spacing that is not
  * positive and finite, edges beyond the range of doubles), a named array that does not exist
  * or is not numeric, a codec GDAL does not offer or one that cannot store floating-point

@@ -743,6 +743,11 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
     vtkErrorMacro(<< "'" << path << "' is " << what << ", not a file an EXR can be written to");
     return 0;
   }
+  if (vtkApertureOutputReadOnly(path))
+  {
+    vtkErrorMacro(<< "cannot write '" << path << "': the file exists and is read-only");
+    return 0;
+  }
   if (!input || input->GetNumberOfPoints() == 0 || whole[1] < whole[0] || whole[3] < whole[2])
   {
     vtkErrorMacro(<< "no input image to write to '" << path << "'");

@@ -74,6 +74,18 @@ inline std::string vtkApertureOutputTarget(const std::string& path)
   return path; // (a loop of links: the open says so)
 }
 
+/** Whether a regular file is at `path` (through symbolic links) that this process may not write
+ *  (access(2): its mode and owner; root may, as it may open one for writing): the writers,
+ *  which write aside and rename into place, replaced such a read-only file, which an open for
+ *  writing refuses, until 2026-12-07. */
+inline bool vtkApertureOutputReadOnly(const std::string& path)
+{
+  const std::string target = vtkApertureOutputTarget(path);
+  struct stat st;
+  return stat(target.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
+    access(target.c_str(), W_OK) != 0 && errno == EACCES;
+}
+
 /** The permission bits of the regular file at `path`, which a writer replacing it keeps (a
  *  file kept private, 0600, stayed so), or -1 when there is none. */
 inline int vtkApertureExistingMode(const std::string& path)

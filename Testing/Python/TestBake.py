@@ -1661,6 +1661,53 @@ class TestBake(unittest.TestCase):
         with open(locked) as f:
             self.assertEqual(f.read(), "keep")
 
+    def test_writers_keep_read_only_files(self):
+        # The writers write aside and rename into place, which a read-only file's folder
+        # allows: they replaced such a file, which an open for writing refuses (the command
+        # line refused it, the Python API did not), until 2026-12-07. A child without root's
+        # power over permissions writes the DEM with each writer over a read-only file, and
+        # through a symbolic link to one.
+        script = """if True:
+            import sys
+            import aperture
+            from vtkmodules.util.misc import calldata_type
+            from vtkmodules.util.vtkConstants import VTK_STRING
+
+            @calldata_type(VTK_STRING)
+            def on_error(obj, event, message):
+                print(message, file=sys.stderr)
+            reader = aperture.vtkApertureDEMReader()
+            reader.SetFileName(aperture.default_dem())
+            for writer in (aperture.vtkApertureDEMWriter(), aperture.vtkApertureEXRWriter()):
+                writer.AddObserver("ErrorEvent", on_error)
+                for path in sys.argv[1:]:
+                    writer.SetInputConnection(reader.GetOutputPort())
+                    writer.SetFileName(path)
+                    print(writer.Write(), flush=True)
+            """
+        folder = self.path("read-only-files")
+        os.makedirs(folder)
+        paths = []
+        for name in ("locked.tif", "locked.exr"):
+            paths.append(os.path.join(folder, name))
+            with open(paths[-1], "w") as f:
+                f.write("keep")
+            os.chmod(paths[-1], 0o444)
+        link = os.path.join(folder, "link.tif")
+        os.symlink("locked.tif", link)
+        p = subprocess.run(unprivileged(self, paths[0], "write") +
+                           [os.path.join(BUILD, "bin", "aperture-python"), "-c", script,
+                            paths[0], link, paths[1]],
+                           capture_output=True, text=True, timeout=300)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertEqual(p.stdout.split(), ["0"] * 6, p.stderr)
+        for path in paths + [link]:
+            self.assertIn("cannot write '%s': the file exists and is read-only" % path, p.stderr)
+        for path in paths:
+            with open(path) as f:
+                self.assertEqual(f.read(), "keep")
+        self.assertEqual(sorted(os.listdir(folder)), ["link.tif", "locked.exr", "locked.tif"])
+
     def test_threads_refused(self):
         # When the system refuses threads (here: each would get an 8 GiB stack, in 4 GiB of
         # address space), the sky filter says so instead of terminating the process
