@@ -1937,6 +1937,18 @@ class TestBake(unittest.TestCase):
             status, _, err = run("bake", *args)
             self.assertEqual(status, 1, err)
             self.assertIn("the output folder %s does not exist" % missing, err)
+        # through a symbolic link to a missing folder: before the bake (after it, naming the
+        # writer's temporary file, until 2026-12-07), and nothing made
+        dangling = self.path("dangling.tif")
+        os.symlink(os.path.join("no-such-folder", "o.tif"), dangling)
+        for args in ((dem, dangling), (dem, same, "--exr", dangling)):
+            status, stdout, err = run("bake", *args)
+            self.assertEqual((status, stdout), (1, ""), err)
+            self.assertEqual(err, "aperture: error: the output folder %s does not exist (%s is "
+                             "a symbolic link to %s)\n" % (missing, dangling,
+                                                           os.path.join(missing, "o.tif")))
+        self.assertFalse(os.path.exists(same))
+        os.remove(dangling)
         # the main output is always a GeoTIFF: an .exr name is refused, others get a warning
         self.assertIn("p.exr is written as a GeoTIFF; name it .tif and give --exr",
                       usage_error(self, "bake", run("bake", dem, self.path("p.exr"))))

@@ -224,9 +224,13 @@ def _check_outputs(outputs, inputs, probe=True):
     for name, path in outputs:
         if not path:
             continue
-        folder = os.path.dirname(os.path.abspath(path))
+        # the file the writers write: a symbolic link's target (a link to a missing folder
+        # failed only when the bake was written, naming a temporary file, until 2026-12-07)
+        target = os.path.realpath(path) if os.path.islink(path) else path
+        link = " (%s is a symbolic link to %s)" % (path, target) if target != path else ""
+        folder = os.path.dirname(os.path.abspath(target))
         if probe and not os.path.isdir(folder):
-            raise ApertureError("the output folder %s does not exist" % folder)
+            raise ApertureError("the output folder %s does not exist%s" % (folder, link))
         exists = os.path.exists(path)
         if exists and not os.path.isfile(path):
             # (the writers refuse these too: they replace their file, and remove it on failure)
@@ -244,13 +248,14 @@ def _check_outputs(outputs, inputs, probe=True):
                                 % (name, path))
         if probe and not exists:  # (made and removed at once)
             try:
-                os.close(os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
+                os.close(os.open(target, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
             except FileExistsError:
                 pass
             except OSError as e:
-                raise ApertureError("cannot write %s %s: %s" % (name, path, e.strerror or e))
+                raise ApertureError("cannot write %s %s: %s%s" % (name, path, e.strerror or e,
+                                                                  link))
             else:
-                os.remove(path)
+                os.remove(target)
         for other, other_path in taken:
             if _same_file(path, other_path):
                 raise ApertureError("%s %s is %s; choose another name" % (
