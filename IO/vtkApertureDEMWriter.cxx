@@ -12,6 +12,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -526,6 +527,15 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
                   << "finite and its origin finite to make a geotransform (spacing "
                   << spacing[0] << ", " << spacing[1] << "; origin " << origin[0] << ", "
                   << origin[1] << ")");
+    return false;
+  }
+  if (!hasCRS && input->GetDirectionMatrix() && !input->GetDirectionMatrix()->IsIdentity())
+  {
+    // (with a CRS SetFromImage refuses it; without one the file was written upside down, or
+    // rotated, with only the warning below, until 2026-12-07)
+    vtkErrorMacro(<< "cannot write '" << path << "': the image has a rotated or mirrored "
+                  << "direction matrix, which no geotransform of its origin and spacing "
+                  << "describes");
     return false;
   }
   if (hasCRS && !*geo->GetHorizontalCRS())

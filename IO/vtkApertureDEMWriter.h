@@ -39,13 +39,12 @@
  * Errors (vtkErrorMacro, nothing left behind): no file name, a file name that names something
  * other than a file (a folder, a device such as /dev/null, a pipe: left as it is), a file this
  * process may not write (read-only: left as it is, though its folder would take the rename), an
- * input
- * that is not 2-D, a grid no geotransform can say (a non-finite origin, a spacing that is not
- * positive and finite, edges beyond the range of doubles), a named array that does not exist
- * or is not numeric, a codec GDAL does not offer or one that cannot store floating-point
- * samples (JPEG, WEBP, the CCITT ones), a compression level outside the codec's range, or
- * GDAL failing to create or write (with "the disk is full" added when under 1 MiB is left
- * beside the partial file, which GDAL does not say).
+ * input that is not 2-D, a grid no geotransform can say (a non-finite origin, a spacing that is
+ * not positive and finite, edges beyond the range of doubles, a rotated or mirrored direction
+ * matrix), a named array that does not exist or is not numeric, a codec GDAL does not offer
+ * or one that cannot store floating-point samples (JPEG, WEBP, the CCITT ones), a compression
+ * level outside the codec's range, or GDAL failing to create or write (with "the disk is full"
+ * added when under 1 MiB is left beside the partial file, which GDAL does not say).
  * @sa vtkApertureDEMReader vtkApertureGeoreference
  */
 #ifndef vtkApertureDEMWriter_h

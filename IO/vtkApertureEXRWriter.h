@@ -66,8 +66,8 @@
  * Errors (vtkErrorMacro naming the file and the problem; nothing written): no file name, a file
  * name that names something other than a file (a folder, a device such as /dev/null, a pipe:
  * left as it is), a file this process may not write (read-only: left as it is), no input or an
- * input that is not 2-D, a named array that does not exist, is
- * not numeric or does not have one tuple per point, a color array that does not exist or has
+ * input that is not 2-D, a named array that does not exist, is not numeric or does not have
+ * one tuple per point, a color array that does not exist or has
  * neither 3 nor 4 components, two arrays giving the same channel name, nothing to write, a
  * `CRS` array with an unusable georeference (rotated direction matrix, non-positive spacing,
  * edges beyond the range of doubles, CRS GDAL cannot parse), and OpenEXR failing to create or

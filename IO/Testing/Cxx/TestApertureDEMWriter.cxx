@@ -896,6 +896,21 @@ void TestErrors()
                    "described by its array's name: name the array, such as 'Elevation')");
   }
   {
+    // without a CRS the grid still needs its geotransform: a mirrored direction matrix (north
+    // down) is refused, as with a CRS (it was written upside down, with a warning)
+    auto image = MakeImage(false);
+    const double flip[9] = { 1, 0, 0, 0, -1, 0, 0, 0, 1 };
+    image->SetDirectionMatrix(flip);
+    vtkNew<vtkApertureDEMWriter> w;
+    w->SetInputData(image);
+    const std::string path = tmp + "/flipped.tif";
+    w->SetFileName(path.c_str());
+    ExpectError(w, "cannot write '" + path + "': the image has a rotated or mirrored direction "
+                   "matrix, which no geotransform of its origin and spacing describes");
+    struct stat sb;
+    AP_CHECK(stat(path.c_str(), &sb) != 0);
+  }
+  {
     vtkNew<vtkApertureDEMWriter> w;
     w->SetInputData(MakeImage(true));
     w->SetFileName("/nonexistent-folder/x.tif");
