@@ -677,6 +677,12 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     GDALRasterBandH hb = GDALGetRasterBand(ds, static_cast<int>(b) + 1);
     GDALSetDescription(hb, d.Bands[b].Description.c_str());
     ok = GDALSetRasterNoDataValue(hb, d.NoData) == CE_None;
+    if (ok && d.Bands[b].ArrayName == "Elevation")
+    {
+      // (heights in metres, as the reader gives them: without the unit a DEM in a CRS in feet
+      // read back warned that its heights might be feet, until 2026-12-07)
+      ok = GDALSetRasterUnitType(hb, "metre") == CE_None;
+    }
     for (const auto& item : d.BandMetadata)
     {
       if (item.Array == d.Bands[b].ArrayName)
