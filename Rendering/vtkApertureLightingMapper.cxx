@@ -42,9 +42,11 @@ const double kDeg = kPi / 180.0;
 
 // The sun cap's angular radius as drawn, radians: the disc's radius times the user's scale, at
 // most 90 degrees (the shader and the CPU reference must use the same).
+// (a radius below the model's least, 1e-6 rad, is that: a point sun, as the shader drew it,
+// where the CPU reference failed naming no parameter until 2026-12-07)
 double DrawnSunRadius(double degrees, double scale)
 {
-  return std::min(90.0, degrees * scale) * kDeg;
+  return std::max(AP_LIGHT_MIN_SUN_RADIUS, std::min(90.0, degrees * scale) * kDeg);
 }
 
 void Insert(std::string& source, const char* tag, const char* code)
@@ -540,16 +542,30 @@ bool vtkApertureLightingMapper::ComputeReference(vtkPolyData* mesh, const double
     }
   }
 
-  // The arrays as contiguous float, as the GPU receives them.
+  // The arrays as contiguous float, as the GPU receives them; vectors of any finite length
+  // but 0 normalised, as the shader's normalize() does (ap_light takes unit vectors only, within
+  // 1e-4: normals 5e-4 long, as half floats round them, were nodata here and lit on the GPU,
+  // until 2026-12-07).
   const vtkIdType n = mesh->GetNumberOfPoints();
   auto floats = [n, mesh](const std::string& name, int comps) {
     std::vector<float> v(static_cast<size_t>(n) * comps);
     vtkDataArray* a = mesh->GetPointData()->GetArray(name.c_str());
     for (vtkIdType i = 0; i < n; ++i)
     {
+      float* t = v.data() + static_cast<size_t>(i) * comps;
+      double length2 = 0.0;
       for (int c = 0; c < comps; ++c)
       {
-        v[static_cast<size_t>(i) * comps + c] = static_cast<float>(a->GetComponent(i, c));
+        t[c] = static_cast<float>(a->GetComponent(i, c));
+        length2 += static_cast<double>(t[c]) * t[c];
+      }
+      if (comps == 3 && length2 > 0.0 && std::isfinite(length2))
+      {
+        const double length = std::sqrt(length2);
+        for (int c = 0; c < 3; ++c)
+        {
+          t[c] = static_cast<float>(t[c] / length);
+        }
       }
     }
     return v;

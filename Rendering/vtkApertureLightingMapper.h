@@ -37,7 +37,8 @@
  * vtkPolyDataMapper draws it, without the Exposure (documented fallback; never a shader compile
  * failure). So are an actor's edges over its surface (EdgeVisibility) and lines drawn wide or
  * as tubes, for which VTK adds a geometry shader that passes on only its own varyings. NaN
- * arrays (nodata) give black points. A setter given a value outside its documented range (a
+ * arrays, zero vectors and negative radii (nodata) give black points; normals and bent normals
+ * of any other finite length are normalised, and radii beyond pi/2 (+inf too) taken as pi/2. A setter given a value outside its documented range (a
  * zero or non-finite sun direction, say) reports an error (vtkErrorMacro) and keeps the
  * previous value, except Exposure, which is clamped to its range (NaN is refused); the mode
  * setters take an unknown value as their default (EXACT, CENTROID, PER_FRAGMENT). Vertex
@@ -104,8 +105,9 @@ public:
    * The sun: direction (towards it, any length > 0, normalised; in the mesh frame: see
    * vtkApertureSolarPosition::GetDirection), apparent angular radius in degrees, (0, 90]
    * (default 0.26667, SPA's mean), a scale widening it into a soft area light (finite, > 0;
-   * default 1; the widened radius is clamped to 90°), and its irradiance normal to the beam in
-   * W/m² per RGB channel (finite, >= 0; default 1000, 1000, 1000). Other values are refused.
+   * default 1; the widened radius is clamped to [1e-6 rad, 90°]: below, a point sun), and its
+   * irradiance normal to the beam in W/m² per RGB channel (finite, >= 0; default 1000, 1000,
+   * 1000). Other values are refused.
    */
   void SetSunDirection(double x, double y, double z);
   void SetSunDirection(const double d[3]) { this->SetSunDirection(d[0], d[1], d[2]); }

@@ -6,5 +6,8 @@
 #else
   apertureNormalVSOut = apertureNormalMC;
   apertureBentVSOut = apertureBentMC;
-  apertureRadiusVSOut = apertureRadiusMC;
+  // (clamped before it is interpolated: +inf, which the model takes as pi/2, interpolated to
+  // NaN, nodata, until 2026-12-07; NaN stays NaN)
+  apertureRadiusVSOut =
+    isnan(apertureRadiusMC) ? apertureRadiusMC : clamp(apertureRadiusMC, -1.0, 1.5707963267948966);
 #endif

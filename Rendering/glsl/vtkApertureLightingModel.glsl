@@ -199,11 +199,11 @@ vec3 apSkyLookup(vec3 b, float rp)
 }
 #endif
 
-// Nodata: NaN or zero vectors (a black point).
+// Nodata: NaN or zero vectors, a negative radius (a black point, as ap_light.h's).
 bool apValid(vec3 apN, vec3 apB, float apRp)
 {
-  return !(isnan(apRp) || isnan(apN.x) || isnan(apB.x)) && dot(apN, apN) > 0.0 &&
-    dot(apB, apB) > 0.0;
+  return !(isnan(apRp) || isnan(apN.x) || isnan(apB.x)) && apRp >= 0.0 &&
+    dot(apN, apN) > 0.0 && dot(apB, apB) > 0.0;
 }
 
 // The aperture's half-angle sine and cosine: (sin(rp/2), cos(rp/2)), rp in [0, pi/2].

@@ -179,6 +179,36 @@ class TestApertureLighting(Testing.vtkTest):
             self.assertLess(np.percentile(rel, 99), 1e-3, lambert)
             self.assertLess(rel.max(), 5e-3, lambert)
 
+    def testEdgeInputsAsTheReference(self):
+        # Inputs at the edges of the model's ranges, on open flat ground (sun at 40 deg, the
+        # closed form albedo/pi (Esun sin e + pi Lsky)), the GPU shading per pixel and per
+        # vertex and the CPU reference alike (until 2026-12-07: an aperture radius of +inf,
+        # which the model takes as pi/2, interpolated to NaN per pixel, black; normals 5e-4
+        # too long, as half floats round unit vectors, were nodata, NaN, in the reference; a
+        # sun radius under 1e-6 rad failed the reference naming no parameter).
+        from vtkmodules.vtkCommonCore import vtkDoubleArray
+        e = math.radians(40.0)
+        expected = [0.5 / math.pi * (es * math.sin(e) + math.pi * ls) for es, ls in
+                    zip(ESUN, LSKY)]
+        long_up = (0.0, 0.0, 1.0005)  # |v|^2 - 1 = 1e-3
+        for name, mesh, scale in (("+inf radius", grid_mesh(UP, UP, math.inf), 1.0),
+                                  ("long normals", grid_mesh(long_up, long_up, math.pi / 2), 1.0),
+                                  ("point sun", grid_mesh(UP, UP, math.pi / 2), 1e-4)):
+            s = linear_scene(mesh, exposure=0.0)
+            s.mapper.SetSunDirection(sun_dir(200.0, 40.0))
+            s.mapper.SetSunScale(scale)
+            cpu = vtkDoubleArray()
+            self.assertTrue(s.mapper.ComputeReference(mesh, (0.5, 0.5, 0.5), cpu, None), name)
+            cpu = vtk_to_numpy(cpu).reshape(N, N, 3)
+            for frequency in (s.mapper.PER_FRAGMENT, s.mapper.PER_VERTEX):
+                s.mapper.SetShadingFrequency(frequency)
+                image = aperture.vtkApertureLinearCapture().Capture(s.renderer)
+                gpu = vtk_to_numpy(image.GetPointData().GetArray("Radiance")).reshape(N, N, 4)
+                for c in range(3):
+                    for got in (gpu[5:-5, 5:-5, c], cpu[5:-5, 5:-5, c]):
+                        self.assertLess(np.abs(got / expected[c] - 1.0).max(), 1e-4,
+                                        (name, frequency, c, got.min(), expected[c]))
+
     def testPit(self):
         rp = math.radians(20.0)
         pit = linear_scene(grid_mesh(UP, UP, rp), exposure=-5.0)
