@@ -27,6 +27,22 @@ void TooLarge(vtkApertureLinearCapture* self, int w, int h, double bytes)
                                 << " GiB): VTK's pixel buffers hold less than 4 GiB; capture a "
                                    "smaller viewport");
 }
+
+// Whether the window's OpenGL driver takes textures of w x h pixels (its largest, on a side,
+// into `largest`; the window's context made first if it has none yet); true when it cannot be
+// asked. A larger viewport was captured as zeros, with VTK's 40 lines on an incomplete
+// framebuffer, until 2026-12-07.
+bool TextureFits(vtkOpenGLRenderWindow* window, int w, int h, int& largest)
+{
+  window->MakeCurrent();
+  if (!window->IsCurrent())
+  {
+    window->Initialize(); // (as its first Render would)
+    window->MakeCurrent();
+  }
+  largest = window->IsCurrent() ? vtkTextureObject::GetMaximumTextureSize(window) : -1;
+  return largest <= 0 || (w <= largest && h <= largest);
+}
 }
 
 //------------------------------------------------------------------------------
@@ -56,6 +72,14 @@ vtkImageData* vtkApertureLinearCapture::Capture(vtkRenderer* renderer)
   {
     TooLarge(this, viewport[0], viewport[1], asked);
     return nullptr; // (before rendering at that size)
+  }
+  int largest = 0;
+  if (!TextureFits(window, viewport[0], viewport[1], largest))
+  {
+    vtkErrorMacro(<< "the renderer's viewport is " << viewport[0] << " x " << viewport[1]
+                  << " pixels, beyond the " << largest << " pixels on a side of the OpenGL "
+                  << "driver's textures: capture a smaller viewport");
+    return nullptr;
   }
   vtkSmartPointer<vtkRenderPass> previous = gl->GetPass();
   vtkNew<vtkRenderStepsPass> steps;

@@ -20,6 +20,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkOpenGLRenderWindow.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -28,6 +29,7 @@
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkTestErrorObserver.h"
+#include "vtkTextureObject.h"
 
 #include <algorithm>
 #include <array>
@@ -589,6 +591,27 @@ void TestBadInput()
     AP_CHECK_CONTAINS(captureErrors->GetErrorMessage(), "of the window): nothing to capture");
   }
   w.Renderer->SetViewport(0.0, 0.0, 1.0, 1.0);
+  // a viewport wider than the driver's textures (llvmpipe: 16384 on a side), of few bytes: said,
+  // before anything is rendered (captured as zeros, after VTK's 40 lines on an incomplete
+  // framebuffer, until 2026-12-07)
+  w.Window->MakeCurrent();
+  const int largest =
+    vtkTextureObject::GetMaximumTextureSize(vtkOpenGLRenderWindow::SafeDownCast(w.Window));
+  AP_CHECK(largest > 0);
+  captureErrors->Clear();
+  w.Window->SetSize(largest + 1, 2);
+  AP_CHECK(capture->Capture(w.Renderer) == nullptr);
+  AP_CHECK_CONTAINS(captureErrors->GetErrorMessage(),
+    "the renderer's viewport is " + std::to_string(largest + 1) + " x 2 pixels, beyond the " +
+      std::to_string(largest) + " pixels on a side of the OpenGL driver's textures");
+  w.Window->SetSize(largest, 2); // (as large as it takes: captured)
+  vtkImageData* wide = capture->Capture(w.Renderer);
+  AP_CHECK(wide && wide->GetDimensions()[0] == largest);
+  if (wide)
+  {
+    wide->Delete();
+  }
+  w.Window->SetSize(64, 64);
 }
 } // namespace
 

@@ -88,6 +88,22 @@ class TestBlankPicture(Testing.vtkTest):
         scene.grab(window((1.0, 1.0, 1.0)), on_warning=warnings.append)
         self.assertEqual((self.calls, warnings), ([4], []))
 
+    def testPictureBeyondTwoGiB(self):
+        # A picture of 2 GiB or more of RGB is refused before anything is rendered: VTK's
+        # window-to-image filter counts its bytes in 32 bits, and 27000 x 27000 pixels aborted
+        # the process (std::bad_alloc) until 2026-12-07; one row less than 2 GiB is drawn (not
+        # here: half a minute of llvmpipe drawing nothing beyond its 16384)
+        self.blank_when(lambda w: False)
+        w = window((1.0, 1.0, 1.0))
+        for size in ((27000, 27000), (32768, 21846), (2 ** 31 // 3 + 1, 1)):
+            w.SetSize(*size)
+            with self.assertRaises(RuntimeError) as e:
+                scene.write_png(w, "never.png")
+            self.assertEqual(str(e.exception), "a picture of %d x %d pixels is 2 GiB or more of "
+                             "RGB, which VTK cannot read back: render a smaller one" % size)
+        self.assertEqual(self.calls, [])
+        self.assertLess(3 * 32768 * 21845, 2 ** 31)
+
     def testUnlitViewFillingTerrain(self):
         # Terrain unlit (a night frame of a time-lapse) filling the view over a white
         # background is a black picture the driver drew: the background, drawn alone, shows

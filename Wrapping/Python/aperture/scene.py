@@ -465,12 +465,17 @@ def grab(window, on_warning=None):
     some 11600 x 11600 pixels at the default 8 samples, which VTK lowers to 4) is rendered
     again without multisampling, which the window keeps, and on_warning(message) is told.
     A blank picture whose background the driver draws alone is what was drawn (unlit terrain
-    filling the view). RuntimeError when nothing is drawn even without multisampling."""
+    filling the view). RuntimeError when nothing is drawn even without multisampling, and
+    for a picture of 2 GiB or more (VTK's vtkWindowToImageFilter counts its bytes in 32 bits:
+    27000 x 27000 pixels aborted the process, std::bad_alloc, until 2026-12-07)."""
+    width, height = window.GetSize()
+    if 3 * width * height >= 2 ** 31:
+        raise RuntimeError("a picture of %d x %d pixels is 2 GiB or more of RGB, which VTK "
+                           "cannot read back: render a smaller one" % (width, height))
     image = _render_pixels(window)
     if not _blank(window, image) or _background_drawn(window):
         return image
     samples = window.GetMultiSamples()
-    width, height = window.GetSize()
     if samples > 0:
         window.SetMultiSamples(0)
         image = _render_pixels(window)
