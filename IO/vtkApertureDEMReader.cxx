@@ -443,6 +443,7 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
   this->HasNoDataValue = false;
   this->NoDataValue = 0.0;
   this->SouthUp = false;
+  this->BlockBytes = 0.0;
   std::string error, openWarning;
   DatasetHandle ds;
   if (!Internals::Open(this->FileName, ds, error, &openWarning))
@@ -659,6 +660,10 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
     }
     level = GDALGetOverview(base, d.Level);
   }
+  int blockX = 0, blockY = 0;
+  GDALGetBlockSize(level, &blockX, &blockY);
+  this->BlockBytes = static_cast<double>(blockX) * blockY *
+    GDALGetDataTypeSizeBytes(GDALGetRasterDataType(level));
   const int levelX = GDALGetRasterBandXSize(level), levelY = GDALGetRasterBandYSize(level);
   const double sx = static_cast<double>(this->RasterSize[0]) / levelX;
   const double sy = static_cast<double>(this->RasterSize[1]) / levelY;
@@ -1269,6 +1274,7 @@ void vtkApertureDEMReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "HasNoDataValue: " << this->HasNoDataValue << "\n";
   os << indent << "NoDataValue: " << this->NoDataValue << "\n";
   os << indent << "SouthUp: " << this->SouthUp << "\n";
+  os << indent << "BlockBytes: " << this->BlockBytes << "\n";
   os << indent << "ElevationUnitRead: " << this->ElevationUnitRead << " ("
      << this->Impl->UnitSource << ")\n";
 }

@@ -178,7 +178,9 @@ public:
    *  size in full-resolution pixels, band count, the band read, its nodata value, and whether
    *  the file is south-up (positive pixel height: its first row is its southern one; the
    *  output is north-up either way) ("", 0 and false while no file has been read, or when the
-   *  last one could not be opened). */
+   *  last one could not be opened). BlockBytes: the bytes of one block of the band (or
+   *  overview) read, which GDAL decompresses whole and MemoryLimit counts beside the output
+   *  (a caller reading in strips under a limit leaves it that room). */
   const char* GetDriverName();
   vtkGetVector2Macro(RasterSize, int);
   vtkGetMacro(NumberOfBands, int);
@@ -186,6 +188,7 @@ public:
   vtkGetMacro(HasNoDataValue, bool);
   vtkGetMacro(NoDataValue, double);
   vtkGetMacro(SouthUp, bool);
+  vtkGetMacro(BlockBytes, double);
   ///@}
 
   ///@{
@@ -230,6 +233,7 @@ protected:
   bool HasNoDataValue;
   double NoDataValue;
   bool SouthUp;
+  double BlockBytes = 0.0;
   double ElevationUnitRead;
 
 private:

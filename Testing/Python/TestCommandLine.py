@@ -33,8 +33,9 @@ def run(*args, env=None):
 
 
 def make_raster(path, rows, gt, srs="EPSG:32611", nodata=None, driver="GTiff", bands=1,
-                gcps=None):
-    """Write `rows` (a 2-D array, first row = first file row) with GDAL."""
+                gcps=None, options=()):
+    """Write `rows` (a 2-D array, first row = first file row) with GDAL (`options`: the
+    driver's creation options)."""
     rows = np.asarray(rows, dtype=np.float64)
     ny, nx = rows.shape
     mem = gdal.GetDriverByName("MEM").Create("", nx, ny, bands, gdal.GDT_Float32)
@@ -52,7 +53,7 @@ def make_raster(path, rows, gt, srs="EPSG:32611", nodata=None, driver="GTiff", b
         if nodata is not None:
             band.SetNoDataValue(nodata)
         band.WriteArray(rows + 1000.0 * (b - 1))
-    out = gdal.GetDriverByName(driver).CreateCopy(path, mem)
+    out = gdal.GetDriverByName(driver).CreateCopy(path, mem, options=list(options))
     out.FlushCache()
     out = None
     mem = None
@@ -953,15 +954,18 @@ class TestBadInput(CommandLineTest):
         self.assertEqual((d["elevation_range"], d["nodata_count"]), ([1.0, 4.0], 16500 ** 2 - 8))
         # Strips of one row up to the whole DEM give the same facts, for cells with data in
         # some strips and none in others (the nodata rows at the top, and in the middle).
+        # --max-memory holds a strip and a block of the file (GDAL reads a block whole): here
+        # blocks of one row (1200 bytes), as the strips.
         rows = np.full((9, 300), -9999.0)
         rows[4, 7], rows[4, 8], rows[6, 299], rows[8, 0] = 17.5, -3.25, 12.0, float("nan")
+        one_row = ["BLOCKYSIZE=1"]
         p = make_raster(self.path("strips.tif"), rows, (500000, 30, 0, 4000000, 0, -30),
-                        nodata=-9999)
+                        nodata=-9999, options=one_row)
         whole, err = self.info(p)
         self.assertEqual(err, "")
         self.assertEqual((whole["elevation_range"], whole["nodata_count"]),
                          ([-3.25, 17.5], 9 * 300 - 3))
-        for limit in ("1.2K", "3K", "5K", "100K"):  # (1200 bytes a row: 1, 2, 4 rows, all)
+        for limit in ("2.4K", "3.6K", "6K", "100K"):  # (a block, then 1, 2, 4 rows, all)
             with self.subTest(limit=limit):
                 d, err = self.info(p, "--max-memory", limit)
                 self.assertEqual((d, err), (whole, ""))
@@ -970,16 +974,17 @@ class TestBadInput(CommandLineTest):
                           "--max-memory 1.000 KiB" % p, "info", p, "--max-memory", "1K")
         # every cell nodata, read at once or in strips: described so
         empty = make_raster(self.path("strips-empty.tif"), np.full((9, 300), -9999.0),
-                            (500000, 30, 0, 4000000, 0, -30), nodata=-9999)
-        for limit in ([], ["--max-memory", "2K"]):
+                            (500000, 30, 0, 4000000, 0, -30), nodata=-9999, options=one_row)
+        for limit in ([], ["--max-memory", "2.4K"]):
             d, err = self.info(empty, *limit)
             self.assertEqual((d["elevation_range"], d["nodata_count"], err), (None, 2700, ""))
         # a window of nodata in a file with data: the window's, read at once or in strips
         coast = np.full((9, 300), 12.5)
         coast[:, :100] = -9999.0
         coast_path = make_raster(self.path("strips-coast.tif"), coast,
-                                 (500000, 30, 0, 4000000, 0, -30), nodata=-9999)
-        for limit in ([], ["--max-memory", "200"]):
+                                 (500000, 30, 0, 4000000, 0, -30), nodata=-9999,
+                                 options=one_row)
+        for limit in ([], ["--max-memory", "1500"]):  # (a block, and strips of 7 rows)
             d, err = self.info(coast_path, "--srcwin", 0, 0, 10, 9, *limit)
             self.assertEqual((d["size"], d["elevation_range"], d["nodata_count"], err),
                              ([10, 9], None, 90, ""))
@@ -996,12 +1001,14 @@ class TestBadInput(CommandLineTest):
         # than one strip (as gdalinfo -stats); no note below 1 GiB.
         from terminal import run_with_terminal_stderr
         rows = np.arange(40 * 300, dtype=float).reshape(40, 300) / 2  # (heights of the Earth)
-        p = make_raster(self.path("progress.tif"), rows, (500000, 30, 0, 4000000, 0, -30))
+        # (blocks of a row, 1200 bytes: --max-memory holds one and strips of 2 rows)
+        p = make_raster(self.path("progress.tif"), rows, (500000, 30, 0, 4000000, 0, -30),
+                        options=["BLOCKYSIZE=1"])
         # -q silences it, as gdaldem's (added 2026-12-06; the description is printed all the
         # same)
-        for limit, expected in ((["--max-memory", "3K"],
+        for limit, expected in ((["--max-memory", "3.6K"],
                                  "0...10...20...30...40...50...60...70...80...90...100 - "
-                                 "done.\r\n"), ([], ""), (["--max-memory", "3K", "-q"], "")):
+                                 "done.\r\n"), ([], ""), (["--max-memory", "3.6K", "-q"], "")):
             r, seen = run_with_terminal_stderr([APERTURE, "info", "--json", p] + limit,
                                                timeout=120)
             self.assertEqual(r.returncode, 0)

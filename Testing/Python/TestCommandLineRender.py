@@ -973,7 +973,7 @@ class TestCommandLineRender(unittest.TestCase):
                     ("feet.tif",
                      lambda ds: ds.SetMetadataItem("SOURCE_ELEVATION_UNIT", "0.3048 m (--zfactor)"),
                      "was baked from elevations in units of 0.3048 m (--zfactor); the DEM is read "
-                     "in units of 1 m (none in the file: metres): render with the bake's "
+                     "in units of 1 m (the band's unit 'metre'): render with the bake's "
                      "--zfactor")):
                 other = os.path.join(tmp, name)
                 ds = gdal.GetDriverByName("GTiff").CreateCopy(other, gdal.Open(baked))

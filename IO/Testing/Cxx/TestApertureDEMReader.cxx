@@ -922,6 +922,10 @@ void TestBadInput()
     Read rd(tmp + "/tiled.tif");
     window(rd.Reader);
     AP_CHECK(rd.Update()->GetNumberOfPoints() == 100 && rd.Ok == 1);
+    AP_CHECK(rd.Reader->GetBlockBytes() == 256.0 * 256.0 * 2.0); // (what a caller leaves room for)
+    rd.Reader->SetFileName((tmp + "/one-strip.tif").c_str());
+    rd.Reader->UpdateInformation();
+    AP_CHECK(rd.Reader->GetBlockBytes() == 2000.0 * 1000.0 * 2.0);
   }
   ExpectError(tmp + "/small.tif", "is not inside the 4 x 3 raster",
     [](vtkApertureDEMReader* r) { r->SetSubWindow(3, 0, 2, 1); });

@@ -628,7 +628,10 @@ def cmd_info(args):
         reader.SetMemoryLimit(args.max_memory)  # (a row larger than it is refused by name)
     facts, geo, whole = describe(reader, watcher)
     if not args.no_stats:
-        strip_bytes = args.max_memory or _INFO_STRIP_BYTES
+        # (--max-memory holds a strip and a block of the file, which GDAL reads whole: strips
+        # of all of it were refused beside a block until the reader counted it)
+        strip_bytes = (max(1, int(args.max_memory - reader.GetBlockBytes())) if args.max_memory
+                       else _INFO_STRIP_BYTES)
         nx, ny = facts["size"]
         size = 4.0 * nx * ny  # (bytes as float32)
         progress = None
