@@ -19,6 +19,36 @@ run("configure downstream" "${CMAKE_COMMAND}" -S "${APERTURE_SOURCE_DIR}/Testing
 run("build downstream" "${CMAKE_COMMAND}" --build "${WORK_DIR}/build")
 run("run downstream" "${WORK_DIR}/build/downstream")
 
+# The installed libraries and modules look for libraries inside the prefix only (the
+# libraries' $ORIGIN/../../.. had them load VTK and GDAL from two folders above the prefix,
+# under /tmp here, before the system's, until 2026-12-07)
+file(GLOB_RECURSE elves "${prefix}/*.so" "${prefix}/*.so.*")
+foreach (elf IN LISTS elves)
+  file(READ_ELF "${elf}" RUNPATH runpath)
+  get_filename_component(origin "${elf}" DIRECTORY)
+  string(REPLACE ":" ";" runpath "${runpath}")
+  foreach (entry IN LISTS runpath)
+    string(REPLACE "$ORIGIN" "${origin}" where "${entry}")
+    get_filename_component(where "${where}" ABSOLUTE)
+    string(FIND "${where}/" "${prefix}/" at)
+    if (NOT at EQUAL 0)
+      message(FATAL_ERROR "${elf} looks for libraries in ${where} (RUNPATH ${entry}), outside "
+        "the prefix ${prefix}")
+    endif ()
+  endforeach ()
+endforeach ()
+
+# A component it does not have is named (check_required_components said only that Aperture
+# was not found, until 2026-12-07)
+file(WRITE "${WORK_DIR}/misspelt/CMakeLists.txt"
+  "cmake_minimum_required(VERSION 3.16)\nproject(misspelt C CXX)\n"
+  "find_package(Aperture REQUIRED COMPONENTS Filter IO)\n")
+execute_process(COMMAND "${CMAKE_COMMAND}" -S "${WORK_DIR}/misspelt" -B "${WORK_DIR}/misspelt/b"
+  "-DCMAKE_PREFIX_PATH=${prefix}" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if (rc EQUAL 0 OR NOT err MATCHES "Aperture has no component Filter;[ \n]+its[ \n]+components")
+  message(FATAL_ERROR "find_package(Aperture COMPONENTS Filter) (${rc}):\n${err}")
+endif ()
+
 if (WRAP_PYTHON)
   # The installed package imports with only PYTHONPATH pointing at the prefix (nothing from the
   # build tree), and the installed launcher needs no environment at all.
@@ -77,16 +107,28 @@ function(uninstall)
   run("uninstall" "${CMAKE_COMMAND}" -E env ${ARGN} "${CMAKE_COMMAND}"
     "-DMANIFEST=${manifest_path}" -P "${APERTURE_SOURCE_DIR}/Utilities/Uninstall.cmake")
 endfunction()
-function(check_nothing_left root)
+# (no file, and no folder but the prefix's own top ones, bin, lib, share, and the shared
+# lib/pythonX.Y/dist-packages and share/doc: lib/cmake and lib/vtk/hierarchy were left empty
+# until 2026-12-07)
+function(check_nothing_left root install_prefix)
   file(GLOB_RECURSE left LIST_DIRECTORIES true "${root}/*")
+  string(LENGTH "${install_prefix}/" skip)
   foreach (path IN LISTS left)
-    if (NOT IS_DIRECTORY "${path}" OR path MATCHES "/[Aa]perture(/|$)")
+    string(FIND "${path}/" "${install_prefix}/" at)
+    set(relative "")
+    if (at EQUAL 0) # (else a folder on the stage's way to the prefix)
+      string(SUBSTRING "${path}/" ${skip} -1 relative)
+      string(REGEX REPLACE "/$" "" relative "${relative}")
+    endif ()
+    if (NOT IS_DIRECTORY "${path}" OR path MATCHES "/[Aa]perture(/|$)" OR
+        (relative MATCHES "/" AND NOT relative MATCHES
+          "^(lib(64)?/python[0-9.]+(/(dist|site)-packages)?|share/doc)$"))
       message(FATAL_ERROR "the uninstall left ${path}")
     endif ()
   endforeach ()
 endfunction()
 uninstall()
-check_nothing_left("${prefix}")
+check_nothing_left("${prefix}" "${prefix}")
 if (WRAP_PYTHON)
   run("no package after the uninstall" "${CMAKE_COMMAND}" -E env
     "PYTHONPATH=${prefix}/${PYTHON_DESTINATION}" "${PYTHON}" -c
@@ -102,8 +144,16 @@ foreach (f IN LISTS manifest)
   if (f MATCHES "^${stage}/" OR NOT EXISTS "${stage}${f}")
     message(FATAL_ERROR "the staged install's manifest names ${f}")
   endif ()
+  # (its byte code names the files where they will be: the stage's path was in every .pyc
+  # until 2026-12-07)
+  if (f MATCHES "[.]pyc$")
+    file(STRINGS "${stage}${f}" staged REGEX "${stage}")
+    if (staged)
+      message(FATAL_ERROR "${stage}${f} names the stage: ${staged}")
+    endif ()
+  endif ()
 endforeach ()
 uninstall("DESTDIR=${stage}")
-check_nothing_left("${stage}")
+check_nothing_left("${stage}" "${stage}${WORK_DIR}/usr")
 list(LENGTH manifest count)
 message(STATUS "install_manifest.txt names all ${count} files installed; uninstalled: ok")
