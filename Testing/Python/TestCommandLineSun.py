@@ -516,6 +516,13 @@ class CommandLineSunTest(unittest.TestCase):
             lon, lat, _ = to_wgs.TransformPoint(x0 + 35 * cell, y0 - 50 * cell)
             self.assertAlmostEqual(r["latitude_deg"], lat, delta=1e-7)
             self.assertAlmostEqual(r["longitude_deg"], lon, delta=1e-7)
+            # (and the text says the place is the window's centre: it said the file's until
+            # 2026-12-07)
+            status, out, err = run(*at, "--dem", path, "--srs", "EPSG:32633", "--srcwin", 30,
+                                   40, 10, 20)
+            self.assertEqual(status, 0, err)
+            self.assertIn("Place:       latitude %.6f, longitude %.6f, height 300.0 m (centre of "
+                          "--srcwin 30 40 10 20 of %s)" % (lat, lon, path), out)
         self.assertIn("--band, --zfactor read the DEM: give one with --dem",
                       self.usage_error_of(*at, "--lat", 60, "--lon", 18, "--band", 2,
                                           "--zfactor", 1))

@@ -2633,7 +2633,11 @@ def cmd_sun(args):
         if args.json:
             print(json.dumps(record, indent=2))
         else:
-            _print_sun(record, args.dem, _day_order_note(sun, record), not args.no_refraction)
+            # (the place is the centre of what is read: of a --srcwin, not of the file, which
+            # the label named until 2026-12-07)
+            dem = args.dem and ("--srcwin %d %d %d %d of %s" % (*args.srcwin, args.dem)
+                                if args.srcwin else args.dem)
+            _print_sun(record, dem, _day_order_note(sun, record), not args.no_refraction)
         return 0
 
     # A time series from --at: every --step minutes before --days days have passed (at least
