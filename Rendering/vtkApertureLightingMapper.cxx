@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <vector>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -542,10 +543,11 @@ bool vtkApertureLightingMapper::ComputeReference(vtkPolyData* mesh, const double
     }
   }
 
-  // The arrays as contiguous float, as the GPU receives them; vectors of any finite length
-  // but 0 normalised, as the shader's normalize() does (ap_light takes unit vectors only, within
-  // 1e-4: normals 5e-4 long, as half floats round them, were nodata here and lit on the GPU,
-  // until 2026-12-07).
+  // The arrays as contiguous float, as the GPU receives them; vectors normalised as the
+  // shader's normalize() does where its apValid takes them (their squared length in float a
+  // normal finite number below 1e38), else NaN, nodata, as it draws them (ap_light takes unit
+  // vectors only, within 1e-4: normals 5e-4 long, as half floats round them, were nodata here
+  // and lit on the GPU, until 2026-12-07).
   const vtkIdType n = mesh->GetNumberOfPoints();
   auto floats = [n, mesh](const std::string& name, int comps) {
     std::vector<float> v(static_cast<size_t>(n) * comps);
@@ -553,18 +555,19 @@ bool vtkApertureLightingMapper::ComputeReference(vtkPolyData* mesh, const double
     for (vtkIdType i = 0; i < n; ++i)
     {
       float* t = v.data() + static_cast<size_t>(i) * comps;
-      double length2 = 0.0;
+      float length2 = 0.0f;
       for (int c = 0; c < comps; ++c)
       {
         t[c] = static_cast<float>(a->GetComponent(i, c));
-        length2 += static_cast<double>(t[c]) * t[c];
+        length2 += t[c] * t[c];
       }
-      if (comps == 3 && length2 > 0.0 && std::isfinite(length2))
+      if (comps == 3)
       {
-        const double length = std::sqrt(length2);
+        const bool usable = length2 >= std::numeric_limits<float>::min() && length2 < 1e38f;
+        const float length = std::sqrt(length2);
         for (int c = 0; c < 3; ++c)
         {
-          t[c] = static_cast<float>(t[c] / length);
+          t[c] = usable ? t[c] / length : std::numeric_limits<float>::quiet_NaN();
         }
       }
     }

@@ -6,8 +6,9 @@
 #else
   apertureNormalVSOut = apertureNormalMC;
   apertureBentVSOut = apertureBentMC;
-  // (clamped before it is interpolated: +inf, which the model takes as pi/2, interpolated to
-  // NaN, nodata, until 2026-12-07; NaN stays NaN)
+  // (kept within a cap's [0, pi] (-1 for a negative, nodata) before it is interpolated: +inf,
+  // which the model takes as pi/2, interpolated to NaN, nodata, until 2026-12-07; radii of a
+  // cap interpolate as they are; NaN stays NaN)
   apertureRadiusVSOut =
-    isnan(apertureRadiusMC) ? apertureRadiusMC : clamp(apertureRadiusMC, -1.0, 1.5707963267948966);
+    isnan(apertureRadiusMC) ? apertureRadiusMC : clamp(apertureRadiusMC, -1.0, 3.141592653589793);
 #endif

@@ -199,11 +199,18 @@ vec3 apSkyLookup(vec3 b, float rp)
 }
 #endif
 
-// Nodata: NaN or zero vectors, a negative radius (a black point, as ap_light.h's).
+// Nodata: NaN, a negative radius, vectors whose squared length in float is not a normal
+// finite number (0, underflowed, overflowed: normalize() would not give a unit vector), as
+// ComputeReference takes them (a black point).
+bool apUsable(vec3 apV)
+{
+  float apVV = dot(apV, apV);
+  return apVV >= 1.17549435e-38 && apVV < 1e38;
+}
 bool apValid(vec3 apN, vec3 apB, float apRp)
 {
-  return !(isnan(apRp) || isnan(apN.x) || isnan(apB.x)) && apRp >= 0.0 &&
-    dot(apN, apN) > 0.0 && dot(apB, apB) > 0.0;
+  return !(isnan(apRp) || isnan(apN.x) || isnan(apB.x)) && apRp >= 0.0 && apUsable(apN) &&
+    apUsable(apB);
 }
 
 // The aperture's half-angle sine and cosine: (sin(rp/2), cos(rp/2)), rp in [0, pi/2].

@@ -208,6 +208,21 @@ class TestApertureLighting(Testing.vtkTest):
                     for got in (gpu[5:-5, 5:-5, c], cpu[5:-5, 5:-5, c]):
                         self.assertLess(np.abs(got / expected[c] - 1.0).max(), 1e-4,
                                         (name, frequency, c, got.min(), expected[c]))
+        # normals whose squared length in float underflows (1e-25) or overflows (1e20) are
+        # nodata on both, black and NaN (the reference lit them, in double, where the shader's
+        # normalize() could not)
+        for length in (1e-25, 1e20):
+            mesh = grid_mesh((0.0, 0.0, length), UP, math.pi / 2)
+            s = linear_scene(mesh, exposure=0.0)
+            s.mapper.SetSunDirection(sun_dir(200.0, 40.0))
+            cpu = vtkDoubleArray()
+            self.assertTrue(s.mapper.ComputeReference(mesh, (0.5, 0.5, 0.5), cpu, None))
+            self.assertTrue(np.isnan(vtk_to_numpy(cpu)).all(), length)
+            for frequency in (s.mapper.PER_FRAGMENT, s.mapper.PER_VERTEX):
+                s.mapper.SetShadingFrequency(frequency)
+                image = aperture.vtkApertureLinearCapture().Capture(s.renderer)
+                gpu = vtk_to_numpy(image.GetPointData().GetArray("Radiance")).reshape(N, N, 4)
+                self.assertEqual(np.abs(gpu[5:-5, 5:-5, :3]).max(), 0.0, (length, frequency))
 
     def testPit(self):
         rp = math.radians(20.0)
