@@ -1,15 +1,24 @@
 # SPDX-License-Identifier: BSD-3-Clause
-# `cmake --build build --target uninstall` (cmake -P, MANIFEST=<build>/install_manifest.txt):
-# remove every file the last install wrote, then the folders it leaves empty: those of
-# Aperture's own by name (a path component named aperture or Aperture, or the package's
-# __pycache__ and data: a bare aperture/ folder would still import, as an empty namespace
-# package), and any other at least two levels below the prefix (lib/cmake, lib/vtk/hierarchy,
-# which an install into /usr/local made there), but not the prefix's own top folders (bin,
-# lib, share, ...) nor the shared lib/pythonX.Y/dist-packages and share/doc, share/man.
+# `cmake --build build --target uninstall` (cmake -P, MANIFEST=<build>/install_manifest.txt,
+# PREFIX_FILE=<build>/install_prefix.txt, the last install's prefix): remove every file the
+# last install wrote, then the folders it leaves empty: those of Aperture's own by name (a
+# path component named aperture or Aperture, or the package's __pycache__ and data, wherever
+# they are: a bare aperture/ folder would still import, as an empty namespace package), and
+# any other at least two levels below the prefix (lib/cmake, lib/vtk/hierarchy, which an
+# install into /usr/local made there), but not the prefix's own top folders (bin, lib,
+# share, ...) nor the shared lib/pythonX.Y/dist-packages and share/doc, share/man.
 if (NOT EXISTS "${MANIFEST}")
   message(FATAL_ERROR "no ${MANIFEST}: nothing was installed from this build tree")
 endif ()
 file(STRINGS "${MANIFEST}" files)
+# (the prefix as the install wrote it, not guessed from the files: files of an absolute
+# DOCDIR outside it made the guess /usr for /usr/local, whose bin and lib were removed)
+set(prefix "")
+if (PREFIX_FILE AND EXISTS "${PREFIX_FILE}")
+  file(READ "${PREFIX_FILE}" prefix)
+  string(STRIP "${prefix}" prefix)
+  string(REGEX REPLACE "/+$" "" prefix "$ENV{DESTDIR}${prefix}")
+endif ()
 # (not MATCHES "^${prefix}/": a path holding regular expression characters, + or (, broke it)
 function(starts_with text start result)
   string(FIND "${text}" "${start}" at)
@@ -20,7 +29,6 @@ function(starts_with text start result)
   endif ()
 endfunction()
 set(folders "")
-set(prefix "")
 foreach (f IN LISTS files)
   set(path "$ENV{DESTDIR}${f}")
   if (EXISTS "${path}" OR IS_SYMLINK "${path}")
@@ -28,34 +36,31 @@ foreach (f IN LISTS files)
   endif ()
   get_filename_component(folder "${path}" DIRECTORY)
   list(APPEND folders "${folder}")
-  # the prefix: the deepest folder that holds every file
-  if (prefix STREQUAL "")
-    set(prefix "${folder}")
-  endif ()
-  starts_with("${path}" "${prefix}/" inside)
-  while (NOT inside AND NOT prefix STREQUAL "/" AND NOT prefix STREQUAL "")
-    get_filename_component(prefix "${prefix}" DIRECTORY)
-    starts_with("${path}" "${prefix}/" inside)
-  endwhile ()
 endforeach ()
 # the deepest first, each with its parents as long as they are ours by name or deep enough
+# below the prefix
 list(REMOVE_DUPLICATES folders)
 set(candidates "")
+string(LENGTH "${prefix}/" skip)
 foreach (folder IN LISTS folders)
-  string(LENGTH "${prefix}/" skip)
-  starts_with("${folder}" "${prefix}/" inside)
-  while (inside)
+  while (NOT folder STREQUAL "/" AND NOT folder STREQUAL "")
     get_filename_component(name "${folder}" NAME)
-    string(SUBSTRING "${folder}" ${skip} -1 relative)
-    if (name MATCHES "^([Aa]perture|__pycache__|data|images|Documents)$" OR
-        (relative MATCHES "/" AND NOT relative MATCHES
-          "^(lib(64)?/python[0-9.]+(/(dist|site)-packages)?|share/(doc|man|info))$"))
-      list(APPEND candidates "${folder}")
-    else ()
+    set(deep FALSE)
+    if (prefix)
+      starts_with("${folder}" "${prefix}/" inside)
+      if (inside)
+        string(SUBSTRING "${folder}" ${skip} -1 relative)
+        if (relative MATCHES "/" AND NOT relative MATCHES
+            "^(lib(64)?/python[0-9.]+(/(dist|site)-packages)?|share/(doc|man|info))$")
+          set(deep TRUE)
+        endif ()
+      endif ()
+    endif ()
+    if (NOT deep AND NOT name MATCHES "^([Aa]perture|__pycache__|data|images|Documents)$")
       break ()
     endif ()
+    list(APPEND candidates "${folder}")
     get_filename_component(folder "${folder}" DIRECTORY)
-    starts_with("${folder}" "${prefix}/" inside)
   endwhile ()
 endforeach ()
 list(REMOVE_DUPLICATES candidates)

@@ -105,7 +105,8 @@ if (NOT manifest STREQUAL installed)
 endif ()
 function(uninstall)
   run("uninstall" "${CMAKE_COMMAND}" -E env ${ARGN} "${CMAKE_COMMAND}"
-    "-DMANIFEST=${manifest_path}" -P "${APERTURE_SOURCE_DIR}/Utilities/Uninstall.cmake")
+    "-DMANIFEST=${manifest_path}" "-DPREFIX_FILE=${APERTURE_BUILD_DIR}/install_prefix.txt"
+    -P "${APERTURE_SOURCE_DIR}/Utilities/Uninstall.cmake")
 endfunction()
 # (no file, and no folder but the prefix's own top ones, bin, lib, share, and the shared
 # lib/pythonX.Y/dist-packages and share/doc: lib/cmake and lib/vtk/hierarchy were left empty
@@ -157,3 +158,32 @@ uninstall("DESTDIR=${stage}")
 check_nothing_left("${stage}" "${stage}${WORK_DIR}/usr")
 list(LENGTH manifest count)
 message(STATUS "install_manifest.txt names all ${count} files installed; uninstalled: ok")
+
+# The uninstall keeps the prefix's own folders, which Debian's /usr/local has empty, when a
+# file lies outside it (an absolute DOCDIR: the prefix guessed from the files was then /usr,
+# and /usr/local/bin, include and lib were removed, until 2026-12-07), and removes the
+# package's folders outside it too.
+set(fake "${WORK_DIR}/fake")
+foreach (d usr/local/bin usr/local/include usr/local/lib/python3.11/dist-packages
+    usr/share/doc/other)
+  file(MAKE_DIRECTORY "${fake}/${d}")
+endforeach ()
+set(fake_files /usr/local/lib/cmake/Aperture/ApertureConfig.cmake
+  /usr/local/lib/python3.11/dist-packages/aperture/__pycache__/cli.pyc
+  /usr/local/lib/vtk/hierarchy/Aperture/Filters.txt /usr/share/doc/Aperture/README.md)
+string(REPLACE ";" "\n" fake_manifest "${fake_files}")
+file(WRITE "${WORK_DIR}/fake-manifest.txt" "${fake_manifest}\n")
+file(WRITE "${WORK_DIR}/fake-prefix.txt" "/usr/local")
+foreach (f IN LISTS fake_files)
+  file(WRITE "${fake}${f}" "")
+endforeach ()
+run("uninstall of a prefix with a folder outside it" "${CMAKE_COMMAND}" -E env
+  "DESTDIR=${fake}" "${CMAKE_COMMAND}" "-DMANIFEST=${WORK_DIR}/fake-manifest.txt"
+  "-DPREFIX_FILE=${WORK_DIR}/fake-prefix.txt" -P "${APERTURE_SOURCE_DIR}/Utilities/Uninstall.cmake")
+file(GLOB_RECURSE left LIST_DIRECTORIES true RELATIVE "${fake}" "${fake}/*")
+list(SORT left)
+set(kept usr usr/local usr/local/bin usr/local/include usr/local/lib usr/local/lib/python3.11
+  usr/local/lib/python3.11/dist-packages usr/share usr/share/doc usr/share/doc/other)
+if (NOT left STREQUAL kept)
+  message(FATAL_ERROR "the uninstall left ${left}, not ${kept}")
+endif ()
