@@ -1914,8 +1914,8 @@ class _abort_on_interrupt:
     sets AbortExecute on all of them, the one running stops (a writer removing its file), and
     KeyboardInterrupt follows (exit 130; _Terminated, exit 143 or 129, for SIGTERM and SIGHUP)
     instead of the whole computation first. Without it those signals would end the process at
-    once, leaving the outputs a bake in strips had begun (the GeoTIFF partly written under its
-    own name)."""
+    once, leaving the writers' temporary files behind (and, until they wrote aside, the GeoTIFF
+    partly written under its own name)."""
 
     def __init__(self, *algorithms):
         self.algorithms = algorithms
@@ -2066,15 +2066,16 @@ def _plan_bake(args, watcher, sky):
     return reader, window, read, tile * fits, whole
 
 
-def _write_strips(watcher, clip, window, extents, outputs, guard, computed=None):
+def _write_strips(watcher, clip, window, extents, outputs, guard, computed=None, finished=None):
     """Update `clip` for each extent of `window` in turn, north first, and write it into every
     (writer, path) of `outputs` (their BeginStrips with the first, EndStrips after the last);
     on an error or an interrupt (`guard`) the files begun are abandoned (an earlier file of the
     name stays as it was), the interrupt left to `guard`, and an error's message names the
     other outputs it leaves whole or removes.
-    computed(k), if given, runs after strip k is computed, before it is written."""
+    computed(k), if given, runs after strip k is computed, before it is written; `finished`
+    (a list) gets the paths written in full."""
     begun = []
-    finished = []  # the paths written in full
+    finished = [] if finished is None else finished  # the paths written in full
     writing = None  # the path being written, if an output's step fails
     try:
         for k, extent in enumerate(extents):
@@ -2281,65 +2282,74 @@ def _bake(args, products, progress):
     # An interrupt leaves each output whole: the new file when its writer had finished, else
     # the earlier file of that name as it was (the writers write aside and rename; this removed
     # the outputs begun, so an interrupted rewrite deleted the earlier files it had not yet
-    # replaced, until 2026-12-07)
-    if rows:
-        # In strips, north first: the sky filter computes each (reading it and its halo)
-        # and every output writes it before the next; a clip makes the window the whole
-        # extent.
-        from vtkmodules.vtkImagingCore import vtkImageClip
-        clip = vtkImageClip()
-        clip.SetInputConnection(sky.GetOutputPort())
-        clip.SetOutputWholeExtent(window)
-        clip.ClipDataOff()
-        for output in writers:
-            for name in products:
-                output.AddArrayName(name)
-        extents = [[window[0], window[1], max(window[2], top - rows + 1), top, 0, 0]
-                   for top in range(window[3], window[2] - 1, -rows)]
-        strips = len(extents)
-        done = [-1]  # strips started
-        sky.AddObserver("StartEvent", lambda obj, _: done.__setitem__(0, done[0] + 1))
-        if progress:  # (the writers' progress runs over the rows of the window)
-            steps = _bake_steps(progress, window, None, args, products)
-            steps.observe(sky, "sky", lambda p: (done[0] + p) / strips)
-            steps.observe(writer, "tif")
-            if exr:
-                steps.observe(exr, "exr")
-            progress(0.0)
-        sweep_start = time.perf_counter()
-        with _abort_on_interrupt(sky, *writers) as guard:
-            _write_strips(watcher, clip, window, extents, outputs, guard,
-                          computed=after_strip)
-        sweep_seconds = time.perf_counter() - sweep_start
-        nx, ny = _extent_size(window)
-    else:
-        if progress:
-            steps = _bake_steps(progress, window, read, args, products)
-            for algorithm, step in ((reader, "read"), (sky, "sky"), (writer, "tif"),
-                                    (exr, "exr")):
-                if algorithm:
-                    steps.observe(algorithm, step)
-            progress(0.0)
-        _read(watcher, reader, read)
-        with _abort_on_interrupt(sky, *writers):
+    # replaced, until 2026-12-07), and a note names them when they are then of two bakes (a
+    # new GeoTIFF beside the EXR of before)
+    finished = []  # the outputs written in full
+    try:
+        if rows:
+            # In strips, north first: the sky filter computes each (reading it and its halo)
+            # and every output writes it before the next; a clip makes the window the whole
+            # extent.
+            from vtkmodules.vtkImagingCore import vtkImageClip
+            clip = vtkImageClip()
+            clip.SetInputConnection(sky.GetOutputPort())
+            clip.SetOutputWholeExtent(window)
+            clip.ClipDataOff()
+            for output in writers:
+                for name in products:
+                    output.AddArrayName(name)
+            extents = [[window[0], window[1], max(window[2], top - rows + 1), top, 0, 0]
+                       for top in range(window[3], window[2] - 1, -rows)]
+            strips = len(extents)
+            done = [-1]  # strips started
+            sky.AddObserver("StartEvent", lambda obj, _: done.__setitem__(0, done[0] + 1))
+            if progress:  # (the writers' progress runs over the rows of the window)
+                steps = _bake_steps(progress, window, None, args, products)
+                steps.observe(sky, "sky", lambda p: (done[0] + p) / strips)
+                steps.observe(writer, "tif")
+                if exr:
+                    steps.observe(exr, "exr")
+                progress(0.0)
             sweep_start = time.perf_counter()
-            # (the reader has run: the sky filter alone)
-            result = watcher.update(sky, "bake", extent=window)
+            with _abort_on_interrupt(sky, *writers) as guard:
+                _write_strips(watcher, clip, window, extents, outputs, guard,
+                              computed=after_strip, finished=finished)
             sweep_seconds = time.perf_counter() - sweep_start
-            heights.append(_has_heights(result, window))
-            _digest_rows(digest, result, window)
-            writer.AddMetadata(DIGEST_KEY, DIGEST_TEXT % digest.hexdigest())
-            image = _product_image(result, products)
-            nx, ny, _ = image.GetDimensions()
-            finished = []
-            for output, path in outputs:
-                output.SetInputData(image)
-                try:
-                    watcher.write(output, "writing %s" % path)
-                except ApertureError as e:
-                    # (the writer removed its file; the ones before it are whole)
-                    raise _outputs_left(e, written=finished) from None
-                finished.append(path)
+            nx, ny = _extent_size(window)
+        else:
+            if progress:
+                steps = _bake_steps(progress, window, read, args, products)
+                for algorithm, step in ((reader, "read"), (sky, "sky"), (writer, "tif"),
+                                        (exr, "exr")):
+                    if algorithm:
+                        steps.observe(algorithm, step)
+                progress(0.0)
+            _read(watcher, reader, read)
+            with _abort_on_interrupt(sky, *writers):
+                sweep_start = time.perf_counter()
+                # (the reader has run: the sky filter alone)
+                result = watcher.update(sky, "bake", extent=window)
+                sweep_seconds = time.perf_counter() - sweep_start
+                heights.append(_has_heights(result, window))
+                _digest_rows(digest, result, window)
+                writer.AddMetadata(DIGEST_KEY, DIGEST_TEXT % digest.hexdigest())
+                image = _product_image(result, products)
+                nx, ny, _ = image.GetDimensions()
+                for output, path in outputs:
+                    output.SetInputData(image)
+                    try:
+                        watcher.write(output, "writing %s" % path)
+                    except ApertureError as e:
+                        # (the writer removed its file; the ones before it are whole)
+                        raise _outputs_left(e, written=finished) from None
+                    finished.append(path)
+    except KeyboardInterrupt:
+        left = [path for _, path in outputs if path not in finished]
+        if finished and left:
+            print("%s: note: interrupted: %s written in full; %s left as %s" % (
+                PROG, " and ".join(finished), " and ".join(left),
+                "it was" if len(left) == 1 else "they were"), file=sys.stderr)
+        raise
     if nodata and all(nodata):  # (a part of the DEM: a window with a radius; after_strip)
         _warn("every cell of the DEM read for --srcwin %s (the window and %s around it) is "
               "nodata, and so is every product" % (" ".join(map(str, args.srcwin or ())),
@@ -2741,9 +2751,11 @@ def build_parser():
                         "elevations for their range and nodata count (null in --json): at "
                         "once on any size")
     p.add_argument("--max-memory", type=_memory_size, metavar="SIZE",
-                   help="most memory for the elevations read at once: a number of MiB, or "
-                        "with K, M, G, T or B (bytes) (default 256 MiB); they are read in "
-                        "strips of rows that fit, so a DEM larger than memory is described too")
+                   help="most memory for the elevations read at once and a block of the file "
+                        "(which GDAL reads whole: a compressed file stored as one strip is one "
+                        "block): a number of MiB, or with K, M, G, T or B (bytes) (default 256 "
+                        "MiB); they are read in strips of rows that fit, so a DEM larger than "
+                        "memory is described too")
     p.add_argument("--quiet", "-q", action="store_true",
                    help="no progress display or note while the elevations are read (shown "
                         "when stderr is a terminal); the description is printed all the same")
