@@ -38,6 +38,18 @@ foreach (elf IN LISTS elves)
   endforeach ()
 endforeach ()
 
+# The modules keep the C core's functions to themselves (none exported: each links its copy)
+find_program(NM nm)
+if (NM)
+  file(GLOB modules "${prefix}/lib/libAperture*.so")
+  foreach (module IN LISTS modules)
+    execute_process(COMMAND "${NM}" -D --defined-only "${module}" OUTPUT_VARIABLE symbols)
+    if (symbols MATCHES " ap_[a-z0-9_]+")
+      message(FATAL_ERROR "${module} exports the C core's ${CMAKE_MATCH_0}")
+    endif ()
+  endforeach ()
+endif ()
+
 # A component it does not have is named (check_required_components said only that Aperture
 # was not found, until 2026-12-07)
 file(WRITE "${WORK_DIR}/misspelt/CMakeLists.txt"
