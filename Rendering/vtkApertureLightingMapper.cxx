@@ -544,10 +544,11 @@ bool vtkApertureLightingMapper::ComputeReference(vtkPolyData* mesh, const double
   }
 
   // The arrays as contiguous float, as the GPU receives them; vectors normalised as the
-  // shader's normalize() does where its apValid takes them (their squared length in float a
-  // normal finite number below 1e38), else NaN, nodata, as it draws them (ap_light takes unit
-  // vectors only, within 1e-4: normals 5e-4 long, as half floats round them, were nodata here
-  // and lit on the GPU, until 2026-12-07).
+  // shader does where its apUsable takes them (no NaN, the largest component in magnitude
+  // within [FLT_MIN, 2^62): compared, not computed, so that both sides agree), scaled by that
+  // component first, else NaN, nodata, as it draws them (ap_light takes unit vectors only,
+  // within 1e-4: normals 5e-4 long, as half floats round them, were nodata here and lit on
+  // the GPU, until 2026-12-07).
   const vtkIdType n = mesh->GetNumberOfPoints();
   auto floats = [n, mesh](const std::string& name, int comps) {
     std::vector<float> v(static_cast<size_t>(n) * comps);
@@ -555,19 +556,28 @@ bool vtkApertureLightingMapper::ComputeReference(vtkPolyData* mesh, const double
     for (vtkIdType i = 0; i < n; ++i)
     {
       float* t = v.data() + static_cast<size_t>(i) * comps;
-      float length2 = 0.0f;
+      bool nan = false;
+      float largest = 0.0f;
       for (int c = 0; c < comps; ++c)
       {
         t[c] = static_cast<float>(a->GetComponent(i, c));
-        length2 += t[c] * t[c];
+        nan = nan || std::isnan(t[c]);
+        largest = std::max(largest, std::fabs(t[c]));
       }
       if (comps == 3)
       {
-        const bool usable = length2 >= std::numeric_limits<float>::min() && length2 < 1e38f;
+        const bool usable =
+          !nan && largest >= std::numeric_limits<float>::min() && largest < 4.611686e18f;
+        float length2 = 0.0f;
+        for (int c = 0; c < 3; ++c)
+        {
+          t[c] = usable ? t[c] / largest : std::numeric_limits<float>::quiet_NaN();
+          length2 += t[c] * t[c];
+        }
         const float length = std::sqrt(length2);
         for (int c = 0; c < 3; ++c)
         {
-          t[c] = usable ? t[c] / length : std::numeric_limits<float>::quiet_NaN();
+          t[c] /= length;
         }
       }
     }

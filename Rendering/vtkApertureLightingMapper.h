@@ -37,14 +37,14 @@
  * vtkPolyDataMapper draws it, without the Exposure (documented fallback; never a shader compile
  * failure). So are an actor's edges over its surface (EdgeVisibility) and lines drawn wide or
  * as tubes, for which VTK adds a geometry shader that passes on only its own varyings. NaN
- * arrays, negative radii and vectors whose squared length in float is 0, subnormal or 1e38 and
- * more (nodata) give black points; normals and bent normals of other lengths are normalised,
- * and radii beyond pi/2 (+inf too) taken as pi/2. A setter given a value outside its
- * documented range (a zero or non-finite sun direction, say) reports an error (vtkErrorMacro)
- * and keeps the previous value, except Exposure, which is clamped to its range (NaN is
- * refused); the mode setters take an unknown value as their default (EXACT, CENTROID,
- * PER_FRAGMENT). Vertex attributes a script maps for its own shader replacements
- * (MapDataArrayToVertexAttribute) are kept.
+ * arrays, negative radii and vectors whose largest component (in magnitude) is below float's
+ * smallest normal number or 2^62 and above (nodata) give black points; normals and bent
+ * normals of other lengths are normalised, and radii beyond pi/2 (+inf too) taken as pi/2. A
+ * setter given a value outside its documented range (a zero or non-finite sun direction, say)
+ * reports an error (vtkErrorMacro) and keeps the previous value, except Exposure, which is
+ * clamped to its range (NaN is refused); the mode setters take an unknown value as their
+ * default (EXACT, CENTROID, PER_FRAGMENT). Vertex attributes a script maps for its own shader
+ * replacements (MapDataArrayToVertexAttribute) are kept.
  *
  * @sa vtkApertureSolarPosition vtkApertureSkyVisibility vtkApertureTerrainMesh
  */

@@ -199,13 +199,19 @@ vec3 apSkyLookup(vec3 b, float rp)
 }
 #endif
 
-// Nodata: NaN, a negative radius, vectors whose squared length in float is not a normal
-// finite number (0, underflowed, overflowed: normalize() would not give a unit vector), as
-// ComputeReference takes them (a black point).
+// Nodata: NaN, a negative radius, vectors whose largest component (in magnitude) is below
+// float's smallest normal number (a GPU may flush those to 0) or 2^62 and above (their squares
+// would overflow), as ComputeReference takes them (a black point). The others are scaled by
+// that component before normalize(), so that their squares neither underflow nor overflow.
+float apLargest(vec3 apV)
+{
+  vec3 apA = abs(apV);
+  return max(apA.x, max(apA.y, apA.z));
+}
 bool apUsable(vec3 apV)
 {
-  float apVV = dot(apV, apV);
-  return apVV >= 1.17549435e-38 && apVV < 1e38;
+  float apM = apLargest(apV);
+  return !any(isnan(apV)) && apM >= 1.17549435e-38 && apM < 4.611686e18;
 }
 bool apValid(vec3 apN, vec3 apB, float apRp)
 {
@@ -228,8 +234,8 @@ vec3 apIrradiance(vec3 apN, vec3 apB, float apRp)
   vec3 apE = vec3(0.0);
   if (apValid(apN, apB, apRp))
   {
-    apN = normalize(apN);
-    apB = normalize(apB);
+    apN = normalize(apN / apLargest(apN));
+    apB = normalize(apB / apLargest(apB));
     apRp = clamp(apRp, 0.0, 0.5 * AP_PI);
     vec3 apS = apertureSunDirection;
     float apRl = apertureSunRadius;

@@ -208,21 +208,65 @@ class TestApertureLighting(Testing.vtkTest):
                     for got in (gpu[5:-5, 5:-5, c], cpu[5:-5, 5:-5, c]):
                         self.assertLess(np.abs(got / expected[c] - 1.0).max(), 1e-4,
                                         (name, frequency, c, got.min(), expected[c]))
-        # normals whose squared length in float underflows (1e-25) or overflows (1e20) are
-        # nodata on both, black and NaN (the reference lit them, in double, where the shader's
-        # normalize() could not)
-        for length in (1e-25, 1e20):
-            mesh = grid_mesh((0.0, 0.0, length), UP, math.pi / 2)
+        # Normals of tiny or huge lengths: lit alike, scaled by their largest component before
+        # they are normalised (squares of 1e-19 underflow in float: the GPU flushed them and
+        # drew black where the reference lit them), or nodata alike where that component is
+        # below float's smallest normal number (a GPU may flush it) or 2^62 and above
+        for normal, lit in (((0.0, 0.0, 1e-25), True), ((1e-19, 1e-19, 1e-19), True),
+                            ((0.0, 0.0, 1e20), False), ((0.0, 0.0, 1e-39), False)):
+            mesh = grid_mesh(normal, UP, math.pi / 2)
             s = linear_scene(mesh, exposure=0.0)
             s.mapper.SetSunDirection(sun_dir(200.0, 40.0))
             cpu = vtkDoubleArray()
             self.assertTrue(s.mapper.ComputeReference(mesh, (0.5, 0.5, 0.5), cpu, None))
-            self.assertTrue(np.isnan(vtk_to_numpy(cpu)).all(), length)
+            cpu = vtk_to_numpy(cpu).reshape(N, N, 3)
+            if not lit:
+                self.assertTrue(np.isnan(cpu).all(), normal)
             for frequency in (s.mapper.PER_FRAGMENT, s.mapper.PER_VERTEX):
                 s.mapper.SetShadingFrequency(frequency)
                 image = aperture.vtkApertureLinearCapture().Capture(s.renderer)
                 gpu = vtk_to_numpy(image.GetPointData().GetArray("Radiance")).reshape(N, N, 4)
-                self.assertEqual(np.abs(gpu[5:-5, 5:-5, :3]).max(), 0.0, (length, frequency))
+                inner = gpu[5:-5, 5:-5, :3]
+                if not lit:
+                    self.assertEqual(np.abs(inner).max(), 0.0, (normal, frequency))
+                    continue
+                # (the tilted normal (1, 1, 1)/sqrt 3 is no flat ground: against the reference)
+                for got in (inner, cpu[5:-5, 5:-5]):
+                    self.assertTrue(np.isfinite(got).all(), (normal, frequency))
+                rel = np.abs(inner - cpu[5:-5, 5:-5]) / np.maximum(cpu[5:-5, 5:-5], 1.0)
+                self.assertLess(rel.max(), 1e-4, (normal, frequency))
+                if normal[0] == 0.0:
+                    self.assertLess(np.abs(inner[..., 0] / expected[0] - 1.0).max(), 1e-4)
+
+    def testWideTriangleRadii(self):
+        # Radii are interpolated across a triangle as they are, the model taking pi/2 for
+        # more: a quad over the view whose radius runs from 0.2 at x = 0 to 3.0 at its east
+        # edge (a radius of a cap, up to pi), flat open ground, sun 40 deg up: from the column
+        # where the interpolated radius passes pi/2 (23 of 47) the point is open ground.
+        # (A clamp to pi/2 before interpolating, 53fbfbc, reached pi/2 only at the edge.)
+        pts = vtkPoints()
+        for x, y in ((0, 0), (N - 1, 0), (N - 1, N - 1), (0, N - 1)):
+            pts.InsertNextPoint(float(x), float(y), 0.0)
+        cells = vtkCellArray()
+        cells.InsertNextCell(3, (0, 1, 2))
+        cells.InsertNextCell(3, (0, 2, 3))
+        mesh = vtkPolyData()
+        mesh.SetPoints(pts)
+        mesh.SetPolys(cells)
+        for name, data in (("Normals", [UP] * 4), ("BentNormal", [UP] * 4),
+                           ("ApertureRadius", [0.2, 3.0, 3.0, 0.2])):
+            array = numpy_to_vtk(np.array(data, dtype=np.float32), deep=1)
+            array.SetName(name)
+            mesh.GetPointData().AddArray(array)
+        s = linear_scene(mesh, exposure=0.0)
+        s.mapper.SetSunDirection(sun_dir(200.0, 40.0))
+        image = aperture.vtkApertureLinearCapture().Capture(s.renderer)
+        gpu = vtk_to_numpy(image.GetPointData().GetArray("Radiance")).reshape(N, N, 4)
+        e = math.radians(40.0)
+        expected = 0.5 / math.pi * (ESUN[0] * math.sin(e) + math.pi * LSKY[0])
+        self.assertLess(np.abs(gpu[5:-5, 28:-3, 0] / expected - 1.0).max(), 1e-4)
+        # (and where the radius is below the sun's zenith angle, 50 deg, the sky alone: dark)
+        self.assertLess(gpu[5:-5, 3:10, 0].max(), 0.2 * expected)
 
     def testPit(self):
         rp = math.radians(20.0)
