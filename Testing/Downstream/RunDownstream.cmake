@@ -199,3 +199,23 @@ set(kept usr usr/local usr/local/bin usr/local/include usr/local/lib usr/local/l
 if (NOT left STREQUAL kept)
   message(FATAL_ERROR "the uninstall left ${left}, not ${kept}")
 endif ()
+# A record of another prefix (an install that failed before writing its manifest) is not
+# taken: only the folders ours by name go, and /usr/local's own stay (as /usr, the record
+# made bin, include and lib two levels deep, and removed them)
+foreach (f IN LISTS fake_files)
+  file(WRITE "${fake}${f}" "")
+endforeach ()
+file(WRITE "${WORK_DIR}/fake-prefix.txt" "/usr")
+run("uninstall with another install's prefix recorded" "${CMAKE_COMMAND}" -E env
+  "DESTDIR=${fake}" "${CMAKE_COMMAND}" "-DMANIFEST=${WORK_DIR}/fake-manifest.txt"
+  "-DPREFIX_FILE=${WORK_DIR}/fake-prefix.txt" -P "${APERTURE_SOURCE_DIR}/Utilities/Uninstall.cmake")
+file(GLOB_RECURSE left LIST_DIRECTORIES true RELATIVE "${fake}" "${fake}/*")
+foreach (d IN LISTS kept)
+  list(FIND left "${d}" at)
+  if (at EQUAL -1)
+    message(FATAL_ERROR "the uninstall removed ${d}")
+  endif ()
+endforeach ()
+if (left MATCHES "[Aa]perture")
+  message(FATAL_ERROR "the uninstall left ${left}")
+endif ()
