@@ -2282,9 +2282,10 @@ def _bake(args, products, progress):
     # An interrupt leaves each output whole: the new file when its writer had finished, else
     # the earlier file of that name as it was (the writers write aside and rename; this removed
     # the outputs begun, so an interrupted rewrite deleted the earlier files it had not yet
-    # replaced, until 2026-12-07), and a note names them when they are then of two bakes (a
-    # new GeoTIFF beside the EXR of before)
+    # replaced, until 2026-12-07), and a note names which were finished and which not (a new
+    # GeoTIFF beside the EXR of before, or beside none)
     finished = []  # the outputs written in full
+    existed = {path: os.path.lexists(path) for _, path in outputs}  # (for the note)
     try:
         if rows:
             # In strips, north first: the sky filter computes each (reading it and its halo)
@@ -2346,9 +2347,10 @@ def _bake(args, products, progress):
     except KeyboardInterrupt:
         left = [path for _, path in outputs if path not in finished]
         if finished and left:
-            print("%s: note: interrupted: %s written in full; %s left as %s" % (
-                PROG, " and ".join(finished), " and ".join(left),
-                "it was" if len(left) == 1 else "they were"), file=sys.stderr)
+            print("%s: note: interrupted: %s written in full; %s" % (
+                PROG, " and ".join(finished), "; ".join(
+                    "%s %s" % (path, "left as it was" if existed[path] else "not written")
+                    for path in left)), file=sys.stderr)
         raise
     if nodata and all(nodata):  # (a part of the DEM: a window with a radius; after_strip)
         _warn("every cell of the DEM read for --srcwin %s (the window and %s around it) is "
