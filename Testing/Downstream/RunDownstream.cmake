@@ -93,8 +93,16 @@ if (WRAP_PYTHON)
   run("byte-compiled at install" "${PYTHON}" -c "${compiled_check}")
 endif ()
 
-# the licence and the documentation, the README's pictures beside it
-foreach (doc LICENSE README.md Documents/Rasters.md Documents/images/jacksboro-oblique.png)
+# the licence and the documentation, the README's pictures beside it, and every file its links
+# name (bench/results-bake.md, ...: read from the README, so that a new link is checked too)
+file(READ "${APERTURE_SOURCE_DIR}/README.md" readme)
+# (a link's "](" marked first: a list element holding a square bracket keeps the semicolons
+# after it, so the matches must hold none)
+string(REPLACE "](" " @LINK@" readme "${readme}")
+string(REGEX MATCHALL "@LINK@[A-Za-z]+/[^)#; ]+" linked "${readme}")
+list(TRANSFORM linked REPLACE "^@LINK@" "")
+list(REMOVE_DUPLICATES linked)
+foreach (doc LICENSE README.md ${linked})
   if (NOT EXISTS "${prefix}/share/doc/Aperture/${doc}")
     message(FATAL_ERROR "the install has no share/doc/Aperture/${doc}")
   endif ()
