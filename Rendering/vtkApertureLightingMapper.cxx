@@ -545,7 +545,8 @@ bool vtkApertureLightingMapper::ComputeReference(vtkPolyData* mesh, const double
 
   // The arrays as contiguous float, as the GPU receives them; vectors normalised as the
   // shader does where its apUsable takes them (no NaN, the largest component in magnitude
-  // within [FLT_MIN, 2^62): compared, not computed, so that both sides agree), scaled by that
+  // within [2^-100, 2^62): compared, not computed, so that both sides agree, and far enough
+  // above the subnormals a GPU flushes to 0 that those do not matter), scaled by that
   // component first, else NaN, nodata, as it draws them (ap_light takes unit vectors only,
   // within 1e-4: normals 5e-4 long, as half floats round them, were nodata here and lit on
   // the GPU, until 2026-12-07).
@@ -567,7 +568,7 @@ bool vtkApertureLightingMapper::ComputeReference(vtkPolyData* mesh, const double
       if (comps == 3)
       {
         const bool usable =
-          !nan && largest >= std::numeric_limits<float>::min() && largest < 4.611686e18f;
+          !nan && largest >= 7.8886091e-31f && largest < 4.611686e18f;
         float length2 = 0.0f;
         for (int c = 0; c < 3; ++c)
         {

@@ -37,8 +37,8 @@
  * vtkPolyDataMapper draws it, without the Exposure (documented fallback; never a shader compile
  * failure). So are an actor's edges over its surface (EdgeVisibility) and lines drawn wide or
  * as tubes, for which VTK adds a geometry shader that passes on only its own varyings. NaN
- * arrays, negative radii and vectors whose largest component (in magnitude) is below float's
- * smallest normal number or 2^62 and above (nodata) give black points; normals and bent
+ * arrays, negative radii and vectors whose largest component (in magnitude) is below 2^-100
+ * or 2^62 and above (nodata) give black points; normals and bent
  * normals of other lengths are normalised, and radii beyond pi/2 (+inf too) taken as pi/2. A
  * setter given a value outside its documented range (a zero or non-finite sun direction, say)
  * reports an error (vtkErrorMacro) and keeps the previous value, except Exposure, which is

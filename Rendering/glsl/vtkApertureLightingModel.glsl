@@ -200,9 +200,10 @@ vec3 apSkyLookup(vec3 b, float rp)
 #endif
 
 // Nodata: NaN, a negative radius, vectors whose largest component (in magnitude) is below
-// float's smallest normal number (a GPU may flush those to 0) or 2^62 and above (their squares
-// would overflow), as ComputeReference takes them (a black point). The others are scaled by
-// that component before normalize(), so that their squares neither underflow nor overflow.
+// 2^-100 or 2^62 and above (their squares would overflow), as ComputeReference takes them (a
+// black point). The others are scaled by that component before normalize(), so that their
+// squares neither underflow nor overflow; a component a GPU flushes to 0 (subnormal: below
+// 2^-126) is then under 2^-26 of the largest, no matter.
 float apLargest(vec3 apV)
 {
   vec3 apA = abs(apV);
@@ -211,7 +212,7 @@ float apLargest(vec3 apV)
 bool apUsable(vec3 apV)
 {
   float apM = apLargest(apV);
-  return !any(isnan(apV)) && apM >= 1.17549435e-38 && apM < 4.611686e18;
+  return !any(isnan(apV)) && apM >= 7.8886091e-31 && apM < 4.611686e18;
 }
 bool apValid(vec3 apN, vec3 apB, float apRp)
 {

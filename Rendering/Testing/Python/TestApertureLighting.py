@@ -211,9 +211,12 @@ class TestApertureLighting(Testing.vtkTest):
         # Normals of tiny or huge lengths: lit alike, scaled by their largest component before
         # they are normalised (squares of 1e-19 underflow in float: the GPU flushed them and
         # drew black where the reference lit them), or nodata alike where that component is
-        # below float's smallest normal number (a GPU may flush it) or 2^62 and above
+        # below 2^-100 or 2^62 and above; a subnormal component beside a normal one (which a
+        # GPU flushes to 0) no matter
         for normal, lit in (((0.0, 0.0, 1e-25), True), ((1e-19, 1e-19, 1e-19), True),
-                            ((0.0, 0.0, 1e20), False), ((0.0, 0.0, 1e-39), False)):
+                            ((0.0, 0.0, 1e20), False), ((0.0, 0.0, 1e-39), False),
+                            ((0.0, 0.0, 1e-31), False), ((2e-38, 1e-38, 2e-38), False),
+                            ((1e-30, 1e-38, 1e-30), True)):
             mesh = grid_mesh(normal, UP, math.pi / 2)
             s = linear_scene(mesh, exposure=0.0)
             s.mapper.SetSunDirection(sun_dir(200.0, 40.0))
