@@ -1,18 +1,19 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # `cmake --build build --target uninstall` (cmake -P, MANIFEST=<build>/install_manifest.txt,
-# PREFIX_FILE=<build>/install_prefix.txt, the last install's prefix): remove every file the
-# last install wrote, then the folders it leaves empty: those of Aperture's own by name (a
-# path component named aperture or Aperture, or the package's __pycache__ and data, wherever
-# they are: a bare aperture/ folder would still import, as an empty namespace package), and
-# any other at least two levels below the prefix (lib/cmake, lib/vtk/hierarchy, which an
-# install into /usr/local made there), but not the prefix's own top folders (bin, lib,
-# share, ...) nor the shared lib/pythonX.Y/dist-packages and share/doc, share/man.
+# PREFIX_FILE=<build>/install_prefix.txt, the last full install's prefix): remove every file
+# the last install wrote, then the folders it leaves empty: those of Aperture's own by name (a
+# folder named aperture or Aperture and any below one, or the package's __pycache__ and data,
+# wherever they are: a bare aperture/ folder would still import, as an empty namespace
+# package), and any other at least two levels below the prefix (lib/cmake, lib/vtk/hierarchy,
+# which an install into /usr/local made there), but not the prefix's own top folders (bin,
+# lib, share, ...) nor the shared lib/pythonX.Y/dist-packages and share/doc, share/man.
 if (NOT EXISTS "${MANIFEST}")
   message(FATAL_ERROR "no ${MANIFEST}: nothing was installed from this build tree")
 endif ()
 file(STRINGS "${MANIFEST}" files)
 # (the prefix as the install wrote it, not guessed from the files: files of an absolute
 # DOCDIR outside it made the guess /usr for /usr/local, whose bin and lib were removed)
+set(known FALSE)
 # (not MATCHES "^${prefix}/": a path holding regular expression characters, + or (, broke it)
 function(starts_with text start result)
   string(FIND "${text}" "${start}" at)
@@ -38,11 +39,12 @@ if (PREFIX_FILE AND EXISTS "${PREFIX_FILE}")
       string(SUBSTRING "${f}" ${skip} -1 relative)
       if (relative MATCHES "^lib[^/]*(/[^/]+)?/cmake/Aperture/ApertureConfig[.]cmake$")
         set(prefix "$ENV{DESTDIR}${recorded}")
+        set(known TRUE)
       endif ()
     endif ()
   endforeach ()
 endif ()
-if (NOT prefix)
+if (NOT known) # (a prefix of / is known, and empty: nothing is two levels below it but ours)
   message(STATUS "The install's prefix is not known for ${MANIFEST}: only Aperture's own "
     "folders left empty are removed")
 endif ()
@@ -74,7 +76,8 @@ foreach (folder IN LISTS folders)
         endif ()
       endif ()
     endif ()
-    if (NOT deep AND NOT name MATCHES "^([Aa]perture|__pycache__|data|images|Documents)$")
+    if (NOT deep AND NOT name MATCHES "^([Aa]perture|__pycache__|data|images|Documents)$"
+        AND NOT folder MATCHES "/[Aa]perture/")
       break ()
     endif ()
     list(APPEND candidates "${folder}")

@@ -99,8 +99,9 @@ file(READ "${APERTURE_SOURCE_DIR}/README.md" readme)
 # (a link's "](" marked first: a list element holding a square bracket keeps the semicolons
 # after it, so the matches must hold none)
 string(REPLACE "](" " @LINK@" readme "${readme}")
-string(REGEX MATCHALL "@LINK@[A-Za-z]+/[^)#; ]+" linked "${readme}")
+string(REGEX MATCHALL "@LINK@[^)#; ]+" linked "${readme}")
 list(TRANSFORM linked REPLACE "^@LINK@" "")
+list(FILTER linked EXCLUDE REGEX "^[A-Za-z][A-Za-z0-9+.-]*:") # (URLs)
 list(REMOVE_DUPLICATES linked)
 foreach (doc LICENSE README.md ${linked})
   if (NOT EXISTS "${prefix}/share/doc/Aperture/${doc}")
@@ -190,7 +191,8 @@ foreach (d usr/local/bin usr/local/include usr/local/lib/python3.11/dist-package
 endforeach ()
 set(fake_files /usr/local/lib/cmake/Aperture/ApertureConfig.cmake
   /usr/local/lib/python3.11/dist-packages/aperture/__pycache__/cli.pyc
-  /usr/local/lib/vtk/hierarchy/Aperture/Filters.txt /usr/share/doc/Aperture/README.md)
+  /usr/local/lib/vtk/hierarchy/Aperture/Filters.txt /usr/share/doc/Aperture/README.md
+  /usr/share/doc/Aperture/bench/results-bake.md)
 string(REPLACE ";" "\n" fake_manifest "${fake_files}")
 file(WRITE "${WORK_DIR}/fake-manifest.txt" "${fake_manifest}\n")
 file(WRITE "${WORK_DIR}/fake-prefix.txt" "/usr/local")
