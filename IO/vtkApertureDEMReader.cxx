@@ -168,6 +168,7 @@ struct vtkApertureDEMReader::Internals
   int Level = -1;               // -1: full resolution, else overview index
   int Window[4] = { 0, 0, 0, 0 }; // x0, y0, columns, rows in pixels of the level
   int LevelSize[2] = { 0, 0 };  // columns, rows of the level read
+  int Block[2] = { 0, 0 };      // columns, rows of the level's blocks (BlockBytes: their bytes)
   int Factor = 1;               // decimation
   int Out[2] = { 0, 0 };        // output columns, rows
   bool SouthUp = false;         // the file's first row is its southern row
@@ -660,9 +661,8 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
     }
     level = GDALGetOverview(base, d.Level);
   }
-  int blockX = 0, blockY = 0;
-  GDALGetBlockSize(level, &blockX, &blockY);
-  this->BlockBytes = static_cast<double>(blockX) * blockY *
+  GDALGetBlockSize(level, &d.Block[0], &d.Block[1]);
+  this->BlockBytes = static_cast<double>(d.Block[0]) * d.Block[1] *
     GDALGetDataTypeSizeBytes(GDALGetRasterDataType(level));
   const int levelX = GDALGetRasterBandXSize(level), levelY = GDALGetRasterBandYSize(level);
   const double sx = static_cast<double>(this->RasterSize[0]) / levelX;
@@ -1050,16 +1050,13 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
   // GDAL decompresses a block whole, whatever part of it is read: a compressed raster stored
   // as one strip (as Pillow writes them) held 800 MB for a 100 x 100 window of a 20000^2 one,
   // past MemoryLimit, until 2026-12-07 (an uncompressed strip GDAL splits into rows itself)
-  int blockX = 0, blockY = 0;
-  GDALGetBlockSize(band, &blockX, &blockY);
-  const double blockBytes = static_cast<double>(blockX) * blockY *
-    GDALGetDataTypeSizeBytes(GDALGetRasterDataType(band));
-  if (static_cast<double>(bytes) + blockBytes > static_cast<double>(limit))
+  // (the block RequestInformation found)
+  if (static_cast<double>(bytes) + this->BlockBytes > static_cast<double>(limit))
   {
     vtkErrorMacro(<< "reading " << ncols << " x " << nrows << " cells of '" << this->FileName
                   << "' needs " << vtkApertureHumanBytes(static_cast<double>(bytes))
-                  << " as float32 and " << vtkApertureHumanBytes(blockBytes)
-                  << " for one of its blocks of " << blockX << " x " << blockY
+                  << " as float32 and " << vtkApertureHumanBytes(this->BlockBytes)
+                  << " for one of its blocks of " << d.Block[0] << " x " << d.Block[1]
                   << " cells, which GDAL reads whole, more than the " << allowed
                   << "; write it in tiles first (gdal_translate -co TILED=YES -co "
                      "COMPRESS=DEFLATE)");
