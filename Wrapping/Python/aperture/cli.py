@@ -398,17 +398,22 @@ def _read(watcher, reader, extent=None):
         return watcher.update(reader, extent=extent)
 
 
-def _has_heights(image, extent=None):
-    """Whether any cell of `extent` (within the image's; default all of it) has an elevation
-    (not NaN, the reader's nodata)."""
-    import numpy as np
+def _elevations(image, extent=None):
+    """The image's Elevation array as a numpy view (no copy) of `extent` (within the image's;
+    default all of it), [row, column], its first row the southern one."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
     e = image.GetExtent()
     extent = extent or e
     z = vtk_to_numpy(image.GetPointData().GetArray("Elevation"))
     z = z.reshape(e[3] - e[2] + 1, e[1] - e[0] + 1)
-    return bool(np.isfinite(z[extent[2] - e[2]:extent[3] - e[2] + 1,
-                              extent[0] - e[0]:extent[1] - e[0] + 1]).any())
+    return z[extent[2] - e[2]:extent[3] - e[2] + 1, extent[0] - e[0]:extent[1] - e[0] + 1]
+
+
+def _has_heights(image, extent=None):
+    """Whether any cell of `extent` (within the image's; default all of it) has an elevation
+    (not NaN, the reader's nodata)."""
+    import numpy as np
+    return bool(np.isfinite(_elevations(image, extent)).any())
 
 
 # the bake's record of the elevations it read, which render --baked compares with its own
@@ -427,14 +432,9 @@ def _digest_rows(digest, image, extent=None):
     """Feed the elevations of `extent` of `image` (within its extent; default all of it) into
     `digest` (_elevation_digest's), its northern row first, as DIGEST_TEXT says."""
     import numpy as np
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    e = image.GetExtent()
-    extent = extent or e
-    z = vtk_to_numpy(image.GetPointData().GetArray("Elevation"))
-    z = z.reshape(e[3] - e[2] + 1, e[1] - e[0] + 1)[:, extent[0] - e[0]:extent[1] - e[0] + 1]
-    top, bottom = extent[3] - e[2], extent[2] - e[2]
-    for row in range(top, bottom - 1, -1024):  # (blocks of rows: no copy of all of them)
-        block = z[max(row - 1023, bottom):row + 1][::-1].astype("<f4")
+    z = _elevations(image, extent)
+    for row in range(len(z) - 1, -1, -1024):  # (blocks of rows: no copy of all of them)
+        block = z[max(row - 1023, 0):row + 1][::-1].astype("<f4")
         block[np.isnan(block)] = np.nan  # (one NaN, whatever payload a reader gave)
         digest.update(block.tobytes())
 
@@ -789,7 +789,7 @@ def _attach_baked(image, path, reader):
 def _attach_baked_bands(image, path, ds, reader):
     """_attach_baked's checks and copies, from the open dataset `ds`."""
     import numpy as np
-    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    from vtkmodules.util.numpy_support import numpy_to_vtk
     bands = {ds.GetRasterBand(b).GetDescription(): b for b in range(1, ds.RasterCount + 1)}
     need = ["BentNormal_E", "BentNormal_N", "BentNormal_U", "ApertureRadius"]
     missing = [n for n in need if n not in bands]
@@ -879,7 +879,7 @@ def _attach_baked_bands(image, path, ds, reader):
     # A bake of this DEM has a unit bent normal and a radius in 0..180 degrees wherever the
     # DEM has a height; a cell without them is drawn black (a bake of the DEM with voids since
     # filled lit half of it black, silently, until 2026-12-06)
-    elevation = vtk_to_numpy(image.GetPointData().GetArray("Elevation")).reshape(ny, nx)
+    elevation = _elevations(image)
     with np.errstate(invalid="ignore"):
         sky = ((np.abs(np.linalg.norm(bent, axis=-1) - 1.0) <= 1e-3) &
                (radius >= 0.0) & (radius <= np.float32(math.pi)))
