@@ -124,11 +124,13 @@ if (NOT manifest STREQUAL installed)
   message(FATAL_ERROR "install_manifest.txt does not name what was installed; unnamed: "
     "${unlisted}")
 endif ()
-function(uninstall)
-  run("uninstall" "${CMAKE_COMMAND}" -E env ${ARGN} "${CMAKE_COMMAND}"
-    "-DMANIFEST=${manifest_path}" "-DPREFIX_FILE=${APERTURE_BUILD_DIR}/install_prefix.txt"
+# Utilities/Uninstall.cmake on a manifest and a prefix record, in the environment ARGN
+function(uninstall what manifest prefix_record)
+  run("${what}" "${CMAKE_COMMAND}" -E env ${ARGN} "${CMAKE_COMMAND}"
+    "-DMANIFEST=${manifest}" "-DPREFIX_FILE=${prefix_record}"
     -P "${APERTURE_SOURCE_DIR}/Utilities/Uninstall.cmake")
 endfunction()
+set(prefix_record "${APERTURE_BUILD_DIR}/install_prefix.txt")
 # (no file, and no folder but the prefix's own top ones, bin, lib, share, and the shared
 # lib/pythonX.Y/dist-packages and share/doc: lib/cmake and lib/vtk/hierarchy were left empty
 # until 2026-12-07)
@@ -149,7 +151,7 @@ function(check_nothing_left root install_prefix)
     endif ()
   endforeach ()
 endfunction()
-uninstall()
+uninstall("uninstall" "${manifest_path}" "${prefix_record}")
 check_nothing_left("${prefix}" "${prefix}")
 if (WRAP_PYTHON)
   run("no package after the uninstall" "${CMAKE_COMMAND}" -E env
@@ -175,7 +177,7 @@ foreach (f IN LISTS manifest)
     endif ()
   endif ()
 endforeach ()
-uninstall("DESTDIR=${stage}")
+uninstall("uninstall" "${manifest_path}" "${prefix_record}" "DESTDIR=${stage}")
 check_nothing_left("${stage}" "${stage}${WORK_DIR}/usr")
 list(LENGTH manifest count)
 message(STATUS "install_manifest.txt names all ${count} files installed; uninstalled: ok")
@@ -199,9 +201,8 @@ file(WRITE "${WORK_DIR}/fake-prefix.txt" "/usr/local")
 foreach (f IN LISTS fake_files)
   file(WRITE "${fake}${f}" "")
 endforeach ()
-run("uninstall of a prefix with a folder outside it" "${CMAKE_COMMAND}" -E env
-  "DESTDIR=${fake}" "${CMAKE_COMMAND}" "-DMANIFEST=${WORK_DIR}/fake-manifest.txt"
-  "-DPREFIX_FILE=${WORK_DIR}/fake-prefix.txt" -P "${APERTURE_SOURCE_DIR}/Utilities/Uninstall.cmake")
+uninstall("uninstall of a prefix with a folder outside it" "${WORK_DIR}/fake-manifest.txt"
+  "${WORK_DIR}/fake-prefix.txt" "DESTDIR=${fake}")
 file(GLOB_RECURSE left LIST_DIRECTORIES true RELATIVE "${fake}" "${fake}/*")
 list(SORT left)
 set(kept usr usr/local usr/local/bin usr/local/include usr/local/lib usr/local/lib/python3.11
@@ -216,9 +217,8 @@ foreach (f IN LISTS fake_files)
   file(WRITE "${fake}${f}" "")
 endforeach ()
 file(WRITE "${WORK_DIR}/fake-prefix.txt" "/usr")
-run("uninstall with another install's prefix recorded" "${CMAKE_COMMAND}" -E env
-  "DESTDIR=${fake}" "${CMAKE_COMMAND}" "-DMANIFEST=${WORK_DIR}/fake-manifest.txt"
-  "-DPREFIX_FILE=${WORK_DIR}/fake-prefix.txt" -P "${APERTURE_SOURCE_DIR}/Utilities/Uninstall.cmake")
+uninstall("uninstall with another install's prefix recorded" "${WORK_DIR}/fake-manifest.txt"
+  "${WORK_DIR}/fake-prefix.txt" "DESTDIR=${fake}")
 file(GLOB_RECURSE left LIST_DIRECTORIES true RELATIVE "${fake}" "${fake}/*")
 foreach (d IN LISTS kept)
   list(FIND left "${d}" at)

@@ -48,6 +48,7 @@ namespace
 {
 std::string tmp;
 void ExpectError(vtkApertureDEMWriter* writer, const std::string& expected);
+void ExpectRefused(vtkImageData* image, const std::string& path, const std::string& expected);
 const int NX = 6, NY = 4;
 
 // Elevation(i, j) = 100 j + i, NaN at (1, 2); Vector (3 components E, N, U); Count (int).
@@ -759,6 +760,19 @@ void TestStrips()
     "rows 0 to 263 of '" + tmp + "/strips-caller-failed.tif' were not written");
 }
 
+// Writing `image` to `path` (none there before: a stale one removed) fails with `expected`
+// and leaves no file there.
+void ExpectRefused(vtkImageData* image, const std::string& path, const std::string& expected)
+{
+  std::remove(path.c_str());
+  vtkNew<vtkApertureDEMWriter> w;
+  w->SetInputData(image);
+  w->SetFileName(path.c_str());
+  ExpectError(w, expected);
+  struct stat sb;
+  AP_CHECK(stat(path.c_str(), &sb) != 0);
+}
+
 void ExpectError(vtkApertureDEMWriter* writer, const std::string& expected)
 {
   vtkNew<vtkTest::ErrorObserver> errors, executiveErrors;
@@ -891,12 +905,9 @@ void TestErrors()
     heights->SetNumberOfValues(6);
     heights->Fill(100.0f);
     image->GetPointData()->SetScalars(heights);
-    vtkNew<vtkApertureDEMWriter> w;
-    w->SetInputData(image);
     const std::string path = tmp + "/nameless.tif";
-    w->SetFileName(path.c_str());
-    ExpectError(w, "the image has no named point arrays to write to '" + path + "' (a band is "
-                   "described by its array's name: name the array, such as 'Elevation')");
+    ExpectRefused(image, path, "the image has no named point arrays to write to '" + path +
+        "' (a band is described by its array's name: name the array, such as 'Elevation')");
   }
   {
     // without a CRS the grid still needs its geotransform: a mirrored direction matrix (north
@@ -904,14 +915,9 @@ void TestErrors()
     auto image = MakeImage(false);
     const double flip[9] = { 1, 0, 0, 0, -1, 0, 0, 0, 1 };
     image->SetDirectionMatrix(flip);
-    vtkNew<vtkApertureDEMWriter> w;
-    w->SetInputData(image);
     const std::string path = tmp + "/flipped.tif";
-    w->SetFileName(path.c_str());
-    ExpectError(w, "cannot write '" + path + "': the image has a rotated or mirrored direction "
-                   "matrix, which no geotransform of its origin and spacing describes");
-    struct stat sb;
-    AP_CHECK(stat(path.c_str(), &sb) != 0);
+    ExpectRefused(image, path, "cannot write '" + path + "': the image has a rotated or "
+        "mirrored direction matrix, which no geotransform of its origin and spacing describes");
   }
   {
     vtkNew<vtkApertureDEMWriter> w;
