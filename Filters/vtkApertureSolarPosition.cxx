@@ -106,16 +106,38 @@ double FromInstant(const ap_instant& t)
   return static_cast<double>(t.unix_seconds) + t.fraction;
 }
 
-/** ISO 8601 UTC to the second (rounded), or "" for NaN. */
-std::string FormatUTC(double seconds)
+/** ISO 8601 UTC with `digits` fraction digits (rounded; 0: to the second), or "" for NaN. */
+std::string FormatUTC(double seconds, int digits = 0)
 {
   char buf[64];
   if (!std::isfinite(seconds) ||
-    ap_instant_format_iso8601(ToInstant(seconds), 0, buf, sizeof(buf)) != AP_OK)
+    ap_instant_format_iso8601(ToInstant(seconds), digits, buf, sizeof(buf)) != AP_OK)
   {
     return std::string();
   }
   return buf;
+}
+
+/** The fraction digits that write an instant as it was given: 0, 3 or 6, the fewest that hold
+ *  it within half a microsecond (or two of the double's steps, beyond which its digits mean
+ *  nothing): "12:00:00.5" is written 12:00:00.500, and not rounded to a second it is not. */
+int FractionDigits(double seconds)
+{
+  if (!std::isfinite(seconds))
+  {
+    return 0;
+  }
+  const double fraction = seconds - std::floor(seconds);
+  const double step = std::nextafter(std::fabs(seconds), HUGE_VAL) - std::fabs(seconds);
+  const double tolerance = std::max(5e-7, 2.0 * step);
+  for (const double scale : { 1.0, 1e3 })
+  {
+    if (std::fabs(fraction - std::round(fraction * scale) / scale) <= tolerance)
+    {
+      return scale == 1.0 ? 0 : 3;
+    }
+  }
+  return 6;
 }
 
 /** A number as %g gives it, so that 1e20 reads as 1e+20 and not as twenty digits (with a '.'
@@ -237,7 +259,7 @@ struct vtkApertureSolarPosition::Internals
   int32_t GivenOffset = 0;
   vtkSmartPointer<vtkApertureGeoreference> Geo; // the DEM of SetPlaceFromImage
   std::string Error;
-  std::string TimeString, Sunrise, Transit, Sunset;
+  std::string TimeString, LocalTimeString, Sunrise, Transit, Sunset;
   ap_sun_position_result Sun;
   ap_sky_sunlight Beam;
   // The sky, prepared on first use (PrepareSky) from the parameters and sun direction of the
@@ -426,8 +448,20 @@ void vtkApertureSolarPosition::SetUnixTime(double seconds)
 
 const char* vtkApertureSolarPosition::GetTimeString()
 {
-  this->Impl->TimeString = FormatUTC(this->UnixTime);
+  this->Impl->TimeString = FormatUTC(this->UnixTime, FractionDigits(this->UnixTime));
   return this->Impl->TimeString.c_str();
+}
+
+const char* vtkApertureSolarPosition::GetLocalTimeString()
+{
+  char buf[64];
+  const double t = this->UnixTime;
+  this->Impl->LocalTimeString = std::isfinite(t) &&
+      ap_instant_format_iso8601_local(ToInstant(t), this->Impl->DayOffset(t),
+        FractionDigits(t), buf, sizeof(buf)) == AP_OK
+    ? buf
+    : "";
+  return this->Impl->LocalTimeString.c_str();
 }
 
 //------------------------------------------------------------------------------

@@ -72,14 +72,19 @@ public:
    * SetUnixTime sets POSIX seconds (UTC, no leap seconds) directly, keeping the offset the
    * last SetTime was given as the clock of the local day (a series stepped from an instant
    * written with +09:00 keeps its days at +09:00; "Z" sets 0). GetTimeString gives the
-   * instant as ISO 8601 UTC ("2026-06-21T12:00:00Z"). The strings returned here and by
-   * Get{Sunrise,Transit,Sunset}String are owned by this object and valid until the next call
-   * of the same getter or the next Compute(): copy them to keep them.
+   * instant as ISO 8601 UTC ("2026-06-21T12:00:00Z"), with 3 or 6 fraction digits when it has
+   * a fraction of a second ("2026-06-21T12:00:00.500Z"; microseconds at most, rounded);
+   * GetLocalTimeString the same instant on the clock of GetLocalOffsetAt(GetUnixTime())
+   * ("2026-06-21T14:00:00.500+02:00"); both "" for no time (and the local one for a local
+   * year outside −2000..6000). The strings returned here and by Get{Sunrise,Transit,
+   * Sunset}String are owned by this object and valid until the next call of the same getter
+   * or the next Compute(): copy them to keep them.
    */
   bool SetTime(const char* iso8601);
   void SetUnixTime(double seconds);
   double GetUnixTime() const { return this->UnixTime; }
   const char* GetTimeString();
+  const char* GetLocalTimeString();
   ///@}
 
   ///@{

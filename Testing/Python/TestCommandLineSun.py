@@ -242,20 +242,46 @@ class CommandLineSunTest(unittest.TestCase):
             line = [l for l in out.splitlines() if "local: sunrise" in l][0]
             self.assertIn("sunrise %s%s" % (r["sunrise_local"][11:19], after), line)
 
-    def test_rounding_and_delta_t(self):
-        # half a second rounds up in the local time as in the UTC one (it went to even)
+    def test_fractions_of_a_second_and_delta_t(self):
+        # An instant with a fraction of a second is written with it, to the millisecond or
+        # the microsecond, in the UTC and the local time alike: the sun is computed for that
+        # instant (12:00:00.5 was written 12:00:01, a second it was not, until 2026-12-07)
         status, out, err = run("--at", "2026-06-21T12:00:00.5Z", "--lat", 47, "--lon", 8)
         self.assertEqual(status, 0, err)
-        self.assertIn("Time:        2026-06-21T12:00:01Z (local 2026-06-21T12:00:01+00:00)", out)
-        # but not past the last second of the years -2000..6000, which the parser refuses:
-        # both times truncated there (until 2026-12-07 "6001-01-01T00:00:00Z", twice)
+        self.assertIn("Time:        2026-06-21T12:00:00.500Z (local 2026-06-21T12:00:00.500+00:00)",
+                      out)
+        for at, utc, local in (
+                ("2026-06-21T14:00:00,25", "2026-06-21T12:00:00.250Z",
+                 "2026-06-21T14:00:00.250+02:00"),
+                ("2026-06-21T14:00:00.123456", "2026-06-21T12:00:00.123456Z",
+                 "2026-06-21T14:00:00.123456+02:00"),
+                ("2026-06-21T14:00:00.1234567", "2026-06-21T12:00:00.123457Z",  # (rounded)
+                 "2026-06-21T14:00:00.123457+02:00"),
+                ("2026-06-21T14:00:00.9999999", "2026-06-21T12:00:01Z",  # (within 0.5 us)
+                 "2026-06-21T14:00:01+02:00"),
+                ("1969-12-31T23:59:59.75", "1969-12-31T22:59:59.750Z",  # (before 1970)
+                 "1969-12-31T23:59:59.750+01:00")):
+            r = self.json_of("--at", at, "--tz", "Europe/Zurich", "--lat", 47, "--lon", 8)
+            self.assertEqual((r["time_utc"], r["time_local"]), (utc, local), at)
+            self.assertEqual(len(r["sunrise"]), len("2026-06-21T03:29:02Z"))  # (events: seconds)
+        # a series stepped by 1.5 s: each row its instant
+        status, out, err = run("--at", "2026-06-21T12:00Z", "--lat", 47, "--lon", 8, "--days", 1,
+                               "--step", 0.025)
+        self.assertEqual(status, 0, err)
+        self.assertEqual([row.split("\t")[:2] for row in out.splitlines()[1:4]],
+                         [["2026-06-21T12:00:00Z", "2026-06-21T12:00:00+00:00"],
+                          ["2026-06-21T12:00:01.500Z", "2026-06-21T12:00:01.500+00:00"],
+                          ["2026-06-21T12:00:03Z", "2026-06-21T12:00:03+00:00"]])
+        # the range's last second keeps its digits, and is not rounded past its end, which the
+        # parser refuses (until 2026-12-07 "6001-01-01T00:00:00Z", twice)
         status, out, err = run("--at", "6000-12-31T23:59:59.9Z", "--lat", 47, "--lon", 8)
         self.assertEqual(status, 0, err)
-        self.assertIn("Time:        6000-12-31T23:59:59Z (local 6000-12-31T23:59:59+00:00)", out)
+        self.assertIn("Time:        6000-12-31T23:59:59.900Z (local 6000-12-31T23:59:59.900+00:00)",
+                      out)
         # nor as a local time in the year 6001, east of UTC, which --at would refuse
         r = self.json_of("--at", "6000-12-31T23:59:59.9Z", "--lat", 35, "--lon", 139, "--tz",
                          "Asia/Tokyo")
-        self.assertEqual((r["time_utc"], r["time_local"]), ("6000-12-31T23:59:59Z", None))
+        self.assertEqual((r["time_utc"], r["time_local"]), ("6000-12-31T23:59:59.900Z", None))
         # --delta-t nan was the estimate, without a word
         for value in ("nan", "1e300", "-100001"):  # (1e300 was refused by the light's check)
             self.assertEqual(self.usage_error_of("--at", "2026-06-21T12:00Z", "--lat", 47,

@@ -301,6 +301,20 @@ void TestTimeZones()
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "2026-10-25T00:30:00Z");
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "2026-10-25T01:30:00Z");
   AP_CHECK(std::string(sun->GetTimeString()) == "2026-01-15T13:00:00Z"); // kept
+  AP_CHECK(std::string(sun->GetLocalTimeString()) == "2026-01-15T14:00:00+01:00");
+  // Fractions of a second as given (rounded to the second until 2026-12-07): the fewest of 0,
+  // 3 or 6 digits, in the local time too (on the clock of that instant: summer time in June)
+  AP_CHECK(sun->SetTime("2026-06-21T14:00:00.5"));
+  AP_CHECK(std::string(sun->GetTimeString()) == "2026-06-21T12:00:00.500Z");
+  AP_CHECK(std::string(sun->GetLocalTimeString()) == "2026-06-21T14:00:00.500+02:00");
+  sun->SetUnixTime(1782043200.000123);
+  AP_CHECK(std::string(sun->GetTimeString()) == "2026-06-21T12:00:00.000123Z");
+  sun->SetUnixTime(1782043200.0000002); // (within half a microsecond of the second)
+  AP_CHECK(std::string(sun->GetTimeString()) == "2026-06-21T12:00:00Z");
+  sun->SetUnixTime(-0.25);
+  AP_CHECK(std::string(sun->GetTimeString()) == "1969-12-31T23:59:59.750Z");
+  AP_CHECK(std::string(sun->GetLocalTimeString()) == "1970-01-01T00:59:59.750+01:00");
+  AP_CHECK(sun->SetTime("2026-01-15T14:00"));
   // The clock at other instants (a sunset after a clock change): the EU's changes at 01:00 UTC
   // on the last Sundays of March and October (2026-03-29, 2026-10-25).
   AP_CHECK(sun->GetLocalOffsetAt(1774746000.0 - 1.0) == 3600);

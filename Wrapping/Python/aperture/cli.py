@@ -1100,8 +1100,7 @@ def _frame_option_checks(args):
                           "through time)")
     args.step = 10.0 if args.step is None else args.step
     if not (args.step >= 1.0 / 60.0 and math.isfinite(args.step)):
-        raise _UsageError("--step must be a number of minutes of at least 1/60 (one second: "
-                          "times are given to the second)")
+        raise _UsageError("--step must be a number of minutes of at least 1/60 (one second)")
     args.frame_paths = [(o, _frame_names(o, p, args.frames))
                         for o, p in (("--output", args.output), ("--exr", args.exr)) if p]
 
@@ -1414,7 +1413,7 @@ def _render_frame(args, k, t, sun, window, renderer, mapper, exposure, names, wa
     if not args.quiet:
         when = ""
         if args.frames:  # (the local time too with --tz: a day's frames in its hours)
-            local = _local_text(sun, sun.GetUnixTime()) if args.tz else None
+            local = sun.GetLocalTimeString() if args.tz else None
             when = "%s%s, " % (sun.GetTimeString(), " (local %s)" % local if local else "")
         print("wrote %s (%d x %d, %s view, %ssun azimuth %.2f, elevation %.2f deg, %s)" % (
             path, args.size[0], args.size[1], args.view, when, sun.GetAzimuth(),
@@ -2402,9 +2401,10 @@ _LAST_SECOND = 127206115199  # 6000-12-31T23:59:59Z, ap_time.h's AP_TIME_UNIX_MA
 
 
 def _local_text(sun, unix_seconds):
-    """ISO 8601 local time (to the second) of an instant on the clock of the sun's place: the
-    time zone's offset at that instant (a sunset after a clock change has the new one), else
-    the offset --at was written with; None for no instant. The years -2000..6000 as the UTC
+    """ISO 8601 local time, to the second, of an instant (sunrise, transit, sunset; the
+    instant itself is sun.GetLocalTimeString(), with its fraction of a second) on the clock of
+    the sun's place: the time zone's offset at that instant (a sunset after a clock change has
+    the new one), else the offset --at was written with; None for no instant. The years -2000..6000 as the UTC
     strings write them (-0001, 0000: Python's datetime, years 1..9999, had none for them
     until 2026-12-07)."""
     if unix_seconds is None or not math.isfinite(unix_seconds):
@@ -2445,7 +2445,7 @@ def _sun_record(sun, with_dem):
     finite = lambda v: v if v is not None and math.isfinite(v) else None
     record = {
         "time_utc": sun.GetTimeString(),
-        "time_local": _local_text(sun, sun.GetUnixTime()),
+        "time_local": sun.GetLocalTimeString() or None,
         "utc_offset": _offset_text(sun.GetLocalOffset()),
         "time_zone": sun.GetTimeZone() or None,
         "latitude_deg": sun.GetLatitude(),
@@ -2597,8 +2597,7 @@ def cmd_sun(args):
     if args.days is not None and args.days < 1:
         raise _UsageError("--days must be 1 or more")
     if args.step is not None and not (args.step >= 1.0 / 60.0 and math.isfinite(args.step)):
-        raise _UsageError("--step must be a number of minutes of at least 1/60 (one second: "
-                          "times are given to the second)")
+        raise _UsageError("--step must be a number of minutes of at least 1/60 (one second)")
     watcher = Watcher(on_warning=_warn)
     sun = watcher.watch(vtkApertureSolarPosition())
     if args.tz and not sun.SetTimeZone(args.tz):
@@ -2684,7 +2683,7 @@ def cmd_sun(args):
         # only when asked for, and would take 17 times the position's time)
         if not sun.Compute():
             raise ApertureError(sun.GetErrorMessage())
-        row = [sun.GetTimeString(), _local_text(sun, sun.GetUnixTime()) or "n/a",
+        row = [sun.GetTimeString(), sun.GetLocalTimeString() or "n/a",
                "%.4f" % sun.GetAzimuth(), "%.4f" % sun.GetElevation(),
                "%.4f" % sun.GetElevationTrue()]
         if args.dem is not None:
