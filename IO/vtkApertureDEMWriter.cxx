@@ -689,6 +689,12 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
       {
         ok = ok &&
           GDALSetMetadataItem(hb, item.Key.c_str(), item.Value.c_str(), nullptr) == CE_None;
+        if (ok && EQUAL(item.Key.c_str(), "UNITS") && item.Value != "1")
+        {
+          // (the unit gdalinfo and QGIS show: the products' degrees and steradians were only
+          // in the metadata until 2026-12-07; a ratio, "1", has none there)
+          ok = GDALSetRasterUnitType(hb, item.Value.c_str()) == CE_None;
+        }
       }
     }
   }

@@ -18,8 +18,9 @@
  * its name; an array of c > 1 components gives c bands described `<name>_<component name>`,
  * or `<name>_<k>` where the component has no name.
  * Band metadata added with AddBandMetadata is attached to the bands whose description starts
- * with the given array name. The array named Elevation (heights in metres, as the reader gives
- * them and the filters take them) gets GDAL's band unit "metre".
+ * with the given array name; an item UNITS also sets GDAL's band unit (what gdalinfo and QGIS
+ * show), unless it is "1" (a ratio). The array named Elevation (heights in metres, as the
+ * reader gives them and the filters take them) gets GDAL's band unit "metre".
  *
  * Samples: Float32 bands, or Float64 when any written array is double. NaN cells are nodata:
  * written as NoDataValue (default NaN), which every band declares as its nodata value.

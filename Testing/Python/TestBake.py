@@ -39,7 +39,11 @@ def bands(path):
     out = {}
     for b in range(1, ds.RasterCount + 1):
         band = ds.GetRasterBand(b)
-        out[band.GetDescription()] = (band.ReadAsArray().astype(np.float64), band.GetMetadata())
+        meta = band.GetMetadata()
+        # (GDAL's band unit, which gdalinfo and QGIS show, the UNITS item but for ratios)
+        assert band.GetUnitType() == ("" if meta.get("UNITS") == "1" else meta.get("UNITS", "")), (
+            path, band.GetDescription(), band.GetUnitType())
+        out[band.GetDescription()] = (band.ReadAsArray().astype(np.float64), meta)
     meta = ds.GetMetadata()
     gt = ds.GetGeoTransform()
     srs = ds.GetSpatialRef().ExportToWkt() if ds.GetSpatialRef() else None
@@ -981,8 +985,21 @@ class TestBake(unittest.TestCase):
         out = self.path("two.tif")
         status, _, err = run("bake", self.dem, out, "--products", "skyviewfactor,BentNormal")
         self.assertEqual(status, 0, err)
-        self.assertEqual(list(bands(out)[0]), ["BentNormal_E", "BentNormal_N", "BentNormal_U",
-                                               "SkyViewFactor"])
+        self.assertEqual(list(bands(out)[0]), ["SkyViewFactor", "BentNormal_E", "BentNormal_N",
+                                               "BentNormal_U"])
+        # bands in the list's order (the table's order until 2026-12-07), a name twice once,
+        # 'all' in the table's order where it stands
+        status, _, err = run("bake", self.dem, out, "--products",
+                             "EdgeTruncated,PositiveOpenness,edgetruncated", "-d", 4)
+        self.assertEqual(status, 0, err)
+        self.assertEqual(list(bands(out)[0]), ["EdgeTruncated", "PositiveOpenness"])
+        status, _, err = run("bake", self.dem, out, "--products", "PositiveOpenness,all", "-d", 4)
+        self.assertEqual(status, 0, err)
+        self.assertEqual(list(bands(out)[0]), [
+            "PositiveOpenness", "VisibleSolidAngle", "ApertureRadius", "BentNormal_E",
+            "BentNormal_N", "BentNormal_U", "SkyViewFactor", "DiffuseSkyFactor", "EdgeTruncated",
+            "HorizonAngles_az000.00", "HorizonAngles_az090.00", "HorizonAngles_az180.00",
+            "HorizonAngles_az270.00"])
 
     def test_errors(self):
         out = self.path("x.tif")

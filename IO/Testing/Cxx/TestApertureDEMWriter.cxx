@@ -167,6 +167,13 @@ void TestWriteAndReadBack()
   const char* units = GDALGetMetadataItem(GDALGetRasterBand(ds, 3), "UNITS", nullptr);
   AP_CHECK(units && std::string(units) == "metre");
   AP_CHECK(GDALGetMetadataItem(GDALGetRasterBand(ds, 1), "UNITS", nullptr) == nullptr);
+  // the UNITS item is the band's unit too, which gdalinfo and QGIS show (until 2026-12-07 it
+  // was metadata only)
+  for (int b = 1; b <= 5; ++b) // (Elevation, Vector_E, _N, _U in metres; Count has none)
+  {
+    AP_CHECK(std::string(GDALGetRasterUnitType(GDALGetRasterBand(ds, b))) ==
+      (b < 5 ? "metre" : ""));
+  }
   GDALClose(ds);
 
   // Round trip through our reader: same grid, same values, NaN where NaN was.

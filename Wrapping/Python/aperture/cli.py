@@ -1778,7 +1778,10 @@ def _parse_products(text):
         chosen.append(names[item.lower()])
     if not chosen:
         raise _UsageError("--products names no product")
-    return [name for name, *_ in PRODUCTS if name in chosen]  # band order, no duplicates
+    # bands in the list's order, as gdal_translate -b takes them ('all' in the table's order
+    # where it stands; a name twice once, where it first stands): the table's order whatever
+    # the list's until 2026-12-07, which a script's -b N did not expect
+    return list(dict.fromkeys(chosen))
 
 
 def _provenance(args, products, reader):
@@ -2789,8 +2792,9 @@ def build_parser():
                         "quota allows, which also cap larger values); results and file "
                         "contents do not depend on it")
     p.add_argument("--products", metavar="LIST",
-                   help="comma-separated products: %s; 'all' adds HorizonAngles (default: all "
-                        "but HorizonAngles)" % ", ".join(n for n, *_ in PRODUCTS))
+                   help="comma-separated products, written as bands in that order: %s; 'all' "
+                        "adds HorizonAngles (default: all but HorizonAngles)"
+                        % ", ".join(n for n, *_ in PRODUCTS))
     p.add_argument("--exr", metavar="OUT.exr", help="also write the products to this EXR")
     p.add_argument("--exr-type", choices=("float", "half"), metavar="float|half",
                    help="the EXR's sample type: float (default; the GeoTIFF's values exactly) or "
