@@ -634,7 +634,8 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
       vtkErrorMacro(<< "'" << name << "' has no coordinate reference system"
                     << (why.empty() ? std::string()
                                     : " (GDAL: " + why + "; is the file damaged?)")
-                    << "; set OverrideCRS (aperture: --srs EPSG:xxxx)");
+                    << "; set OverrideCRS (aperture: --srs EPSG:xxxx; a site grid with no "
+                       "place on the Earth: --srs 'LOCAL_CS[\"grid\",UNIT[\"metre\",1]]')");
       return 0;
     }
     const bool ok = geo->SetCRS(wkt);

@@ -123,6 +123,27 @@ class TestHelp(CommandLineTest):
             self.assertIn("usage: aperture %s " % args[0], err)
             self.assertIn("aperture %s: error: unrecognized arguments: %s" % (args[0], unknown),
                           err)
+        # gdaldem's options get what to give instead (unrecognized alone until 2026-12-07)
+        for args, said in (
+                (("bake", "x.tif", "y.tif", "-co", "COMPRESS=ZSTD", "-co", "TILED=YES", "-of",
+                  "GTiff"), "unrecognized arguments: -co COMPRESS=ZSTD -co TILED=YES -of GTiff. "
+                            "-co: GDAL's creation options are not taken: --compress CODEC and "
+                            "--compress-level N choose the compression (the GeoTIFF is tiled, "
+                            "with the floating-point predictor, BigTIFF when it needs to be); "
+                            "-of: bake writes a GeoTIFF (and an OpenEXR file with --exr), "
+                            "whatever the name\n"),
+                (("render", "x.tif", "-z", "2"), "unrecognized arguments: -z 2. -z: "
+                                                 "--exaggeration stretches the heights drawn; "
+                                                 "--zfactor Z gives the metres of an elevation "
+                                                 "unit\n"),
+                (("info", "x.tif", "-s", "111120", "-compute_edges"),
+                 "arguments: -s 111120 -compute_edges. -s: cell sizes come in metres from the "
+                 "DEM's CRS, lat/lon included; --zfactor Z gives the metres of an elevation unit; "
+                 "-compute_edges: every cell is computed")):
+            status, out, err = run(*args)
+            self.assertEqual((status, out), (2, ""), err)
+            self.assertIn("usage: aperture %s " % args[0], err)
+            self.assertIn(said, err)
 
 
 class TestLauncher(CommandLineTest):
@@ -506,8 +527,9 @@ class TestInfo(CommandLineTest):
     def test_srs_override(self):
         rows = np.ones((4, 4))
         p = make_raster(self.path("nocrs.tif"), rows, (500000, 30, 0, 4000000, 0, -30), srs=None)
-        self.assert_error("has no coordinate reference system; give one with --srs EPSG:xxxx",
-                          "info", p)
+        self.assert_error("has no coordinate reference system; give one with --srs EPSG:xxxx; "
+                          "a site grid with no place on the Earth: --srs "
+                          "'LOCAL_CS[\"grid\",UNIT[\"metre\",1]]'", "info", p)
         d, err = self.info(p, "--srs", "EPSG:32611")
         self.assertEqual(d["crs"], "WGS 84 / UTM zone 11N")
         self.assertEqual(err, "")

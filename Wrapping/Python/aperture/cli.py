@@ -348,7 +348,7 @@ _READER_PHRASES = (
     (re.compile(r"use fewer threads \(NumberOfThreads; 1 starts none\)"),
      "use fewer --threads (1 starts none)"),
     (re.compile(r"^OverrideCRS: "), "--srs: "),
-    (re.compile(r"set OverrideCRS \(aperture: (--srs EPSG:xxxx)\)"), r"give one with \1"),
+    (re.compile(r"set OverrideCRS \(aperture: (--srs EPSG:xxxx[^)]*)\)"), r"give one with \1"),
     (re.compile(r"MetresPerElevationUnit"), "--zfactor"),
     (re.compile(r"\(after [a-z, ]+\)"),  # (the reader's steps, only those taken)
      lambda m: m.group(0).replace("subwindow", "--srcwin").replace("overview", "--overview")
@@ -3101,6 +3101,39 @@ def _refuse_empty(args):
                 "the output name OUT.tif" if args.func is cmd_bake else "--output")))
 
 
+# gdaldem's and GDAL's options, which a GIS analyst tries first: what to give instead (each
+# was "unrecognized arguments" alone until 2026-12-07); by command, None for any other.
+_GDAL_HABITS = {
+    "-co": {"bake": "GDAL's creation options are not taken: --compress CODEC and "
+                    "--compress-level N choose the compression (the GeoTIFF is tiled, with the "
+                    "floating-point predictor, BigTIFF when it needs to be)",
+            None: "only 'aperture bake' writes a GeoTIFF"},
+    "-of": {"bake": "bake writes a GeoTIFF (and an OpenEXR file with --exr), whatever the name",
+            "render": "render writes a PNG (and an OpenEXR file with --exr)",
+            None: "only bake and render write files"},
+    "-s": {None: "cell sizes come in metres from the DEM's CRS, lat/lon included; --zfactor Z "
+                 "gives the metres of an elevation unit"},
+    "-z": {"render": "--exaggeration stretches the heights drawn; --zfactor Z gives the metres "
+                     "of an elevation unit",
+           None: "--zfactor Z gives the metres of an elevation unit"},
+    "-compute_edges": {None: "every cell is computed, next to the DEM's edge too (terrain beyond "
+                             "it is invisible: bake's EdgeTruncated flags the cells it could "
+                             "hide)"},
+    "--config": {None: "GDAL's configuration options are read from the environment: "
+                       "GDAL_CACHEMAX=512 aperture ..."},
+}
+
+
+def _habit_hints(command, unknown):
+    """What to give instead of each gdaldem option among `unknown` (once each), as texts."""
+    said = []
+    for arg in unknown:
+        hint = _GDAL_HABITS.get(arg.split("=", 1)[0])
+        if hint and arg not in said:
+            said.append(arg)
+            yield "%s: %s" % (arg, hint.get(command, hint[None]))
+
+
 def _main(argv):
     parser = build_parser()
     if not argv:
@@ -3111,7 +3144,9 @@ def _main(argv):
         # (in the command's usage: parse_args said them in the top level's, naming no option
         # of the command)
         command = parser.commands.get(getattr(args, "command", None), parser)
-        command.error("unrecognized arguments: %s" % " ".join(unknown))
+        hints = "; ".join(_habit_hints(getattr(args, "command", None), unknown))
+        command.error("unrecognized arguments: %s%s" % (" ".join(unknown),
+                                                        ". " + hints if hints else ""))
     if not getattr(args, "func", None):
         parser.print_help()
         return 0
