@@ -496,13 +496,37 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
                   << " does not exist");
     return 0;
   }
-  if (this->BandIndex == 0 && this->NumberOfBands > 1)
+  GDALRasterBandH base = GDALGetRasterBand(ds.H, d.Band);
+  // An alpha band (gdalwarp -dstalpha) is GDAL's mask of the others where its samples are Byte
+  // or UInt16: no band to choose then. One of other samples (Float32, as gdalwarp makes it for
+  // a Float32 DEM) masks nothing to GDAL: the cells it marks transparent, a warp's collar, were
+  // read as heights (0 m) with only "2 bands; reading band 1" said, until 2026-12-07.
+  int alpha = 0;
+  for (int b = this->NumberOfBands; b >= 1 && !alpha; --b)
   {
-    vtkWarningMacro(<< "'" << name << "' has " << this->NumberOfBands
-                    << " bands; reading band 1 as elevation (set BandIndex to choose)");
+    alpha = GDALGetRasterColorInterpretation(GDALGetRasterBand(ds.H, b)) == GCI_AlphaBand ? b : 0;
+  }
+  const bool alphaMasks = alpha && alpha != d.Band && (GDALGetMaskFlags(base) & GMF_ALPHA);
+  std::ostringstream bands;
+  if (this->BandIndex == 0 && this->NumberOfBands > (alphaMasks ? 2 : 1) &&
+    !(alpha == 2 && this->NumberOfBands == 2))
+  {
+    bands << "'" << name << "' has " << this->NumberOfBands
+          << " bands; reading band 1 as elevation (set BandIndex to choose)";
+  }
+  if (alpha && alpha != d.Band && !alphaMasks)
+  {
+    bands << (bands.tellp() > 0 ? "; its" : "'" + name + "'") << " band " << alpha
+          << " is an alpha band, which GDAL takes as a mask only with Byte or UInt16 samples, "
+          << "not " << GDALGetDataTypeName(GDALGetRasterDataType(GDALGetRasterBand(ds.H, alpha)))
+          << ": the cells it makes transparent are read as heights; give the DEM a nodata value "
+          << "instead (gdalwarp -dstnodata nan)";
+  }
+  if (bands.tellp() > 0)
+  {
+    vtkWarningMacro(<< bands.str());
   }
   this->BandRead = d.Band;
-  GDALRasterBandH base = GDALGetRasterBand(ds.H, d.Band);
   const GDALDataType type = GDALGetRasterDataType(base);
   if (GDALDataTypeIsComplex(type))
   {

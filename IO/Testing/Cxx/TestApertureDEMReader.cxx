@@ -522,6 +522,46 @@ void TestBands()
   plain.Reader->SetBandIndex(3);
   plain.Update();
   AP_CHECK(plain.Ok == 1 && !plain.Warnings->GetWarning());
+
+  // An alpha band: GDAL's mask with UInt16 samples (its 0 cells nodata, read quietly: no band
+  // to choose); with Float32 ones, as gdalwarp -dstalpha makes for a Float32 DEM, no mask to
+  // GDAL, so its transparent cells are heights: said (only "2 bands" until 2026-12-07)
+  for (const GDALDataType type : { GDT_UInt16, GDT_Float32 })
+  {
+    aptest::RasterSpec alpha;
+    alpha.bands = 2;
+    alpha.type = type;
+    alpha.options = { "ALPHA=YES" };
+    alpha.raw = [](int b, int c, int) { return b == 1 ? 100.0 + c : (c == 0 ? 0.0 : 255.0); };
+    const std::string file = tmp + "/alpha.tif";
+    AP_CHECK(aptest::WriteRaster(file, alpha));
+    Read masked(file);
+    masked.Update();
+    AP_CHECK(masked.Ok == 1);
+    AP_CHECK(std::isnan(masked.Z(0, 1)) == (type == GDT_UInt16));
+    AP_CHECK_NEAR(masked.Z(1, 1), 101.0, 0.0);
+    AP_CHECK(!!masked.Warnings->GetWarning() == (type == GDT_Float32));
+    if (type == GDT_Float32)
+    {
+      AP_CHECK_CONTAINS(masked.Warnings->GetWarningMessage(),
+        "alpha.tif' band 2 is an alpha band, which GDAL takes as a mask only with Byte or UInt16 "
+        "samples, not Float32: the cells it makes transparent are read as heights; give the DEM "
+        "a nodata value instead (gdalwarp -dstnodata nan)");
+      AP_CHECK(masked.Warnings->GetWarningMessage().find("2 bands") == std::string::npos);
+    }
+  }
+  // beside other bands, both said in one warning (GTiff's ALPHA=YES makes the first extra
+  // band the alpha)
+  aptest::RasterSpec four;
+  four.bands = 4;
+  four.options = { "ALPHA=YES" };
+  AP_CHECK(aptest::WriteRaster(tmp + "/four.tif", four));
+  Read fourBands(tmp + "/four.tif");
+  fourBands.Update();
+  AP_CHECK(fourBands.Ok == 1);
+  AP_CHECK_CONTAINS(fourBands.Warnings->GetWarningMessage(),
+    "has 4 bands; reading band 1 as elevation (set BandIndex to choose); its band 2 is an alpha "
+    "band, which GDAL");
 }
 
 // Each bad input gives a clear error and a failed update.
