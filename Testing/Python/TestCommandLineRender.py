@@ -316,6 +316,28 @@ class TestCommandLineRender(unittest.TestCase):
             self.assertGreater(np.abs(png_pixels_and_text(os.path.join(tmp, "v-0.png"))[0] -
                                       png_pixels_and_text(os.path.join(tmp, "v-2.png"))[0]).max(),
                                20)
+            # %3d pads with zeros, as %03d and ffmpeg do (spaces until 2026-12-07: ffmpeg -i
+            # w-%3d.png found none), and a frame of an earlier series so named is said
+            padded = os.path.join(tmp, "padded")
+            os.mkdir(padded)
+            open(os.path.join(padded, "w-002.png"), "w").close()
+            status, _, stderr = run("render", "--at", "2026-06-21T12:00Z", "--frames", 2, "-o",
+                                    os.path.join(padded, "w-%3d.png"), "--multisamples", 0,
+                                    *size)
+            self.assertEqual(status, 0, stderr)
+            self.assertEqual(sorted(os.listdir(padded)), ["w-000.png", "w-001.png", "w-002.png"])
+            self.assertIn("--output: %s beyond this series' 2 frames matches its name" %
+                          os.path.join(padded, "w-002.png"), stderr)
+            # a name with a frame number but no --frames: one picture by that name, said (it
+            # was written without a word)
+            single = os.path.join(padded, "one-%03d.png")
+            status, _, stderr = run("render", "--at", "2026-06-21T12:00Z", "-o", single,
+                                    "--multisamples", 0, "-q", *size)
+            self.assertEqual(status, 0, stderr)
+            self.assertEqual(stderr, "aperture: warning: --output %s holds a frame number, but "
+                                     "without --frames one picture is written, by that name\n"
+                             % single)
+            self.assertTrue(os.path.isfile(single))
 
     def test_moving_the_sun_uploads_no_geometry(self):
         # what a time-lapse's frames rely on: scene.set_sun changes the mapper's uniforms (and

@@ -653,7 +653,8 @@ class CommandLineSunTest(unittest.TestCase):
                       usage("--at", noon, "--turbidity", 50, *place))
         self.assertIn("--days", usage("--at", noon, "--days", 0, *place))
         # A step below a second would print one time over and over (1e-300 minutes: for ever).
-        self.assertIn("--step must be a number of minutes of at least 1/60",
+        self.assertIn("--step must be a number of minutes of at least one second's (1/60 of a "
+                      "minute: 0.0167)",
                       usage("--at", noon, "--step", "1e-300", *place))
         # A series running past the year 6000 fails before it prints a row (it failed after
         # 1.9 million rows) and names the year it reaches.

@@ -1092,6 +1092,10 @@ def _frame_option_checks(args):
                               % args.step)
         args.frame_paths = [(o, [p]) for o, p in (("--output", args.output), ("--exr", args.exr))
                             if p]
+        for option, path in args.frame_paths:
+            if _frame_numbers(path[0]):  # (written as it is, % and all, without a word before)
+                _warn("%s %s holds a frame number, but without --frames one picture is written, "
+                      "by that name" % (option, path[0]))
         return
     if not 1 <= args.frames <= _MOST_FRAMES:
         raise _UsageError("--frames must be within 1..%d" % _MOST_FRAMES)
@@ -1100,7 +1104,8 @@ def _frame_option_checks(args):
                           "through time)")
     args.step = 10.0 if args.step is None else args.step
     if not (args.step >= 1.0 / 60.0 and math.isfinite(args.step)):
-        raise _UsageError("--step must be a number of minutes of at least 1/60 (one second)")
+        raise _UsageError("--step must be a number of minutes of at least one second's "
+                          "(1/60 of a minute: 0.0167)")
     args.frame_paths = [(o, _frame_names(o, p, args.frames))
                         for o, p in (("--output", args.output), ("--exr", args.exr)) if p]
 
@@ -1113,6 +1118,14 @@ def _frame_numbers(pattern):
     return [m for m in _FRAME_NUMBER.finditer(pattern) if m.group(0) != "%%"]
 
 
+def _frame_name(pattern, number):
+    """`pattern` with its frame number written: %d as it is, %Nd and %0Nd with N digits (zeros
+    before it, as ffmpeg reads both: Python's %4d put spaces there, so ffmpeg -i f-%4d.png
+    found none of the frames until 2026-12-07), %% as %."""
+    return _FRAME_NUMBER.sub(lambda m: "%" if m.group(0) == "%%" else "%0*d" % (
+        int(m.group(1) or 0), number), pattern)
+
+
 def _frame_names(option, pattern, count):
     """The `count` file names of a time-lapse output given as `pattern`, a name holding the
     frame number as %d, or %Nd / %0Nd (a width N of 1 to 9), and %% for a % sign. A usage error
@@ -1122,7 +1135,7 @@ def _frame_names(option, pattern, count):
     if "%" in bare or len(numbers) > 1:
         raise _UsageError("%s %s: the frame number is written %%d, %%4d or %%04d in the name "
                           "(once), and a %% sign itself %%%%" % (option, pattern))
-    names = [pattern % k for k in range(count)] if numbers else [pattern % ()] * count
+    names = [_frame_name(pattern, k) for k in range(count)]
     if count > 1 and names[0] == names[1]:
         raise _UsageError("--frames %d writes %d pictures: give %s a name with the frame "
                           "number, such as frame-%%03d%s (%s would be overwritten by each)"
@@ -1140,7 +1153,7 @@ def _earlier_frames(pattern, count):
         return []
     head, tail = pattern[:number[0].start()], pattern[number[0].end():]
     folder, head = os.path.split(head.replace("%%", "%"))
-    shape = re.compile(re.escape(head) + r" *(\d+)" + re.escape(tail.replace("%%", "%")) + "$")
+    shape = re.compile(re.escape(head) + r"(\d+)" + re.escape(tail.replace("%%", "%")) + "$")
     try:
         names = os.listdir(folder or ".")
     except OSError:
@@ -1151,7 +1164,7 @@ def _earlier_frames(pattern, count):
         k = int(m.group(1)) if m else -1
         path = os.path.join(folder, name)
         # (normalised: the pattern's folder may be written ./ or with doubled slashes)
-        if k >= count and os.path.normpath(pattern % k) == os.path.normpath(path):
+        if k >= count and os.path.normpath(_frame_name(pattern, k)) == os.path.normpath(path):
             found.append((k, path))
     return [path for _, path in sorted(found)]
 
@@ -2407,9 +2420,9 @@ def _local_text(sun, unix_seconds):
     """ISO 8601 local time, to the second, of an instant (sunrise, transit, sunset; the
     instant itself is sun.GetLocalTimeString(), with its fraction of a second) on the clock of
     the sun's place: the time zone's offset at that instant (a sunset after a clock change has
-    the new one), else the offset --at was written with; None for no instant. The years -2000..6000 as the UTC
-    strings write them (-0001, 0000: Python's datetime, years 1..9999, had none for them
-    until 2026-12-07)."""
+    the new one), else the offset --at was written with; None for no instant. The years
+    -2000..6000 as the UTC strings write them (-0001, 0000: Python's datetime, years 1..9999,
+    had none for them until 2026-12-07)."""
     if unix_seconds is None or not math.isfinite(unix_seconds):
         return None
     offset = sun.GetLocalOffsetAt(unix_seconds)
@@ -2600,7 +2613,8 @@ def cmd_sun(args):
     if args.days is not None and args.days < 1:
         raise _UsageError("--days must be 1 or more")
     if args.step is not None and not (args.step >= 1.0 / 60.0 and math.isfinite(args.step)):
-        raise _UsageError("--step must be a number of minutes of at least 1/60 (one second)")
+        raise _UsageError("--step must be a number of minutes of at least one second's "
+                          "(1/60 of a minute: 0.0167)")
     watcher = Watcher(on_warning=_warn)
     sun = watcher.watch(vtkApertureSolarPosition())
     if args.tz and not sun.SetTimeZone(args.tz):
@@ -2875,7 +2889,8 @@ def build_parser():
                         "days with --tz, to the same clock time N days on (23 or 25 hours on "
                         "a day the clocks change by an hour)")
     p.add_argument("--step", type=float, metavar="MIN",
-                   help="time-series step in minutes, at least 1/60 (default 60 with --days); "
+                   help="time-series step in minutes, at least one second's (0.0167; default 60 "
+                        "with --days); "
                         "the series has every step before --days days have passed")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (a list for a time series) of the text's "
@@ -2916,11 +2931,12 @@ def build_parser():
     p.add_argument("--frames", type=_c_int, metavar="N",
                    help="a time-lapse: N pictures from --at, every --step minutes, of one bake "
                         "and one mesh (the sun moves, nothing else); -o (and --exr) hold the "
-                        "frame number, frame-%%03d.png for frame-000.png, ... (%%%% for a %% "
-                        "sign); one exposure for all (--exposure, or the automatic one of the "
-                        "frame whose sun is highest), so the light's changes show")
+                        "frame number, frame-%%03d.png (or %%3d) for frame-000.png, ... (%%%% "
+                        "for a %% sign); one exposure for all (--exposure, or the automatic one "
+                        "of the frame whose sun is highest), so the light's changes show")
     p.add_argument("--step", type=float, metavar="MIN",
-                   help="with --frames: minutes between frames, at least 1/60 (default 10)")
+                   help="with --frames: minutes between frames, at least one second's (1/60 of a "
+                        "minute: 0.0167; default 10)")
     p.add_argument("--sun-az", "--light-az", dest="sun_az", type=float, metavar="DEG",
                    help="sun azimuth, clockwise from true north (default 225 without --at)")
     p.add_argument("--sun-el", "--light-el", dest="sun_el", type=float, metavar="DEG",
