@@ -164,7 +164,9 @@ class TestCommandLineRender(unittest.TestCase):
             self.assertEqual(status, 0, stderr)
             self.assertEqual(stderr, "aperture: warning: the sun is below the horizon in 1 of "
                                      "the 6 frames (0): the terrain is unlit there (the sky "
-                                     "models have no twilight): black\n")
+                                     "models have no twilight, and the sun lights nothing "
+                                     "until its centre is up; 'aperture sun' gives the upper "
+                                     "limb's sunrise, at -0.833 degrees): black\n")
             self.assertEqual(sorted(os.listdir(tmp)), sorted(
                 ["f-%02d.png" % k for k in range(6)] + ["f-%02d.exr" % k for k in range(6)]))
             self.assertEqual(len(stdout.splitlines()), 12, stdout)
@@ -750,8 +752,10 @@ class TestCommandLineRender(unittest.TestCase):
                     # VTK's lighting too until 2026-12-06)
                     self.assertIn("aperture: warning: the sun is %.2f degrees below the horizon: "
                                   "the terrain is unlit (%s): black" % (
-                                      -float(el), "the sky models have no twilight"
-                                      if lighting == "aperture" else "VTK's light, from the "
+                                      -float(el), "the sky models have no twilight, and "
+                                      "the sun lights nothing until its centre is up; "
+                                      "'aperture sun' gives the upper limb's sunrise, at -0.833 "
+                                      "degrees" if lighting == "aperture" else "VTK's light, from the "
                                       "sun's direction, is below it"), stderr)
                     rgb = png_pixels_and_text(out)[0]
                     # the terrain, black; all else the white background, and the grey of
@@ -815,7 +819,9 @@ class TestCommandLineRender(unittest.TestCase):
                                     "2025-06-21T02:40Z", "--frames", "5", "--step", "60", "-q")
             self.assertEqual(status, 0, stderr)
             self.assertIn("the sun is below the horizon in 5 of the 5 frames (0-4): the terrain "
-                          "is unlit there (the sky models have no twilight): black; in 0-2 the "
+                          "is unlit there (the sky models have no twilight, and the sun "
+                          "lights nothing until its centre is up; 'aperture sun' gives the upper "
+                          "limb's sunrise, at -0.833 degrees): black; in 0-2 the "
                           "light is the DEM centre's, though over part of the DEM the sun is up "
                           "(render that part: --srcwin)", stderr)
 

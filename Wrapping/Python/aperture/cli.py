@@ -1495,7 +1495,12 @@ def _sun_up_elsewhere(image, sun):
 
 def _unlit_why(args):
     """Why a sun below the horizon leaves the terrain black, for the lighting drawn."""
-    return ("the sky models have no twilight" if args.lighting == "aperture" else
+    # (a frame black while 'aperture sun' said the sun had risen puzzled: its sunrise is the
+    # upper limb's, the centre at -0.833 degrees, minutes before the centre's, or a whole
+    # short polar day before it, until 2026-12-07 not said)
+    return ("the sky models have no twilight, and the sun lights nothing until its centre is "
+            "up; 'aperture sun' gives the upper limb's sunrise, at -0.833 degrees"
+            if args.lighting == "aperture" else
             "VTK's light, from the sun's direction, is below it")
 
 
