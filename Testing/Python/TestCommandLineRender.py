@@ -736,6 +736,18 @@ class TestCommandLineRender(unittest.TestCase):
             self.assertTrue(str(e.exception).startswith("time_of_day_viewer: "), e.exception)
             self.assertIn(message, str(e.exception))
 
+    def test_many_dark_frames(self):
+        # Past 8 stretches of dark frames the warning names the first 6, the last and their
+        # count (a year of hourly frames made one line of 4.8 kB): 25 nights at 6 h steps,
+        # 00, 06 and 12 UTC dark in Tennessee in December (sunrise 07:30 local, 12:30 UTC)
+        with tempfile.TemporaryDirectory() as tmp:
+            status, _, stderr = run("render", "-o", os.path.join(tmp, "m-%03d.png"), "--size",
+                                    "16x16", "--multisamples", 0, "--at", "2026-12-01T00:00Z",
+                                    "--frames", 100, "--step", 360, "-q")
+            self.assertEqual(status, 0, stderr)
+            self.assertIn("the sun is below the horizon in 75 of the 100 frames (0-2, 4-6, 8-10, "
+                          "12-14, 16-18, 20-22, ..., 96-98: 25 stretches)", stderr)
+
     def test_night(self):
         # The sun below the horizon lights nothing (no twilight in the sky models): a black
         # picture, with a warning saying why. VTK's standard lighting too: it lit the slopes

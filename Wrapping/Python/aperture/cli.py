@@ -1553,14 +1553,18 @@ def _frame_times(args, sun):
 
 
 def _ranges_text(numbers):
-    """'0-5, 9, 40-47' for sorted integers."""
+    """'0-5, 9, 40-47' for sorted integers; past 8 stretches the first 6 and the last, with
+    their count (a year's nights were 4.8 kB of one warning line)."""
     runs = []
     for n in numbers:
         if runs and n == runs[-1][1] + 1:
             runs[-1][1] = n
         else:
             runs.append([n, n])
-    return ", ".join("%d" % a if a == b else "%d-%d" % (a, b) for a, b in runs)
+    texts = ["%d" % a if a == b else "%d-%d" % (a, b) for a, b in runs]
+    if len(texts) > 8:
+        return "%s, ..., %s: %d stretches" % (", ".join(texts[:6]), texts[-1], len(texts))
+    return ", ".join(texts)
 
 
 ALBEDO_MAX_SIDE = 4096  # texels on the albedo texture's longer side
