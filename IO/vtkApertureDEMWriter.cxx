@@ -183,14 +183,16 @@ int vtkApertureDEMWriter::FillInputPortInformation(int, vtkInformation* info)
 //------------------------------------------------------------------------------
 namespace
 {
-// The level's creation option and range for the GeoTIFF codecs that have one (GDAL 3.6).
+// The level's creation option and range for the GeoTIFF codecs that have one (GDAL 3.6). Not
+// LZMA's LZMA_PRESET: GDAL 3.6 here writes the same bytes for every preset (it was taken, and
+// ignored, until 2026-12-07).
 struct CompressionLevelOption
 {
   const char *Codec, *Option;
   int Lowest, Highest;
 };
 const CompressionLevelOption levelOptions[] = { { "DEFLATE", "ZLEVEL", 1, 12 },
-  { "ZSTD", "ZSTD_LEVEL", 1, 22 }, { "LZMA", "LZMA_PRESET", 0, 9 } };
+  { "ZSTD", "ZSTD_LEVEL", 1, 22 } };
 
 // A codec's name as GDAL lists it: upper case ("" for null).
 std::string CodecName(const char* codec)
@@ -627,9 +629,12 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     // GDAL compresses whole tiles on worker threads and writes them in order: same bytes.
     // (0: the cores this process may use, which GDAL's ALL_CPUS does not know in a container
     // with a CPU quota; they cap larger counts, which GDAL's pool would start and keep)
+    // LZMA on two at least: GDAL 3.6 compresses nothing on the writing thread alone (its tiles
+    // are stored at full size in LZMA's framing), so a file written with one thread, or on a
+    // machine of one core, had other and 30% larger bytes than with two, until 2026-12-07
     const int cores = vtkApertureCores();
-    const std::string threads = std::to_string(
-      this->NumberOfThreads > 0 ? std::min(this->NumberOfThreads, cores) : cores);
+    const int asked = this->NumberOfThreads > 0 ? std::min(this->NumberOfThreads, cores) : cores;
+    const std::string threads = std::to_string(compression == "LZMA" ? std::max(asked, 2) : asked);
     options = CSLSetNameValue(options, "NUM_THREADS", threads.c_str());
   }
   d.Type = anyDouble ? GDT_Float64 : GDT_Float32;

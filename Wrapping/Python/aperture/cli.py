@@ -2231,8 +2231,9 @@ def _bake(args, products, progress):
         raise _UsageError(str(e))
     if args.compress_level is not None and not vtkApertureDEMWriter.HasCompressionLevel(
             args.compress):
-        raise _UsageError("--compress-level applies to DEFLATE, ZSTD and LZMA, which have "
-                          "levels, not to --compress %s" % args.compress)
+        raise _UsageError("--compress-level applies to DEFLATE and ZSTD, which have levels, "
+                          "not to --compress %s%s" % (args.compress, " (GDAL ignores its preset)"
+                                                      if args.compress.upper() == "LZMA" else ""))
     sky = watcher.watch(vtkApertureSkyVisibility())
     sky.SetNumberOfDirections(args.directions)
     sky.SetMaximumDistance(args.radius or 0.0)
@@ -2828,7 +2829,7 @@ def build_parser():
                    help="GeoTIFF compression, lossless: DEFLATE (default), ZSTD, LZW, LZMA, "
                         "PACKBITS, LERC, LERC_DEFLATE, LERC_ZSTD, NONE")
     p.add_argument("--compress-level", type=_c_int, metavar="N",
-                   help="compression level: DEFLATE 1-12, ZSTD 1-22, LZMA 0-9; -1: GDAL's "
+                   help="compression level: DEFLATE 1-12, ZSTD 1-22; -1: GDAL's "
                         "default (default 1, the fastest: float bands shrink under 1%% more at "
                         "6); an error with the codecs that have no levels")
     p.add_argument("--nodata", type=_nodata_value, default=math.nan, metavar="VALUE",
