@@ -176,6 +176,11 @@ class TestCommandLineRender(unittest.TestCase):
                 at = (start + datetime.timedelta(hours=3 * k)).strftime("%Y-%m-%dT%H:%M:%SZ")
                 self.assertEqual((text["aperture:time_utc"], text["aperture:frame"],
                                   text["aperture:frames"]), (at, "%d" % k, "6"))
+                # and on the clock of --tz, with the zone (UTC alone until 2026-12-07)
+                local = (start + datetime.timedelta(hours=3 * k - 4)).strftime(
+                    "%Y-%m-%dT%H:%M:%S-04:00")
+                self.assertEqual((text["aperture:time_local"], text["aperture:time_zone"]),
+                                 (local, "America/New_York"))
                 # the sun of each frame is the one 'aperture sun' gives for its time and place
                 status, out, err = run("sun", "--at", at, "--dem", aperture.default_dem(),
                                        "--json")

@@ -1665,14 +1665,17 @@ def _albedo_placement_warning(path, bounds, image):
 
 
 def _render_metadata(args, sun, exposure, frame=0):
-    """What a render's PNG (tEXt) and EXR (header) record: the tool, the sun, the time and
-    the display exposure (EV); with --frames, the frame's number (as in its file name, from
-    0) and their count."""
+    """What a render's PNG (tEXt) and EXR (header) record: the tool, the sun, the time (with
+    --tz also on the zone's clock, and the zone: a caption of a series across a clock change
+    had to work it out again until 2026-12-07) and the display exposure (EV); with --frames,
+    the frame's number (as in its file name, from 0) and their count."""
     from aperture import __version__
     return [("aperture:software", "aperture " + __version__),
             ("aperture:sun_azimuth_deg", "%.6f" % sun.GetAzimuth()),
             ("aperture:sun_elevation_deg", "%.6f" % sun.GetElevation()),
-            ("aperture:time_utc", sun.GetTimeString() if args.at else "n/a"),
+            ("aperture:time_utc", sun.GetTimeString() if args.at else "n/a")] + (
+        [("aperture:time_local", sun.GetLocalTimeString() or "n/a"),
+         ("aperture:time_zone", args.tz)] if args.at and args.tz else []) + [
             ("aperture:display_exposure_ev", "%.9f" % exposure)] + (
         [("aperture:frame", "%d" % frame), ("aperture:frames", "%d" % args.frames)]
         if args.frames else [])
