@@ -183,16 +183,16 @@ int vtkApertureDEMWriter::FillInputPortInformation(int, vtkInformation* info)
 //------------------------------------------------------------------------------
 namespace
 {
-// The level's creation option and range for the GeoTIFF codecs that have one (GDAL 3.6). Not
-// LZMA's LZMA_PRESET: GDAL 3.6 here writes the same bytes for every preset (it was taken, and
-// ignored, until 2026-12-07).
+// The level's creation option and range for the GeoTIFF codecs that have one (GDAL 3.6). (LZMA's
+// presets 6 to 9 differ in their dictionaries alone, larger than a tile: they write the same
+// bytes; 0 writes 6's in GDAL 3.6.)
 struct CompressionLevelOption
 {
   const char *Codec, *Option;
   int Lowest, Highest;
 };
 const CompressionLevelOption levelOptions[] = { { "DEFLATE", "ZLEVEL", 1, 12 },
-  { "ZSTD", "ZSTD_LEVEL", 1, 22 } };
+  { "ZSTD", "ZSTD_LEVEL", 1, 22 }, { "LZMA", "LZMA_PRESET", 0, 9 } };
 
 // A codec's name as GDAL lists it: upper case ("" for null).
 std::string CodecName(const char* codec)

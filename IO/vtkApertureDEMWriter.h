@@ -91,11 +91,11 @@ public:
   ///@}
 
   ///@{
-  /** Compression level: DEFLATE's ZLEVEL (1-12) or ZSTD's ZSTD_LEVEL (1-22); -1 = GDAL's
-   * default for the codec (6, 9). LZMA has none here (GDAL 3.6 ignores its preset). Default
-   * 1: with the floating-point predictor, DEFLATE level 6 makes float files under 1% smaller
-   * than level 1 and takes 1.2 to 1.6 times as long. Ignored by codecs without levels (LZW,
-   * LZMA, NONE, ...); a level outside the codec's range is an error when writing. */
+  /** Compression level: DEFLATE's ZLEVEL (1-12), ZSTD's ZSTD_LEVEL (1-22) or LZMA's
+   * LZMA_PRESET (0-9; 6 to 9 write the same tiles); -1 = GDAL's default for the codec (6, 9,
+   * 6). Default 1: with the floating-point predictor, DEFLATE level 6 makes float files under
+   * 1% smaller than level 1 and takes 1.2 to 1.6 times as long. Ignored by codecs without
+   * levels (LZW, NONE, ...); a level outside the codec's range is an error when writing. */
   vtkSetMacro(CompressionLevel, int);
   vtkGetMacro(CompressionLevel, int);
   ///@}
@@ -106,8 +106,8 @@ public:
    * to fail early. */
   bool CheckCompression();
 
-  /** Whether a GeoTIFF codec (case ignored) has levels that CompressionLevel sets: DEFLATE
-   *  and ZSTD; false for the others and for null. */
+  /** Whether a GeoTIFF codec (case ignored) has levels that CompressionLevel sets: DEFLATE,
+   *  ZSTD and LZMA; false for the others and for null. */
   static bool HasCompressionLevel(const char* codec);
 
   ///@{

@@ -975,7 +975,8 @@ void TestErrors()
     const char* Message;
   } badLevels[] = { { "DEFLATE", 13, "compression level 13 is outside DEFLATE's range 1-12" },
     { "deflate", 0, "compression level 0 is outside DEFLATE's range 1-12" },
-    { "ZSTD", 23, "compression level 23 is outside ZSTD's range 1-22" } };
+    { "ZSTD", 23, "compression level 23 is outside ZSTD's range 1-22" },
+    { "LZMA", -2, "compression level -2 is outside LZMA's range 0-9" } };
   {
     // an unknown codec: GDAL would warn and write the file uncompressed
     vtkNew<vtkApertureDEMWriter> w;
@@ -996,7 +997,7 @@ void TestErrors()
     // the codecs whose level CompressionLevel sets (the others ignore it)
     AP_CHECK(vtkApertureDEMWriter::HasCompressionLevel("DEFLATE"));
     AP_CHECK(vtkApertureDEMWriter::HasCompressionLevel("zstd"));
-    AP_CHECK(!vtkApertureDEMWriter::HasCompressionLevel("Lzma")); // (GDAL ignores its preset)
+    AP_CHECK(vtkApertureDEMWriter::HasCompressionLevel("Lzma"));
     AP_CHECK(!vtkApertureDEMWriter::HasCompressionLevel("LZW"));
     AP_CHECK(!vtkApertureDEMWriter::HasCompressionLevel("NONE"));
     AP_CHECK(!vtkApertureDEMWriter::HasCompressionLevel("LERC_DEFLATE"));

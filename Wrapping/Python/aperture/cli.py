@@ -2234,9 +2234,8 @@ def _bake(args, products, progress):
         raise _UsageError(str(e))
     if args.compress_level is not None and not vtkApertureDEMWriter.HasCompressionLevel(
             args.compress):
-        raise _UsageError("--compress-level applies to DEFLATE and ZSTD, which have levels, "
-                          "not to --compress %s%s" % (args.compress, " (GDAL ignores its preset)"
-                                                      if args.compress.upper() == "LZMA" else ""))
+        raise _UsageError("--compress-level applies to DEFLATE, ZSTD and LZMA, which have "
+                          "levels, not to --compress %s" % args.compress)
     sky = watcher.watch(vtkApertureSkyVisibility())
     sky.SetNumberOfDirections(args.directions)
     sky.SetMaximumDistance(args.radius or 0.0)
@@ -2816,8 +2815,8 @@ def build_parser():
     p.add_argument("--threads", type=_c_int, default=0, metavar="N",
                    help="threads for the sweep and for compressing the GeoTIFF and EXR "
                         "(default 0: all cores, or those a CPU affinity or a container's CPU "
-                        "quota allows, which also cap larger values); results and file "
-                        "contents do not depend on it")
+                        "quota allows, which also cap larger values; --compress LZMA on 2 "
+                        "at least); results and file contents do not depend on it")
     p.add_argument("--products", metavar="LIST",
                    help="comma-separated products, written as bands in that order: %s; 'all' "
                         "adds HorizonAngles (default: all but HorizonAngles)"
@@ -2832,7 +2831,7 @@ def build_parser():
                    help="GeoTIFF compression, lossless: DEFLATE (default), ZSTD, LZW, LZMA, "
                         "PACKBITS, LERC, LERC_DEFLATE, LERC_ZSTD, NONE")
     p.add_argument("--compress-level", type=_c_int, metavar="N",
-                   help="compression level: DEFLATE 1-12, ZSTD 1-22; -1: GDAL's "
+                   help="compression level: DEFLATE 1-12, ZSTD 1-22, LZMA 0-9; -1: GDAL's "
                         "default (default 1, the fastest: float bands shrink under 1%% more at "
                         "6); an error with the codecs that have no levels")
     p.add_argument("--nodata", type=_nodata_value, default=math.nan, metavar="VALUE",
