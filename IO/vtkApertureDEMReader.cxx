@@ -497,16 +497,18 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
     return 0;
   }
   GDALRasterBandH base = GDALGetRasterBand(ds.H, d.Band);
-  // An alpha band (gdalwarp -dstalpha) is GDAL's mask of the others where its samples are Byte
-  // or UInt16: no band to choose then. One of other samples (Float32, as gdalwarp makes it for
-  // a Float32 DEM) masks nothing to GDAL: the cells it marks transparent, a warp's collar, were
-  // read as heights (0 m) with only "2 bands; reading band 1" said, until 2026-12-07.
-  int alpha = 0;
+  // An alpha band (gdalwarp -dstalpha) is GDAL's mask of the others where it is the last of 2
+  // bands, or of 4 for the first 3, with Byte or UInt16 samples, and the band read has no
+  // nodata value (which wins) nor a mask of its own: no band to choose then. Otherwise, with
+  // nothing else to mask the band, the cells it makes transparent (a warp's collar: 0 m) were
+  // read as heights with only "2 bands; reading band 1" said, until 2026-12-07: said why.
+  int alpha = 0; // (the last alpha band, where GDAL looks for one)
   for (int b = this->NumberOfBands; b >= 1 && !alpha; --b)
   {
     alpha = GDALGetRasterColorInterpretation(GDALGetRasterBand(ds.H, b)) == GCI_AlphaBand ? b : 0;
   }
-  const bool alphaMasks = alpha && alpha != d.Band && (GDALGetMaskFlags(base) & GMF_ALPHA);
+  const int maskFlags = GDALGetMaskFlags(base);
+  const bool alphaMasks = alpha && alpha != d.Band && (maskFlags & GMF_ALPHA);
   std::ostringstream bands;
   if (this->BandIndex == 0 && this->NumberOfBands > (alphaMasks ? 2 : 1) &&
     !(alpha == 2 && this->NumberOfBands == 2))
@@ -514,11 +516,15 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
     bands << "'" << name << "' has " << this->NumberOfBands
           << " bands; reading band 1 as elevation (set BandIndex to choose)";
   }
-  if (alpha && alpha != d.Band && !alphaMasks)
+  if (alpha && alpha != d.Band && maskFlags == GMF_ALL_VALID)
   {
+    const GDALDataType alphaType = GDALGetRasterDataType(GDALGetRasterBand(ds.H, alpha));
     bands << (bands.tellp() > 0 ? "; its" : "'" + name + "'") << " band " << alpha
-          << " is an alpha band, which GDAL takes as a mask only with Byte or UInt16 samples, "
-          << "not " << GDALGetDataTypeName(GDALGetRasterDataType(GDALGetRasterBand(ds.H, alpha)))
+          << " is an alpha band, which GDAL takes as a mask only "
+          << (alphaType == GDT_Byte || alphaType == GDT_UInt16
+                 ? std::string("as the last of 2 bands, or of 4 for the first 3")
+                 : std::string("with Byte or UInt16 samples, not ") +
+                   GDALGetDataTypeName(alphaType))
           << ": the cells it makes transparent are read as heights; give the DEM a nodata value "
           << "instead (gdalwarp -dstnodata nan)";
   }

@@ -22,7 +22,11 @@
  * here). The CRS (WKT) and the GeoTransform of the output grid are in the output's field data.
  *
  * Options:
- * - BandIndex: 1-based band; 0 (default) reads band 1 and warns when the raster has several.
+ * - BandIndex: 1-based band; 0 (default) reads band 1 and warns when the raster has others to
+ *   choose from (not an alpha band that is GDAL's mask of it). An alpha band GDAL takes as no
+ *   mask (of other samples than Byte or UInt16, or in another place than the last of 2 or 4
+ *   bands), where nothing else masks the band read, is warned about: its transparent cells
+ *   are read as heights.
  *   A band with a colour table (classes, a scanned map) or a picture's colour channel (Red,
  *   Green, ...) is read as heights all the same, with a warning.
  * - SubWindow: (x offset, y offset, columns, rows) in full-resolution pixels of the file,
@@ -95,7 +99,8 @@ public:
   ///@}
 
   ///@{
-  /** 1-based band index; 0 (default) = band 1, with a warning if the raster has several. */
+  /** 1-based band index; 0 (default) = band 1, with a warning if the raster has others (see
+   *  above). */
   vtkSetClampMacro(BandIndex, int, 0, VTK_INT_MAX);
   vtkGetMacro(BandIndex, int);
   ///@}

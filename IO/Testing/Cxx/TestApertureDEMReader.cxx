@@ -550,6 +550,43 @@ void TestBands()
       AP_CHECK(masked.Warnings->GetWarningMessage().find("2 bands") == std::string::npos);
     }
   }
+  // Not GDAL's mask either: a Byte alpha as band 2 of 3 (GDAL looks at the last of 2 or 4);
+  // and no warning where a nodata value masks the band (it wins over the alpha): a Byte alpha
+  // (its 0 cells not nodata then, as GDAL reads them) and gdalwarp -dstalpha's Float32 one
+  struct AlphaCase
+  {
+    int Bands;
+    GDALDataType Type;
+    bool NoData;
+    const char* Warning;
+  };
+  for (const AlphaCase& c : { AlphaCase{ 3, GDT_Byte, false,
+                                "has 3 bands; reading band 1 as elevation (set BandIndex to "
+                                "choose); its band 2 is an alpha band, which GDAL takes as a "
+                                "mask only as the last of 2 bands, or of 4 for the first 3: "
+                                "the cells it makes transparent are read as heights" },
+         AlphaCase{ 2, GDT_Byte, true, nullptr }, AlphaCase{ 2, GDT_Float32, true, nullptr } })
+  {
+    aptest::RasterSpec alpha;
+    alpha.bands = c.Bands;
+    alpha.type = c.Type;
+    alpha.hasNoData = c.NoData;
+    alpha.noData = 7.0;
+    alpha.options = { "ALPHA=YES", "PHOTOMETRIC=MINISBLACK" }; // (3 Byte bands: not RGB)
+    alpha.raw = [](int b, int col, int) { return b == 1 ? 7.0 + col : (col == 1 ? 0.0 : 255.0); };
+    const std::string file = tmp + "/alpha-" + std::to_string(c.Bands) + ".tif";
+    AP_CHECK(aptest::WriteRaster(file, alpha));
+    Read r(file);
+    r.Update();
+    AP_CHECK(r.Ok == 1);
+    AP_CHECK(std::isnan(r.Z(0, 1)) == c.NoData); // (7: the nodata value)
+    AP_CHECK_NEAR(r.Z(1, 1), 8.0, 0.0);           // (transparent, read all the same)
+    AP_CHECK(!!r.Warnings->GetWarning() == (c.Warning != nullptr));
+    if (c.Warning)
+    {
+      AP_CHECK_CONTAINS(r.Warnings->GetWarningMessage(), c.Warning);
+    }
+  }
   // beside other bands, both said in one warning (GTiff's ALPHA=YES makes the first extra
   // band the alpha)
   aptest::RasterSpec four;
