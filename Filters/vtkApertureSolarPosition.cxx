@@ -119,8 +119,10 @@ std::string FormatUTC(double seconds, int digits = 0)
 }
 
 /** The fraction digits that write an instant as it was given: 0, 3 or 6, the fewest that hold
- *  it within half a microsecond (or two of the double's steps, beyond which its digits mean
- *  nothing): "12:00:00.5" is written 12:00:00.500, and not rounded to a second it is not. */
+ *  it within half a microsecond, or within two of the double's steps where those are longer;
+ *  at most the digits those steps resolve (6 within 2^31 s of 1970, the years 1902..2038, then
+ *  3: a double of 1e11 s has steps of 15 us): "12:00:00.5" is written 12:00:00.500, and not
+ *  rounded to a second it is not. */
 int FractionDigits(double seconds)
 {
   if (!std::isfinite(seconds))
@@ -130,14 +132,22 @@ int FractionDigits(double seconds)
   const double fraction = seconds - std::floor(seconds);
   const double step = std::nextafter(std::fabs(seconds), HUGE_VAL) - std::fabs(seconds);
   const double tolerance = std::max(5e-7, 2.0 * step);
-  for (const double scale : { 1.0, 1e3 })
+  const int most = tolerance <= 5e-7 ? 6 : tolerance <= 5e-4 ? 3 : 0;
+  for (int digits = 0; digits < most; digits += 3)
   {
+    const double scale = digits == 0 ? 1.0 : 1e3;
     if (std::fabs(fraction - std::round(fraction * scale) / scale) <= tolerance)
     {
-      return scale == 1.0 ? 0 : 3;
+      return digits;
     }
   }
-  return 6;
+  return most;
+}
+
+/** An instant as ISO 8601 UTC with its fraction of a second (FractionDigits), or "". */
+std::string FormatInstant(double seconds)
+{
+  return FormatUTC(seconds, FractionDigits(seconds));
 }
 
 /** A number as %g gives it, so that 1e20 reads as 1e+20 and not as twenty digits (with a '.'
@@ -200,6 +210,15 @@ std::string FormatCivil(const ap_civil_time& c)
   {
     std::snprintf(buf, sizeof(buf), "%04d-%02d-%02dT%02d:%02d:%02d", c.year, c.month, c.day,
       c.hour, c.minute, c.second);
+    if (c.fraction > 0.0 && c.fraction < 1.0)
+    {
+      // (the digits as given, up to the parser's 9, not cut: "02:30:00.5" was "02:30:00")
+      char digits[16];
+      std::snprintf(digits, sizeof(digits), "%.9f", c.fraction);
+      std::string text(digits + 1); // (".500000000")
+      text.erase(text.find_last_not_of('0') + 1);
+      return buf + text;
+    }
   }
   else
   {
@@ -409,9 +428,10 @@ bool vtkApertureSolarPosition::SetTime(const char* iso8601)
   if (st == AP_ERR_TIME_AMBIGUOUS)
   {
     d.Error = "the local time " + FormatCivil(parsed.local) + " occurs twice in " + d.ZoneName +
-      ": " + FormatUTC(FromInstant(detail.earlier)) + " (" +
+      ": " + FormatInstant(FromInstant(detail.earlier)) + " (" +
       FormatOffset(detail.before.utc_offset) + ", " + detail.before.abbreviation + ") and " +
-      FormatUTC(FromInstant(detail.later)) + " (" + FormatOffset(detail.after.utc_offset) + ", " +
+      FormatInstant(FromInstant(detail.later)) + " (" + FormatOffset(detail.after.utc_offset) +
+      ", " +
       detail.after.abbreviation + "); give the offset to choose";
     vtkErrorMacro(<< d.Error);
     return false;
@@ -448,7 +468,7 @@ void vtkApertureSolarPosition::SetUnixTime(double seconds)
 
 const char* vtkApertureSolarPosition::GetTimeString()
 {
-  this->Impl->TimeString = FormatUTC(this->UnixTime, FractionDigits(this->UnixTime));
+  this->Impl->TimeString = FormatInstant(this->UnixTime);
   return this->Impl->TimeString.c_str();
 }
 

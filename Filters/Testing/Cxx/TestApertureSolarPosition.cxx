@@ -314,6 +314,16 @@ void TestTimeZones()
   sun->SetUnixTime(-0.25);
   AP_CHECK(std::string(sun->GetTimeString()) == "1969-12-31T23:59:59.750Z");
   AP_CHECK(std::string(sun->GetLocalTimeString()) == "1970-01-01T00:59:59.750+01:00");
+  // beyond 2^31 s the double resolves milliseconds, not microseconds (15 us steps in 5000:
+  // .123456 was written .123459)
+  AP_CHECK(sun->SetTime("5000-06-21T12:00:00.123456Z"));
+  AP_CHECK(std::string(sun->GetTimeString()) == "5000-06-21T12:00:00.123Z");
+  // a repeated local time with a fraction names it and its two instants with it (its local
+  // time was cut to the second, the instants rounded to the next, until 2026-12-07)
+  AP_CHECK(!sun->SetTime("2026-10-25T02:30:00.5"));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "the local time 2026-10-25T02:30:00.5 occurs twice "
+                                            "in Europe/Zurich: 2026-10-25T00:30:00.500Z (+02:00");
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), ") and 2026-10-25T01:30:00.500Z (+01:00");
   AP_CHECK(sun->SetTime("2026-01-15T14:00"));
   // The clock at other instants (a sunset after a clock change): the EU's changes at 01:00 UTC
   // on the last Sundays of March and October (2026-03-29, 2026-10-25).
