@@ -139,7 +139,17 @@ class TestHelp(CommandLineTest):
                 (("info", "x.tif", "-s", "111120", "-compute_edges"),
                  "arguments: -s 111120 -compute_edges. -s: cell sizes come in metres from the "
                  "DEM's CRS, lat/lon included; --zfactor Z gives the metres of an elevation unit; "
-                 "-compute_edges: every cell is computed")):
+                 "-compute_edges: every cell is computed"),
+                # (argparse read render's -of as -o f, and the value of a -co before the DEM
+                # as the DEM: the hints did not show; one hint an option, by its name)
+                (("render", "x.tif", "-of", "PNG"), "unrecognized arguments: -of PNG. -of: "
+                                                   "render writes a PNG (and an OpenEXR file "
+                                                   "with --exr)\n"),
+                (("bake", "-co", "COMPRESS=ZSTD", "-co=TILED=YES", "in.tif", "out.tif"),
+                 "unrecognized arguments: -co COMPRESS=ZSTD -co=TILED=YES. -co: GDAL's creation "
+                 "options are not taken: --compress CODEC and --compress-level N choose the "
+                 "compression (the GeoTIFF is tiled, with the floating-point predictor, BigTIFF "
+                 "when it needs to be)\n")):
             status, out, err = run(*args)
             self.assertEqual((status, out), (2, ""), err)
             self.assertIn("usage: aperture %s " % args[0], err)

@@ -3152,14 +3152,31 @@ _GDAL_HABITS = {
 }
 
 
-def _habit_hints(command, unknown):
-    """What to give instead of each gdaldem option among `unknown` (once each), as texts."""
-    said = []
-    for arg in unknown:
-        hint = _GDAL_HABITS.get(arg.split("=", 1)[0])
-        if hint and arg not in said:
-            said.append(arg)
-            yield "%s: %s" % (arg, hint.get(command, hint[None]))
+# how many values each of them takes after it (none when written -co=VALUE)
+_GDAL_HABIT_VALUES = {"-co": 1, "-of": 1, "-s": 1, "-z": 1, "-compute_edges": 0, "--config": 2}
+
+
+def _habit_refusal(parser, argv):
+    """The usage error for gdaldem's options in `argv`, with what to give instead (once for
+    each option), or None. Looked for before argparse reads them, which read render's -of as
+    -o f and bake's -co COMPRESS=ZSTD's value as the DEM, so that their hints never showed."""
+    command = argv[0] if argv and argv[0] in parser.commands else None
+    found, hints = [], {}
+    k = 1 if command else 0
+    while k < len(argv) and argv[k] != "--":
+        key = argv[k].split("=", 1)[0]
+        hint = _GDAL_HABITS.get(key)
+        if not hint:
+            k += 1
+            continue
+        n = 1 + (0 if "=" in argv[k] else _GDAL_HABIT_VALUES[key])
+        found.append(" ".join(argv[k:k + n]))
+        hints.setdefault(key, "%s: %s" % (key, hint.get(command, hint[None])))
+        k += n
+    if not found:
+        return None
+    return parser.commands.get(command, parser), "unrecognized arguments: %s. %s" % (
+        " ".join(found), "; ".join(hints.values()))
 
 
 def _main(argv):
@@ -3167,14 +3184,15 @@ def _main(argv):
     if not argv:
         parser.print_help()
         return 0
+    habits = _habit_refusal(parser, argv)
+    if habits:
+        habits[0].error(habits[1])
     args, unknown = parser.parse_known_args(_negative_values(parser, argv))
     if unknown:
         # (in the command's usage: parse_args said them in the top level's, naming no option
         # of the command)
         command = parser.commands.get(getattr(args, "command", None), parser)
-        hints = "; ".join(_habit_hints(getattr(args, "command", None), unknown))
-        command.error("unrecognized arguments: %s%s" % (" ".join(unknown),
-                                                        ". " + hints if hints else ""))
+        command.error("unrecognized arguments: %s" % " ".join(unknown))
     if not getattr(args, "func", None):
         parser.print_help()
         return 0
