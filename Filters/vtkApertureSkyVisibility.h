@@ -78,10 +78,13 @@
  * matter for the sky above the horizontal (A, rp, BentNormal, both sky-view factors). A global
  * lat/lon DEM, whose columns span 360 degrees of longitude (vtkApertureGeoreference::
  * WrapsAround), has no east and west edges: they join, and the cells beside the antimeridian
- * see the terrain on its other side (within the search distance, and at most half the globe's
- * columns either way; a sub-extent whose halo crosses it reads every column); the products do
- * not depend on where the grid's seam lies (EdgeTruncated without a search distance can:
- * ap_horizon.h says where), except in rows where the search reaches farther
+ * see the terrain on its other side (within the search distance; a sub-extent whose halo
+ * crosses it reads every column). Without a distance a ray along a parallel runs on past the
+ * seam for half the globe's columns, so it stops between half a round of the globe and one
+ * and a half, where the seam puts it: the horizons below the horizontal (PositiveOpenness,
+ * HorizonAngles) depend on where the seam lies. The products clipped at the horizontal do
+ * not (EdgeTruncated without a search distance can: ap_horizon.h says where), except in rows
+ * where the search reaches farther
  * than half the parallel's circumference (within about a degree of a pole), where a ray along
  * the parallel would circle the pole and stops where the seam's copy ends. (The sweep's copy
  * of the elevations and its state then cover those columns too, GetWrapColumns on each side:

@@ -146,7 +146,8 @@
  *                         flag can be set on cells whose own ray reaches up to about a row
  *                         farther than the threshold (0.6% of a global 0.5° DEM's cells; a
  *                         probe of 2026-12-06 found none missed), and on a global DEM those
- *                         cells change with the seam's place (the other products do not).
+ *                         cells change with the seam's place (the products clipped at the
+ *                         horizontal do not).
  *  The sums converge as O(1/D²) to the continuous integrals. With scale_metric each sector's
  *  terms carry its weight ω and B's horizontal its ground direction (see there). The sums are
  *  single precision, their terms in forms that keep float's relative precision up to the
