@@ -17,6 +17,9 @@ from usage import usage_error
 
 BUILD = os.environ.get("APERTURE_BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 APERTURE = os.path.join(BUILD, "bin", "aperture")
+# why the terrain is black with the sun's centre below the horizon (the aperture lighting)
+UNLIT = ("the sky models have no twilight, and the sun lights nothing until its centre is up: "
+         "'aperture sun' gives sunrise and sunset for its upper limb, minutes earlier and later")
 
 
 def run(*args):
@@ -163,10 +166,8 @@ class TestCommandLineRender(unittest.TestCase):
                                          "-o", png, "--exr", exr, *size)
             self.assertEqual(status, 0, stderr)
             self.assertEqual(stderr, "aperture: warning: the sun is below the horizon in 1 of "
-                                     "the 6 frames (0): the terrain is unlit there (the sky "
-                                     "models have no twilight, and the sun lights nothing "
-                                     "until its centre is up; 'aperture sun' gives the upper "
-                                     "limb's sunrise, at -0.833 degrees): black\n")
+                                     "the 6 frames (0): the terrain is unlit there (%s): "
+                                     "black\n" % UNLIT)
             self.assertEqual(sorted(os.listdir(tmp)), sorted(
                 ["f-%02d.png" % k for k in range(6)] + ["f-%02d.exr" % k for k in range(6)]))
             self.assertEqual(len(stdout.splitlines()), 12, stdout)
@@ -495,7 +496,16 @@ class TestCommandLineRender(unittest.TestCase):
                                     "frame 10 of --output and frame 1 of --exr are one file, "
                                     + os.path.join(tmp, "a10.png")),
                                    (("--albedo", ""), "--albedo is empty"),
-                                   (("--baked", ""), "--baked is empty")):
+                                   (("--baked", ""), "--baked is empty"),
+                                   # a dangling link as a middle frame: refused before the DEM
+                                   # is read (after frames 0-1, until 2026-12-07)
+                                   (("--frames", "4", "--at", "2026-06-21T12:00Z", "-o",
+                                     os.path.join(tmp, "s-%d.png")),
+                                    "the output folder /nonexistent/folder does not exist (%s is "
+                                    "a symbolic link to /nonexistent/folder/f.png)"
+                                    % os.path.join(tmp, "s-2.png"))):
+                if not os.path.islink(os.path.join(tmp, "s-2.png")):
+                    os.symlink("/nonexistent/folder/f.png", os.path.join(tmp, "s-2.png"))
                 # (into tmp, should a refusal ever fail: not aperture.png here)
                 out = () if "-o" in args else ("-o", os.path.join(tmp, "refused.png"))
                 result = run("render", *out, *args)
@@ -769,11 +779,9 @@ class TestCommandLineRender(unittest.TestCase):
                     # VTK's lighting too until 2026-12-06)
                     self.assertIn("aperture: warning: the sun is %.2f degrees below the horizon: "
                                   "the terrain is unlit (%s): black" % (
-                                      -float(el), "the sky models have no twilight, and "
-                                      "the sun lights nothing until its centre is up; "
-                                      "'aperture sun' gives the upper limb's sunrise, at -0.833 "
-                                      "degrees" if lighting == "aperture" else "VTK's light, from the "
-                                      "sun's direction, is below it"), stderr)
+                                      -float(el), UNLIT if lighting == "aperture" else
+                                      "VTK's light, from the sun's direction, is below it"),
+                                  stderr)
                     rgb = png_pixels_and_text(out)[0]
                     # the terrain, black; all else the white background, and the grey of
                     # the two blended at its outline: no pixel with a colour
@@ -836,9 +844,7 @@ class TestCommandLineRender(unittest.TestCase):
                                     "2025-06-21T02:40Z", "--frames", "5", "--step", "60", "-q")
             self.assertEqual(status, 0, stderr)
             self.assertIn("the sun is below the horizon in 5 of the 5 frames (0-4): the terrain "
-                          "is unlit there (the sky models have no twilight, and the sun "
-                          "lights nothing until its centre is up; 'aperture sun' gives the upper "
-                          "limb's sunrise, at -0.833 degrees): black; in 0-2 the "
+                          "is unlit there (" + UNLIT + "): black; in 0-2 the "
                           "light is the DEM centre's, though over part of the DEM the sun is up "
                           "(render that part: --srcwin)", stderr)
 
@@ -1077,7 +1083,8 @@ class TestCommandLineRender(unittest.TestCase):
             self.assertEqual(status, 0, stderr)
             ds = gdal.Open(compound)
             self.assertFalse(ds.GetSpatialRef().IsCompound())
-            self.assertEqual(ds.GetRasterBand(1).GetUnitType(), "")
+            # (each band its product's unit, not the vertical CRS's metre)
+            self.assertEqual([ds.GetRasterBand(b).GetUnitType() for b in (1, 2)], ["degree", ""])
             ds = None
             status, _, stderr = run("render", "-o", os.path.join(tmp, "x.png"), "--size",
                                     "200x120", "--baked", compound, "--srs", "EPSG:4326+5703")

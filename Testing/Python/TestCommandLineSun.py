@@ -652,9 +652,9 @@ class CommandLineSunTest(unittest.TestCase):
         self.assertIn("argument --turbidity: 50 is outside 2..10",
                       usage("--at", noon, "--turbidity", 50, *place))
         self.assertIn("--days", usage("--at", noon, "--days", 0, *place))
-        # A step below a second would print one time over and over (1e-300 minutes: for ever).
-        self.assertIn("--step must be a number of minutes of at least one second's (1/60 of a "
-                      "minute: 0.0167)",
+        # A step below a second: 1e-300 minutes would not move the time (a series for ever).
+        self.assertIn("--step must be a number of minutes of at least one second's, 1/60 "
+                      "(0.016666667)",
                       usage("--at", noon, "--step", "1e-300", *place))
         # A series running past the year 6000 fails before it prints a row (it failed after
         # 1.9 million rows) and names the year it reaches.

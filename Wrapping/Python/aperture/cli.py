@@ -267,9 +267,10 @@ def _check_outputs(outputs, inputs, probe=True):
 def _check_frame_outputs(frame_paths, inputs):
     """_check_outputs for render's outputs, each (option, [one name a frame]): the first
     frames against each other and the inputs; every other frame against the inputs, probing
-    its folder and name for the last frame and the first in each other folder only (about
-    1 ms a name); and no two frames in one file (frame-%d.png as both -o and --exr, or through
-    a symbolic link)."""
+    its folder and name for the last frame, the first in each other folder and a symbolic
+    link's only (about 1 ms a name; a dangling link of frame 2 failed the series after frame
+    1 until 2026-12-07); and no two frames in one file (frame-%d.png as both -o and --exr, or
+    through a symbolic link)."""
     _check_outputs([(option, names[0]) for option, names in frame_paths], inputs)
     seen, folders = {}, set()
     for option, names in frame_paths:
@@ -281,8 +282,8 @@ def _check_frame_outputs(frame_paths, inputs):
             seen[key] = (k, option)
             folder = os.path.dirname(os.path.abspath(name))
             if k:
-                _check_outputs([(option, name)], inputs,
-                               probe=k == len(names) - 1 or folder not in folders)
+                _check_outputs([(option, name)], inputs, probe=k == len(names) - 1 or
+                               folder not in folders or os.path.islink(name))
             folders.add(folder)
 
 
@@ -1104,8 +1105,8 @@ def _frame_option_checks(args):
                           "through time)")
     args.step = 10.0 if args.step is None else args.step
     if not (args.step >= 1.0 / 60.0 and math.isfinite(args.step)):
-        raise _UsageError("--step must be a number of minutes of at least one second's "
-                          "(1/60 of a minute: 0.0167)")
+        raise _UsageError("--step must be a number of minutes of at least one second's, "
+                          "1/60 (0.016666667)")
     args.frame_paths = [(o, _frame_names(o, p, args.frames))
                         for o, p in (("--output", args.output), ("--exr", args.exr)) if p]
 
@@ -1496,11 +1497,11 @@ def _sun_up_elsewhere(image, sun):
 def _unlit_why(args):
     """Why a sun below the horizon leaves the terrain black, for the lighting drawn."""
     # (a frame black while 'aperture sun' said the sun had risen puzzled: its sunrise is the
-    # upper limb's, the centre at -0.833 degrees, minutes before the centre's, or a whole
-    # short polar day before it, until 2026-12-07 not said)
+    # upper limb's, minutes before the centre's, or a whole short polar day before it, until
+    # 2026-12-07 not said)
     return ("the sky models have no twilight, and the sun lights nothing until its centre is "
-            "up; 'aperture sun' gives the upper limb's sunrise, at -0.833 degrees"
-            if args.lighting == "aperture" else
+            "up: 'aperture sun' gives sunrise and sunset for its upper limb, minutes earlier "
+            "and later" if args.lighting == "aperture" else
             "VTK's light, from the sun's direction, is below it")
 
 
@@ -1553,7 +1554,7 @@ def _frame_times(args, sun):
 
 
 def _ranges_text(numbers):
-    """'0-5, 9, 40-47' for sorted integers; past 8 stretches the first 6 and the last, with
+    """'0-5, 9, 40-47' for sorted integers; past 7 stretches the first 6 and the last, with
     their count (a year's nights were 4.8 kB of one warning line)."""
     runs = []
     for n in numbers:
@@ -1562,7 +1563,7 @@ def _ranges_text(numbers):
         else:
             runs.append([n, n])
     texts = ["%d" % a if a == b else "%d-%d" % (a, b) for a, b in runs]
-    if len(texts) > 8:
+    if len(texts) > 7:
         return "%s, ..., %s: %d stretches" % (", ".join(texts[:6]), texts[-1], len(texts))
     return ", ".join(texts)
 
@@ -2625,8 +2626,8 @@ def cmd_sun(args):
     if args.days is not None and args.days < 1:
         raise _UsageError("--days must be 1 or more")
     if args.step is not None and not (args.step >= 1.0 / 60.0 and math.isfinite(args.step)):
-        raise _UsageError("--step must be a number of minutes of at least one second's "
-                          "(1/60 of a minute: 0.0167)")
+        raise _UsageError("--step must be a number of minutes of at least one second's, "
+                          "1/60 (0.016666667)")
     watcher = Watcher(on_warning=_warn)
     sun = watcher.watch(vtkApertureSolarPosition())
     if args.tz and not sun.SetTimeZone(args.tz):
@@ -2901,8 +2902,8 @@ def build_parser():
                         "days with --tz, to the same clock time N days on (23 or 25 hours on "
                         "a day the clocks change by an hour)")
     p.add_argument("--step", type=float, metavar="MIN",
-                   help="time-series step in minutes, at least one second's (0.0167; default 60 "
-                        "with --days); "
+                   help="time-series step in minutes, at least one second's, 1/60 "
+                        "(0.016666667; default 60 with --days); "
                         "the series has every step before --days days have passed")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (a list for a time series) of the text's "
@@ -2947,8 +2948,8 @@ def build_parser():
                         "for a %% sign); one exposure for all (--exposure, or the automatic one "
                         "of the frame whose sun is highest), so the light's changes show")
     p.add_argument("--step", type=float, metavar="MIN",
-                   help="with --frames: minutes between frames, at least one second's (1/60 of a "
-                        "minute: 0.0167; default 10)")
+                   help="with --frames: minutes between frames, at least one second's, 1/60 "
+                        "(0.016666667; default 10)")
     p.add_argument("--sun-az", "--light-az", dest="sun_az", type=float, metavar="DEG",
                    help="sun azimuth, clockwise from true north (default 225 without --at)")
     p.add_argument("--sun-el", "--light-el", dest="sun_el", type=float, metavar="DEG",
