@@ -184,15 +184,15 @@ int vtkApertureDEMWriter::FillInputPortInformation(int, vtkInformation* info)
 namespace
 {
 // The level's creation option and range for the GeoTIFF codecs that have one (GDAL 3.6). (LZMA's
-// presets 6 to 9 differ in their dictionaries alone, larger than a tile: they write the same
-// bytes; 0 writes 6's in GDAL 3.6.)
+// presets 6 to 9 differ in their dictionaries alone, larger than a tile: they compress alike;
+// GDAL 3.6 passes on presets above 0 only, so 0 would write 6's: refused.)
 struct CompressionLevelOption
 {
   const char *Codec, *Option;
   int Lowest, Highest;
 };
 const CompressionLevelOption levelOptions[] = { { "DEFLATE", "ZLEVEL", 1, 12 },
-  { "ZSTD", "ZSTD_LEVEL", 1, 22 }, { "LZMA", "LZMA_PRESET", 0, 9 } };
+  { "ZSTD", "ZSTD_LEVEL", 1, 22 }, { "LZMA", "LZMA_PRESET", 1, 9 } };
 
 // A codec's name as GDAL lists it: upper case ("" for null).
 std::string CodecName(const char* codec)

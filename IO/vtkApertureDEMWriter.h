@@ -92,10 +92,11 @@ public:
 
   ///@{
   /** Compression level: DEFLATE's ZLEVEL (1-12), ZSTD's ZSTD_LEVEL (1-22) or LZMA's
-   * LZMA_PRESET (0-9; 6 to 9 write the same tiles); -1 = GDAL's default for the codec (6, 9,
-   * 6). Default 1: with the floating-point predictor, DEFLATE level 6 makes float files under
-   * 1% smaller than level 1 and takes 1.2 to 1.6 times as long. Ignored by codecs without
-   * levels (LZW, NONE, ...); a level outside the codec's range is an error when writing. */
+   * LZMA_PRESET (1-9; 6 to 9 compress alike); -1 = GDAL's default for the codec (6, 9, 6).
+   * Default 1, the fastest: with the floating-point predictor, DEFLATE level 6 makes float
+   * files under 1% smaller than level 1 and takes 1.2 to 1.6 times as long. Ignored by codecs
+   * without levels (LZW, NONE, ...); a level outside the codec's range is an error when
+   * writing. */
   vtkSetMacro(CompressionLevel, int);
   vtkGetMacro(CompressionLevel, int);
   ///@}

@@ -2832,8 +2832,9 @@ def build_parser():
                    help="GeoTIFF compression, lossless: DEFLATE (default), ZSTD, LZW, LZMA, "
                         "PACKBITS, LERC, LERC_DEFLATE, LERC_ZSTD, NONE")
     p.add_argument("--compress-level", type=_c_int, metavar="N",
-                   help="compression level: DEFLATE 1-12, ZSTD 1-22, LZMA 0-9; -1: GDAL's "
-                        "default (default 1, the fastest: float bands shrink under 1%% more at "
+                   help="compression level: DEFLATE 1-12, ZSTD 1-22, LZMA 1-9; -1: GDAL's "
+                        "default (default 1, the fastest: DEFLATE's float bands shrink under "
+                        "1%% more at "
                         "6); an error with the codecs that have no levels")
     p.add_argument("--nodata", type=_nodata_value, default=math.nan, metavar="VALUE",
                    help="the GeoTIFF's nodata value, which its nodata cells hold: nan "
