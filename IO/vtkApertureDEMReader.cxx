@@ -519,12 +519,17 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
   if (alpha && alpha != d.Band && maskFlags == GMF_ALL_VALID)
   {
     const GDALDataType alphaType = GDALGetRasterDataType(GDALGetRasterBand(ds.H, alpha));
+    const bool placed = alpha == this->NumberOfBands &&
+      (this->NumberOfBands == 2 || (this->NumberOfBands == 4 && d.Band <= 3));
+    const bool typed = alphaType == GDT_Byte || alphaType == GDT_UInt16;
+    std::string why = placed ? "" : " as the last of 2 bands, or of 4 for the first 3";
+    if (!typed)
+    {
+      why += std::string(placed ? "" : ",") + " with Byte or UInt16 samples, not " +
+        GDALGetDataTypeName(alphaType);
+    }
     bands << (bands.tellp() > 0 ? "; its" : "'" + name + "'") << " band " << alpha
-          << " is an alpha band, which GDAL takes as a mask only "
-          << (alphaType == GDT_Byte || alphaType == GDT_UInt16
-                 ? std::string("as the last of 2 bands, or of 4 for the first 3")
-                 : std::string("with Byte or UInt16 samples, not ") +
-                   GDALGetDataTypeName(alphaType))
+          << " is an alpha band, which GDAL takes as a mask only" << why
           << ": the cells it makes transparent are read as heights; give the DEM a nodata value "
           << "instead (gdalwarp -dstnodata nan)";
   }

@@ -598,7 +598,8 @@ void TestBands()
   AP_CHECK(fourBands.Ok == 1);
   AP_CHECK_CONTAINS(fourBands.Warnings->GetWarningMessage(),
     "has 4 bands; reading band 1 as elevation (set BandIndex to choose); its band 2 is an alpha "
-    "band, which GDAL");
+    "band, which GDAL takes as a mask only as the last of 2 bands, or of 4 for the first 3, with "
+    "Byte or UInt16 samples, not Float32: the cells"); // (both reasons: either alone misleads)
 }
 
 // Each bad input gives a clear error and a failed update.
