@@ -314,10 +314,12 @@ void TestTimeZones()
   sun->SetUnixTime(-0.25);
   AP_CHECK(std::string(sun->GetTimeString()) == "1969-12-31T23:59:59.750Z");
   AP_CHECK(std::string(sun->GetLocalTimeString()) == "1970-01-01T00:59:59.750+01:00");
-  // beyond 2^31 s the double resolves milliseconds, not microseconds (15 us steps in 5000:
-  // .123456 was written .123459)
+  // beyond 2^32 s the double resolves milliseconds, not microseconds (15 us steps in 5000:
+  // .123456 was written .123459); before it, microseconds (steps of 0.48 us in 2040)
   AP_CHECK(sun->SetTime("5000-06-21T12:00:00.123456Z"));
   AP_CHECK(std::string(sun->GetTimeString()) == "5000-06-21T12:00:00.123Z");
+  AP_CHECK(sun->SetTime("2040-06-21T12:00:00.123456Z"));
+  AP_CHECK(std::string(sun->GetTimeString()) == "2040-06-21T12:00:00.123456Z");
   // a repeated local time with a fraction names it and its two instants with it (its local
   // time was cut to the second, the instants rounded to the next, until 2026-12-07)
   AP_CHECK(!sun->SetTime("2026-10-25T02:30:00.5"));
