@@ -149,7 +149,16 @@ class TestHelp(CommandLineTest):
                  "unrecognized arguments: -co COMPRESS=ZSTD -co=TILED=YES. -co: GDAL's creation "
                  "options are not taken: --compress CODEC and --compress-level N choose the "
                  "compression (the GeoTIFF is tiled, with the floating-point predictor, BigTIFF "
-                 "when it needs to be)\n")):
+                 "when it needs to be)\n"),
+                # (values taken up to an option; --config's KEY=VALUE form is one; GDAL 3.11's
+                # --co)
+                (("render", "x.tif", "-z", "--exaggeration", "2"),
+                 "unrecognized arguments: -z. -z: --exaggeration stretches"),
+                (("bake", "--config", "GDAL_CACHEMAX=512", "in.tif", "out.tif"),
+                 "unrecognized arguments: --config GDAL_CACHEMAX=512. --config: GDAL's "
+                 "configuration options are read from the environment"),
+                (("bake", "--co", "COMPRESS=ZSTD", "in.tif", "out.tif"),
+                 "unrecognized arguments: --co COMPRESS=ZSTD. --co: GDAL's creation options")):
             status, out, err = run(*args)
             self.assertEqual((status, out), (2, ""), err)
             self.assertIn("usage: aperture %s " % args[0], err)

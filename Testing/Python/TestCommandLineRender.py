@@ -19,7 +19,8 @@ BUILD = os.environ.get("APERTURE_BUILD_DIR", os.path.join(os.path.dirname(__file
 APERTURE = os.path.join(BUILD, "bin", "aperture")
 # why the terrain is black with the sun's centre below the horizon (the aperture lighting)
 UNLIT = ("the sky models have no twilight, and the sun lights nothing until its centre is up: "
-         "'aperture sun' gives sunrise and sunset for its upper limb, minutes earlier and later")
+         "'aperture sun' gives sunrise and sunset for its upper limb, earlier and later (minutes; "
+         "near the poles, days)")
 
 
 def run(*args):
@@ -752,7 +753,7 @@ class TestCommandLineRender(unittest.TestCase):
             self.assertIn(message, str(e.exception))
 
     def test_many_dark_frames(self):
-        # Past 8 stretches of dark frames the warning names the first 6, the last and their
+        # Past 7 stretches of dark frames the warning names the first 6, the last and their
         # count (a year of hourly frames made one line of 4.8 kB): 25 nights at 6 h steps,
         # 00, 06 and 12 UTC dark in Tennessee in December (sunrise 07:30 local, 12:30 UTC)
         with tempfile.TemporaryDirectory() as tmp:
@@ -762,6 +763,11 @@ class TestCommandLineRender(unittest.TestCase):
             self.assertEqual(status, 0, stderr)
             self.assertIn("the sun is below the horizon in 75 of the 100 frames (0-2, 4-6, 8-10, "
                           "12-14, 16-18, 20-22, ..., 96-98: 25 stretches)", stderr)
+        # (7 stretches named in full, 8 shortened)
+        sys.path.insert(0, os.path.join(BUILD, "lib", "python3.11", "dist-packages"))
+        from aperture.cli import _ranges_text
+        self.assertEqual(_ranges_text(range(0, 14, 2)), "0, 2, 4, 6, 8, 10, 12")
+        self.assertEqual(_ranges_text(range(0, 16, 2)), "0, 2, 4, 6, 8, 10, ..., 14: 8 stretches")
 
     def test_night(self):
         # The sun below the horizon lights nothing (no twilight in the sky models): a black

@@ -272,6 +272,12 @@ class CommandLineSunTest(unittest.TestCase):
                          [["2026-06-21T12:00:00Z", "2026-06-21T12:00:00+00:00"],
                           ["2026-06-21T12:00:01.500Z", "2026-06-21T12:00:01.500+00:00"],
                           ["2026-06-21T12:00:03Z", "2026-06-21T12:00:03+00:00"]])
+        # the step taken to the microsecond the times are written to: the minimum as the help
+        # writes it, 0.016666667 minutes (1.00000002 s), drifted to 12:00:58.000001Z at the 59th
+        status, out, err = run("--at", "2026-06-21T12:00Z", "--lat", 47, "--lon", 8, "--days", 1,
+                               "--step", 0.016666667)
+        self.assertEqual(status, 0, err)
+        self.assertEqual(out.splitlines()[59].split("\t")[0], "2026-06-21T12:00:58Z")
         # the range's last second keeps its digits, and is not rounded past its end, which the
         # parser refuses (until 2026-12-07 "6001-01-01T00:00:00Z", twice)
         status, out, err = run("--at", "6000-12-31T23:59:59.9Z", "--lat", 47, "--lon", 8)

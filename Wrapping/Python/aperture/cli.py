@@ -1111,6 +1111,13 @@ def _frame_option_checks(args):
                         for o, p in (("--output", args.output), ("--exr", args.exr)) if p]
 
 
+def _step_seconds(minutes):
+    """A --step in seconds, to the microsecond that the times are written to: 0.016666667
+    minutes (1/60 as written) is 1.00000002 s, whose drift showed in the 60th time as
+    12:00:58.000001Z, fractions of seconds being written since 2026-12-07."""
+    return round(minutes * 60.0, 6)
+
+
 _FRAME_NUMBER = re.compile(r"%(?:%|(0?[1-9]?)d)")
 
 
@@ -1500,8 +1507,8 @@ def _unlit_why(args):
     # upper limb's, minutes before the centre's, or a whole short polar day before it, until
     # 2026-12-07 not said)
     return ("the sky models have no twilight, and the sun lights nothing until its centre is "
-            "up: 'aperture sun' gives sunrise and sunset for its upper limb, minutes earlier "
-            "and later" if args.lighting == "aperture" else
+            "up: 'aperture sun' gives sunrise and sunset for its upper limb, earlier and later "
+            "(minutes; near the poles, days)" if args.lighting == "aperture" else
             "VTK's light, from the sun's direction, is below it")
 
 
@@ -1540,7 +1547,8 @@ def _frame_times(args, sun):
     the sun's elevations at them, each computed: a usage error for a series that runs past the
     algorithm's years (a fact of --at, --step and --frames). Leaves `sun` at the first."""
     start = sun.GetUnixTime()
-    times = [start + k * args.step * 60.0 for k in range(args.frames)]
+    step = _step_seconds(args.step)
+    times = [start + k * step for k in range(args.frames)]
     elevations = []
     for k, t in enumerate(times):
         sun.SetUnixTime(t)
@@ -2690,9 +2698,10 @@ def cmd_sun(args):
     step = args.step or 60.0
     start = sun.GetUnixTime()
     end = _local_instant(sun, start + sun.GetLocalOffsetAt(start) + days * 86400.0)
-    count = max(1, int(math.ceil((end - start) / (step * 60.0) - 1e-9)))
+    step = _step_seconds(step)
+    count = max(1, int(math.ceil((end - start) / step - 1e-9)))
     compute()  # (the start: any other problem is named as for one time)
-    sun.SetUnixTime(start + (count - 1) * step * 60.0)
+    sun.SetUnixTime(start + (count - 1) * step)
     if not sun.Compute():
         raise _UsageError("the series over %d day%s from %s ends too late: %s" % (
             days, "" if days == 1 else "s", args.at, sun.GetErrorMessage()))
@@ -2704,7 +2713,7 @@ def cmd_sun(args):
             header.append("grid_azimuth")
         print("\t".join(header))
     for k in range(count):
-        sun.SetUnixTime(start + k * step * 60.0)
+        sun.SetUnixTime(start + k * step)
         if args.json:
             text = json.dumps(compute(), indent=1).replace("\n", "\n ")
             print(" " + text + ("," if k + 1 < count else ""))
@@ -3152,26 +3161,39 @@ _GDAL_HABITS = {
     "--config": {None: "GDAL's configuration options are read from the environment: "
                        "GDAL_CACHEMAX=512 aperture ..."},
 }
+_GDAL_HABITS["--co"], _GDAL_HABITS["--of"] = _GDAL_HABITS["-co"], _GDAL_HABITS["-of"]  # (3.11's)
 
 
 # how many values each of them takes after it (none when written -co=VALUE)
-_GDAL_HABIT_VALUES = {"-co": 1, "-of": 1, "-s": 1, "-z": 1, "-compute_edges": 0, "--config": 2}
+_GDAL_HABIT_VALUES = {"-co": 1, "-of": 1, "-s": 1, "-z": 1, "-compute_edges": 0, "--config": 2,
+                      "--co": 1, "--of": 1}
 
 
 def _habit_refusal(parser, argv):
     """The usage error for gdaldem's options in `argv`, with what to give instead (once for
     each option), or None. Looked for before argparse reads them, which read render's -of as
     -o f and bake's -co COMPRESS=ZSTD's value as the DEM, so that their hints never showed."""
+    # (the command's name first: a mistyped one is argparse's to name; values are taken up to
+    # an option, so that -z --exaggeration 2 does not name --exaggeration, and --config's
+    # KEY=VALUE form takes one)
     command = argv[0] if argv and argv[0] in parser.commands else None
+    if not command:
+        return None
     found, hints = [], {}
-    k = 1 if command else 0
+    k = 1
     while k < len(argv) and argv[k] != "--":
         key = argv[k].split("=", 1)[0]
         hint = _GDAL_HABITS.get(key)
         if not hint:
             k += 1
             continue
-        n = 1 + (0 if "=" in argv[k] else _GDAL_HABIT_VALUES[key])
+        n = 1
+        wanted = 0 if "=" in argv[k] else _GDAL_HABIT_VALUES[key]
+        while n <= wanted and k + n < len(argv) and not (
+                argv[k + n].startswith("-") and not re.match(r"-[0-9.]", argv[k + n])):
+            n += 1
+            if key == "--config" and "=" in argv[k + n - 1]:
+                break
         found.append(" ".join(argv[k:k + n]))
         hints.setdefault(key, "%s: %s" % (key, hint.get(command, hint[None])))
         k += n
