@@ -119,10 +119,10 @@ std::string FormatUTC(double seconds, int digits = 0)
 }
 
 /** The fraction digits that write an instant as it was given: 0, 3 or 6, the fewest that hold
- *  it within half a microsecond, or within two of the double's steps where those are longer;
- *  at most the digits a step resolves (6 within 2^32 s of 1970, the years 1834..2106, then
- *  3: a double of 1e11 s has steps of 15 us): "12:00:00.5" is written 12:00:00.500, and not
- *  rounded to a second it is not. */
+ *  it within half a microsecond, or within two of the double's steps where those are longer
+ *  and six digits are not written; at most the digits a step resolves (6 within 2^32 s of
+ *  1970, 1833-11-24 to 2106-02-07, then 3: a double of 1e11 s has steps of 15 us):
+ *  "12:00:00.5" is written 12:00:00.500, and not rounded to a second it is not. */
 int FractionDigits(double seconds)
 {
   if (!std::isfinite(seconds))
@@ -131,8 +131,9 @@ int FractionDigits(double seconds)
   }
   const double fraction = seconds - std::floor(seconds);
   const double step = std::nextafter(std::fabs(seconds), HUGE_VAL) - std::fabs(seconds);
-  const double tolerance = std::max(5e-7, 2.0 * step);
   const int most = step <= 5e-7 ? 6 : step <= 5e-4 ? 3 : 0;
+  // (two steps beside six digits, up to 0.95 us from 2038 on, took .000001 for a whole second)
+  const double tolerance = most == 6 ? 5e-7 : std::max(5e-7, 2.0 * step);
   for (int digits = 0; digits < most; digits += 3)
   {
     const double scale = digits == 0 ? 1.0 : 1e3;

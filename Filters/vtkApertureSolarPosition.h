@@ -73,8 +73,8 @@ public:
    * last SetTime was given as the clock of the local day (a series stepped from an instant
    * written with +09:00 keeps its days at +09:00; "Z" sets 0). GetTimeString gives the
    * instant as ISO 8601 UTC ("2026-06-21T12:00:00Z"), with 3 or 6 fraction digits when it has
-   * a fraction of a second ("2026-06-21T12:00:00.500Z"; rounded to the microsecond in the
-   * years 1834..2106, beyond them to the millisecond, as far as the double resolves them);
+   * a fraction of a second ("2026-06-21T12:00:00.500Z"; rounded to the microsecond from
+   * 1833-11-24 to 2106-02-07, beyond to the millisecond, as far as the double resolves them);
    * GetLocalTimeString the same instant on the clock of GetLocalOffsetAt(GetUnixTime())
    * ("2026-06-21T14:00:00.500+02:00"); both "" for no time (and the local one for a local
    * year outside −2000..6000). The strings returned here and by Get{Sunrise,Transit,
