@@ -516,12 +516,13 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
     bands << "'" << name << "' has " << this->NumberOfBands
           << " bands; reading band 1 as elevation (set BandIndex to choose)";
   }
-  if (alpha && alpha != d.Band && maskFlags == GMF_ALL_VALID)
+  const bool placed = alpha == this->NumberOfBands &&
+    (this->NumberOfBands == 2 || (this->NumberOfBands == 4 && d.Band <= 3));
+  const GDALDataType alphaType =
+    alpha ? GDALGetRasterDataType(GDALGetRasterBand(ds.H, alpha)) : GDT_Unknown;
+  const bool typed = alphaType == GDT_Byte || alphaType == GDT_UInt16;
+  if (alpha && alpha != d.Band && maskFlags == GMF_ALL_VALID && !(placed && typed))
   {
-    const GDALDataType alphaType = GDALGetRasterDataType(GDALGetRasterBand(ds.H, alpha));
-    const bool placed = alpha == this->NumberOfBands &&
-      (this->NumberOfBands == 2 || (this->NumberOfBands == 4 && d.Band <= 3));
-    const bool typed = alphaType == GDT_Byte || alphaType == GDT_UInt16;
     std::string why = placed ? "" : " as the last of 2 bands, or of 4 for the first 3";
     if (!typed)
     {

@@ -23,7 +23,7 @@
  *
  * Options:
  * - BandIndex: 1-based band; 0 (default) reads band 1 and warns when the raster has others to
- *   choose from (not for a second band that is an alpha band). An alpha band GDAL takes as no
+ *   choose from (not for a 2-band raster whose band 2 is an alpha band). An alpha band GDAL takes as no
  *   mask (of other samples than Byte or UInt16, or in another place than the last of 2 or 4
  *   bands), where nothing else masks the band read, is warned about: its transparent cells
  *   are read as heights.
