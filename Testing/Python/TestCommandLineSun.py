@@ -278,6 +278,12 @@ class CommandLineSunTest(unittest.TestCase):
                                "--step", 0.016666667)
         self.assertEqual(status, 0, err)
         self.assertEqual(out.splitlines()[59].split("\t")[0], "2026-06-21T12:00:58Z")
+        # a step longer than the day: its one time (NaN in the review's draft of the rounding)
+        status, out, err = run("--at", "2026-06-21T12:00Z", "--lat", 47, "--lon", 8, "--step",
+                               "1e307")
+        self.assertEqual(status, 0, err)
+        self.assertEqual([row.split("\t")[0] for row in out.splitlines()[1:]],
+                         ["2026-06-21T12:00:00Z"])
         # the range's last second keeps its digits, and is not rounded past its end, which the
         # parser refuses (until 2026-12-07 "6001-01-01T00:00:00Z", twice)
         status, out, err = run("--at", "6000-12-31T23:59:59.9Z", "--lat", 47, "--lon", 8)

@@ -1113,9 +1113,12 @@ def _frame_option_checks(args):
 
 def _step_seconds(minutes):
     """A --step in seconds, to the microsecond that the times are written to: 0.016666667
-    minutes (1/60 as written) is 1.00000002 s, whose drift showed in the 60th time as
-    12:00:58.000001Z, fractions of seconds being written since 2026-12-07."""
-    return round(minutes * 60.0, 6)
+    minutes (1/60 as written) is 1.00000002 s, whose drift showed from the 31st time on
+    (12:00:30.000001Z), fractions of seconds being written since 2026-12-07. (A step of
+    more seconds than a double holds to the microsecond is taken as it is, and one past the
+    largest double as that: 1e307 minutes made the first time 0 x inf, NaN.)"""
+    seconds = min(minutes * 60.0, sys.float_info.max)
+    return round(seconds, 6) if seconds < 1e15 else seconds
 
 
 _FRAME_NUMBER = re.compile(r"%(?:%|(0?[1-9]?)d)")
@@ -3164,7 +3167,8 @@ _GDAL_HABITS = {
 _GDAL_HABITS["--co"], _GDAL_HABITS["--of"] = _GDAL_HABITS["-co"], _GDAL_HABITS["-of"]  # (3.11's)
 
 
-# how many values each of them takes after it (none when written -co=VALUE)
+# how many values each of them takes after it, at most: up to an option (none when written
+# -co=VALUE)
 _GDAL_HABIT_VALUES = {"-co": 1, "-of": 1, "-s": 1, "-z": 1, "-compute_edges": 0, "--config": 2,
                       "--co": 1, "--of": 1}
 
