@@ -678,6 +678,20 @@ class TestBake(unittest.TestCase):
             self.assertIn("99999999999 is out of range (-2147483648..2147483647)", err)
             self.assertNotIn("Traceback", err)
 
+    def test_gridline_registered_window(self):
+        # A global grid whose first and last columns are one meridian (361 of 1 degree) is
+        # refused, a window of it too: its cells are measured on the whole raster; the message
+        # says that --srcwin cannot drop the column (it advised gdal_translate -srcwin alone,
+        # which a user of --srcwin took for the same thing, until 2026-12-07)
+        dem = self.path("gridline.tif")
+        make_dem(dem, np.full((181, 361), 100.0, np.float32), (-180.5, 1, 0, 90.5, 0, -1), 4326)
+        status, _, err = run("bake", dem, self.path("w.tif"), "--radius", 300000, "--srcwin", 10,
+                             10, 50, 50, "-q")
+        self.assertEqual(status, 1, err)
+        self.assertIn("(gdal_translate -srcwin 0 1 360 179); --srcwin cannot: the cells of a "
+                      "window are measured on the whole raster", err)
+        self.assertEqual(len(err.splitlines()), 1, err)
+
     def test_global_dem(self):
         # A global lat/lon DEM (720 columns of 0.5 degree, 75 S to 75 N): its east and west
         # edges join. The same products with the grid's seam 300 columns further on; in strips

@@ -3233,7 +3233,15 @@ def _main(argv):
         # argparse's own checks)
         parser.commands.get(args.command, parser).error(_as_options(str(e)))
     except ApertureError as e:
-        print("%s: error: %s" % (PROG, _as_options(str(e))), file=sys.stderr)
+        message = str(e)
+        if getattr(args, "srcwin", None) and "gridline-registered" in message:
+            # (bake and render measure a window's cells on the whole raster, so that windows
+            # tile it: its duplicate meridian is theirs too, which the advice to cut it with
+            # gdal_translate -srcwin did not tell a user of --srcwin, until 2026-12-07)
+            message += ("; --srcwin cannot: the cells of a window are measured on the whole "
+                        "raster, so that windows of it tile it (gdal_translate -of VRT cuts it "
+                        "without a copy)")
+        print("%s: error: %s" % (PROG, _as_options(message)), file=sys.stderr)
         return 1
     except MemoryError:
         # numpy's conversions of the products: the filters name their own sizes
