@@ -432,8 +432,7 @@ bool vtkApertureSolarPosition::SetTime(const char* iso8601)
       ": " + FormatInstant(FromInstant(detail.earlier)) + " (" +
       FormatOffset(detail.before.utc_offset) + ", " + detail.before.abbreviation + ") and " +
       FormatInstant(FromInstant(detail.later)) + " (" + FormatOffset(detail.after.utc_offset) +
-      ", " +
-      detail.after.abbreviation + "); give the offset to choose";
+      ", " + detail.after.abbreviation + "); give the offset to choose";
     vtkErrorMacro(<< d.Error);
     return false;
   }

@@ -508,9 +508,8 @@ int vtkApertureDEMReader::ReadInformation(vtkInformationVector* outputVector)
     alpha = GDALGetRasterColorInterpretation(GDALGetRasterBand(ds.H, b)) == GCI_AlphaBand ? b : 0;
   }
   const int maskFlags = GDALGetMaskFlags(base);
-  const bool alphaMasks = alpha && alpha != d.Band && (maskFlags & GMF_ALPHA);
   std::ostringstream bands;
-  if (this->BandIndex == 0 && this->NumberOfBands > (alphaMasks ? 2 : 1) &&
+  if (this->BandIndex == 0 && this->NumberOfBands > 1 &&
     !(alpha == 2 && this->NumberOfBands == 2))
   {
     bands << "'" << name << "' has " << this->NumberOfBands
