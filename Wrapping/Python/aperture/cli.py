@@ -1104,11 +1104,16 @@ def _frame_option_checks(args):
         raise _UsageError("--frames needs --at, the time of the first frame (the sun moves "
                           "through time)")
     args.step = 10.0 if args.step is None else args.step
-    if not (args.step >= 1.0 / 60.0 and math.isfinite(args.step)):
-        raise _UsageError("--step must be a number of minutes of at least one second's, "
-                          "1/60 (0.016666667)")
+    _check_step(args.step)
     args.frame_paths = [(o, _frame_names(o, p, args.frames))
                         for o, p in (("--output", args.output), ("--exr", args.exr)) if p]
+
+
+def _check_step(minutes):
+    """Refuse a --step (render's and sun's) under a second or not finite: a usage error."""
+    if not (minutes >= 1.0 / 60.0 and math.isfinite(minutes)):
+        raise _UsageError("--step must be a number of minutes of at least one second's, "
+                          "1/60 (0.016666667)")
 
 
 def _step_seconds(minutes):
@@ -2636,9 +2641,8 @@ def cmd_sun(args):
             ", ".join(reading), "s" if len(reading) == 1 else ""))
     if args.days is not None and args.days < 1:
         raise _UsageError("--days must be 1 or more")
-    if args.step is not None and not (args.step >= 1.0 / 60.0 and math.isfinite(args.step)):
-        raise _UsageError("--step must be a number of minutes of at least one second's, "
-                          "1/60 (0.016666667)")
+    if args.step is not None:
+        _check_step(args.step)
     watcher = Watcher(on_warning=_warn)
     sun = watcher.watch(vtkApertureSolarPosition())
     if args.tz and not sun.SetTimeZone(args.tz):
