@@ -114,17 +114,13 @@ class TestHelp(CommandLineTest):
         # an unknown option is said in the command's usage (it was the top level's), and a
         # long option is not taken from its first letters, as GDAL's tools take none ('--no'
         # was --no-curvature in bake, --no-stats in info)
-        for args, unknown in ((("info", "--bogus"), "--bogus"), (("info", "--no"), "--no"),
-                              (("bake", "x.tif", "y.tif", "--dir", "8"), "--dir 8"),
-                              (("sun", "--at", "2026-06-21T12:00Z", "--lat", "0", "--lo",
-                                "0"), "--lo 0")):
-            status, out, err = run(*args)
-            self.assertEqual((status, out), (2, ""), err)
-            self.assertIn("usage: aperture %s " % args[0], err)
-            self.assertIn("aperture %s: error: unrecognized arguments: %s" % (args[0], unknown),
-                          err)
+        cases = [(args, "aperture %s: error: unrecognized arguments: %s" % (args[0], unknown))
+                 for args, unknown in ((("info", "--bogus"), "--bogus"), (("info", "--no"), "--no"),
+                                       (("bake", "x.tif", "y.tif", "--dir", "8"), "--dir 8"),
+                                       (("sun", "--at", "2026-06-21T12:00Z", "--lat", "0", "--lo",
+                                         "0"), "--lo 0"))]
         # gdaldem's options get what to give instead (unrecognized alone until 2026-12-07)
-        for args, said in (
+        cases += [
                 (("bake", "x.tif", "y.tif", "-co", "COMPRESS=ZSTD", "-co", "TILED=YES", "-of",
                   "GTiff"), "unrecognized arguments: -co COMPRESS=ZSTD -co TILED=YES -of GTiff. "
                             "-co: GDAL's creation options are not taken: --compress CODEC and "
@@ -158,7 +154,8 @@ class TestHelp(CommandLineTest):
                  "unrecognized arguments: --config GDAL_CACHEMAX=512. --config: GDAL's "
                  "configuration options are read from the environment"),
                 (("bake", "--co", "COMPRESS=ZSTD", "in.tif", "out.tif"),
-                 "unrecognized arguments: --co COMPRESS=ZSTD. --co: GDAL's creation options")):
+                 "unrecognized arguments: --co COMPRESS=ZSTD. --co: GDAL's creation options")]
+        for args, said in cases:
             status, out, err = run(*args)
             self.assertEqual((status, out), (2, ""), err)
             self.assertIn("usage: aperture %s " % args[0], err)
