@@ -145,6 +145,20 @@ int FractionDigits(double seconds)
   return most;
 }
 
+/** An instant as ISO 8601 local time at `offset` (seconds east) with `digits` fraction digits,
+ *  or "" for NaN and a local year outside the range. */
+std::string FormatLocal(double seconds, int32_t offset, int digits = 0)
+{
+  char buf[64];
+  if (!std::isfinite(seconds) ||
+    ap_instant_format_iso8601_local(ToInstant(seconds), offset, digits, buf, sizeof(buf)) !=
+      AP_OK)
+  {
+    return std::string();
+  }
+  return buf;
+}
+
 /** An instant as ISO 8601 UTC with its fraction of a second (FractionDigits), or "". */
 std::string FormatInstant(double seconds)
 {
@@ -280,6 +294,7 @@ struct vtkApertureSolarPosition::Internals
   vtkSmartPointer<vtkApertureGeoreference> Geo; // the DEM of SetPlaceFromImage
   std::string Error;
   std::string TimeString, LocalTimeString, Sunrise, Transit, Sunset;
+  std::string SunriseLocal, TransitLocal, SunsetLocal;
   ap_sun_position_result Sun;
   ap_sky_sunlight Beam;
   // The sky, prepared on first use (PrepareSky) from the parameters and sun direction of the
@@ -362,6 +377,16 @@ struct vtkApertureSolarPosition::Internals
   int32_t DayOffset(double t) const
   {
     return this->DayOffset(t, this->HasGivenOffset ? this->GivenOffset : 0);
+  }
+
+  void ClearEvents()
+  {
+    for (std::string* text :
+      { &this->Sunrise, &this->Transit, &this->Sunset, &this->SunriseLocal, &this->TransitLocal,
+        &this->SunsetLocal })
+    {
+      text->clear();
+    }
   }
 };
 
@@ -474,13 +499,8 @@ const char* vtkApertureSolarPosition::GetTimeString()
 
 const char* vtkApertureSolarPosition::GetLocalTimeString()
 {
-  char buf[64];
   const double t = this->UnixTime;
-  this->Impl->LocalTimeString = std::isfinite(t) &&
-      ap_instant_format_iso8601_local(ToInstant(t), this->Impl->DayOffset(t),
-        FractionDigits(t), buf, sizeof(buf)) == AP_OK
-    ? buf
-    : "";
+  this->Impl->LocalTimeString = FormatLocal(t, this->Impl->DayOffset(t), FractionDigits(t));
   return this->Impl->LocalTimeString.c_str();
 }
 
@@ -609,9 +629,7 @@ void vtkApertureSolarPosition::ClearResults()
   std::fill(std::begin(this->Events), std::end(this->Events), kNaN);
   std::fill(std::begin(this->Light), std::end(this->Light), kNaN);
   this->DayKind = -1;
-  this->Impl->Sunrise.clear();
-  this->Impl->Transit.clear();
-  this->Impl->Sunset.clear();
+  this->Impl->ClearEvents();
 }
 
 //------------------------------------------------------------------------------
@@ -732,6 +750,12 @@ bool vtkApertureSolarPosition::Compute()
   d.Sunrise = FormatUTC(this->Events[0]);
   d.Transit = FormatUTC(this->Events[1]);
   d.Sunset = FormatUTC(this->Events[2]);
+  // (each on the clock of its own instant; to the second, rounded as the UTC strings are)
+  std::string* local[] = { &d.SunriseLocal, &d.TransitLocal, &d.SunsetLocal };
+  for (int k = 0; k < 3; ++k)
+  {
+    *local[k] = FormatLocal(this->Events[k], d.DayOffset(this->Events[k]));
+  }
   const auto unwritten = [](double t, const std::string& text) {
     return !std::isnan(t) && text.empty();
   };
@@ -742,9 +766,7 @@ bool vtkApertureSolarPosition::Compute()
     // rather than some of them, which would read as a day on which the sun only sets)
     std::fill(std::begin(this->Events), std::end(this->Events), kNaN);
     this->DayKind = -1;
-    d.Sunrise.clear();
-    d.Transit.clear();
-    d.Sunset.clear();
+    d.ClearEvents();
   }
 
   this->Convergence = ConvergenceAt(d.Geo, this->Longitude, this->Latitude);
@@ -973,6 +995,21 @@ const char* vtkApertureSolarPosition::GetTransitString()
 const char* vtkApertureSolarPosition::GetSunsetString()
 {
   return this->Impl->Sunset.c_str();
+}
+
+const char* vtkApertureSolarPosition::GetSunriseLocalString()
+{
+  return this->Impl->SunriseLocal.c_str();
+}
+
+const char* vtkApertureSolarPosition::GetTransitLocalString()
+{
+  return this->Impl->TransitLocal.c_str();
+}
+
+const char* vtkApertureSolarPosition::GetSunsetLocalString()
+{
+  return this->Impl->SunsetLocal.c_str();
 }
 
 void vtkApertureSolarPosition::GetDirection(double enu[3])

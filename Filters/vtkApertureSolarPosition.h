@@ -251,6 +251,18 @@ public:
   int GetDayKind() const { return this->DayKind; }
   ///@}
 
+  ///@{
+  /**
+   * The same events as ISO 8601 local times to the second, each on the clock of its own
+   * instant, GetLocalOffsetAt(event) ("2003-10-17T06:12:43-07:00"; a sunset after a clock
+   * change has the new offset); "" where the UTC string is "", and for a local time in a year
+   * outside -2000..6000. Owned by this object like the strings above.
+   */
+  const char* GetSunriseLocalString();
+  const char* GetTransitLocalString();
+  const char* GetSunsetLocalString();
+  ///@}
+
   /** UTC offset (seconds east) of the local day above: TimeZone's offset at the instant, else
    *  the offset SetTime was given, else 0. */
   int GetLocalOffset();

@@ -266,6 +266,7 @@ void TestSPACase()
   AP_CHECK(sun->GetHourAngle() - 11.105902 > 3e-4 && sun->GetHourAngle() - 11.105902 < 4e-4);
   // The local day (-07:00) of 2003-10-17: sunrise 06:12:43 local, as the report prints.
   AP_CHECK(std::string(sun->GetSunriseString()) == "2003-10-17T13:12:43Z");
+  AP_CHECK(std::string(sun->GetSunriseLocalString()) == "2003-10-17T06:12:43-07:00");
   AP_CHECK(sun->GetDayKind() == 0);
   AP_CHECK(sun->GetLocalOffset() == -7 * 3600);
   // A sun given by its direction has its own incidences, not the last Compute()'s: at 40
@@ -338,6 +339,15 @@ void TestTimeZones()
   AP_CHECK(sun->GetLocalOffsetAt(1792890000.0 - 1.0) == 7200);
   AP_CHECK(sun->GetLocalOffsetAt(1792890000.0) == 3600);
   AP_CHECK(sun->GetLocalOffset() == 3600); // (the instant's, 15 January)
+  // each event on the clock of its own instant: on 2026-03-29 the day starts at +01:00, and
+  // its sunrise (about 05:10Z at 47 N, 8.5 E) is read at +02:00, an hour after the change
+  AP_CHECK(sun->SetTime("2026-03-29T00:30") && sun->Compute());
+  AP_CHECK(sun->GetLocalOffset() == 3600);
+  AP_CHECK_CONTAINS(sun->GetSunriseString(), "2026-03-29T05:");
+  AP_CHECK(std::string(sun->GetSunriseLocalString()) ==
+    "2026-03-29T07:" + std::string(sun->GetSunriseString()).substr(14, 5) + "+02:00");
+  AP_CHECK(std::string(sun->GetSunsetLocalString()).substr(19) == "+02:00");
+  AP_CHECK(sun->SetTime("2026-01-15T14:00"));
   AP_CHECK(sun->GetLocalOffsetAt(std::nan("")) == 0); // no offset given: UTC
   AP_CHECK(!sun->SetTimeZone("Europe/Atlantis"));
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "unknown");
@@ -701,6 +711,7 @@ void TestBadInput()
   // were there beside a null direction)
   AP_CHECK(std::isnan(sun->GetAzimuth()) && std::isnan(sun->GetElevation()));
   AP_CHECK(sun->GetDayKind() == -1 && std::string(sun->GetSunriseString()).empty());
+  AP_CHECK(std::string(sun->GetSunriseLocalString()).empty());
   sun->SetTurbidity(3.0);
   sun->SetLinkeTurbidity(0.5);
   AP_CHECK(!sun->ComputeForDirection(180.0, 30.0));

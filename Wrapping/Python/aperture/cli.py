@@ -2442,49 +2442,6 @@ def _offset_text(seconds):
     return text + (":%02d" % (seconds % 60) if seconds % 60 else "")
 
 
-_LAST_SECOND = 127206115199  # 6000-12-31T23:59:59Z, ap_time.h's AP_TIME_UNIX_MAX
-
-
-def _local_text(sun, unix_seconds):
-    """ISO 8601 local time, to the second, of an instant (sunrise, transit, sunset; the
-    instant itself is sun.GetLocalTimeString(), with its fraction of a second) on the clock of
-    the sun's place: the time zone's offset at that instant (a sunset after a clock change has
-    the new one), else the offset --at was written with; None for no instant. The years
-    -2000..6000 as the UTC strings write them (-0001, 0000: Python's datetime, years 1..9999,
-    had none for them until 2026-12-07)."""
-    if unix_seconds is None or not math.isfinite(unix_seconds):
-        return None
-    offset = sun.GetLocalOffsetAt(unix_seconds)
-    whole = math.floor(unix_seconds)
-    # (half a second up, as the UTC strings round, Python's round() going to even; not past
-    # the algorithm's last second, 6000-12-31T23:59:59Z, where they are truncated)
-    whole += unix_seconds - whole >= 0.5 and whole < _LAST_SECOND
-    days, second = divmod(int(whole) + int(offset), 86400)
-    year, month, day = _civil_date(days)
-    # (a local time in the year 6001, an instant of the range's last hours east of UTC, is
-    # text that --at refuses, as the C core's local form does)
-    if not -2000 <= year <= 6000:
-        return None
-    return "%s%04d-%02d-%02dT%02d:%02d:%02d%s" % (
-        "-" if year < 0 else "", abs(year), month, day, second // 3600, second // 60 % 60,
-        second % 60, _offset_text(offset))
-
-
-def _civil_date(days):
-    """(year, month, day) of the proleptic Gregorian calendar `days` days after 1970-01-01
-    (negative before it; year 0 is 1 BC), by H. Hinnant's days-to-civil algorithm."""
-    days += 719468  # (from 0000-03-01)
-    era = days // 146097
-    day_of_era = days - era * 146097
-    year_of_era = (day_of_era - day_of_era // 1460 + day_of_era // 36524
-                   - day_of_era // 146096) // 365
-    day_of_year = day_of_era - (365 * year_of_era + year_of_era // 4 - year_of_era // 100)
-    m = (5 * day_of_year + 2) // 153  # (months from March)
-    day = day_of_year - (153 * m + 2) // 5 + 1
-    month = m + 3 if m < 10 else m - 9
-    return year_of_era + era * 400 + (month <= 2), month, day
-
-
 def _sun_record(sun, with_dem):
     """One --json object: the keys the documentation lists."""
     finite = lambda v: v if v is not None and math.isfinite(v) else None
@@ -2511,9 +2468,9 @@ def _sun_record(sun, with_dem):
         "sunrise": sun.GetSunriseString() or None,
         "transit": sun.GetTransitString() or None,
         "sunset": sun.GetSunsetString() or None,
-        "sunrise_local": _local_text(sun, finite(sun.GetSunrise())),
-        "transit_local": _local_text(sun, finite(sun.GetTransit())),
-        "sunset_local": _local_text(sun, finite(sun.GetSunset())),
+        "sunrise_local": sun.GetSunriseLocalString() or None,
+        "transit_local": sun.GetTransitLocalString() or None,
+        "sunset_local": sun.GetSunsetLocalString() or None,
         "sky_model": SKY_MODELS_BY_ID[sun.GetSkyModel()],
         "air_mass": finite(sun.GetAirMass()),
         "direct_normal_irradiance_w_m2": sun.GetDirectNormalIrradiance(),
