@@ -982,7 +982,8 @@ bool vtkApertureGeoreference::CheckLongitudeSpan()
              "grid); drop the last column"
           << (dropNorth + dropSouth ? " and the rows centred on a pole" : "")
           << " first (gdal_translate -srcwin 0 " << dropNorth << " " << this->GridSize[0] - 1
-          << " " << this->GridSize[1] - dropNorth - dropSouth << ")";
+          << " " << this->GridSize[1] - dropNorth - dropSouth
+          << "; with -of VRT it copies nothing)";
     }
     else
     {

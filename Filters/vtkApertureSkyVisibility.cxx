@@ -99,6 +99,21 @@ void SetWholeGrid(
     spacing[1], whole[1] - whole[0] + 1, whole[3] - whole[2] + 1);
 }
 
+// The refusal of a lat/lon grid wider than the Earth (geo describing the whole grid), or "": a
+// gridline-registered global grid's duplicate meridian, a wrong cell size. For an update of a
+// sub-extent (`piece`), also why a piece cannot leave the columns too many out.
+std::string LongitudeSpanProblem(vtkApertureGeoreference* geo, bool piece)
+{
+  if (geo->CheckLongitudeSpan())
+  {
+    return std::string();
+  }
+  return std::string("no metric cell size: ") + geo->GetErrorMessage() +
+    (piece ? "; that is the whole grid's: a sub-extent's cells are measured on the whole grid, "
+             "so that sub-extents tile it"
+           : "");
+}
+
 // For a projected grid (geo describing the whole grid): a warning when its ground cell size s at
 // a corner or an edge midpoint differs from the centre's c, which the sweep uses for every
 // cell, by more than ScaleChangeWarning (the projection's scale factor changes across the
@@ -485,11 +500,29 @@ int vtkApertureSkyVisibility::RequestUpdateExtent(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   int ext[6], in[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+  this->RefusedRequest.clear();
   if (vtkStructuredData::GetDataDescriptionFromExtent(ext) == VTK_EMPTY)
   {
     // an empty request (VTK's way to ask for nothing) asks nothing of the input either
     inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext, 6);
     return 1;
+  }
+  // A grid wider than the Earth is refused before the DEM is read (a 20 GB global grid was
+  // read whole first): VTK 9.1 goes on after a failed RequestUpdateExtent, so the input is
+  // asked for nothing and RequestData reports the refusal (it refuses one itself whose CRS
+  // the pipeline information lacks).
+  int whole[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  vtkNew<vtkApertureGeoreference> geo;
+  if (geo->SetFromInformation(inInfo))
+  {
+    this->RefusedRequest = LongitudeSpanProblem(geo, !std::equal(ext, ext + 6, whole));
+    if (!this->RefusedRequest.empty())
+    {
+      const int nothing[6] = { 0, -1, 0, -1, 0, -1 };
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), nothing, 6);
+      return 1;
+    }
   }
   InputExtent(inInfo, this->MaximumDistance, ext, in);
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), in, 6);
@@ -708,6 +741,11 @@ int vtkApertureSkyVisibility::RunRequestData(
   vtkImageData* output = vtkImageData::GetData(outputVector);
   this->NumberOfThreadsUsed = 0;
   this->InputAllNodata = false;
+  if (!this->RefusedRequest.empty())
+  {
+    vtkErrorMacro(<< this->RefusedRequest);
+    return 0;
+  }
   if (!input || input->GetNumberOfPoints() == 0)
   {
     return 1;
@@ -882,6 +920,15 @@ int vtkApertureSkyVisibility::RunRequestData(
   input->GetSpacing(spacing);
   // (from here on geo describes the whole grid; AttachToImage below uses only its CRS)
   SetWholeGrid(geo, origin, spacing, wholeExt);
+  {
+    const std::string problem =
+      LongitudeSpanProblem(geo, !std::equal(outExt, outExt + 6, wholeExt));
+    if (!problem.empty())
+    {
+      vtkErrorMacro(<< problem);
+      return 0;
+    }
+  }
   // Grids whose columns are meridians and rows parallels (lat/lon, Mercator, equirectangular)
   // get their cell sizes row by row, exact for every cell, and the sweep's lattice needs those
   // of every row of the whole grid; other projected grids are metric to within the

@@ -125,7 +125,9 @@
  * run: VTK's executive keeps an earlier update's output for one) gives an empty output and no
  * error, as VTK's filters do.
  * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, a point
- * array without one tuple per point of the input, no CRS or no metric cell size, every cell
+ * array without one tuple per point of the input, no CRS or no metric cell size (a lat/lon
+ * grid wider than 360 degrees, a sub-extent of one too, is refused without reading its input
+ * when the CRS is in the pipeline information, as vtkApertureDEMReader puts it), every cell
  * nodata in an input that is the whole DEM (an update of all of it, or an unlimited distance),
  * NumberOfDirections outside 4..360, a negative MaximumDistance, a refraction coefficient
  * outside [0, 1), and not enough memory for the outputs and the sweep: refused before
@@ -413,6 +415,7 @@ protected:
   bool FloatEdgeTruncated;
   char* ElevationArrayName;
   vtkMTimeType ArraySelectionMade; // (the input array selection's MTime when made)
+  std::string RefusedRequest;       // (RequestUpdateExtent's refusal, for RequestData to report)
 
 private:
   vtkApertureSkyVisibility(const vtkApertureSkyVisibility&) = delete;

@@ -705,6 +705,47 @@ class TestSkyVisibility(Testing.vtkTest):
         self.assertIn("at least 2 x 2",
                       self.error(make_image(np.ones((1, 5)), 0, 0, 30, 30, "EPSG:32633")))
 
+    def testGridWiderThanTheEarth(self):
+        # A gridline-registered global grid (361 columns of 1 degree: -180 and 180 both) is
+        # refused in RequestUpdateExtent, before its reader reads a cell (a 20 GB ETOPO grid
+        # was read whole first until 2026-12-07), and for a sub-extent with why it is refused
+        # too; an image without the CRS in the pipeline information, in RequestData.
+        import tempfile
+        from osgeo import gdal
+        from aperture.errors import Watcher
+        z = np.full((181, 361), 100.0, np.float32)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "gridline.tif")
+            ds = gdal.GetDriverByName("GTiff").Create(path, 361, 181, 1, gdal.GDT_Float32)
+            ds.SetGeoTransform((-180.5, 1, 0, 90.5, 0, -1))
+            ds.SetProjection(osr.SRS_WKT_WGS84_LAT_LONG)
+            ds.GetRasterBand(1).WriteArray(z)
+            ds = None
+            for extent in (None, (10, 59, 10, 59, 0, 0)):
+                w = Watcher()
+                reader = aperture.vtkApertureDEMReader()
+                reader.SetFileName(path)
+                f = w.watch(aperture.vtkApertureSkyVisibility())
+                w.watch(f.GetExecutive())
+                f.SetInputConnection(reader.GetOutputPort())
+                f.SetMaximumDistance(300000.0)
+                if extent:
+                    f.UpdateExtent(extent)
+                else:
+                    f.Update()
+                self.assertTrue(w.errors, extent)
+                self.assertIn("no metric cell size: the grid spans 361 degrees of longitude",
+                              w.errors[0])
+                self.assertIn("(a gridline-registered global grid)", w.errors[0])
+                piece = "; that is the whole grid's: a sub-extent's cells are measured on the " \
+                        "whole grid, so that sub-extents tile it"
+                self.assertEqual(piece in w.errors[0], extent is not None, w.errors[0])
+                self.assertEqual(reader.GetOutput().GetNumberOfPoints(), 0, extent)
+        image = make_image(z, -180.5, -90.5, 1.0, 1.0, "EPSG:4326")
+        self.assertIn("(a gridline-registered global grid)", self.error(image))
+        self.assertIn("; that is the whole grid's",
+                      self.error(image, UpdateExtent=(10, 59, 10, 59, 0, 0)))
+
     def testNonFiniteAndImplausibleElevations(self):
         # Infinities are nodata, as the reader makes them: the same products bit for bit as
         # with NaN there (NaN at the cell, transparent to its neighbours).

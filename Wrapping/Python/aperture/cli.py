@@ -351,6 +351,13 @@ _READER_PHRASES = (
     (re.compile(r"^OverrideCRS: "), "--srs: "),
     (re.compile(r"set OverrideCRS \(aperture: (--srs EPSG:xxxx[^)]*)\)"), r"give one with \1"),
     (re.compile(r"MetresPerElevationUnit"), "--zfactor"),
+    # (bake and render measure a window's cells on the whole raster: a gridline-registered
+    # grid's duplicate meridian is a window's too, which the advice to cut it with
+    # gdal_translate -srcwin did not tell a user of --srcwin, until 2026-12-07)
+    (re.compile(r"that is the whole grid's: a sub-extent's cells are measured on the whole "
+                r"grid, so that sub-extents tile it"),
+     "--srcwin cannot: the cells of a window are measured on the whole raster, so that "
+     "windows of it tile it"),
     (re.compile(r"\(after [a-z, ]+\)"),  # (the reader's steps, only those taken)
      lambda m: m.group(0).replace("subwindow", "--srcwin").replace("overview", "--overview")
      .replace("decimation", "--decimate")),
@@ -3194,15 +3201,7 @@ def _main(argv):
         # argparse's own checks)
         parser.commands.get(args.command, parser).error(_as_options(str(e)))
     except ApertureError as e:
-        message = str(e)
-        if getattr(args, "srcwin", None) and "gridline-registered" in message:
-            # (bake and render measure a window's cells on the whole raster, so that windows
-            # tile it: its duplicate meridian is theirs too, which the advice to cut it with
-            # gdal_translate -srcwin did not tell a user of --srcwin, until 2026-12-07)
-            message += ("; --srcwin cannot: the cells of a window are measured on the whole "
-                        "raster, so that windows of it tile it (gdal_translate -of VRT cuts it "
-                        "without a copy)")
-        print("%s: error: %s" % (PROG, _as_options(message)), file=sys.stderr)
+        print("%s: error: %s" % (PROG, _as_options(str(e))), file=sys.stderr)
         return 1
     except MemoryError:
         # numpy's conversions of the products: the filters name their own sizes
