@@ -3113,32 +3113,29 @@ def _refuse_empty(args):
 
 # gdaldem's and GDAL's options, which a GIS analyst tries first: what to give instead (each
 # was "unrecognized arguments" alone until 2026-12-07); by command, None for any other.
+# gdaldem's options: how many values each takes after it, at most (up to an option; none when
+# written -co=VALUE), and what to give instead, by command (None: any other)
 _GDAL_HABITS = {
-    "-co": {"bake": "GDAL's creation options are not taken: --compress CODEC and "
-                    "--compress-level N choose the compression (the GeoTIFF is tiled, with the "
-                    "floating-point predictor, BigTIFF when it needs to be)",
-            None: "only 'aperture bake' writes a GeoTIFF"},
-    "-of": {"bake": "bake writes a GeoTIFF (and an OpenEXR file with --exr), whatever the name",
-            "render": "render writes a PNG (and an OpenEXR file with --exr)",
-            None: "only bake and render write files"},
-    "-s": {None: "cell sizes come in metres from the DEM's CRS, lat/lon included; --zfactor Z "
-                 "gives the metres of an elevation unit"},
-    "-z": {"render": "--exaggeration stretches the heights drawn; --zfactor Z gives the metres "
-                     "of an elevation unit",
-           None: "--zfactor Z gives the metres of an elevation unit"},
-    "-compute_edges": {None: "every cell is computed, next to the DEM's edge too (terrain beyond "
-                             "it is invisible: bake's EdgeTruncated flags the cells it could "
-                             "hide)"},
-    "--config": {None: "GDAL's configuration options are read from the environment: "
-                       "GDAL_CACHEMAX=512 aperture ..."},
+    "-co": (1, {"bake": "GDAL's creation options are not taken: --compress CODEC and "
+                        "--compress-level N choose the compression (the GeoTIFF is tiled, with "
+                        "the floating-point predictor, BigTIFF when it needs to be)",
+                None: "only 'aperture bake' writes a GeoTIFF"}),
+    "-of": (1, {"bake": "bake writes a GeoTIFF (and an OpenEXR file with --exr), whatever the "
+                        "name",
+                "render": "render writes a PNG (and an OpenEXR file with --exr)",
+                None: "only bake and render write files"}),
+    "-s": (1, {None: "cell sizes come in metres from the DEM's CRS, lat/lon included; "
+                     "--zfactor Z gives the metres of an elevation unit"}),
+    "-z": (1, {"render": "--exaggeration stretches the heights drawn; --zfactor Z gives the "
+                         "metres of an elevation unit",
+               None: "--zfactor Z gives the metres of an elevation unit"}),
+    "-compute_edges": (0, {None: "every cell is computed, next to the DEM's edge too (terrain "
+                                 "beyond it is invisible: bake's EdgeTruncated flags the cells "
+                                 "it could hide)"}),
+    "--config": (2, {None: "GDAL's configuration options are read from the environment: "
+                           "GDAL_CACHEMAX=512 aperture ..."}),
 }
 _GDAL_HABITS["--co"], _GDAL_HABITS["--of"] = _GDAL_HABITS["-co"], _GDAL_HABITS["-of"]  # (3.11's)
-
-
-# how many values each of them takes after it, at most: up to an option (none when written
-# -co=VALUE)
-_GDAL_HABIT_VALUES = {"-co": 1, "-of": 1, "-s": 1, "-z": 1, "-compute_edges": 0, "--config": 2,
-                      "--co": 1, "--of": 1}
 
 
 def _habit_refusal(parser, argv):
@@ -3155,12 +3152,12 @@ def _habit_refusal(parser, argv):
     k = 1
     while k < len(argv) and argv[k] != "--":
         key = argv[k].split("=", 1)[0]
-        hint = _GDAL_HABITS.get(key)
-        if not hint:
+        if key not in _GDAL_HABITS:
             k += 1
             continue
+        values, hint = _GDAL_HABITS[key]
         n = 1
-        wanted = 0 if "=" in argv[k] else _GDAL_HABIT_VALUES[key]
+        wanted = 0 if "=" in argv[k] else values
         while n <= wanted and k + n < len(argv) and not (
                 argv[k + n].startswith("-") and not re.match(r"-[0-9.]", argv[k + n])):
             n += 1
