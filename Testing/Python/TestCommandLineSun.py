@@ -248,8 +248,17 @@ class CommandLineSunTest(unittest.TestCase):
         # instant (12:00:00.5 was written 12:00:01, a second it was not, until 2026-12-07)
         status, out, err = run("--at", "2026-06-21T12:00:00.5Z", "--lat", 47, "--lon", 8)
         self.assertEqual(status, 0, err)
-        self.assertIn("Time:        2026-06-21T12:00:00.500Z (local 2026-06-21T12:00:00.500+00:00)",
-                      out)
+        self.assertIn("Time:        2026-06-21T12:00:00.500Z (UTC's clock and day: --tz ZONE "
+                      "gives the place's)", out)
+        # (in UTC without --tz: no local times, which read as the place's, were UTC's until
+        # 2026-12-07; with --tz UTC they are asked for)
+        self.assertIn("sunset 2026-06-21T19:26:45Z (the UTC day)\n", out)
+        self.assertNotIn("local", out)
+        status, out, err = run("--at", "2026-06-21T12:00:00.5Z", "--lat", 47, "--lon", 8,
+                               "--tz", "UTC")
+        self.assertEqual(status, 0, err)
+        self.assertIn("2026-06-21T12:00:00.500Z (local 2026-06-21T12:00:00.500+00:00)", out)
+        self.assertIn("(local +00:00)\n             local: sunrise 03:32:52, ", out)
         for at, utc, local in (
                 ("2026-06-21T14:00:00,25", "2026-06-21T12:00:00.250Z",
                  "2026-06-21T14:00:00.250+02:00"),
@@ -288,8 +297,7 @@ class CommandLineSunTest(unittest.TestCase):
         # parser refuses (until 2026-12-07 "6001-01-01T00:00:00Z", twice)
         status, out, err = run("--at", "6000-12-31T23:59:59.9Z", "--lat", 47, "--lon", 8)
         self.assertEqual(status, 0, err)
-        self.assertIn("Time:        6000-12-31T23:59:59.900Z (local 6000-12-31T23:59:59.900+00:00)",
-                      out)
+        self.assertIn("Time:        6000-12-31T23:59:59.900Z (UTC's", out)
         # nor as a local time in the year 6001, east of UTC, which --at would refuse
         r = self.json_of("--at", "6000-12-31T23:59:59.9Z", "--lat", 35, "--lon", 139, "--tz",
                          "Asia/Tokyo")

@@ -2512,8 +2512,13 @@ def _day_order_note(sun, record):
 
 
 def _print_sun(record, dem, note=None, refraction=True):
+    # (an instant given in UTC without --tz has UTC's clock and day: not labelled "local", as
+    # if it were the place's, until 2026-12-07)
+    utc = not record["time_zone"] and record["utc_offset"] == "+00:00"
     rows = [
-        ("Time", "%s (local %s)" % (record["time_utc"], record["time_local"] or "n/a")),
+        ("Time", "%s (%s)" % (record["time_utc"],
+                              "UTC's clock and day: --tz ZONE gives the place's" if utc else
+                              "local %s" % (record["time_local"] or "n/a"))),
         ("Place", "latitude %.6f, longitude %.6f, height %.1f m%s"
          % (record["latitude_deg"], record["longitude_deg"], record["height_m"],
             " (centre of %s)" % dem if dem else "")),
@@ -2550,18 +2555,18 @@ def _print_sun(record, dem, note=None, refraction=True):
                             "algorithm covers"))
     elif record["day_kind"] == "normal":
         # (next to polar day or night the sun may only rise, or only set, that day)
-        rows.append(("Day", "sunrise %s, transit %s, sunset %s (local %s)" % (
+        rows.append(("Day", "sunrise %s, transit %s, sunset %s (%s)" % (
             *(record[k] or "n/a (none that day)" for k in ("sunrise", "transit", "sunset")),
-            record["utc_offset"])))
+            "the UTC day" if utc else "local " + record["utc_offset"])))
         # each event on the clock of its own moment; its offset shown when a clock change
         # (the day of one) gives it another than the instant's
         # (the clock time after the date's T: a year -0001 is a character longer)
         clock = lambda text: text.split("T", 1)[1]
-        rows.append(("", "local: sunrise %s, transit %s, sunset %s" % tuple(
+        rows += [] if utc else [("", "local: sunrise %s, transit %s, sunset %s" % tuple(
             "n/a" if not record[k] else clock(record[k])[:8] if clock(record[k])[8:] ==
             record["utc_offset"] else clock(record[k]) for k in ("sunrise_local",
                                                                  "transit_local",
-                                                                 "sunset_local"))))
+                                                                 "sunset_local")))]
     else:
         rows.append(("Day", "%s: the sun does not %s; transit %s" % (
             record["day_kind"].replace("_", " "),
