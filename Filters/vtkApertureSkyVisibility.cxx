@@ -100,11 +100,12 @@ void SetWholeGrid(
 }
 
 // The refusal of a lat/lon grid wider than the Earth (geo describing the whole grid), or "": a
-// gridline-registered global grid's duplicate meridian, a wrong cell size. For an update of a
-// sub-extent (`piece`), also why a piece cannot leave the columns too many out.
+// gridline-registered global grid's duplicate meridian, a wrong cell size (other CRSs pass:
+// their problems are RequestData's to find). For an update of a sub-extent (`piece`), also why
+// a piece cannot leave the columns too many out.
 std::string LongitudeSpanProblem(vtkApertureGeoreference* geo, bool piece)
 {
-  if (geo->CheckLongitudeSpan())
+  if (!geo->IsGeographic() || geo->CheckLongitudeSpan())
   {
     return std::string();
   }

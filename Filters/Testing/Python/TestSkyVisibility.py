@@ -741,6 +741,21 @@ class TestSkyVisibility(Testing.vtkTest):
                         "whole grid, so that sub-extents tile it"
                 self.assertEqual(piece in w.errors[0], extent is not None, w.errors[0])
                 self.assertEqual(reader.GetOutput().GetNumberOfPoints(), 0, extent)
+            # (a local CRS has no longitudes: not refused, as it was for an hour of 2026-12-07)
+            path = os.path.join(tmp, "site.tif")
+            ds = gdal.GetDriverByName("GTiff").Create(path, 30, 20, 1, gdal.GDT_Float32)
+            ds.SetGeoTransform((1000, 2, 0, 5000, 0, -2))
+            ds.SetProjection('LOCAL_CS["grid",UNIT["metre",1]]')
+            ds.GetRasterBand(1).WriteArray(z[:20, :30])
+            ds = None
+            w = Watcher()
+            reader = aperture.vtkApertureDEMReader()
+            reader.SetFileName(path)
+            f = w.watch(aperture.vtkApertureSkyVisibility())
+            f.SetInputConnection(reader.GetOutputPort())
+            f.UpdateExtent((5, 20, 5, 15, 0, 0))
+            self.assertEqual(w.errors, [])
+            self.assertTrue((array(f.GetOutput(), "SkyViewFactor") > 0.99).all())
         image = make_image(z, -180.5, -90.5, 1.0, 1.0, "EPSG:4326")
         self.assertIn("(a gridline-registered global grid)", self.error(image))
         self.assertIn("; that is the whole grid's",
