@@ -308,6 +308,14 @@ class TestBake(unittest.TestCase):
         self.assertEqual(meta["SOURCE_CRS_OVERRIDE"], "EPSG:32611")
         self.assertNotIn("SOURCE_OVERVIEW", meta)
         self.assertEqual(meta["SOURCE_ELEVATION_UNIT"], "1 m (none in the file: metres)")
+        # a size of 0 (to the edge) is recorded as the cells it reached (0 until 2026-12-07)
+        status, _, err = run("bake", self.dem, out, "--products", "SkyViewFactor", "-d", "8",
+                             "--radius", "300", "--srcwin", 4, 6, 0, 0)
+        self.assertEqual(status, 0, err)
+        b, meta, _, _ = bands(out)
+        self.assertEqual(b["SkyViewFactor"][0].shape, (54, 77))  # (of 60 x 81)
+        self.assertEqual(meta["SOURCE_WINDOW"],
+                         "4 6 77 54 (xoff yoff xsize ysize; its horizons see the DEM around it)")
 
     def test_elevation_in_feet(self):
         # The class's valley with its heights in feet and no unit said: --zfactor ft bakes the

@@ -1884,8 +1884,13 @@ def _read_provenance(args, reader):
     """What of the DEM was read (the reader's band and elevation unit, after its update)."""
     record = {"SOURCE_BAND": str(reader.GetBandRead())}
     if args.srcwin:
+        # (a size of 0, to the edge, as the cells it reached: 0 was written as given until
+        # 2026-12-07)
+        xoff, yoff, xsize, ysize = args.srcwin
+        width, height = reader.GetRasterSize()
         record["SOURCE_WINDOW"] = ("%d %d %d %d (xoff yoff xsize ysize; its horizons see the "
-                                   "DEM around it)" % tuple(args.srcwin))
+                                   "DEM around it)" % (xoff, yoff, xsize or width - xoff,
+                                                       ysize or height - yoff))
     if args.overview is not None:
         record["SOURCE_OVERVIEW"] = str(args.overview)
     if args.decimate > 1:
