@@ -1141,6 +1141,14 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
   // a margin of them read as a 10 km cliff without a word until 2026-12-07.
   size_t sentinels = 0;
   size_t infinite = 0; // (undeclared infinities, nodata all the same: said in a warning)
+  // (and finite samples beyond the float range, -1.8e308 as an undeclared nodata value, which
+  // a Float64 band can hold: nodata too, silently until 2026-12-07)
+  size_t huge = 0;
+  const auto declared = [&d](double v) { // (ap_samples_to_elevation's nodata test)
+    return d.HasNoData &&
+      (v == d.NoData ||
+        (d.NoDataNear && std::fabs(v - d.NoData) < 2.0 * FLT_EPSILON * std::fabs(v + d.NoData)));
+  };
   const auto noteWarning = [&damaged]() {
     if (CPLGetLastErrorType() == CE_Warning && damaged.empty())
     {
@@ -1209,6 +1217,8 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
         const bool data = !mask || valid[q]; // (a masked cell is nodata)
         sentinels += !d.HasNoData && raw[q] == -9999.0 && data;
         infinite += std::isinf(raw[q]) && data && !(d.HasNoData && raw[q] == d.NoData);
+        huge += data && std::isfinite(raw[q]) && std::fabs(raw[q]) > FLT_MAX &&
+          std::isnan(conv[q]) && !declared(raw[q]);
       }
       for (size_t r = 0; r < k; ++r)
       {
@@ -1246,6 +1256,12 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
     vtkWarningMacro(<< "'" << this->FileName << "' band " << d.Band << " has infinite cells "
                     << "(+inf or -inf), which its nodata value does not declare: read as "
                     << "nodata");
+  }
+  if (huge > 0)
+  {
+    vtkWarningMacro(<< "'" << this->FileName << "' band " << d.Band << " has cells beyond the "
+                    << "range of float32 elevations (3.4e38), which its nodata value does not "
+                    << "declare (-1.8e308: an undeclared nodata value?): read as nodata");
   }
   if (!damaged.empty())
   {

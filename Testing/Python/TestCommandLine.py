@@ -779,6 +779,30 @@ class TestBadInput(CommandLineTest):
         status, out, err = run("info", declared)
         self.assertEqual((status, err), (0, ""))
         self.assertIn("Nodata:     2 cells (nodata value -inf)", out)
+        # Finite samples beyond the float32 range (a Float64 band's -1.8e308, an undeclared
+        # nodata value) are nodata as well, said too (silent until 2026-12-07, with info's
+        # count of them beside the declared value): not where the file declares them.
+        lowest = -1.7976931348623157e308
+        for name, values, nodata, warned in (("huge", (1e300, lowest), None, True),
+                                             ("huge-and-declared", (1e300, lowest), lowest, True),
+                                             ("declared", (lowest, lowest), lowest, False)):
+            path = self.path(name + ".tif")
+            ds = gdal.GetDriverByName("GTiff").Create(path, 30, 20, 1, gdal.GDT_Float64)
+            ds.SetGeoTransform(gt)
+            ds.SetProjection("EPSG:32611")
+            rows = np.full((20, 30), 250.0)
+            rows[2, 2], rows[3, 3] = values
+            ds.GetRasterBand(1).WriteArray(rows)
+            if nodata is not None:
+                ds.GetRasterBand(1).SetNoDataValue(nodata)
+            ds = None
+            status, out, err = run("info", path)
+            self.assertEqual(status, 0, err)
+            self.assertEqual(err, "aperture: warning: '%s' band 1 has cells beyond the range of "
+                             "float32 elevations (3.4e38), which its nodata value does not "
+                             "declare (-1.8e308: an undeclared nodata value?): read as "
+                             "nodata\n" % path if warned else "", name)
+            self.assertIn("Nodata:     2 cells", out)
 
     def test_missing_band(self):
         p = make_raster(self.path("one.tif"), np.ones((3, 3)), (500000, 30, 0, 4000000, 0, -30))
