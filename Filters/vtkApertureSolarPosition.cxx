@@ -145,6 +145,15 @@ int FractionDigits(double seconds)
   return most;
 }
 
+/** Degrees reduced to [0, 360): a tiny negative angle, which adding 360 rounds to 360, is 0,
+ *  and so is -0 (ComputeForDirection(-1e-17, e) gave 360, (-0.0, e) -0, until 2026-12-07). */
+double Wrap360(double degrees)
+{
+  double r = std::fmod(degrees, 360.0) + 0.0;
+  r = r < 0.0 ? r + 360.0 : r;
+  return r < 360.0 ? r : 0.0;
+}
+
 /** An instant as ISO 8601 local time at `offset` (seconds east) with `digits` fraction digits,
  *  or "" for NaN and a local year outside the range. */
 std::string FormatLocal(double seconds, int32_t offset, int digits = 0)
@@ -898,9 +907,7 @@ bool vtkApertureSolarPosition::ComputeForDirection(double azimuth, double elevat
     vtkErrorMacro(<< d.Error);
     return false;
   }
-  double az = std::fmod(azimuth, 360.0);
-  az = az < 0.0 ? az + 360.0 : az;
-  this->Result[0] = az;
+  this->Result[0] = Wrap360(azimuth);
   this->Result[1] = this->Result[3] = elevation;
   this->Result[2] = this->Result[4] = 90.0 - elevation;
   this->Result[5] = 959.63 / 3600.0; // the disc at 1 AU
@@ -1031,8 +1038,7 @@ double vtkApertureSolarPosition::GetGridAzimuth()
   {
     return kNaN;
   }
-  const double g = std::fmod(this->GetAzimuth() - this->Convergence, 360.0);
-  return g < 0.0 ? g + 360.0 : g;
+  return Wrap360(this->GetAzimuth() - this->Convergence);
 }
 
 //------------------------------------------------------------------------------

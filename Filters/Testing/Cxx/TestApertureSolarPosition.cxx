@@ -191,6 +191,12 @@ void TestZoneEdge()
     AP_CHECK(sun->ComputeForDirection(200.0, elevation) && sun->ConfigureLight(light));
     AP_CHECK(light->GetSwitch() == (elevation > -0.2666));
   }
+  // azimuths in [0, 360): a tiny negative one (360 once 360 is added) and -0 are 0
+  AP_CHECK(sun->ComputeForDirection(-1e-17, 10.0) && sun->GetAzimuth() == 0.0);
+  AP_CHECK(sun->ComputeForDirection(-0.0, 10.0) && !std::signbit(sun->GetAzimuth()));
+  AP_CHECK(sun->ComputeForDirection(-90.0, 10.0) && sun->GetAzimuth() == 270.0);
+  AP_CHECK(sun->ComputeForDirection(720.5, 10.0) && sun->GetAzimuth() == 0.5);
+  AP_CHECK(sun->GetGridAzimuth() >= 0.0 && sun->GetGridAzimuth() < 360.0);
 }
 
 // The per-cell sun across a continent where the terminator crosses it (a lat/lon DEM of the
