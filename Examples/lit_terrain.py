@@ -3,8 +3,9 @@
 of the sky, mesh it, place the sun for a time and zone, and shade the mesh with the sun and
 the sky through each point's aperture.
 
-    xvfb-run -a /usr/bin/python3 Examples/lit_terrain.py [DEM] [--at ISO] [--tz ZONE]
+    xvfb-run -a build/bin/aperture-python Examples/lit_terrain.py [DEM] [--at ISO] [--tz ZONE]
         [--sun-scale S] [--exposure EV] [-o lit.png]
+    (installed, /usr/bin/python3 in place of build/bin/aperture-python)
 
 Shows: vtkApertureDEMReader -> vtkApertureSkyVisibility -> vtkApertureTerrainMesh ->
 vtkApertureLightingMapper, with vtkApertureSolarPosition giving the sun's direction in the

@@ -2,7 +2,8 @@
 """Read a DEM, look at its georeference, and build the terrain mesh in a local
 East-North-Up frame (metres), as a VTK pipeline.
 
-    /usr/bin/python3 Examples/read_and_mesh.py [DEM] [--exaggeration X] [-o mesh.vtp]
+    build/bin/aperture-python Examples/read_and_mesh.py [DEM] [--exaggeration X] [-o mesh.vtp]
+    (installed, /usr/bin/python3 in place of build/bin/aperture-python)
 
 Shows: vtkApertureDEMReader -> vtkApertureTerrainMesh, the georeference in the field data,
 cell size in metres, and the mesh frame."""

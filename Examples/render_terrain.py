@@ -3,10 +3,11 @@
 (its STANDARD model: VTK's lighting plus exposure; lit_terrain.py shows the aperture model)
 -> actor -> renderer, lit by one directional "sun".
 
-    xvfb-run -a /usr/bin/python3 Examples/render_terrain.py [DEM] [-o terrain.png]
+    xvfb-run -a build/bin/aperture-python Examples/render_terrain.py [DEM] [-o terrain.png]
 """
 import argparse
 import math
+    (installed, /usr/bin/python3 in place of build/bin/aperture-python)
 
 from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkRenderingCore import (

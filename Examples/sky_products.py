@@ -2,7 +2,8 @@
 """Compute what every cell of a DEM sees of the sky, and save the two sky-view factors side by
 side as a grey-scale PNG (left: SkyViewFactor, right: DiffuseSkyFactor).
 
-    /usr/bin/python3 Examples/sky_products.py [DEM] [--radius METRES] [-o sky.png]
+    build/bin/aperture-python Examples/sky_products.py [DEM] [--radius METRES] [-o sky.png]
+    (installed, /usr/bin/python3 in place of build/bin/aperture-python)
 
 Shows: vtkApertureDEMReader -> vtkApertureSkyVisibility, its point arrays as numpy arrays,
 and the difference between the two sky-view definitions: SkyViewFactor (horizontal plane,

@@ -3,7 +3,8 @@
 of day, the Left/Right keys move it by 15 minutes, Up/Down change the exposure by 1/2 EV.
 Moving the sun only changes the mapper's uniforms: no geometry is uploaded again.
 
-    /usr/bin/python3 Examples/time_of_day_viewer.py [DEM] [--date 2026-06-21] [--tz ZONE]
+    build/bin/aperture-python Examples/time_of_day_viewer.py [DEM] [--date 2026-06-21] [--tz ZONE]
+    (installed, /usr/bin/python3 in place of build/bin/aperture-python)
 
 Without a display, or to check it in a script: --frames N -o last.png steps through N times of
 day (06:00 to 18:00) off screen and writes the last frame; with a frame number in the name,
