@@ -4,10 +4,10 @@
 -> actor -> renderer, lit by one directional "sun".
 
     xvfb-run -a build/bin/aperture-python Examples/render_terrain.py [DEM] [-o terrain.png]
+    (installed, /usr/bin/python3 in place of build/bin/aperture-python)
 """
 import argparse
 import math
-    (installed, /usr/bin/python3 in place of build/bin/aperture-python)
 
 from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkRenderingCore import (
