@@ -424,6 +424,15 @@ bool vtkApertureSolarPosition::SetTime(const char* iso8601)
     // (two forms ISO 8601 has that are not taken here, said as such)
     const std::string clock = text.size() > 11 ? text.substr(11) : std::string();
     const std::string noSuchDay = text.empty() ? std::string() : NoSuchDay(text);
+    size_t digits = 0; // (of a fraction of a second: the parser takes up to 9)
+    if (clock.size() > 9 && (clock[8] == '.' || clock[8] == ','))
+    {
+      while (9 + digits < clock.size() &&
+        std::isdigit(static_cast<unsigned char>(clock[9 + digits])))
+      {
+        ++digits;
+      }
+    }
     d.Error = "cannot read the time '" + text + "': " +
       (st == AP_ERR_OUT_OF_RANGE ? std::string("the year is outside -2000..6000")
           : !noSuchDay.empty() ? noSuchDay
@@ -432,6 +441,8 @@ bool vtkApertureSolarPosition::SetTime(const char* iso8601)
           : clock.size() >= 8 && clock.compare(5, 3, ":60") == 0
           ? std::string("a leap second (:60) is not taken: times here are UTC without leap "
                         "seconds (POSIX time); write :59, or :00 of the next minute")
+          : digits > 9 ? "a second's fraction of " + std::to_string(digits) +
+            " digits: at most 9 (nanoseconds) are taken"
           : std::string("not a valid ISO 8601 date and time (such as 2026-06-21T14:00+02:00 or "
                         "2026-06-21T12:00Z, or a local time with a time zone)"));
     vtkErrorMacro(<< d.Error);

@@ -331,6 +331,13 @@ void TestTimeZones()
     AP_CHECK(sun->SetTime(t));
     AP_CHECK(std::string(sun->GetTimeString()) == t);
   }
+  // more than nine digits of a second are refused as such (a bare "not a valid ISO 8601 date
+  // and time" until 2026-12-07); nine are taken
+  AP_CHECK(!sun->SetTime("2026-06-21T12:00:00.9999999999Z"));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(),
+    "'2026-06-21T12:00:00.9999999999Z': a second's fraction of 10 digits: at most 9 "
+    "(nanoseconds) are taken");
+  AP_CHECK(sun->SetTime("2026-06-21T12:00:00,999999999Z"));
   // a repeated local time with a fraction names it and its two instants with it (its local
   // time was cut to the second, the instants rounded to the next, until 2026-12-07)
   AP_CHECK(!sun->SetTime("2026-10-25T02:30:00.5"));
