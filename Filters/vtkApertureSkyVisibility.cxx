@@ -115,6 +115,20 @@ std::string LongitudeSpanProblem(vtkApertureGeoreference* geo, bool piece)
            : "");
 }
 
+// LongitudeSpanProblem for an update of `ext` of the input whose pipeline information is
+// inInfo, found there before anything is read; "" too when the information has no CRS.
+std::string UnreadRefusal(vtkInformation* inInfo, const int ext[6])
+{
+  vtkNew<vtkApertureGeoreference> geo;
+  if (!geo->SetFromInformation(inInfo))
+  {
+    return std::string();
+  }
+  int whole[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  return LongitudeSpanProblem(geo, !std::equal(ext, ext + 6, whole));
+}
+
 // For a projected grid (geo describing the whole grid): a warning when its ground cell size s at
 // a corner or an edge midpoint differs from the centre's c, which the sweep uses for every
 // cell, by more than ScaleChangeWarning (the projection's scale factor changes across the
@@ -512,18 +526,12 @@ int vtkApertureSkyVisibility::RequestUpdateExtent(
   // read whole first): VTK 9.1 goes on after a failed RequestUpdateExtent, so the input is
   // asked for nothing and RequestData reports the refusal (it refuses one itself whose CRS
   // the pipeline information lacks).
-  int whole[6];
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  vtkNew<vtkApertureGeoreference> geo;
-  if (geo->SetFromInformation(inInfo))
+  this->RefusedRequest = UnreadRefusal(inInfo, ext);
+  if (!this->RefusedRequest.empty())
   {
-    this->RefusedRequest = LongitudeSpanProblem(geo, !std::equal(ext, ext + 6, whole));
-    if (!this->RefusedRequest.empty())
-    {
-      const int nothing[6] = { 0, -1, 0, -1, 0, -1 };
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), nothing, 6);
-      return 1;
-    }
+    const int nothing[6] = { 0, -1, 0, -1, 0, -1 };
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), nothing, 6);
+    return 1;
   }
   InputExtent(inInfo, this->MaximumDistance, ext, in);
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), in, 6);
@@ -542,6 +550,14 @@ bool vtkApertureSkyVisibility::ComputeInputExtent(const int extent[6], int input
   if (!inInfo || !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
   {
     vtkErrorMacro(<< "no input information (connect an input and call UpdateInformation)");
+    return false;
+  }
+  // (a caller planning an update learns of a refusal before it reads anything: the command
+  // line read a whole global grid, or refused it for memory, before the update refused it)
+  const std::string refusal = UnreadRefusal(inInfo, extent);
+  if (!refusal.empty())
+  {
+    vtkErrorMacro(<< refusal);
     return false;
   }
   InputExtent(inInfo, this->MaximumDistance, extent, input);

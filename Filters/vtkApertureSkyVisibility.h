@@ -298,8 +298,9 @@ public:
    *  extent grown by the halo of MaximumDistance (its cells at the smallest metric cell sizes
    *  of the rows within the distance, and 2 more), clipped to the input's whole extent; the
    *  whole extent when the distance is unlimited, the input publishes no CRS, or a row there
-   *  has no metric cell size. False, with an error, without input information. For sizing a
-   *  request before anything runs (CheckMemory). */
+   *  has no metric cell size. False, with an error, without input information, and for an
+   *  update refused before anything is read (a lat/lon grid wider than 360 degrees, its CRS in
+   *  the pipeline information). For sizing a request before anything runs (CheckMemory). */
   bool ComputeInputExtent(const int extent[6], int input[6]);
 
   /** Columns of the other side an update whose input extent is `input` (ComputeInputExtent's)

@@ -700,6 +700,18 @@ class TestBake(unittest.TestCase):
                       "--srcwin cannot: the cells of a window are measured on the whole raster",
                       err)
         self.assertEqual(len(err.splitlines()), 1, err)
+        # refused before a cell is read, a window or all of it: a VRT whose source is gone
+        # opens, but fails to read (the whole grid was read first, or refused for memory,
+        # until 2026-12-07)
+        vrt = self.path("gridline.vrt")
+        gdal.Translate(vrt, dem, format="VRT")
+        os.remove(dem)
+        for window in ((), ("--srcwin", 10, 10, 50, 50)):
+            status, _, err = run("bake", vrt, self.path("w.tif"), "-q", *window)
+            self.assertEqual(status, 1, err)
+            self.assertIn("(a gridline-registered global grid)", err)
+            self.assertEqual("--srcwin cannot" in err, bool(window), err)
+            self.assertNotIn("GDAL failed reading", err)
 
     def test_global_dem(self):
         # A global lat/lon DEM (720 columns of 0.5 degree, 75 S to 75 N): its east and west
