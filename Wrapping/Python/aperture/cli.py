@@ -3121,10 +3121,9 @@ def _refuse_empty(args):
                 "the output name OUT.tif" if args.func is cmd_bake else "--output")))
 
 
-# gdaldem's and GDAL's options, which a GIS analyst tries first: what to give instead (each
-# was "unrecognized arguments" alone until 2026-12-07); by command, None for any other.
-# gdaldem's options: how many values each takes after it, at most (up to an option; none when
-# written -co=VALUE), and what to give instead, by command (None: any other)
+# gdaldem's and GDAL's options, which a GIS analyst tries first: how many values each takes
+# after it, at most (up to an option; none when written -co=VALUE), and what to give instead
+# (each was "unrecognized arguments" alone until 2026-12-07), by command (None: any other)
 _GDAL_HABITS = {
     "-co": (1, {"bake": "GDAL's creation options are not taken: --compress CODEC and "
                         "--compress-level N choose the compression (the GeoTIFF is tiled, with "
