@@ -803,6 +803,22 @@ class TestBadInput(CommandLineTest):
                              "declare (-1.8e308: an undeclared nodata value?): read as "
                              "nodata\n" % path if warned else "", name)
             self.assertIn("Nodata:     2 cells", out)
+        # once, also when read in strips that each have some (one per strip until 2026-12-07)
+        path = self.path("huge-strips.tif")
+        ds = gdal.GetDriverByName("GTiff").Create(path, 2000, 400, 1, gdal.GDT_Float64)
+        ds.SetGeoTransform(gt)
+        ds.SetProjection("EPSG:32611")
+        rows = np.full((400, 2000), 250.0)
+        rows[5, 5], rows[395, 5] = 1e300, np.inf
+        rows[390, 6], rows[10, 6] = 1e300, -np.inf
+        ds.GetRasterBand(1).WriteArray(rows)
+        ds = None
+        status, out, err = run("info", path, "--max-memory", 1)
+        self.assertEqual(status, 0, err)
+        self.assertEqual(err.count("cells beyond the range of float32"), 1, err)
+        self.assertEqual(err.count("has infinite cells"), 1, err)
+        self.assertEqual(len(err.splitlines()), 2, err)
+        self.assertIn("Nodata:     4 cells", out)
 
     def test_missing_band(self):
         p = make_raster(self.path("one.tif"), np.ones((3, 3)), (500000, 30, 0, 4000000, 0, -30))

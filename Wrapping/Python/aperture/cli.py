@@ -31,8 +31,16 @@ class _UsageError(ApertureError):
     status 2, as argparse reports the mistakes it finds."""
 
 
+_WARNED = set()  # (the warnings of this run of main)
+
+
 def _warn(message):
-    print("%s: warning: %s" % (PROG, _as_options(message)), file=sys.stderr)
+    """A warning on stderr, once: a DEM read in strips gave a warning of its infinite cells
+    for each strip that had some, until 2026-12-07."""
+    text = _as_options(message)
+    if text not in _WARNED:
+        _WARNED.add(text)
+        print("%s: warning: %s" % (PROG, text), file=sys.stderr)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -3018,6 +3026,7 @@ def main(argv=None):
     stdout = sys.stdout
     if stdout is not None:
         sys.stdout = _GuardedStdout(stdout)
+    _WARNED.clear()
     try:
         try:
             status = _main(sys.argv[1:] if argv is None else argv)
