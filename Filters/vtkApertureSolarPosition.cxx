@@ -422,7 +422,10 @@ bool vtkApertureSolarPosition::SetTime(const char* iso8601)
   if (st != AP_OK)
   {
     // (two forms ISO 8601 has that are not taken here, said as such)
-    const std::string clock = text.size() > 11 ? text.substr(11) : std::string();
+    // (the time of day after the date's separator: a signed year's date is longer)
+    const size_t separator = text.find_first_of("Tt ", 1);
+    const std::string clock =
+      separator == std::string::npos ? std::string() : text.substr(separator + 1);
     const std::string noSuchDay = text.empty() ? std::string() : NoSuchDay(text);
     size_t digits = 0; // (of a fraction of a second: the parser takes up to 9)
     if (clock.size() > 9 && (clock[8] == '.' || clock[8] == ','))

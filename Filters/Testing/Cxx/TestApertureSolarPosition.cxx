@@ -338,6 +338,12 @@ void TestTimeZones()
     "'2026-06-21T12:00:00.9999999999Z': a second's fraction of 10 digits: at most 9 "
     "(nanoseconds) are taken");
   AP_CHECK(sun->SetTime("2026-06-21T12:00:00,999999999Z"));
+  AP_CHECK(!sun->SetTime("-0001-01-01T12:00:00.9999999999Z")); // (a signed year too)
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "fraction of 10 digits: at most 9");
+  AP_CHECK(!sun->SetTime("-0001-01-01T24:00Z"));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "24:00 is not taken");
+  AP_CHECK(!sun->SetTime("-0001-01-01 12:00:60Z"));
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "a leap second (:60) is not taken");
   // a repeated local time with a fraction names it and its two instants with it (its local
   // time was cut to the second, the instants rounded to the next, until 2026-12-07)
   AP_CHECK(!sun->SetTime("2026-10-25T02:30:00.5"));
