@@ -919,6 +919,35 @@ class TestCommandLineRender(unittest.TestCase):
                 self.assertIn(expected, stderr)
                 self.assertFalse(os.path.exists(out))
 
+    def test_grid_wider_than_the_earth(self):
+        # A gridline-registered global grid (361 columns of 1 degree) is refused before a cell
+        # is read, with either lighting and with --srcwin: a VRT whose source is gone opens but
+        # fails to read (VTK's lighting read it all before the mesher refused it, until
+        # 2026-12-07). A window narrower than the Earth is drawn with VTK's lighting.
+        import numpy as np
+        from osgeo import gdal
+        gdal.UseExceptions()
+        with tempfile.TemporaryDirectory() as tmp:
+            tif, vrt = os.path.join(tmp, "gridline.tif"), os.path.join(tmp, "gridline.vrt")
+            ds = gdal.GetDriverByName("GTiff").Create(tif, 361, 181, 1, gdal.GDT_Float32)
+            ds.SetGeoTransform((-180.5, 1.0, 0.0, 90.5, 0.0, -1.0))
+            ds.SetProjection("EPSG:4326")
+            ds.GetRasterBand(1).Fill(100.0)
+            ds = None
+            status, _, stderr = run("render", tif, "-o", os.path.join(tmp, "w.png"), "-q",
+                                    "--lighting", "standard", "--srcwin", 10, 10, 50, 50,
+                                    "--size", "64x48")
+            self.assertEqual(status, 0, stderr)
+            gdal.Translate(vrt, tif, format="VRT")
+            os.remove(tif)
+            for options in (("--lighting", "standard"), ("--srcwin", 10, 10, 50, 50), ()):
+                status, _, stderr = run("render", vrt, "-o", os.path.join(tmp, "g.png"), "-q",
+                                        *options)
+                self.assertEqual(status, 1, stderr)
+                self.assertIn("(a gridline-registered global grid)", stderr)
+                self.assertNotIn("GDAL failed reading", stderr)
+                self.assertEqual(len(stderr.splitlines()), 1, stderr)
+
     def test_implausible_elevations_named_once(self):
         # Spots of an undeclared nodata value, or cells of 3 arc-seconds taken for metres: the
         # picture is made, with one warning naming the range (the sky filter's; the mesher's

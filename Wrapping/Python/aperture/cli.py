@@ -1331,8 +1331,12 @@ def cmd_render(args):
     else:
         reader = _dem_reader(args, watcher)
         watcher.update_information(reader)  # (which files it reads: a VRT's sources)
+        geo, whole = _whole_grid(reader)
+        if geo.HasCRS() and geo.IsGeographic() and not geo.CheckLongitudeSpan():
+            # (before the DEM is read: the mesher refused it after, as the sky filter now
+            # does before, until 2026-12-07)
+            raise ApertureError(geo.GetErrorMessage())
         _check_sources(outputs, reader)
-        whole = reader.GetOutputInformation(0).Get(sddp.WHOLE_EXTENT())
         _check_render_memory(args, *_extent_size(whole), bool(args.baked), False, _cells(whole))
         image = _read(watcher, reader)
         if args.baked:
