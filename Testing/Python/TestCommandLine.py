@@ -418,6 +418,24 @@ class TestInfo(CommandLineTest):
             self.assertEqual("all longitudes: the east and west edges join" in out, wraps, out)
         self.assertIs(self.info()[0]["wraps_around"], False)
 
+    def test_grid_wider_than_the_earth(self):
+        # A gridline-registered global grid (361 columns of 1 degree, rows on the poles) is
+        # described, with the refusal bake and render give as a warning: info is where one
+        # looks at the grid that message says to cut (info refused it until 2026-12-07).
+        p = make_raster(self.path("gridline.tif"), np.ones((181, 361)),
+                        (-180.5, 1, 0, 90.5, 0, -1), srs="EPSG:4326")
+        status, out, err = run("info", "--json", p)
+        self.assertEqual(status, 0, err)
+        d = json.loads(out)
+        self.assertEqual((d["size"], d["bounds_lonlat"], d["wraps_around"]),
+                         ([361, 181], [-180.5, -90.5, 180.5, 90.5], False))
+        self.assertEqual(err, "aperture: warning: the grid spans 361 degrees of longitude (361 "
+                         "columns of 1 degrees), more than the 360 around the Earth: its first "
+                         "and last columns are one meridian (a gridline-registered global "
+                         "grid); drop the last column and the rows centred on a pole first "
+                         "(gdal_translate -srcwin 0 1 360 179; with -of VRT it copies "
+                         "nothing); bake and render refuse it\n")
+
     def test_beyond_the_pole(self):
         # A lat/lon grid whose top rows lie beyond the north pole (a wrong origin) is described
         # by no bounds on the Earth: an error, as the bake's; one ending on the pole is fine.

@@ -529,8 +529,20 @@ def describe(reader, watcher):
     bounds = [0.0] * 4
     centre = [0.0, 0.0]
     local = geo.IsLocal()  # (a site grid: metric cells, no place on the Earth)
+    wide = not local and geo.IsGeographic() and not geo.CheckLongitudeSpan()
+    if wide:
+        # (a lat/lon grid wider than the Earth, a gridline-registered global one: described
+        # all the same, the refusal said, as info is where one looks at the grid that message
+        # tells to cut; refused here too until 2026-12-07)
+        _warn(geo.GetErrorMessage() + "; bake and render refuse it")
+        gt = [0.0] * 6
+        geo.GetGeoTransform(gt)
+        corners = [[0.0, 0.0], [0.0, 0.0]]
+        wide = (geo.CRSToLonLat(gt[0], gt[3] + ny * gt[5], corners[0]) and
+                geo.CRSToLonLat(gt[0] + nx * gt[1], gt[3], corners[1]))
+        bounds = [corners[0][0], corners[0][1], corners[1][0], corners[1][1]]
     # (the bounds first: beyond a pole they name the edge, the cell size only its latitude)
-    if not ((local or geo.GetBoundsLonLat(bounds)) and geo.GetCellSizeMetres(cell_m) and
+    if not ((local or wide or geo.GetBoundsLonLat(bounds)) and geo.GetCellSizeMetres(cell_m) and
             (local or geo.GetCentreLonLat(centre))):
         raise ApertureError(geo.GetErrorMessage())
     return {
