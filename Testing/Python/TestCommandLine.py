@@ -435,6 +435,14 @@ class TestInfo(CommandLineTest):
                          "grid); drop the last column and the rows centred on a pole first "
                          "(gdal_translate -srcwin 0 1 360 179; with -of VRT it copies "
                          "nothing); bake and render refuse it\n")
+        # beyond a pole by more than the rows centred on it, refused as any grid is (the
+        # description skipped that check for a grid so wide, until review)
+        p = make_raster(self.path("wide-polar.tif"), np.ones((10, 40)),
+                        (-200, 10, 0, 120, 0, -10), srs="EPSG:4326")
+        status, out, err = run("info", "--no-stats", p)
+        self.assertEqual(status, 1, err)
+        self.assertIn("aperture: error: the grid's north edge is at latitude 120, beyond the "
+                      "north pole", err)
 
     def test_beyond_the_pole(self):
         # A lat/lon grid whose top rows lie beyond the north pole (a wrong origin) is described

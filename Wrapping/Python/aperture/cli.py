@@ -541,6 +541,17 @@ def describe(reader, watcher):
         wide = (geo.CRSToLonLat(gt[0], gt[3] + ny * gt[5], corners[0]) and
                 geo.CRSToLonLat(gt[0] + nx * gt[1], gt[3], corners[1]))
         bounds = [corners[0][0], corners[0][1], corners[1][0], corners[1][1]]
+        # (and refused beyond a pole as any grid is, the rows centred on one aside, which the
+        # warning says to drop: the check of one column of the other rows)
+        cell = (bounds[3] - bounds[1]) / ny
+        south = int(bounds[1] < -90 - 1e-9 <= bounds[1] + 0.5 * cell)
+        north = int(bounds[3] > 90 + 1e-9 >= bounds[3] - 0.5 * cell)
+        origin, spacing = geo.GetGridOrigin(), geo.GetGridSpacing()
+        geo.SetGrid(origin[0], origin[1] + south * spacing[1], spacing[0], spacing[1], 1,
+                    max(1, ny - south - north))
+        if not geo.GetBoundsLonLat([0.0] * 4):
+            raise ApertureError(geo.GetErrorMessage())
+        geo.SetGrid(origin[0], origin[1], spacing[0], spacing[1], nx, ny)
     # (the bounds first: beyond a pole they name the edge, the cell size only its latitude)
     if not ((local or wide or geo.GetBoundsLonLat(bounds)) and geo.GetCellSizeMetres(cell_m) and
             (local or geo.GetCentreLonLat(centre))):
