@@ -154,12 +154,27 @@ class TestHelp(CommandLineTest):
                  "unrecognized arguments: --config GDAL_CACHEMAX=512. --config: GDAL's "
                  "configuration options are read from the environment"),
                 (("bake", "--co", "COMPRESS=ZSTD", "in.tif", "out.tif"),
-                 "unrecognized arguments: --co COMPRESS=ZSTD. --co: GDAL's creation options")]
+                 "unrecognized arguments: --co COMPRESS=ZSTD. --co: GDAL's creation options"),
+                # (one hint for the options that share it: twice until 2026-12-07)
+                (("bake", "-co", "A=B", "--co", "C=D", "-co", "E=F", "in.tif", "out.tif"),
+                 "unrecognized arguments: -co A=B --co C=D -co E=F. -co, --co: GDAL's creation "
+                 "options are not taken: --compress CODEC and --compress-level N choose the "
+                 "compression (the GeoTIFF is tiled, with the floating-point predictor, BigTIFF "
+                 "when it needs to be)\n")]
         for args, said in cases:
             status, out, err = run(*args)
             self.assertEqual((status, out), (2, ""), err)
             self.assertIn("usage: aperture %s " % args[0], err)
             self.assertIn(said, err)
+        # --help beside one is the help, as beside any other unknown argument (the hint until
+        # 2026-12-07); after "--" it is an argument
+        for help_option in ("--help", "-h"):
+            status, out, err = run("bake", "-co", "X", help_option)
+            self.assertEqual((status, err), (0, ""), err)
+            self.assertIn("--compress CODEC", out)
+        status, _, err = run("bake", "-co", "X", "--", "--help")
+        self.assertEqual(status, 2, err)
+        self.assertIn("unrecognized arguments: -co X. -co: GDAL's creation options", err)
 
 
 class TestLauncher(CommandLineTest):

@@ -3191,9 +3191,10 @@ def _habit_refusal(parser, argv):
     # an option, so that -z --exaggeration 2 does not name --exaggeration, and --config's
     # KEY=VALUE form takes one)
     command = argv[0] if argv and argv[0] in parser.commands else None
-    if not command:
-        return None
-    found, hints = [], {}
+    options = argv[:argv.index("--")] if "--" in argv else argv
+    if not command or "-h" in options or "--help" in options:
+        return None  # (--help is argparse's to give, as beside any other unknown argument)
+    found, hints = [], {}  # (hints: the options that share each text, -co and --co alike)
     k = 1
     while k < len(argv) and argv[k] != "--":
         key = argv[k].split("=", 1)[0]
@@ -3209,12 +3210,14 @@ def _habit_refusal(parser, argv):
             if key == "--config" and "=" in argv[k + n - 1]:
                 break
         found.append(" ".join(argv[k:k + n]))
-        hints.setdefault(key, "%s: %s" % (key, hint.get(command, hint[None])))
+        keys = hints.setdefault(hint.get(command, hint[None]), [])
+        keys += [] if key in keys else [key]
         k += n
     if not found:
         return None
     return parser.commands.get(command, parser), "unrecognized arguments: %s. %s" % (
-        " ".join(found), "; ".join(hints.values()))
+        " ".join(found), "; ".join("%s: %s" % (", ".join(keys), text)
+                                   for text, keys in hints.items()))
 
 
 def _main(argv):
