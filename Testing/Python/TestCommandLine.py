@@ -403,6 +403,17 @@ class TestInfo(CommandLineTest):
         self.assertEqual(d["size"], [403, 344])
         self.assertEqual(d["crs"], "WGS 84")
         self.assertTrue(d["geographic"])
+        # the CRS's code and the grid's geotransform (GDAL's order), as gdalinfo -json has them
+        self.assertEqual(d["crs_code"], "EPSG:4326")
+        self.assertEqual(len(d["geotransform"]), 6)
+        for got, want in zip(d["geotransform"], [-84.41375, CELL3, 0, 36.44625, 0, -CELL3]):
+            self.assertAlmostEqual(got, want, places=10)
+        # (a compound CRS of two coded parts as --srs takes it; none for a PROJ string)
+        p = make_raster(self.path("coded.tif"), np.ones((4, 5)), (1000, 10, 0, 2000, 0, -10))
+        for srs, code in (("EPSG:2263+6360", "EPSG:2263+6360"), ("EPSG:32611", "EPSG:32611"),
+                          ("+proj=utm +zone=11 +datum=WGS84", None)):
+            self.assertEqual(self.info(p, "--srs", srs)[0]["crs_code"], code, srs)
+        self.assertEqual(self.info(p)[0]["geotransform"], [1000, 10, 0, 2000, 0, -10])
         for got, want in zip(d["bounds_lonlat"], [-84.41375, 36.1595833333, -84.0779166667,
                                                   36.44625]):
             self.assertAlmostEqual(got, want, places=8)

@@ -515,6 +515,35 @@ def _whole_grid(reader):
     return geo, info.Get(sddp.WHOLE_EXTENT())
 
 
+def _crs_code(definition):
+    """AUTHORITY:CODE of a CRS definition, as GDAL identifies it ("EPSG:2263+6360" for a
+    compound one of two coded parts, as --srs takes it), or None."""
+    from osgeo import gdal, osr
+    srs = osr.SpatialReference()
+    gdal.PushErrorHandler("CPLQuietErrorHandler")
+    try:
+        if srs.SetFromUserInput(definition) != 0:
+            return None
+        name, code = srs.GetAuthorityName(None), srs.GetAuthorityCode(None)
+        if not code and srs.IsCompound():
+            horizontal = "PROJCS" if srs.IsProjected() else "GEOGCS"
+            parts = [(srs.GetAuthorityName(k), srs.GetAuthorityCode(k))
+                     for k in (horizontal, "VERT_CS")]
+            if all(n == parts[0][0] and c for n, c in parts):
+                name, code = parts[0][0], "+".join(c for _, c in parts)
+    except RuntimeError:  # (with GDAL's exceptions on)
+        return None
+    finally:
+        gdal.PopErrorHandler()
+    return "%s:%s" % (name, code) if name and code else None
+
+
+def _geotransform(geo):
+    gt = [0.0] * 6
+    geo.GetGeoTransform(gt)
+    return gt
+
+
 def describe(reader, watcher):
     """The facts `aperture info` prints, as a dict (the --json object), from the reader's
     information alone (nothing read): elevation_range and nodata_count are None
@@ -563,6 +592,10 @@ def describe(reader, watcher):
         "band": reader.GetBandRead(),
         "size": [nx, ny],
         "crs": geo.GetCRSName(),
+        # (its authority's code, "EPSG:4326", where the CRS has one, for gdalwarp -t_srs and
+        # the like; and GDAL's geotransform of the grid described, north up)
+        "crs_code": _crs_code(geo.GetCRS()),
+        "geotransform": _geotransform(geo),
         "geographic": bool(geo.IsGeographic()),
         "local": bool(local),
         "crs_unit": geo.GetCRSUnitName(),
