@@ -403,7 +403,8 @@ class TestInfo(CommandLineTest):
         self.assertEqual(d["size"], [403, 344])
         self.assertEqual(d["crs"], "WGS 84")
         self.assertTrue(d["geographic"])
-        # the CRS's code and the grid's geotransform (GDAL's order), as gdalinfo -json has them
+        # the CRS's code and the geotransform (GDAL's order) of the grid read, north up: a
+        # north-up file's, as gdalinfo -json gives it
         self.assertEqual(d["crs_code"], "EPSG:4326")
         self.assertEqual(len(d["geotransform"]), 6)
         for got, want in zip(d["geotransform"], [-84.41375, CELL3, 0, 36.44625, 0, -CELL3]):
@@ -468,6 +469,14 @@ class TestInfo(CommandLineTest):
         status, out, err = run("info", "--no-stats", p)
         self.assertEqual(status, 1, err)
         self.assertIn("aperture: error: the grid's north edge is at latitude 120, beyond the "
+                      "north pole", err)
+        # by less than half a cell too, where no row is centred on the pole (described until
+        # review: a row was taken as centred on it when its centre was not beyond it)
+        p = make_raster(self.path("wide-polar-near.tif"), np.ones((10, 37)),
+                        (-185, 10, 0, 94, 0, -10), srs="EPSG:4326")
+        status, out, err = run("info", "--no-stats", p)
+        self.assertEqual(status, 1, err)
+        self.assertIn("aperture: error: the grid's north edge is at latitude 94, beyond the "
                       "north pole", err)
 
     def test_beyond_the_pole(self):

@@ -572,9 +572,11 @@ def describe(reader, watcher):
         bounds = [corners[0][0], corners[0][1], corners[1][0], corners[1][1]]
         # (and refused beyond a pole as any grid is, the rows centred on one aside, which the
         # warning says to drop: the check of one column of the other rows)
+        # (a row is centred on a pole within a millionth of a cell; a grid of one such row is
+        # checked as it is, and refused)
         cell = (bounds[3] - bounds[1]) / ny
-        south = int(bounds[1] < -90 - 1e-9 <= bounds[1] + 0.5 * cell)
-        north = int(bounds[3] > 90 + 1e-9 >= bounds[3] - 0.5 * cell)
+        south = int(bounds[1] < -90 - 1e-9 and abs(bounds[1] + 0.5 * cell + 90) <= 1e-6 * cell)
+        north = int(bounds[3] > 90 + 1e-9 and abs(bounds[3] - 0.5 * cell - 90) <= 1e-6 * cell)
         origin, spacing = geo.GetGridOrigin(), geo.GetGridSpacing()
         geo.SetGrid(origin[0], origin[1] + south * spacing[1], spacing[0], spacing[1], 1,
                     max(1, ny - south - north))
@@ -2832,9 +2834,10 @@ def build_parser():
                                 "lat/lon bounds, elevation range and nodata count.")
     _add_read_options(p)
     p.add_argument("--json", action="store_true",
-                   help="print one JSON object (keys size, cell_size_m, crs, bounds_lonlat, "
-                        "elevation_range, nodata_count, centre_lonlat, ...; elevation_range "
-                        "is null when every cell is nodata)")
+                   help="print one JSON object (keys size, cell_size_m, crs, crs_code, "
+                        "geotransform, bounds_lonlat, elevation_range, nodata_count, "
+                        "centre_lonlat, ...; elevation_range is null when every cell is "
+                        "nodata; the geotransform is the grid's read, north up)")
     p.add_argument("--no-stats", action="store_true",
                    help="describe the DEM from its header alone, without reading the "
                         "elevations for their range and nodata count (null in --json): at "
