@@ -1144,11 +1144,6 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
   // (and finite samples beyond the float range, -1.8e308 as an undeclared nodata value, which
   // a Float64 band can hold: nodata too, silently until 2026-12-07)
   size_t huge = 0;
-  const auto declared = [&d](double v) { // (ap_samples_to_elevation's nodata test)
-    return d.HasNoData &&
-      (v == d.NoData ||
-        (d.NoDataNear && std::fabs(v - d.NoData) < 2.0 * FLT_EPSILON * std::fabs(v + d.NoData)));
-  };
   const auto noteWarning = [&damaged]() {
     if (CPLGetLastErrorType() == CE_Warning && damaged.empty())
     {
@@ -1216,9 +1211,10 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
       {
         const bool data = !mask || valid[q]; // (a masked cell is nodata)
         sentinels += !d.HasNoData && raw[q] == -9999.0 && data;
-        infinite += std::isinf(raw[q]) && data && !(d.HasNoData && raw[q] == d.NoData);
-        huge += data && std::isfinite(raw[q]) && std::fabs(raw[q]) > FLT_MAX &&
-          std::isnan(conv[q]) && !declared(raw[q]);
+        const bool undeclared = data && !ap_sample_declared_nodata(&sp, raw[q]);
+        infinite += undeclared && std::isinf(raw[q]);
+        huge += undeclared && std::isfinite(raw[q]) && std::fabs(raw[q]) > FLT_MAX &&
+          std::isnan(conv[q]);
       }
       for (size_t r = 0; r < k; ++r)
       {

@@ -118,6 +118,16 @@ static int ranges_overlap(const void *a, size_t abytes, const void *b, size_t bb
   return pa < pb + bbytes && pb < pa + abytes;
 }
 
+int ap_sample_declared_nodata(const ap_sample_params *p, double r)
+{
+  /* (GDAL sums two float32 samples in float, so beyond +-1.7e38, where the sum overflows, it
+   * takes any two of one sign as equal; the sum here is a double's, and no elevation lies
+   * there.) */
+  return p->has_nodata &&
+         (r == p->nodata ||
+          (p->nodata_near && fabs(r - p->nodata) < 2.0 * FLT_EPSILON * fabs(r + p->nodata)));
+}
+
 ap_status ap_samples_to_elevation(const double *raw, size_t n, const ap_sample_params *p,
                                   float *out, size_t *scaled_out)
 {
@@ -140,13 +150,8 @@ ap_status ap_samples_to_elevation(const double *raw, size_t n, const ap_sample_p
   for (k = 0; k < n; ++k) {
     const double r = p->signed_byte && raw[k] >= 128.0 ? raw[k] - 256.0 : raw[k];
     double v;
-    /* Compare with the nodata value before scaling: nodata is defined on raw samples. (GDAL
-     * sums two float32 samples in float, so beyond +-1.7e38, where the sum overflows, it takes
-     * any two of one sign as equal; the sum here is a double's, and no elevation lies there.) */
-    if (!isfinite(r) ||
-        (p->has_nodata && (r == p->nodata || (p->nodata_near && fabs(r - p->nodata) <
-                                                                  2.0 * FLT_EPSILON *
-                                                                    fabs(r + p->nodata))))) {
+    /* Compare with the nodata value before scaling: nodata is defined on raw samples. */
+    if (!isfinite(r) || ap_sample_declared_nodata(p, r)) {
       out[k] = NAN;
       continue;
     }

@@ -67,6 +67,12 @@ typedef struct ap_sample_params {
 /** Set the defaults documented on each field. */
 void ap_sample_params_init(ap_sample_params *p);
 
+/** Whether raw sample r (after signed_byte's reading) is the declared nodata value as
+ *  ap_samples_to_elevation tests it: has_nodata, and equal to it or, with nodata_near, within
+ *  its width. 1 or 0. (Samples that are not finite are nodata there as well, but not declared
+ *  unless equal; the reader's warnings of undeclared ones ask this.) p must not be NULL. */
+int ap_sample_declared_nodata(const ap_sample_params *p, double r);
+
 /** Convert n raw samples to float32 elevations. A sample becomes NaN when it is not finite,
  *  equals the nodata value (or is near it: nodata_near), or scales to a value outside the
  *  float range; otherwise out[k] = (float)(raw[k] * scale + offset). `raw` and `out` must not

@@ -160,17 +160,27 @@ static void test_samples(void)
       p.nodata_near = 1;
       AP_CHECK_EQ_INT(ap_samples_to_elevation(&near[k].raw, 1, &p, out, NULL), AP_OK);
       AP_CHECK_EQ_INT(isnan(out[0]) != 0, near[k].is_nodata);
+      AP_CHECK_EQ_INT(ap_sample_declared_nodata(&p, near[k].raw), near[k].is_nodata);
       /* without it (integer bands), only the value itself */
       p.nodata_near = 0;
       AP_CHECK_EQ_INT(ap_samples_to_elevation(&near[k].raw, 1, &p, out, NULL), AP_OK);
       AP_CHECK_EQ_INT(isnan(out[0]) != 0, near[k].raw == near[k].nodata);
+      AP_CHECK_EQ_INT(ap_sample_declared_nodata(&p, near[k].raw), near[k].raw == near[k].nodata);
     }
     /* an integer band's nodata 4294967295 (UInt32) leaves its neighbour a height (within 2
      * FLT_EPSILON of it relatively: nodata_near would take it) */
     p.nodata = 4294967295.0;
     AP_CHECK_EQ_INT(ap_samples_to_elevation(&(double){ 4294967294.0 }, 1, &p, out, NULL), AP_OK);
     AP_CHECK_NEAR(out[0], (float)4294967294.0, 0.0);
+    /* infinities are declared only as themselves, and nothing without a nodata value */
+    p.nodata_near = 1;
+    p.nodata = -INFINITY;
+    AP_CHECK_EQ_INT(ap_sample_declared_nodata(&p, -INFINITY), 1);
+    AP_CHECK_EQ_INT(ap_sample_declared_nodata(&p, INFINITY), 0);
+    AP_CHECK_EQ_INT(ap_sample_declared_nodata(&p, -1.7976931348623157e308), 0);
     p.has_nodata = 0;
+    AP_CHECK_EQ_INT(ap_sample_declared_nodata(&p, -INFINITY), 0);
+    p.nodata_near = 0;
   }
 
   /* Argument errors. */
