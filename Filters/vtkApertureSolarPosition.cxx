@@ -770,20 +770,17 @@ bool vtkApertureSolarPosition::Compute()
   {
     this->DayKind = kind == AP_SUN_DAY_POLAR_DAY ? 1 : kind == AP_SUN_DAY_POLAR_NIGHT ? 2 : 0;
   }
-  d.Sunrise = FormatUTC(this->Events[0]);
-  d.Transit = FormatUTC(this->Events[1]);
-  d.Sunset = FormatUTC(this->Events[2]);
-  // (each on the clock of its own instant; to the second, rounded as the UTC strings are)
+  // (to the second; the local ones each on the clock of its own instant, rounded alike)
+  std::string* utc[] = { &d.Sunrise, &d.Transit, &d.Sunset };
   std::string* local[] = { &d.SunriseLocal, &d.TransitLocal, &d.SunsetLocal };
+  bool unwritten = false; // (an event the UTC form cannot write)
   for (int k = 0; k < 3; ++k)
   {
+    *utc[k] = FormatUTC(this->Events[k]);
     *local[k] = FormatLocal(this->Events[k], d.DayOffset(this->Events[k]));
+    unwritten = unwritten || (!std::isnan(this->Events[k]) && utc[k]->empty());
   }
-  const auto unwritten = [](double t, const std::string& text) {
-    return !std::isnan(t) && text.empty();
-  };
-  if (!computed || unwritten(this->Events[0], d.Sunrise) ||
-    unwritten(this->Events[1], d.Transit) || unwritten(this->Events[2], d.Sunset))
+  if (!computed || unwritten)
   {
     // (a local day at the edge of the years, whose events lie partly beyond them: no events
     // rather than some of them, which would read as a day on which the sun only sets)
