@@ -539,9 +539,16 @@ def _crs_code(definition):
 
 
 def _geotransform(geo):
+    """GDAL's six numbers of geo's grid (north up)."""
     gt = [0.0] * 6
     geo.GetGeoTransform(gt)
     return gt
+
+
+def _wider_than_the_earth(geo):
+    """Whether geo's grid is a lat/lon one of more than 360 degrees of longitude, with
+    geo.GetErrorMessage() saying so (the sky filter's LongitudeSpanProblem asks the same)."""
+    return geo.IsGeographic() and not geo.CheckLongitudeSpan()
 
 
 def describe(reader, watcher):
@@ -558,14 +565,13 @@ def describe(reader, watcher):
     bounds = [0.0] * 4
     centre = [0.0, 0.0]
     local = geo.IsLocal()  # (a site grid: metric cells, no place on the Earth)
-    wide = not local and geo.IsGeographic() and not geo.CheckLongitudeSpan()
+    wide = _wider_than_the_earth(geo)
     if wide:
         # (a lat/lon grid wider than the Earth, a gridline-registered global one: described
         # all the same, the refusal said, as info is where one looks at the grid that message
         # tells to cut; refused here too until 2026-12-07)
         _warn(geo.GetErrorMessage() + "; bake and render refuse it")
-        gt = [0.0] * 6
-        geo.GetGeoTransform(gt)
+        gt = _geotransform(geo)
         corners = [[0.0, 0.0], [0.0, 0.0]]
         wide = (geo.CRSToLonLat(gt[0], gt[3] + ny * gt[5], corners[0]) and
                 geo.CRSToLonLat(gt[0] + nx * gt[1], gt[3], corners[1]))
@@ -1390,7 +1396,7 @@ def cmd_render(args):
         reader = _dem_reader(args, watcher)
         watcher.update_information(reader)  # (which files it reads: a VRT's sources)
         geo, whole = _whole_grid(reader)
-        if geo.HasCRS() and geo.IsGeographic() and not geo.CheckLongitudeSpan():
+        if _wider_than_the_earth(geo):
             # (before the DEM is read: the mesher refused it after, as the sky filter now
             # does before, until 2026-12-07)
             raise ApertureError(geo.GetErrorMessage())
