@@ -24,10 +24,10 @@
  *
  * Options:
  * - BandIndex: 1-based band; 0 (default) reads band 1 and warns when the raster has others to
- *   choose from (not for a 2-band raster whose band 2 is an alpha band). An alpha band GDAL takes as no
- *   mask (of other samples than Byte or UInt16, or in another place than the last of 2 or 4
- *   bands), where nothing else masks the band read, is warned about: its transparent cells
- *   are read as heights.
+ *   choose from (not for a 2-band raster whose band 2 is an alpha band). An alpha band GDAL
+ *   takes as no mask (of other samples than Byte or UInt16, or in another place than the last
+ *   of 2 or 4 bands), where nothing else masks the band read, is warned about: its
+ *   transparent cells are read as heights.
  *   A band with a colour table (classes, a scanned map) or a picture's colour channel (Red,
  *   Green, ...) is read as heights all the same, with a warning.
  * - SubWindow: (x offset, y offset, columns, rows) in full-resolution pixels of the file,

@@ -463,21 +463,17 @@ class TestInfo(CommandLineTest):
                          "(gdal_translate -srcwin 0 1 360 179; with -of VRT it copies "
                          "nothing); bake and render refuse it\n")
         # beyond a pole by more than the rows centred on it, refused as any grid is (the
-        # description skipped that check for a grid so wide, until review)
-        p = make_raster(self.path("wide-polar.tif"), np.ones((10, 40)),
-                        (-200, 10, 0, 120, 0, -10), srs="EPSG:4326")
-        status, out, err = run("info", "--no-stats", p)
-        self.assertEqual(status, 1, err)
-        self.assertIn("aperture: error: the grid's north edge is at latitude 120, beyond the "
-                      "north pole", err)
-        # by less than half a cell too, where no row is centred on the pole (described until
-        # review: a row was taken as centred on it when its centre was not beyond it)
-        p = make_raster(self.path("wide-polar-near.tif"), np.ones((10, 37)),
-                        (-185, 10, 0, 94, 0, -10), srs="EPSG:4326")
-        status, out, err = run("info", "--no-stats", p)
-        self.assertEqual(status, 1, err)
-        self.assertIn("aperture: error: the grid's north edge is at latitude 94, beyond the "
-                      "north pole", err)
+        # description skipped that check for a grid so wide, until review); by less than half
+        # a cell too, where no row is centred on the pole (described until review: a row was
+        # taken as centred on it when its centre was not beyond it)
+        for name, columns, west, north in (("wide-polar", 40, -200, 120),
+                                           ("wide-polar-near", 37, -185, 94)):
+            p = make_raster(self.path(name + ".tif"), np.ones((10, columns)),
+                            (west, 10, 0, north, 0, -10), srs="EPSG:4326")
+            status, out, err = run("info", "--no-stats", p)
+            self.assertEqual(status, 1, err)
+            self.assertIn("aperture: error: the grid's north edge is at latitude %d, beyond the "
+                          "north pole" % north, err)
 
     def test_beyond_the_pole(self):
         # A lat/lon grid whose top rows lie beyond the north pole (a wrong origin) is described
