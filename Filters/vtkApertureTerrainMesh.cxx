@@ -110,6 +110,22 @@ void PieceExtent(vtkInformation* inInfo, int piece, int pieces, int ext[6])
   }
 }
 
+// Why a whole lat/lon grid cannot be meshed, found in the pipeline information before it is
+// read (RequestData asks the same of the image): wider than the Earth (a gridline-registered
+// global grid), beyond a pole, or cells of no size on the ground; "" for anything else, and
+// when the information has no CRS (RequestData then has the image's).
+std::string UnreadRefusal(vtkInformation* inInfo)
+{
+  vtkNew<vtkApertureGeoreference> geo;
+  double bounds[4], cell[2];
+  if (!geo->SetFromInformation(inInfo) || !geo->IsGeographic() ||
+    (geo->GetBoundsLonLat(bounds) && geo->GetCellSizeMetres(cell)))
+  {
+    return std::string();
+  }
+  return geo->GetErrorMessage();
+}
+
 // A streamed piece's normals (3 floats a point of the piece's extent `ext`) from its ENU
 // positions and the one-point margin read around it (`margin`, whose elevations are the array
 // `name`, placed with `exaggeration` in the frame at lonlat0 on `ellipsoid`; a site grid's
@@ -232,6 +248,16 @@ int vtkApertureTerrainMesh::RequestUpdateExtent(
   int whole[6], ext[6];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   PieceExtent(inInfo, piece, pieces, ext);
+  // A whole grid RequestData would refuse is refused before it is read (a 20 GB global grid
+  // was read whole first): VTK 9.1 goes on after a failed RequestUpdateExtent, so the input is
+  // asked for nothing and RequestData reports the refusal. (A piece is meshed, or refused, on
+  // its own grid, once read.)
+  this->RefusedRequest = pieces > 1 ? std::string() : UnreadRefusal(inInfo);
+  if (!this->RefusedRequest.empty())
+  {
+    const int nothing[6] = { 0, -1, 0, -1, 0, -1 };
+    std::copy(nothing, nothing + 6, ext);
+  }
   if (pieces > 1 && this->ComputeNormals && ext[0] <= ext[1])
   {
     for (int a = 0; a < 4; a += 2)
@@ -307,6 +333,11 @@ int vtkApertureTerrainMesh::RunRequestData(
   {
     // (vtkSetClampMacro lets NaN through: every point would be NaN)
     vtkErrorMacro(<< "VerticalExaggeration is NaN");
+    return 0;
+  }
+  if (!this->RefusedRequest.empty())
+  {
+    vtkErrorMacro(<< this->RefusedRequest);
     return 0;
   }
   if (!input || input->GetNumberOfPoints() == 0)

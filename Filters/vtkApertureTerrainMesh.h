@@ -74,7 +74,8 @@
  * Errors (vtkErrorMacro and a failed update): no elevation array or one of several components,
  * a whole DEM smaller than 2 x 2 (a streamed piece that thin just gives an empty mesh), a point
  * array without one tuple per point of the input, no CRS or one without geographic coordinates
- * (other than a local one), a lat/lon grid reaching beyond a pole, every point nodata or no
+ * (other than a local one), a lat/lon grid reaching beyond a pole or wider than the Earth (both
+ * found in the pipeline information before a whole DEM is read), every point nodata or no
  * triangle at all (each valid point isolated among nodata; a streamed piece just gives an empty
  * mesh), a NaN VerticalExaggeration, or a mesh beyond MemoryLimit or the process's memory (the
  * message gives the size).
@@ -89,6 +90,8 @@
 
 #include "ApertureFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
+
+#include <string> // for RefusedRequest
 
 class APERTUREFILTERS_EXPORT vtkApertureTerrainMesh : public vtkPolyDataAlgorithm
 {
@@ -180,6 +183,7 @@ protected:
   bool ComputeNormals;
   bool GenerateTextureCoordinates;
   vtkTypeInt64 MemoryLimit;
+  std::string RefusedRequest; // (RequestUpdateExtent's refusal, for RequestData to report)
 
 
 private:

@@ -118,6 +118,43 @@ class TestPipelineBehaviour(Testing.vtkTest):
                 reader.SetFileName(self.path)
                 reader.SetDecimation(8)
 
+    def testMeshRefusesAGridUnread(self):
+        # A whole lat/lon grid the mesher refuses is refused before its reader reads a cell (a
+        # global grid was read whole first, until 2026-12-07): wider than the Earth (a
+        # gridline-registered global grid), or beyond a pole. A piece is meshed on its own
+        # grid, once read; a grid that can be meshed is, after a refusal.
+        from aperture.errors import Watcher
+        folder = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, folder)
+        gridline = write_dem(os.path.join(folder, "gridline.tif"), np.ones((20, 361)),
+                             (-180.5, 1, 0, 10, 0, -1), 4326)
+        polar = write_dem(os.path.join(folder, "polar.tif"), np.ones((10, 10)),
+                          (0, 1, 0, 95, 0, -1), 4326)
+        reader = aperture.vtkApertureDEMReader()
+        mesher = aperture.vtkApertureTerrainMesh()
+        mesher.SetInputConnection(reader.GetOutputPort())
+        w = Watcher()
+        for algorithm in (reader, mesher):
+            w.watch(algorithm)
+            w.watch(algorithm.GetExecutive())
+        for path, message in ((gridline, "the grid spans 361 degrees of longitude"),
+                              (polar, "the grid's north edge is at latitude 95, beyond")):
+            reader.SetFileName(path)
+            mesher.Update()
+            self.assertTrue(w.errors, path)
+            self.assertIn(message, w.errors[0])
+            self.assertEqual(reader.GetOutput().GetNumberOfPoints(), 0, path)
+            self.assertEqual(mesher.GetOutput().GetNumberOfPoints(), 0, path)
+            w.clear()
+        reader.SetFileName(gridline)
+        mesher.UpdatePiece(0, 2, 0)
+        self.assertEqual(w.errors, [])
+        self.assertGreater(mesher.GetOutput().GetNumberOfPoints(), 0)
+        reader.SetFileName(self.path)
+        mesher.Update()
+        self.assertEqual(w.errors, [])
+        self.assertEqual(mesher.GetOutput().GetNumberOfPoints(), 344 * 403)
+
     def testThreadCountsLeaveVTKAlone(self):
         # An update on fewer threads than the cores leaves the process's VTK as it found it:
         # VTK 9.1's LocalScope gave the count to the backend active before the scope's own,
