@@ -68,14 +68,14 @@ static OGRSpatialReferenceH HorizontalPart(OGRSpatialReferenceH srs)
   return horizontal;
 }
 
-// Whether the image's direction matrix is not the identity (`error` then says so): its grid is
-// rotated or mirrored, which no GeoTransform of its origin and spacing describes.
+// Whether the image's direction matrix turns its x and y axes (`error` then says so): its grid
+// is rotated or mirrored, which no GeoTransform of its origin and spacing describes.
 static bool Rotated(vtkImageData* image, std::string& error)
 {
-  vtkMatrix3x3* dir = image->GetDirectionMatrix();
-  if (dir && !dir->IsIdentity())
+  if (!vtkApertureGeoreference::HasNorthUpAxes(image))
   {
-    error = "the image has a rotated direction matrix; DEM grids must be north-up";
+    error = "the image's direction matrix rotates or mirrors its x and y axes; DEM grids must "
+            "be north-up (x east, y north)";
     return true;
   }
   return false;
@@ -597,6 +597,20 @@ bool vtkApertureGeoreference::SetFromImage(vtkImageData* image)
   this->SetGrid(origin[0] + extent[0] * spacing[0], origin[1] + extent[2] * spacing[1],
     spacing[0], spacing[1], extent[1] - extent[0] + 1, extent[3] - extent[2] + 1);
   return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::HasNorthUpAxes(vtkImageData* image)
+{
+  // (a z flip, diag(1, 1, -1), was refused as a rotation until 2026-12-07)
+  const vtkMatrix3x3* dir = image ? image->GetDirectionMatrix() : nullptr;
+  if (!dir)
+  {
+    return true;
+  }
+  const double* m = dir->GetData(); // (row-major)
+  return m[0] == 1.0 && m[1] == 0.0 && m[2] == 0.0 && m[3] == 0.0 && m[4] == 1.0 &&
+    m[5] == 0.0 && m[6] == 0.0 && m[7] == 0.0 && (m[8] == 1.0 || m[8] == -1.0);
 }
 
 //------------------------------------------------------------------------------

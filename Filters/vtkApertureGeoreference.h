@@ -115,10 +115,16 @@ public:
   /**
    * Take the CRS from the image's field data (`CRS`) and the grid from the image's origin,
    * spacing and extent (the extent it holds). False, with a message, if the image has no CRS,
-   * a non-identity direction matrix, a spacing that is not positive and finite, an origin
-   * that is not finite, or edges beyond the range of doubles (a spacing of 1e308).
+   * a direction matrix that turns its x and y axes (HasNorthUpAxes), a spacing that is not
+   * positive and finite, an origin that is not finite, or edges beyond the range of doubles
+   * (a spacing of 1e308).
    */
   bool SetFromImage(vtkImageData* image);
+
+  /** True when the image's direction matrix leaves its x and y axes as they are (east and
+   *  north): the identity, or a matrix that only flips z, which a one-slice DEM does not
+   *  extend along. False for a rotated or mirrored grid, which no GeoTransform describes. */
+  static bool HasNorthUpAxes(vtkImageData* image);
 
   /**
    * The georeference of a whole grid before any data flows: the CRS from CRS_KEY and the grid
@@ -133,7 +139,7 @@ public:
   /**
    * Store the CRS and the GeoTransform of the image's current extent in the image's field
    * data, replacing earlier values. False (the image unchanged) if no CRS is set, or for an
-   * image SetFromImage refuses for its grid: a direction matrix that is not the identity, a
+   * image SetFromImage refuses for its grid: a direction matrix that turns its x and y axes, a
    * spacing that is not positive and finite (VTK's rows run south to north), edges beyond
    * the doubles.
    */

@@ -531,7 +531,7 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
                   << origin[1] << ")");
     return false;
   }
-  if (!hasCRS && input->GetDirectionMatrix() && !input->GetDirectionMatrix()->IsIdentity())
+  if (!hasCRS && !vtkApertureGeoreference::HasNorthUpAxes(input))
   {
     // (with a CRS SetFromImage refuses it; without one the file was written upside down, or
     // rotated, with only the warning below, until 2026-12-07)

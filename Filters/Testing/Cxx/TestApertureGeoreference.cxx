@@ -232,6 +232,18 @@ void TestErrors()
   image->SetDirectionMatrix(rotation);
   AP_CHECK(!geo->SetFromImage(image));
   AP_CHECK(std::string(geo->GetErrorMessage()).find("north-up") != std::string::npos);
+  // a mirror is refused as a rotation is; a z flip alone turns neither x nor y of a one-slice
+  // DEM (refused as "rotated" until 2026-12-07). (The image holds `rotation` itself: the
+  // values below are written into a matrix of its own.)
+  image->SetDirectionMatrix(vtkNew<vtkMatrix3x3>());
+  const double mirrorX[9] = { -1, 0, 0, 0, 1, 0, 0, 0, 1 }, flipZ[9] = { 1, 0, 0, 0, 1, 0, 0, 0,
+    -1 };
+  image->SetDirectionMatrix(mirrorX);
+  AP_CHECK(!geo->SetFromImage(image) && !vtkApertureGeoreference::HasNorthUpAxes(image));
+  AP_CHECK_CONTAINS(geo->GetErrorMessage(), "rotates or mirrors its x and y axes");
+  image->SetDirectionMatrix(flipZ);
+  AP_CHECK(geo->SetFromImage(image) && vtkApertureGeoreference::HasNorthUpAxes(image));
+  image->SetDirectionMatrix(rotation);
   // nor attached to one: a GeoTransform of its origin and spacing would place it elsewhere
   // (it did until 2026-12-07: a south-up direction put its north edge beyond its points)
   image->GetFieldData()->Initialize();
