@@ -325,13 +325,18 @@ void vtkApertureDEMWriter::WriteData()
 //------------------------------------------------------------------------------
 int vtkApertureDEMWriter::Write()
 {
+  this->SetErrorCode(vtkErrorCode::NoError);
   if (this->StripRows <= 0)
   {
     this->Impl->Written = false;
-    return this->Superclass::Write() && this->Impl->Written ? 1 : 0;
+    const int ok = this->Superclass::Write() && this->Impl->Written;
+    this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode()));
+    return ok;
   }
-  return vtkApertureWriteInStrips(
-    this, this->StripRows, Tile, this->FileName ? this->FileName : "");
+  const int ok =
+    vtkApertureWriteInStrips(this, this->StripRows, Tile, this->FileName ? this->FileName : "");
+  this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode()));
+  return ok;
 }
 
 //------------------------------------------------------------------------------
@@ -423,6 +428,7 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
   if (!this->FileName || !*this->FileName)
   {
     vtkErrorMacro(<< "no file name was set");
+    this->SetErrorCode(vtkErrorCode::NoFileNameError);
     return false;
   }
   const std::string path(this->FileName);
@@ -430,11 +436,13 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
   if (!vtkApertureOutputReplaceable(path, what))
   {
     vtkErrorMacro(<< "'" << path << "' is " << what << ", not a file a GeoTIFF can be written to");
+    this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
     return false;
   }
   if (vtkApertureOutputReadOnly(path))
   {
     vtkErrorMacro(<< "cannot write '" << path << "': the file exists and is read-only");
+    this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
     return false;
   }
   if (!input || input->GetNumberOfPoints() == 0)
@@ -656,6 +664,7 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
   if (!ds)
   {
     vtkErrorMacro(<< "GDAL cannot create '" << path << "': " << trap.Message("unknown error"));
+    this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
     return false;
   }
   d.Dataset = ds;

@@ -554,14 +554,19 @@ void vtkApertureEXRWriter::WriteData()
 //------------------------------------------------------------------------------
 int vtkApertureEXRWriter::Write()
 {
+  this->SetErrorCode(vtkErrorCode::NoError);
   if (this->StripRows <= 0)
   {
     this->Impl->Written = false;
-    return this->Superclass::Write() && this->Impl->Written ? 1 : 0;
+    const int ok = this->Superclass::Write() && this->Impl->Written;
+    this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode()));
+    return ok;
   }
   // whole EXR chunks (1, 16 or 32 scanlines) in every strip
-  return vtkApertureWriteInStrips(
-    this, this->StripRows, 32, this->FileName ? this->FileName : "");
+  const int ok =
+    vtkApertureWriteInStrips(this, this->StripRows, 32, this->FileName ? this->FileName : "");
+  this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode()));
+  return ok;
 }
 
 //------------------------------------------------------------------------------
@@ -734,6 +739,7 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
   if (!this->FileName || !*this->FileName)
   {
     vtkErrorMacro(<< "no file name was set");
+    this->SetErrorCode(vtkErrorCode::NoFileNameError);
     return 0;
   }
   const std::string path(this->FileName);
@@ -741,11 +747,13 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
   if (!vtkApertureOutputReplaceable(path, what))
   {
     vtkErrorMacro(<< "'" << path << "' is " << what << ", not a file an EXR can be written to");
+    this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
     return 0;
   }
   if (vtkApertureOutputReadOnly(path))
   {
     vtkErrorMacro(<< "cannot write '" << path << "': the file exists and is read-only");
+    this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
     return 0;
   }
   if (!input || input->GetNumberOfPoints() == 0 || whole[1] < whole[0] || whole[3] < whole[2])
@@ -835,6 +843,7 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
     vtkErrorMacro(<< "OpenEXR cannot create '" << path << "' (as its temporary file '"
                   << d.Context.Temporary << "' first): " << trap.Message(rv));
     d.Context.Discard();
+    this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
     return 0;
   }
   exr_context_t ctx = d.Context.H;

@@ -197,7 +197,9 @@ public:
   vtkGetMacro(StripRows, int);
   ///@}
 
-  /** Write the file (in strips when StripRows > 0); 1 on success, 0 after an error. */
+  /** Write the file (in strips when StripRows > 0); 1 on success, 0 after an error, which
+   *  also sets GetErrorCode() (vtkErrorCode: NoFileNameError, CannotOpenFileError for a
+   *  path that cannot be created or replaced, else UnknownError; NoError after success). */
   int Write() override;
 
   ///@{

@@ -4,6 +4,8 @@
 #ifndef vtkApertureOutputFile_h
 #define vtkApertureOutputFile_h
 
+#include "vtkErrorCode.h"
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -18,6 +20,20 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+/** The ErrorCode a writer's Write() leaves, as VTK's writers set one, after it returned `ok`
+ *  with the code `current` set where a failure was met (NoFileNameError,
+ *  CannotOpenFileError): NoError after success, else `current`, else UnknownError. (The code
+ *  stayed NoError until 2026-12-07.) */
+inline unsigned long vtkApertureWriteErrorCode(int ok, unsigned long current)
+{
+  if (ok)
+  {
+    return vtkErrorCode::NoError;
+  }
+  return current != vtkErrorCode::NoError ? current
+                                          : static_cast<unsigned long>(vtkErrorCode::UnknownError);
+}
 
 /** What `st` is when it is not a regular file: "a folder", "a device", "a pipe", "a socket",
  *  else "not a regular file". */

@@ -13,6 +13,7 @@
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkErrorCode.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -47,7 +48,7 @@
 namespace
 {
 std::string tmp;
-void ExpectError(vtkApertureDEMWriter* writer, const std::string& expected);
+void ExpectError(vtkApertureDEMWriter* writer, const std::string& expected, int code = -1);
 void ExpectRefused(vtkImageData* image, const std::string& path, const std::string& expected);
 const int NX = 6, NY = 4;
 
@@ -807,14 +808,17 @@ void ExpectRefused(vtkImageData* image, const std::string& path, const std::stri
   AP_CHECK(stat(path.c_str(), &sb) != 0);
 }
 
-void ExpectError(vtkApertureDEMWriter* writer, const std::string& expected)
+// (and an ErrorCode, as VTK's writers set one: `code`, or any but NoError for -1)
+void ExpectError(vtkApertureDEMWriter* writer, const std::string& expected, int code)
 {
   vtkNew<vtkTest::ErrorObserver> errors, executiveErrors;
   writer->AddObserver(vtkCommand::ErrorEvent, errors);
   writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
-  writer->Write();
+  AP_CHECK(writer->Write() == 0);
   AP_CHECK(errors->GetError());
   AP_CHECK_CONTAINS(errors->GetErrorMessage(), expected);
+  const unsigned long got = writer->GetErrorCode();
+  AP_CHECK(code == -1 ? got != vtkErrorCode::NoError : got == static_cast<unsigned long>(code));
 }
 
 // Every codec the writer accepts keeps each value, NaNs included, when tiles are compressed
@@ -884,7 +888,7 @@ void TestErrors()
   {
     vtkNew<vtkApertureDEMWriter> w;
     w->SetInputData(MakeImage(true));
-    ExpectError(w, "no file name was set");
+    ExpectError(w, "no file name was set", vtkErrorCode::NoFileNameError);
   }
   // A grid no geotransform can say: refused (a NaN origin was written as a geotransform of
   // NaN, a negative spacing as a mirrored one, zero as none, each with only a warning).
@@ -957,7 +961,11 @@ void TestErrors()
     vtkNew<vtkApertureDEMWriter> w;
     w->SetInputData(MakeImage(true));
     w->SetFileName("/nonexistent-folder/x.tif");
-    ExpectError(w, "GDAL cannot create '/nonexistent-folder/x.tif'");
+    ExpectError(w, "GDAL cannot create '/nonexistent-folder/x.tif'",
+      vtkErrorCode::CannotOpenFileError);
+    // (a success clears it)
+    w->SetFileName((tmp + "/after-failure.tif").c_str());
+    AP_CHECK(w->Write() == 1 && w->GetErrorCode() == vtkErrorCode::NoError);
   }
   {
     // an image that disagrees with itself (made by hand): a band's array too short
@@ -1028,7 +1036,7 @@ void TestErrors()
         w->SetCompression(codec);
         w->SetNumberOfThreads(threads);
         ExpectError(w, "'" + special.first + "' is " + special.second +
-            ", not a file a GeoTIFF can be written to");
+            ", not a file a GeoTIFF can be written to", vtkErrorCode::CannotOpenFileError);
         AP_CHECK(aptest::SameKind(special.first, special.second));
       }
     }

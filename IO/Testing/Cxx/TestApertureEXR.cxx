@@ -13,6 +13,7 @@
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkErrorCode.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -421,14 +422,17 @@ struct Read
   }
 };
 
-void ExpectWriterError(vtkApertureEXRWriter* writer, const std::string& expected)
+// (and an ErrorCode, as VTK's writers set one: `code`, or any but NoError for -1)
+void ExpectWriterError(vtkApertureEXRWriter* writer, const std::string& expected, int code = -1)
 {
   vtkNew<vtkTest::ErrorObserver> errors, executiveErrors;
   writer->AddObserver(vtkCommand::ErrorEvent, errors);
   writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, executiveErrors);
-  writer->Write();
+  AP_CHECK(writer->Write() == 0);
   AP_CHECK(errors->GetError());
   AP_CHECK_CONTAINS(errors->GetErrorMessage(), expected);
+  const unsigned long got = writer->GetErrorCode();
+  AP_CHECK(code == -1 ? got != vtkErrorCode::NoError : got == static_cast<unsigned long>(code));
 }
 
 void ExpectReaderError(const std::string& path, const std::string& expected)
@@ -1193,7 +1197,7 @@ void TestWriterErrors()
   {
     vtkNew<vtkApertureEXRWriter> w;
     w->SetInputData(image);
-    ExpectWriterError(w, "no file name was set");
+    ExpectWriterError(w, "no file name was set", vtkErrorCode::NoFileNameError);
   }
   {
     auto volume = vtkSmartPointer<vtkImageData>::New();
@@ -1300,7 +1304,10 @@ void TestWriterErrors()
     w->SetInputData(image);
     w->SetFileName("/nonexistent-folder/x.exr");
     ExpectWriterError(w, "OpenEXR cannot create '/nonexistent-folder/x.exr' (as its temporary "
-                         "file '/nonexistent-folder/.aperture-");
+                         "file '/nonexistent-folder/.aperture-", vtkErrorCode::CannotOpenFileError);
+    // (a success clears it)
+    w->SetFileName((tmp + "/after-failure.exr").c_str());
+    AP_CHECK(w->Write() == 1 && w->GetErrorCode() == vtkErrorCode::NoError);
   }
   {
     // A name as long as the folder takes: written (OpenEXR's own temporary file, "tmp.<pid>"
