@@ -48,16 +48,20 @@ inline void vtkApertureCopyElevations(vtkDataArray* a, vtkIdType begin, vtkIdTyp
 // selection made before away, vtkImageAlgorithm's default one of the point scalars
 // included): a point array by name, or the point scalars (their name; "Elevation", which
 // falls back on them, when they have none). Else `fallback` (the filter's
-// ElevationArrayName). "" with *problem set when the selection is not of point data, or an
-// attribute other than the scalars. (Until 2026-12-06 the selection was ignored.)
+// ElevationArrayName), or the point scalars when that is null or "" (an error until
+// 2026-12-07). "" with *problem set when the selection is not of point data, or an attribute
+// other than the scalars. (Until 2026-12-06 the selection was ignored.)
 inline std::string vtkApertureSelectedElevationName(vtkAlgorithm* self, vtkMTimeType made,
   vtkDataSetAttributes* pd, const char* fallback, std::string* problem)
 {
   vtkInformation* info = self->GetInputArrayInformation(0);
+  vtkDataArray* scalars = pd ? pd->GetScalars() : nullptr;
+  const std::string scalarsName =
+    scalars && scalars->GetName() && *scalars->GetName() ? scalars->GetName() : "Elevation";
   if (!info || info->GetMTime() <= made ||
     !(info->Has(vtkDataObject::FIELD_NAME()) || info->Has(vtkDataObject::FIELD_ATTRIBUTE_TYPE())))
   {
-    return fallback ? fallback : "";
+    return fallback && *fallback ? fallback : scalarsName;
   }
   const int association = info->Has(vtkDataObject::FIELD_ASSOCIATION())
     ? info->Get(vtkDataObject::FIELD_ASSOCIATION())
@@ -81,9 +85,7 @@ inline std::string vtkApertureSelectedElevationName(vtkAlgorithm* self, vtkMTime
       ", not the scalars or an array by name; the elevations are one value a point";
     return "";
   }
-  vtkDataArray* scalars = pd ? pd->GetScalars() : nullptr;
-  return scalars && scalars->GetName() && *scalars->GetName() ? scalars->GetName()
-                                                              : "Elevation";
+  return scalarsName;
 }
 
 // The first step of a filter's SetElevationArrayName (VTK's string setter the second): of it

@@ -103,7 +103,8 @@ public:
   ///@{
   /** Name of the input's point array of elevations (metres; one component, any numeric type).
    *  Default "Elevation", which an input without an array so named takes from its active point
-   *  scalars; a name the input lacks is an error naming the arrays it has.
+   *  scalars; a null or empty name, the active point scalars; a name the input lacks is an
+   *  error naming the arrays it has.
    *  SetInputArrayToProcess(0, 0, 0, points, name), the way VTK's filters and ParaView select
    *  arrays, selects one in its place (or the point scalars, by attribute type); a selection of
    *  cell data or of another attribute is an error. Of the two, the one made last holds. */

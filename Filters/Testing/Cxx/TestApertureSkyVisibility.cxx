@@ -544,6 +544,16 @@ void TestInputArraySelection()
       0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
   }),
     "the point scalars");
+  // so does a null or empty ElevationArrayName, as VTK's filters take unnamed input (both were
+  // "no point array named ''" until 2026-12-07)
+  for (const char* name : { static_cast<const char*>(nullptr), "" })
+  {
+    allFlat(Sky(dem, [&](vtkApertureSkyVisibility* s) {
+      setup(s);
+      s->SetElevationArrayName(name);
+    }),
+      "no name: the point scalars");
+  }
   // ... and the Elevation array selected by name, whatever the scalars
   CheckSameBits(Sky(dem,
                   [&](vtkApertureSkyVisibility* s) {

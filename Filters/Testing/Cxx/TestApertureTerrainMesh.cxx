@@ -674,6 +674,15 @@ void TestInputArraySelection()
   m.Mesher->SetElevationArrayName("Elevation");
   AP_CHECK(m.Mesher->GetExecutive()->Update() == 1 && !m.Errors->GetError());
   samePoints(Mesh(MakeDEM("EPSG:32633", 400000.0, 5000000.0, 30.0, 30.0, nx, ny, rough)));
+  // a null or empty name takes the active point scalars, as VTK's filters take unnamed input
+  // (both were "no point array named ''" until 2026-12-07)
+  dem->GetPointData()->SetActiveScalars("heights");
+  for (const char* name : { static_cast<const char*>(nullptr), "" })
+  {
+    m.Mesher->SetElevationArrayName(name);
+    AP_CHECK(m.Mesher->GetExecutive()->Update() == 1 && !m.Errors->GetError());
+    samePoints(expected);
+  }
   ObservedMesher cells(dem);
   cells.Mesher->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "heights");
