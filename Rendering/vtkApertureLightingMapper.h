@@ -26,10 +26,12 @@
  *
  * Moving the sun, changing the sky, the exposure or the tone mapping changes uniforms only
  * (SetSkyTable uploads its small texture, not the geometry): these setters do not mark the
- * mapper modified, so the next Render() uses them and no geometry is uploaded again
- * (GetGeometryUploads() counts uploads, for tests). The modes, the shading frequency and
- * switching the sky table on or off select compiled shader variants: the next Render()
- * compiles (or takes from VTK's shader cache) the variant, again without a geometry upload.
+ * mapper modified (no ModifiedEvent, GetMTime unchanged: an observer of either sees nothing),
+ * so the next Render() uses them and no geometry is uploaded again (GetGeometryUploads()
+ * counts uploads, for tests). The modes, the shading frequency and switching the sky table on
+ * or off select compiled shader variants: the next Render() compiles (or takes from VTK's
+ * shader cache) the variant, again without a geometry upload, and do not mark it modified
+ * either. The array-name setters and LightingModel do.
  *
  * LightingModel STANDARD draws with VTK's own lighting (times 2^Exposure) and needs no arrays.
  * With the default APERTURE model, missing or wrongly sized arrays are an error (vtkErrorMacro
