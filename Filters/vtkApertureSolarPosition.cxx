@@ -302,6 +302,15 @@ struct vtkApertureSolarPosition::Internals
   int32_t GivenOffset = 0;
   vtkSmartPointer<vtkApertureGeoreference> Geo; // the DEM of SetPlaceFromImage
   std::string Error;
+  std::string RefusedTime; // why the last SetTime failed, until a time is set
+
+  // Why there is no time (UnixTime is NaN).
+  std::string NoTime() const
+  {
+    return this->RefusedTime.empty() ? std::string(kNoTime)
+                                     : "no time is set: SetTime refused the last one (" +
+        this->RefusedTime + ")";
+  }
   std::string TimeString, LocalTimeString, Sunrise, Transit, Sunset;
   std::string SunriseLocal, TransitLocal, SunsetLocal;
   ap_sun_position_result Sun;
@@ -417,6 +426,17 @@ bool vtkApertureSolarPosition::SetTime(const char* iso8601)
 {
   Internals& d = *this->Impl;
   const std::string text = iso8601 ? iso8601 : "";
+  // A refused time leaves none, so that Compute() fails saying why instead of giving the sun
+  // of the time before (a script stepping local times across a clock change got the previous
+  // step's sun, and success, until 2026-12-07).
+  const auto refuse = [this, &d]() {
+    vtkErrorMacro(<< d.Error);
+    d.RefusedTime = d.Error;
+    this->UnixTime = kNaN;
+    this->Computed = false;
+    this->Modified();
+    return false;
+  };
   ap_parsed_time parsed;
   ap_status st = ap_time_parse_iso8601(text.c_str(), &parsed);
   if (st != AP_OK)
@@ -448,15 +468,13 @@ bool vtkApertureSolarPosition::SetTime(const char* iso8601)
             " digits: at most 9 (nanoseconds) are taken"
           : std::string("not a valid ISO 8601 date and time (such as 2026-06-21T14:00+02:00 or "
                         "2026-06-21T12:00Z, or a local time with a time zone)"));
-    vtkErrorMacro(<< d.Error);
-    return false;
+    return refuse();
   }
   if (!parsed.has_offset && !d.Zone)
   {
     d.Error = "the time '" + text +
       "' has no UTC offset: add one (Z, +02:00) or set a time zone (e.g. Europe/Zurich)";
-    vtkErrorMacro(<< d.Error);
-    return false;
+    return refuse();
   }
   ap_instant instant;
   ap_tz_local_result detail;
@@ -471,8 +489,7 @@ bool vtkApertureSolarPosition::SetTime(const char* iso8601)
       FormatUTC(change) +
       "); give an offset (" + FormatOffset(detail.before.utc_offset) + " or " +
       FormatOffset(detail.after.utc_offset) + ") to choose";
-    vtkErrorMacro(<< d.Error);
-    return false;
+    return refuse();
   }
   if (st == AP_ERR_TIME_AMBIGUOUS)
   {
@@ -481,8 +498,7 @@ bool vtkApertureSolarPosition::SetTime(const char* iso8601)
       FormatOffset(detail.before.utc_offset) + ", " + detail.before.abbreviation + ") and " +
       FormatInstant(FromInstant(detail.later)) + " (" + FormatOffset(detail.after.utc_offset) +
       ", " + detail.after.abbreviation + "); give the offset to choose";
-    vtkErrorMacro(<< d.Error);
-    return false;
+    return refuse();
   }
   if (st != AP_OK)
   {
@@ -490,14 +506,14 @@ bool vtkApertureSolarPosition::SetTime(const char* iso8601)
     d.Error = "cannot convert the time '" + text + "': " +
       (st == AP_ERR_OUT_OF_RANGE ? std::string("in UTC the year is outside -2000..6000")
                                  : std::string(ap_status_string(st)));
-    vtkErrorMacro(<< d.Error);
-    return false;
+    return refuse();
   }
   d.HasGivenOffset = parsed.has_offset != 0;
   d.GivenOffset = parsed.utc_offset;
   this->UnixTime = FromInstant(instant);
   this->Computed = false;
   d.Error.clear();
+  d.RefusedTime.clear();
   this->Modified();
   return true;
 }
@@ -506,6 +522,7 @@ void vtkApertureSolarPosition::SetUnixTime(double seconds)
 {
   // (the offset SetTime was given stays the clock of the local day: a series of instants
   // stepped from one written with +09:00 keeps its days at +09:00)
+  this->Impl->RefusedTime.clear();
   if (this->UnixTime != seconds)
   {
     this->UnixTime = seconds;
@@ -678,7 +695,7 @@ bool vtkApertureSolarPosition::Compute()
   }
   else if (std::isnan(this->UnixTime))
   {
-    problem = kNoTime;
+    problem = d.NoTime();
   }
   else if (!std::isfinite(this->UnixTime))
   {
@@ -1064,7 +1081,7 @@ bool vtkApertureSolarPosition::AddSunDirectionArray(vtkImageData* dem, const cha
   }
   if (std::isnan(this->UnixTime))
   {
-    d.Error = kNoTime;
+    d.Error = d.NoTime();
     vtkErrorMacro(<< d.Error);
     return false;
   }

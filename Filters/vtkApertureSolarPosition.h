@@ -64,11 +64,12 @@ public:
   /**
    * The instant. SetTime parses ISO 8601: "YYYY-MM-DD" (midnight, a local time in TimeZone)
    * or "YYYY-MM-DDTHH:MM[:SS[.fff]]" followed by "Z", "±HH:MM", "±HHMM" or "±HH", or by
-   * nothing: a local time in TimeZone (a date alone takes no offset). False (and the
-   * previous time kept) for text that does not parse, an impossible date, a year outside
-   * −2000..6000, a local time without a TimeZone, or one that a clock change skips or repeats.
+   * nothing: a local time in TimeZone (a date alone takes no offset). False for text that
+   * does not parse, an impossible date, a year outside −2000..6000, a local time without a
+   * TimeZone, or one that a clock change skips or repeats: the time is then unset (NaN), and
+   * Compute() fails naming the refusal, never giving the sun of the time before.
    * There is no default time: until one is set, GetUnixTime is NaN and Compute() fails
-   * saying so (a failed first SetTime leaves it unset).
+   * saying so.
    * SetUnixTime sets POSIX seconds (UTC, no leap seconds) directly, keeping the offset the
    * last SetTime was given as the clock of the local day (a series stepped from an instant
    * written with +09:00 keeps its days at +09:00; "Z" sets 0). GetTimeString gives the

@@ -307,8 +307,21 @@ void TestTimeZones()
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "occurs twice");
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "2026-10-25T00:30:00Z");
   AP_CHECK_CONTAINS(sun->GetErrorMessage(), "2026-10-25T01:30:00Z");
-  AP_CHECK(std::string(sun->GetTimeString()) == "2026-01-15T13:00:00Z"); // kept
+  // a refused time leaves none: Compute() fails naming the refusal, instead of giving the sun
+  // of the time before with success (kept until 2026-12-07); any time set ends that
+  AP_CHECK(std::isnan(sun->GetUnixTime()) && std::string(sun->GetTimeString()).empty());
+  AP_CHECK(!sun->Compute());
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "no time is set: SetTime refused the last one (the "
+                                            "local time 2026-10-25T02:30 occurs twice");
+  AP_CHECK(std::isnan(sun->GetElevation()));
+  sun->SetUnixTime(1768482000.0);
+  AP_CHECK(sun->Compute());
+  AP_CHECK(std::string(sun->GetTimeString()) == "2026-01-15T13:00:00Z");
   AP_CHECK(std::string(sun->GetLocalTimeString()) == "2026-01-15T14:00:00+01:00");
+  sun->SetUnixTime(NAN);
+  AP_CHECK(!sun->Compute());
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "no time is set (it is NaN)");
+  AP_CHECK(sun->SetTime("2026-01-15T14:00"));
   // Fractions of a second as given (rounded to the second until 2026-12-07): the fewest of 0,
   // 3 or 6 digits, in the local time too (on the clock of that instant: summer time in June)
   AP_CHECK(sun->SetTime("2026-06-21T14:00:00.5"));
@@ -644,7 +657,8 @@ void TestBadInput()
   AP_CHECK(std::isnan(sun->GetAzimuth()));
   auto flat = MakeUTM(500000.0, 5000000.0);
   AP_CHECK(!sun->AddSunDirectionArray(flat, "Sun"));
-  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "no time is set (it is NaN)");
+  AP_CHECK_CONTAINS(sun->GetErrorMessage(), "no time is set: SetTime refused the last one "
+                                            "(cannot read the time 'garbage': ");
   AP_CHECK(!flat->GetPointData()->GetArray("Sun"));
   AP_CHECK(sun->SetTime("2026-06-21T12:00Z"));
   sun->SetLatitude(91.0);
