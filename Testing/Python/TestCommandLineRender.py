@@ -491,6 +491,13 @@ class TestCommandLineRender(unittest.TestCase):
                                     "frame 1 of --frames 3, 60 minutes after --at "
                                     "6000-12-31T23:00Z: the time in the year 6001 is outside "
                                     "the years the algorithm covers"),
+                                   # ... found before the DEM is read or the frames' names
+                                   # checked (10 s for these 10,000, until 2026-12-07)
+                                   (("/nonexistent/dem.tif", "--frames", "10000", "--at",
+                                     "2026-06-21T12:00Z", "--step", "1e9", "-o",
+                                     os.path.join(tmp, "later-%d.png")),
+                                    "frame 3 of --frames 10000, 3e+09 minutes after --at "
+                                    "2026-06-21T12:00Z: the time in the year 7730 is outside"),
                                    (("--frames", "11", "--at", "2026-06-21T12:00Z", "-o",
                                      os.path.join(tmp, "a%d.png"), "--exr",
                                      os.path.join(tmp, "a%d0.png")),

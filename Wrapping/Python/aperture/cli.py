@@ -200,11 +200,27 @@ def _host_file(path):
     return path
 
 
-def _same_file(a, b):
+def _same_file(a, b, real=os.path.realpath):
     a, b = _host_file(a), _host_file(b)
     if os.path.exists(a) and os.path.exists(b):
         return os.path.samefile(a, b)  # hard links too
-    return os.path.realpath(a) == os.path.realpath(b)
+    return real(a) == real(b)
+
+
+def _folder_realpath():
+    """os.path.realpath for many names in few folders (a time-lapse's frames): each folder
+    resolved once, a name's own symbolic link still followed (10,000 frames' checks took 8 s
+    of realpath's calls, one a folder of each name, until 2026-12-07)."""
+    folders = {}
+
+    def real(path):
+        head, tail = os.path.split(path)
+        if tail in ("", ".", "..") or os.path.islink(path):
+            return os.path.realpath(path)
+        if head not in folders:
+            folders[head] = os.path.realpath(head or os.curdir)
+        return os.path.join(folders[head], tail)
+    return real
 
 
 def _file_kind(mode):
@@ -309,18 +325,20 @@ def _check_sources(outputs, reader):
     name and beside the target of its links: vtkApertureOutputFile.h), are one of those files
     or another output. outputs: (option, path) pairs; empty paths skipped."""
     sources = [reader.GetFile(i) for i in range(reader.GetNumberOfFiles())]
-    taken = {os.path.realpath(path): (name, path) for name, path in outputs if path}
+    real = _folder_realpath()
+    taken = {real(path): (name, path) for name, path in outputs if path}
     for name, path in outputs:
         for source in sources if path else ():
-            if _same_file(path, source):
+            if _same_file(path, source, real):
                 raise ApertureError("%s %s is %s; choose another name" % (
                     name, path, "the same file as the DEM" if source == sources[0] else
                     "one of the files the DEM %s reads (%s)" % (sources[0], source)))
-        beside = dict.fromkeys([path, os.path.realpath(path)]) if path else ()
+        beside = dict.fromkeys([path, real(path)]) if path else ()
         for sidecar in (b + suffix for b in beside for suffix in (".aux.xml", ".ovr", ".msk")):
-            other = taken.get(os.path.realpath(sidecar))
+            other = taken.get(real(sidecar))
             which = [("the DEM" if source == sources[0] else "one of the files the DEM %s "
-                      "reads" % sources[0]) for source in sources if _same_file(sidecar, source)]
+                      "reads" % sources[0]) for source in sources
+                     if _same_file(sidecar, source, real)]
             if which or other:
                 raise ApertureError(
                     "%s %s: writing it removes %s (GDAL's sidecar of a file of that name), "
@@ -1309,6 +1327,8 @@ def _render_option_checks(args):
     elif not (-90.0 <= (args.sun_el or 0.0) <= 90.0) or not math.isfinite(args.sun_az or 0.0):
         raise _UsageError("--sun-el must be within [-90, 90] degrees (and --sun-az finite)")
     _frame_option_checks(args)
+    if args.frames:  # (--frames needs --at: `sun` holds it)
+        _check_frame_years(args, sun)
     from aperture import vtkApertureLinearCapture
     if args.exr and (16.0 * args.size[0] * args.size[1]
                      >= vtkApertureLinearCapture.GetMaximumBytes()):
@@ -1631,6 +1651,20 @@ def _time_lapse(args, sun, image):
     sun.SetUnixTime(start)
     sun.Compute()
     return times, exposure
+
+
+def _check_frame_years(args, sun):
+    """Refuse a --frames series that runs past the algorithm's years before anything is read
+    (found after the DEM was read and every frame's name checked, 10 s for 10,000 frames,
+    until 2026-12-07). The years do not depend on the place (the sun is computed at 0 N 0 E
+    here), and the times increase: the last frame is the one to check."""
+    start = sun.GetUnixTime()
+    sun.SetLatitude(0.0)
+    sun.SetLongitude(0.0)
+    sun.SetUnixTime(start + (args.frames - 1) * _step_seconds(args.step))
+    if not sun.Compute():
+        sun.SetUnixTime(start)
+        _frame_times(args, sun)  # (which names the first frame past them)
 
 
 def _frame_times(args, sun):
