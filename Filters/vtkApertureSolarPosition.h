@@ -13,7 +13,8 @@
  * Position: the Solar Position Algorithm of Reda & Andreas (NREL/TP-560-34302, ±0.0003° for
  * the years −2000..6000), implemented in the C core (ap_sun.h). Azimuths are clockwise from
  * true north; elevations and zeniths are apparent (refracted with Pressure and Temperature,
- * SPA's refraction model) unless named True. ΔT defaults to the Espenak & Meeus (2006)
+ * SPA's refraction model, which adds none while the sun's centre is more than 0.8333° below
+ * the horizon: they step by about 0.6° there) unless named True. ΔT defaults to the Espenak & Meeus (2006)
  * estimate for the date (DeltaT = NaN); give the IERS value for the last 0.00001°.
  *
  * Time: SetTime accepts ISO 8601 with an offset ("2026-06-21T14:00+02:00", "...Z") or a local
@@ -136,7 +137,11 @@ public:
    *  Sunrise and sunset are where the sun's centre is at −0.8333° geometric (its upper limb
    *  on the horizon through the standard 34′ of refraction), whatever the pressure and
    *  temperature; with Refraction off at −0.26667° (the upper limb on the geometric
-   *  horizon), which moves them by minutes and may turn polar day into a day with a sunset. */
+   *  horizon), which moves them by minutes and may turn polar day into a day with a sunset.
+   *  As SPA defines them, that is the sun seen from the Earth's centre: GetElevationTrue, seen
+   *  from the place, is lower by the solar parallax (0.0024°) then, which moves the events by
+   *  1-2 s at mid-latitudes, more where the sun meets the horizon at a shallow angle (13 s
+   *  at 70° N in late November). */
   vtkSetMacro(Pressure, double);
   vtkGetMacro(Pressure, double);
   vtkSetMacro(Temperature, double);
