@@ -330,12 +330,12 @@ int vtkApertureDEMWriter::Write()
   {
     this->Impl->Written = false;
     const int ok = this->Superclass::Write() && this->Impl->Written;
-    this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode()));
+    this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode(), this->FileName));
     return ok;
   }
   const int ok =
     vtkApertureWriteInStrips(this, this->StripRows, Tile, this->FileName ? this->FileName : "");
-  this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode()));
+  this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode(), this->FileName));
   return ok;
 }
 
@@ -428,7 +428,6 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
   if (!this->FileName || !*this->FileName)
   {
     vtkErrorMacro(<< "no file name was set");
-    this->SetErrorCode(vtkErrorCode::NoFileNameError);
     return false;
   }
   const std::string path(this->FileName);

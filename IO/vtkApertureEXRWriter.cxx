@@ -559,13 +559,13 @@ int vtkApertureEXRWriter::Write()
   {
     this->Impl->Written = false;
     const int ok = this->Superclass::Write() && this->Impl->Written;
-    this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode()));
+    this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode(), this->FileName));
     return ok;
   }
   // whole EXR chunks (1, 16 or 32 scanlines) in every strip
   const int ok =
     vtkApertureWriteInStrips(this, this->StripRows, 32, this->FileName ? this->FileName : "");
-  this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode()));
+  this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode(), this->FileName));
   return ok;
 }
 
@@ -739,7 +739,6 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
   if (!this->FileName || !*this->FileName)
   {
     vtkErrorMacro(<< "no file name was set");
-    this->SetErrorCode(vtkErrorCode::NoFileNameError);
     return 0;
   }
   const std::string path(this->FileName);

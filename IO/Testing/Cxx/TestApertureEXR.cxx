@@ -1198,6 +1198,8 @@ void TestWriterErrors()
     vtkNew<vtkApertureEXRWriter> w;
     w->SetInputData(image);
     ExpectWriterError(w, "no file name was set", vtkErrorCode::NoFileNameError);
+    w->SetStripRows(2); // (refused by the strip driver: UnknownError until review)
+    ExpectWriterError(w, "no file name was set", vtkErrorCode::NoFileNameError);
   }
   {
     auto volume = vtkSmartPointer<vtkImageData>::New();
