@@ -7,7 +7,8 @@
  * A DEM in Aperture is a 2-D vtkImageData whose origin and spacing are in the units of its
  * coordinate reference system (CRS): the origin is the centre of the south-west cell, spacing
  * is the (positive) cell size east and north, point (i, j) is the centre of the cell in column i
- * (west to east) and row j (south to north), and the direction matrix is the identity.
+ * (west to east) and row j (south to north), and the direction matrix is the identity (or
+ * one that flips z alone, which a one-slice DEM does not extend along: HasNorthUpAxes).
  *
  * The georeference travels with the image in one documented place, its field data:
  * - `CRS`: a vtkStringArray with one value, the CRS as WKT (WKT2:2019).
