@@ -46,22 +46,19 @@ inline void vtkApertureCopyElevations(vtkDataArray* a, vtkIdType begin, vtkIdTyp
 // that selection changed after `made` (its MTime when the ElevationArrayName was last set:
 // vtkApertureDropElevationSelection, which the constructors' setting calls too, takes a
 // selection made before away, vtkImageAlgorithm's default one of the point scalars
-// included): a point array by name, or the point scalars (their name; "Elevation", which
-// falls back on them, when they have none). Else `fallback` (the filter's
-// ElevationArrayName), or the point scalars when that is null or "" (an error until
-// 2026-12-07). "" with *problem set when the selection is not of point data, or an attribute
-// other than the scalars. (Until 2026-12-06 the selection was ignored.)
-inline std::string vtkApertureSelectedElevationName(vtkAlgorithm* self, vtkMTimeType made,
-  vtkDataSetAttributes* pd, const char* fallback, std::string* problem)
+// included): a point array by name, or the point scalars (""). Else `fallback` (the filter's
+// ElevationArrayName; null, "": the point scalars, an error until 2026-12-07). "" with
+// *problem set when the selection is not of point data, or an attribute other than the
+// scalars. (Until 2026-12-06 the selection was ignored; until review the scalars were looked
+// up by their name, or "Elevation" for unnamed ones, which found another array so named.)
+inline std::string vtkApertureSelectedElevationName(
+  vtkAlgorithm* self, vtkMTimeType made, const char* fallback, std::string* problem)
 {
   vtkInformation* info = self->GetInputArrayInformation(0);
-  vtkDataArray* scalars = pd ? pd->GetScalars() : nullptr;
-  const std::string scalarsName =
-    scalars && scalars->GetName() && *scalars->GetName() ? scalars->GetName() : "Elevation";
   if (!info || info->GetMTime() <= made ||
     !(info->Has(vtkDataObject::FIELD_NAME()) || info->Has(vtkDataObject::FIELD_ATTRIBUTE_TYPE())))
   {
-    return fallback && *fallback ? fallback : scalarsName;
+    return fallback ? fallback : "";
   }
   const int association = info->Has(vtkDataObject::FIELD_ASSOCIATION())
     ? info->Get(vtkDataObject::FIELD_ASSOCIATION())
@@ -85,7 +82,7 @@ inline std::string vtkApertureSelectedElevationName(vtkAlgorithm* self, vtkMTime
       ", not the scalars or an array by name; the elevations are one value a point";
     return "";
   }
-  return scalarsName;
+  return "";
 }
 
 // The first step of a filter's SetElevationArrayName (VTK's string setter the second): of it
@@ -109,15 +106,16 @@ inline bool vtkApertureDropElevationSelection(vtkAlgorithm* self, vtkMTimeType& 
 }
 
 // After a filter carried its input's point data `in` to `out`: heights it took from the active
-// scalars for want of an array named `name` (the default "Elevation": an image made by hand)
-// come out as the point array Elevation too, as from the reader (the same values, their
-// memory shared): in place of unnamed scalars, beside named ones.
+// scalars, asked for (`name` "") or for want of an array named `name` (the default
+// "Elevation": an image made by hand), come out as the point array Elevation too, as from the
+// reader (the same values, their memory shared): in place of unnamed scalars, beside named
+// ones; not in place of another array named Elevation.
 inline void vtkApertureNameElevation(
   vtkDataSetAttributes* in, vtkDataSetAttributes* out, const char* name)
 {
   vtkDataArray* carried = out->GetScalars();
-  if (!carried || !name || std::string(name) != "Elevation" || in->GetArray("Elevation") ||
-    out->GetArray("Elevation"))
+  if (!carried || !name || (*name && std::string(name) != "Elevation") ||
+    in->GetArray("Elevation") || out->GetArray("Elevation"))
   {
     return;
   }
@@ -135,16 +133,18 @@ inline void vtkApertureNameElevation(
   named->Delete();
 }
 
-// The elevation array of point data `pd`: the array named `name`, or, when there is none so
-// named and `name` is the filters' default "Elevation", the active scalars (an image made by
-// hand, as VTK's imaging filters take it). Any numeric type, one component. nullptr when there
-// is none, with *problem naming what the point data hold instead.
+// The elevation array of point data `pd`: the array named `name`; the active scalars for a
+// null or empty name, and when there is none so named and `name` is the filters' default
+// "Elevation" (an image made by hand, as VTK's imaging filters take it). Any numeric type, one
+// component. nullptr when there is none, with *problem (if given) naming what the point data
+// hold instead.
 inline vtkDataArray* vtkApertureElevationArray(
   vtkDataSetAttributes* pd, const char* name, std::string* problem)
 {
   name = name ? name : "";
-  vtkDataArray* a = pd ? pd->GetArray(name) : nullptr;
-  const bool scalars = !a && pd && std::string(name) == "Elevation";
+  const bool unnamed = !*name; // (the scalars themselves)
+  vtkDataArray* a = pd && !unnamed ? pd->GetArray(name) : nullptr;
+  const bool scalars = !a && pd && (unnamed || std::string(name) == "Elevation");
   if (scalars)
   {
     a = pd->GetScalars();
@@ -156,12 +156,14 @@ inline vtkDataArray* vtkApertureElevationArray(
   }
   if (a)
   {
-    msg << (scalars ? "the input has no point array named 'Elevation', and its active scalars '"
-                    : "the elevation array '")
+    msg << (!scalars ? "the elevation array '"
+                     : unnamed ? "the active point scalars '"
+                               : "the input has no point array named 'Elevation', and its active "
+                                 "scalars '")
         << (a->GetName() ? a->GetName() : "") << (scalars ? "' have " : "' has ")
         << a->GetNumberOfComponents() << " components; elevations need one";
   }
-  else if (vtkAbstractArray* other = pd ? pd->GetAbstractArray(name) : nullptr)
+  else if (vtkAbstractArray* other = pd && !unnamed ? pd->GetAbstractArray(name) : nullptr)
   {
     // (not "no point array named 'Elevation' (its point arrays: 'Elevation')")
     msg << "the point array '" << name << "' is not numeric (a " << other->GetClassName()
@@ -169,9 +171,18 @@ inline vtkDataArray* vtkApertureElevationArray(
   }
   else
   {
-    msg << "the input has no point array named '" << name << "'";
+    if (unnamed)
+    {
+      msg << "no ElevationArrayName is set, and the input has no active point scalars";
+    }
+    else
+    {
+      msg << "the input has no point array named '" << name << "'";
+    }
     const int n = pd ? pd->GetNumberOfArrays() : 0;
-    msg << (n ? " (its point arrays: " : " and no point scalars: it has no point arrays");
+    msg << (n ? " (its point arrays: "
+              : unnamed ? ": it has no point arrays"
+                        : " and no point scalars: it has no point arrays");
     for (int k = 0; k < n; ++k)
     {
       vtkAbstractArray* other = pd->GetAbstractArray(k);
@@ -187,7 +198,10 @@ inline vtkDataArray* vtkApertureElevationArray(
     }
     msg << (n ? "); SetElevationArrayName names the one holding elevations in metres" : "");
   }
-  *problem = msg.str();
+  if (problem)
+  {
+    *problem = msg.str();
+  }
   return nullptr;
 }
 
@@ -197,7 +211,7 @@ inline vtkDataArray* vtkApertureElevationArray(
 inline vtkDataArray* vtkApertureSelectedElevation(vtkAlgorithm* self, vtkMTimeType made,
   vtkDataSetAttributes* pd, const char* fallback, std::string& name, std::string* problem)
 {
-  name = vtkApertureSelectedElevationName(self, made, pd, fallback, problem);
+  name = vtkApertureSelectedElevationName(self, made, fallback, problem);
   return problem->empty() ? vtkApertureElevationArray(pd, name.c_str(), problem) : nullptr;
 }
 

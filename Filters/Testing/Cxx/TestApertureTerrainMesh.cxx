@@ -683,6 +683,29 @@ void TestInputArraySelection()
     AP_CHECK(m.Mesher->GetExecutive()->Update() == 1 && !m.Errors->GetError());
     samePoints(expected);
   }
+  // ... the scalars themselves, unnamed ones too (in place of 'heights'), not another array
+  // named Elevation (until review unnamed scalars were looked up by the name 'Elevation',
+  // which found the DEM's); so does a selection of the scalars by attribute type
+  vtkNew<vtkFloatArray> unnamed;
+  unnamed->DeepCopy(heights);
+  unnamed->SetName(nullptr);
+  dem->GetPointData()->SetScalars(unnamed);
+  AP_CHECK(dem->GetPointData()->GetArray("Elevation") != nullptr);
+  m.Mesher->SetElevationArrayName(nullptr);
+  AP_CHECK(m.Mesher->GetExecutive()->Update() == 1 && !m.Errors->GetError());
+  samePoints(expected);
+  m.Mesher->SetElevationArrayName("Elevation"); // (the name, then the selection: it holds)
+  m.Mesher->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+  AP_CHECK(m.Mesher->GetExecutive()->Update() == 1 && !m.Errors->GetError());
+  samePoints(expected);
+  // and without scalars, an error naming what there is
+  dem->GetPointData()->SetActiveScalars(nullptr);
+  m.Mesher->SetElevationArrayName("");
+  AP_CHECK(m.Mesher->GetExecutive()->Update() == 0);
+  AP_CHECK_CONTAINS(m.Errors->GetErrorMessage(), "no ElevationArrayName is set, and the input "
+                                                 "has no active point scalars (its point arrays: "
+                                                 "'Elevation', an unnamed vtkFloatArray)");
   ObservedMesher cells(dem);
   cells.Mesher->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "heights");
