@@ -297,9 +297,10 @@ def _check_frame_outputs(frame_paths, inputs):
     through a symbolic link)."""
     _check_outputs([(option, names[0]) for option, names in frame_paths], inputs)
     seen, folders = {}, set()
+    real = _folder_realpath()
     for option, names in frame_paths:
         for k, name in enumerate(names):
-            key = os.path.realpath(name)
+            key = real(name)
             if key in seen:
                 raise ApertureError("frame %d of %s and frame %d of %s are one file, %s; choose "
                                     "other names" % (seen[key] + (k, option, name)))
