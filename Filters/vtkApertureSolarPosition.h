@@ -14,8 +14,9 @@
  * the years −2000..6000), implemented in the C core (ap_sun.h). Azimuths are clockwise from
  * true north; elevations and zeniths are apparent (refracted with Pressure and Temperature,
  * SPA's refraction model, which adds none while the sun's centre is more than 0.8333° below
- * the horizon: they step by about 0.6° there) unless named True. ΔT defaults to the Espenak & Meeus (2006)
- * estimate for the date (DeltaT = NaN); give the IERS value for the last 0.00001°.
+ * the horizon: they step by about 0.6° there) unless named True. ΔT defaults to the Espenak
+ * & Meeus (2006) estimate for the date (DeltaT = NaN); give the IERS value for the last
+ * 0.00001°.
  *
  * Time: SetTime accepts ISO 8601 with an offset ("2026-06-21T14:00+02:00", "...Z") or a local
  * time without one, which is read in the IANA zone of SetTimeZone ("Europe/Zurich") from the
