@@ -789,7 +789,7 @@ int vtkApertureTerrainMesh::RunRequestData(
     vtkErrorMacro(<< "no 2 x 2 block of the DEM's points has three valid corners, which a "
                      "triangle needs: its valid points ("
                   << stats.valid
-                  << ") are each isolated among nodata; there is no terrain to mesh");
+                  << ") are too few or too scattered among nodata; there is no terrain to mesh");
     output->Initialize();
     return 0;
   }

@@ -908,7 +908,8 @@ class TestCommandLineRender(unittest.TestCase):
             for name, z, expected in (
                     ("checkerboard", np.where(np.indices((30, 40)).sum(axis=0) % 2, -9999.0, 5.0),
                      "meshing: no 2 x 2 block of the DEM's points has three valid corners, which "
-                     "a triangle needs: its valid points (600) are each isolated among nodata"),
+                     "a triangle needs: its valid points (600) are too few or too scattered among "
+                     "nodata"),
                     ("voids", np.full((30, 40), -32768.0),
                      "the light: the site's height, -32768 m (the DEM's elevation at its centre: "
                      "a nodata value the DEM does not declare, or heights not in metres?), is "
