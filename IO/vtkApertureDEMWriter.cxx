@@ -326,16 +326,24 @@ void vtkApertureDEMWriter::WriteData()
 int vtkApertureDEMWriter::Write()
 {
   this->SetErrorCode(vtkErrorCode::NoError);
+  if (!this->FileName || !*this->FileName)
+  {
+    // (first, in either path: the code named the name for any failure without one, such as
+    // no input, until review)
+    vtkErrorMacro(<< "no file name was set");
+    this->SetErrorCode(vtkErrorCode::NoFileNameError);
+    return 0;
+  }
   if (this->StripRows <= 0)
   {
     this->Impl->Written = false;
     const int ok = this->Superclass::Write() && this->Impl->Written;
-    this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode(), this->FileName));
+    this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode()));
     return ok;
   }
   const int ok =
     vtkApertureWriteInStrips(this, this->StripRows, Tile, this->FileName ? this->FileName : "");
-  this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode(), this->FileName));
+  this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode()));
   return ok;
 }
 

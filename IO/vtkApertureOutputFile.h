@@ -22,22 +22,17 @@
 #include <vector>
 
 /** The ErrorCode a writer's Write() leaves, as VTK's writers set one, after it returned `ok`
- *  with the code `current` set where a failure was met (CannotOpenFileError) and its
- *  `fileName`: NoError after success, else `current`, else NoFileNameError without a name
- *  (as vtkApertureWriteInStrips refuses it too), else UnknownError. (The code stayed NoError
- *  until 2026-12-07.) */
-inline unsigned long vtkApertureWriteErrorCode(int ok, unsigned long current, const char* fileName)
+ *  with the code `current` set where a failure was met (NoFileNameError,
+ *  CannotOpenFileError): NoError after success, else `current`, else UnknownError. (The code
+ *  stayed NoError until 2026-12-07.) */
+inline unsigned long vtkApertureWriteErrorCode(int ok, unsigned long current)
 {
   if (ok)
   {
     return vtkErrorCode::NoError;
   }
-  if (current != vtkErrorCode::NoError)
-  {
-    return current;
-  }
-  return !fileName || !*fileName ? static_cast<unsigned long>(vtkErrorCode::NoFileNameError)
-                                 : static_cast<unsigned long>(vtkErrorCode::UnknownError);
+  return current != vtkErrorCode::NoError ? current
+                                          : static_cast<unsigned long>(vtkErrorCode::UnknownError);
 }
 
 /** What `st` is when it is not a regular file: "a folder", "a device", "a pipe", "a socket",

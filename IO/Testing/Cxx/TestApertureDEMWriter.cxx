@@ -892,6 +892,14 @@ void TestErrors()
     w->SetStripRows(2); // (refused by the strip driver: UnknownError until review)
     ExpectError(w, "no file name was set", vtkErrorCode::NoFileNameError);
   }
+  {
+    // without an input the name is looked at first; with a name, not NoFileNameError (which
+    // any failure without a name was, until review)
+    vtkNew<vtkApertureDEMWriter> w;
+    ExpectError(w, "no file name was set", vtkErrorCode::NoFileNameError);
+    w->SetFileName((tmp + "/no-input.tif").c_str());
+    ExpectError(w, "No input provided", vtkErrorCode::UnknownError);
+  }
   // A grid no geotransform can say: refused (a NaN origin was written as a geotransform of
   // NaN, a negative spacing as a mirrored one, zero as none, each with only a warning).
   for (bool withCRS : { true, false })
