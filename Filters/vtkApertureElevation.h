@@ -173,7 +173,8 @@ inline vtkDataArray* vtkApertureElevationArray(
   {
     if (unnamed)
     {
-      msg << "no ElevationArrayName is set, and the input has no active point scalars";
+      msg << "the point scalars are asked for (by a null or empty ElevationArrayName, or by "
+             "SetInputArrayToProcess of the scalars), but the input has none";
     }
     else
     {

@@ -54,9 +54,11 @@
  * extent alone. An update that fails or is aborted (AbortExecute, checked after each twentieth
  * of the points) leaves an empty mesh, and the next update runs again.
  *
- * Elevations taken from the input's active scalars, for want of an `Elevation` array (an
+ * Elevations taken from the input's active scalars, asked for (a null or empty
+ * ElevationArrayName, a selection of the scalars) or for want of an `Elevation` array (an
  * image made by hand), come out as the point array `Elevation` too (the same values and type,
- * sharing their memory): instead of unnamed scalars, beside named ones.
+ * sharing their memory): instead of unnamed scalars, beside named ones; not over another array
+ * so named.
  * Point arrays added: `Normals` (unit, ENU, of the output geometry including the vertical
  * exaggeration; active normals) and `TextureCoordinates` (u east, v north, spanning the outer
  * edges of the whole extent, so an image covering the DEM's bounds drapes exactly).
@@ -76,8 +78,8 @@
  * array without one tuple per point of the input, no CRS or one without geographic coordinates
  * (other than a local one), a lat/lon grid reaching beyond a pole or wider than the Earth (both
  * found in the pipeline information before a whole DEM is read), every point nodata or no
- * triangle at all (each valid point isolated among nodata; a streamed piece just gives an empty
- * mesh), a NaN VerticalExaggeration, or a mesh beyond MemoryLimit or the process's memory (the
+ * triangle at all (too few or too scattered valid points: no 2 x 2 block with three valid
+ * corners; a streamed piece just gives an empty mesh), a NaN VerticalExaggeration, or a mesh beyond MemoryLimit or the process's memory (the
  * message gives the size).
  *
  * @warning Heights are used as given (usually orthometric, above the geoid) as heights above

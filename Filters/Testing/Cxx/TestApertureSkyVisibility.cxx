@@ -562,6 +562,37 @@ void TestInputArraySelection()
                       0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Elevation");
                   }),
     expected, "Elevation by name");
+  // The scalars chosen are the scalars, unnamed ones too, beside a flat array named Elevation
+  // (until review they were looked up as 'Elevation', which found it: SkyViewFactor 1
+  // everywhere); the output's Elevation stays that array.
+  {
+    auto mixed = MakeDEM("EPSG:32633", 400000, 5000000, 30, 30, 20, 20, Rough);
+    vtkNew<vtkFloatArray> unnamed;
+    unnamed->DeepCopy(mixed->GetPointData()->GetArray("Elevation"));
+    unnamed->SetName(nullptr);
+    mixed->GetPointData()->RemoveArray("Elevation");
+    mixed->GetPointData()->SetScalars(unnamed);
+    vtkNew<vtkFloatArray> level;
+    level->DeepCopy(flat);
+    level->SetName("Elevation");
+    mixed->GetPointData()->AddArray(level);
+    for (const Setup& choose : { Setup([](vtkApertureSkyVisibility* s) {
+           s->SetElevationArrayName(nullptr);
+         }),
+           Setup([](vtkApertureSkyVisibility* s) {
+             s->SetInputArrayToProcess(
+               0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+           }) })
+    {
+      auto out = Sky(mixed, [&](vtkApertureSkyVisibility* s) {
+        setup(s);
+        choose(s);
+      });
+      CheckSameBits(out, expected, "unnamed scalars beside a flat Elevation");
+      AP_CHECK(out->GetPointData()->GetArray("Elevation") &&
+        out->GetPointData()->GetArray("Elevation")->GetRange()[1] == 250.0);
+    }
+  }
   // Of ElevationArrayName and a selection, the one made last holds (until 2026-12-07 a name
   // set after any selection was kept, and ignored): one filter, updated after each.
   {

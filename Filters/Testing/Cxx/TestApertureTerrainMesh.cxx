@@ -703,9 +703,11 @@ void TestInputArraySelection()
   dem->GetPointData()->SetActiveScalars(nullptr);
   m.Mesher->SetElevationArrayName("");
   AP_CHECK(m.Mesher->GetExecutive()->Update() == 0);
-  AP_CHECK_CONTAINS(m.Errors->GetErrorMessage(), "no ElevationArrayName is set, and the input "
-                                                 "has no active point scalars (its point arrays: "
-                                                 "'Elevation', an unnamed vtkFloatArray)");
+  AP_CHECK_CONTAINS(m.Errors->GetErrorMessage(), "the point scalars are asked for (by a null or "
+                                                 "empty ElevationArrayName, or by "
+                                                 "SetInputArrayToProcess of the scalars), but the "
+                                                 "input has none (its point arrays: 'Elevation', "
+                                                 "an unnamed vtkFloatArray)");
   ObservedMesher cells(dem);
   cells.Mesher->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "heights");
