@@ -234,7 +234,7 @@ def _file_kind(mode):
     return "something else"
 
 
-def _check_outputs(outputs, inputs, probe=True):
+def _check_outputs(outputs, inputs, probe=True, real=os.path.realpath):
     """Refuse an output that is not a file (a folder, a device such as /dev/null, a pipe), or
     whose folder does not exist or cannot take a new file (read-only, no permission), or that
     cannot be made by that name (too long, characters a FAT or NTFS stick refuses; the EXR
@@ -242,7 +242,8 @@ def _check_outputs(outputs, inputs, probe=True):
     not after it; one that would overwrite an input, or two outputs in one file (the second
     would silently replace the first). outputs, inputs: (option, path) pairs; empty paths
     skipped. probe=False leaves out what only the folder and the name's form decide (its
-    folder, a file made there and by that name), for names checked alike beside it already."""
+    folder, a file made there and by that name), for names checked alike beside it already;
+    real resolves names (_folder_realpath for many)."""
     import tempfile
     taken = [(name, path) for name, path in inputs if path]
     for name, path in outputs:
@@ -281,7 +282,7 @@ def _check_outputs(outputs, inputs, probe=True):
             else:
                 os.remove(target)
         for other, other_path in taken:
-            if _same_file(path, other_path):
+            if _same_file(path, other_path, real):
                 raise ApertureError("%s %s is %s; choose another name" % (
                     name, path, "the same file as " + other if _host_file(other_path) ==
                     other_path else "the file %s (%s) is read from" % (other, other_path)))
@@ -295,9 +296,9 @@ def _check_frame_outputs(frame_paths, inputs):
     link's only (about 1 ms a name; a dangling link of frame 2 failed the series after frame
     1 until 2026-12-07); and no two frames in one file (frame-%d.png as both -o and --exr, or
     through a symbolic link)."""
-    _check_outputs([(option, names[0]) for option, names in frame_paths], inputs)
-    seen, folders = {}, set()
     real = _folder_realpath()
+    _check_outputs([(option, names[0]) for option, names in frame_paths], inputs, real=real)
+    seen, folders = {}, set()
     for option, names in frame_paths:
         for k, name in enumerate(names):
             key = real(name)
@@ -308,7 +309,7 @@ def _check_frame_outputs(frame_paths, inputs):
             folder = os.path.dirname(os.path.abspath(name))
             if k:
                 _check_outputs([(option, name)], inputs, probe=k == len(names) - 1 or
-                               folder not in folders or os.path.islink(name))
+                               folder not in folders or os.path.islink(name), real=real)
             folders.add(folder)
 
 
