@@ -364,10 +364,11 @@ public:
   ///@{
   /** Name of the input's point array of elevations (metres; one component, any numeric type).
    *  Default "Elevation", which an input without an array so named takes from its active point
-   *  scalars; a null or empty name takes them in any case. Scalars so taken come out as the
-   *  point array `Elevation` too, as from the reader (the same values, sharing their memory;
-   *  instead of unnamed scalars, beside named ones; not over another array so named). A
-   *  name the input lacks is an error naming the arrays it has. SetInputArrayToProcess(0, 0,
+   *  scalars; a null or empty name takes them in any case, as does a selection of them (below).
+   *  Scalars so taken come out as the point array `Elevation` too, as from the reader (the
+   *  same values, sharing their memory; instead of unnamed scalars, beside named ones; not
+   *  over another array so named). A name the input lacks is an error naming the arrays it
+   *  has. SetInputArrayToProcess(0, 0,
    *  0, points, name), the way VTK's filters and ParaView select arrays, selects one in its
    *  place (or the point scalars, by attribute type); a selection of cell data or of another
    *  attribute is an error. Of the two, the one made last holds. */

@@ -79,8 +79,8 @@
  * (other than a local one), a lat/lon grid reaching beyond a pole or wider than the Earth (both
  * found in the pipeline information before a whole DEM is read), every point nodata or no
  * triangle at all (too few or too scattered valid points: no 2 x 2 block with three valid
- * corners; a streamed piece just gives an empty mesh), a NaN VerticalExaggeration, or a mesh beyond MemoryLimit or the process's memory (the
- * message gives the size).
+ * corners; a streamed piece just gives an empty mesh), a NaN VerticalExaggeration, or a mesh
+ * beyond MemoryLimit or the process's memory (the message gives the size).
  *
  * @warning Heights are used as given (usually orthometric, above the geoid) as heights above
  * the ellipsoid; over one DEM the geoid separation is nearly constant and shifts the whole mesh

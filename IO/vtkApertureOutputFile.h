@@ -22,9 +22,9 @@
 #include <vector>
 
 /** The ErrorCode a writer's Write() leaves, as VTK's writers set one, after it returned `ok`
- *  with the code `current` set where a failure was met (NoFileNameError,
- *  CannotOpenFileError): NoError after success, else `current`, else UnknownError. (The code
- *  stayed NoError until 2026-12-07.) */
+ *  with the code `current` set where a failure was met (CannotOpenFileError; Write() refuses
+ *  a missing name with NoFileNameError before it writes): NoError after success, else
+ *  `current`, else UnknownError. (The code stayed NoError until 2026-12-07.) */
 inline unsigned long vtkApertureWriteErrorCode(int ok, unsigned long current)
 {
   if (ok)

@@ -708,6 +708,14 @@ void TestInputArraySelection()
                                                  "SetInputArrayToProcess of the scalars), but the "
                                                  "input has none (its point arrays: 'Elevation', "
                                                  "an unnamed vtkFloatArray)");
+  m.Mesher->SetElevationArrayName("Elevation"); // (asked for by a selection: the same message)
+  m.Mesher->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+  AP_CHECK(m.Mesher->GetExecutive()->Update() == 0);
+  AP_CHECK_CONTAINS(m.Errors->GetErrorMessage(), "the point scalars are asked for (by a null or "
+                                                 "empty ElevationArrayName, or by "
+                                                 "SetInputArrayToProcess of the scalars), but the "
+                                                 "input has none");
   ObservedMesher cells(dem);
   cells.Mesher->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_CELLS, "heights");

@@ -889,7 +889,7 @@ void TestErrors()
     vtkNew<vtkApertureDEMWriter> w;
     w->SetInputData(MakeImage(true));
     ExpectError(w, "no file name was set", vtkErrorCode::NoFileNameError);
-    w->SetStripRows(2); // (refused by the strip driver: UnknownError until review)
+    w->SetStripRows(2); // (refused by Write() before the strip driver; UnknownError until review)
     ExpectError(w, "no file name was set", vtkErrorCode::NoFileNameError);
   }
   {
@@ -899,6 +899,8 @@ void TestErrors()
     ExpectError(w, "no file name was set", vtkErrorCode::NoFileNameError);
     w->SetFileName((tmp + "/no-input.tif").c_str());
     ExpectError(w, "No input provided", vtkErrorCode::UnknownError);
+    w->SetStripRows(2);
+    ExpectError(w, "no input to write", vtkErrorCode::UnknownError);
   }
   // A grid no geotransform can say: refused (a NaN origin was written as a geotransform of
   // NaN, a negative spacing as a mirrored one, zero as none, each with only a warning).

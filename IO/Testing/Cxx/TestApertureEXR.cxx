@@ -1198,8 +1198,18 @@ void TestWriterErrors()
     vtkNew<vtkApertureEXRWriter> w;
     w->SetInputData(image);
     ExpectWriterError(w, "no file name was set", vtkErrorCode::NoFileNameError);
-    w->SetStripRows(2); // (refused by the strip driver: UnknownError until review)
+    w->SetStripRows(2); // (refused by Write() before the strip driver; UnknownError until review)
     ExpectWriterError(w, "no file name was set", vtkErrorCode::NoFileNameError);
+  }
+  {
+    // without an input the name is looked at first; with a name, not NoFileNameError (which
+    // any failure without a name was, until review)
+    vtkNew<vtkApertureEXRWriter> w;
+    ExpectWriterError(w, "no file name was set", vtkErrorCode::NoFileNameError);
+    w->SetFileName((tmp + "/no-input.exr").c_str());
+    ExpectWriterError(w, "No input provided", vtkErrorCode::UnknownError);
+    w->SetStripRows(2);
+    ExpectWriterError(w, "no input to write", vtkErrorCode::UnknownError);
   }
   {
     auto volume = vtkSmartPointer<vtkImageData>::New();
