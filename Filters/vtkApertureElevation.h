@@ -80,9 +80,8 @@ inline std::string vtkApertureSelectedElevationName(
     *problem = std::string("SetInputArrayToProcess selects the point ") +
       vtkDataSetAttributes::GetAttributeTypeAsString(attribute) +
       ", not the scalars or an array by name; the elevations are one value a point";
-    return "";
   }
-  return "";
+  return ""; // (the point scalars, or nothing with *problem set)
 }
 
 // The first step of a filter's SetElevationArrayName (VTK's string setter the second): of it

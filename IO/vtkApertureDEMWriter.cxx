@@ -342,7 +342,7 @@ int vtkApertureDEMWriter::Write()
     return ok;
   }
   const int ok =
-    vtkApertureWriteInStrips(this, this->StripRows, Tile, this->FileName ? this->FileName : "");
+    vtkApertureWriteInStrips(this, this->StripRows, Tile, this->FileName);
   this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode()));
   return ok;
 }

@@ -572,7 +572,7 @@ int vtkApertureEXRWriter::Write()
   }
   // whole EXR chunks (1, 16 or 32 scanlines) in every strip
   const int ok =
-    vtkApertureWriteInStrips(this, this->StripRows, 32, this->FileName ? this->FileName : "");
+    vtkApertureWriteInStrips(this, this->StripRows, 32, this->FileName);
   this->SetErrorCode(vtkApertureWriteErrorCode(ok, this->GetErrorCode()));
   return ok;
 }

@@ -128,16 +128,12 @@ inline bool vtkApertureStripsComplete(
  * The producer is driven directly (an Update with an UPDATE_EXTENT per strip) instead of
  * through CONTINUE_EXECUTING: with that, an upstream failing mid-way leaves VTK 9.1's executive
  * looping forever. A producer whose ReleaseDataFlag is on gets each strip released once
- * written. Returns 1 when every strip was written; 0 after reporting the failure.
+ * written. Returns 1 when every strip was written; 0 after reporting the failure. `path`, the
+ * writer's file name, is not empty: the writers' Write() refuses a missing one first.
  */
 template <class Writer>
 int vtkApertureWriteInStrips(Writer* writer, int rows, int multiple, const char* path)
 {
-  if (!path || !*path) // (before the first strip is computed, which may take long)
-  {
-    vtkErrorWithObjectMacro(writer, << "no file name was set");
-    return 0;
-  }
   if (writer->GetNumberOfInputConnections(0) < 1)
   {
     vtkErrorWithObjectMacro(writer, << "no input to write");

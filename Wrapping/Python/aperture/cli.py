@@ -1419,8 +1419,8 @@ def cmd_render(args):
         watcher.update_information(reader)  # (which files it reads: a VRT's sources)
         geo, whole = _whole_grid(reader)
         if _wider_than_the_earth(geo):
-            # (before the DEM is read: the mesher refused it after, as the sky filter now
-            # does before, until 2026-12-07)
+            # (before the DEM is read, which render does itself before the mesher runs: it
+            # was read whole, and then refused by the mesher, until 2026-12-07)
             raise ApertureError(geo.GetErrorMessage())
         _check_sources(outputs, reader)
         _check_render_memory(args, *_extent_size(whole), bool(args.baked), False, _cells(whole))
