@@ -99,24 +99,33 @@ void SetWholeGrid(
     spacing[1], whole[1] - whole[0] + 1, whole[3] - whole[2] + 1);
 }
 
-// The refusal of a lat/lon grid wider than the Earth (geo describing the whole grid), or "": a
-// gridline-registered global grid's duplicate meridian, a wrong cell size (other CRSs pass:
-// their problems are RequestData's to find). For an update of a sub-extent (`piece`), also why
-// a piece cannot leave the columns too many out.
-std::string LongitudeSpanProblem(vtkApertureGeoreference* geo, bool piece)
+// The refusal of a grid (geo describing the whole grid) with no metric cell size, or "": a
+// lat/lon grid wider than the Earth (a gridline-registered global grid's duplicate meridian, a
+// wrong cell size), or a first, middle or last row without one (beyond a pole, off the
+// projection's domain: a grid's rows fail at its ends first). RequestData measures these rows,
+// or all, so this finds what it would. For an update of a sub-extent (`piece`), also why a
+// piece cannot leave the whole grid's problem out.
+std::string WholeGridProblem(vtkApertureGeoreference* geo, bool piece)
 {
-  if (!geo->IsGeographic() || geo->CheckLongitudeSpan())
+  int size[2];
+  geo->GetGridSize(size);
+  double dx, dy;
+  for (const int row : { 0, size[1] / 2, size[1] - 1 })
   {
-    return std::string();
+    // (which checks the longitude span first)
+    if (!geo->GetRowCellSizesMetres(row, 1, &dx, &dy))
+    {
+      return std::string("no metric cell size: ") + geo->GetErrorMessage() +
+        (piece ? "; that is the whole grid's: a sub-extent's cells are measured on the whole "
+                 "grid, so that sub-extents tile it"
+               : "");
+    }
   }
-  return std::string("no metric cell size: ") + geo->GetErrorMessage() +
-    (piece ? "; that is the whole grid's: a sub-extent's cells are measured on the whole grid, "
-             "so that sub-extents tile it"
-           : "");
+  return std::string();
 }
 
-// LongitudeSpanProblem for an update of `ext` of the input whose pipeline information is
-// inInfo, found there before anything is read; "" too when the information has no CRS.
+// WholeGridProblem for an update of `ext` of the input whose pipeline information is inInfo,
+// found there before anything is read; "" too when the information has no CRS.
 std::string UnreadRefusal(vtkInformation* inInfo, const int ext[6])
 {
   vtkNew<vtkApertureGeoreference> geo;
@@ -126,7 +135,7 @@ std::string UnreadRefusal(vtkInformation* inInfo, const int ext[6])
   }
   int whole[6];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  return LongitudeSpanProblem(geo, !std::equal(ext, ext + 6, whole));
+  return WholeGridProblem(geo, !std::equal(ext, ext + 6, whole));
 }
 
 // For a projected grid (geo describing the whole grid): a warning when its ground cell size s at
@@ -522,8 +531,8 @@ int vtkApertureSkyVisibility::RequestUpdateExtent(
     inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext, 6);
     return 1;
   }
-  // A grid wider than the Earth is refused before the DEM is read (a 20 GB global grid was
-  // read whole first): VTK 9.1 goes on after a failed RequestUpdateExtent, so the input is
+  // A grid with no metric cell size (wider than the Earth, beyond a pole) is refused before the
+  // DEM is read (a 20 GB global grid was read whole first): VTK 9.1 goes on after a failed RequestUpdateExtent, so the input is
   // asked for nothing and RequestData reports the refusal (it refuses one itself whose CRS
   // the pipeline information lacks).
   this->RefusedRequest = UnreadRefusal(inInfo, ext);
@@ -939,7 +948,7 @@ int vtkApertureSkyVisibility::RunRequestData(
   SetWholeGrid(geo, origin, spacing, wholeExt);
   {
     const std::string problem =
-      LongitudeSpanProblem(geo, !std::equal(outExt, outExt + 6, wholeExt));
+      WholeGridProblem(geo, !std::equal(outExt, outExt + 6, wholeExt));
     if (!problem.empty())
     {
       vtkErrorMacro(<< problem);

@@ -51,10 +51,10 @@ def bands(path):
     return out, meta, gt, srs
 
 
-def zeros_vrt(path, n):
-    """n x n float32 cells of 30 m in UTM 11N, no sources: zeros, nothing on disk."""
+def zeros_vrt(path, n, cell=30):
+    """n x n float32 cells of `cell` m in UTM 11N, no sources: zeros, nothing on disk."""
     ds = gdal.GetDriverByName("VRT").Create(path, n, n, 1, gdal.GDT_Float32)
-    ds.SetGeoTransform((500000, 30, 0, 4000000, 0, -30))
+    ds.SetGeoTransform((500000, cell, 0, 4000000, 0, -cell))
     srs = osr.SpatialReference()
     srs.ImportFromEPSG(32611)
     ds.SetSpatialRef(srs)
@@ -555,8 +555,9 @@ class TestBake(unittest.TestCase):
 
         # A DEM larger than the memory leaves nothing to compare with: 2e6^2 cells, 14.552 TiB
         # of elevations, 21 bytes a cell of it and 41 a cell of the window; strips would read
-        # the same DEM, so they are not offered.
-        huge = zeros_vrt(self.path("window-huge.vrt"), 2000000)
+        # the same DEM, so they are not offered. (Of 1 m: 30 m cells would reach 60,000 km
+        # south of the equator, off the projection's domain, which is refused first.)
+        huge = zeros_vrt(self.path("window-huge.vrt"), 2000000, cell=1)
         huge_out = self.path("window-huge.tif")
         if memory < 4.0 * 2000000 ** 2:
             refused("the products of 100 x 100 cells, with the 2000000 x 2000000 cells of DEM "
@@ -569,6 +570,17 @@ class TestBake(unittest.TestCase):
                     % (human_bytes((21.0 + 41.0 - 4.0) * 4e12), human_bytes(memory), owner),
                     huge, huge_out)
             self.assertFalse(os.path.exists(huge_out))
+        # (the 30 m one, a window of it too, at once: its south row has no place on the Earth)
+        off = zeros_vrt(self.path("window-off.vrt"), 2000000)
+        for window in ([], ["--srcwin", 0, 0, 100, 100]):
+            start = time.monotonic()
+            status, _, err = run("bake", off, huge_out, *window)
+            self.assertEqual(status, 1, err)
+            self.assertTrue(err.startswith(
+                "aperture: error: no metric cell size: the row of cells at y = -5.6e+07 (grid "
+                "row 0, counted from the south) has no geographic coordinates"), err)
+            self.assertLess(time.monotonic() - start, 30.0)
+        self.assertFalse(os.path.exists(huge_out))
         if memory > 84 << 30:
             self.skipTest("this machine has the memory to bake it")
         refused("the products of 100 x 80 cells, with the 60000 x 60000 cells of DEM around "

@@ -10,6 +10,7 @@
 - bit-identical results for any thread count; streamed sub-extents equal the whole run;
 - every documented error.
 """
+import itertools
 import math
 import re
 import os
@@ -709,7 +710,8 @@ class TestSkyVisibility(Testing.vtkTest):
         # A gridline-registered global grid (361 columns of 1 degree: -180 and 180 both) is
         # refused in RequestUpdateExtent, before its reader reads a cell (a 20 GB ETOPO grid
         # was read whole first until 2026-12-07), and for a sub-extent with why it is refused
-        # too; an image without the CRS in the pipeline information, in RequestData.
+        # too; an image without the CRS in the pipeline information, in RequestData. So is a
+        # grid beyond a pole (read whole, then refused, until later that day).
         import tempfile
         from osgeo import gdal
         from aperture.errors import Watcher
@@ -721,10 +723,23 @@ class TestSkyVisibility(Testing.vtkTest):
             ds.SetProjection(osr.SRS_WKT_WGS84_LAT_LONG)
             ds.GetRasterBand(1).WriteArray(z)
             ds = None
-            for extent in (None, (10, 59, 10, 59, 0, 0)):
+            # (a whole grid of 0.5-degree cells whose cell centres reach the poles: its
+            # outer rows reach a quarter of a degree beyond them)
+            polar = os.path.join(tmp, "polar.tif")
+            ds = gdal.GetDriverByName("GTiff").Create(polar, 720, 361, 1, gdal.GDT_Float32)
+            ds.SetGeoTransform((-180, 0.5, 0, 90.25, 0, -0.5))
+            ds.SetProjection(osr.SRS_WKT_WGS84_LAT_LONG)
+            ds.GetRasterBand(1).WriteArray(np.full((361, 720), 100.0, np.float32))
+            ds = None
+            for extent, (dem, words) in itertools.product(
+                    (None, (10, 59, 10, 59, 0, 0)),
+                    ((path, ["the grid spans 361 degrees of longitude",
+                             "(a gridline-registered global grid)"]),
+                     (polar, ["the row of cells at y = -90 (grid row 0, counted from the south)"
+                              " reaches latitude -90.25, beyond the pole"]))):
                 w = Watcher()
                 reader = aperture.vtkApertureDEMReader()
-                reader.SetFileName(path)
+                reader.SetFileName(dem)
                 f = w.watch(aperture.vtkApertureSkyVisibility())
                 w.watch(f.GetExecutive())
                 f.SetInputConnection(reader.GetOutputPort())
@@ -734,13 +749,17 @@ class TestSkyVisibility(Testing.vtkTest):
                 else:
                     f.Update()
                 self.assertTrue(w.errors, extent)
-                self.assertIn("no metric cell size: the grid spans 361 degrees of longitude",
-                              w.errors[0])
-                self.assertIn("(a gridline-registered global grid)", w.errors[0])
+                self.assertTrue(w.errors[0].startswith("no metric cell size: " + words[0]),
+                                w.errors[0])
+                self.assertIn(words[-1], w.errors[0])
                 piece = "; that is the whole grid's: a sub-extent's cells are measured on the " \
                         "whole grid, so that sub-extents tile it"
                 self.assertEqual(piece in w.errors[0], extent is not None, w.errors[0])
                 self.assertEqual(reader.GetOutput().GetNumberOfPoints(), 0, extent)
+                # (planning an update refuses it as well, with the same words)
+                self.assertFalse(f.ComputeInputExtent(extent or (0, 359, 0, 180, 0, 0),
+                                                      [0] * 6))
+                self.assertTrue(w.errors[-1].startswith("no metric cell size: " + words[0]))
             # (a local CRS has no longitudes: not refused, as it was for an hour of 2026-12-07)
             path = os.path.join(tmp, "site.tif")
             ds = gdal.GetDriverByName("GTiff").Create(path, 30, 20, 1, gdal.GDT_Float32)
