@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Driver of the Install-Downstream test (cmake -P): install the build into a scratch prefix,
-# build the downstream project against it, run it, and check the installed Python package and
-# command line.
+# build the downstream project against it (the installed headers as C++11 too), run it, and
+# check the installed Python package and command line.
 file(REMOVE_RECURSE "${WORK_DIR}")
 set(prefix "${WORK_DIR}/prefix")
 
