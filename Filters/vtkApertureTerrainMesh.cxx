@@ -12,6 +12,7 @@
 #include "vtkExtentTranslator.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkImageData.h"
@@ -27,6 +28,7 @@
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
 
 #include "ap_grid.h"
 #include "ap_mesh.h"
@@ -107,6 +109,75 @@ void PieceExtent(vtkInformation* inInfo, int piece, int pieces, int ext[6])
     vtkNew<vtkExtentTranslator> translator;
     translator->PieceToExtentThreadSafe(piece, pieces, 0, whole, ext,
       wraps ? vtkExtentTranslator::Y_SLAB_MODE : vtkExtentTranslator::BLOCK_MODE, 0);
+  }
+}
+
+// The layers of ghost cells a request for one of `pieces` pieces asks for (none for the whole
+// DEM, which has no neighbours).
+int GhostLevels(vtkInformation* outInfo, int pieces)
+{
+  const auto key = vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS();
+  return pieces > 1 && outInfo->Has(key) ? std::max(0, outInfo->Get(key)) : 0;
+}
+
+// ext grown by `by` points on every side, within whole (a no-op on an empty extent).
+void GrowExtent(int ext[6], const int whole[6], int by)
+{
+  for (int a = 0; a < 4 && ext[0] <= ext[1] && by > 0; a += 2)
+  {
+    ext[a] = static_cast<int>(std::max<long long>(whole[a], static_cast<long long>(ext[a]) - by));
+    ext[a + 1] =
+      static_cast<int>(std::min<long long>(whole[a + 1], static_cast<long long>(ext[a + 1]) + by));
+  }
+}
+
+// vtkGhostType of a piece meshed over `ext` (its own extent `own` and ghost layers around it),
+// whose nx x ny grid's triangles are `polys`, the quads' of grid row j from rowStart[j], then
+// the caps' (a seam's copies of column 0 are the points from nx * ny on, one a row): the
+// triangles of quads outside own's, and the caps of rows outside it, are DUPLICATECELL; the
+// points outside own's, used by such triangles alone, DUPLICATEPOINT.
+void MarkGhosts(vtkPolyData* output, vtkCellArray* polys, const int ext[6], const int own[6],
+  size_t nx, size_t ny, const std::vector<size_t>& rowStart)
+{
+  const size_t n = nx * ny;
+  // (the column and row in the whole grid of point `id`: a seam copy is column nx)
+  const auto column = [&](vtkIdType id) {
+    return ext[0] + static_cast<long long>(static_cast<size_t>(id) < n ? id % nx : nx);
+  };
+  const auto row = [&](vtkIdType id) {
+    return ext[2] + static_cast<long long>(static_cast<size_t>(id) < n ? id / nx : id - n);
+  };
+  vtkUnsignedCharArray* points = output->AllocatePointGhostArray();
+  for (vtkIdType id = 0; id < points->GetNumberOfTuples(); ++id)
+  {
+    const long long i = column(id), j = row(id);
+    const bool inside = (i >= own[0] && i <= own[1]) || static_cast<size_t>(id) >= n;
+    if (!inside || j < own[2] || j > own[3])
+    {
+      points->SetValue(id, vtkDataSetAttributes::DUPLICATEPOINT);
+    }
+  }
+  vtkUnsignedCharArray* cells = output->AllocateCellGhostArray();
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType t = 0; t < polys->GetNumberOfCells(); ++t)
+  {
+    polys->GetCellAtId(t, ids);
+    long long i = std::numeric_limits<long long>::max(), j = i;
+    for (vtkIdType v = 0; v < ids->GetNumberOfIds(); ++v)
+    {
+      // (a quad's triangle has one of its two western corners, and one of its southern ones)
+      i = std::min(i, column(ids->GetId(v)));
+      j = std::min(j, row(ids->GetId(v)));
+    }
+    const bool cap = static_cast<size_t>(t) >= rowStart.back();
+    // (a seam's quads start in the last column, which no other grid's do)
+    const bool owned = cap ? j >= own[2] && j <= own[3]
+                           : i >= own[0] && (i < own[1] || own[1] == ext[1]) && j >= own[2] &&
+        j < own[3];
+    if (!owned)
+    {
+      cells->SetValue(t, vtkDataSetAttributes::DUPLICATECELL);
+    }
   }
 }
 
@@ -258,14 +329,9 @@ int vtkApertureTerrainMesh::RequestUpdateExtent(
     const int nothing[6] = { 0, -1, 0, -1, 0, -1 };
     std::copy(nothing, nothing + 6, ext);
   }
-  if (pieces > 1 && this->ComputeNormals && ext[0] <= ext[1])
-  {
-    for (int a = 0; a < 4; a += 2)
-    {
-      ext[a] = std::max(whole[a], ext[a] - 1);
-      ext[a + 1] = std::min(whole[a + 1], ext[a + 1] + 1);
-    }
-  }
+  // (the piece's ghost layers, then the margin beyond them)
+  GrowExtent(ext, whole, GhostLevels(outInfo, pieces));
+  GrowExtent(ext, whole, pieces > 1 && this->ComputeNormals ? 1 : 0);
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext, 6);
   // The request is this extent, not a piece: the pipeline copies the piece request upstream,
   // and a reader that produces sub-extents would intersect it with its own split (a quarter
@@ -360,9 +426,11 @@ int vtkApertureTerrainMesh::RunRequestData(
   // So does one that VTK's split leaves without points (more pieces than the DEM has rows or
   // columns to give): the input still holds an earlier update, which was meshed again (1000
   // pieces of a 20 x 20 DEM summed 609 times its triangles until 2026-12-06).
-  if (pieces > 1 && inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  int own[6] = { 0, -1, 0, -1, 0, -1 }; // (a streamed piece's, without its ghost layers)
+  const bool streamed =
+    pieces > 1 && inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+  if (streamed)
   {
-    int own[6];
     PieceExtent(inInfo, piece, pieces, own);
     if (own[1] < own[0] || own[3] < own[2])
     {
@@ -380,16 +448,18 @@ int vtkApertureTerrainMesh::RunRequestData(
     inInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), asked);
     input = vtkApertureCropTo(input, asked, cropped, false, cropProblem);
   }
-  // A streamed piece read with a margin (RequestUpdateExtent): meshed over its own extent,
-  // the margin kept for its boundary normals.
+  // A streamed piece read with a margin (RequestUpdateExtent): meshed over its own extent and
+  // the ghost layers asked for, the margin kept for their boundary normals.
   vtkSmartPointer<vtkImageData> margin;
   vtkNew<vtkImageData> pieceImage;
-  if (input && pieces > 1 && this->ComputeNormals &&
-    inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  const int ghostLevels = streamed ? GhostLevels(outInfo, pieces) : 0;
+  if (input && streamed && this->ComputeNormals)
   {
-    int own[6];
-    PieceExtent(inInfo, piece, pieces, own);
-    vtkImageData* alone = vtkApertureCropTo(input, own, pieceImage, false, cropProblem);
+    int meshed[6], wholeExtent[6];
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
+    std::copy(own, own + 6, meshed);
+    GrowExtent(meshed, wholeExtent, ghostLevels);
+    vtkImageData* alone = vtkApertureCropTo(input, meshed, pieceImage, false, cropProblem);
     if (alone != input)
     {
       margin = input;
@@ -492,6 +562,8 @@ int vtkApertureTerrainMesh::RunRequestData(
     {
       copies += 40.0 * static_cast<double>(margin->GetNumberOfPoints());
     }
+    // (ghost marks: a byte a point and a triangle)
+    copies += ghostLevels > 0 ? 3.0 * static_cast<double>(nv) : 0.0;
     const double need = this->EstimateBytes(static_cast<double>(nv),
       input->GetPointData()->GetArray("BentNormal") != nullptr, copies);
     std::ostringstream needs;
@@ -915,6 +987,10 @@ int vtkApertureTerrainMesh::RunRequestData(
       }
     }
     outPD->SetTCoords(tcoords);
+  }
+  if (ghostLevels > 0)
+  {
+    MarkGhosts(output, polys, ext, own, nx, ny, rowStart);
   }
 
   // 8. Field data: georeference passed through, frame recorded.

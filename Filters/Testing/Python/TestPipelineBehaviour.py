@@ -3,6 +3,7 @@
 a property changes (and only then), and streaming: a DEM meshed piece by piece (the reader
 reading only each piece's rows) gives exactly the vertices of the whole mesh, in the same
 frame."""
+import itertools
 import os
 import shutil
 import sys
@@ -11,9 +12,26 @@ import tempfile
 import numpy as np
 from osgeo import gdal, osr
 from vtkmodules.test import Testing
-from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonDataModel import vtkImageData
 
 import aperture
+
+
+def global_image(z):
+    """A global DEM of 36 x 18 points of 10 degrees, pole to pole, its elevations z (36 * 18
+    values, row by row from the south), as an image in EPSG:4326."""
+    image = vtkImageData()
+    image.SetDimensions(36, 18, 1)
+    image.SetOrigin(-175.0, -85.0, 0.0)
+    image.SetSpacing(10.0, 10.0, 1.0)
+    values = numpy_to_vtk(z, deep=1)
+    values.SetName("Elevation")
+    image.GetPointData().SetScalars(values)
+    geo = aperture.vtkApertureGeoreference()
+    if not (geo.SetCRS("EPSG:4326") and geo.AttachToImage(image)):
+        raise RuntimeError(geo.GetErrorMessage())
+    return image
 
 
 def write_dem(path, z, gt, epsg, nodata=None):
@@ -304,17 +322,7 @@ print(before, seen)
         # A global DEM given with SetInputData wraps as one read: GetWrapColumns, for planning
         # an update's memory, said 0 for it until 2026-12-07 (its CRS is in its field data, not
         # in the pipeline information a reader publishes).
-        from vtkmodules.util.numpy_support import numpy_to_vtk
-        from vtkmodules.vtkCommonDataModel import vtkImageData
-        image = vtkImageData()
-        image.SetDimensions(36, 18, 1)
-        image.SetOrigin(-175.0, -85.0, 0.0)
-        image.SetSpacing(10.0, 10.0, 1.0)
-        z = numpy_to_vtk(np.linspace(0.0, 900.0, 36 * 18).astype(np.float32), deep=1)
-        z.SetName("Elevation")
-        image.GetPointData().SetScalars(z)
-        geo = aperture.vtkApertureGeoreference()
-        self.assertTrue(geo.SetCRS("EPSG:4326") and geo.AttachToImage(image))
+        image = global_image(np.linspace(0.0, 900.0, 36 * 18).astype(np.float32))
         sky = aperture.vtkApertureSkyVisibility()
         sky.SetInputData(image)
         sky.UpdateInformation()
@@ -665,6 +673,113 @@ print(w.errors[0] if w.errors else mesher.GetOutput().GetNumberOfPoints())
             self.assertLess(out.GetNumberOfPoints(), ny * (nx + 1))
             cells += out.GetNumberOfCells()
         self.assertEqual(cells, 2 * nx * (ny - 1) + 2 * (nx - 2))
+
+    def testGhostLevels(self):
+        # A piece asked for with ghost levels (UpdatePiece(p, n, g), as ParaView's ranks ask)
+        # is meshed over g more points on every side where the DEM goes on, each cell and point
+        # there marked in vtkGhostType (DUPLICATECELL, DUPLICATEPOINT), and the output says it
+        # has g levels: its own cells are the piece's, the others the neighbours', every one
+        # the whole mesh's. Until 2026-12-07 the levels were ignored (the same cells as level 0,
+        # no vtkGhostType, yet DATA_NUMBER_OF_GHOST_LEVELS g). Level 0 adds no array.
+        from vtkmodules.vtkCommonDataModel import vtkDataObject, vtkDataSetAttributes
+        from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
+        from vtkmodules.vtkFiltersParallel import vtkRemoveGhosts
+        translator = vtkExtentTranslator()
+
+        def triangles(mesh, ghost=None):
+            """The triangles as sorted tuples of their corners (ghost: only those that are,
+            or are not, ghosts)."""
+            pts = vtk_to_numpy(mesh.GetPoints().GetData())
+            ids = vtk_to_numpy(mesh.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+            if ghost is not None:
+                marks = vtk_to_numpy(mesh.GetCellData().GetArray("vtkGhostType"))
+                ids = ids[(marks == vtkDataSetAttributes.DUPLICATECELL) == ghost]
+            return sorted(tuple(sorted(map(tuple, pts[t].tolist()))) for t in ids)
+
+        reader = aperture.vtkApertureDEMReader()
+        reader.SetFileName(self.path)
+        reader.SetDecimation(2)  # (172 x 201 points)
+        reader.PartialBlockWarningOff()
+        whole = aperture.vtkApertureTerrainMesh()
+        whole.SetInputConnection(reader.GetOutputPort())
+        whole.Update()
+        full = vtk_to_numpy(whole.GetOutput().GetPoints().GetData()).reshape(172, 201, 3)
+        full_normals = vtk_to_numpy(whole.GetOutput().GetPointData().GetNormals()).reshape(
+            172, 201, 3)
+        for normals, pieces, levels in itertools.product((True, False), (2, 3), (0, 1, 2)):
+            cells = 0
+            for piece in range(pieces):
+                r = aperture.vtkApertureDEMReader()
+                r.SetFileName(self.path)
+                r.SetDecimation(2)
+                r.PartialBlockWarningOff()
+                m = aperture.vtkApertureTerrainMesh()
+                m.SetComputeNormals(normals)
+                m.SetInputConnection(r.GetOutputPort())
+                m.UpdatePiece(piece, pieces, levels)
+                out = m.GetOutput()
+                own = [0] * 6
+                translator.PieceToExtentThreadSafe(piece, pieces, 0, [0, 200, 0, 171, 0, 0], own,
+                                                   vtkExtentTranslator.BLOCK_MODE, 0)
+                ext = [max(0, own[0] - levels), min(200, own[1] + levels),
+                       max(0, own[2] - levels), min(171, own[3] + levels), 0, 0]
+                self.assertEqual(ext != own, levels > 0)
+                read = [max(0, ext[0] - 1), min(200, ext[1] + 1),
+                        max(0, ext[2] - 1), min(171, ext[3] + 1), 0, 0]
+                self.assertEqual(r.GetOutput().GetExtent(), tuple(read if normals else ext))
+                shape = (ext[3] - ext[2] + 1, ext[1] - ext[0] + 1, 3)
+                np.testing.assert_array_equal(
+                    vtk_to_numpy(out.GetPoints().GetData()).reshape(shape),
+                    full[ext[2]:ext[3] + 1, ext[0]:ext[1] + 1])
+                if normals:
+                    np.testing.assert_array_equal(
+                        vtk_to_numpy(out.GetPointData().GetNormals()).reshape(shape),
+                        full_normals[ext[2]:ext[3] + 1, ext[0]:ext[1] + 1])
+                self.assertEqual(out.GetInformation().Get(
+                    vtkDataObject.DATA_NUMBER_OF_GHOST_LEVELS()), levels)
+                self.assertEqual(out.GetNumberOfCells(),
+                                 2 * (ext[1] - ext[0]) * (ext[3] - ext[2]))
+                if not levels:
+                    self.assertIsNone(out.GetCellData().GetArray("vtkGhostType"))
+                    self.assertIsNone(out.GetPointData().GetArray("vtkGhostType"))
+                    cells += out.GetNumberOfCells()
+                    continue
+                # the points outside the piece's own extent, and the cells of their quads
+                j, i = np.mgrid[ext[2]:ext[3] + 1, ext[0]:ext[1] + 1]
+                outside = (i < own[0]) | (i > own[1]) | (j < own[2]) | (j > own[3])
+                np.testing.assert_array_equal(
+                    vtk_to_numpy(out.GetPointData().GetArray("vtkGhostType")),
+                    np.where(outside.ravel(), vtkDataSetAttributes.DUPLICATEPOINT, 0))
+                kept = vtkRemoveGhosts()
+                kept.SetInputData(out)
+                kept.Update()
+                self.assertEqual(kept.GetOutput().GetNumberOfCells(),
+                                 2 * (own[1] - own[0]) * (own[3] - own[2]))
+                self.assertEqual(triangles(kept.GetOutput()), triangles(out, False))
+                cells += kept.GetOutput().GetNumberOfCells()
+            self.assertEqual(cells, whole.GetOutput().GetNumberOfCells())
+
+        # A global DEM (10-degree cells pole to pole, given with SetInputData): bands of whole
+        # rows, their ghost rows with their seam quads and a pole's cap, marked; the bands' own
+        # triangles are the whole mesh's, every triangle one of them.
+        m = aperture.vtkApertureTerrainMesh()
+        m.SetInputData(global_image(np.random.default_rng(3).uniform(0.0, 3000.0, 36 * 18)))
+        m.Update()
+        every = triangles(m.GetOutput())
+        self.assertEqual(len(every), 2 * 36 * 17 + 2 * 34)  # (the quads, the two caps)
+        for pieces, levels in ((2, 1), (3, 2), (5, 1)):
+            own, ghosts = [], 0
+            for piece in range(pieces):
+                m.UpdatePiece(piece, pieces, levels)
+                out = m.GetOutput()
+                mine, theirs = triangles(out, False), triangles(out, True)
+                self.assertTrue(set(theirs) <= set(every))
+                own += mine
+                ghosts += len(theirs)
+            self.assertEqual(sorted(own), every)
+            # (each band's ghost rows: its neighbours' quads, seams included, and a cap within
+            # reach; the bands are at least levels + 1 rows apart from a pole)
+            self.assertGreaterEqual(ghosts, 2 * (pieces - 1) * levels * 2 * 36)
 
     def testStreamingSkyProductsOntoMesh(self):
         # reader -> sky visibility (2 km) -> mesh, piece by piece: the mesh asks the sky filter
