@@ -10,7 +10,9 @@
 #include "vtkApertureTerrainMesh.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
@@ -505,6 +507,50 @@ void TestGlobal()
   AP_CHECK(Mesh(band)->GetNumberOfCells() == 2 * nx * (ny - 3));
 }
 
+// Ghost levels (UpdatePiece(p, n, g)): each piece meshed over g more rows and columns, whose
+// cells and points are marked in vtkGhostType; the pieces' own cells add up to the whole mesh
+// (a global DEM's bands with their seams and caps, a UTM DEM's blocks). The Python test
+// (TestPipelineBehaviour) compares the triangles themselves; this one runs under the sanitizers.
+void TestGhostLevels()
+{
+  const auto hills = [](int i, int j) { return static_cast<float>(100 * ((i * 7 + j * 3) % 11)); };
+  auto globe = MakeDEM("EPSG:4326", -175.0, -85.0, 10.0, 10.0, 36, 18, hills);
+  auto block = MakeDEM("EPSG:32611", 500000.0, 4000000.0, 30.0, 30.0, 23, 17, hills);
+  for (vtkImageData* dem : { globe.GetPointer(), block.GetPointer() })
+  {
+    const vtkIdType whole = Mesh(dem)->GetNumberOfCells();
+    for (int levels = 1; levels <= 2; ++levels)
+    {
+      vtkNew<vtkApertureTerrainMesh> mesher;
+      mesher->SetInputData(dem);
+      vtkIdType own = 0;
+      for (int piece = 0; piece < 3; ++piece)
+      {
+        mesher->UpdatePiece(piece, 3, levels);
+        vtkPolyData* out = mesher->GetOutput();
+        vtkDataArray* cells = out->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName());
+        vtkDataArray* points =
+          out->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName());
+        AP_CHECK(cells && points && cells->GetNumberOfTuples() == out->GetNumberOfCells() &&
+          points->GetNumberOfTuples() == out->GetNumberOfPoints());
+        vtkIdType ghosts = 0, ghostPoints = 0;
+        for (vtkIdType t = 0; cells && t < cells->GetNumberOfTuples(); ++t)
+        {
+          ghosts += cells->GetComponent(t, 0) == vtkDataSetAttributes::DUPLICATECELL;
+        }
+        for (vtkIdType k = 0; points && k < points->GetNumberOfTuples(); ++k)
+        {
+          ghostPoints += points->GetComponent(k, 0) == vtkDataSetAttributes::DUPLICATEPOINT;
+        }
+        // (each piece borders another: ghost rows or columns of its cells and points)
+        AP_CHECK(ghosts > 0 && ghostPoints > 0 && ghosts < out->GetNumberOfCells());
+        own += out->GetNumberOfCells() - ghosts;
+      }
+      AP_CHECK(own == whole);
+    }
+  }
+}
+
 // Exaggeration scales heights above the ellipsoid, not the curvature drop.
 void TestExaggeration()
 {
@@ -890,6 +936,7 @@ int TestApertureTerrainMesh(int, char*[])
   TestScalarsOfAnyType();
   TestInputArraySelection();
   TestGlobal();
+  TestGhostLevels();
   TestNonFiniteAndImplausible();
   TestExaggeration();
   TestErrors();
