@@ -532,9 +532,9 @@ int vtkApertureSkyVisibility::RequestUpdateExtent(
     return 1;
   }
   // A grid with no metric cell size (wider than the Earth, beyond a pole) is refused before the
-  // DEM is read (a 20 GB global grid was read whole first): VTK 9.1 goes on after a failed RequestUpdateExtent, so the input is
-  // asked for nothing and RequestData reports the refusal (it refuses one itself whose CRS
-  // the pipeline information lacks).
+  // DEM is read (a 20 GB global grid was read whole first): VTK 9.1 goes on after a failed
+  // RequestUpdateExtent, so the input is asked for nothing and RequestData reports the refusal
+  // (it refuses one itself whose CRS the pipeline information lacks).
   this->RefusedRequest = UnreadRefusal(inInfo, ext);
   if (!this->RefusedRequest.empty())
   {
