@@ -698,6 +698,42 @@ bool vtkApertureGeoreference::IsLocal()
   return this->Impl->IsLocal();
 }
 
+namespace
+{
+// The longitude step (degrees) of a column of geo's grid along its first row, first from one
+// cell, then over `span` of them, as many as stay within a quarter of the globe: so that
+// columns 180 degrees or more apart, which a difference within +-180 cannot tell, are
+// predicted from it (a global Web Mercator grid was "not cylindrical" until 2026-12-07).
+// False when a point has no geographic coordinates or the step is 0.
+bool ColumnLongitudeStep(vtkApertureGeoreference* geo, double& step, int& span)
+{
+  double origin[2], spacing[2];
+  int size[2];
+  geo->GetGridOrigin(origin);
+  geo->GetGridSpacing(spacing);
+  geo->GetGridSize(size);
+  double first[2], one[2], far[2];
+  if (size[0] < 2 || !geo->CRSToLonLat(origin[0], origin[1], first) ||
+    !geo->CRSToLonLat(origin[0] + spacing[0], origin[1], one))
+  {
+    return false;
+  }
+  const double step1 = std::remainder(one[0] - first[0], 360.0);
+  if (!std::isfinite(step1) || step1 == 0.0)
+  {
+    return false;
+  }
+  span = static_cast<int>(
+    std::min<double>(size[0] - 1, std::max(1.0, std::floor(90.0 / std::fabs(step1)))));
+  if (!geo->CRSToLonLat(origin[0] + span * spacing[0], origin[1], far))
+  {
+    return false;
+  }
+  step = std::remainder(far[0] - first[0], 360.0) / span;
+  return std::isfinite(step) && step != 0.0;
+}
+}
+
 //------------------------------------------------------------------------------
 bool vtkApertureGeoreference::HasMeridianColumns()
 {
@@ -716,17 +752,23 @@ bool vtkApertureGeoreference::HasMeridianColumns()
     this->Impl->Error = "the grid has fewer than 2 x 2 cells";
     return false;
   }
-  const int cols[3] = { 0, (nx - 1) / 2, nx - 1 }, rows[3] = { 0, (ny - 1) / 2, ny - 1 };
-  double xy[18], ll[18];
+  double step;
+  int span;
+  if (!ColumnLongitudeStep(this, step, span))
+  {
+    return false;
+  }
+  const int cols[4] = { 0, span, (nx - 1) / 2, nx - 1 }, rows[3] = { 0, (ny - 1) / 2, ny - 1 };
+  double xy[24], ll[24];
   for (int r = 0; r < 3; ++r)
   {
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < 4; ++c)
     {
-      xy[2 * (3 * r + c)] = this->GridOrigin[0] + cols[c] * this->GridSpacing[0];
-      xy[2 * (3 * r + c) + 1] = this->GridOrigin[1] + rows[r] * this->GridSpacing[1];
+      xy[2 * (4 * r + c)] = this->GridOrigin[0] + cols[c] * this->GridSpacing[0];
+      xy[2 * (4 * r + c) + 1] = this->GridOrigin[1] + rows[r] * this->GridSpacing[1];
     }
   }
-  if (!this->CRSToLonLatPoints(9, xy, ll))
+  if (!this->CRSToLonLatPoints(12, xy, ll))
   {
     return false;
   }
@@ -737,33 +779,30 @@ bool vtkApertureGeoreference::HasMeridianColumns()
       return false;
     }
   }
-  // (longitudes relative to the first column's, within +-180, so that a grid across the
-  // antimeridian stays linear in x)
-  const auto lon = [&ll](int r, int c) {
-    return std::remainder(ll[2 * (3 * r + c)] - ll[0], 360.0);
-  };
-  const auto lat = [&ll](int r, int c) { return ll[2 * (3 * r + c) + 1]; };
-  const double cellLon = std::fabs(lon(0, 2) - lon(0, 0)) / (nx - 1);
+  const auto lon = [&ll](int r, int c) { return ll[2 * (4 * r + c)]; };
+  const auto lat = [&ll](int r, int c) { return ll[2 * (4 * r + c) + 1]; };
+  const double cellLon = std::fabs(step);
   const double cellLat = std::fabs(lat(2, 0) - lat(0, 0)) / (ny - 1);
-  if (!(cellLon > 0.0 && cellLat > 0.0))
+  if (!(cellLat > 0.0))
   {
     return false;
   }
   const double tolLon = std::max(1e-6 * cellLon, 1e-12);
   const double tolLat = std::max(1e-6 * cellLat, 1e-12);
-  for (int k = 0; k < 3; ++k)
+  // (longitudes compared modulo 360: a grid across the antimeridian, or around the globe)
+  const auto apart = [](double a, double b) { return std::fabs(std::remainder(a - b, 360.0)); };
+  for (int r = 0; r < 3; ++r)
   {
-    for (int m = 1; m < 3; ++m)
+    for (int c = 0; c < 4; ++c)
     {
-      if (std::fabs(lat(k, m) - lat(k, 0)) > tolLat || std::fabs(lon(m, k) - lon(0, k)) > tolLon)
+      if (std::fabs(lat(r, c) - lat(r, 0)) > tolLat || apart(lon(r, c), lon(0, c)) > tolLon)
       {
         return false; // (a row that is not a parallel, or a column that is not a meridian)
       }
-    }
-    const double t = static_cast<double>(cols[1]) / (nx - 1);
-    if (std::fabs(lon(k, 1) - ((1 - t) * lon(k, 0) + t * lon(k, 2))) > tolLon)
-    {
-      return false; // (longitude not linear in x)
+      if (apart(lon(r, c), lon(r, 0) + cols[c] * step) > tolLon)
+      {
+        return false; // (longitude not linear in x)
+      }
     }
   }
   return true;

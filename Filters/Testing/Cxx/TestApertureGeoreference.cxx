@@ -495,7 +495,7 @@ void TestLongitudeSpan()
 } // namespace
 
 // Columns are meridians and rows parallels on lat/lon grids and the cylindrical projections
-// (also across the antimeridian), not on transverse Mercator (even a 2 x 2 grid beside its
+// (also across the antimeridian, and around the globe), not on transverse Mercator (even a 2 x 2 grid beside its
 // central meridian), polar stereographic, sinusoidal or Albers.
 void TestMeridianColumns()
 {
@@ -509,6 +509,11 @@ void TestMeridianColumns()
   const Case cases[] = { { "EPSG:4326", -120.0, 40.0, 0.001, 100, true },
     { "EPSG:3857", 1e6, 8.5e6, 1000.0, 100, true },
     { "EPSG:3857", 20037508.34 - 50000.0, 8.5e6, 1000.0, 100, true },
+    // (more than 180 degrees of longitude, around the globe: false until 2026-12-07)
+    { "EPSG:3857", -20037508.34 + 50000.0, -5e6, 100000.0, 300, true },
+    { "EPSG:3857", -20037508.342789244 + 55659.74539663679, -5e6, 111319.49079327357, 360,
+      true },
+    { "EPSG:4087", -20037508.342789244 + 0.5e5, -5e6, 1e5, 400, true },
     { "EPSG:3395", 1e6, 8.5e6, 1000.0, 100, true }, { "EPSG:4087", 1e6, 6e6, 1000.0, 100, true },
     { "EPSG:6933", 1e6, 5e6, 1000.0, 100, true }, { "EPSG:32611", 5e5, 4e6, 30.0, 100, false },
     { "EPSG:32611", 499985.0, 4e6, 30.0, 2, false }, { "EPSG:3031", 5e5, 5e5, 1000.0, 100, false },
