@@ -994,11 +994,22 @@ double SpanSlack(double cell)
 bool vtkApertureGeoreference::WrapsAround()
 {
   Internals& d = *this->Impl;
-  if (!d.CRS || !OSRIsGeographic(d.CRS) || !d.EnsureGeographic())
+  if (!d.CRS || d.IsLocal() || !d.EnsureGeographic())
   {
     return false;
   }
-  const double cell = std::fabs(this->GridSpacing[0]) * d.UnitToDegrees;
+  double cell = std::fabs(this->GridSpacing[0]) * d.UnitToDegrees;
+  if (!OSRIsGeographic(d.CRS))
+  {
+    // a cylindrical projection's columns (Mercator, equirectangular): their longitude step
+    double step;
+    int span;
+    if (!this->HasMeridianColumns() || !ColumnLongitudeStep(this, step, span))
+    {
+      return false;
+    }
+    cell = std::fabs(step);
+  }
   return std::fabs(this->GridSize[0] * cell - 360.0) <= SpanSlack(cell);
 }
 

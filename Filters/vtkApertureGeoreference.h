@@ -223,9 +223,11 @@ public:
   bool CheckLongitudeSpan();
 
   /**
-   * True when the CRS is geographic and the grid's columns span 360 degrees of longitude (to
-   * a thousandth of a cell), so that its east and west edges meet: a global DEM, whose last
-   * column's eastern neighbour is its first. False otherwise, and without a CRS or grid.
+   * True when the grid's columns span 360 degrees of longitude (to a thousandth of a cell), so
+   * that its east and west edges meet: a global DEM, whose last column's eastern neighbour is
+   * its first. A lat/lon grid, or a projected one whose columns are meridians
+   * (HasMeridianColumns: Mercator, Web Mercator, equirectangular). False otherwise, for a local
+   * CRS, and without a CRS or grid.
    */
   bool WrapsAround();
 

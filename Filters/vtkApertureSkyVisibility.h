@@ -74,23 +74,22 @@
  * north (the sectors' azimuths, BentNormal and HorizonAngles are the grid's) and curvature on
  * a sphere of the Earth's mean radius, 6,371,008.8 m.
  *
- * Terrain beyond the DEM edge is invisible; EdgeTruncated marks the cells where that may
- * matter for the sky above the horizontal (A, rp, BentNormal, both sky-view factors). A global
- * lat/lon DEM, whose columns span 360 degrees of longitude (vtkApertureGeoreference::
- * WrapsAround), has no east and west edges: they join, and the cells beside the antimeridian
- * see the terrain on its other side (within the search distance; a sub-extent whose halo
- * crosses it reads every column). Without a distance a ray along a parallel runs on past the
- * seam for half the globe's columns, so it stops between half a round of the globe and one
- * and a half, where the seam puts it: the horizons below the horizontal (PositiveOpenness,
- * HorizonAngles) depend on where the seam lies. The products clipped at the horizontal do
- * not (EdgeTruncated without a search distance can: ap_horizon.h says where), except in rows
- * where the search reaches farther
- * than half the parallel's circumference (within about a degree of a pole), where a ray along
- * the parallel would circle the pole and stops where the seam's copy ends. (The sweep's copy
- * of the elevations and its state then cover those columns too, GetWrapColumns on each side:
- * up to twice the DEM's without a distance.)
- * PositiveOpenness and HorizonAngles below the horizontal may differ near the edge on
- * unflagged cells too (a sector whose ray leaves the DEM at once has horizon -90 degrees).
+ * Terrain beyond the DEM edge is invisible; EdgeTruncated marks the cells where that may matter for
+ * the sky above the horizontal (A, rp, BentNormal, both sky-view factors). A global DEM, whose
+ * columns span 360 degrees of longitude (lat/lon, or a cylindrical projection's such as Web
+ * Mercator: vtkApertureGeoreference::WrapsAround), has no east and west edges: they join, and the
+ * cells beside the antimeridian see the terrain on its other side (within the search distance; a
+ * sub-extent whose halo crosses it reads every column). Without a distance a ray along a parallel
+ * runs on past the seam for half the globe's columns, so it stops between half a round of the globe
+ * and one and a half, where the seam puts it: the horizons below the horizontal (PositiveOpenness,
+ * HorizonAngles) depend on where the seam lies. The products clipped at the horizontal do not
+ * (EdgeTruncated without a search distance can: ap_horizon.h says where), except in rows where the
+ * search reaches farther than half the parallel's circumference (within about a degree of a pole),
+ * where a ray along the parallel would circle the pole and stops where the seam's copy ends. (The
+ * sweep's copy of the elevations and its state then cover those columns too, GetWrapColumns on each
+ * side: up to twice the DEM's without a distance.) PositiveOpenness and HorizonAngles below the
+ * horizontal may differ near the edge on unflagged cells too (a sector whose ray leaves the DEM at
+ * once has horizon -90 degrees).
  * Nodata (NaN, and any elevation that is not finite, as vtkApertureDEMReader makes it) never
  * occludes and gives NaN products; beside it the terrain is the cells with data and the grid
  * lines between two of them (ap_horizon.h says how closely each search follows it). Finite

@@ -590,6 +590,13 @@ void TestWrapsAround()
     { "EPSG:4326", -179.9, 0.2, 1800, true }, { grads, -199.75, 0.5, 800, true },
     { grads, -199.75, 0.5, 720, false }, { "EPSG:3857", -20037508.34 + 5000.0, 10000.0, 4008,
                                             false },
+    // cylindrical projections' columns of 360 / 4000 degrees (lat/lon only until 2026-12-07);
+    // not transverse Mercator's or a local CRS's, however wide
+    { "EPSG:3857", -20037508.342789244 + 5009.377085697311, 10018.754171394622, 4000, true },
+    { "EPSG:3857", -20037508.342789244 + 5009.377085697311, 10018.754171394622, 3999, false },
+    { "EPSG:4087", -20037508.342789244 + 5009.377085697311, 10018.754171394622, 4000, true },
+    { "EPSG:32633", -20037508.342789244 + 5009.377085697311, 10018.754171394622, 4000, false },
+    { "LOCAL_CS[\"site\",UNIT[\"metre\",1]]", 0.0, 10018.754171394622, 4000, false },
     // cell sizes of 9 and 10 digits (1/3 degree: 3.6e-7 short of 360, 7.2e-8 over), not
     // 1/1000 of a cell more (0.36 degree over 1080 columns)
     { "EPSG:4326", -179.8333333335, 0.333333333, 1080, true },

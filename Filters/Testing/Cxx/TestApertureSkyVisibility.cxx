@@ -320,8 +320,10 @@ void TestPiecesAndThreads()
 // either side is EdgeTruncated; the products equal, bit for bit, those of the same DEM with
 // its seam 100 columns further on (rolled, its columns' longitudes with them); and a piece
 // beside the seam reads every column (its halo the other side's), one inside its own halo
-// alone, each the whole run's values. At 400 km and unlimited.
-void TestAntimeridian()
+// alone, each the whole run's values. At 400 km and unlimited. The same on Web Mercator (cells
+// of 1.5 degrees of longitude by as many metres, from 41 S to 41 N; its edges did not join
+// until 2026-12-07), `crs` with columns from x0, `cell` wide and high, rows from y0.
+void TestAntimeridian(const char* crs, double x0, double y0, double cell)
 {
   const int nx = 240, ny = 60, roll = 100;
   const auto terrain = [](int i, int j) {
@@ -329,8 +331,8 @@ void TestAntimeridian()
     return static_cast<float>(
       3000.0 * std::exp(-((lon - 178.5) * (lon - 178.5) + lat * lat) / 4.0) + Rough(i, j) / 2);
   };
-  auto dem = MakeDEM("EPSG:4326", -179.25, -44.25, 1.5, 1.5, nx, ny, terrain);
-  auto rolled = MakeDEM("EPSG:4326", -179.25 + 1.5 * roll, -44.25, 1.5, 1.5, nx, ny,
+  auto dem = MakeDEM(crs, x0, y0, cell, cell, nx, ny, terrain);
+  auto rolled = MakeDEM(crs, x0 + cell * roll, y0, cell, cell, nx, ny,
     [&](int i, int j) { return terrain((i + roll) % nx, j); });
   for (double distance : { 400000.0, 0.0 })
   {
@@ -867,7 +869,10 @@ int TestApertureSkyVisibility(int, char*[])
   TestPlanes();
   TestWall();
   TestPiecesAndThreads();
-  TestAntimeridian();
+  TestAntimeridian("EPSG:4326", -179.25, -44.25, 1.5);
+  const double mercatorCell = 2.0 * 20037508.342789244 / 240; // (1.5 degrees of longitude)
+  TestAntimeridian("EPSG:3857", -20037508.342789244 + 0.5 * mercatorCell,
+    -29.5 * mercatorCell, mercatorCell);
   TestNodata();
   TestArrayTypesAndUnits();
   TestInputArraySelection();

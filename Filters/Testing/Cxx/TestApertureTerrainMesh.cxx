@@ -505,6 +505,17 @@ void TestGlobal()
   AP_CHECK(Mesh(narrow)->GetNumberOfCells() == 2 * (nx - 2) * (ny - 1));
   auto band = MakeDEM("EPSG:4326", -179.0, -87.0, 2.0, 2.0, nx, ny - 2, sea);
   AP_CHECK(Mesh(band)->GetNumberOfCells() == 2 * nx * (ny - 3));
+
+  // The cylindrical projections' global grids join too (until 2026-12-07 only lat/lon did): a
+  // Web Mercator band, open at its ends (Mercator never reaches a pole), and an equirectangular
+  // grid from pole to pole, closed by its caps. Columns of 2 degrees of longitude.
+  const double e = 20037508.342789244, c = 2.0 * e / nx;
+  auto mercator = Mesh(MakeDEM("EPSG:3857", -e + 0.5 * c, -19.5 * c, c, c, nx, 40, sea));
+  AP_CHECK(mercator->GetNumberOfPoints() == nx * 40 + 40);
+  AP_CHECK(mercator->GetNumberOfCells() == 2 * nx * 39);
+  auto plate = Mesh(MakeDEM("EPSG:4087", -e + 0.5 * c, -0.5 * e + 0.5 * c, c, c, nx, ny, sea));
+  AP_CHECK(plate->GetNumberOfPoints() == n + ny);
+  AP_CHECK(plate->GetNumberOfCells() == 2 * nx * (ny - 1) + 2 * (nx - 2));
 }
 
 // Ghost levels (UpdatePiece(p, n, g)): each piece meshed over g more rows and columns, whose
