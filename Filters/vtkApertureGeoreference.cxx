@@ -5,6 +5,7 @@
 
 #include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
+#include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -611,6 +612,40 @@ bool vtkApertureGeoreference::HasNorthUpAxes(vtkImageData* image)
   const double* m = dir->GetData(); // (row-major)
   return m[0] == 1.0 && m[1] == 0.0 && m[2] == 0.0 && m[3] == 0.0 && m[4] == 1.0 &&
     m[5] == 0.0 && m[6] == 0.0 && m[7] == 0.0 && (m[8] == 1.0 || m[8] == -1.0);
+}
+
+//------------------------------------------------------------------------------
+std::string vtkApertureGeoreference::GetDefaultGeometryWarning(vtkImageData* image)
+{
+  vtkDataArray* gt = image && image->GetFieldData()
+    ? image->GetFieldData()->GetArray(GetGeoTransformArrayName())
+    : nullptr;
+  if (!gt || gt->GetNumberOfTuples() * gt->GetNumberOfComponents() != 6)
+  {
+    return std::string();
+  }
+  double origin[3], spacing[3], g[6];
+  image->GetOrigin(origin);
+  image->GetSpacing(spacing);
+  for (int k = 0; k < 6; ++k)
+  {
+    g[k] = gt->GetComponent(k / gt->GetNumberOfComponents(), k % gt->GetNumberOfComponents());
+  }
+  const bool defaults =
+    origin[0] == 0.0 && origin[1] == 0.0 && spacing[0] == 1.0 && spacing[1] == 1.0;
+  if (!defaults || (g[1] == 1.0 && g[5] == -1.0))
+  {
+    return std::string();
+  }
+  std::ostringstream msg;
+  msg << std::setprecision(12)
+      << "the image's origin and spacing are VTK's defaults (0 0 and 1 1), but its field "
+         "data's GeoTransform has cells of "
+      << g[1] << " x " << -g[5]
+      << " from x " << g[0] << ", y " << g[3]
+      << ": the image's geometry is used, cells of 1 CRS unit at the CRS's origin; set the "
+         "image's origin and spacing (SetOrigin, SetSpacing: a cell centre and the cell size)";
+  return msg.str();
 }
 
 //------------------------------------------------------------------------------

@@ -38,7 +38,7 @@
 #include "vtkObject.h"
 #include "vtkWrappingHints.h" // for VTK_WRAPEXCLUDE
 
-#include <string> // for GetElevationWarning
+#include <string> // for GetElevationWarning, GetDefaultGeometryWarning
 
 class vtkDataObject;
 class vtkImageData;
@@ -126,6 +126,12 @@ public:
    *  north): the identity, or a matrix that only flips z, which a one-slice DEM does not
    *  extend along. False for a rotated or mirrored grid, which no GeoTransform describes. */
   static bool HasNorthUpAxes(vtkImageData* image);
+
+  /** A warning when the image's origin and spacing are VTK's defaults (x, y origin 0 and
+   *  spacing 1) while its field data's `GeoTransform` has cells of another size: an image made
+   *  by hand whose geometry was never set, which SetFromImage (the geometry wins: Rasters.md)
+   *  takes as cells of one CRS unit at the CRS's origin. "" otherwise. The filters give it. */
+  static std::string GetDefaultGeometryWarning(vtkImageData* image);
 
   /**
    * The georeference of a whole grid before any data flows: the CRS from CRS_KEY and the grid

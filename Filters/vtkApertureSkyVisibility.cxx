@@ -856,6 +856,12 @@ int vtkApertureSkyVisibility::RunRequestData(
     return 0;
   }
   vtkNew<vtkApertureGeoreference> geo;
+  // (before the refusals it may explain: cells of one degree from latitude 0 past the pole)
+  const std::string geometry = vtkApertureGeoreference::GetDefaultGeometryWarning(input);
+  if (!geometry.empty())
+  {
+    vtkWarningMacro(<< geometry);
+  }
   if (!geo->SetFromImage(input))
   {
     vtkErrorMacro(<< "no metric cell size: " << geo->GetErrorMessage());

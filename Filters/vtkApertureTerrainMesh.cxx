@@ -520,6 +520,12 @@ int vtkApertureTerrainMesh::RunRequestData(
   }
   vtkNew<vtkApertureGeoreference> geo;
   double lonlatBounds[4];
+  // (before the refusals it may explain: cells of one degree from latitude 0 past the pole)
+  const std::string geometry = vtkApertureGeoreference::GetDefaultGeometryWarning(input);
+  if (!geometry.empty())
+  {
+    vtkWarningMacro(<< geometry);
+  }
   if (!geo->SetFromImage(input) || (!geo->IsLocal() && !geo->CheckLongitudeSpan()) ||
     (geo->IsGeographic() && !geo->GetBoundsLonLat(lonlatBounds)))
   {
@@ -993,8 +999,19 @@ int vtkApertureTerrainMesh::RunRequestData(
     MarkGhosts(output, polys, ext, own, nx, ny, rowStart);
   }
 
-  // 8. Field data: georeference passed through, frame recorded.
+  // 8. Field data: the CRS passed through, the GeoTransform of the grid meshed (the input's
+  //    geometry: a VTK filter upstream that crops, resamples or moves the image passes on the
+  //    field data of the grid before, which the mesh carried until 2026-12-07), frame recorded.
   output->GetFieldData()->PassData(input->GetFieldData());
+  {
+    double gt[6];
+    geo->GetGeoTransform(gt);
+    vtkNew<vtkDoubleArray> meshed;
+    meshed->SetName(vtkApertureGeoreference::GetGeoTransformArrayName());
+    meshed->SetNumberOfValues(6);
+    std::copy(gt, gt + 6, meshed->GetPointer(0));
+    output->GetFieldData()->AddArray(meshed); // (in place of the one passed)
+  }
   vtkNew<vtkDoubleArray> frameOrigin;
   frameOrigin->SetName("FrameOrigin");
   frameOrigin->SetNumberOfValues(3);

@@ -72,7 +72,9 @@
  * its centre: 0.1 degree at 11 km, degrees on a lat/lon DEM of a region.)
  * Field data added: `FrameOrigin` (latitude, longitude in degrees, height in metres of the ENU
  * origin), `FrameEllipsoid` (semi-major axis in metres, flattening) and
- * `VerticalExaggeration`; the input's `CRS` and `GeoTransform` are passed through.
+ * `VerticalExaggeration`; the input's `CRS` is passed through, and `GeoTransform` is that of the
+ * grid meshed (the input image's geometry, which wins over its field data, Rasters.md; a
+ * piece's own grid).
  *
  * An input of no points (an empty image, or an empty update extent) gives an empty mesh and no
  * error, as VTK's filters do.
@@ -84,6 +86,12 @@
  * triangle at all (too few or too scattered valid points: no 2 x 2 block with three valid
  * corners; a streamed piece just gives an empty mesh), a NaN VerticalExaggeration, or a mesh
  * beyond MemoryLimit or the process's memory (the message gives the size).
+ *
+ * @warning VTK 9.1's vtkDecimatePro reads outside its arrays, and can crash, on a mesh with
+ * points no triangle uses, as a DEM with nodata gives (valgrind: GetCellEdgeNeighbors from
+ * EvaluateVertex, on a mesh of the Luxembourg SRTM tile; none once they were gone): run
+ * vtkCleanPolyData (PointMergingOff keeps the other points as they are) before it.
+ * vtkQuadricDecimation takes the mesh as it is.
  *
  * @warning Heights are used as given (usually orthometric, above the geoid) as heights above
  * the ellipsoid; over one DEM the geoid separation is nearly constant and shifts the whole mesh

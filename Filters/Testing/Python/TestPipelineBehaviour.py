@@ -781,6 +781,94 @@ print(w.errors[0] if w.errors else mesher.GetOutput().GetNumberOfPoints())
             # reach; the bands are at least levels + 1 rows apart from a pole)
             self.assertGreaterEqual(ghosts, 2 * (pieces - 1) * levels * 2 * 36)
 
+    def testMeshGeoTransformIsTheGridMeshed(self):
+        # The mesh's GeoTransform is that of the grid it meshed, the image's geometry: VTK's
+        # filters pass the field data of the grid before on (vtkExtractVOI with a sample rate
+        # of 2 here: the whole DEM at half the cells), which the mesh carried until
+        # 2026-12-07, while the sky filter wrote its own grid's. A piece's is the piece's.
+        from vtkmodules.vtkImagingCore import vtkExtractVOI
+
+        def field(data):
+            values = data.GetFieldData().GetArray("GeoTransform")
+            return [values.GetValue(k) for k in range(6)]
+
+        reader = aperture.vtkApertureDEMReader()
+        reader.SetFileName(self.path)
+        reader.Update()
+        g = field(reader.GetOutput())  # (the file's: 403 x 344 cells of 1/1200 degree)
+        voi = vtkExtractVOI()
+        voi.SetInputConnection(reader.GetOutputPort())
+        voi.SetVOI(100, 299, 50, 249, 0, 0)
+        voi.SetSampleRate(2, 2, 1)
+        mesher = aperture.vtkApertureTerrainMesh()
+        mesher.SetInputConnection(voi.GetOutputPort())
+        mesher.Update()
+        self.assertEqual(field(voi.GetOutput()), g)  # (VTK passed the file's on)
+        # 100 x 100 points 2 cells apart: the west edge half a new cell west of column 100's
+        # centre, the north edge half a new cell north of row 248's (rows counted from the
+        # south: the file's row 343 - 248 from the north)
+        want = [g[0] + 100 * g[1] - 0.5 * g[1], 2 * g[1], 0.0,
+                g[3] + (343 - 248) * g[5] - 0.5 * g[5], 0.0, 2 * g[5]]
+        np.testing.assert_allclose(field(mesher.GetOutput()), want, rtol=0, atol=1e-9)
+        sky = aperture.vtkApertureSkyVisibility()
+        sky.SetInputConnection(voi.GetOutputPort())
+        sky.SetMaximumDistance(1000.0)
+        sky.SetNumberOfDirections(8)
+        sky.Update()
+        self.assertEqual(field(sky.GetOutput()), field(mesher.GetOutput()))
+        from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
+        ext = [0] * 6
+        vtkExtentTranslator().PieceToExtentThreadSafe(1, 2, 0, [0, 402, 0, 343, 0, 0], ext,
+                                                      vtkExtentTranslator.BLOCK_MODE, 0)
+        pieces = aperture.vtkApertureTerrainMesh()
+        pieces.SetInputConnection(reader.GetOutputPort())
+        pieces.UpdatePiece(1, 2, 0)
+        want = [g[0] + ext[0] * g[1], g[1], 0.0, g[3] + (343 - ext[3]) * g[5], 0.0, g[5]]
+        self.assertNotEqual(want, g)
+        np.testing.assert_allclose(field(pieces.GetOutput()), want, rtol=0, atol=1e-9)
+
+    def testDefaultGeometryWarned(self):
+        # An image made by hand whose field data says where its cells are but whose origin and
+        # spacing were left VTK's (0 and 1): the filters take the geometry (Rasters.md), cells
+        # of one CRS unit, and say so; silent until 2026-12-07 (SkyViewFactor 0.21 instead of
+        # 0.79 on a window of 30 m cells). An image whose geometry is set is not warned about,
+        # nor one whose GeoTransform has the cells of its default geometry.
+        from aperture.errors import Watcher
+        reader = aperture.vtkApertureDEMReader()
+        reader.SetFileName(self.path)
+        reader.SetDecimation(4)
+        reader.PartialBlockWarningOff()
+        reader.Update()
+        gt = reader.GetOutput().GetFieldData().GetArray("GeoTransform")
+        x0, dx, y0, dy = (gt.GetValue(k) for k in (0, 1, 3, 5))
+        for case in ("default", "set", "unit cells"):
+            image = vtkImageData()
+            image.DeepCopy(reader.GetOutput())
+            if case != "set":
+                image.SetOrigin(0.0, 0.0, 0.0)
+                image.SetSpacing(1.0, 1.0, 1.0)
+            if case == "unit cells":
+                geo = aperture.vtkApertureGeoreference()
+                self.assertTrue(geo.SetCRS('LOCAL_CS["site",UNIT["kilometre",1000]]') and
+                                geo.AttachToImage(image))
+            for stage in (aperture.vtkApertureSkyVisibility(), aperture.vtkApertureTerrainMesh()):
+                w = Watcher()
+                w.watch(stage)
+                stage.SetInputData(image)
+                stage.Update()
+                if case == "default":
+                    self.assertEqual(len(w.warnings), 1, (stage, w.warnings))
+                    self.assertTrue(w.warnings[0].startswith(
+                        "the image's origin and spacing are VTK's defaults (0 0 and 1 1), but "
+                        "its field data's GeoTransform has cells of %.12g x %.12g from x "
+                        "%.12g, y %.12g: the image's geometry is used, cells of 1 CRS unit at "
+                        "the CRS's origin; set the " % (dx, -dy, x0, y0) +
+                        "image's origin and spacing (SetOrigin, SetSpacing: a cell centre and "
+                        "the cell size)"), w.warnings[0])
+                    self.assertIn("0.00333333333333 x 0.00333333333333", w.warnings[0])
+                else:
+                    self.assertEqual(w.warnings, [], (case, stage))
+
     def testStreamingSkyProductsOntoMesh(self):
         # reader -> sky visibility (2 km) -> mesh, piece by piece: the mesh asks the sky filter
         # for its block, which reads the block and its halo; every piece's SkyViewFactor and
