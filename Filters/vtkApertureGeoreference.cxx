@@ -633,7 +633,12 @@ std::string vtkApertureGeoreference::GetDefaultGeometryWarning(vtkImageData* ima
   }
   const bool defaults =
     origin[0] == 0.0 && origin[1] == 0.0 && spacing[0] == 1.0 && spacing[1] == 1.0;
-  if (!defaults || (g[1] == 1.0 && g[5] == -1.0))
+  // (the GeoTransform of the default geometry: cells of 1 from the extent's edges)
+  int extent[6];
+  image->GetExtent(extent);
+  const bool same = g[1] == 1.0 && g[5] == -1.0 && std::fabs(g[0] - (extent[0] - 0.5)) <= 1e-6 &&
+    std::fabs(g[3] - (extent[3] + 0.5)) <= 1e-6;
+  if (!defaults || same)
   {
     return std::string();
   }
@@ -747,7 +752,7 @@ bool ColumnLongitudeStep(vtkApertureGeoreference* geo, double& step, int& span)
   geo->GetGridOrigin(origin);
   geo->GetGridSpacing(spacing);
   geo->GetGridSize(size);
-  double first[2], one[2], far[2];
+  double first[2], one[2], across[2];
   if (size[0] < 2 || !geo->CRSToLonLat(origin[0], origin[1], first) ||
     !geo->CRSToLonLat(origin[0] + spacing[0], origin[1], one))
   {
@@ -760,11 +765,11 @@ bool ColumnLongitudeStep(vtkApertureGeoreference* geo, double& step, int& span)
   }
   span = static_cast<int>(
     std::min<double>(size[0] - 1, std::max(1.0, std::floor(90.0 / std::fabs(step1)))));
-  if (!geo->CRSToLonLat(origin[0] + span * spacing[0], origin[1], far))
+  if (!geo->CRSToLonLat(origin[0] + span * spacing[0], origin[1], across))
   {
     return false;
   }
-  step = std::remainder(far[0] - first[0], 360.0) / span;
+  step = std::remainder(across[0] - first[0], 360.0) / span;
   return std::isfinite(step) && step != 0.0;
 }
 }

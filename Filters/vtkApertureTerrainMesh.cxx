@@ -85,7 +85,9 @@ namespace
 {
 // The extent of the DEM that piece `piece` of `pieces` meshes (pieces share their boundary
 // points, so their meshes join). A global DEM's pieces are bands of whole rows, so that each
-// joins its east and west edges (RequestData's seam). The CRS is known here when
+// joins its east and west edges (RequestData's seam), the quad rows shared out evenly (VTK's
+// Y slabs split the columns too once the pieces outnumber the rows, and such pieces had no
+// seam until 2026-12-07); a piece left without a quad row is empty. The CRS is known here when
 // vtkApertureDEMReader published it, or from the input image itself when it is already there
 // (SetInputData). A piece that does not exist (p >= n) has an empty extent (ext[1] < ext[0]).
 void PieceExtent(vtkInformation* inInfo, int piece, int pieces, int ext[6])
@@ -106,9 +108,25 @@ void PieceExtent(vtkInformation* inInfo, int piece, int pieces, int ext[6])
                          (present && present->GetNumberOfPoints() > 0 &&
                            geo->SetFromImage(present))) &&
       geo->WrapsAround();
-    vtkNew<vtkExtentTranslator> translator;
-    translator->PieceToExtentThreadSafe(piece, pieces, 0, whole, ext,
-      wraps ? vtkExtentTranslator::Y_SLAB_MODE : vtkExtentTranslator::BLOCK_MODE, 0);
+    if (wraps)
+    {
+      const long long rows = static_cast<long long>(whole[3]) - whole[2];
+      const long long first = whole[2] + rows * piece / pieces;
+      const long long last = whole[2] + rows * (piece + 1) / pieces;
+      ext[2] = static_cast<int>(first);
+      ext[3] = static_cast<int>(last);
+      if (last == first)
+      {
+        const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+        std::copy(empty, empty + 6, ext);
+      }
+    }
+    else
+    {
+      vtkNew<vtkExtentTranslator> translator;
+      translator->PieceToExtentThreadSafe(
+        piece, pieces, 0, whole, ext, vtkExtentTranslator::BLOCK_MODE, 0);
+    }
   }
 }
 
@@ -154,7 +172,8 @@ void MarkGhosts(vtkPolyData* output, vtkCellArray* polys, const int ext[6], cons
     const bool inside = (i >= own[0] && i <= own[1]) || static_cast<size_t>(id) >= n;
     if (!inside || j < own[2] || j > own[3])
     {
-      points->SetValue(id, vtkDataSetAttributes::DUPLICATEPOINT);
+      // (added to the marks of a vtkGhostType the input passed on)
+      points->SetValue(id, points->GetValue(id) | vtkDataSetAttributes::DUPLICATEPOINT);
     }
   }
   vtkUnsignedCharArray* cells = output->AllocateCellGhostArray();
@@ -170,13 +189,14 @@ void MarkGhosts(vtkPolyData* output, vtkCellArray* polys, const int ext[6], cons
       j = std::min(j, row(ids->GetId(v)));
     }
     const bool cap = static_cast<size_t>(t) >= rowStart.back();
-    // (a seam's quads start in the last column, which no other grid's do)
-    const bool owned = cap ? j >= own[2] && j <= own[3]
-                           : i >= own[0] && (i < own[1] || own[1] == ext[1]) && j >= own[2] &&
-        j < own[3];
+    // (a seam's quads start in the last column, which no other grid's do; a cap is the
+    // piece's that owns the row of quads beside it, of two pieces sharing its row of points)
+    const bool owned = cap
+      ? (j == own[2] && own[3] > j) || (j == own[3] && own[2] < j)
+      : i >= own[0] && (i < own[1] || own[1] == ext[1]) && j >= own[2] && j < own[3];
     if (!owned)
     {
-      cells->SetValue(t, vtkDataSetAttributes::DUPLICATECELL);
+      cells->SetValue(t, cells->GetValue(t) | vtkDataSetAttributes::DUPLICATECELL);
     }
   }
 }

@@ -37,7 +37,9 @@
  * an image covering the globe continues across the seam); normals there take the neighbours
  * across the seam. An end row whose outer edge is at latitude +-90 (the DEM reaches a pole) is
  * closed by a fan of triangles over its ring of points when none of them is nodata
- * (ap_mesh_cap), so that a pole-to-pole DEM is a closed surface.
+ * (ap_mesh_cap), so that a pole-to-pole DEM is a closed surface: watertight once the seam's
+ * copies are merged with their originals (vtkCleanPolyData; until then the seam's edges count as
+ * boundary edges, to vtkFeatureEdges or vtkMassProperties).
  *
  * Streaming: a request for piece p of n is translated into the input extent of that piece
  * (vtkExtentTranslator, pieces sharing their boundary rows or columns) and, with ComputeNormals,
@@ -45,17 +47,19 @@
  * part, the mesh holds only the piece, and the pieces' meshes join without gaps. Every piece uses
  * the frame of the whole extent, so their vertices coincide with those of the whole mesh (but
  * nodata's, placed as above), and their normals are the whole mesh's, bit for bit, along their
- * boundaries too (taken across them, from that margin). With ghost levels
- * (UpdatePiece(p, n, g), g > 0) the piece is meshed over g more points on every side where the
- * DEM goes on (the margin beyond them), and marked in vtkGhostType arrays as VTK's filters mark
- * ghosts: the triangles of quads outside the piece, and a pole's cap outside its rows,
- * DUPLICATECELL; the points outside it DUPLICATEPOINT (vtkRemoveGhosts leaves the piece's own
- * mesh). A piece that does not exist (p >= n) is an empty mesh. A global DEM's pieces are bands
- * of whole rows, each with its seam, when its CRS is known while the request is planned
- * (published by vtkApertureDEMReader and passed on by vtkApertureSkyVisibility, or an image given
- * whole with SetInputData). An input that holds more than the piece (updated whole before, or
- * given with SetInputData) is meshed over the piece's extent alone. An update that fails or is aborted (AbortExecute, checked after each twentieth of
- * the points) leaves an empty mesh, and the next update runs again.
+ * boundaries too (taken across them, from that margin). With ghost levels (UpdatePiece(p, n, g),
+ * g > 0) the piece is meshed over g more points on every side where the DEM goes on (the margin
+ * beyond them), and marked in vtkGhostType arrays as VTK's filters mark ghosts: the triangles of
+ * quads outside the piece, and a pole's cap another piece owns (the one with the row of quads
+ * beside it), DUPLICATECELL; the points outside it DUPLICATEPOINT (vtkRemoveGhosts leaves the
+ * piece's own mesh). A piece that does not exist (p >= n) is an empty mesh. A global DEM's pieces
+ * are bands of whole rows, each with its seam, the rows of quads shared out evenly (a piece left
+ * without one is empty), when its CRS is known while the request is planned (published by
+ * vtkApertureDEMReader and passed on by vtkApertureSkyVisibility, or an image given whole with
+ * SetInputData). An input that holds more than the piece (updated whole before, or given with
+ * SetInputData) is meshed over the piece's extent alone. An update that fails or is aborted
+ * (AbortExecute, checked after each twentieth of the points) leaves an empty mesh, and the next
+ * update runs again.
  *
  * Elevations taken from the input's active scalars, asked for (a null or empty
  * ElevationArrayName, a selection of the scalars) or for want of an `Elevation` array (an
@@ -74,7 +78,7 @@
  * origin), `FrameEllipsoid` (semi-major axis in metres, flattening) and
  * `VerticalExaggeration`; the input's `CRS` is passed through, and `GeoTransform` is that of the
  * grid meshed (the input image's geometry, which wins over its field data, Rasters.md; a
- * piece's own grid).
+ * piece's own grid with its ghost layers).
  *
  * An input of no points (an empty image, or an empty update extent) gives an empty mesh and no
  * error, as VTK's filters do.
@@ -90,8 +94,8 @@
  * @warning VTK 9.1's vtkDecimatePro reads outside its arrays, and can crash, on a mesh with
  * points no triangle uses, as a DEM with nodata gives (valgrind: GetCellEdgeNeighbors from
  * EvaluateVertex, on a mesh of the Luxembourg SRTM tile; none once they were gone): run
- * vtkCleanPolyData (PointMergingOff keeps the other points as they are) before it.
- * vtkQuadricDecimation takes the mesh as it is.
+ * vtkCleanPolyData (PointMergingOff keeps the other points in place, renumbered: point ids no
+ * longer follow the grid's) before it. vtkQuadricDecimation takes the mesh as it is.
  *
  * @warning Heights are used as given (usually orthometric, above the geoid) as heights above
  * the ellipsoid; over one DEM the geoid separation is nearly constant and shifts the whole mesh
@@ -160,8 +164,8 @@ public:
    * East-North-Up scratch 24, the points 12 or 24, normals 12, texture coordinates 8, a rotated
    * BentNormal 12 when the input has one; two triangles of three ids and an offset, 4 bytes
    * each, 8 past 2^31 points; a global DEM's seam copies the input's point arrays; so do
-   * crops of an input larger than the update, and a streamed piece's boundary normals take
-   * 40 bytes a point of the piece and its margin).
+   * crops of an input larger than the update, a streamed piece's boundary normals take
+   * 40 bytes a point of the piece and its margin, and its ghost marks 3 a point).
    * 0 (default): the memory this process may use (the machine's, or its control group's
    * limit) less the input image's size; under an address-space limit (ulimit -v), what that
    * leaves (vtkApertureSkyVisibility::GetUsableMemory), which excludes the input already.
@@ -175,7 +179,7 @@ public:
   /** The bytes MemoryLimit's estimate gives an update of n points (with the current
    *  OutputPointsPrecision), an input with a `BentNormal` array or not, and `copied` bytes of
    *  input point data and scratch copied (a global DEM's seam, crops, a streamed piece's
-   *  margin; 0 for a whole DEM given whole): for planning beforehand. */
+   *  margin and ghost marks; 0 for a whole DEM given whole): for planning beforehand. */
   double EstimateBytes(double n, bool bentNormal, double copied) const;
 
 protected:

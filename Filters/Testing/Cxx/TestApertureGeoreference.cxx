@@ -495,8 +495,8 @@ void TestLongitudeSpan()
 } // namespace
 
 // Columns are meridians and rows parallels on lat/lon grids and the cylindrical projections
-// (also across the antimeridian, and around the globe), not on transverse Mercator (even a 2 x 2 grid beside its
-// central meridian), polar stereographic, sinusoidal or Albers.
+// (also across the antimeridian, and around the globe), not on transverse Mercator (even a 2 x 2
+// grid beside its central meridian), polar stereographic, sinusoidal or Albers.
 void TestMeridianColumns()
 {
   struct Case

@@ -527,18 +527,24 @@ void TestGhostLevels()
   const auto hills = [](int i, int j) { return static_cast<float>(100 * ((i * 7 + j * 3) % 11)); };
   auto globe = MakeDEM("EPSG:4326", -175.0, -85.0, 10.0, 10.0, 36, 18, hills);
   auto block = MakeDEM("EPSG:32611", 500000.0, 4000000.0, 30.0, 30.0, 23, 17, hills);
+  // (25 pieces: more than the globe's 17 rows of quads, bands of one row or none)
+  const int runs[][2] = { { 3, 1 }, { 3, 2 }, { 25, 1 }, { 25, 2 } };
   for (vtkImageData* dem : { globe.GetPointer(), block.GetPointer() })
   {
     const vtkIdType whole = Mesh(dem)->GetNumberOfCells();
-    for (int levels = 1; levels <= 2; ++levels)
+    for (const auto& run : runs)
     {
       vtkNew<vtkApertureTerrainMesh> mesher;
       mesher->SetInputData(dem);
       vtkIdType own = 0;
-      for (int piece = 0; piece < 3; ++piece)
+      for (int piece = 0; piece < run[0]; ++piece)
       {
-        mesher->UpdatePiece(piece, 3, levels);
+        mesher->UpdatePiece(piece, run[0], run[1]);
         vtkPolyData* out = mesher->GetOutput();
+        if (out->GetNumberOfPoints() == 0)
+        {
+          continue; // (a piece left without a row of quads)
+        }
         vtkDataArray* cells = out->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName());
         vtkDataArray* points =
           out->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName());
@@ -554,7 +560,7 @@ void TestGhostLevels()
           ghostPoints += points->GetComponent(k, 0) == vtkDataSetAttributes::DUPLICATEPOINT;
         }
         // (each piece borders another: ghost rows or columns of its cells and points)
-        AP_CHECK(ghosts > 0 && ghostPoints > 0 && ghosts < out->GetNumberOfCells());
+        AP_CHECK(ghosts > 0 && ghostPoints > 0);
         own += out->GetNumberOfCells() - ghosts;
       }
       AP_CHECK(own == whole);
