@@ -83,13 +83,13 @@
  * runs on past the seam for half the globe's columns, so it stops between half a round of the globe
  * and one and a half, where the seam puts it: the horizons below the horizontal (PositiveOpenness,
  * HorizonAngles) depend on where the seam lies. The products clipped at the horizontal do not
- * (EdgeTruncated without a search distance can: ap_horizon.h says where), except in rows where the
- * search reaches farther than half the parallel's circumference (within about a degree of a pole),
- * where a ray along the parallel would circle the pole and stops where the seam's copy ends. (The
- * sweep's copy of the elevations and its state then cover those columns too, GetWrapColumns on each
- * side: up to twice the DEM's without a distance.) PositiveOpenness and HorizonAngles below the
- * horizontal may differ near the edge on unflagged cells too (a sector whose ray leaves the DEM at
- * once has horizon -90 degrees).
+ * (EdgeTruncated without a search distance can: ap_horizon.h says where), except in rows near a
+ * pole (within about a degree; by far less a few degrees farther: the README has measured cases),
+ * where rays that would circle the pole (along the parallel, or oblique ones winding towards it)
+ * stop where the seam's copy ends. (The sweep's copy of the elevations and its state then cover
+ * those columns too, GetWrapColumns on each side: up to twice the DEM's without a distance.)
+ * PositiveOpenness and HorizonAngles below the horizontal may differ near the edge on unflagged
+ * cells too (a sector whose ray leaves the DEM at once has horizon -90 degrees).
  * Nodata (NaN, and any elevation that is not finite, as vtkApertureDEMReader makes it) never
  * occludes and gives NaN products; beside it the terrain is the cells with data and the grid
  * lines between two of them (ap_horizon.h says how closely each search follows it). Finite
@@ -125,10 +125,10 @@
  * error, as VTK's filters do.
  * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, a point
  * array without one tuple per point of the input, no CRS or no metric cell size (a lat/lon
- * grid wider than 360 degrees or beyond a pole, a projected one off its projection's domain, a
- * sub-extent of such a grid too, is refused without reading its input when the CRS is in the
- * pipeline information, as vtkApertureDEMReader puts it), every cell
- * nodata in an input that is the whole DEM (an update of all of it, or an unlimited distance),
+ * grid wider than 360 degrees or beyond a pole, a projected one whose first, middle or last
+ * row PROJ gives no geographic coordinates, a sub-extent of such a grid too, is refused without
+ * reading its input when the CRS is in the pipeline information, as vtkApertureDEMReader puts
+ * it), every cell nodata in an input that is the whole DEM (an update of all of it, or an unlimited distance),
  * NumberOfDirections outside 4..360, a negative MaximumDistance, a refraction coefficient
  * outside [0, 1), and not enough memory for the outputs and the sweep: refused before
  * allocating when the estimate exceeds MemoryLimit (default: the memory the process may use,

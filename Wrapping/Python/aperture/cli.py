@@ -567,7 +567,7 @@ def _geotransform(geo):
 
 def _wider_than_the_earth(geo):
     """Whether geo's grid is a lat/lon one of more than 360 degrees of longitude, with
-    geo.GetErrorMessage() saying so (the sky filter's LongitudeSpanProblem asks the same)."""
+    geo.GetErrorMessage() saying so (the sky filter's WholeGridProblem asks it first)."""
     return geo.IsGeographic() and not geo.CheckLongitudeSpan()
 
 
