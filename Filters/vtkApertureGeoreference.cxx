@@ -633,11 +633,15 @@ std::string vtkApertureGeoreference::GetDefaultGeometryWarning(vtkImageData* ima
   }
   const bool defaults =
     origin[0] == 0.0 && origin[1] == 0.0 && spacing[0] == 1.0 && spacing[1] == 1.0;
-  // (the GeoTransform of the default geometry: cells of 1 from the extent's edges)
+  // (a GeoTransform of the default geometry: cells of 1, edges on the half-integers, around
+  // this extent; a piece's or a crop's field data describes the whole grid, larger)
   int extent[6];
   image->GetExtent(extent);
-  const bool same = g[1] == 1.0 && g[5] == -1.0 && std::fabs(g[0] - (extent[0] - 0.5)) <= 1e-6 &&
-    std::fabs(g[3] - (extent[3] + 0.5)) <= 1e-6;
+  const auto onLattice = [](double edge) {
+    return std::fabs(edge - 0.5 - std::round(edge - 0.5)) <= 1e-6;
+  };
+  const bool same = g[1] == 1.0 && g[5] == -1.0 && onLattice(g[0]) && onLattice(g[3]) &&
+    g[0] <= extent[0] - 0.5 + 1e-6 && g[3] >= extent[3] + 0.5 - 1e-6;
   if (!defaults || same)
   {
     return std::string();

@@ -128,11 +128,13 @@ public:
   static bool HasNorthUpAxes(vtkImageData* image);
 
   /** A warning when the image's origin and spacing are VTK's defaults (x, y origin 0 and
-   *  spacing 1) while its field data's `GeoTransform` describes another grid (other cells, or
-   *  other edges than the extent's at 1 unit a cell): an image made by hand whose geometry was
-   *  never set, which SetFromImage (the geometry wins: Rasters.md) takes as cells of one CRS
-   *  unit at the CRS's origin. "" otherwise. vtkApertureSkyVisibility and
-   *  vtkApertureTerrainMesh give it. */
+   *  spacing 1) while its field data's (north-up) `GeoTransform` describes another grid: cells
+   *  other than 1 x 1, or edges off the half-integers or not around the image's extent (a
+   *  whole grid's GeoTransform passed to a piece or a crop of it is around it): an image made
+   *  by hand whose geometry was never set, which SetFromImage (the geometry wins: Rasters.md)
+   *  takes as cells of one CRS unit at the CRS's origin. "" otherwise (also for such a grid of
+   *  1-unit cells that happens to lie west and north of the origin). vtkApertureSkyVisibility
+   *  and vtkApertureTerrainMesh give it. */
   static std::string GetDefaultGeometryWarning(vtkImageData* image);
 
   /**
@@ -175,14 +177,13 @@ public:
   /**
    * True when the grid's columns are meridians and its rows parallels: a geographic CRS, or a
    * normal-aspect cylindrical projection (Mercator, Web Mercator, equirectangular, cylindrical
-   * equal-area), with longitude linear in x, or a local CRS (IsLocal). Checked on the cells of
-   * the first, middle and last rows and columns, and a column up to 90 degrees of longitude from
-   * the first (to a millionth of a cell; longitudes modulo 360, so around the globe too). Ground cell sizes
-   * then depend on the row alone, so GetRowCellSizesMetres holds for every cell, and the
-   * meridian convergence is 0.
-   * False for other projections (transverse Mercator, conic, polar, sinusoidal), without a
-   * CRS, and for a projection without a grid of at least 2 x 2 cells (a geographic or local
-   * CRS needs no grid: true for any).
+   * equal-area), with longitude linear in x, or a local CRS (IsLocal). Checked on the cells of the
+   * first, middle and last rows and columns, and a column up to 90 degrees of longitude from the
+   * first (to a millionth of a cell; longitudes modulo 360, so around the globe too). Ground cell
+   * sizes then depend on the row alone, so GetRowCellSizesMetres holds for every cell, and the
+   * meridian convergence is 0. False for other projections (transverse Mercator, conic, polar,
+   * sinusoidal), without a CRS, and for a projection without a grid of at least 2 x 2 cells (a
+   * geographic or local CRS needs no grid: true for any).
    */
   bool HasMeridianColumns();
 

@@ -124,18 +124,18 @@
  * run: VTK's executive keeps an earlier update's output for one) gives an empty output and no
  * error, as VTK's filters do.
  * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, a point
- * array without one tuple per point of the input, no CRS or no metric cell size (a lat/lon
- * grid wider than 360 degrees or beyond a pole, a projected one whose first, middle or last
- * row PROJ gives no geographic coordinates, a sub-extent of such a grid too, is refused without
- * reading its input when the CRS is in the pipeline information, as vtkApertureDEMReader puts
- * it), every cell nodata in an input that is the whole DEM (an update of all of it, or an unlimited distance),
- * NumberOfDirections outside 4..360, a negative MaximumDistance, a refraction coefficient
- * outside [0, 1), and not enough memory for the outputs and the sweep: refused before
- * allocating when the estimate exceeds MemoryLimit (default: the memory the process may use,
- * physical or its control group's limit, beside the input image, since past it Linux kills the
- * process rather than fail an allocation; or what an address-space limit leaves), or an
- * allocation that fails (e.g. under `ulimit -v`); the message gives the estimated need
- * (HorizonAngles take 4 bytes per cell and direction).
+ * array without one tuple per point of the input, no CRS or no metric cell size (a lat/lon grid
+ * wider than 360 degrees or beyond a pole, a projected one whose first, middle or last row PROJ
+ * gives no geographic coordinates, a sub-extent of such a grid too, is refused without reading its
+ * input when the CRS is in the pipeline information, as vtkApertureDEMReader puts it), every cell
+ * nodata in an input that is the whole DEM (an update of all of it, or an unlimited distance),
+ * NumberOfDirections outside 4..360, a negative MaximumDistance, a refraction coefficient outside
+ * [0, 1), and not enough memory for the outputs and the sweep: refused before allocating when the
+ * estimate exceeds MemoryLimit (default: the memory the process may use, physical or its control
+ * group's limit, beside the input image, since past it Linux kills the process rather than fail an
+ * allocation; or what an address-space limit leaves), or an allocation that fails (e.g. under
+ * `ulimit -v`); the message gives the estimated need (HorizonAngles take 4 bytes per cell and
+ * direction).
  *
  * Progress and abort: ProgressEvent at 0 three times in the serial set-up (after the
  * elevations' copy, before the outputs, after the sweep's state: seconds apart on a DEM of 10^8

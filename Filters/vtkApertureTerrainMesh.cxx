@@ -9,6 +9,7 @@
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
 #include "vtkExtentTranslator.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -17,6 +18,7 @@
 #include "vtkTypeInt64Array.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationExecutivePortKey.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -88,8 +90,8 @@ namespace
 // joins its east and west edges (RequestData's seam), the quad rows shared out evenly (VTK's
 // Y slabs split the columns too once the pieces outnumber the rows, and such pieces had no
 // seam until 2026-12-07); a piece left without a quad row is empty. The CRS is known here when
-// vtkApertureDEMReader published it, or from the input image itself when it is already there
-// (SetInputData). A piece that does not exist (p >= n) has an empty extent (ext[1] < ext[0]).
+// vtkApertureDEMReader published it, or from the input image itself when it is given with
+// SetInputData. A piece that does not exist (p >= n) has an empty extent (ext[1] < ext[0]).
 void PieceExtent(vtkInformation* inInfo, int piece, int pieces, int ext[6])
 {
   int whole[6];
@@ -104,8 +106,16 @@ void PieceExtent(vtkInformation* inInfo, int piece, int pieces, int ext[6])
   {
     vtkNew<vtkApertureGeoreference> geo;
     vtkImageData* present = vtkImageData::GetData(inInfo);
+    // (an image given with SetInputData is there, whole, before any request; behind a filter
+    // that drops the CRS from the information, the image held is whatever was read last, the
+    // whole DEM or a piece, so it cannot decide: blocks then, whatever came before)
+    vtkExecutive* producer = nullptr;
+    int port = 0;
+    vtkExecutive::PRODUCER()->Get(inInfo, producer, port);
+    const bool given = producer && producer->GetAlgorithm() &&
+      producer->GetAlgorithm()->IsA("vtkTrivialProducer");
     const bool wraps = (geo->SetFromInformation(inInfo) ||
-                         (present && present->GetNumberOfPoints() > 0 &&
+                         (given && present && present->GetNumberOfPoints() > 0 &&
                            geo->SetFromImage(present))) &&
       geo->WrapsAround();
     if (wraps)
@@ -339,6 +349,9 @@ int vtkApertureTerrainMesh::RequestUpdateExtent(
   int whole[6], ext[6];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   PieceExtent(inInfo, piece, pieces, ext);
+  this->PlannedPiece[0] = piece;
+  this->PlannedPiece[1] = pieces;
+  std::copy(ext, ext + 6, this->PlannedExtent);
   // A whole grid RequestData would refuse is refused before it is read (a 20 GB global grid
   // was read whole first): VTK 9.1 goes on after a failed RequestUpdateExtent, so the input is
   // asked for nothing and RequestData reports the refusal. (A piece is meshed, or refused, on
@@ -451,7 +464,16 @@ int vtkApertureTerrainMesh::RunRequestData(
     pieces > 1 && inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
   if (streamed)
   {
-    PieceExtent(inInfo, piece, pieces, own);
+    // (the extent planned for this piece: whether a global DEM's pieces are bands was decided
+    // from what was known then, and deciding again from the piece read could differ)
+    if (this->PlannedPiece[0] == piece && this->PlannedPiece[1] == pieces)
+    {
+      std::copy(this->PlannedExtent, this->PlannedExtent + 6, own);
+    }
+    else
+    {
+      PieceExtent(inInfo, piece, pieces, own);
+    }
     if (own[1] < own[0] || own[3] < own[2])
     {
       return 1;

@@ -42,24 +42,25 @@
  * boundary edges, to vtkFeatureEdges or vtkMassProperties).
  *
  * Streaming: a request for piece p of n is translated into the input extent of that piece
- * (vtkExtentTranslator, pieces sharing their boundary rows or columns) and, with ComputeNormals,
- * one point more on every side where the DEM goes on, so the reader reads little more than that
- * part, the mesh holds only the piece, and the pieces' meshes join without gaps. Every piece uses
- * the frame of the whole extent, so their vertices coincide with those of the whole mesh (but
- * nodata's, placed as above), and their normals are the whole mesh's, bit for bit, along their
- * boundaries too (taken across them, from that margin). With ghost levels (UpdatePiece(p, n, g),
- * g > 0) the piece is meshed over g more points on every side where the DEM goes on (the margin
- * beyond them), and marked in vtkGhostType arrays as VTK's filters mark ghosts: the triangles of
- * quads outside the piece, and a pole's cap another piece owns (the one with the row of quads
- * beside it), DUPLICATECELL; the points outside it DUPLICATEPOINT (vtkRemoveGhosts leaves the
- * piece's own mesh). A piece that does not exist (p >= n) is an empty mesh. A global DEM's pieces
- * are bands of whole rows, each with its seam, the rows of quads shared out evenly (a piece left
- * without one is empty), when its CRS is known while the request is planned (published by
- * vtkApertureDEMReader and passed on by vtkApertureSkyVisibility, or an image given whole with
- * SetInputData). An input that holds more than the piece (updated whole before, or given with
- * SetInputData) is meshed over the piece's extent alone. An update that fails or is aborted
- * (AbortExecute, checked after each twentieth of the points) leaves an empty mesh, and the next
- * update runs again.
+ * (vtkExtentTranslator's blocks, or a global DEM's bands below; pieces sharing their boundary rows
+ * or columns) and, with ComputeNormals, one point more on every side where the DEM goes on, so the
+ * reader reads little more than that part, the mesh holds only the piece, and the pieces' meshes
+ * join without gaps. Every piece uses the frame of the whole extent, so their vertices coincide
+ * with those of the whole mesh (but nodata's, placed as above), and their normals are the whole
+ * mesh's, bit for bit, along their boundaries too (taken across them, from that margin). With ghost
+ * levels (UpdatePiece(p, n, g), g > 0) the piece is meshed over g more points on every side where
+ * the DEM goes on (the margin beyond them), and marked in vtkGhostType arrays as VTK's filters mark
+ * ghosts: the triangles of quads outside the piece, and a pole's cap another piece owns (the one
+ * with the row of quads beside it), DUPLICATECELL; the points outside it DUPLICATEPOINT
+ * (vtkRemoveGhosts leaves the piece's own mesh). A piece that does not exist (p >= n) is an empty
+ * mesh. A global DEM's pieces are bands of whole rows, each with its seam, the rows of quads shared
+ * out evenly (a piece left without one is empty), when its CRS is known while the request is
+ * planned (published by vtkApertureDEMReader and passed on by vtkApertureSkyVisibility, or an image
+ * given with SetInputData); else blocks, without seams (behind a VTK filter that drops the CRS from
+ * the pipeline information, such as vtkImageShiftScale), whatever was updated before. An input that
+ * holds more than the piece (updated whole before, or given with SetInputData) is meshed over the
+ * piece's extent alone. An update that fails or is aborted (AbortExecute, checked after each
+ * twentieth of the points) leaves an empty mesh, and the next update runs again.
  *
  * Elevations taken from the input's active scalars, asked for (a null or empty
  * ElevationArrayName, a selection of the scalars) or for want of an `Elevation` array (an
@@ -202,6 +203,10 @@ protected:
   bool GenerateTextureCoordinates;
   vtkTypeInt64 MemoryLimit;
   std::string RefusedRequest; // (RequestUpdateExtent's refusal, for RequestData to report)
+  // (the piece RequestUpdateExtent planned, piece and pieces, and its own extent: RequestData
+  // meshes that one, decided once)
+  int PlannedPiece[2] = { -1, 0 };
+  int PlannedExtent[6] = { 0, -1, 0, -1, 0, -1 };
 
 
 private:

@@ -14,6 +14,7 @@ from osgeo import gdal, osr
 from vtkmodules.test import Testing
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkCommonExecutionModel import vtkExtentTranslator
 
 import aperture
 
@@ -791,6 +792,62 @@ print(w.errors[0] if w.errors else mesher.GetOutput().GetNumberOfPoints())
             # reach; the bands are at least levels + 1 rows apart from a pole)
             self.assertGreaterEqual(ghosts, min(pieces - 1, 16) * levels * 2 * 36)
 
+    def testPiecesBehindAFilterDroppingTheCRS(self):
+        # Behind a VTK filter that drops the CRS from the pipeline information
+        # (vtkImageShiftScale), a global DEM's pieces are blocks, without seams, whatever was
+        # updated before: they were bands after a whole update and blocks after a piece (the
+        # image held decided), and RequestData could decide otherwise than the request's plan
+        # (a review of 2026-12-07 counted 140 triangles twice in 13 pieces).
+        from vtkmodules.vtkImagingCore import vtkImageShiftScale
+        folder = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, folder)
+        path = write_dem(os.path.join(folder, "globe.tif"),
+                         np.random.default_rng(1).uniform(0.0, 3000.0, (18, 36)),
+                         (-180, 10, 0, 90, 0, -10), 4326)
+        for whole_first in (False, True):
+            reader = aperture.vtkApertureDEMReader()
+            reader.SetFileName(path)
+            shift = vtkImageShiftScale()
+            shift.SetInputConnection(reader.GetOutputPort())
+            shift.SetOutputScalarTypeToFloat()
+            m = aperture.vtkApertureTerrainMesh()
+            m.SetInputConnection(shift.GetOutputPort())
+            if whole_first:  # (the image itself says it wraps: the whole mesh has its seam)
+                m.Update()
+                self.assertEqual(m.GetOutput().GetNumberOfCells(), 2 * 36 * 17 + 2 * 34)
+            for pieces in (3, 13):
+                cells = 0
+                for piece in range(pieces):
+                    m.UpdatePiece(piece, pieces, 0)
+                    out = m.GetOutput()
+                    ext = [0] * 6
+                    translator = vtkExtentTranslator()
+                    translator.PieceToExtentThreadSafe(piece, pieces, 0, [0, 35, 0, 17, 0, 0],
+                                                       ext, vtkExtentTranslator.BLOCK_MODE, 0)
+                    self.assertEqual(out.GetNumberOfPoints(),
+                                     (ext[1] - ext[0] + 1) * (ext[3] - ext[2] + 1))
+                    cells += out.GetNumberOfCells()
+                self.assertEqual(cells, 2 * 35 * 17, (whole_first, pieces))
+
+    def testGhostMarksAddToTheInputs(self):
+        # A vtkGhostType the input carries (HIDDENPOINT here) keeps its marks: the ghost layers'
+        # DUPLICATEPOINT is added to them (they were overwritten until review).
+        from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
+        image = global_image(np.zeros(36 * 18))
+        hidden = vtkUnsignedCharArray()
+        hidden.SetName("vtkGhostType")
+        hidden.SetNumberOfTuples(36 * 18)
+        hidden.Fill(2)  # (vtkDataSetAttributes.HIDDENPOINT)
+        image.GetPointData().AddArray(hidden)
+        m = aperture.vtkApertureTerrainMesh()
+        m.SetInputData(image)
+        m.UpdatePiece(0, 2, 1)
+        marks = vtk_to_numpy(m.GetOutput().GetPointData().GetArray("vtkGhostType"))
+        # (band 0: rows 0-8 its own, row 9 a ghost row; 37 points a row with the seam's copy)
+        self.assertEqual(len(marks), 37 * 10)
+        self.assertEqual(sorted(set(marks.tolist())), [2, 3])
+        self.assertEqual(int((marks == 3).sum()), 37)
+
     def testMeshGeoTransformIsTheGridMeshed(self):
         # The mesh's GeoTransform is that of the grid it meshed, the image's geometry: VTK's
         # filters pass the field data of the grid before on (vtkExtractVOI with a sample rate
@@ -889,6 +946,22 @@ print(w.errors[0] if w.errors else mesher.GetOutput().GetNumberOfPoints())
                                                                 + 4000.0), w.warnings[0])
                 else:
                     self.assertEqual(w.warnings, [], (case, stage))
+            if case == "unit cells":
+                # (a piece of it, and a crop: their GeoTransform, the whole grid's, is larger
+                # than their extents; warned about for an hour of review)
+                from vtkmodules.vtkImagingCore import vtkExtractVOI
+                voi = vtkExtractVOI()
+                voi.SetInputData(image)
+                voi.SetVOI(10, 30, 5, 25, 0, 0)
+                for stage in (aperture.vtkApertureSkyVisibility(),
+                              aperture.vtkApertureTerrainMesh()):
+                    w = Watcher()
+                    w.watch(stage)
+                    stage.SetInputConnection(voi.GetOutputPort())
+                    stage.Update()
+                    stage.SetInputData(image)
+                    stage.UpdatePiece(1, 2, 1)
+                    self.assertEqual(w.warnings, [], stage)
 
     def testStreamingSkyProductsOntoMesh(self):
         # reader -> sky visibility (2 km) -> mesh, piece by piece: the mesh asks the sky filter
