@@ -633,14 +633,16 @@ std::string vtkApertureGeoreference::GetDefaultGeometryWarning(vtkImageData* ima
   }
   const bool defaults =
     origin[0] == 0.0 && origin[1] == 0.0 && spacing[0] == 1.0 && spacing[1] == 1.0;
-  // (a GeoTransform of the default geometry: cells of 1, edges on the half-integers, around
-  // this extent; a piece's or a crop's field data describes the whole grid, larger)
+  // (a GeoTransform of the default geometry: north-up cells of 1, its west and north edges on
+  // the half-integers, at or beyond this extent's: a piece's or a crop's field data describes
+  // the whole grid, larger)
   int extent[6];
   image->GetExtent(extent);
   const auto onLattice = [](double edge) {
     return std::fabs(edge - 0.5 - std::round(edge - 0.5)) <= 1e-6;
   };
-  const bool same = g[1] == 1.0 && g[5] == -1.0 && onLattice(g[0]) && onLattice(g[3]) &&
+  const bool same = std::fabs(g[1] - 1.0) <= 1e-9 && std::fabs(g[5] + 1.0) <= 1e-9 &&
+    g[2] == 0.0 && g[4] == 0.0 && onLattice(g[0]) && onLattice(g[3]) &&
     g[0] <= extent[0] - 0.5 + 1e-6 && g[3] >= extent[3] + 0.5 - 1e-6;
   if (!defaults || same)
   {

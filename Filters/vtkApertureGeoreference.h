@@ -128,13 +128,14 @@ public:
   static bool HasNorthUpAxes(vtkImageData* image);
 
   /** A warning when the image's origin and spacing are VTK's defaults (x, y origin 0 and
-   *  spacing 1) while its field data's (north-up) `GeoTransform` describes another grid: cells
-   *  other than 1 x 1, or edges off the half-integers or not around the image's extent (a
-   *  whole grid's GeoTransform passed to a piece or a crop of it is around it): an image made
-   *  by hand whose geometry was never set, which SetFromImage (the geometry wins: Rasters.md)
-   *  takes as cells of one CRS unit at the CRS's origin. "" otherwise (also for such a grid of
-   *  1-unit cells that happens to lie west and north of the origin). vtkApertureSkyVisibility
-   *  and vtkApertureTerrainMesh give it. */
+   *  spacing 1) while its field data's `GeoTransform` describes another grid: cells other than
+   *  north-up 1 x 1 ones, or a west or north edge off the half-integers, east of the image's
+   *  west edge or south of its north edge (a whole grid's GeoTransform passed to a piece or a
+   *  crop of it has its edges at or beyond theirs): an image made by hand whose geometry was
+   *  never set, which SetFromImage (the geometry wins: Rasters.md) takes as cells of one CRS
+   *  unit at the CRS's origin. "" otherwise, also for a grid of 1-unit cells made by hand
+   *  whose north-west corner happens to lie at or beyond the image's on that lattice.
+   *  vtkApertureSkyVisibility and vtkApertureTerrainMesh give it. */
   static std::string GetDefaultGeometryWarning(vtkImageData* image);
 
   /**

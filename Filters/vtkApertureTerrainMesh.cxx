@@ -94,7 +94,7 @@ namespace
 // SetInputData. A piece that does not exist (p >= n) has an empty extent (ext[1] < ext[0]).
 void PieceExtent(vtkInformation* inInfo, int piece, int pieces, int ext[6])
 {
-  int whole[6];
+  int whole[6] = { 0, -1, 0, -1, 0, -1 }; // (empty without a whole extent)
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   std::copy(whole, whole + 6, ext);
   if (piece < 0 || piece >= std::max(pieces, 1))
@@ -346,7 +346,7 @@ int vtkApertureTerrainMesh::RequestUpdateExtent(
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   const int piece = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER());
   const int pieces = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES());
-  int whole[6], ext[6];
+  int whole[6] = { 0, -1, 0, -1, 0, -1 }, ext[6];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   PieceExtent(inInfo, piece, pieces, ext);
   this->PlannedPiece[0] = piece;

@@ -909,7 +909,8 @@ print(w.errors[0] if w.errors else mesher.GetOutput().GetNumberOfPoints())
         reader.Update()
         gt = reader.GetOutput().GetFieldData().GetArray("GeoTransform")
         x0, dx, y0, dy = (gt.GetValue(k) for k in (0, 1, 3, 5))
-        for case in ("default", "set", "unit cells", "unit cells elsewhere"):
+        for case in ("default", "set", "unit cells", "unit cells elsewhere", "unit cells turned",
+                     "unit cells north-west"):
             image = vtkImageData()
             image.DeepCopy(reader.GetOutput())
             if case != "set":
@@ -919,10 +920,15 @@ print(w.errors[0] if w.errors else mesher.GetOutput().GetNumberOfPoints())
                 geo = aperture.vtkApertureGeoreference()
                 self.assertTrue(geo.SetCRS('LOCAL_CS["site",UNIT["kilometre",1000]]') and
                                 geo.AttachToImage(image))
+            moved = image.GetFieldData().GetArray("GeoTransform")
             if case == "unit cells elsewhere":  # (the grid 500 km east, 4000 km north)
-                moved = image.GetFieldData().GetArray("GeoTransform")
                 moved.SetValue(0, moved.GetValue(0) + 500.0)
                 moved.SetValue(3, moved.GetValue(3) + 4000.0)
+            if case == "unit cells turned":  # (a rotated GeoTransform: no default geometry's)
+                moved.SetValue(2, 0.3)
+            if case == "unit cells north-west":  # (the documented miss: a corner beyond it)
+                moved.SetValue(0, moved.GetValue(0) - 100.0)
+                moved.SetValue(3, moved.GetValue(3) + 1000.0)
             for stage in (aperture.vtkApertureSkyVisibility(), aperture.vtkApertureTerrainMesh()):
                 w = Watcher()
                 w.watch(stage)
@@ -938,12 +944,15 @@ print(w.errors[0] if w.errors else mesher.GetOutput().GetNumberOfPoints())
                         "image's origin and spacing (SetOrigin, SetSpacing: a cell centre and "
                         "the cell size)"), w.warnings[0])
                     self.assertIn("0.00333333333333 x 0.00333333333333", w.warnings[0])
-                elif case == "unit cells elsewhere":
+                elif case in ("unit cells elsewhere", "unit cells turned"):
                     self.assertEqual(len(w.warnings), 1, (stage, w.warnings))
                     # (the default grid's edges, -0.5 and rows - 0.5, moved)
-                    self.assertIn("GeoTransform has cells of 1 x 1 from x 499.5, y %g: the "
-                                  "image's geometry is used" % (image.GetDimensions()[1] - 0.5
-                                                                + 4000.0), w.warnings[0])
+                    self.assertIn("GeoTransform has cells of 1 x 1 from x %g, y %g: the "
+                                  "image's geometry is used"
+                                  % ((499.5, image.GetDimensions()[1] - 0.5 + 4000.0)
+                                     if case.endswith("elsewhere")
+                                     else (-0.5, image.GetDimensions()[1] - 0.5)),
+                                  w.warnings[0])
                 else:
                     self.assertEqual(w.warnings, [], (case, stage))
             if case == "unit cells":
