@@ -162,7 +162,7 @@ void GrowExtent(int ext[6], const int whole[6], int by)
 // vtkGhostType of a piece meshed over `ext` (its own extent `own` and ghost layers around it),
 // whose nx x ny grid's triangles are `polys`, the quads' of grid row j from rowStart[j], then
 // the caps' (a seam's copies of column 0 are the points from nx * ny on, one a row): the
-// triangles of quads outside own's, and the caps of rows outside it, are DUPLICATECELL; the
+// triangles of quads outside own's, and the caps another piece owns, are DUPLICATECELL; the
 // points outside own's, used by such triangles alone, DUPLICATEPOINT.
 void MarkGhosts(vtkPolyData* output, vtkCellArray* polys, const int ext[6], const int own[6],
   size_t nx, size_t ny, const std::vector<size_t>& rowStart)
