@@ -778,29 +778,24 @@ bool ColumnLongitudeStep(vtkApertureGeoreference* geo, double& step, int& span)
   step = std::remainder(across[0] - first[0], 360.0) / span;
   return std::isfinite(step) && step != 0.0;
 }
-}
 
-//------------------------------------------------------------------------------
-bool vtkApertureGeoreference::HasMeridianColumns()
+// Whether a projected grid's (geo's) columns are meridians and its rows parallels, with
+// longitude linear in x, and `step`, the columns' longitude step (degrees): for
+// HasMeridianColumns and WrapsAround. False for a grid of fewer than 2 x 2 cells.
+bool MeridianColumnStep(vtkApertureGeoreference* geo, double& step)
 {
-  if (!this->Impl->CRS)
-  {
-    this->Impl->Error = "no coordinate reference system is set";
-    return false;
-  }
-  if (OSRIsGeographic(this->Impl->CRS) || this->Impl->IsLocal())
-  {
-    return true;
-  }
-  const int nx = this->GridSize[0], ny = this->GridSize[1];
+  double origin[2], spacing[2];
+  int size[2];
+  geo->GetGridOrigin(origin);
+  geo->GetGridSpacing(spacing);
+  geo->GetGridSize(size);
+  const int nx = size[0], ny = size[1];
   if (nx < 2 || ny < 2)
   {
-    this->Impl->Error = "the grid has fewer than 2 x 2 cells";
     return false;
   }
-  double step;
   int span;
-  if (!ColumnLongitudeStep(this, step, span))
+  if (!ColumnLongitudeStep(geo, step, span))
   {
     return false;
   }
@@ -810,11 +805,11 @@ bool vtkApertureGeoreference::HasMeridianColumns()
   {
     for (int c = 0; c < 4; ++c)
     {
-      xy[2 * (4 * r + c)] = this->GridOrigin[0] + cols[c] * this->GridSpacing[0];
-      xy[2 * (4 * r + c) + 1] = this->GridOrigin[1] + rows[r] * this->GridSpacing[1];
+      xy[2 * (4 * r + c)] = origin[0] + cols[c] * spacing[0];
+      xy[2 * (4 * r + c) + 1] = origin[1] + rows[r] * spacing[1];
     }
   }
-  if (!this->CRSToLonLatPoints(12, xy, ll))
+  if (!geo->CRSToLonLatPoints(12, xy, ll))
   {
     return false;
   }
@@ -852,6 +847,29 @@ bool vtkApertureGeoreference::HasMeridianColumns()
     }
   }
   return true;
+}
+}
+
+//------------------------------------------------------------------------------
+bool vtkApertureGeoreference::HasMeridianColumns()
+{
+  if (!this->Impl->CRS)
+  {
+    this->Impl->Error = "no coordinate reference system is set";
+    return false;
+  }
+  if (OSRIsGeographic(this->Impl->CRS) || this->Impl->IsLocal())
+  {
+    return true;
+  }
+  const int nx = this->GridSize[0], ny = this->GridSize[1];
+  if (nx < 2 || ny < 2)
+  {
+    this->Impl->Error = "the grid has fewer than 2 x 2 cells";
+    return false;
+  }
+  double step;
+  return MeridianColumnStep(this, step);
 }
 
 //------------------------------------------------------------------------------
@@ -1049,8 +1067,7 @@ bool vtkApertureGeoreference::WrapsAround()
   {
     // a cylindrical projection's columns (Mercator, equirectangular): their longitude step
     double step;
-    int span;
-    if (!this->HasMeridianColumns() || !ColumnLongitudeStep(this, step, span))
+    if (!MeridianColumnStep(this, step))
     {
       return false;
     }
