@@ -964,8 +964,9 @@ int vtkApertureSkyVisibility::RunRequestData(
   // Grids whose columns are meridians and rows parallels (lat/lon, Mercator, equirectangular)
   // get their cell sizes row by row, exact for every cell, and the sweep's lattice needs those
   // of every row of the whole grid; other projected grids are metric to within the
-  // projection's scale factor, taken at the centre row (its first and last rows are measured
-  // too, so that a grid reaching off its projection's domain is refused, as a lat/lon one is).
+  // projection's scale factor, taken at the centre row (WholeGridProblem above measured the
+  // first and last rows too, so that a grid reaching off its projection's domain is refused,
+  // as a lat/lon one is).
   // A local CRS (a sphere of the mean radius, the grid's axes east and north) has cells all of
   // one size: the constant size is exact there, and the kernel's per-row steps, rounded so that
   // rows share their patterns, would only cost time and accuracy.
@@ -992,12 +993,8 @@ int vtkApertureSkyVisibility::RunRequestData(
   // (a local CRS: its sphere, the centre at latitude 0)
   double centre[2] = { 0.0, 0.0 };
   double ellipsoid[2] = { vtkApertureGeoreference::GetLocalSphereRadius(), 0.0 };
-  double endDx, endDy; // (whether the first and last rows have sizes, not their values)
   if (!geo->GetRowCellSizesMetres(rowSizes ? 0 : nyWhole / 2, static_cast<int>(sizedRows),
         dx.data(), dy.data()) ||
-    (!rowSizes &&
-      (!geo->GetRowCellSizesMetres(0, 1, &endDx, &endDy) ||
-        !geo->GetRowCellSizesMetres(nyWhole - 1, 1, &endDx, &endDy))) ||
     (!local && (!geo->GetCentreLonLat(centre) || !geo->GetEllipsoid(ellipsoid))))
   {
     vtkErrorMacro(<< "no metric cell size: " << geo->GetErrorMessage());
