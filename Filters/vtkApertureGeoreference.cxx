@@ -1085,11 +1085,20 @@ bool vtkApertureGeoreference::CheckLongitudeSpan()
     return false;
   }
   d.Error.clear();
-  if (!OSRIsGeographic(d.CRS))
+  const bool geographic = OSRIsGeographic(d.CRS);
+  double cell = this->GridSpacing[0] * d.UnitToDegrees;
+  if (!geographic)
   {
-    return true;
+    // a cylindrical projection's columns (Mercator, equirectangular) have a longitude step too:
+    // 361 columns of one degree of Web Mercator were baked as a strip with two west edges,
+    // the same ground at both ends, until 2026-12-07; other projections' grids are not checked
+    if (!MeridianColumnStep(this, cell))
+    {
+      d.Error.clear();
+      return true;
+    }
+    cell = std::fabs(cell);
   }
-  const double cell = this->GridSpacing[0] * d.UnitToDegrees;
   const double span = this->GridSize[0] * cell;
   if (span > 360.0 + SpanSlack(cell))
   {
@@ -1101,9 +1110,28 @@ bool vtkApertureGeoreference::CheckLongitudeSpan()
     {
       // GMT's and ETOPO's gridline registration: cells centred on both -180 and 180, and on
       // the poles when the grid reaches them (their cells half beyond)
-      const double dy = this->GridSpacing[1] * d.UnitToDegrees;
-      const double south = this->GridOrigin[1] * d.UnitToDegrees - 0.5 * dy;
-      const double north = south + this->GridSize[1] * dy;
+      double south, north;
+      if (geographic)
+      {
+        const double dy = this->GridSpacing[1] * d.UnitToDegrees;
+        south = this->GridOrigin[1] * d.UnitToDegrees - 0.5 * dy;
+        north = south + this->GridSize[1] * dy;
+      }
+      else
+      {
+        // (the latitudes of the grid's south and north edges; PROJ gives an equirectangular
+        // grid's beyond a pole as more than 90 degrees)
+        const double x0 = this->GridOrigin[0], y0 = this->GridOrigin[1];
+        const double dy = this->GridSpacing[1];
+        const double xy[4] = { x0, y0 - 0.5 * dy, x0, y0 + (this->GridSize[1] - 0.5) * dy };
+        double ll[4];
+        south = north = 0.0;
+        if (this->CRSToLonLatPoints(2, xy, ll) && std::isfinite(ll[1]) && std::isfinite(ll[3]))
+        {
+          south = std::min(ll[1], ll[3]);
+          north = std::max(ll[1], ll[3]);
+        }
+      }
       const int dropNorth = north > 90.0 + 1e-9 ? 1 : 0, dropSouth = south < -90.0 - 1e-9 ? 1 : 0;
       msg << ": its first and last columns are one meridian (a gridline-registered global "
              "grid); drop the last column"

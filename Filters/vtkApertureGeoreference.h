@@ -225,11 +225,13 @@ public:
   VTK_WRAPEXCLUDE bool CRSToLonLatPoints(vtkIdType n, const double* xy, double* lonlat);
 
   /**
-   * False (with GetErrorMessage giving the span) when the CRS is geographic and the grid spans
-   * more than 360 degrees of longitude by over a thousandth of a cell, so that its columns
-   * would cover the same ground twice (a wrong cell size or unit; cell sizes rounded to 9 or
-   * 10 digits stay within); true otherwise, and for every projected CRS. GetBoundsLonLat
-   * and GetRowCellSizesMetres check it first.
+   * False (with GetErrorMessage giving the span) when the grid spans more than 360 degrees of
+   * longitude by over a thousandth of a cell, so that its columns would cover the same ground
+   * twice (a wrong cell size or unit, or a gridline-registered global grid; cell sizes rounded
+   * to 9 or 10 digits stay within): a lat/lon grid, or a projected one of at least 2 x 2 cells
+   * whose columns are meridians (HasMeridianColumns: Mercator, equirectangular). True
+   * otherwise, and for other projected grids. False without a geographic form of the CRS (a
+   * local one). GetBoundsLonLat and GetRowCellSizesMetres check it first.
    */
   bool CheckLongitudeSpan();
 

@@ -124,10 +124,11 @@
  * run: VTK's executive keeps an earlier update's output for one) gives an empty output and no
  * error, as VTK's filters do.
  * Errors (vtkErrorMacro, failed update): no elevation array, a DEM smaller than 2 x 2, a point
- * array without one tuple per point of the input, no CRS or no metric cell size (a lat/lon grid
- * wider than 360 degrees or beyond a pole, a projected one whose first, middle or last row PROJ
- * gives no geographic coordinates, a sub-extent of such a grid too, is refused without reading its
- * input when the CRS is in the pipeline information, as vtkApertureDEMReader puts it), every cell
+ * array without one tuple per point of the input, no CRS or no metric cell size (a lat/lon,
+ * Mercator or equirectangular grid wider than 360 degrees, a lat/lon grid beyond a pole, a
+ * projected one whose first, middle or last row PROJ gives no geographic coordinates, a
+ * sub-extent of such a grid too, is refused without reading its input when the CRS is in the
+ * pipeline information, as vtkApertureDEMReader puts it), every cell
  * nodata in an input that is the whole DEM (an update of all of it, or an unlimited distance),
  * NumberOfDirections outside 4..360, a negative MaximumDistance, a refraction coefficient outside
  * [0, 1), and not enough memory for the outputs and the sweep: refused before allocating when the
@@ -300,8 +301,9 @@ public:
    *  whole extent when the distance is unlimited, the input publishes no CRS, or a row there
    *  has no metric cell size. False, with an error, without input information, and for an
    *  update refused before anything is read (a grid whose first, middle or last row has no
-   *  metric cell size, as a lat/lon grid wider than 360 degrees or beyond a pole, its CRS in
-   *  the pipeline information). For sizing a request before anything runs (CheckMemory). */
+   *  metric cell size, as a lat/lon, Mercator or equirectangular grid wider than 360
+   *  degrees or a lat/lon grid beyond a pole, its CRS in the pipeline information). For
+   *  sizing a request before anything runs (CheckMemory). */
   bool ComputeInputExtent(const int extent[6], int input[6]);
 
   /** Columns of the other side an update whose input extent is `input` (ComputeInputExtent's)

@@ -213,14 +213,25 @@ void MarkGhosts(vtkPolyData* output, vtkCellArray* polys, const int ext[6], cons
 
 // Why a whole lat/lon grid cannot be meshed, found in the pipeline information before it is
 // read (RequestData asks the same of the image): wider than the Earth (a gridline-registered
-// global grid), beyond a pole, or cells of no size on the ground; "" for anything else, and
-// when the information has no CRS (RequestData then has the image's).
+// global grid; a Mercator or equirectangular one too), beyond a pole, or cells of no size on
+// the ground; "" for anything else, and when the information has no CRS (RequestData then has
+// the image's).
 std::string UnreadRefusal(vtkInformation* inInfo)
 {
   vtkNew<vtkApertureGeoreference> geo;
   double bounds[4], cell[2];
-  if (!geo->SetFromInformation(inInfo) || !geo->IsGeographic() ||
-    (geo->GetBoundsLonLat(bounds) && geo->GetCellSizeMetres(cell)))
+  if (!geo->SetFromInformation(inInfo) || geo->IsLocal())
+  {
+    return std::string();
+  }
+  if (!geo->IsGeographic())
+  {
+    // (a Mercator or equirectangular grid wider than the Earth: read whole, then refused,
+    // until 2026-12-07; other projected grids' questions need the grid)
+    return !geo->HasMeridianColumns() || geo->CheckLongitudeSpan() ? std::string()
+                                                                   : geo->GetErrorMessage();
+  }
+  if (geo->GetBoundsLonLat(bounds) && geo->GetCellSizeMetres(cell))
   {
     return std::string();
   }

@@ -87,8 +87,9 @@
  * Errors (vtkErrorMacro and a failed update): no elevation array or one of several components,
  * a whole DEM smaller than 2 x 2 (a streamed piece that thin just gives an empty mesh), a point
  * array without one tuple per point of the input, no CRS or one without geographic coordinates
- * (other than a local one), a lat/lon grid reaching beyond a pole or wider than the Earth (both
- * found in the pipeline information before a whole DEM is read), every point nodata or no
+ * (other than a local one), a lat/lon grid reaching beyond a pole, one or a Mercator or
+ * equirectangular grid wider than the Earth (found in the pipeline information before a whole
+ * DEM is read), every point nodata or no
  * triangle at all (too few or too scattered valid points: no 2 x 2 block with three valid
  * corners; a streamed piece just gives an empty mesh), a NaN VerticalExaggeration, or a mesh
  * beyond MemoryLimit or the process's memory (the message gives the size).

@@ -501,6 +501,35 @@ class TestInfo(CommandLineTest):
             self.assertIn("aperture: error: the grid's north edge is at latitude %d, beyond the "
                           "north pole" % north, err)
 
+    def test_cylindrical_grid_wider_than_the_earth(self):
+        # Web Mercator and equirectangular grids are counted by their columns' longitude step
+        # too (361 columns of one degree were described "from -180 to -179" and baked without
+        # a word, until 2026-12-07): described, bounds beyond 180 as a lat/lon grid's, with
+        # the refusal bake gives as a warning.
+        e = 20037508.342789244
+        c = e / 180
+        for srs, rows, north, hint, bounds in (
+                ("EPSG:3857", 20, 2e6, "drop the last column first (gdal_translate -srcwin 0 0 "
+                 "360 20;", [-180.5, None, 180.5, None]),
+                ("EPSG:4087", 181, 0.5 * e + 0.5 * c, "drop the last column and the rows "
+                 "centred on a pole first (gdal_translate -srcwin 0 1 360 179;",
+                 [-180.5, -90.5, 180.5, 90.5])):
+            p = make_raster(self.path("wide%s.tif" % srs[5:]), np.ones((rows, 361)),
+                            (-e - 0.5 * c, c, 0, north, 0, -c), srs=srs)
+            status, out, err = run("info", "--json", "--no-stats", p)
+            self.assertEqual(status, 0, err)
+            d = json.loads(out)
+            self.assertEqual((d["size"], d["wraps_around"]), ([361, rows], False))
+            for got, want in zip(d["bounds_lonlat"], bounds):
+                if want is not None:
+                    self.assertAlmostEqual(got, want, places=9)
+            self.assertIn("aperture: warning: the grid spans 361 degrees of longitude (361 "
+                          "columns of 1 degrees), more than the 360 around the Earth: its "
+                          "first and last columns are one meridian (a gridline-registered "
+                          "global grid); " + hint, err)
+            self.assert_error(hint, "bake", p, self.path("wide-bake.tif"))
+            self.assertFalse(os.path.exists(self.path("wide-bake.tif")))
+
     def test_beyond_the_pole(self):
         # A lat/lon grid whose top rows lie beyond the north pole (a wrong origin) is described
         # by no bounds on the Earth: an error, as the bake's; one ending on the pole is fine.

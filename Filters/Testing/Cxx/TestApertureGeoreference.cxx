@@ -449,7 +449,8 @@ void TestRowSizesAtPole()
 
 // A geographic grid may go once around the Earth (360 degrees plus rounding), not more: 40
 // columns of 20 degrees would put every cell on the ground of another. The span is counted in
-// degrees whatever the CRS's unit (400 grads are 360 degrees); projected grids are not limited.
+// degrees whatever the CRS's unit (400 grads are 360 degrees); a cylindrical projection's grid
+// (columns on meridians) by its columns' longitude step; other projected grids are not limited.
 void TestLongitudeSpan()
 {
   vtkNew<vtkApertureGeoreference> geo;
@@ -491,6 +492,37 @@ void TestLongitudeSpan()
   AP_CHECK(geo->SetCRS("EPSG:32616"));
   geo->SetGrid(0.0, 0.0, 1e6, 1e6, 400, 2); // 400 000 km: nonsense, but not a longitude span
   AP_CHECK(geo->CheckLongitudeSpan());
+  // Web Mercator and equirectangular: one degree of longitude per column, 360 columns once
+  // around (east and west edges joined), 361 the same meridian twice (PROJ gives longitudes
+  // within +-180: 361 columns were "from -180 to -179" and baked as a strip, until 2026-12-07)
+  const double e = 20037508.342789244, c = e / 180.0;
+  AP_CHECK(geo->SetCRS("EPSG:3857"));
+  geo->SetGrid(-e + 0.5 * c, 2e6, c, c, 360, 20);
+  AP_CHECK(geo->CheckLongitudeSpan() && geo->WrapsAround() && geo->GetRowCellSizesMetres(dx, dy));
+  geo->SetGrid(-e + 0.5 * c, 2e6, c, c, 361, 20);
+  AP_CHECK(!geo->CheckLongitudeSpan());
+  AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
+    "spans 361 degrees of longitude (361 columns of 1 degrees), more than the 360 around the "
+    "Earth: its first and last columns are one meridian (a gridline-registered global grid); "
+    "drop the last column first (gdal_translate -srcwin 0 0 360 20;");
+  AP_CHECK(!geo->WrapsAround());
+  AP_CHECK(!geo->GetRowCellSizesMetres(dx, dy) && !geo->GetBoundsLonLat(bounds));
+  AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()), "spans 361 degrees of longitude");
+  geo->SetGrid(-e + 0.5 * c, 2e6, 2.0 * c, c, 200, 20);
+  AP_CHECK(!geo->CheckLongitudeSpan());
+  AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
+    "spans 400 degrees of longitude (200 columns of 2 degrees), more than the 360 around the "
+    "Earth: a wrong cell size or unit?");
+  // gridline-registered equirectangular, rows centred on the poles too (PROJ gives the edges
+  // half a row beyond them as latitudes beyond 90)
+  AP_CHECK(geo->SetCRS("EPSG:4087"));
+  geo->SetGrid(-e, -0.5 * e, c, c, 361, 181);
+  AP_CHECK(!geo->CheckLongitudeSpan());
+  AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),
+    "drop the last column and the rows centred on a pole first (gdal_translate -srcwin 0 1 "
+    "360 179;");
+  geo->SetGrid(-e + 0.5 * c, -0.5 * e + 0.5 * c, c, c, 360, 180);
+  AP_CHECK(geo->CheckLongitudeSpan() && geo->WrapsAround());
 }
 } // namespace
 

@@ -140,8 +140,8 @@ class TestPipelineBehaviour(Testing.vtkTest):
     def testMeshRefusesAGridUnread(self):
         # A whole lat/lon grid the mesher refuses is refused before its reader reads a cell (a
         # global grid was read whole first, until 2026-12-07): wider than the Earth (a
-        # gridline-registered global grid), or beyond a pole. A piece is meshed on its own
-        # grid, once read; a grid that can be meshed is, after a refusal.
+        # gridline-registered global grid, also in Web Mercator), or beyond a pole. A piece is
+        # meshed on its own grid, once read; a grid that can be meshed is, after a refusal.
         from aperture.errors import Watcher
         folder = tempfile.mkdtemp()
         self.addCleanup(shutil.rmtree, folder)
@@ -149,6 +149,9 @@ class TestPipelineBehaviour(Testing.vtkTest):
                              (-180.5, 1, 0, 10, 0, -1), 4326)
         polar = write_dem(os.path.join(folder, "polar.tif"), np.ones((10, 10)),
                           (0, 1, 0, 95, 0, -1), 4326)
+        c = 20037508.342789244 / 180  # (a degree of longitude in Web Mercator)
+        mercator = write_dem(os.path.join(folder, "mercator.tif"), np.ones((20, 361)),
+                             (-180.5 * c, c, 0, 10 * c, 0, -c), 3857)
         reader = aperture.vtkApertureDEMReader()
         mesher = aperture.vtkApertureTerrainMesh()
         mesher.SetInputConnection(reader.GetOutputPort())
@@ -157,7 +160,8 @@ class TestPipelineBehaviour(Testing.vtkTest):
             w.watch(algorithm)
             w.watch(algorithm.GetExecutive())
         for path, message in ((gridline, "the grid spans 361 degrees of longitude"),
-                              (polar, "the grid's north edge is at latitude 95, beyond")):
+                              (polar, "the grid's north edge is at latitude 95, beyond"),
+                              (mercator, "the grid spans 361 degrees of longitude")):
             reader.SetFileName(path)
             mesher.Update()
             self.assertTrue(w.errors, path)

@@ -566,9 +566,11 @@ def _geotransform(geo):
 
 
 def _wider_than_the_earth(geo):
-    """Whether geo's grid is a lat/lon one of more than 360 degrees of longitude, with
+    """Whether geo's grid spans more than 360 degrees of longitude (a lat/lon one, or a
+    projected one whose columns are meridians: Mercator, equirectangular), with
     geo.GetErrorMessage() saying so (the sky filter's WholeGridProblem asks it first)."""
-    return geo.IsGeographic() and not geo.CheckLongitudeSpan()
+    return (not geo.IsLocal() and geo.HasMeridianColumns() and
+            not geo.CheckLongitudeSpan())
 
 
 def describe(reader, watcher):
@@ -593,8 +595,18 @@ def describe(reader, watcher):
         _warn(geo.GetErrorMessage() + "; bake and render refuse it")
         gt = _geotransform(geo)
         corners = [[0.0, 0.0], [0.0, 0.0]]
+        middle, step = [0.0, 0.0], [0.0, 0.0]
         wide = (geo.CRSToLonLat(gt[0], gt[3] + ny * gt[5], corners[0]) and
-                geo.CRSToLonLat(gt[0] + nx * gt[1], gt[3], corners[1]))
+                geo.CRSToLonLat(gt[0] + nx * gt[1], gt[3], corners[1]) and
+                geo.CRSToLonLat(gt[0] + 0.5 * nx * gt[1], gt[3], middle) and
+                geo.CRSToLonLat(gt[0] + (0.5 * nx + 1) * gt[1], gt[3], step))
+        if wide and not geo.IsGeographic():
+            # (a projected grid's edges, which PROJ gives within +-180, an east edge west of the
+            # west one, turned by whole turns to where its middle and its columns' longitude
+            # step put them)
+            half = 0.5 * nx * math.remainder(step[0] - middle[0], 360.0)
+            for corner, near in ((corners[0], middle[0] - half), (corners[1], middle[0] + half)):
+                corner[0] += 360.0 * round((near - corner[0]) / 360.0)
         bounds = [corners[0][0], corners[0][1], corners[1][0], corners[1][1]]
         # (and refused beyond a pole as any grid is, the rows centred on one aside, which the
         # warning says to drop: the check of one column of the other rows)
