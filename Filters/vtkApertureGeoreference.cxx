@@ -660,6 +660,17 @@ std::string vtkApertureGeoreference::GetDefaultGeometryWarning(vtkImageData* ima
 }
 
 //------------------------------------------------------------------------------
+bool vtkApertureGeoreference::WarnOfDefaultGeometry(vtkObject* caller, vtkImageData* image)
+{
+  const std::string warning = GetDefaultGeometryWarning(image);
+  if (!warning.empty())
+  {
+    vtkWarningWithObjectMacro(caller, << warning);
+  }
+  return !warning.empty();
+}
+
+//------------------------------------------------------------------------------
 bool vtkApertureGeoreference::SetFromInformation(vtkInformation* info)
 {
   Internals& d = *this->Impl;

@@ -135,8 +135,13 @@ public:
    *  never set, which SetFromImage (the geometry wins: Rasters.md) takes as cells of one CRS
    *  unit at the CRS's origin. "" otherwise, also for a grid of 1-unit cells made by hand
    *  whose north-west corner happens to lie at or beyond the image's on that lattice.
-   *  vtkApertureSkyVisibility and vtkApertureTerrainMesh give it. */
+   *  Aperture's filters, writers and vtkApertureSolarPosition give it (WarnOfDefaultGeometry).
+   */
   static std::string GetDefaultGeometryWarning(vtkImageData* image);
+
+  /** Gives GetDefaultGeometryWarning's warning, if any, as `caller`'s (vtkWarningWithObjectMacro:
+   *  its WarningEvent observers see it); true when it did. */
+  static bool WarnOfDefaultGeometry(vtkObject* caller, vtkImageData* image);
 
   /**
    * The georeference of a whole grid before any data flows: the CRS from CRS_KEY and the grid

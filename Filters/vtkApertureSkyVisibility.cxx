@@ -857,11 +857,7 @@ int vtkApertureSkyVisibility::RunRequestData(
   }
   vtkNew<vtkApertureGeoreference> geo;
   // (before the refusals it may explain: cells of one degree from latitude 0 past the pole)
-  const std::string geometry = vtkApertureGeoreference::GetDefaultGeometryWarning(input);
-  if (!geometry.empty())
-  {
-    vtkWarningMacro(<< geometry);
-  }
+  vtkApertureGeoreference::WarnOfDefaultGeometry(this, input);
   if (!geo->SetFromImage(input))
   {
     vtkErrorMacro(<< "no metric cell size: " << geo->GetErrorMessage());

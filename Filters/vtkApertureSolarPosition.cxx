@@ -602,6 +602,9 @@ bool vtkApertureSolarPosition::SetPlaceFromImage(vtkImageData* dem)
     this->Convergence = 0.0;
     return true;
   }
+  // (an image made by hand whose geometry was never set is placed by it: at latitude 0, or
+  // beyond a pole, named by the warning)
+  vtkApertureGeoreference::WarnOfDefaultGeometry(this, dem);
   vtkNew<vtkApertureGeoreference> geo;
   // (a site grid in a local CRS has no place on the Earth: no latitude and longitude)
   double lonlat[2] = { kNaN, kNaN };
@@ -1108,6 +1111,7 @@ bool vtkApertureSolarPosition::AddSunDirectionArray(vtkImageData* dem, const cha
     vtkErrorMacro(<< d.Error);
     return false;
   }
+  vtkApertureGeoreference::WarnOfDefaultGeometry(this, dem);
   vtkNew<vtkApertureGeoreference> geo;
   if (!geo->SetFromImage(dem))
   {

@@ -127,7 +127,10 @@ public:
    * (vtkApertureGeoreference::IsLocal: a site grid, its +y axis north, γ = 0) is taken but has
    * no place on the Earth: Latitude and Longitude become NaN, so Compute() fails saying so
    * until they are set, while ComputeForDirection works. SetLatitude/SetLongitude afterwards
-   * do not forget the DEM: call with nullptr.
+   * do not forget the DEM: call with nullptr. The place is the image's geometry's: an image
+   * whose origin and spacing are VTK's defaults while its field data's GeoTransform describes
+   * another grid is warned about (vtkApertureGeoreference::GetDefaultGeometryWarning), here
+   * and by AddSunDirectionArray.
    */
   bool SetPlaceFromImage(vtkImageData* dem);
 

@@ -574,11 +574,7 @@ int vtkApertureTerrainMesh::RunRequestData(
   vtkNew<vtkApertureGeoreference> geo;
   double lonlatBounds[4];
   // (before the refusals it may explain: cells of one degree from latitude 0 past the pole)
-  const std::string geometry = vtkApertureGeoreference::GetDefaultGeometryWarning(input);
-  if (!geometry.empty())
-  {
-    vtkWarningMacro(<< geometry);
-  }
+  vtkApertureGeoreference::WarnOfDefaultGeometry(this, input);
   if (!geo->SetFromImage(input) || (!geo->IsLocal() && !geo->CheckLongitudeSpan()) ||
     (geo->IsGeographic() && !geo->GetBoundsLonLat(lonlatBounds)))
   {

@@ -522,7 +522,10 @@ bool vtkApertureDEMWriter::BeginFile(vtkImageData* input, const int whole[6])
     }
   }
 
-  // 2. Georeference of the whole extent (CRS from the image's field data).
+  // 2. Georeference of the whole extent (CRS from the image's field data). (An image made by
+  // hand with the reader's field data but VTK's default geometry was written at the CRS's
+  // origin in cells of one unit, without a word, until 2026-12-07.)
+  vtkApertureGeoreference::WarnOfDefaultGeometry(this, input);
   vtkNew<vtkApertureGeoreference> geo;
   const bool hasCRS = geo->SetFromImage(input);
   double origin[3], spacing[3], gt[6];

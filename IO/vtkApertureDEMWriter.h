@@ -7,10 +7,13 @@
  * spacing in CRS units, `CRS` in the field data). The GeoTIFF gets the same georeference
  * (geotransform from the image geometry, north-up; the CRS from the field data; without a CRS
  * the file is written without one and a warning says so, while a CRS that cannot be used, or a
- * grid it cannot place, is an error). Of a compound CRS (horizontal + vertical) the horizontal
- * part is written: GDAL would give every band the vertical part's height unit, so that a
- * sky-view factor read as feet, and elevations, which vtkApertureDEMReader gives in metres,
- * were converted again on reading.
+ * grid it cannot place, is an error; an image whose origin and spacing are VTK's defaults while
+ * its field data's GeoTransform describes another grid, an image made by hand whose geometry
+ * was never set, is written as it is with a warning:
+ * vtkApertureGeoreference::GetDefaultGeometryWarning). Of a compound CRS (horizontal +
+ * vertical) the horizontal part is written: GDAL would give every band the vertical part's
+ * height unit, so that a sky-view factor read as feet, and elevations, which
+ * vtkApertureDEMReader gives in metres, were converted again on reading.
  *
  * Bands: every point array named in ArrayNames, in that order (all numeric point arrays, in the
  * image's order, when the list is empty; arrays that are not numeric or have no name, which a

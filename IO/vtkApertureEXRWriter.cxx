@@ -798,6 +798,9 @@ int vtkApertureEXRWriter::BeginStrips(vtkImageData* input, const int whole[6])
   std::vector<std::pair<std::string, std::string>> attributes = d.Metadata;
   if (vtkApertureGeoreference::GetAttachedCRS(input))
   {
+    // (the image's geometry is written: one by hand never set was written without a word,
+    // until 2026-12-07)
+    vtkApertureGeoreference::WarnOfDefaultGeometry(this, input);
     vtkNew<vtkApertureGeoreference> geo;
     if (!geo->SetFromImage(input) || !*geo->GetHorizontalCRS())
     {

@@ -52,7 +52,10 @@
  *   written grid: west edge, cell width, 0, north edge, 0, minus the cell height; six numbers
  *   printed with %.17g and separated by commas, e.g. "300000,30,0,5000120,0,-30").
  *   These two are written after the metadata and replace metadata with the same keys.
- *   vtkApertureEXRReader restores the grid and the CRS from them. Without a `CRS` array
+ *   vtkApertureEXRReader restores the grid and the CRS from them. The grid written is the
+ *   image's origin and spacing: when they are VTK's defaults while the field data's
+ *   GeoTransform describes another grid (an image made by hand whose geometry was never set) a
+ *   warning says so (vtkApertureGeoreference::GetDefaultGeometryWarning). Without a `CRS` array
  *   neither is written and the file is a plain picture.
  * Names longer than 31 characters (channels or keys) switch on OpenEXR's long-name support,
  * which readers older than OpenEXR 2.0 reject.

@@ -905,7 +905,37 @@ print(w.errors[0] if w.errors else mesher.GetOutput().GetNumberOfPoints())
         # 0.79 on a window of 30 m cells). So is one whose GeoTransform has cells of one unit
         # elsewhere (a 1 m LiDAR grid: not warned about until review). An image whose geometry
         # is set is not warned about, nor one whose GeoTransform is its default geometry's.
+        # The writers (which wrote such a lat/lon image to 343 degrees north) and the sun's
+        # place give the same warning (silent until 2026-12-07).
         from aperture.errors import Watcher
+        folder = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, folder)
+
+        def stages():
+            """Every stage given an image, each with a function that gives it one."""
+            for cls in (aperture.vtkApertureSkyVisibility, aperture.vtkApertureTerrainMesh):
+                def update(stage, image):
+                    stage.SetInputData(image)
+                    stage.Update()
+                yield cls(), update
+            for cls, name in ((aperture.vtkApertureDEMWriter, "dem.tif"),
+                              (aperture.vtkApertureEXRWriter, "dem.exr")):
+                def write(stage, image, name=name):
+                    stage.SetInputData(image)
+                    stage.SetFileName(os.path.join(folder, name))
+                    stage.Write()
+                    self.assertEqual(stage.GetErrorCode(), 0, stage)
+                yield cls(), write
+            yield aperture.vtkApertureSolarPosition(), lambda stage, image: (
+                self.assertTrue(stage.SetPlaceFromImage(image), stage.GetErrorMessage()))
+
+            def directions(stage, image):
+                stage.SetUnixTime(1.7e9)
+                # (a grid in a local CRS has no place on the Earth: refused, after the warning)
+                self.assertEqual(stage.AddSunDirectionArray(image, "Sun"),
+                                 image.GetFieldData().GetAbstractArray("CRS").GetValue(0)
+                                 .startswith("GEOGCRS"), stage.GetErrorMessage())
+            yield aperture.vtkApertureSolarPosition(), directions
         reader = aperture.vtkApertureDEMReader()
         reader.SetFileName(self.path)
         reader.SetDecimation(4)
@@ -933,11 +963,10 @@ print(w.errors[0] if w.errors else mesher.GetOutput().GetNumberOfPoints())
             if case == "unit cells north-west":  # (the documented miss: a corner beyond it)
                 moved.SetValue(0, moved.GetValue(0) - 100.0)
                 moved.SetValue(3, moved.GetValue(3) + 1000.0)
-            for stage in (aperture.vtkApertureSkyVisibility(), aperture.vtkApertureTerrainMesh()):
+            for stage, give in stages():
                 w = Watcher()
                 w.watch(stage)
-                stage.SetInputData(image)
-                stage.Update()
+                give(stage, image)
                 if case == "default":
                     self.assertEqual(len(w.warnings), 1, (stage, w.warnings))
                     self.assertTrue(w.warnings[0].startswith(
