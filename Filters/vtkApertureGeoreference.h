@@ -54,9 +54,10 @@ public:
 
   /**
    * Pipeline information key under which vtkApertureDEMReader also publishes the CRS (WKT)
-   * of its output during RequestInformation (and vtkApertureSkyVisibility passes it on), so
-   * that downstream filters can plan update extents in metres before any data flows. The
-   * field data stays the place of record.
+   * of its output during RequestInformation (and vtkApertureSkyVisibility passes it on, or
+   * publishes the CRS of an image given to it with SetInputData), so that downstream filters
+   * can plan update extents in metres before any data flows. The field data stays the place
+   * of record.
    */
   static vtkInformationStringKey* CRS_KEY();
 

@@ -9,6 +9,8 @@
 
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkExecutive.h"
+#include "vtkInformationExecutivePortKey.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -505,6 +507,20 @@ int vtkApertureSkyVisibility::RequestInformation(
   // not pass our key on by itself)
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   const char* crs = inInfo ? inInfo->Get(vtkApertureGeoreference::CRS_KEY()) : nullptr;
+  if (!crs && inInfo)
+  {
+    // an image given with SetInputData publishes nothing: its own CRS then, so that the
+    // filters downstream plan as behind the reader (a mesher's pieces of a global DEM were
+    // blocks, without their seams, until 2026-12-07)
+    vtkExecutive* producer = nullptr;
+    int port = 0;
+    vtkExecutive::PRODUCER()->Get(inInfo, producer, port);
+    vtkAlgorithm* algorithm = producer ? producer->GetAlgorithm() : nullptr;
+    if (algorithm && algorithm->IsA("vtkTrivialProducer"))
+    {
+      crs = vtkApertureGeoreference::GetAttachedCRS(vtkDataObject::GetData(inInfo));
+    }
+  }
   if (crs)
   {
     outInfo->Set(vtkApertureGeoreference::CRS_KEY(), crs);

@@ -55,10 +55,10 @@
  * (vtkRemoveGhosts leaves the piece's own mesh). A piece that does not exist (p >= n) is an empty
  * mesh. A global DEM's pieces are bands of whole rows, each with its seam, the rows of quads shared
  * out evenly (a piece left without one is empty), when its CRS is known while the request is
- * planned (published by vtkApertureDEMReader and passed on by vtkApertureSkyVisibility when its
- * input published it, or an image given with SetInputData); else blocks, without seams (behind a
- * VTK filter that drops the CRS from the pipeline information, such as vtkImageShiftScale, or a sky
- * filter given its image with SetInputData), whatever was updated before. An input that holds more
+ * planned (published by vtkApertureDEMReader and passed on by vtkApertureSkyVisibility, which
+ * publishes an image's given to it with SetInputData, or an image given with SetInputData);
+ * else blocks, without seams (behind a VTK filter that drops the CRS from the pipeline
+ * information, such as vtkImageShiftScale), whatever was updated before. An input that holds more
  * than the piece (updated whole before, or given with SetInputData) is meshed over the piece's
  * extent alone. An update that fails or is aborted (AbortExecute, checked after each twentieth of
  * the points) leaves an empty mesh, and the next update runs again.

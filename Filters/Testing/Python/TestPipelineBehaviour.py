@@ -795,6 +795,19 @@ print(w.errors[0] if w.errors else mesher.GetOutput().GetNumberOfPoints())
             # (each band's ghost rows: its neighbours' quads, seams included, and a cap within
             # reach; the bands are at least levels + 1 rows apart from a pole)
             self.assertGreaterEqual(ghosts, min(pieces - 1, 16) * levels * 2 * 36)
+        # Behind a sky filter given the image with SetInputData: bands with their seams too
+        # (the sky filter published no CRS for such an image, so the pieces were blocks
+        # without seams, 1190 triangles in 3 pieces, until 2026-12-07)
+        sky = aperture.vtkApertureSkyVisibility()
+        sky.SetInputData(m.GetInput())
+        sky.SetMaximumDistance(100e3)
+        m.SetInputConnection(sky.GetOutputPort())
+        for pieces in (3, 7):
+            own = []
+            for piece in range(pieces):
+                m.UpdatePiece(piece, pieces, 0)
+                own += triangles(m.GetOutput())
+            self.assertEqual(sorted(own), every, pieces)
 
     def testPiecesBehindAFilterDroppingTheCRS(self):
         # Behind a VTK filter that drops the CRS from the pipeline information
