@@ -1089,13 +1089,28 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
   // (the block RequestInformation found)
   if (static_cast<double>(bytes) + this->BlockBytes > static_cast<double>(limit))
   {
+    // (a file in tiles already was told to be written in tiles, until 2026-12-07)
+    const bool tiled = d.Block[0] < GDALGetRasterBandXSize(band);
+    std::ostringstream advice;
+    if (!tiled)
+    {
+      advice << "write it in tiles first (gdal_translate -co TILED=YES -co COMPRESS=DEFLATE)";
+    }
+    else
+    {
+      advice << "allow at least " << vtkApertureHumanBytes(bytes + this->BlockBytes);
+      if (d.Block[0] > 128 || d.Block[1] > 128)
+      {
+        advice << ", or write it in smaller tiles first (gdal_translate -co TILED=YES -co "
+                  "BLOCKXSIZE=128 -co BLOCKYSIZE=128 -co COMPRESS=DEFLATE)";
+      }
+    }
     vtkErrorMacro(<< "reading " << ncols << " x " << nrows << " cells of '" << this->FileName
                   << "' needs " << vtkApertureHumanBytes(static_cast<double>(bytes))
                   << " as float32 and " << vtkApertureHumanBytes(this->BlockBytes)
                   << " for one of its blocks of " << d.Block[0] << " x " << d.Block[1]
-                  << " cells, which GDAL reads whole, more than the " << allowed
-                  << "; write it in tiles first (gdal_translate -co TILED=YES -co "
-                     "COMPRESS=DEFLATE)");
+                  << " cells, which GDAL reads whole, more than the " << allowed << "; "
+                  << advice.str());
     return 0;
   }
 
@@ -1141,7 +1156,7 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
   // a margin of them read as a 10 km cliff without a word until 2026-12-07.
   size_t sentinels = 0;
   size_t infinite = 0; // (undeclared infinities, nodata all the same: said in a warning)
-  // (and finite samples beyond the float range, -1.8e308 as an undeclared nodata value, which
+  // (and finite samples beyond the float range, -1.79e308 as an undeclared nodata value, which
   // a Float64 band can hold: nodata too, silently until 2026-12-07)
   size_t huge = 0;
   const auto noteWarning = [&damaged]() {
@@ -1257,7 +1272,8 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
   {
     vtkWarningMacro(<< "'" << this->FileName << "' band " << d.Band << " has cells beyond the "
                     << "range of float32 elevations (3.4e38), which its nodata value does not "
-                    << "declare (-1.8e308: an undeclared nodata value?): read as nodata");
+                    << "declare (-1.79e308, say: an undeclared nodata value?): read as "
+                    << "nodata");
   }
   if (!damaged.empty())
   {

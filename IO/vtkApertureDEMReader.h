@@ -15,7 +15,8 @@
  * common nodata value, within the Earth's range of heights) is read as it is, with a warning.
  * Infinite samples that the nodata value does not declare are nodata, with a warning (with or
  * without a scale or another nodata value); so are a Float64 band's finite samples beyond the
- * float range (-1.8e308, an undeclared nodata value) that its scale does not bring within it.
+ * float range (-1.79e308, -DBL_MAX: an undeclared nodata value) that its scale does not bring
+ * within it.
  * GDAL 3.6's Int8 (a Byte band with PIXELTYPE=SIGNEDBYTE) is read as signed.
  * The grid follows vtkApertureGeoreference's conventions: origin and
  * spacing in CRS units, origin at the centre of the south-west cell, row 0 south, identity

@@ -78,7 +78,7 @@ int ap_sample_declared_nodata(const ap_sample_params *p, double r);
  *  float range; otherwise out[k] = (float)(raw[k] * scale + offset). `raw` and `out` must not
  *  overlap. `scaled_out` (may be NULL) gets the number of samples within the float range that scale
  *  and offset took beyond it (NaN too, but a sign of a wrong scale or offset rather than of
- *  an undeclared huge nodata value such as -1.8e308).
+ *  an undeclared huge nodata value such as -1.79e308, -DBL_MAX).
  *  Never fails on data; returns AP_ERR_NULL_POINTER / AP_ERR_INVALID_ARGUMENT (non-finite
  *  scale or offset) / AP_ERR_SIZE_OVERFLOW (n doubles exceed the address space) /
  *  AP_ERR_OVERLAP only for bad arguments. */

@@ -891,7 +891,7 @@ class TestBadInput(CommandLineTest):
         status, out, err = run("info", declared)
         self.assertEqual((status, err), (0, ""))
         self.assertIn("Nodata:     2 cells (nodata value -inf)", out)
-        # Finite samples beyond the float32 range (a Float64 band's -1.8e308, an undeclared
+        # Finite samples beyond the float32 range (a Float64 band's -1.79e308, an undeclared
         # nodata value) are nodata as well, said too (silent until 2026-12-07, with info's
         # count of them beside the declared value): not where the file declares them.
         lowest = -1.7976931348623157e308
@@ -912,7 +912,7 @@ class TestBadInput(CommandLineTest):
             self.assertEqual(status, 0, err)
             self.assertEqual(err, "aperture: warning: '%s' band 1 has cells beyond the range of "
                              "float32 elevations (3.4e38), which its nodata value does not "
-                             "declare (-1.8e308: an undeclared nodata value?): read as "
+                             "declare (-1.79e308, say: an undeclared nodata value?): read as "
                              "nodata\n" % path if warned else "", name)
             self.assertIn("Nodata:     2 cells", out)
         # once, also when read in strips that each have some (one per strip until 2026-12-07)

@@ -91,7 +91,9 @@ class TestDefaultDEM(unittest.TestCase):
         for name, lon, lat, height in (("Jacksboro", -84.188793, 36.331511, 335.0),
                                        ("LaFollette", -84.127623, 36.375006, 327.0)):
             with self.subTest(town=name):
-                self.assertLess(abs(self.bilinear(lon, lat) - height), 25.0)
+                # (332.6 and 334.6 m: Documents/DefaultDEM.md's table, which gave 327 and 325
+                # until 2026-12-07; a town is not one point of the valley floor)
+                self.assertLess(abs(self.bilinear(lon, lat) - height), 10.0)
 
     def test_mesh_puts_the_summit_south_of_centre(self):
         # In the ENU mesh, north is +y: Cross Mountain is 11.6 km south and 1.4 km east of the

@@ -992,6 +992,18 @@ void TestBadInput()
     window(rd.Reader);
     AP_CHECK(rd.Update()->GetNumberOfPoints() == 100 && rd.Ok == 1);
     AP_CHECK(rd.Reader->GetBlockBytes() == 256.0 * 256.0 * 2.0); // (what a caller leaves room for)
+    // a tiled file whose tile does not fit is not told to be written in tiles (it was, until
+    // 2026-12-07): the limit that reads it (400 + 131072 bytes), or smaller tiles
+    ExpectError(tmp + "/tiled.tif",
+      "reading 10 x 10 cells of '" + tmp + "/tiled.tif' needs 400 bytes as float32 and "
+        "128.000 KiB for one of its blocks of 256 x 256 cells, which GDAL reads whole, more "
+        "than the 100.000 KiB MemoryLimit; allow at least 128.391 KiB, or write it in smaller "
+        "tiles first (gdal_translate -co TILED=YES -co BLOCKXSIZE=128 -co BLOCKYSIZE=128 -co "
+        "COMPRESS=DEFLATE)",
+      [](vtkApertureDEMReader* r) {
+        r->SetSubWindow(0, 0, 10, 10);
+        r->SetMemoryLimit(100 << 10);
+      });
     rd.Reader->SetFileName((tmp + "/one-strip.tif").c_str());
     rd.Reader->UpdateInformation();
     AP_CHECK(rd.Reader->GetBlockBytes() == 2000.0 * 1000.0 * 2.0);

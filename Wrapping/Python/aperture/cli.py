@@ -3105,7 +3105,8 @@ def build_parser():
                         "interpolated (faster for meshes of about pixel-sized triangles)")
     p.add_argument("--exr", metavar="OUT.exr",
                    help="also write the linear radiance (W/m2/sr, before exposure and tone "
-                        "mapping) as an RGBA OpenEXR read back from a float framebuffer")
+                        "mapping) as an RGBA OpenEXR read back from a float framebuffer (of "
+                        "fewer than 2^28 pixels, 16 bytes each: VTK reads back less than 4 GiB)")
     p.add_argument("--exr-type", choices=("float", "half"), metavar="float|half",
                    help="EXR sample type (default float)")
     p.add_argument("--multisamples", type=_c_int, default=8, metavar="N",
