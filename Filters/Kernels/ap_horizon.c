@@ -4443,7 +4443,13 @@ AP_INLINE ap_status sweep(const ap_horizon *hz, size_t b0, size_t b1, const int 
           avail = bl[0]->avail < bl[1]->avail ? bl[0]->avail : bl[1]->avail;
         }
         slope_out[cell] = (float)(near > far ? near : far);
-        edge_out[cell] = search_truncated(avail, L, c, zmax, zq);
+        /* With constant cell sizes the cell's own ray says where it leaves the grid, as the
+         * marches take it: the nearer bracketing line can leave a column earlier, at once
+         * beside a side of the DEM, which flagged the second ring of cells where the limit
+         * was under a cell (until 2026-12-07); per-row sizes keep the lines' reach (their
+         * rhumb lines' ends are not extrapolated: ap_horizon.h) */
+        edge_out[cell] = hz->lattice ? search_truncated(avail, L, c, zmax, zq)
+                                     : march_edge(hz, hz->pats, p, cell, zq);
       }
       for (cell = s_begin; nremarch > 0 && cell < s_end; ++cell) {
         if (remarch[cell]) {
