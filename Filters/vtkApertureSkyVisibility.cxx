@@ -511,14 +511,17 @@ int vtkApertureSkyVisibility::RequestInformation(
   {
     // an image given with SetInputData publishes nothing: its own CRS then, so that the
     // filters downstream plan as behind the reader (a mesher's pieces of a global DEM were
-    // blocks, without their seams, until 2026-12-07)
+    // blocks, without their seams, until 2026-12-07); not for an image whose geometry was
+    // never set, whose refusal downstream would come before this filter's warning about it
     vtkExecutive* producer = nullptr;
     int port = 0;
     vtkExecutive::PRODUCER()->Get(inInfo, producer, port);
     vtkAlgorithm* algorithm = producer ? producer->GetAlgorithm() : nullptr;
-    if (algorithm && algorithm->IsA("vtkTrivialProducer"))
+    vtkImageData* given = vtkImageData::GetData(inInfo);
+    if (algorithm && algorithm->IsA("vtkTrivialProducer") &&
+      vtkApertureGeoreference::GetDefaultGeometryWarning(given).empty())
     {
-      crs = vtkApertureGeoreference::GetAttachedCRS(vtkDataObject::GetData(inInfo));
+      crs = vtkApertureGeoreference::GetAttachedCRS(given);
     }
   }
   if (crs)

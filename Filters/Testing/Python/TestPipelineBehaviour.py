@@ -931,6 +931,7 @@ print(w.errors[0] if w.errors else mesher.GetOutput().GetNumberOfPoints())
                     stage.SetInputData(image)
                     stage.Update()
                 yield cls(), update
+
             for cls, name in ((aperture.vtkApertureDEMWriter, "dem.tif"),
                               (aperture.vtkApertureEXRWriter, "dem.exr")):
                 def write(stage, image, name=name):
@@ -1017,6 +1018,29 @@ print(w.errors[0] if w.errors else mesher.GetOutput().GetNumberOfPoints())
                     stage.SetInputData(image)
                     stage.UpdatePiece(1, 2, 1)
                     self.assertEqual(w.warnings, [], stage)
+        # A sky filter given such an image, a mesher behind it, the grid beyond the north pole
+        # (one-degree cells from latitude 0, 172 rows): the sky filter warns before it refuses
+        # the grid (it published the image's CRS, so the mesher refused the grid before the sky
+        # filter ran and warned, for an hour of review)
+        reader.SetDecimation(2)
+        reader.Update()
+        image = vtkImageData()
+        image.DeepCopy(reader.GetOutput())
+        image.SetOrigin(0.0, 0.0, 0.0)
+        image.SetSpacing(1.0, 1.0, 1.0)
+        sky = aperture.vtkApertureSkyVisibility()
+        sky.SetInputData(image)
+        mesher = aperture.vtkApertureTerrainMesh()
+        mesher.SetInputConnection(sky.GetOutputPort())
+        w, refusal = Watcher(), Watcher()
+        w.watch(sky)
+        refusal.watch(sky.GetExecutive())
+        refusal.watch(mesher)
+        refusal.watch(mesher.GetExecutive())
+        mesher.Update()
+        self.assertEqual(len(w.warnings), 1, w.warnings)
+        self.assertIn("the image's origin and spacing are VTK's defaults", w.warnings[0])
+        self.assertTrue(w.errors and "beyond the pole" in w.errors[0], w.errors)
 
     def testStreamingSkyProductsOntoMesh(self):
         # reader -> sky visibility (2 km) -> mesh, piece by piece: the mesh asks the sky filter
