@@ -757,11 +757,12 @@ bool vtkApertureGeoreference::IsLocal()
 
 namespace
 {
-// The longitude step (degrees) of a column of geo's grid along its first row, first from one
-// cell, then over `span` of them, as many as stay within a quarter of the globe: so that
-// columns 180 degrees or more apart, which a difference within +-180 cannot tell, are
-// predicted from it (a global Web Mercator grid was "not cylindrical" until 2026-12-07).
-// False when a point has no geographic coordinates or the step is 0.
+// The longitude step (degrees) of a column of geo's grid along its first row, first from half
+// a cell (columns up to 360 degrees wide: two of 200 were one of 160 until review), then over
+// `span` of them, as many as stay within a quarter of the globe: so that columns 180 degrees
+// or more apart, which a difference within +-180 cannot tell, are predicted from it (a global
+// Web Mercator grid was "not cylindrical" until 2026-12-07). False when a point has no
+// geographic coordinates or the step is 0.
 bool ColumnLongitudeStep(vtkApertureGeoreference* geo, double& step, int& span)
 {
   double origin[2], spacing[2];
@@ -769,19 +770,24 @@ bool ColumnLongitudeStep(vtkApertureGeoreference* geo, double& step, int& span)
   geo->GetGridOrigin(origin);
   geo->GetGridSpacing(spacing);
   geo->GetGridSize(size);
-  double first[2], one[2], across[2];
+  double first[2], half[2], across[2];
   if (size[0] < 2 || !geo->CRSToLonLat(origin[0], origin[1], first) ||
-    !geo->CRSToLonLat(origin[0] + spacing[0], origin[1], one))
+    !geo->CRSToLonLat(origin[0] + 0.5 * spacing[0], origin[1], half))
   {
     return false;
   }
-  const double step1 = std::remainder(one[0] - first[0], 360.0);
+  const double step1 = 2.0 * std::remainder(half[0] - first[0], 360.0);
   if (!std::isfinite(step1) || step1 == 0.0)
   {
     return false;
   }
   span = static_cast<int>(
     std::min<double>(size[0] - 1, std::max(1.0, std::floor(90.0 / std::fabs(step1)))));
+  if (std::fabs(step1) > 90.0)
+  {
+    step = step1; // (one column is a quarter of the globe or more)
+    return true;
+  }
   if (!geo->CRSToLonLat(origin[0] + span * spacing[0], origin[1], across))
   {
     return false;

@@ -529,6 +529,17 @@ class TestInfo(CommandLineTest):
                           "global grid); " + hint, err)
             self.assert_error(hint, "bake", p, self.path("wide-bake.tif"))
             self.assertFalse(os.path.exists(self.path("wide-bake.tif")))
+        # from 10 E: 10 to 371, as the same grid in lat/lon (turned about the grid's middle,
+        # -350 to 11, until review)
+        for srs, west in (("EPSG:3857", 10 * c), ("EPSG:4326", 10)):
+            cell = 1 if srs == "EPSG:4326" else c
+            p = make_raster(self.path("wide-east.tif"), np.ones((20, 361)),
+                            (west, cell, 0, 20 * cell, 0, -cell), srs=srs)
+            status, out, err = run("info", "--json", "--no-stats", p)
+            self.assertEqual(status, 0, err)
+            bounds = json.loads(out)["bounds_lonlat"]
+            self.assertAlmostEqual(bounds[0], 10.0, places=9, msg=srs)
+            self.assertAlmostEqual(bounds[2], 371.0, places=9, msg=srs)
 
     def test_beyond_the_pole(self):
         # A lat/lon grid whose top rows lie beyond the north pole (a wrong origin) is described

@@ -508,6 +508,10 @@ void TestLongitudeSpan()
   AP_CHECK(!geo->WrapsAround());
   AP_CHECK(!geo->GetRowCellSizesMetres(dx, dy) && !geo->GetBoundsLonLat(bounds));
   AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()), "spans 361 degrees of longitude");
+  geo->SetGrid(-e + 100.0 * c, 2e6, 200.0 * c, c, 2, 20); // (two columns of 200 degrees)
+  AP_CHECK(!geo->CheckLongitudeSpan());
+  AP_CHECK_CONTAINS(
+    std::string(geo->GetErrorMessage()), "spans 400 degrees of longitude (2 columns");
   geo->SetGrid(-e + 0.5 * c, 2e6, 2.0 * c, c, 200, 20);
   AP_CHECK(!geo->CheckLongitudeSpan());
   AP_CHECK_CONTAINS(std::string(geo->GetErrorMessage()),

@@ -595,18 +595,18 @@ def describe(reader, watcher):
         _warn(geo.GetErrorMessage() + "; bake and render refuse it")
         gt = _geotransform(geo)
         corners = [[0.0, 0.0], [0.0, 0.0]]
-        middle, step = [0.0, 0.0], [0.0, 0.0]
+        origin, step = [0.0, 0.0], [0.0, 0.0]
         wide = (geo.CRSToLonLat(gt[0], gt[3] + ny * gt[5], corners[0]) and
                 geo.CRSToLonLat(gt[0] + nx * gt[1], gt[3], corners[1]) and
-                geo.CRSToLonLat(gt[0] + 0.5 * nx * gt[1], gt[3], middle) and
-                geo.CRSToLonLat(gt[0] + (0.5 * nx + 1) * gt[1], gt[3], step))
+                geo.CRSToLonLat(0.0, gt[3], origin) and geo.CRSToLonLat(gt[1], gt[3], step))
         if wide and not geo.IsGeographic():
             # (a projected grid's edges, which PROJ gives within +-180, an east edge west of the
-            # west one, turned by whole turns to where its middle and its columns' longitude
-            # step put them)
-            half = 0.5 * nx * math.remainder(step[0] - middle[0], 360.0)
-            for corner, near in ((corners[0], middle[0] - half), (corners[1], middle[0] + half)):
-                corner[0] += 360.0 * round((near - corner[0]) / 360.0)
+            # west one, turned by whole turns to where longitude linear in x from x = 0 puts
+            # them: as a lat/lon grid's own, 10 to 371 for 361 columns of a degree from 10 E;
+            # turned about the grid's middle, -350 to 11, until review)
+            per_unit = math.remainder(step[0] - origin[0], 360.0) / gt[1]
+            for corner, x in ((corners[0], gt[0]), (corners[1], gt[0] + nx * gt[1])):
+                corner[0] += 360.0 * round((origin[0] + x * per_unit - corner[0]) / 360.0)
         bounds = [corners[0][0], corners[0][1], corners[1][0], corners[1][1]]
         # (and refused beyond a pole as any grid is, the rows centred on one aside, which the
         # warning says to drop: the check of one column of the other rows)
