@@ -13,6 +13,7 @@
 
 #include "ap_memory.h"
 
+#include <cmath>
 #include <new>
 #include <sstream>
 #include <string>
@@ -81,8 +82,9 @@ inline const char* vtkApertureUsableMemoryOwner(int source)
     : "this machine has";
 }
 
-// A byte count for messages: "512 bytes", "1.500 KiB", ... "3.353 GiB".
-inline std::string vtkApertureHumanBytes(double bytes)
+// A byte count for messages: "512 bytes", "1.500 KiB", ... "3.353 GiB"; rounded up to the
+// digits shown with `up` (a limit to ask for: 1,048,976 bytes are "1.001 MiB", not "1.000").
+inline std::string vtkApertureHumanBytes(double bytes, bool up = false)
 {
   const char* units[] = { "bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB" };
   int u = 0;
@@ -90,6 +92,11 @@ inline std::string vtkApertureHumanBytes(double bytes)
   {
     bytes /= 1024.0;
     ++u;
+  }
+  if (up)
+  {
+    const double digits = u == 0 ? 1.0 : 1000.0;
+    bytes = std::ceil(bytes * digits) / digits;
   }
   std::ostringstream s;
   s.precision(u == 0 ? 0 : 3);

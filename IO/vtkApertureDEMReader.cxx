@@ -1089,8 +1089,9 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
   // (the block RequestInformation found)
   if (static_cast<double>(bytes) + this->BlockBytes > static_cast<double>(limit))
   {
-    // (a file in tiles already was told to be written in tiles, until 2026-12-07)
-    const bool tiled = d.Block[0] < GDALGetRasterBandXSize(band);
+    // (a file in tiles already was told to be written in tiles, until 2026-12-07; a strip is
+    // as wide as the raster, a tile of a narrow one wider)
+    const bool tiled = d.Block[0] != GDALGetRasterBandXSize(band);
     std::ostringstream advice;
     if (!tiled)
     {
@@ -1098,7 +1099,7 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
     }
     else
     {
-      advice << "allow at least " << vtkApertureHumanBytes(bytes + this->BlockBytes);
+      advice << "allow at least " << vtkApertureHumanBytes(bytes + this->BlockBytes, true);
       if (d.Block[0] > 128 || d.Block[1] > 128)
       {
         advice << ", or write it in smaller tiles first (gdal_translate -co TILED=YES -co "

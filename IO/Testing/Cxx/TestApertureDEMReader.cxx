@@ -1004,6 +1004,20 @@ void TestBadInput()
         r->SetSubWindow(0, 0, 10, 10);
         r->SetMemoryLimit(100 << 10);
       });
+    // tiles wider than the raster are tiles too (told to be written in tiles until review), and
+    // the limit named is rounded up: 1 MiB + 400 bytes is 1.001 MiB (1.000 until review, which
+    // refused again)
+    spec.nx = 200;
+    spec.options = { "COMPRESS=DEFLATE", "TILED=YES", "BLOCKXSIZE=512", "BLOCKYSIZE=1024" };
+    AP_CHECK(aptest::WriteRaster(tmp + "/wide-tiles.tif", spec));
+    ExpectError(tmp + "/wide-tiles.tif",
+      "needs 400 bytes as float32 and 1.000 MiB for one of its blocks of 512 x 1024 cells, which "
+      "GDAL reads whole, more than the 1.000 MiB MemoryLimit; allow at least 1.001 MiB, or write "
+      "it in smaller tiles first",
+      [](vtkApertureDEMReader* r) {
+        r->SetSubWindow(0, 0, 10, 10);
+        r->SetMemoryLimit(1 << 20);
+      });
     rd.Reader->SetFileName((tmp + "/one-strip.tif").c_str());
     rd.Reader->UpdateInformation();
     AP_CHECK(rd.Reader->GetBlockBytes() == 2000.0 * 1000.0 * 2.0);
