@@ -137,21 +137,22 @@
  *                         rp, B, DiffuseSkyFactor, SkyViewFactor), not PositiveOpenness and
  *                         h_t below the horizontal, which terrain beyond the edge could raise
  *                         on unflagged cells (on an endless plain with curvature no cell is
- *                         flagged, yet an edge cell's openness is 135° at D = 32, a corner's
- *                         157.5°: the sectors leaving the DEM at once count −π/2). With a max_distance the flag
+ *                         flagged, yet an edge cell's openness is 132.2° at D = 32, a
+ *                         corner's 154.7°, with azimuth_offset 135° and 157.5°: the sectors
+ *                         leaving the DEM at once count −π/2). With a max_distance the flag
  *                         does not use z_max, which a piece of a DEM would not know.
  *                         With constant cell sizes every search takes the distance at which
  *                         the cell's own ray leaves the grid (the sweep took the nearer
  *                         bracketing line's until 2026-12-07, flagging the second ring of
  *                         cells where the limit was under a cell).
- *                         On a grid with per-row cell sizes, without a max_distance, the
- *                         sweep takes a cell's reach from the two lines that bracket it (the
- *                         nearer of their last samples on the grid), not from its own rhumb
- *                         line: the flag can be set on cells whose own ray reaches up to
- *                         about a row farther than the threshold (0.6% of a global 0.5° DEM's
- *                         cells; a probe of 2026-12-06 found none missed; the second ring of
- *                         cells where the threshold is under a row), and on a global DEM those
- *                         cells change with the seam's place (the products clipped at the
+ *                         On a grid with per-row cell sizes the sweep takes a cell's reach
+ *                         from the two lines that bracket it (the nearer of their last
+ *                         samples on the grid), not from its own rhumb line: the flag can be
+ *                         set on cells whose own ray reaches up to about a row farther than
+ *                         the limit (0.6% of a global 0.5° DEM's cells without a distance; a
+ *                         probe of 2026-12-06 found none missed; the second ring of cells
+ *                         where the limit is under a row), and on a global DEM those cells
+ *                         change with the seam's place (the products clipped at the
  *                         horizontal do not).
  *  The sums converge as O(1/D²) to the continuous integrals. With scale_metric each sector's
  *  terms carry its weight ω and B's horizontal its ground direction (see there). The sums are

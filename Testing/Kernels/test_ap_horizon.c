@@ -1228,8 +1228,8 @@ static void test_edge_flags(void)
 
 /* The edge flag in oblique sectors, closed form on a flat grid of 30 x 20 m cells: a cell is
  * flagged when, in some sector, its own ray leaves the grid (the rectangle of the cell centres)
- * closer than the search limit, whichever way it is searched: the distance L (no curvature),
- * or without one, with curvature c, sqrt((zmax - z) / c) (one cell raised: by 6 mm, 300 m for
+ * closer than the search limit: the distance L (no curvature; marched, far-marched or swept),
+ * or without one (swept), with curvature c, sqrt((zmax - z) / c) (one cell raised: 6 mm, 300 m for
  * the others; by 15 micrometres, 15 m, less than a cell; 0 for it). The sweep took a cell's
  * reach from the nearer of the two lines bracketing it, which beside a side of the DEM can
  * leave the grid at once: the second ring of cells was flagged where the limit was less than a
