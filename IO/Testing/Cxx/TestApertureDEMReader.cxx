@@ -977,10 +977,14 @@ void TestBadInput()
     spec.type = GDT_Int16;
     spec.options = { "COMPRESS=DEFLATE", "BLOCKYSIZE=1000" };
     AP_CHECK(aptest::WriteRaster(tmp + "/one-strip.tif", spec));
-    const auto window = [](vtkApertureDEMReader* r) {
-      r->SetSubWindow(0, 0, 10, 10);
-      r->SetMemoryLimit(3 << 20);
+    // (a 10 x 10 window under a memory limit)
+    const auto windowUnder = [](vtkTypeInt64 limit) {
+      return [limit](vtkApertureDEMReader* r) {
+        r->SetSubWindow(0, 0, 10, 10);
+        r->SetMemoryLimit(limit);
+      };
     };
+    const auto window = windowUnder(3 << 20);
     ExpectError(tmp + "/one-strip.tif",
       "reading 10 x 10 cells of '" + tmp + "/one-strip.tif' needs 400 bytes as float32 and "
         "3.815 MiB for one of its blocks of 2000 x 1000 cells, which GDAL reads whole, more "
@@ -1000,10 +1004,7 @@ void TestBadInput()
         "than the 100.000 KiB MemoryLimit; allow at least 128.391 KiB, or write it in smaller "
         "tiles first (gdal_translate -co TILED=YES -co BLOCKXSIZE=128 -co BLOCKYSIZE=128 -co "
         "COMPRESS=DEFLATE)",
-      [](vtkApertureDEMReader* r) {
-        r->SetSubWindow(0, 0, 10, 10);
-        r->SetMemoryLimit(100 << 10);
-      });
+      windowUnder(100 << 10));
     // tiles wider than the raster are tiles too (told to be written in tiles until review), and
     // the limit named is rounded up: 1 MiB + 400 bytes is 1.001 MiB (1.000 until review, which
     // refused again)
@@ -1014,10 +1015,7 @@ void TestBadInput()
       "needs 400 bytes as float32 and 1.000 MiB for one of its blocks of 512 x 1024 cells, which "
       "GDAL reads whole, more than the 1.000 MiB MemoryLimit; allow at least 1.001 MiB, or write "
       "it in smaller tiles first",
-      [](vtkApertureDEMReader* r) {
-        r->SetSubWindow(0, 0, 10, 10);
-        r->SetMemoryLimit(1 << 20);
-      });
+      windowUnder(1 << 20));
     rd.Reader->SetFileName((tmp + "/one-strip.tif").c_str());
     rd.Reader->UpdateInformation();
     AP_CHECK(rd.Reader->GetBlockBytes() == 2000.0 * 1000.0 * 2.0);
