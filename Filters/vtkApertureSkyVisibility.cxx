@@ -512,16 +512,22 @@ int vtkApertureSkyVisibility::RequestInformation(
     // an image given with SetInputData publishes nothing: its own CRS then, so that the
     // filters downstream plan as behind the reader (a mesher's pieces of a global DEM were
     // blocks, without their seams, until 2026-12-07); not for an image whose geometry was
-    // never set, whose refusal downstream would come before this filter's warning about it
+    // never set and cannot be measured as it is (beyond a pole), whose refusal downstream
+    // would come before this filter's warning about it (a review's)
     vtkExecutive* producer = nullptr;
     int port = 0;
     vtkExecutive::PRODUCER()->Get(inInfo, producer, port);
     vtkAlgorithm* algorithm = producer ? producer->GetAlgorithm() : nullptr;
     vtkImageData* given = vtkImageData::GetData(inInfo);
-    if (algorithm && algorithm->IsA("vtkTrivialProducer") &&
-      vtkApertureGeoreference::GetDefaultGeometryWarning(given).empty())
+    if (algorithm && algorithm->IsA("vtkTrivialProducer"))
     {
       crs = vtkApertureGeoreference::GetAttachedCRS(given);
+      vtkNew<vtkApertureGeoreference> geo;
+      if (crs && !vtkApertureGeoreference::GetDefaultGeometryWarning(given).empty() &&
+        (!geo->SetFromImage(given) || !WholeGridProblem(geo, false).empty()))
+      {
+        crs = nullptr;
+      }
     }
   }
   if (crs)

@@ -116,9 +116,10 @@
  * and on lat/lon DEMs the lattice takes 32 bytes for each of the whole DEM's rows: a window of
  * a larger grid is refused with the reason. The output's pipeline information carries the CRS
  * (vtkApertureGeoreference::CRS_KEY) when the input's does, or when the input is an image given
- * with SetInputData that has one (and no default geometry its GeoTransform contradicts:
- * vtkApertureGeoreference::GetDefaultGeometryWarning), so that vtkApertureTerrainMesh plans
- * its pieces by it.
+ * with SetInputData that has one (unless its origin and spacing are VTK's defaults, contradicting
+ * its GeoTransform, and put it beyond a pole or around the Earth more than once:
+ * vtkApertureGeoreference::GetDefaultGeometryWarning, which this filter gives before it refuses
+ * such a grid), so that vtkApertureTerrainMesh plans its pieces by it.
  *
  * A piece whose input (its extent and halo) is nodata in every cell, a stretch of sea in a
  * coastal DEM, is no error: its products are nodata (NaN; EdgeTruncated 0, or NaN as float),
