@@ -530,16 +530,23 @@ class TestInfo(CommandLineTest):
             self.assert_error(hint, "bake", p, self.path("wide-bake.tif"))
             self.assertFalse(os.path.exists(self.path("wide-bake.tif")))
         # from 10 E: 10 to 371, as the same grid in lat/lon (turned about the grid's middle,
-        # -350 to 11, until review)
-        for srs, west in (("EPSG:3857", 10 * c), ("EPSG:4326", 10)):
-            cell = 1 if srs == "EPSG:4326" else c
-            p = make_raster(self.path("wide-east.tif"), np.ones((20, 361)),
-                            (west, cell, 0, 20 * cell, 0, -cell), srs=srs)
+        # -350 to 11, until review), also with a central meridian and a false easting that put
+        # x = 0 beyond the antimeridian; two columns of 200 degrees: 10 to 410 (10 to -310
+        # from a whole column's step, until review)
+        shifted = "+proj=merc +lon_0=150 +x_0=-5000000 +datum=WGS84 +units=m +type=crs"
+        for srs, west, cell, columns in (("EPSG:3857", 10 * c, c, 361),
+                                         ("EPSG:4326", 10, 1, 361),
+                                         (shifted, -5e6 - 140 * c, c, 361),
+                                         ("EPSG:3857", 10 * c, 200 * c, 2)):
+            degree = 1 if srs == "EPSG:4326" else c  # (a degree of longitude, CRS units)
+            p = make_raster(self.path("wide-east.tif"), np.ones((20, columns)),
+                            (west, cell, 0, 20 * degree, 0, -degree), srs=srs)
             status, out, err = run("info", "--json", "--no-stats", p)
             self.assertEqual(status, 0, err)
             bounds = json.loads(out)["bounds_lonlat"]
+            span = columns * cell / degree
             self.assertAlmostEqual(bounds[0], 10.0, places=9, msg=srs)
-            self.assertAlmostEqual(bounds[2], 371.0, places=9, msg=srs)
+            self.assertAlmostEqual(bounds[2], 10.0 + span, places=9, msg=srs)
 
     def test_beyond_the_pole(self):
         # A lat/lon grid whose top rows lie beyond the north pole (a wrong origin) is described

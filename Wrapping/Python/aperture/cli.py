@@ -573,6 +573,25 @@ def _wider_than_the_earth(geo):
             not geo.CheckLongitudeSpan())
 
 
+def _central_meridian(geo):
+    """A projected CRS's central meridian: its x (the false easting, CRS units) and longitude
+    (degrees, as the CRS gives it: not folded into +-180), or (0, None) where the CRS names
+    neither (then PROJ's longitude at x = 0 serves)."""
+    from osgeo import gdal, osr
+    srs = osr.SpatialReference()
+    gdal.PushErrorHandler("CPLQuietErrorHandler")
+    try:
+        if geo.IsGeographic() or srs.SetFromUserInput(geo.GetCRS()) != 0:
+            return 0.0, None
+        lon0 = srs.GetNormProjParm(osr.SRS_PP_CENTRAL_MERIDIAN, math.nan)
+        x0 = srs.GetProjParm(osr.SRS_PP_FALSE_EASTING, math.nan)
+    except RuntimeError:  # (with GDAL's exceptions on)
+        return 0.0, None
+    finally:
+        gdal.PopErrorHandler()
+    return (x0, lon0) if math.isfinite(lon0) and math.isfinite(x0) else (0.0, None)
+
+
 def describe(reader, watcher):
     """The facts `aperture info` prints, as a dict (the --json object), from the reader's
     information alone (nothing read): elevation_range and nodata_count are None
@@ -595,18 +614,22 @@ def describe(reader, watcher):
         _warn(geo.GetErrorMessage() + "; bake and render refuse it")
         gt = _geotransform(geo)
         corners = [[0.0, 0.0], [0.0, 0.0]]
-        origin, step = [0.0, 0.0], [0.0, 0.0]
+        x0, lon0 = _central_meridian(geo)
+        origin, half = [0.0, 0.0], [0.0, 0.0]
         wide = (geo.CRSToLonLat(gt[0], gt[3] + ny * gt[5], corners[0]) and
                 geo.CRSToLonLat(gt[0] + nx * gt[1], gt[3], corners[1]) and
-                geo.CRSToLonLat(0.0, gt[3], origin) and geo.CRSToLonLat(gt[1], gt[3], step))
+                geo.CRSToLonLat(x0, gt[3], origin) and
+                geo.CRSToLonLat(x0 + 0.5 * gt[1], gt[3], half))
         if wide and not geo.IsGeographic():
             # (a projected grid's edges, which PROJ gives within +-180, an east edge west of the
-            # west one, turned by whole turns to where longitude linear in x from x = 0 puts
-            # them: as a lat/lon grid's own, 10 to 371 for 361 columns of a degree from 10 E;
-            # turned about the grid's middle, -350 to 11, until review)
-            per_unit = math.remainder(step[0] - origin[0], 360.0) / gt[1]
+            # west one, turned by whole turns to where longitude linear in x from the central
+            # meridian puts them: as a lat/lon grid's own, 10 to 371 for 361 columns of a
+            # degree from 10 E; turned about the grid's middle, -350 to 11, until review; the
+            # step from half a column, as ColumnLongitudeStep, for columns up to 360 degrees)
+            per_unit = 2.0 * math.remainder(half[0] - origin[0], 360.0) / gt[1]
+            lon0 = origin[0] if lon0 is None else lon0
             for corner, x in ((corners[0], gt[0]), (corners[1], gt[0] + nx * gt[1])):
-                corner[0] += 360.0 * round((origin[0] + x * per_unit - corner[0]) / 360.0)
+                corner[0] += 360.0 * round((lon0 + (x - x0) * per_unit - corner[0]) / 360.0)
         bounds = [corners[0][0], corners[0][1], corners[1][0], corners[1][1]]
         # (and refused beyond a pole as any grid is, the rows centred on one aside, which the
         # warning says to drop: the check of one column of the other rows)
