@@ -1092,19 +1092,18 @@ int vtkApertureDEMReader::RunRequestData(vtkInformationVector* outputVector)
     // (a file in tiles already was told to be written in tiles, until 2026-12-07; a strip is
     // as wide as the raster, a tile of a narrow one wider)
     const bool tiled = d.Block[0] != GDALGetRasterBandXSize(band);
+    // (the limit named in both: a file in tiles as wide as the raster looks like strips)
     std::ostringstream advice;
+    advice << "allow at least " << vtkApertureHumanBytes(bytes + this->BlockBytes, true);
     if (!tiled)
     {
-      advice << "write it in tiles first (gdal_translate -co TILED=YES -co COMPRESS=DEFLATE)";
+      advice << ", or write it in tiles first (gdal_translate -co TILED=YES -co "
+                "COMPRESS=DEFLATE)";
     }
-    else
+    else if (d.Block[0] > 128 || d.Block[1] > 128)
     {
-      advice << "allow at least " << vtkApertureHumanBytes(bytes + this->BlockBytes, true);
-      if (d.Block[0] > 128 || d.Block[1] > 128)
-      {
-        advice << ", or write it in smaller tiles first (gdal_translate -co TILED=YES -co "
-                  "BLOCKXSIZE=128 -co BLOCKYSIZE=128 -co COMPRESS=DEFLATE)";
-      }
+      advice << ", or write it in smaller tiles first (gdal_translate -co TILED=YES -co "
+                "BLOCKXSIZE=128 -co BLOCKYSIZE=128 -co COMPRESS=DEFLATE)";
     }
     vtkErrorMacro(<< "reading " << ncols << " x " << nrows << " cells of '" << this->FileName
                   << "' needs " << vtkApertureHumanBytes(static_cast<double>(bytes))
