@@ -1069,27 +1069,39 @@ double SpanSlack(double cell)
 {
   return 1e-3 * std::fabs(cell);
 }
+
+// The longitude width (degrees) of a column of geo's grid: a lat/lon grid's spacing as it is
+// (its CRS unit `toDegrees` degrees), a cylindrical projection's (Mercator, equirectangular)
+// step, its magnitude; false for other projected grids. For WrapsAround and CheckLongitudeSpan.
+bool ColumnDegrees(vtkApertureGeoreference* geo, bool geographic, double toDegrees, double& cell)
+{
+  if (geographic)
+  {
+    double spacing[2];
+    geo->GetGridSpacing(spacing);
+    cell = spacing[0] * toDegrees;
+    return true;
+  }
+  if (!MeridianColumnStep(geo, cell))
+  {
+    return false;
+  }
+  cell = std::fabs(cell);
+  return true;
+}
 }
 
 //------------------------------------------------------------------------------
 bool vtkApertureGeoreference::WrapsAround()
 {
   Internals& d = *this->Impl;
-  if (!d.CRS || d.IsLocal() || !d.EnsureGeographic())
+  double cell;
+  if (!d.CRS || d.IsLocal() || !d.EnsureGeographic() ||
+    !ColumnDegrees(this, OSRIsGeographic(d.CRS), d.UnitToDegrees, cell))
   {
     return false;
   }
-  double cell = std::fabs(this->GridSpacing[0]) * d.UnitToDegrees;
-  if (!OSRIsGeographic(d.CRS))
-  {
-    // a cylindrical projection's columns (Mercator, equirectangular): their longitude step
-    double step;
-    if (!MeridianColumnStep(this, step))
-    {
-      return false;
-    }
-    cell = std::fabs(step);
-  }
+  cell = std::fabs(cell);
   return std::fabs(this->GridSize[0] * cell - 360.0) <= SpanSlack(cell);
 }
 
@@ -1103,18 +1115,14 @@ bool vtkApertureGeoreference::CheckLongitudeSpan()
   }
   d.Error.clear();
   const bool geographic = OSRIsGeographic(d.CRS);
-  double cell = this->GridSpacing[0] * d.UnitToDegrees;
-  if (!geographic)
+  // (a cylindrical projection's columns have a longitude step too: 361 columns of one degree
+  // of Web Mercator were baked as a strip with two west edges, the same ground at both ends,
+  // until 2026-12-07; other projections' grids are not checked)
+  double cell;
+  if (!ColumnDegrees(this, geographic, d.UnitToDegrees, cell))
   {
-    // a cylindrical projection's columns (Mercator, equirectangular) have a longitude step too:
-    // 361 columns of one degree of Web Mercator were baked as a strip with two west edges,
-    // the same ground at both ends, until 2026-12-07; other projections' grids are not checked
-    if (!MeridianColumnStep(this, cell))
-    {
-      d.Error.clear();
-      return true;
-    }
-    cell = std::fabs(cell);
+    d.Error.clear();
+    return true;
   }
   const double span = this->GridSize[0] * cell;
   if (span > 360.0 + SpanSlack(cell))
