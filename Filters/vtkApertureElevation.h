@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Internal (not installed, not wrapped): elevations as the filters take them from their input.
+// Internal (not installed, not wrapped): elevations as the filters take them from their input,
+// and the input image itself when it was given with SetInputData.
 // Nodata is NaN, and so is every elevation that is not finite (as vtkApertureDEMReader makes
 // them, for an image built by hand); finite ones beyond any on the Earth are kept, and named
 // in a warning (vtkApertureGeoreference::GetElevationWarning).
@@ -11,9 +12,11 @@
 #include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkCellData.h"
+#include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationExecutivePortKey.h"
 #include "vtkPointData.h"
 
 #include <algorithm>
@@ -21,6 +24,20 @@
 #include <limits>
 #include <sstream>
 #include <string>
+
+// The image of an input (its pipeline information inInfo) given with SetInputData, whose
+// producer is a vtkTrivialProducer: there, whole, before any request, so that its own CRS and
+// grid can plan one; nullptr for an input from a filter (whose image held is whatever was
+// computed last) or without an image.
+inline vtkImageData* vtkApertureGivenImage(vtkInformation* inInfo)
+{
+  vtkExecutive* producer = nullptr;
+  int port = 0;
+  vtkExecutive::PRODUCER()->Get(inInfo, producer, port);
+  vtkAlgorithm* algorithm = producer ? producer->GetAlgorithm() : nullptr;
+  return algorithm && algorithm->IsA("vtkTrivialProducer") ? vtkImageData::GetData(inInfo)
+                                                           : nullptr;
+}
 
 // Tuples [begin, end) of a one-component elevation array into z[begin, end) as float, NaN
 // where not finite (doubles beyond the float range included). A float array (the reader's) is

@@ -9,8 +9,6 @@
 
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
-#include "vtkExecutive.h"
-#include "vtkInformationExecutivePortKey.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -514,12 +512,8 @@ int vtkApertureSkyVisibility::RequestInformation(
     // blocks, without their seams, until 2026-12-07); not for an image whose geometry was
     // never set and cannot be measured as it is (beyond a pole), whose refusal downstream
     // would come before this filter's warning about it (a review's)
-    vtkExecutive* producer = nullptr;
-    int port = 0;
-    vtkExecutive::PRODUCER()->Get(inInfo, producer, port);
-    vtkAlgorithm* algorithm = producer ? producer->GetAlgorithm() : nullptr;
-    vtkImageData* given = vtkImageData::GetData(inInfo);
-    if (algorithm && algorithm->IsA("vtkTrivialProducer"))
+    vtkImageData* given = vtkApertureGivenImage(inInfo);
+    if (given)
     {
       crs = vtkApertureGeoreference::GetAttachedCRS(given);
       vtkNew<vtkApertureGeoreference> geo;

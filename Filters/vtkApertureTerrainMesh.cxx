@@ -9,7 +9,6 @@
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
-#include "vtkExecutive.h"
 #include "vtkExtentTranslator.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -18,7 +17,6 @@
 #include "vtkTypeInt64Array.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkInformationExecutivePortKey.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -105,18 +103,13 @@ void PieceExtent(vtkInformation* inInfo, int piece, int pieces, int ext[6])
   else if (pieces > 1)
   {
     vtkNew<vtkApertureGeoreference> geo;
-    vtkImageData* present = vtkImageData::GetData(inInfo);
     // (an image given with SetInputData is there, whole, before any request; behind a filter
     // that drops the CRS from the information, the image held is whatever was read last, the
     // whole DEM or a piece, so it cannot decide: blocks then, whatever came before)
-    vtkExecutive* producer = nullptr;
-    int port = 0;
-    vtkExecutive::PRODUCER()->Get(inInfo, producer, port);
-    const bool given = producer && producer->GetAlgorithm() &&
-      producer->GetAlgorithm()->IsA("vtkTrivialProducer");
+    vtkImageData* given = vtkApertureGivenImage(inInfo);
     const bool wraps = (geo->SetFromInformation(inInfo) ||
-                         (given && present && present->GetNumberOfPoints() > 0 &&
-                           geo->SetFromImage(present))) &&
+                         (given && given->GetNumberOfPoints() > 0 &&
+                           geo->SetFromImage(given))) &&
       geo->WrapsAround();
     if (wraps)
     {
