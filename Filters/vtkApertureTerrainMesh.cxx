@@ -221,8 +221,14 @@ std::string UnreadRefusal(vtkInformation* inInfo)
   {
     // (a Mercator or equirectangular grid wider than the Earth: read whole, then refused,
     // until 2026-12-07; other projected grids' questions need the grid)
-    return !geo->HasMeridianColumns() || geo->CheckLongitudeSpan() ? std::string()
-                                                                   : geo->GetErrorMessage();
+    // (the span first: HasMeridianColumns measures the columns again, so it is asked only of
+    // a grid refused, to tell one too wide from a CRS without geographic coordinates)
+    if (geo->CheckLongitudeSpan())
+    {
+      return std::string();
+    }
+    const std::string why = geo->GetErrorMessage();
+    return geo->HasMeridianColumns() ? why : std::string();
   }
   if (geo->GetBoundsLonLat(bounds) && geo->GetCellSizeMetres(cell))
   {
